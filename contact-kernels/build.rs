@@ -1,22 +1,45 @@
+//! Generates the contact kernels from `formulations/*.rs` with
+//! `gapsim-codegen` into `OUT_DIR/kernels.rs` (rewritten only when its
+//! content changes).
+//!
+//! A formulation `foo-bar.rs` is compiled in when the crate feature
+//! `foo-bar` is enabled; its `Formulation` variant exists either way.
+
+use std::path::{Path, PathBuf};
+
 fn main() {
-    let out = std::path::PathBuf::from(std::env::var("OUT_DIR").unwrap()).join("kernels.rs");
-    std::fs::write(out, r#"
-/// A contact formulation.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum Formulation {
-    /// slave normal
-    SlaveNormal,
-    /// closest point
-    ClosestPoint,
+    let manifest = PathBuf::from(std::env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
+    let dir = manifest.join("formulations");
+    println!("cargo:rerun-if-changed={}", dir.display());
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("cannot read {}: {e}", dir.display()))
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "rs"))
+        .collect();
+    files.sort();
+    let mut sources = Vec::new();
+    for path in &files {
+        println!("cargo:rerun-if-changed={}", path.display());
+        let name = path.file_stem().and_then(|s| s.to_str()).expect("formulation file names are UTF-8").to_owned();
+        let feature = format!("CARGO_FEATURE_{}", name.to_uppercase().replace('-', "_"));
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
+        sources.push(codegen::Source { compiled: std::env::var_os(&feature).is_some(), name, text });
+    }
+    let generated = match codegen::generate(&sources) {
+        Ok(g) => g,
+        Err(e) => {
+            // A malformed formulation is a user error: report it as such.
+            eprintln!("error: {e}");
+            std::process::exit(1);
+        }
+    };
+    let out = PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR")).join("kernels.rs");
+    write_if_changed(&out, &generated.code);
 }
-impl Formulation {
-    /// All formulations.
-    pub const ALL: [Formulation; 2] = [Formulation::SlaveNormal, Formulation::ClosestPoint];
-    /// The name.
-    pub fn name(self) -> &'static str { match self { Formulation::SlaveNormal => "slave-normal", Formulation::ClosestPoint => "closest-point" } }
-}
-use EntityOrder::*;
-pub(crate) const TRUNCATION: [[EntityOrder; 3]; 6] = [[Constant, Linear, Constant],[Linear, Linear, Linear],[Linear, Quadratic, Linear],[Quadratic, Quadratic, Linear],[Linear, Quadratic, Quadratic],[Quadratic, Quadratic, Quadratic]];
-pub(crate) fn kernel_set(_f: Formulation) -> Option<&'static KernelSet> { None }
-"#).unwrap();
+
+fn write_if_changed(path: &Path, content: &str) {
+    if std::fs::read_to_string(path).is_ok_and(|old| old == content) {
+        return;
+    }
+    std::fs::write(path, content).unwrap_or_else(|e| panic!("cannot write {}: {e}", path.display()));
 }

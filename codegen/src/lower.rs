@@ -1,0 +1,228 @@
+//! Lowering: from output expressions to a straight-line instruction list.
+//!
+//! The instruction list is the only input of the emitter. It is produced by
+//!
+//! 1. **relative coordinates**: the coordinates of slave node 1 are
+//!    substituted by zero (the caller passes coordinates relative to that
+//!    node; formulations are translation invariant), and the expressions are
+//!    rebuilt and re-simplified;
+//! 2. **dead-code removal**: only nodes reachable from the outputs are kept;
+//! 3. **common-subexpression elimination**: already done by hash-consing —
+//!    each live node becomes exactly one instruction;
+//! 4. **ordering**: arena order, which is topological (children precede
+//!    parents).
+//!
+//! ## Instructions
+//!
+//! Every [`Instr`] defines a fresh register (`v0, v1, ...`) from operands
+//! that are earlier registers or constants:
+//!
+//! | instruction | meaning | counted as |
+//! |---|---|---|
+//! | `Load(Coord(i))` | `d[i]` | — |
+//! | `Load(Param)` | `xi_s` | — |
+//! | `Load(Implicit)` | `xi_m` (or `xi` in the residual) | — |
+//! | `Add(a, b)`, `Sub(a, b)` | `a + b`, `a - b` | add |
+//! | `Mul(a, b)` | `a * b` | mul |
+//! | `Square(a)` | `a * a` | mul |
+//! | `Powi(a, n)` | `a.powi(n)`, `n >= 3` | `n - 1` mul (upper bound) |
+//! | `Recip(a)` | `1 / a` | div |
+//! | `Neg(a)` | `-a` | neg |
+//! | `Sqrt(a)` | `a.sqrt()` | sqrt |
+
+use std::collections::HashMap;
+
+use crate::expr::{Dag, Id, Node, Sym};
+
+/// Where a loaded value comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// Relative coordinate `d[i]`.
+    Coord(usize),
+    /// The slave parameter `xi_s`.
+    Param,
+    /// The implicit variable's value.
+    Implicit,
+}
+
+/// An instruction operand.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Operand {
+    /// A register defined by an earlier instruction.
+    Reg(u32),
+    /// A finite constant.
+    Const(f64),
+}
+
+/// One instruction; defines register number = its index in the list.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Instr {
+    /// Load an input.
+    Load(Source),
+    /// `a + b`.
+    Add(Operand, Operand),
+    /// `a - b`.
+    Sub(Operand, Operand),
+    /// `a * b`.
+    Mul(Operand, Operand),
+    /// `a * a`.
+    Square(Operand),
+    /// `a^n`, `|n| >= 3`.
+    Powi(Operand, i32),
+    /// `1 / a`.
+    Recip(Operand),
+    /// `-a`.
+    Neg(Operand),
+    /// `sqrt(a)`.
+    Sqrt(Operand),
+}
+
+/// Floating-point operation counts of a program.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct OpCount {
+    /// Additions and subtractions.
+    pub add: u32,
+    /// Multiplications.
+    pub mul: u32,
+    /// Divisions (reciprocals).
+    pub div: u32,
+    /// Square roots.
+    pub sqrt: u32,
+    /// Negations.
+    pub neg: u32,
+}
+
+impl OpCount {
+    /// All operations.
+    pub fn total(&self) -> u32 {
+        self.add + self.mul + self.div + self.sqrt + self.neg
+    }
+}
+
+impl std::fmt::Display for OpCount {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} ops ({} add, {} mul, {} div, {} sqrt, {} neg)",
+            self.total(),
+            self.add,
+            self.mul,
+            self.div,
+            self.sqrt,
+            self.neg
+        )
+    }
+}
+
+/// A lowered kernel: instructions and where each output comes from.
+#[derive(Debug, Clone)]
+pub struct Program {
+    /// The instructions in execution order.
+    pub instrs: Vec<Instr>,
+    /// One operand per requested output; `None` = structural zero.
+    pub outputs: Vec<Option<Operand>>,
+}
+
+impl Program {
+    /// Lowers `outputs` (expressions of `dag`) with coordinates
+    /// `zero_coords` replaced by zero; `coords[i]` is the symbol loaded from
+    /// `d[i]`, `param` and `implicit` the other inputs.
+    pub fn lower(
+        dag: &Dag,
+        outputs: &[Option<Id>],
+        coords: &[Sym],
+        zero_coords: &[usize],
+        param: Sym,
+        implicit: Sym,
+    ) -> Program {
+        let zeros: HashMap<Sym, f64> = zero_coords.iter().map(|&i| (coords[i], 0.0)).collect();
+        let (dag, roots) = dag.substitute(outputs, &zeros);
+        dag.check_invariants_debug();
+        let live = dag.reachable(roots.iter().flatten().copied());
+        let mut reg: Vec<Option<Operand>> = vec![None; dag.len()];
+        let mut instrs = Vec::new();
+        for (i, live) in live.iter().enumerate() {
+            if !*live {
+                continue;
+            }
+            let node = dag.node(Id(i as u32));
+            if let Node::Const(bits) = node {
+                reg[i] = Some(Operand::Const(f64::from_bits(bits)));
+                continue;
+            }
+            let o = |id: Id| reg[id.index()].expect("children precede parents");
+            let instr = match node {
+                Node::Const(_) => unreachable!("handled above"),
+                Node::Input(s) if s == param => Instr::Load(Source::Param),
+                Node::Input(s) if s == implicit => Instr::Load(Source::Implicit),
+                Node::Input(s) => Instr::Load(Source::Coord(
+                    coords.iter().position(|c| *c == s).expect("every input symbol is a coordinate, the parameter or the implicit"),
+                )),
+                Node::Add(a, b) => Instr::Add(o(a), o(b)),
+                Node::Sub(a, b) => Instr::Sub(o(a), o(b)),
+                Node::Mul(a, b) => Instr::Mul(o(a), o(b)),
+                Node::Powi(a, 2) => Instr::Square(o(a)),
+                Node::Powi(a, n) => Instr::Powi(o(a), n),
+                Node::Recip(a) => Instr::Recip(o(a)),
+                Node::Neg(a) => Instr::Neg(o(a)),
+                Node::Sqrt(a) => Instr::Sqrt(o(a)),
+            };
+            reg[i] = Some(Operand::Reg(instrs.len() as u32));
+            instrs.push(instr);
+        }
+        let outputs = roots.iter().map(|r| r.map(|id| reg[id.index()].expect("root is live"))).collect();
+        Program { instrs, outputs }
+    }
+
+    /// The operation count.
+    pub fn op_count(&self) -> OpCount {
+        let mut c = OpCount::default();
+        for i in &self.instrs {
+            match *i {
+                Instr::Load(_) => {}
+                Instr::Add(..) | Instr::Sub(..) => c.add += 1,
+                Instr::Mul(..) | Instr::Square(_) => c.mul += 1,
+                Instr::Powi(_, n) => c.mul += n.unsigned_abs() - 1,
+                Instr::Recip(_) => c.div += 1,
+                Instr::Neg(_) => c.neg += 1,
+                Instr::Sqrt(_) => c.sqrt += 1,
+            }
+        }
+        c
+    }
+
+    /// Interprets the program (reference semantics for tests).
+    pub fn run(&self, d: &[f64], param: f64, implicit: f64) -> Vec<f64> {
+        let mut regs: Vec<f64> = Vec::with_capacity(self.instrs.len());
+        let val = |regs: &Vec<f64>, o: Operand| match o {
+            Operand::Reg(r) => regs[r as usize],
+            Operand::Const(c) => c,
+        };
+        for i in &self.instrs {
+            let v = match *i {
+                Instr::Load(Source::Coord(k)) => d[k],
+                Instr::Load(Source::Param) => param,
+                Instr::Load(Source::Implicit) => implicit,
+                Instr::Add(a, b) => val(&regs, a) + val(&regs, b),
+                Instr::Sub(a, b) => val(&regs, a) - val(&regs, b),
+                Instr::Mul(a, b) => val(&regs, a) * val(&regs, b),
+                Instr::Square(a) => val(&regs, a) * val(&regs, a),
+                Instr::Powi(a, n) => val(&regs, a).powi(n),
+                Instr::Recip(a) => 1.0 / val(&regs, a),
+                Instr::Neg(a) => -val(&regs, a),
+                Instr::Sqrt(a) => val(&regs, a).sqrt(),
+            };
+            regs.push(v);
+        }
+        self.outputs.iter().map(|o| o.map_or(0.0, |o| val(&regs, o))).collect()
+    }
+}
+
+impl Dag {
+    /// [`Dag::check_invariants`] in debug builds only.
+    pub fn check_invariants_debug(&self) {
+        if cfg!(debug_assertions) {
+            self.check_invariants();
+        }
+    }
+}

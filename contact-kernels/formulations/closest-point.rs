@@ -1,0 +1,17 @@
+//! Closest-point projection: the gap vector is perpendicular to the master
+//! segment, `(x_m(xi) - x_s) . t_m = 0`, and the normal is the master
+//! segment's inward unit normal (pointing towards the slave body).
+inputs!(xs1, xs2, xm1, xm2; xi_s);
+
+// Slave point and master tangent.
+let x_s = lerp(xs1, xs2, xi_s);
+let t_m = xm2 - xm1;
+
+// Projection coordinate on the master segment.
+let xi_m = implicit!(xi => dot(lerp(xm1, xm2, xi) - x_s, t_m));
+
+// Gap vector from the slave point to its projection, and the unit normal.
+let x_ms = entity!(lerp(xm1, xm2, xi_m) - x_s);
+let n = entity!(-perp(t_m) / norm(t_m));
+
+gap!(dot(n, x_ms));

@@ -1,0 +1,17 @@
+//! Projection along the slave normal (the paper's formulation): the gap
+//! vector stays perpendicular to the slave segment, `(x_m(xi) - x_s) . t_s = 0`,
+//! and the normal is the slave segment's outward unit normal.
+inputs!(xs1, xs2, xm1, xm2; xi_s);
+
+// Slave point and slave tangent.
+let x_s = lerp(xs1, xs2, xi_s);
+let t_s = xs2 - xs1;
+
+// Projection coordinate on the master segment.
+let xi_m = implicit!(xi => dot(lerp(xm1, xm2, xi) - x_s, t_s));
+
+// Gap vector from the slave point to its projection, and the unit normal.
+let x_ms = entity!(lerp(xm1, xm2, xi_m) - x_s);
+let n = entity!(perp(t_s) / norm(t_s));
+
+gap!(dot(n, x_ms));
