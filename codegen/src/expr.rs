@@ -160,6 +160,10 @@ impl Dag {
             let two = self.constant(2.0);
             return self.mul(two, a);
         }
+        if let Some((c, x, y)) = self.common_factor(a, b) {
+            let s = self.add(x, y);
+            return self.mul(c, s);
+        }
         let (a, b) = self.order(a, b);
         self.intern(Node::Add(a, b))
     }
@@ -182,6 +186,15 @@ impl Dag {
                 return self.neg(s);
             }
             _ => {}
+        }
+        if let Some((c, x, y)) = self.common_factor(a, b) {
+            let s = self.sub(x, y);
+            return self.mul(c, s);
+        }
+        // `a - b` and `b - a` share one node: the one with `a < b`.
+        if a > b && self.as_const(b).is_none() && self.as_const(a).is_none() {
+            let s = self.sub(b, a);
+            return self.neg(s);
         }
         self.intern(Node::Sub(a, b))
     }
@@ -264,7 +277,7 @@ impl Dag {
         }
         match self.node(a) {
             Node::Neg(x) => x,
-            Node::Sub(x, y) => self.sub(y, x),
+            Node::Sub(x, y) if x > y => self.sub(y, x),
             _ => self.intern(Node::Neg(a)),
         }
     }
@@ -300,6 +313,32 @@ impl Dag {
                 self.recip(p)
             }
             _ => self.intern(Node::Powi(a, n)),
+        }
+    }
+
+    /// Rewrites an output `-(x - y)` as `y - x` and `-(c x)` as `(-c) x`,
+    /// so a negated result costs no negation. Returns `id` unchanged
+    /// otherwise. The nodes built here bypass the canonical sign rules; they
+    /// are meant for outputs only, just before lowering.
+    pub fn absorb_negation(&mut self, id: Id) -> Id {
+        let Node::Neg(z) = self.node(id) else { return id };
+        match self.node(z) {
+            Node::Sub(x, y) => self.intern(Node::Sub(y, x)),
+            Node::Mul(c, x) if self.as_const(c).is_some() => {
+                let c = self.as_const(c).expect("checked");
+                let m = self.constant(-c);
+                self.intern(Node::Mul(m, x))
+            }
+            _ => id,
+        }
+    }
+
+    /// `(c, x, y)` when `a = c * x` and `b = c * y` for one constant `c`:
+    /// `c x ± c y` is rewritten `c (x ± y)`, one multiplication fewer.
+    fn common_factor(&self, a: Id, b: Id) -> Option<(Id, Id, Id)> {
+        match (self.node(a), self.node(b)) {
+            (Node::Mul(c1, x), Node::Mul(c2, y)) if c1 == c2 && self.as_const(c1).is_some() => Some((c1, x, y)),
+            _ => None,
         }
     }
 

@@ -136,7 +136,10 @@ impl Program {
         implicit: Sym,
     ) -> Program {
         let zeros: HashMap<Sym, f64> = zero_coords.iter().map(|&i| (coords[i], 0.0)).collect();
-        let (dag, roots) = dag.substitute(outputs, &zeros);
+        let (mut dag, mut roots) = dag.substitute(outputs, &zeros);
+        for r in roots.iter_mut().flatten() {
+            *r = dag.absorb_negation(*r);
+        }
         dag.check_invariants_debug();
         let live = dag.reachable(roots.iter().flatten().copied());
         let mut reg: Vec<Option<Operand>> = vec![None; dag.len()];
