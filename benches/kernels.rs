@@ -1,1 +1,101 @@
-fn main(){}
+//! Kernel benchmark: every compiled (formulation, type) kernel through
+//! `contact_kernels::evaluate`, the projection kernel through
+//! `contact_kernels::project`, and num-dual's `hessian` of the same gap
+//! written generically (the function of `tests/kernels_ad.rs`), all at the
+//! same configuration (design.md's worked example).
+//!
+//! Run `cargo bench --bench kernels`, then
+//! `cargo run --release --example bench_table` for the Markdown table.
+//! Results land in `target/criterion/<formulation>/<id>/new/estimates.json`
+//! with `<id>` one of `type1`..`type6`, `project`, `num-dual-hessian`
+//! (the names `examples/bench_table.rs` reads).
+//!
+//! Warm-up and measurement are 1 s each so the whole run takes well under a
+//! minute of measurement (16 benchmarks).
+
+use std::hint::black_box;
+use std::time::Duration;
+
+use contact_kernels::{ApproxType, Formulation, compiled_formulations, evaluate, project};
+use criterion::{Criterion, criterion_group, criterion_main};
+use nalgebra::SVector;
+use num_dual::{Dual2SVec64, DualNum, hessian};
+
+/// design.md's worked example.
+const Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
+const XI_S: f64 = 0.3;
+
+// The gap written generically over num-dual numbers, as in
+// tests/kernels_ad.rs (closed-form projection of straight segments).
+
+fn lerp<D: DualNum<Primitive = f64> + Copy>(a: [D; 2], b: [D; 2], xi: D) -> [D; 2] {
+    let n1 = (D::from(1.0) - xi) * 0.5;
+    let n2 = (D::from(1.0) + xi) * 0.5;
+    [a[0] * n1 + b[0] * n2, a[1] * n1 + b[1] * n2]
+}
+
+fn sub<D: DualNum<Primitive = f64> + Copy>(a: [D; 2], b: [D; 2]) -> [D; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn dot<D: DualNum<Primitive = f64> + Copy>(a: [D; 2], b: [D; 2]) -> D {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// `g(q) = n . (x_m(xi_m) - x_s)` with `xi_m` solving
+/// `(x_m(xi) - x_s) . t = 0` (`t = t_s` slave-normal, `t_m` closest-point).
+fn gap<D: DualNum<Primitive = f64> + Copy>(f: Formulation, q: &[D; 8], xi_s: f64) -> D {
+    let node = |k: usize| [q[2 * k], q[2 * k + 1]];
+    let (xs1, xs2, xm1, xm2) = (node(0), node(1), node(2), node(3));
+    let x_s = lerp(xs1, xs2, D::from(xi_s));
+    let (t_s, t_m) = (sub(xs2, xs1), sub(xm2, xm1));
+    let c_m = lerp(xm1, xm2, D::from(0.0));
+    let (t, n) = match f {
+        Formulation::SlaveNormal => {
+            let len = dot(t_s, t_s).sqrt();
+            (t_s, [t_s[1] / len, -t_s[0] / len])
+        }
+        Formulation::ClosestPoint => {
+            let len = dot(t_m, t_m).sqrt();
+            (t_m, [-t_m[1] / len, t_m[0] / len])
+        }
+    };
+    let xi = -(dot(sub(c_m, x_s), t) * 2.0) / dot(t_m, t);
+    dot(n, sub(lerp(xm1, xm2, xi), x_s))
+}
+
+fn kernels(c: &mut Criterion) {
+    let qv = SVector::<f64, 8>::from(Q);
+    for f in compiled_formulations() {
+        let mut group = c.benchmark_group(f.name());
+        for ty in ApproxType::ALL {
+            group.bench_function(format!("type{}", ty.index()), |b| {
+                b.iter(|| evaluate(f, ty, black_box(&Q), black_box(XI_S)).unwrap())
+            });
+        }
+        group.bench_function("project", |b| b.iter(|| project(f, black_box(&Q), black_box(XI_S)).unwrap()));
+        group.bench_function("num-dual-hessian", |b| {
+            b.iter(|| {
+                hessian(
+                    |v: SVector<Dual2SVec64<8>, 8>| gap(f, &std::array::from_fn(|i| v[i]), black_box(XI_S)),
+                    black_box(&qv),
+                )
+            })
+        });
+        group.finish();
+    }
+}
+
+fn config() -> Criterion {
+    Criterion::default()
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(1))
+        .sample_size(50)
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = kernels
+}
+criterion_main!(benches);

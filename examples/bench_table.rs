@@ -1,0 +1,103 @@
+//! Prints the kernel benchmark as a Markdown table.
+//!
+//! ```text
+//! cargo bench --bench kernels && cargo run --release --example bench_table
+//! ```
+//!
+//! Reads criterion's results (`<criterion dir>/<formulation>/<id>/new/estimates.json`,
+//! the median's point estimate in ns) written by `benches/kernels.rs`, and
+//! the generated kernels' operation counts from `contact_kernels::op_count`.
+//! The criterion directory is, in order: the first argument, `$CRITERION_HOME`,
+//! `$CARGO_TARGET_DIR/criterion`, or the `criterion` folder of the target
+//! directory this example was built into.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use contact_kernels::{ApproxType, OpCount, compiled_formulations, op_count};
+
+/// Where criterion wrote its results.
+fn criterion_dir() -> PathBuf {
+    if let Some(arg) = std::env::args_os().nth(1) {
+        return PathBuf::from(arg);
+    }
+    if let Some(home) = std::env::var_os("CRITERION_HOME") {
+        return PathBuf::from(home);
+    }
+    if let Some(target) = std::env::var_os("CARGO_TARGET_DIR") {
+        return PathBuf::from(target).join("criterion");
+    }
+    // target/<profile>/examples/bench_table -> target
+    std::env::current_exe()
+        .ok()
+        .and_then(|exe| exe.ancestors().nth(3).map(Path::to_path_buf))
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target"))
+        .join("criterion")
+}
+
+/// The median time per iteration (ns) of benchmark `group/id`.
+fn median_ns(dir: &Path, group: &str, id: &str) -> Result<f64, String> {
+    let path = dir.join(group).join(id).join("new").join("estimates.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        format!("cannot read {}: {e}\n(run `cargo bench --bench kernels` first)", path.display())
+    })?;
+    let json: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| format!("cannot parse {}: {e}", path.display()))?;
+    json["median"]["point_estimate"]
+        .as_f64()
+        .ok_or_else(|| format!("{}: no median.point_estimate", path.display()))
+}
+
+fn ops_columns(ops: Option<OpCount>) -> String {
+    match ops {
+        Some(o) => format!("{} | {} | {} | {} | {} | {}", o.add, o.mul, o.div, o.sqrt, o.neg, o.total()),
+        None => "– | – | – | – | – | –".to_owned(),
+    }
+}
+
+fn table(dir: &Path) -> Result<String, String> {
+    let mut out = String::new();
+    out.push_str(
+        "| formulation | type | ns/eval | speed-up vs num-dual hessian | add | mul | div | sqrt | neg | total ops |\n",
+    );
+    out.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for f in compiled_formulations() {
+        let name = f.name();
+        let reference = median_ns(dir, name, "num-dual-hessian")?;
+        for ty in ApproxType::ALL {
+            let t = median_ns(dir, name, &format!("type{}", ty.index()))?;
+            out.push_str(&format!(
+                "| {name} | {} | {t:.1} | {:.1}× | {} |\n",
+                ty.index(),
+                reference / t,
+                ops_columns(op_count(f, Some(ty)))
+            ));
+        }
+        let t = median_ns(dir, name, "project")?;
+        out.push_str(&format!(
+            "| {name} | projection (g, xi_m) | {t:.1} | {:.1}× | {} |\n",
+            reference / t,
+            ops_columns(op_count(f, None))
+        ));
+        out.push_str(&format!("| {name} | num-dual `hessian` (Type 6) | {reference:.1} | 1.0× | {} |\n", ops_columns(None)));
+    }
+    Ok(out)
+}
+
+fn main() -> ExitCode {
+    let dir = criterion_dir();
+    match table(&dir) {
+        Ok(t) => {
+            println!(
+                "Median time per evaluation (criterion, design.md's worked example; kernels via \
+                 `contact_kernels::evaluate`, including input validation and the projection solve).\n"
+            );
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("bench_table: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

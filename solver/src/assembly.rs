@@ -1,0 +1,211 @@
+//! Global numbering and assembly of the Newton system.
+//!
+//! Unknowns: the free displacement dofs (in node order) followed by the
+//! multipliers. Prescribed dofs are eliminated (their values are set before
+//! a step's Newton iterations). The residual is
+//!
+//! ```text
+//! r_u  = f_int(u) + sum_gp w J0 lambda g' - lambda_L f_ref      (free dofs)
+//! r_la = sum_gp w J0 N_a g        (active multiplier)  or  l_a  (inactive)
+//! ```
+//!
+//! and the tangent its exact derivative (see [`crate::quad`] and
+//! [`crate::contact`]). Element matrices are computed in parallel (rayon),
+//! collected in element order and scattered sequentially into coordinate
+//! triplets, so the result is deterministic. The triplet index order depends
+//! only on the mesh, the prescribed set, the pairing and the presence of
+//! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
+
+use rayon::prelude::*;
+
+use crate::contact::{ContactLayout, PointEval, shape2};
+use crate::model::Model;
+use crate::quad::{QuadResponse, quad_response};
+
+/// Marks a prescribed dof in [`DofMap::eq`].
+const PRESCRIBED: usize = usize::MAX;
+
+/// Elements per rayon task.
+const PAR_MIN_LEN: usize = 64;
+
+/// Equation numbers of the dofs and multipliers.
+#[derive(Debug, Clone)]
+pub struct DofMap {
+    eq: Vec<usize>,
+    /// Number of free displacement dofs.
+    pub n_free: usize,
+    /// Number of multipliers.
+    pub n_mult: usize,
+}
+
+impl DofMap {
+    /// Numbers the free dofs of `model` and `n_mult` multipliers.
+    pub fn new(model: &Model, n_mult: usize) -> DofMap {
+        let ndof = 2 * model.mesh.node_count();
+        let mut eq = vec![0; ndof];
+        for p in &model.prescribed {
+            eq[p.dof] = PRESCRIBED;
+        }
+        let mut n_free = 0;
+        for e in eq.iter_mut() {
+            if *e != PRESCRIBED {
+                *e = n_free;
+                n_free += 1;
+            }
+        }
+        DofMap { eq, n_free, n_mult }
+    }
+
+    /// The equation of displacement dof `dof`, `None` if prescribed.
+    pub fn eq(&self, dof: usize) -> Option<usize> {
+        let e = self.eq[dof];
+        (e != PRESCRIBED).then_some(e)
+    }
+
+    /// The equation of multiplier `m`.
+    pub fn mult_eq(&self, m: usize) -> usize {
+        self.n_free + m
+    }
+
+    /// Total number of equations.
+    pub fn n_eq(&self) -> usize {
+        self.n_free + self.n_mult
+    }
+}
+
+/// The assembled Newton system at one state.
+#[derive(Debug, Clone, Default)]
+pub struct System {
+    /// The residual (length [`DofMap::n_eq`]).
+    pub residual: Vec<f64>,
+    /// Triplet rows.
+    pub rows: Vec<usize>,
+    /// Triplet columns.
+    pub cols: Vec<usize>,
+    /// Triplet values.
+    pub vals: Vec<f64>,
+    /// Strain energy of all solid elements.
+    pub energy: f64,
+}
+
+impl System {
+    /// An empty system with `n` equations.
+    pub fn new(n: usize) -> System {
+        System { residual: vec![0.0; n], ..System::default() }
+    }
+
+    fn push(&mut self, r: usize, c: usize, v: f64) {
+        self.rows.push(r);
+        self.cols.push(c);
+        self.vals.push(v);
+    }
+
+    /// The Euclidean norm of the residual.
+    pub fn residual_norm(&self) -> f64 {
+        self.residual.iter().map(|v| v * v).sum::<f64>().sqrt()
+    }
+}
+
+/// Adds the solid elements' internal forces, tangents and energies at
+/// displacements `u`.
+pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
+    let mesh = &model.mesh;
+    let responses: Vec<QuadResponse> = (0..mesh.elements.len())
+        .into_par_iter()
+        .with_min_len(PAR_MIN_LEN)
+        .map(|e| {
+            let material = &mesh.bodies[mesh.element_body[e]].material;
+            quad_response(&mesh.geometry[e], &mesh.element_displacements(e, u), material)
+        })
+        .collect();
+    sys.rows.reserve(64 * responses.len());
+    sys.cols.reserve(64 * responses.len());
+    sys.vals.reserve(64 * responses.len());
+    for (el, resp) in mesh.elements.iter().zip(&responses) {
+        let eqs: [Option<usize>; 8] = std::array::from_fn(|k| dofs.eq(2 * el[k / 2] + k % 2));
+        for p in 0..8 {
+            let Some(ep) = eqs[p] else { continue };
+            sys.residual[ep] += resp.f_int[p];
+            for q in 0..8 {
+                if let Some(eq) = eqs[q] {
+                    sys.push(ep, eq, resp.k[p][q]);
+                }
+            }
+        }
+        sys.energy += resp.energy;
+    }
+}
+
+/// Adds the contact contributions of the evaluated integration points
+/// (`None` = inactive) with multipliers `lambda` and the multiplier rows
+/// (constraint for active multipliers, `l_a = 0` with a unit diagonal for
+/// inactive ones).
+pub fn assemble_contact(
+    layout: &ContactLayout,
+    evals: &[Option<PointEval>],
+    lambda: &[f64],
+    active: &[bool],
+    dofs: &DofMap,
+    sys: &mut System,
+) {
+    for (pt, ev) in layout.points.iter().zip(evals) {
+        let Some(ev) = ev else { continue };
+        let nsh = shape2(pt.xi_s);
+        let w = pt.weight_ref;
+        let lam = nsh[0] * lambda[pt.multipliers[0]] + nsh[1] * lambda[pt.multipliers[1]];
+        let eqs: [Option<usize>; 8] = std::array::from_fn(|k| dofs.eq(2 * ev.nodes[k / 2] + k % 2));
+        for p in 0..8 {
+            if let Some(ep) = eqs[p] {
+                sys.residual[ep] += w * lam * ev.grad[p];
+            }
+        }
+        if let Some(h) = &ev.hess {
+            for p in 0..8 {
+                let Some(ep) = eqs[p] else { continue };
+                for q in 0..8 {
+                    if let Some(eq) = eqs[q] {
+                        sys.push(ep, eq, w * lam * h[(p, q)]);
+                    }
+                }
+            }
+        }
+        for a in 0..2 {
+            let m = pt.multipliers[a];
+            let row = dofs.mult_eq(m);
+            let on = active[m];
+            if on {
+                sys.residual[row] += w * nsh[a] * ev.gap;
+            }
+            for p in 0..8 {
+                if let Some(ep) = eqs[p] {
+                    let v = w * nsh[a] * ev.grad[p];
+                    sys.push(ep, row, v);
+                    sys.push(row, ep, if on { v } else { 0.0 });
+                }
+            }
+        }
+    }
+    for (m, &on) in active.iter().enumerate() {
+        let row = dofs.mult_eq(m);
+        if on {
+            sys.push(row, row, 0.0);
+        } else {
+            sys.residual[row] = lambda[m];
+            sys.push(row, row, 1.0);
+        }
+    }
+}
+
+/// Subtracts the external force `load_factor f_ref`; returns its norm.
+pub fn add_external(model: &Model, dofs: &DofMap, load_factor: f64, sys: &mut System) -> f64 {
+    let mut f = vec![0.0; 2 * model.mesh.node_count()];
+    for l in &model.loads {
+        f[l.dof] += load_factor * l.value;
+    }
+    for (dof, v) in f.iter().enumerate() {
+        if let Some(e) = dofs.eq(dof) {
+            sys.residual[e] -= v;
+        }
+    }
+    f.iter().map(|v| v * v).sum::<f64>().sqrt()
+}

@@ -1,0 +1,567 @@
+//! Lagrange-multiplier contact elements and the step-wise Taylor scheme.
+//!
+//! # The contact element
+//!
+//! A contact pair has a slave face and a master face, each a chain of
+//! 2-node segments ordered counter-clockwise around its own body. Every slave
+//! segment carries `n_g` Gauss points `xi_s` (Gauss–Legendre on `[-1, 1]`,
+//! weight `w`) integrated in the **reference** configuration with
+//! `J0 = |X_s2 - X_s1| / 2`. Each integration point is paired with the master
+//! segment it projects into (`xi_m` in `[-1, 1]`), and the generated kernel
+//! (crate `contact-kernels`) evaluates the gap `g` of the four nodes
+//! `q = [x_s1, x_s2, x_m1, x_m2]` (current coordinates) with its gradient
+//! `g'` and Hessian `g''` with respect to those 8 coordinates.
+//!
+//! Multipliers live at the slave nodes (shared by neighbouring slave
+//! segments), `lambda(xi_s) = N1(xi_s) l1 + N2(xi_s) l2`, and the element's
+//! potential is `Pi_c = sum_gp w J0 lambda g`, so per integration point
+//!
+//! ```text
+//! r_u     += w J0 lambda g'          K_uu += w J0 lambda g''
+//! r_la    += w J0 N_a g              K_u,la = K_la,u += w J0 N_a g'
+//! ```
+//!
+//! With this sign, a compressive contact has `lambda < 0`: the contact
+//! pressure is `p = -lambda`.
+//!
+//! # Types 1–6: Taylor coefficients frozen per load step
+//!
+//! At the start of a load step, at the converged displacements `u0`, every
+//! integration point is (re-)paired and that type's kernel gives `g0`, `g'0`,
+//! `g''0` (`g''0 = 0` for Type 1). During the step's Newton iterations, with
+//! `d = u - u0` on the pair's 8 degrees of freedom,
+//!
+//! ```text
+//! g~ = g0 + g'0 . d + 1/2 d . g''0 d,   g~' = g'0 + g''0 d,   g~'' = g''0,
+//! ```
+//!
+//! so the Newton tangent is exact for the approximated problem. There is no
+//! re-projection and no re-pairing until the step has converged.
+//!
+//! # Complete formulation
+//!
+//! Every iteration re-projects every integration point and evaluates the
+//! exact (Type 6) kernel; when the projection leaves the paired master
+//! segment, the point is re-paired at once.
+//!
+//! # Pairing
+//!
+//! A point is paired with its current master segment if it projects into it
+//! (`|xi_m| <= 1 + 1e-9`); otherwise the search walks along the master
+//! chain in the direction of `xi_m` and, failing that, tries every master
+//! segment and keeps the one with the smallest `|g|` among those the point
+//! projects into. A point that projects into no master segment is
+//! **inactive**: it contributes nothing, is counted and listed in the
+//! solution, and is re-paired at the next step start (Types 1–6) or the next
+//! iteration (complete). It is never extrapolated.
+//!
+//! # Multipliers and modes
+//!
+//! * Persistent (equality) contact: a multiplier with at least one active
+//!   integration point carries the constraint row `sum w J0 N_a g = 0`; a
+//!   multiplier without any gets the row `l_a = 0` (unit diagonal).
+//! * Unilateral contact (`g >= 0`, `p = -lambda >= 0`, `p g = 0`): a
+//!   primal–dual active set on the multiplier nodes. At every Newton
+//!   iteration, with the nodal weighted gap
+//!   `g_a = sum w J0 N_a g / sum w J0 N_a`, node `a` is active when
+//!   `p_a - c g_a >= 0` (`c = E / h`, the slave body's Young's modulus over
+//!   the mean slave segment length); an active node carries the constraint
+//!   row, an inactive one the row `l_a = 0`. The system's sparsity pattern
+//!   is the same for both. Newton converges when the residual of the
+//!   current active set is below tolerance; a step whose active set keeps
+//!   changing runs into the iteration limit and is cut back.
+
+use contact_kernels::{ApproxType, Formulation, KernelError, Projection, Segment};
+use nalgebra::{SMatrix, SVector};
+use rayon::prelude::*;
+
+use crate::mesh::Mesh;
+use crate::model::{ContactMode, Model};
+
+/// A projection with `|xi_m| <= 1 + XI_INSIDE_TOL` lies inside the master
+/// segment.
+pub const XI_INSIDE_TOL: f64 = 1e-9;
+
+/// Points per rayon task (contact evaluation is cheap per point).
+const PAR_MIN_LEN: usize = 256;
+
+/// Gauss–Legendre points and weights on `[-1, 1]` (Newton iteration on the
+/// Legendre polynomial, exact to rounding).
+pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
+    let mut out = Vec::with_capacity(n);
+    for i in 0..n {
+        let mut x = -(std::f64::consts::PI * (i as f64 + 0.75) / (n as f64 + 0.5)).cos();
+        let mut dp = 1.0;
+        for _ in 0..100 {
+            let (mut p0, mut p1) = (1.0, x);
+            for k in 2..=n {
+                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
+                p0 = p1;
+                p1 = p2;
+            }
+            let p = if n == 0 { 1.0 } else { p1 };
+            let pm1 = if n <= 1 { 1.0 } else { p0 };
+            dp = n as f64 * (x * p - pm1) / (x * x - 1.0);
+            let dx = p / dp;
+            x -= dx;
+            if dx.abs() < 1e-16 {
+                break;
+            }
+        }
+        out.push((x, 2.0 / ((1.0 - x * x) * dp * dp)));
+    }
+    out
+}
+
+/// Linear shape functions `[N1, N2]` at `xi`.
+pub fn shape2(xi: f64) -> [f64; 2] {
+    [(1.0 - xi) / 2.0, (1.0 + xi) / 2.0]
+}
+
+/// Static data of one slave integration point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactPoint {
+    /// Contact pair index.
+    pub pair: usize,
+    /// Slave segment index within the pair.
+    pub slave_segment: usize,
+    /// Gauss point index within the segment.
+    pub gauss: usize,
+    /// Parametric coordinate on the slave segment.
+    pub xi_s: f64,
+    /// `w J0` (reference length weight).
+    pub weight_ref: f64,
+    /// The slave segment's nodes.
+    pub slave_nodes: [usize; 2],
+    /// Global multiplier indices of the slave segment's nodes.
+    pub multipliers: [usize; 2],
+}
+
+/// One multiplier degree of freedom.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MultiplierDof {
+    /// Contact pair.
+    pub pair: usize,
+    /// Slave node it lives at.
+    pub node: usize,
+}
+
+/// How many kernel calls were made.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct KernelCounts {
+    /// `contact_kernels::evaluate` calls (gap with derivatives).
+    pub evaluate: u64,
+    /// `contact_kernels::project` calls (gap and `xi_m` only).
+    pub project: u64,
+}
+
+impl std::ops::AddAssign for KernelCounts {
+    fn add_assign(&mut self, o: KernelCounts) {
+        self.evaluate += o.evaluate;
+        self.project += o.project;
+    }
+}
+
+/// A kernel failure at one integration point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointFailure {
+    /// Index into [`ContactLayout::points`].
+    pub point: usize,
+    /// The master segment tried, if any.
+    pub master_segment: Option<usize>,
+    /// The kernel's error.
+    pub error: KernelError,
+}
+
+/// The gap and its derivatives at one paired integration point, as used in
+/// the assembly.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointEval {
+    /// Master segment index within the pair.
+    pub master: usize,
+    /// `[slave 1, slave 2, master 1, master 2]` global node indices.
+    pub nodes: [usize; 4],
+    /// Gap (exact or Taylor-approximated).
+    pub gap: f64,
+    /// The projection coordinate (at the evaluation point of the kernel).
+    pub xi_m: f64,
+    /// `dg/du` on the 8 dofs of `nodes`.
+    pub grad: SVector<f64, 8>,
+    /// `d2g/du2`, `None` when the type has none (Type 1).
+    pub hess: Option<SMatrix<f64, 8, 8>>,
+}
+
+/// Frozen Taylor coefficients of one integration point for one load step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Taylor {
+    /// The kernel output at the step start.
+    pub at_start: PointEval,
+    /// The nodal displacements `u0` of `at_start.nodes` at the step start.
+    pub u0: SVector<f64, 8>,
+}
+
+impl Taylor {
+    /// The second-order expansion at displacements `u` (global vector).
+    pub fn expand(&self, u: &[f64]) -> PointEval {
+        let s = &self.at_start;
+        let d = SVector::<f64, 8>::from_fn(|k, _| u[2 * s.nodes[k / 2] + k % 2]) - self.u0;
+        match &s.hess {
+            Some(h) => {
+                let hd = h * d;
+                PointEval {
+                    gap: s.gap + s.grad.dot(&d) + 0.5 * d.dot(&hd),
+                    grad: s.grad + hd,
+                    ..*s
+                }
+            }
+            None => PointEval { gap: s.gap + s.grad.dot(&d), ..*s },
+        }
+    }
+}
+
+/// The integration points, multipliers and master-chain adjacency of all
+/// contact pairs of a model.
+#[derive(Debug, Clone)]
+pub struct ContactLayout {
+    /// All slave integration points, pair by pair, segment by segment.
+    pub points: Vec<ContactPoint>,
+    /// All multiplier dofs, pair by pair, in slave-face order.
+    pub multipliers: Vec<MultiplierDof>,
+    /// The formulation of each pair (after an override).
+    pub formulations: Vec<Formulation>,
+    /// The mode of each pair.
+    pub modes: Vec<ContactMode>,
+    /// Master segments of each pair.
+    pub masters: Vec<Vec<[usize; 2]>>,
+    /// `[previous, next]` master segment along each pair's chain.
+    adjacency: Vec<Vec<[Option<usize>; 2]>>,
+    /// Active-set constant `c` per pair (unilateral mode).
+    pub complementarity: Vec<f64>,
+}
+
+impl ContactLayout {
+    /// Lays out the contact pairs of `model`, with every pair's
+    /// formulation replaced by `formulation` when given.
+    pub fn new(model: &Model, formulation: Option<Formulation>) -> ContactLayout {
+        let mesh = &model.mesh;
+        let mut points = Vec::new();
+        let mut multipliers = Vec::new();
+        let mut adjacency = Vec::new();
+        let mut complementarity = Vec::new();
+        for (p, pair) in model.contacts.iter().enumerate() {
+            let mut mult_of_node = std::collections::HashMap::new();
+            for seg in &pair.slave {
+                for &n in seg {
+                    mult_of_node.entry(n).or_insert_with(|| {
+                        multipliers.push(MultiplierDof { pair: p, node: n });
+                        multipliers.len() - 1
+                    });
+                }
+            }
+            let rule = gauss_legendre(pair.gauss_points);
+            let mut total_len = 0.0;
+            for (s, seg) in pair.slave.iter().enumerate() {
+                let (a, b) = (mesh.nodes_ref[seg[0]], mesh.nodes_ref[seg[1]]);
+                let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                total_len += len;
+                for (g, &(xi, w)) in rule.iter().enumerate() {
+                    points.push(ContactPoint {
+                        pair: p,
+                        slave_segment: s,
+                        gauss: g,
+                        xi_s: xi,
+                        weight_ref: w * len / 2.0,
+                        slave_nodes: *seg,
+                        multipliers: [mult_of_node[&seg[0]], mult_of_node[&seg[1]]],
+                    });
+                }
+            }
+            let mut starts = std::collections::HashMap::new();
+            let mut ends = std::collections::HashMap::new();
+            for (m, seg) in pair.master.iter().enumerate() {
+                starts.insert(seg[0], m);
+                ends.insert(seg[1], m);
+            }
+            adjacency.push(
+                pair.master.iter().map(|seg| [ends.get(&seg[0]).copied(), starts.get(&seg[1]).copied()]).collect(),
+            );
+            let young = mesh
+                .bodies
+                .iter()
+                .find(|b| b.nodes.contains(&pair.slave[0][0]))
+                .map_or(1.0, |b| b.material.young);
+            complementarity.push(young / (total_len / pair.slave.len() as f64));
+        }
+        ContactLayout {
+            points,
+            multipliers,
+            formulations: model.contacts.iter().map(|c| formulation.unwrap_or(c.formulation)).collect(),
+            modes: model.contacts.iter().map(|c| c.mode).collect(),
+            masters: model.contacts.iter().map(|c| c.master.clone()).collect(),
+            adjacency,
+            complementarity,
+        }
+    }
+
+    /// Current coordinates `q` of four nodes.
+    fn q(mesh: &Mesh, u: &[f64], nodes: [usize; 4]) -> [f64; 8] {
+        std::array::from_fn(|k| mesh.nodes_ref[nodes[k / 2]][k % 2] + u[2 * nodes[k / 2] + k % 2])
+    }
+
+    fn nodes(&self, point: &ContactPoint, master: usize) -> [usize; 4] {
+        let m = self.masters[point.pair][master];
+        [point.slave_nodes[0], point.slave_nodes[1], m[0], m[1]]
+    }
+
+    /// Projects onto one master segment. `Ok(None)` when the kernel reports
+    /// a master-side or projection problem (the point does not project into
+    /// this segment); `Err` for slave-side problems, which no other master
+    /// segment can cure.
+    fn project_on(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        i: usize,
+        master: usize,
+        counts: &mut KernelCounts,
+    ) -> Result<Option<Projection>, PointFailure> {
+        let pt = &self.points[i];
+        counts.project += 1;
+        match contact_kernels::project(self.formulations[pt.pair], &Self::q(mesh, u, self.nodes(pt, master)), pt.xi_s)
+        {
+            Ok(p) => Ok(Some(p)),
+            Err(e) if slave_side(&e) => Err(PointFailure { point: i, master_segment: Some(master), error: e }),
+            Err(_) => Ok(None),
+        }
+    }
+
+    /// The master segment point `i` projects into, searching from `start`
+    /// (see the module docs), or `None`.
+    pub fn find_master(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        i: usize,
+        start: Option<usize>,
+        counts: &mut KernelCounts,
+    ) -> Result<Option<(usize, Projection)>, PointFailure> {
+        let pair = self.points[i].pair;
+        let n_master = self.masters[pair].len();
+        if let Some(mut cur) = start {
+            let mut previous = None;
+            for _ in 0..n_master {
+                let Some(p) = self.project_on(mesh, u, i, cur, counts)? else { break };
+                if p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL {
+                    return Ok(Some((cur, p)));
+                }
+                let next = self.adjacency[pair][cur][usize::from(p.xi_m > 0.0)];
+                match next {
+                    Some(n) if Some(n) != previous => {
+                        previous = Some(cur);
+                        cur = n;
+                    }
+                    _ => break,
+                }
+            }
+        }
+        let mut best: Option<(usize, Projection)> = None;
+        for m in 0..n_master {
+            if let Some(p) = self.project_on(mesh, u, i, m, counts)? {
+                if p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL && best.is_none_or(|(_, b)| p.gap.abs() < b.gap.abs()) {
+                    best = Some((m, p));
+                }
+            }
+        }
+        Ok(best)
+    }
+
+    /// Pairs point `i` (from its current master `start`) and evaluates the
+    /// kernel of type `ty` there. `Ok(None)`: the point projects into no
+    /// master segment.
+    fn pair_and_evaluate(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        i: usize,
+        start: Option<usize>,
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<Option<PointEval>, PointFailure> {
+        let pt = &self.points[i];
+        let f = self.formulations[pt.pair];
+        let eval = |master: usize, counts: &mut KernelCounts| {
+            counts.evaluate += 1;
+            let nodes = self.nodes(pt, master);
+            contact_kernels::evaluate(f, ty, &Self::q(mesh, u, nodes), pt.xi_s).map(|k| PointEval {
+                master,
+                nodes,
+                gap: k.gap,
+                xi_m: k.xi_m,
+                grad: k.grad,
+                hess: k.hess,
+            })
+        };
+        if let Some(m) = start {
+            match eval(m, counts) {
+                Ok(e) if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL => return Ok(Some(e)),
+                Ok(_) => {}
+                Err(e) if slave_side(&e) => {
+                    return Err(PointFailure { point: i, master_segment: Some(m), error: e });
+                }
+                Err(_) => {}
+            }
+        }
+        match self.find_master(mesh, u, i, start, counts)? {
+            None => Ok(None),
+            Some((m, _)) => eval(m, counts)
+                .map(Some)
+                .map_err(|error| PointFailure { point: i, master_segment: Some(m), error }),
+        }
+    }
+
+    /// Pairs every point and evaluates type `ty` at displacements `u`, in
+    /// parallel; returns the evaluations (None = projects nowhere) and the
+    /// kernel-call counts. `pairing` gives each point's current master.
+    pub fn evaluate_all(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        pairing: &[Option<usize>],
+        ty: ApproxType,
+    ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
+        let results: Vec<(Result<Option<PointEval>, PointFailure>, KernelCounts)> = (0..self.points.len())
+            .into_par_iter()
+            .with_min_len(PAR_MIN_LEN)
+            .map(|i| {
+                let mut c = KernelCounts::default();
+                (self.pair_and_evaluate(mesh, u, i, pairing[i], ty, &mut c), c)
+            })
+            .collect();
+        let mut counts = KernelCounts::default();
+        let mut out = Vec::with_capacity(results.len());
+        for (r, c) in results {
+            counts += c;
+            out.push(r?);
+        }
+        Ok((out, counts))
+    }
+
+    /// Re-pairs every point by projection only (no derivatives): the exact
+    /// gap and `xi_m` at displacements `u`, for reports.
+    pub fn project_all(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        pairing: &[Option<usize>],
+    ) -> Result<(Vec<Option<(usize, Projection)>>, KernelCounts), PointFailure> {
+        let results: Vec<_> = (0..self.points.len())
+            .into_par_iter()
+            .with_min_len(PAR_MIN_LEN)
+            .map(|i| {
+                let mut c = KernelCounts::default();
+                (self.find_master(mesh, u, i, pairing[i], &mut c), c)
+            })
+            .collect();
+        let mut counts = KernelCounts::default();
+        let mut out = Vec::with_capacity(results.len());
+        for (r, c) in results {
+            counts += c;
+            out.push(r?);
+        }
+        Ok((out, counts))
+    }
+
+    /// Which multipliers carry a constraint row (see the module docs):
+    /// persistent pairs: those with an active integration point;
+    /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
+    pub fn active_multipliers(&self, evals: &[Option<PointEval>], lambda: &[f64], length_scale: f64) -> Vec<bool> {
+        let n = self.multipliers.len();
+        let mut weight = vec![0.0; n];
+        let mut weighted_gap = vec![0.0; n];
+        for (pt, ev) in self.points.iter().zip(evals) {
+            if let Some(ev) = ev {
+                let nsh = shape2(pt.xi_s);
+                for a in 0..2 {
+                    weight[pt.multipliers[a]] += pt.weight_ref * nsh[a];
+                    weighted_gap[pt.multipliers[a]] += pt.weight_ref * nsh[a] * ev.gap;
+                }
+            }
+        }
+        (0..n)
+            .map(|m| {
+                if !(weight[m] > 0.0) {
+                    return false;
+                }
+                let pair = self.multipliers[m].pair;
+                match self.modes[pair] {
+                    ContactMode::Persistent => true,
+                    ContactMode::Unilateral => {
+                        let c = self.complementarity[pair];
+                        let pressure = -lambda[m];
+                        pressure - c * weighted_gap[m] / weight[m] >= -c * 1e-12 * length_scale
+                    }
+                }
+            })
+            .collect()
+    }
+}
+
+/// Errors that concern the slave segment or the input itself; no other
+/// master segment avoids them.
+fn slave_side(e: &KernelError) -> bool {
+    matches!(
+        e,
+        KernelError::NonFinite { .. }
+            | KernelError::NotCompiled(_)
+            | KernelError::DegenerateSegment { segment: Segment::Slave, .. }
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials_exactly() {
+        for n in 1..=8 {
+            let rule = gauss_legendre(n);
+            assert_eq!(rule.len(), n);
+            for k in 0..2 * n {
+                let exact = if k % 2 == 1 { 0.0 } else { 2.0 / (k as f64 + 1.0) };
+                let q: f64 = rule.iter().map(|(x, w)| w * x.powi(k as i32)).sum();
+                assert!((q - exact).abs() < 1e-14, "n={n} k={k}: {q} vs {exact}");
+            }
+        }
+        let r2 = gauss_legendre(2);
+        assert!((r2[0].0 + 1.0 / 3f64.sqrt()).abs() < 1e-15 && (r2[0].1 - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn taylor_expansion_is_quadratic_with_exact_gradient() {
+        let h = SMatrix::<f64, 8, 8>::from_fn(|i, j| 0.1 * ((i + j) as f64).sin());
+        let h = (h + h.transpose()) * 0.5;
+        let at_start = PointEval {
+            master: 0,
+            nodes: [0, 1, 2, 3],
+            gap: 0.2,
+            xi_m: 0.1,
+            grad: SVector::<f64, 8>::from_fn(|i, _| i as f64 * 0.1 - 0.3),
+            hess: Some(h),
+        };
+        let u0 = SVector::<f64, 8>::from_fn(|i, _| 0.01 * i as f64);
+        let t = Taylor { at_start, u0 };
+        let u: Vec<f64> = (0..8).map(|i| 0.01 * i as f64 + 0.02 * (i as f64).cos()).collect();
+        let e = t.expand(&u);
+        let step = 1e-6;
+        for k in 0..8 {
+            let mut up = u.clone();
+            let mut um = u.clone();
+            up[k] += step;
+            um[k] -= step;
+            let fd = (t.expand(&up).gap - t.expand(&um).gap) / (2.0 * step);
+            assert!((fd - e.grad[k]).abs() < 1e-9);
+        }
+        let at0 = t.expand(&u0.iter().copied().collect::<Vec<_>>());
+        assert_eq!(at0.gap, 0.2);
+    }
+}

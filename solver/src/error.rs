@@ -1,0 +1,63 @@
+//! The solver's error type.
+
+use contact_kernels::KernelError;
+
+use crate::model::ModelError;
+use crate::scene::SceneError;
+use crate::solution::{ContactPointId, CutbackReason};
+
+/// Why [`crate::solve`] failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SolverError {
+    /// The scene could not be read or is invalid.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// The model built from the scene is inconsistent.
+    #[error("invalid model: {0}")]
+    Model(#[from] ModelError),
+    /// Invalid [`crate::SolveOptions`].
+    #[error("invalid solve options: {0}")]
+    Options(String),
+    /// Newton did not converge even after the maximum number of cut-backs.
+    #[error(
+        "step {step}: no convergence from load factor {load_factor} towards {attempted} after {cutbacks} cut-backs; last failure: {reason}"
+    )]
+    Diverged {
+        /// The scheduled step (1-based).
+        step: usize,
+        /// The last converged load factor.
+        load_factor: f64,
+        /// The smallest increment's target that still failed.
+        attempted: f64,
+        /// Cut-backs performed in this step.
+        cutbacks: usize,
+        /// The last attempt's failure.
+        reason: CutbackReason,
+    },
+    /// The linear system stayed singular after the maximum number of
+    /// cut-backs (e.g. a body without enough supports).
+    #[error(
+        "singular system at load factor {load_factor} (towards {attempted}, after {cutbacks} cut-backs): {message}"
+    )]
+    Singular {
+        /// The last converged load factor.
+        load_factor: f64,
+        /// The target of the failing attempt.
+        attempted: f64,
+        /// Cut-backs performed in this step.
+        cutbacks: usize,
+        /// faer's message or the non-finite component.
+        message: String,
+    },
+    /// A contact kernel failed at a converged state (where a cut-back cannot
+    /// help) or at every cut-back.
+    #[error("contact kernel failed at {point} (load factor {load_factor}): {error}")]
+    Kernel {
+        /// The integration point.
+        point: ContactPointId,
+        /// The load factor of the state evaluated.
+        load_factor: f64,
+        /// The kernel's error.
+        error: KernelError,
+    },
+}

@@ -1,0 +1,413 @@
+//! Load stepping, Newton–Raphson and cut-back.
+//!
+//! The load factor goes from 0 to `lambda_end` in `N` equal scheduled steps.
+//! Each step is solved by Newton's method on the free displacements and the
+//! multipliers:
+//!
+//! 1. prescribed dofs are set to `lambda_L u_ref` of the step's target;
+//! 2. Types 1–6: at the step start (converged state `u0`) every contact
+//!    integration point is re-paired and the type's Taylor coefficients are
+//!    evaluated; they stay frozen during the step. Complete: every iteration
+//!    re-projects and evaluates the exact kernel;
+//! 3. iterate `K du = -r` until `|r| <= tol max(1, |lambda_L f_ref|)`
+//!    (Euclidean norms; `r` over the free dofs and the multipliers;
+//!    `tol = 1e-10` by default).
+//!
+//! Round-off floor: the residual of a fine mesh with large displacements
+//! cannot be evaluated more accurately than about
+//! `eps E |u| / h` per element (absolute displacements over small elements),
+//! which may exceed `1e-10 |f|`. From the third iterate on, a residual below
+//! `100 tol max(1, |f|)` that no longer halves per iteration is accepted as
+//! converged and the step is flagged (`StepRecord::roundoff_floor`); Newton's
+//! quadratic convergence makes this unambiguous. The paper scene converges
+//! far below the tolerance and never uses it.
+//!
+//! An attempt fails when the residual is not finite, grows above
+//! `1e10 max(|r_0|, 1)`, the iteration limit is reached, the linear system is
+//! singular (faer's error or a non-finite solution) or a kernel fails during
+//! the iterations. A failed attempt is discarded (the converged state is
+//! restored) and the increment is halved; the rest of the scheduled step is
+//! then done with the halved increment. Each cut-back is recorded; after
+//! `max_cutbacks` cut-backs within one scheduled step the solve stops with a
+//! [`SolverError`]. A kernel failure at a converged state (step start) stops
+//! the solve at once, since a smaller increment cannot change that state.
+
+use std::time::{Duration, Instant};
+
+use contact_kernels::ApproxType;
+
+use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_solid};
+use crate::contact::{ContactLayout, KernelCounts, PointEval, PointFailure, Taylor};
+use crate::error::SolverError;
+use crate::linear::SparseSolver;
+use crate::model::Model;
+use crate::solution::{
+    ContactPointId, ContactPointReport, Cutback, CutbackReason, MultiplierDofInfo, Solution, State, StepRecord,
+    Timings,
+};
+use crate::{Method, SolveOptions};
+
+/// The residual may grow to this factor times `max(|r_0|, 1)` before an
+/// attempt counts as diverging.
+pub const DIVERGENCE_FACTOR: f64 = 1e10;
+
+/// An iterate whose residual is within this factor of the tolerance and no
+/// longer halves per iteration has reached the round-off floor of the
+/// residual evaluation and is accepted (and flagged in the step record).
+pub const STAGNATION_FACTOR: f64 = 100.0;
+
+/// A converged attempt.
+struct Converged {
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    pairing: Vec<Option<usize>>,
+    iterations: usize,
+    residuals: Vec<f64>,
+    energy: f64,
+    active_multipliers: usize,
+    unpaired: Vec<ContactPointId>,
+    roundoff_floor: bool,
+}
+
+/// The solve in progress.
+pub(crate) struct Run<'a> {
+    model: &'a Model,
+    opts: &'a SolveOptions,
+    layout: ContactLayout,
+    dofs: DofMap,
+    linear: SparseSolver,
+    timings: Timings,
+    counts: KernelCounts,
+    length_scale: f64,
+    // converged state
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    pairing: Vec<Option<usize>>,
+    load_factor: f64,
+    energy: f64,
+    taylor: Option<Vec<Option<Taylor>>>,
+    // history
+    records: Vec<StepRecord>,
+    cutbacks: Vec<Cutback>,
+    snapshots: Vec<State>,
+    iterations: usize,
+    failed_iterations: usize,
+}
+
+impl<'a> Run<'a> {
+    pub(crate) fn new(model: &'a Model, opts: &'a SolveOptions) -> Result<Run<'a>, SolverError> {
+        if opts.steps == 0 {
+            return Err(SolverError::Options("steps must be at least 1".into()));
+        }
+        if opts.max_iterations == 0 {
+            return Err(SolverError::Options("max_iterations must be at least 1".into()));
+        }
+        if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
+            return Err(SolverError::Options(format!("tolerance must be positive, got {}", opts.tolerance)));
+        }
+        model.check()?;
+        let layout = ContactLayout::new(model, opts.formulation);
+        let dofs = DofMap::new(model, layout.multipliers.len());
+        let n_points = layout.points.len();
+        Ok(Run {
+            model,
+            opts,
+            dofs,
+            linear: SparseSolver::new(),
+            timings: Timings::default(),
+            counts: KernelCounts::default(),
+            length_scale: model.mesh.size(),
+            u: vec![0.0; 2 * model.mesh.node_count()],
+            lambda: vec![0.0; layout.multipliers.len()],
+            pairing: vec![None; n_points],
+            layout,
+            load_factor: 0.0,
+            energy: 0.0,
+            taylor: None,
+            records: Vec::new(),
+            cutbacks: Vec::new(),
+            snapshots: Vec::new(),
+            iterations: 0,
+            failed_iterations: 0,
+        })
+    }
+
+    fn point_id(&self, f: &PointFailure) -> ContactPointId {
+        let p = &self.layout.points[f.point];
+        ContactPointId { pair: p.pair, slave_segment: p.slave_segment, gauss: p.gauss, master_segment: f.master_segment }
+    }
+
+    fn state(&self) -> State {
+        State {
+            load_factor: self.load_factor,
+            displacements: self.u.chunks(2).map(|c| [c[0], c[1]]).collect(),
+            multipliers: self.lambda.clone(),
+        }
+    }
+
+    /// Runs the whole schedule.
+    pub(crate) fn execute(mut self) -> Result<Solution, SolverError> {
+        let start = Instant::now();
+        // initial pairing in the reference configuration
+        let t = Instant::now();
+        let (initial, counts) = self
+            .layout
+            .project_all(&self.model.mesh, &self.u, &self.pairing)
+            .map_err(|f| SolverError::Kernel { point: self.point_id(&f), load_factor: 0.0, error: f.error })?;
+        self.counts += counts;
+        self.pairing = initial.iter().map(|p| p.map(|(m, _)| m)).collect();
+        self.timings.contact_evaluation += t.elapsed();
+        if self.opts.record_steps {
+            self.snapshots.push(self.state());
+        }
+        let end = self.model.load_factor_end;
+        let steps = self.opts.steps;
+        for step in 1..=steps {
+            let target = end * step as f64 / steps as f64;
+            let mut increment = target - self.load_factor;
+            let mut cuts = 0;
+            while (target - self.load_factor).abs() > 1e-12 * end.abs().max(f64::MIN_POSITIVE) {
+                let remaining = target - self.load_factor;
+                let to = if increment / remaining >= 1.0 - 1e-9 { target } else { self.load_factor + increment };
+                match self.attempt(to)? {
+                    Ok(c) => self.commit(step, to, c),
+                    Err((reason, residuals, iterations)) => {
+                        self.failed_iterations += iterations;
+                        cuts += 1;
+                        self.cutbacks.push(Cutback {
+                            step,
+                            from_load_factor: self.load_factor,
+                            attempted_load_factor: to,
+                            reason: reason.clone(),
+                            residuals,
+                        });
+                        if cuts > self.opts.max_cutbacks {
+                            return Err(self.give_up(step, to, cuts - 1, reason));
+                        }
+                        increment /= 2.0;
+                    }
+                }
+            }
+        }
+        self.finish(start)
+    }
+
+    fn give_up(&self, step: usize, attempted: f64, cutbacks: usize, reason: CutbackReason) -> SolverError {
+        match reason {
+            CutbackReason::Singular { message } => {
+                SolverError::Singular { load_factor: self.load_factor, attempted, cutbacks, message }
+            }
+            CutbackReason::Kernel { point, error } => SolverError::Kernel { point, load_factor: attempted, error },
+            reason => SolverError::Diverged { step, load_factor: self.load_factor, attempted, cutbacks, reason },
+        }
+    }
+
+    fn commit(&mut self, step: usize, to: f64, c: Converged) {
+        self.u = c.u;
+        self.lambda = c.lambda;
+        self.pairing = c.pairing;
+        self.load_factor = to;
+        self.energy = c.energy;
+        self.iterations += c.iterations;
+        self.taylor = None;
+        self.records.push(StepRecord {
+            step,
+            load_factor: to,
+            iterations: c.iterations,
+            residuals: c.residuals,
+            strain_energy: c.energy,
+            unpaired: c.unpaired,
+            active_multipliers: c.active_multipliers,
+            roundoff_floor: c.roundoff_floor,
+        });
+        if self.opts.record_steps {
+            self.snapshots.push(self.state());
+        }
+    }
+
+    /// Builds the frozen Taylor coefficients at the converged state (Types
+    /// 1–6), re-pairing every point.
+    fn ensure_taylor(&mut self, ty: ApproxType) -> Result<(), SolverError> {
+        if self.taylor.is_some() {
+            return Ok(());
+        }
+        let t = Instant::now();
+        let (evals, counts) = self
+            .layout
+            .evaluate_all(&self.model.mesh, &self.u, &self.pairing, ty)
+            .map_err(|f| SolverError::Kernel { point: self.point_id(&f), load_factor: self.load_factor, error: f.error })?;
+        self.counts += counts;
+        self.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+        let taylor = evals
+            .into_iter()
+            .map(|e| {
+                e.map(|at_start| Taylor {
+                    u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| self.u[2 * at_start.nodes[k / 2] + k % 2]),
+                    at_start,
+                })
+            })
+            .collect();
+        self.taylor = Some(taylor);
+        self.timings.contact_evaluation += t.elapsed();
+        Ok(())
+    }
+
+    /// One Newton solve from the converged state to load factor `to`. The
+    /// outer `Err` stops the solve; the inner one asks for a cut-back (with
+    /// the iterations spent).
+    #[allow(clippy::type_complexity)]
+    fn attempt(&mut self, to: f64) -> Result<Result<Converged, (CutbackReason, Vec<f64>, usize)>, SolverError> {
+        if let Method::Approx(ty) = self.opts.method {
+            self.ensure_taylor(ty)?;
+        }
+        let mesh = &self.model.mesh;
+        let mut u = self.u.clone();
+        for p in &self.model.prescribed {
+            u[p.dof] = to * p.value;
+        }
+        let mut lambda = self.lambda.clone();
+        let mut pairing = self.pairing.clone();
+        let mut residuals = Vec::new();
+        let n_eq = self.dofs.n_eq();
+        let mut it = 0;
+        loop {
+            // contact
+            let t = Instant::now();
+            let evals: Vec<Option<PointEval>> = match self.opts.method {
+                Method::Approx(_) => {
+                    let taylor = self.taylor.as_deref().unwrap_or(&[]);
+                    taylor.iter().map(|t| t.map(|t| t.expand(&u))).collect()
+                }
+                Method::Complete => match self.layout.evaluate_all(mesh, &u, &pairing, ApproxType::Type6) {
+                    Ok((evals, counts)) => {
+                        self.counts += counts;
+                        pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+                        evals
+                    }
+                    Err(f) => {
+                        self.timings.contact_evaluation += t.elapsed();
+                        let point = self.point_id(&f);
+                        return Ok(Err((CutbackReason::Kernel { point, error: f.error }, residuals, it)));
+                    }
+                },
+            };
+            let active = self.layout.active_multipliers(&evals, &lambda, self.length_scale);
+            let mut sys = System::new(n_eq);
+            assemble_contact(&self.layout, &evals, &lambda, &active, &self.dofs, &mut sys);
+            self.timings.contact_evaluation += t.elapsed();
+            // solid
+            let t = Instant::now();
+            assemble_solid(self.model, &self.dofs, &u, &mut sys);
+            let f_ext = add_external(self.model, &self.dofs, to, &mut sys);
+            self.timings.solid_assembly += t.elapsed();
+
+            let norm = sys.residual_norm();
+            residuals.push(norm);
+            if !norm.is_finite() {
+                return Ok(Err((CutbackReason::NonFiniteResidual, residuals, it)));
+            }
+            let tol_abs = self.opts.tolerance * f_ext.max(1.0);
+            let at_floor = it >= 2 && norm <= STAGNATION_FACTOR * tol_abs && norm >= 0.5 * residuals[it - 1];
+            if norm <= tol_abs || at_floor {
+                let unpaired = self
+                    .layout
+                    .points
+                    .iter()
+                    .zip(&evals)
+                    .filter(|(_, e)| e.is_none())
+                    .map(|(p, _)| ContactPointId {
+                        pair: p.pair,
+                        slave_segment: p.slave_segment,
+                        gauss: p.gauss,
+                        master_segment: None,
+                    })
+                    .collect();
+                return Ok(Ok(Converged {
+                    u,
+                    lambda,
+                    pairing,
+                    iterations: it,
+                    residuals,
+                    energy: sys.energy,
+                    active_multipliers: active.iter().filter(|a| **a).count(),
+                    unpaired,
+                    roundoff_floor: norm > tol_abs,
+                }));
+            }
+            if it == self.opts.max_iterations {
+                return Ok(Err((CutbackReason::MaxIterations { residual: norm }, residuals, it)));
+            }
+            let bound = DIVERGENCE_FACTOR * residuals[0].max(1.0);
+            if norm > bound {
+                return Ok(Err((CutbackReason::Diverging { residual: norm, bound }, residuals, it)));
+            }
+            let t = Instant::now();
+            let solved = self.linear.solve(n_eq, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
+            self.timings.linear_solve += t.elapsed();
+            let dx = match solved {
+                Ok(dx) => dx,
+                Err(e) => return Ok(Err((CutbackReason::Singular { message: e.to_string() }, residuals, it))),
+            };
+            for (dof, ud) in u.iter_mut().enumerate() {
+                if let Some(e) = self.dofs.eq(dof) {
+                    *ud -= dx[e];
+                }
+            }
+            for (m, l) in lambda.iter_mut().enumerate() {
+                *l -= dx[self.dofs.mult_eq(m)];
+            }
+            it += 1;
+        }
+    }
+
+    fn finish(self, start: Instant) -> Result<Solution, SolverError> {
+        let (projections, _) = self
+            .layout
+            .project_all(&self.model.mesh, &self.u, &self.pairing)
+            .map_err(|f| SolverError::Kernel { point: self.point_id(&f), load_factor: self.load_factor, error: f.error })?;
+        let contact_points = self
+            .layout
+            .points
+            .iter()
+            .zip(&projections)
+            .map(|(p, proj)| ContactPointReport {
+                pair: p.pair,
+                slave_segment: p.slave_segment,
+                gauss: p.gauss,
+                xi_s: p.xi_s,
+                slave_nodes: p.slave_nodes,
+                master_segment: proj.map(|(m, _)| m),
+                master_nodes: proj.map(|(m, _)| self.layout.masters[p.pair][m]),
+                xi_m: proj.map(|(_, pr)| pr.xi_m),
+                gap: proj.map(|(_, pr)| pr.gap),
+            })
+            .collect();
+        let mut timings = self.timings;
+        timings.total = start.elapsed().max(Duration::ZERO);
+        Ok(Solution {
+            method: self.opts.method,
+            formulations: self.layout.formulations.clone(),
+            steps: self.opts.steps,
+            load_factor: self.load_factor,
+            strain_energy: self.energy,
+            newton_iterations: self.iterations,
+            failed_iterations: self.failed_iterations,
+            step_records: self.records.clone(),
+            cutbacks: self.cutbacks.clone(),
+            timings,
+            kernel_counts: self.counts,
+            symbolic_factorisations: self.linear.symbolic_factorisations(),
+            equations: self.dofs.n_eq(),
+            mesh: self.model.mesh.clone(),
+            multiplier_dofs: self
+                .layout
+                .multipliers
+                .iter()
+                .map(|m| MultiplierDofInfo { pair: m.pair, node: m.node })
+                .collect(),
+            final_state: self.state(),
+            snapshots: self.snapshots.clone(),
+            contact_points,
+        })
+    }
+}

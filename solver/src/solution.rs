@@ -1,0 +1,286 @@
+//! What a solve returns: the final state, per-step records, cut-backs,
+//! contact reports, timings and kernel-call counts.
+//!
+//! Sign convention of the multipliers: with `Pi_c = sum w J0 lambda g`, a
+//! compressive contact has `lambda < 0`; the contact pressure is
+//! `p = -lambda`.
+
+use std::time::Duration;
+
+use contact_kernels::{Formulation, KernelError};
+
+use crate::Method;
+use crate::mesh::Mesh;
+use crate::quad::{QuadStress, quad_mean_stress};
+
+/// Identifies one slave integration point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ContactPointId {
+    /// Contact pair index.
+    pub pair: usize,
+    /// Slave segment index within the pair.
+    pub slave_segment: usize,
+    /// Gauss point index within the segment.
+    pub gauss: usize,
+    /// The master segment involved, if any.
+    pub master_segment: Option<usize>,
+}
+
+impl std::fmt::Display for ContactPointId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "pair {}, slave segment {}, Gauss point {}", self.pair, self.slave_segment, self.gauss)?;
+        if let Some(m) = self.master_segment {
+            write!(f, ", master segment {m}")?;
+        }
+        Ok(())
+    }
+}
+
+/// Why a load step was cut back.
+#[derive(Debug, Clone, PartialEq)]
+pub enum CutbackReason {
+    /// No convergence within the iteration limit.
+    MaxIterations {
+        /// The last residual norm.
+        residual: f64,
+    },
+    /// The residual became NaN or infinite.
+    NonFiniteResidual,
+    /// The residual grew beyond the divergence bound.
+    Diverging {
+        /// The residual norm.
+        residual: f64,
+        /// The bound it exceeded.
+        bound: f64,
+    },
+    /// The linear system was singular (or its solution not finite).
+    Singular {
+        /// faer's message or the non-finite component.
+        message: String,
+    },
+    /// A contact kernel failed at an integration point.
+    Kernel {
+        /// The point.
+        point: ContactPointId,
+        /// The kernel's error.
+        error: KernelError,
+    },
+}
+
+impl std::fmt::Display for CutbackReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CutbackReason::MaxIterations { residual } => {
+                write!(f, "no convergence within the iteration limit (residual {residual:.3e})")
+            }
+            CutbackReason::NonFiniteResidual => write!(f, "non-finite residual"),
+            CutbackReason::Diverging { residual, bound } => {
+                write!(f, "diverging (residual {residual:.3e} above {bound:.3e})")
+            }
+            CutbackReason::Singular { message } => write!(f, "{message}"),
+            CutbackReason::Kernel { point, error } => write!(f, "contact kernel failed at {point}: {error}"),
+        }
+    }
+}
+
+/// One cut-back (bisection of a load increment).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cutback {
+    /// The scheduled step (1-based) being solved.
+    pub step: usize,
+    /// The converged load factor the attempt started from.
+    pub from_load_factor: f64,
+    /// The load factor the failed attempt aimed at.
+    pub attempted_load_factor: f64,
+    /// Why it failed.
+    pub reason: CutbackReason,
+    /// The failed attempt's residual norms.
+    pub residuals: Vec<f64>,
+}
+
+/// One converged (sub)step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StepRecord {
+    /// The scheduled step (1-based) it belongs to.
+    pub step: usize,
+    /// The load factor reached.
+    pub load_factor: f64,
+    /// Newton iterations (linear solves) of the converged attempt.
+    pub iterations: usize,
+    /// Residual norm at each iterate, the last one converged.
+    pub residuals: Vec<f64>,
+    /// Strain energy at the converged state.
+    pub strain_energy: f64,
+    /// Integration points projecting into no master segment at the end of
+    /// the step.
+    pub unpaired: Vec<ContactPointId>,
+    /// Multipliers carrying a constraint row at the converged state.
+    pub active_multipliers: usize,
+    /// Accepted at the round-off floor (see [`crate::newton`]) rather than
+    /// below the tolerance.
+    pub roundoff_floor: bool,
+}
+
+/// Wall-clock time spent, split by phase.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Timings {
+    /// Solid element evaluation and scatter.
+    pub solid_assembly: Duration,
+    /// Kernel calls, Taylor expansion, contact scatter and pairing.
+    pub contact_evaluation: Duration,
+    /// Symbolic and numeric factorisation and solve.
+    pub linear_solve: Duration,
+    /// The whole solve.
+    pub total: Duration,
+}
+
+/// Displacements and multipliers at one load factor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// The load factor.
+    pub load_factor: f64,
+    /// Nodal displacements (reference frame).
+    pub displacements: Vec<[f64; 2]>,
+    /// Multipliers in [`Solution::multiplier_dofs`] order (`p = -lambda`).
+    pub multipliers: Vec<f64>,
+}
+
+/// One multiplier dof.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct MultiplierDofInfo {
+    /// Contact pair.
+    pub pair: usize,
+    /// The slave node it lives at.
+    pub node: usize,
+}
+
+/// One slave integration point at the final state, re-projected exactly
+/// (projection kernel) after the last step, whatever the method.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactPointReport {
+    /// Contact pair.
+    pub pair: usize,
+    /// Slave segment index within the pair.
+    pub slave_segment: usize,
+    /// Gauss point index.
+    pub gauss: usize,
+    /// Parametric coordinate on the slave segment.
+    pub xi_s: f64,
+    /// The slave segment's nodes.
+    pub slave_nodes: [usize; 2],
+    /// The master segment it projects into (`None`: unpaired).
+    pub master_segment: Option<usize>,
+    /// That segment's nodes.
+    pub master_nodes: Option<[usize; 2]>,
+    /// The projection coordinate.
+    pub xi_m: Option<f64>,
+    /// The exact gap.
+    pub gap: Option<f64>,
+}
+
+/// Kernel-call counts.
+pub use crate::contact::KernelCounts;
+
+/// The result of [`crate::solve`].
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Complete or an approximation type.
+    pub method: Method,
+    /// The formulation of each contact pair.
+    pub formulations: Vec<Formulation>,
+    /// Number of scheduled load steps.
+    pub steps: usize,
+    /// The final load factor reached (the scheduled end on success).
+    pub load_factor: f64,
+    /// Strain energy at the final state.
+    pub strain_energy: f64,
+    /// Newton iterations of all converged attempts.
+    pub newton_iterations: usize,
+    /// Newton iterations of failed attempts (work spent before cut-backs).
+    pub failed_iterations: usize,
+    /// Every converged (sub)step.
+    pub step_records: Vec<StepRecord>,
+    /// Every cut-back, in order.
+    pub cutbacks: Vec<Cutback>,
+    /// Timings.
+    pub timings: Timings,
+    /// Kernel calls.
+    pub kernel_counts: KernelCounts,
+    /// Symbolic LU factorisations computed (one per sparsity pattern).
+    pub symbolic_factorisations: usize,
+    /// Number of equations (free dofs plus multipliers).
+    pub equations: usize,
+    /// The mesh (reference coordinates, connectivity, bodies, materials).
+    pub mesh: Mesh,
+    /// The multiplier dofs.
+    pub multiplier_dofs: Vec<MultiplierDofInfo>,
+    /// The final state.
+    pub final_state: State,
+    /// The state after every converged (sub)step, when requested.
+    pub snapshots: Vec<State>,
+    /// Slave integration points at the final state.
+    pub contact_points: Vec<ContactPointReport>,
+}
+
+impl Solution {
+    /// Newton iterations per scheduled step (sub-steps added up).
+    pub fn iterations_per_step(&self) -> Vec<usize> {
+        let mut out = vec![0; self.steps];
+        for r in &self.step_records {
+            if let Some(slot) = out.get_mut(r.step - 1) {
+                *slot += r.iterations;
+            }
+        }
+        out
+    }
+
+    /// The final displacement of node `node`.
+    pub fn displacement(&self, node: usize) -> [f64; 2] {
+        self.final_state.displacements[node]
+    }
+
+    /// The node of body `body` nearest to the reference point `at`.
+    pub fn node_at(&self, body: &str, at: [f64; 2]) -> Option<usize> {
+        let b = self.mesh.bodies.iter().find(|b| b.name == body)?;
+        b.nodes.clone().min_by(|&i, &j| {
+            let d = |n: usize| {
+                let p = self.mesh.nodes_ref[n];
+                (p[0] - at[0]).hypot(p[1] - at[1])
+            };
+            d(i).total_cmp(&d(j))
+        })
+    }
+
+    /// The largest `|gap|` over the paired integration points.
+    pub fn max_abs_gap(&self) -> f64 {
+        self.contact_points.iter().filter_map(|p| p.gap).fold(0.0, |m, g| m.max(g.abs()))
+    }
+
+    /// The range of `xi_m` over the paired integration points.
+    pub fn xi_m_range(&self) -> Option<(f64, f64)> {
+        self.contact_points.iter().filter_map(|p| p.xi_m).fold(None, |acc, x| match acc {
+            None => Some((x, x)),
+            Some((lo, hi)) => Some((f64::min(lo, x), f64::max(hi, x))),
+        })
+    }
+
+    /// Integration points that project into no master segment at the end.
+    pub fn unpaired_points(&self) -> Vec<ContactPointId> {
+        self.contact_points
+            .iter()
+            .filter(|p| p.master_segment.is_none())
+            .map(|p| ContactPointId { pair: p.pair, slave_segment: p.slave_segment, gauss: p.gauss, master_segment: None })
+            .collect()
+    }
+
+    /// Element stresses (averaged over the Gauss points) in `state`.
+    pub fn element_stresses(&self, state: &State) -> Vec<QuadStress> {
+        let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
+        (0..self.mesh.elements.len())
+            .map(|e| {
+                let mat = &self.mesh.bodies[self.mesh.element_body[e]].material;
+                quad_mean_stress(&self.mesh.geometry[e], &self.mesh.element_displacements(e, &u), mat)
+            })
+            .collect()
+    }
+}

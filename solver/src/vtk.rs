@@ -1,0 +1,108 @@
+//! ASCII VTK XML unstructured-grid (`.vtu`) output, written by hand.
+//!
+//! One file per state: the points are the **reference** coordinates (z = 0)
+//! and the point field `displacement` (3 components, z = 0) moves them to the
+//! deformed configuration (ParaView: *Warp By Vector*). Cells are the
+//! quadrilaterals (`VTK_QUAD = 9`). Fields:
+//!
+//! * point data: `displacement`, `multiplier` (the Lagrange multiplier at
+//!   slave nodes, summed over pairs, zero elsewhere) and `contact_pressure`
+//!   (`p = -multiplier`, positive in compression);
+//! * cell data: `cauchy_stress` and `pk2_stress` (components
+//!   `[xx, yy, xy]`, averaged over the element's Gauss points) and `body`
+//!   (the body index).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use crate::solution::{Solution, State};
+
+/// VTK cell type of a 4-node quadrilateral.
+pub const VTK_QUAD: u8 = 9;
+
+/// Writes the final state of `solution` to `path`.
+pub fn write_vtu(path: impl AsRef<Path>, solution: &Solution) -> std::io::Result<()> {
+    write_vtu_state(path, solution, &solution.final_state)
+}
+
+/// Writes `state` (e.g. one of [`Solution::snapshots`]) to `path`.
+pub fn write_vtu_state(path: impl AsRef<Path>, solution: &Solution, state: &State) -> std::io::Result<()> {
+    std::fs::write(path, vtu_string(solution, state))
+}
+
+fn array(out: &mut String, ty: &str, name: &str, components: usize, values: impl Iterator<Item = String>) {
+    let _ = write!(out, "        <DataArray type=\"{ty}\" Name=\"{name}\"");
+    if components > 1 {
+        let _ = write!(out, " NumberOfComponents=\"{components}\"");
+    }
+    out.push_str(" format=\"ascii\">\n");
+    let mut line = 0;
+    for v in values {
+        if line == 0 {
+            out.push_str("          ");
+        } else {
+            out.push(' ');
+        }
+        out.push_str(&v);
+        line += 1;
+        if line == 12 {
+            out.push('\n');
+            line = 0;
+        }
+    }
+    if line != 0 {
+        out.push('\n');
+    }
+    out.push_str("        </DataArray>\n");
+}
+
+fn num(v: f64) -> String {
+    if v.is_finite() { format!("{v:e}") } else { "nan".to_owned() }
+}
+
+/// The `.vtu` document of `state`.
+pub fn vtu_string(solution: &Solution, state: &State) -> String {
+    let mesh = &solution.mesh;
+    let n = mesh.node_count();
+    let m = mesh.elements.len();
+    let mut multiplier = vec![0.0; n];
+    for (dof, value) in solution.multiplier_dofs.iter().zip(&state.multipliers) {
+        multiplier[dof.node] += value;
+    }
+    let stresses = solution.element_stresses(state);
+    let mut out = String::with_capacity(200 * (n + m) + 1024);
+    out.push_str("<?xml version=\"1.0\"?>\n");
+    out.push_str(
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
+    );
+    out.push_str("  <UnstructuredGrid>\n");
+    let _ = writeln!(out, "    <Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{m}\">");
+    out.push_str("      <PointData Vectors=\"displacement\" Scalars=\"contact_pressure\">\n");
+    array(
+        &mut out,
+        "Float64",
+        "displacement",
+        3,
+        state.displacements.iter().flat_map(|d| [num(d[0]), num(d[1]), num(0.0)]),
+    );
+    array(&mut out, "Float64", "multiplier", 1, multiplier.iter().map(|&v| num(v)));
+    array(&mut out, "Float64", "contact_pressure", 1, multiplier.iter().map(|&v| num(-v)));
+    out.push_str("      </PointData>\n");
+    out.push_str("      <CellData Scalars=\"body\">\n");
+    array(&mut out, "Float64", "cauchy_stress", 3, stresses.iter().flat_map(|s| s.cauchy.map(num)));
+    array(&mut out, "Float64", "pk2_stress", 3, stresses.iter().flat_map(|s| s.pk2.map(num)));
+    array(&mut out, "Int32", "body", 1, mesh.element_body.iter().map(|b| b.to_string()));
+    out.push_str("      </CellData>\n");
+    out.push_str("      <Points>\n");
+    array(&mut out, "Float64", "reference_coordinates", 3, mesh.nodes_ref.iter().flat_map(|p| [num(p[0]), num(p[1]), num(0.0)]));
+    out.push_str("      </Points>\n");
+    out.push_str("      <Cells>\n");
+    array(&mut out, "Int64", "connectivity", 1, mesh.elements.iter().flatten().map(|v| v.to_string()));
+    array(&mut out, "Int64", "offsets", 1, (1..=m).map(|k| (4 * k).to_string()));
+    array(&mut out, "UInt8", "types", 1, (0..m).map(|_| VTK_QUAD.to_string()));
+    out.push_str("      </Cells>\n");
+    out.push_str("    </Piece>\n");
+    out.push_str("  </UnstructuredGrid>\n");
+    out.push_str("</VTKFile>\n");
+    out
+}

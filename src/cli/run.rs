@@ -1,0 +1,140 @@
+//! `gapsim run`: solve one scene and print a summary.
+//!
+//! ```text
+//! gapsim run [SCENE.toml] [--type T|complete] [--steps N] [--formulation F] [--out DIR] [--every-step]
+//! ```
+//!
+//! Without `SCENE` the embedded paper scene is solved. With `--out DIR` the
+//! final state (and with `--every-step` every converged step) is written as
+//! `.vtu` files that ParaView opens (displacement, stresses, contact
+//! pressure).
+
+use std::path::PathBuf;
+
+use clap::Args;
+use contact_kernels::Formulation;
+use solver::{Method, Scene, SolveOptions};
+
+use super::CommandResult;
+
+/// Arguments of `gapsim run`.
+#[derive(Debug, Clone, Args)]
+pub struct RunArgs {
+    /// Scene file (TOML); default: the embedded paper scene
+    /// (`scenes/stacked-cantilever.toml`).
+    pub scene: Option<PathBuf>,
+
+    /// `complete` or an approximation type 1..6 (default: the scene's).
+    #[arg(long = "type", value_name = "T|complete")]
+    pub method: Option<Method>,
+
+    /// Number of equal load steps (default: the scene's).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub steps: Option<u64>,
+
+    /// Override every contact pair's formulation.
+    #[arg(long, value_name = "F")]
+    pub formulation: Option<Formulation>,
+
+    /// Write `.vtu` files of the result into this directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+
+    /// With `--out`: one file per converged step (`step-0000.vtu`, ...).
+    #[arg(long, requires = "out")]
+    pub every_step: bool,
+}
+
+/// Loads `path`, or the embedded paper scene.
+pub fn load_scene(path: Option<&PathBuf>) -> Result<Scene, solver::SceneError> {
+    match path {
+        Some(p) => Scene::from_file(p),
+        None => Scene::from_toml_str(solver::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml (embedded)"),
+    }
+}
+
+/// Runs `gapsim run`.
+pub fn run(args: &RunArgs) -> CommandResult {
+    let scene = load_scene(args.scene.as_ref())?;
+    let mut options = SolveOptions::from_scene(&scene);
+    if let Some(m) = args.method {
+        options.method = m;
+    }
+    if let Some(n) = args.steps {
+        options.steps = n as usize;
+    }
+    options.formulation = args.formulation;
+    options.record_steps = args.every_step;
+    let sol = solver::solve(&scene, &options)?;
+
+    let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
+    let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
+    println!("scene           {name}");
+    println!("method          {} ({} load steps, formulation {})", sol.method, sol.steps, forms.join(", "));
+    println!("equations       {} (free dofs and multipliers)", sol.equations);
+    println!("load factor     {}", sol.load_factor);
+    println!("strain energy   {:.10}", sol.strain_energy);
+    println!("Newton          {} iterations ({:?} per step)", sol.newton_iterations, sol.iterations_per_step());
+    if !sol.cutbacks.is_empty() {
+        println!("cut-backs       {}", sol.cutbacks.len());
+        for c in &sol.cutbacks {
+            println!(
+                "  step {}: {} -> {} failed: {}",
+                c.step, c.from_load_factor, c.attempted_load_factor, c.reason
+            );
+        }
+        println!("                ({} iterations spent in failed attempts)", sol.failed_iterations);
+    }
+    println!("max |gap|       {:.3e}", sol.max_abs_gap());
+    if let Some((lo, hi)) = sol.xi_m_range() {
+        println!("xi_m range      [{lo:.6}, {hi:.6}]");
+    }
+    let unpaired = sol.unpaired_points();
+    if !unpaired.is_empty() {
+        println!("unpaired        {} integration point(s) project into no master segment:", unpaired.len());
+        for p in &unpaired {
+            println!("  {p}");
+        }
+    }
+    for load in &scene.loads {
+        let bodies: Vec<&str> = match &load.body {
+            Some(b) => vec![b.as_str()],
+            None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
+        };
+        let distance = |n: usize| {
+            let p = sol.mesh.nodes_ref[n];
+            (p[0] - load.at[0]).hypot(p[1] - load.at[1])
+        };
+        let nearest = bodies.iter().filter_map(|b| sol.node_at(b, load.at)).min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
+        if let Some(node) = nearest {
+            let [ux, uy] = sol.displacement(node);
+            println!("loaded node     ({}, {}) moves by ({ux:.6}, {uy:.6})", load.at[0], load.at[1]);
+        }
+    }
+    let t = &sol.timings;
+    println!(
+        "time            {:.2} ms (solid {:.2}, contact {:.2}, linear solve {:.2})",
+        1e3 * t.total.as_secs_f64(),
+        1e3 * t.solid_assembly.as_secs_f64(),
+        1e3 * t.contact_evaluation.as_secs_f64(),
+        1e3 * t.linear_solve.as_secs_f64()
+    );
+    println!("kernel calls    {} evaluations, {} projections", sol.kernel_counts.evaluate, sol.kernel_counts.project);
+
+    if let Some(dir) = &args.out {
+        std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        let mut written = Vec::new();
+        if args.every_step {
+            for (i, state) in sol.snapshots.iter().enumerate() {
+                let path = dir.join(format!("step-{i:04}.vtu"));
+                solver::vtk::write_vtu_state(&path, &sol, state).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                written.push(path);
+            }
+        }
+        let path = dir.join("final.vtu");
+        solver::vtk::write_vtu(&path, &sol).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        written.push(path);
+        println!("wrote           {} .vtu file(s) to {}", written.len(), dir.display());
+    }
+    Ok(())
+}

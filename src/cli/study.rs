@@ -1,0 +1,117 @@
+//! `gapsim study`: the paper's study (error against load steps, speed
+//! against error) for the complete formulation and every approximation
+//! type. See [`gapsim::study`].
+//!
+//! ```text
+//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--readme README.md]
+//! ```
+
+use std::path::PathBuf;
+
+use clap::Args;
+use gapsim::study::{self, plots, report, StudyOptions};
+
+use super::run::load_scene;
+use super::CommandResult;
+
+/// Arguments of `gapsim study`.
+#[derive(Debug, Clone, Args)]
+pub struct StudyArgs {
+    /// Scene file (TOML); default: the embedded paper scene.
+    pub scene: Option<PathBuf>,
+
+    /// Output directory for `study.csv`, the plots and `results.md`.
+    #[arg(long, value_name = "DIR", default_value = "study-out")]
+    pub out: PathBuf,
+
+    /// Solves per configuration; times are medians.
+    #[arg(long, value_name = "R", default_value_t = 5, value_parser = clap::value_parser!(u64).range(1..=1000))]
+    pub repeats: u64,
+
+    /// Step counts (comma-separated; default: the scene's `loading.steps`).
+    #[arg(long, value_name = "N,N,...", value_delimiter = ',')]
+    pub steps: Vec<usize>,
+
+    /// Only the scene's formulation (skip the other projection reading).
+    #[arg(long)]
+    pub only_scene_formulation: bool,
+
+    /// Skip the contact-heavy variant.
+    #[arg(long)]
+    pub no_heavy: bool,
+
+    /// Replace the section between `<!-- study:begin -->` and
+    /// `<!-- study:end -->` of this Markdown file with the results.
+    #[arg(long, value_name = "FILE")]
+    pub readme: Option<PathBuf>,
+}
+
+/// Runs `gapsim study`.
+pub fn run(args: &StudyArgs) -> CommandResult {
+    let scene = load_scene(args.scene.as_ref())?;
+    if args.steps.contains(&0) {
+        return Err("--steps: step counts must be at least 1".into());
+    }
+    let options = StudyOptions {
+        repeats: args.repeats as usize,
+        steps: (!args.steps.is_empty()).then(|| args.steps.clone()),
+        all_formulations: !args.only_scene_formulation,
+        heavy_steps: if args.no_heavy { Vec::new() } else { StudyOptions::default().heavy_steps },
+        ..StudyOptions::default()
+    };
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+
+    let bar = indicatif::ProgressBar::new(0);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    let results = study::run_study(&scene, &options, &bar)?;
+    bar.finish_and_clear();
+
+    let write = |name: &str, text: &str| -> CommandResult {
+        let path = args.out.join(name);
+        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        Ok(())
+    };
+    for (i, s) in results.formulations.iter().enumerate() {
+        let name = if i == 0 { "study.csv".to_owned() } else { format!("study-{}.csv", s.formulation) };
+        write(&name, &report::csv(s))?;
+    }
+    if let Some(h) = &results.heavy {
+        write("study-contact-heavy.csv", &report::csv(&h.study))?;
+    }
+    plots::write_all(&results, &args.out)?;
+
+    let command = std::env::args().skip(1).collect::<Vec<_>>().join(" ");
+    let command = format!("gapsim {command}");
+    write("results.md", &report::markdown(&results, "", &command))?;
+    print!("{}", report::terminal_summary(&results));
+    println!("\nwrote study.csv, plots and results.md to {}", args.out.display());
+
+    if let Some(readme) = &args.readme {
+        let text = std::fs::read_to_string(readme).map_err(|e| format!("cannot read {}: {e}", readme.display()))?;
+        let base = readme.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+        let prefix = relative_prefix(base, &args.out);
+        let section = report::markdown(&results, &prefix, &command);
+        let new = report::splice_readme(&text, &section).ok_or_else(|| {
+            format!("{} has no `{}` ... `{}` section", readme.display(), report::README_BEGIN, report::README_END)
+        })?;
+        std::fs::write(readme, new).map_err(|e| format!("cannot write {}: {e}", readme.display()))?;
+        println!("updated the results section of {}", readme.display());
+    }
+    Ok(())
+}
+
+/// The link prefix from `base` (the README's directory) to `out`.
+fn relative_prefix(base: &std::path::Path, out: &std::path::Path) -> String {
+    let (Ok(b), Ok(o)) = (base.canonicalize(), out.canonicalize()) else {
+        return format!("{}/", out.display());
+    };
+    match o.strip_prefix(&b) {
+        Ok(rel) if rel.as_os_str().is_empty() => String::new(),
+        Ok(rel) => format!("{}/", rel.display()),
+        Err(_) => format!("{}/", o.display()),
+    }
+}

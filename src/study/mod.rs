@@ -1,0 +1,397 @@
+//! The paper's study: strain-energy error against load steps, and speed
+//! against error, for the complete formulation and every approximation type.
+//!
+//! For each formulation (the scene's first, then every other compiled one)
+//! and each step count `N` of the scene's schedule, the scene is solved with
+//! the complete formulation and with Types 1–6. The error of a type is
+//!
+//! ```text
+//! error % = 100 (U_type - U_complete) / U_complete
+//! ```
+//!
+//! with both strain energies at the final load factor and the same `N`.
+//! Each solve is repeated [`StudyOptions::repeats`] times; times are the
+//! medians (the energies of repeats are identical: the solver is
+//! deterministic).
+//!
+//! A contact-heavy variant of the scene ([`contact_heavy_variant`]: a finer
+//! interface with more integration points, same physics) measures what each
+//! type saves where contact dominates the cost.
+
+pub mod plots;
+pub mod report;
+
+use std::time::Duration;
+
+use contact_kernels::{ApproxType, Formulation};
+use solver::{Method, Scene, Solution, SolveOptions, SolverError};
+
+/// Settings of a study.
+#[derive(Debug, Clone)]
+pub struct StudyOptions {
+    /// Solves per (formulation, method, steps); times are medians.
+    pub repeats: usize,
+    /// Step counts (default: the scene's `loading.steps`).
+    pub steps: Option<Vec<usize>>,
+    /// Also study the other compiled formulations.
+    pub all_formulations: bool,
+    /// Step counts of the contact-heavy variant (empty: skip it).
+    pub heavy_steps: Vec<usize>,
+    /// Refinement of the contact-heavy variant: elements along the
+    /// interface are multiplied by this factor...
+    pub heavy_refine: usize,
+    /// ...and each slave segment gets this many Gauss points.
+    pub heavy_gauss_points: usize,
+}
+
+impl Default for StudyOptions {
+    fn default() -> Self {
+        StudyOptions {
+            repeats: 5,
+            steps: None,
+            all_formulations: true,
+            heavy_steps: vec![4, 20],
+            heavy_refine: 8,
+            heavy_gauss_points: 8,
+        }
+    }
+}
+
+/// Why a study could not be completed.
+#[derive(Debug, thiserror::Error)]
+pub enum StudyError {
+    /// The scene has no contact pair, so there is nothing to study.
+    #[error("scene `{0}` has no contact pair: the study compares contact formulations")]
+    NoContact(String),
+    /// The scene lists no step counts.
+    #[error("no step counts to study (scene `loading.steps` is empty)")]
+    NoSteps,
+    /// The complete formulation failed: there is no reference to compare to.
+    #[error("the complete formulation ({formulation}, {steps} steps) failed: {source}")]
+    Reference {
+        /// Formulation.
+        formulation: Formulation,
+        /// Step count.
+        steps: usize,
+        /// The solver's error.
+        source: SolverError,
+    },
+    /// Writing an output file failed.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Drawing a plot failed.
+    #[error("cannot draw {path}: {message}")]
+    Plot {
+        /// The file.
+        path: String,
+        /// The backend's message.
+        message: String,
+    },
+}
+
+/// One solve of the study (medians over repeats).
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// The formulation.
+    pub formulation: Formulation,
+    /// Complete or a type.
+    pub method: Method,
+    /// Load steps.
+    pub steps: usize,
+    /// `None` if the solve failed (see `failure`).
+    pub strain_energy: Option<f64>,
+    /// Against the complete formulation at the same step count.
+    pub error_percent: Option<f64>,
+    /// Newton iterations (converged attempts).
+    pub newton_iterations: usize,
+    /// Cut-backs performed.
+    pub cutbacks: usize,
+    /// Median wall time of the whole solve.
+    pub wall_seconds: f64,
+    /// Median time in contact evaluation (kernels, Taylor expansion,
+    /// scatter, pairing).
+    pub contact_seconds: f64,
+    /// Median time in solid assembly.
+    pub solid_seconds: f64,
+    /// Median time in the linear solver.
+    pub solve_seconds: f64,
+    /// Kernel evaluations with derivatives.
+    pub kernel_evaluations: u64,
+    /// Value-only projections.
+    pub projections: u64,
+    /// Largest |gap| at the final state (exact re-projection).
+    pub max_abs_gap: Option<f64>,
+    /// Operation count of the kernel the method evaluates per integration
+    /// point (Type 6's for complete).
+    pub kernel_ops: Option<u32>,
+    /// The solver's error, if it failed.
+    pub failure: Option<String>,
+}
+
+/// All runs of one formulation.
+#[derive(Debug, Clone)]
+pub struct FormulationStudy {
+    /// The formulation.
+    pub formulation: Formulation,
+    /// Runs in order: for each step count, complete then Types 1–6.
+    pub runs: Vec<Run>,
+}
+
+impl FormulationStudy {
+    /// The run of `method` at `steps`.
+    pub fn run(&self, method: Method, steps: usize) -> Option<&Run> {
+        self.runs.iter().find(|r| r.method == method && r.steps == steps)
+    }
+
+    /// The step counts studied, ascending.
+    pub fn steps(&self) -> Vec<usize> {
+        let mut s: Vec<usize> = self.runs.iter().map(|r| r.steps).collect();
+        s.sort_unstable();
+        s.dedup();
+        s
+    }
+}
+
+/// The contact-heavy variant's runs, as ratios to the complete formulation
+/// measured in the same study.
+#[derive(Debug, Clone)]
+pub struct HeavyStudy {
+    /// Solid elements of the variant.
+    pub solid_elements: usize,
+    /// Slave integration points of the variant.
+    pub contact_points: usize,
+    /// Its runs (same layout as [`FormulationStudy::runs`]).
+    pub study: FormulationStudy,
+}
+
+/// Everything a study computed.
+#[derive(Debug, Clone)]
+pub struct StudyResults {
+    /// The scene's name.
+    pub scene_name: String,
+    /// Solves per configuration.
+    pub repeats: usize,
+    /// One study per formulation, the scene's first.
+    pub formulations: Vec<FormulationStudy>,
+    /// The contact-heavy variant, if run.
+    pub heavy: Option<HeavyStudy>,
+    /// The complete solution at the scene's default step count (for the
+    /// deformed-configuration plot).
+    pub deformed: Solution,
+}
+
+/// The contact-heavy variant of a scene: every body refined `refine` times
+/// along x and every contact pair integrated with `gauss_points` points per
+/// slave segment. Geometry, material, supports, loads and contact law are
+/// unchanged.
+pub fn contact_heavy_variant(scene: &Scene, refine: usize, gauss_points: usize) -> Scene {
+    let mut s = scene.refined(refine, 1);
+    for c in &mut s.contacts {
+        c.gauss_points = gauss_points;
+    }
+    s.name = Some(format!("{} (contact-heavy: x{refine} along the interface, {gauss_points} Gauss points per segment)", scene_name(scene)));
+    s
+}
+
+/// The scene's display name.
+pub fn scene_name(scene: &Scene) -> String {
+    scene.name.clone().unwrap_or_else(|| scene.origin.clone())
+}
+
+/// The kernel operation count a method evaluates per integration point.
+pub fn kernel_ops(formulation: Formulation, method: Method) -> Option<u32> {
+    let ty = match method {
+        Method::Complete => ApproxType::Type6,
+        Method::Approx(t) => t,
+    };
+    contact_kernels::op_count(formulation, Some(ty)).map(|o| o.total())
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n == 0 {
+        return f64::NAN;
+    }
+    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+}
+
+fn secs(d: Duration) -> f64 {
+    d.as_secs_f64()
+}
+
+/// Progress reporting: called once per finished solve configuration.
+pub trait Progress {
+    /// Total number of configurations is known.
+    fn start(&self, total: u64);
+    /// One configuration finished.
+    fn advance(&self, what: &str);
+}
+
+impl Progress for indicatif::ProgressBar {
+    fn start(&self, total: u64) {
+        self.set_length(total);
+    }
+    fn advance(&self, what: &str) {
+        self.set_message(what.to_owned());
+        self.inc(1);
+    }
+}
+
+/// A progress sink that reports nothing.
+pub struct Silent;
+
+impl Progress for Silent {
+    fn start(&self, _: u64) {}
+    fn advance(&self, _: &str) {}
+}
+
+/// Solves `scene` with `method` `repeats` times.
+fn measure(
+    scene: &Scene,
+    formulation: Formulation,
+    method: Method,
+    steps: usize,
+    repeats: usize,
+) -> Result<(Solution, [f64; 4]), SolverError> {
+    let mut options = SolveOptions::from_scene(scene);
+    options.method = method;
+    options.steps = steps;
+    options.formulation = Some(formulation);
+    let mut times: [Vec<f64>; 4] = Default::default();
+    let mut first = None;
+    for _ in 0..repeats.max(1) {
+        let sol = solver::solve(scene, &options)?;
+        let t = &sol.timings;
+        for (v, d) in times.iter_mut().zip([t.total, t.contact_evaluation, t.solid_assembly, t.linear_solve]) {
+            v.push(secs(d));
+        }
+        first.get_or_insert(sol);
+    }
+    let med = times.map(median);
+    Ok((first.expect("at least one repeat"), med))
+}
+
+fn study_formulation(
+    scene: &Scene,
+    formulation: Formulation,
+    steps: &[usize],
+    repeats: usize,
+    progress: &dyn Progress,
+) -> Result<FormulationStudy, StudyError> {
+    let mut runs = Vec::new();
+    for &n in steps {
+        let mut reference: Option<f64> = None;
+        for method in Method::ALL {
+            let label = format!("{formulation}, {n} steps, {method}");
+            let result = measure(scene, formulation, method, n, repeats);
+            progress.advance(&label);
+            let run = match result {
+                Ok((sol, [wall, contact, solid, solve])) => {
+                    let u = sol.strain_energy;
+                    if method == Method::Complete {
+                        reference = Some(u);
+                    }
+                    let error_percent = match (method, reference) {
+                        (Method::Approx(_), Some(r)) => Some(100.0 * (u - r) / r),
+                        _ => None,
+                    };
+                    Run {
+                        formulation,
+                        method,
+                        steps: n,
+                        strain_energy: Some(u),
+                        error_percent,
+                        newton_iterations: sol.newton_iterations,
+                        cutbacks: sol.cutbacks.len(),
+                        wall_seconds: wall,
+                        contact_seconds: contact,
+                        solid_seconds: solid,
+                        solve_seconds: solve,
+                        kernel_evaluations: sol.kernel_counts.evaluate,
+                        projections: sol.kernel_counts.project,
+                        max_abs_gap: Some(sol.max_abs_gap()),
+                        kernel_ops: kernel_ops(formulation, method),
+                        failure: None,
+                    }
+                }
+                Err(source) if method == Method::Complete => {
+                    return Err(StudyError::Reference { formulation, steps: n, source });
+                }
+                Err(e) => Run {
+                    formulation,
+                    method,
+                    steps: n,
+                    strain_energy: None,
+                    error_percent: None,
+                    newton_iterations: 0,
+                    cutbacks: 0,
+                    wall_seconds: f64::NAN,
+                    contact_seconds: f64::NAN,
+                    solid_seconds: f64::NAN,
+                    solve_seconds: f64::NAN,
+                    kernel_evaluations: 0,
+                    projections: 0,
+                    max_abs_gap: None,
+                    kernel_ops: kernel_ops(formulation, method),
+                    failure: Some(e.to_string()),
+                },
+            };
+            runs.push(run);
+        }
+    }
+    Ok(FormulationStudy { formulation, runs })
+}
+
+/// Runs the study on `scene`.
+pub fn run_study(scene: &Scene, options: &StudyOptions, progress: &dyn Progress) -> Result<StudyResults, StudyError> {
+    let name = scene_name(scene);
+    let first = scene.contacts.first().ok_or_else(|| StudyError::NoContact(name.clone()))?.formulation;
+    let steps = options.steps.clone().unwrap_or_else(|| scene.loading.steps.clone());
+    if steps.is_empty() {
+        return Err(StudyError::NoSteps);
+    }
+    let mut formulations = vec![first];
+    if options.all_formulations {
+        formulations.extend(contact_kernels::compiled_formulations().into_iter().filter(|f| *f != first));
+    }
+    let per_formulation = (steps.len() * Method::ALL.len()) as u64;
+    let heavy_count = (options.heavy_steps.len() * Method::ALL.len()) as u64;
+    progress.start(per_formulation * formulations.len() as u64 + heavy_count + 1);
+
+    let mut studies = Vec::new();
+    for &f in &formulations {
+        studies.push(study_formulation(scene, f, &steps, options.repeats, progress)?);
+    }
+
+    let heavy = if options.heavy_steps.is_empty() {
+        None
+    } else {
+        let variant = contact_heavy_variant(scene, options.heavy_refine, options.heavy_gauss_points);
+        let study = study_formulation(&variant, first, &options.heavy_steps, options.repeats, progress)?;
+        let model = variant.build_model().map_err(|e| StudyError::Reference {
+            formulation: first,
+            steps: options.heavy_steps[0],
+            source: e.into(),
+        })?;
+        Some(HeavyStudy {
+            solid_elements: model.mesh.elements.len(),
+            contact_points: model.contacts.iter().map(|c| c.slave.len() * c.gauss_points).sum(),
+            study,
+        })
+    };
+
+    let mut options_def = SolveOptions::from_scene(scene);
+    options_def.method = Method::Complete;
+    options_def.formulation = Some(first);
+    let deformed = solver::solve(scene, &options_def)
+        .map_err(|source| StudyError::Reference { formulation: first, steps: options_def.steps, source })?;
+    progress.advance("deformed configuration");
+
+    Ok(StudyResults { scene_name: name, repeats: options.repeats, formulations: studies, heavy, deformed })
+}

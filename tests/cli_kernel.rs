@@ -1,0 +1,249 @@
+//! The `gapsim kernel` contract (design.md), tested by running the binary.
+//!
+//! * Output: one JSON object `{"gap":..,"xi_m":..,"grad":[8],"hess":[[8]x8]}`
+//!   on stdout, whose numbers round-trip **exactly** to the library's
+//!   `f64` results (checked bit for bit, parsing the printed digits with
+//!   Rust's correctly rounded `str::parse`), `hess` all zeros for Type 1.
+//! * `--formulation` defaults to `slave-normal`; values starting with a
+//!   minus are accepted both as `--nodes=-0.1,...` and `--nodes -0.1,...`.
+//! * Bad input: a message on stderr, nothing on stdout, a non-zero exit
+//!   status, never a panic.
+
+use std::process::{Command, Output};
+
+use contact_kernels::{ApproxType, Formulation, evaluate};
+use serde_json::Value;
+
+const WORKED_NODES: &str = "0,1,2,1.1,2.1,0.9,-0.1,1.0";
+const WORKED_Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
+
+fn gapsim(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_gapsim")).args(args).output().expect("run gapsim")
+}
+
+/// The printed numbers, in order, parsed from their digits with
+/// `str::parse::<f64>` (correctly rounded), skipping the quoted keys.
+fn numbers_in(json: &str) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut in_string = false;
+    let mut token = String::new();
+    for c in json.chars() {
+        if c == '"' {
+            in_string = !in_string;
+            continue;
+        }
+        if !in_string && (c.is_ascii_digit() || "+-.eE".contains(c)) {
+            token.push(c);
+        } else if !token.is_empty() {
+            out.push(token.parse().unwrap_or_else(|_| panic!("bad number `{token}` in {json}")));
+            token.clear();
+        }
+    }
+    out
+}
+
+/// A successful run's JSON: checks the exact shape of the contract and
+/// returns the 2 + 8 + 64 numbers in order (gap, xi_m, grad, hess rows).
+fn parse_success(out: &Output) -> Vec<f64> {
+    let stdout = String::from_utf8(out.stdout.clone()).expect("utf-8 stdout");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "gapsim failed: {stderr}");
+    assert_eq!(stdout.lines().count(), 1, "one line of output: {stdout}");
+    let v: Value = serde_json::from_str(&stdout).expect("valid JSON");
+    let obj = v.as_object().expect("a JSON object");
+    let keys: Vec<&str> = obj.keys().map(String::as_str).collect();
+    let mut sorted = keys.clone();
+    sorted.sort();
+    assert_eq!(sorted, ["gap", "grad", "hess", "xi_m"], "keys of {stdout}");
+    assert!(obj["gap"].is_f64() && obj["xi_m"].is_f64());
+    let grad = obj["grad"].as_array().expect("grad is an array");
+    assert_eq!(grad.len(), 8);
+    assert!(grad.iter().all(Value::is_number));
+    let hess = obj["hess"].as_array().expect("hess is an array");
+    assert_eq!(hess.len(), 8);
+    for row in hess {
+        let row = row.as_array().expect("hess rows are arrays");
+        assert_eq!(row.len(), 8);
+        assert!(row.iter().all(Value::is_number));
+    }
+    // The contract's field order, then the digits themselves.
+    let pos = |k: &str| stdout.find(&format!("\"{k}\"")).unwrap();
+    assert!(pos("gap") < pos("xi_m") && pos("xi_m") < pos("grad") && pos("grad") < pos("hess"), "{stdout}");
+    let nums = numbers_in(&stdout);
+    assert_eq!(nums.len(), 74, "{stdout}");
+    nums
+}
+
+/// Asserts the printed numbers equal the library's result bit for bit.
+#[track_caller]
+fn assert_equals_library(nums: &[f64], f: Formulation, ty: ApproxType, q: &[f64; 8], xi_s: f64) {
+    let lib = evaluate(f, ty, q, xi_s).expect("library evaluates");
+    let mut expected = vec![lib.gap, lib.xi_m];
+    expected.extend(lib.grad.iter());
+    for i in 0..8 {
+        for j in 0..8 {
+            expected.push(lib.hess.map_or(0.0, |h| h[(i, j)]));
+        }
+    }
+    for (k, (a, b)) in nums.iter().zip(&expected).enumerate() {
+        assert_eq!(a.to_bits(), b.to_bits(), "{f} type {ty}: printed number {k} is {a:e}, library has {b:e}");
+    }
+}
+
+/// design.md's worked example, Type 6, both formulations: the published
+/// digits (relative 1e-10 per entry, absolute 1e-13 for printed zeros).
+#[test]
+fn worked_example() {
+    let published: [(&str, f64, f64, [f64; 8], [f64; 8]); 2] = [
+        (
+            "slave-normal",
+            0.129090446096668,
+            -0.278587699316629,
+            [
+                0.0162732380162,
+                0.345075719401,
+                0.0293417606046,
+                0.658454250255,
+                -0.0291613880704,
+                -0.641550537549,
+                -0.0164536105503,
+                -0.361979432107,
+            ],
+            [
+                0.00046515059696,
+                -0.00462332803342,
+                -0.000356320738686,
+                0.00701758491545,
+                -0.00741001952566,
+                -0.163020429564,
+                0.00730118966738,
+                0.160626172682,
+            ],
+        ),
+        (
+            "closest-point",
+            0.128503680399779,
+            -0.267422680412371,
+            [
+                0.0158926813215,
+                0.349638989074,
+                0.0295149795971,
+                0.649329551137,
+                -0.0287753496564,
+                -0.63305769244,
+                -0.0166323112623,
+                -0.36591084777,
+            ],
+            [0.0, 0.0, 0.0, 0.0, -0.00720905132111, -0.158599129064, 0.00720905132111, 0.158599129064],
+        ),
+    ];
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * b.abs() + 1e-13;
+    for (name, gap, xi_m, grad, row0) in published {
+        let nums =
+            parse_success(&gapsim(&["kernel", "--formulation", name, "--type", "6", "--xi-s", "0.3", "--nodes", WORKED_NODES]));
+        assert!(close(nums[0], gap), "{name}: gap {}", nums[0]);
+        assert!(close(nums[1], xi_m), "{name}: xi_m {}", nums[1]);
+        for i in 0..8 {
+            assert!(close(nums[2 + i], grad[i]), "{name}: grad[{i}] {}", nums[2 + i]);
+            assert!(close(nums[10 + i], row0[i]), "{name}: hess[0][{i}] {}", nums[10 + i]);
+        }
+        assert_equals_library(&nums, name.parse().unwrap(), ApproxType::Type6, &WORKED_Q, 0.3);
+    }
+}
+
+/// Every formulation and type prints exactly the library's values (full
+/// round-trip precision), Type 1 with an all-zero Hessian.
+#[test]
+fn every_kernel_round_trips() {
+    for f in Formulation::ALL {
+        for ty in ApproxType::ALL {
+            let t = ty.index().to_string();
+            let nums = parse_success(&gapsim(&[
+                "kernel",
+                "--formulation",
+                f.name(),
+                "--type",
+                &t,
+                "--xi-s",
+                "0.3",
+                "--nodes",
+                WORKED_NODES,
+            ]));
+            assert_equals_library(&nums, f, ty, &WORKED_Q, 0.3);
+            let hess_zero = nums[10..].iter().all(|&v| v == 0.0);
+            assert_eq!(hess_zero, ty == ApproxType::Type1, "{f} type {ty}: Hessian all zero only for Type 1");
+        }
+    }
+}
+
+/// `--formulation` defaults to slave-normal.
+#[test]
+fn formulation_defaults_to_slave_normal() {
+    let implicit = gapsim(&["kernel", "--type", "4", "--xi-s", "0.3", "--nodes", WORKED_NODES]);
+    let explicit = gapsim(&["kernel", "--formulation", "slave-normal", "--type", "4", "--xi-s", "0.3", "--nodes", WORKED_NODES]);
+    assert_eq!(parse_success(&implicit), parse_success(&explicit));
+    let other = gapsim(&["kernel", "--formulation", "closest-point", "--type", "4", "--xi-s", "0.3", "--nodes", WORKED_NODES]);
+    assert_ne!(parse_success(&implicit), parse_success(&other));
+}
+
+/// Negative values work with `=` and as a separate argument, in any order.
+#[test]
+fn negative_values() {
+    let nodes = "-0.1,1,2,1.1,2.1,0.9,-0.3,1.05";
+    let q = [-0.1, 1.0, 2.0, 1.1, 2.1, 0.9, -0.3, 1.05];
+    let runs = [
+        gapsim(&["kernel", "--type", "6", &format!("--xi-s={}", -0.5), &format!("--nodes={nodes}")]),
+        gapsim(&["kernel", "--type", "6", "--xi-s", "-0.5", "--nodes", nodes]),
+        gapsim(&["kernel", "--nodes", nodes, "--xi-s", "-0.5", "--type", "6"]),
+        gapsim(&["kernel", "--nodes", nodes, "--type=6", "--xi-s=-0.5", "--formulation=slave-normal"]),
+    ];
+    for out in &runs {
+        assert_equals_library(&parse_success(out), Formulation::SlaveNormal, ApproxType::Type6, &q, -0.5);
+    }
+}
+
+/// A failed run: non-zero exit (not a signal), nothing on stdout, no panic,
+/// and a message on stderr mentioning every string in `expect`.
+#[track_caller]
+fn assert_fails(args: &[&str], expect: &[&str]) {
+    let out = gapsim(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{args:?} should fail");
+    assert!(out.status.code().is_some_and(|c| c != 0), "{args:?}: exit status {:?}", out.status);
+    assert!(out.stdout.is_empty(), "{args:?}: stdout {:?}", String::from_utf8_lossy(&out.stdout));
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    for e in expect {
+        assert!(stderr.contains(e), "{args:?}: stderr should mention `{e}`: {stderr}");
+    }
+}
+
+#[test]
+fn bad_input_is_reported() {
+    let k = |ty: &'static str, xi: &'static str, nodes: &'static str| ["kernel", "--type", ty, "--xi-s", xi, "--nodes", nodes];
+    // Wrong number of coordinates.
+    assert_fails(&k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1"), &["--nodes", "expected 8", "got 7"]);
+    assert_fails(&k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,1,5"), &["--nodes", "got 9"]);
+    assert_fails(&k("6", "0.3", ""), &["--nodes"]);
+    // Unparsable or non-finite numbers.
+    assert_fails(&k("6", "0.3", "0,1,2,abc,2.1,0.9,-0.1,1"), &["--nodes", "coordinate 4", "abc"]);
+    assert_fails(&k("6", "0.3", "0,1,2,1.1,NaN,0.9,-0.1,1"), &["--nodes", "coordinate 5", "finite"]);
+    assert_fails(&k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,inf"), &["--nodes", "finite"]);
+    assert_fails(&k("6", "nan", WORKED_NODES), &["--xi-s", "finite"]);
+    assert_fails(&k("6", "x", WORKED_NODES), &["--xi-s"]);
+    // Type out of range or not a number, unknown formulation.
+    for ty in ["0", "7", "-1", "six"] {
+        assert_fails(&k(ty, "0.3", WORKED_NODES), &["--type"]);
+    }
+    assert_fails(
+        &["kernel", "--formulation", "nearest", "--type", "6", "--xi-s", "0.3", "--nodes", WORKED_NODES],
+        &["--formulation", "slave-normal", "closest-point"],
+    );
+    // Missing arguments, unknown subcommand.
+    assert_fails(&["kernel", "--type", "6", "--xi-s", "0.3"], &["--nodes"]);
+    assert_fails(&["kernel", "--type", "6", "--nodes", WORKED_NODES], &["--xi-s"]);
+    assert_fails(&["frobnicate"], &["frobnicate"]);
+    // Degenerate geometry, reported by the kernel's typed error.
+    assert_fails(&k("6", "0.3", "1,1,1,1,2.1,0.9,-0.1,1"), &["degenerate slave segment"]);
+    assert_fails(&k("3", "0.3", "0,1,2,1.1,0.5,0.5,0.5,0.5"), &["degenerate master segment"]);
+    assert_fails(&k("6", "0.3", "0,1,2,1,1.5,0.5,1.5,-0.5"), &["projection"]);
+}
