@@ -73,11 +73,15 @@ fn kernels(c: &mut Criterion) {
                 b.iter(|| evaluate(f, ty, black_box(&Q), black_box(XI_S)).unwrap())
             });
         }
-        group.bench_function("project", |b| b.iter(|| project(f, black_box(&Q), black_box(XI_S)).unwrap()));
+        group.bench_function("project", |b| {
+            b.iter(|| project(f, black_box(&Q), black_box(XI_S)).unwrap())
+        });
         group.bench_function("num-dual-hessian", |b| {
             b.iter(|| {
                 hessian(
-                    |v: SVector<Dual2SVec64<8>, 8>| gap(f, &std::array::from_fn(|i| v[i]), black_box(XI_S)),
+                    |v: SVector<Dual2SVec64<8>, 8>| {
+                        gap(f, &std::array::from_fn(|i| v[i]), black_box(XI_S))
+                    },
                     black_box(&qv),
                 )
             })

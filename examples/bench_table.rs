@@ -39,7 +39,10 @@ fn criterion_dir() -> PathBuf {
 fn median_ns(dir: &Path, group: &str, id: &str) -> Result<f64, String> {
     let path = dir.join(group).join(id).join("new").join("estimates.json");
     let text = std::fs::read_to_string(&path).map_err(|e| {
-        format!("cannot read {}: {e}\n(run `cargo bench --bench kernels` first)", path.display())
+        format!(
+            "cannot read {}: {e}\n(run `cargo bench --bench kernels` first)",
+            path.display()
+        )
     })?;
     let json: serde_json::Value =
         serde_json::from_str(&text).map_err(|e| format!("cannot parse {}: {e}", path.display()))?;
@@ -50,7 +53,15 @@ fn median_ns(dir: &Path, group: &str, id: &str) -> Result<f64, String> {
 
 fn ops_columns(ops: Option<OpCount>) -> String {
     match ops {
-        Some(o) => format!("{} | {} | {} | {} | {} | {}", o.add, o.mul, o.div, o.sqrt, o.neg, o.total()),
+        Some(o) => format!(
+            "{} | {} | {} | {} | {} | {}",
+            o.add,
+            o.mul,
+            o.div,
+            o.sqrt,
+            o.neg,
+            o.total()
+        ),
         None => "– | – | – | – | – | –".to_owned(),
     }
 }
@@ -79,7 +90,10 @@ fn table(dir: &Path) -> Result<String, String> {
             reference / t,
             ops_columns(op_count(f, None))
         ));
-        out.push_str(&format!("| {name} | num-dual `hessian` (Type 6) | {reference:.1} | 1.0× | {} |\n", ops_columns(None)));
+        out.push_str(&format!(
+            "| {name} | num-dual `hessian` (Type 6) | {reference:.1} | 1.0× | {} |\n",
+            ops_columns(None)
+        ));
     }
     Ok(out)
 }

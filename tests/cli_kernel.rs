@@ -18,7 +18,10 @@ const WORKED_NODES: &str = "0,1,2,1.1,2.1,0.9,-0.1,1.0";
 const WORKED_Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
 
 fn gapsim(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_gapsim")).args(args).output().expect("run gapsim")
+    Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .args(args)
+        .output()
+        .expect("run gapsim")
 }
 
 /// The printed numbers, in order, parsed from their digits with
@@ -35,7 +38,11 @@ fn numbers_in(json: &str) -> Vec<f64> {
         if !in_string && (c.is_ascii_digit() || "+-.eE".contains(c)) {
             token.push(c);
         } else if !token.is_empty() {
-            out.push(token.parse().unwrap_or_else(|_| panic!("bad number `{token}` in {json}")));
+            out.push(
+                token
+                    .parse()
+                    .unwrap_or_else(|_| panic!("bad number `{token}` in {json}")),
+            );
             token.clear();
         }
     }
@@ -68,7 +75,10 @@ fn parse_success(out: &Output) -> Vec<f64> {
     }
     // The contract's field order, then the digits themselves.
     let pos = |k: &str| stdout.find(&format!("\"{k}\"")).unwrap();
-    assert!(pos("gap") < pos("xi_m") && pos("xi_m") < pos("grad") && pos("grad") < pos("hess"), "{stdout}");
+    assert!(
+        pos("gap") < pos("xi_m") && pos("xi_m") < pos("grad") && pos("grad") < pos("hess"),
+        "{stdout}"
+    );
     let nums = numbers_in(&stdout);
     assert_eq!(nums.len(), 74, "{stdout}");
     nums
@@ -86,15 +96,22 @@ fn assert_equals_library(nums: &[f64], f: Formulation, ty: ApproxType, q: &[f64;
         }
     }
     for (k, (a, b)) in nums.iter().zip(&expected).enumerate() {
-        assert_eq!(a.to_bits(), b.to_bits(), "{f} type {ty}: printed number {k} is {a:e}, library has {b:e}");
+        assert_eq!(
+            a.to_bits(),
+            b.to_bits(),
+            "{f} type {ty}: printed number {k} is {a:e}, library has {b:e}"
+        );
     }
 }
+
+/// A published worked example: formulation, g, xi_m, g', first row of g''.
+type Published = (&'static str, f64, f64, [f64; 8], [f64; 8]);
 
 /// design.md's worked example, Type 6, both formulations: the published
 /// digits (relative 1e-10 per entry, absolute 1e-13 for printed zeros).
 #[test]
 fn worked_example() {
-    let published: [(&str, f64, f64, [f64; 8], [f64; 8]); 2] = [
+    let published: [Published; 2] = [
         (
             "slave-normal",
             0.129090446096668,
@@ -134,20 +151,52 @@ fn worked_example() {
                 -0.0166323112623,
                 -0.36591084777,
             ],
-            [0.0, 0.0, 0.0, 0.0, -0.00720905132111, -0.158599129064, 0.00720905132111, 0.158599129064],
+            [
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                -0.00720905132111,
+                -0.158599129064,
+                0.00720905132111,
+                0.158599129064,
+            ],
         ),
     ];
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * b.abs() + 1e-13;
     for (name, gap, xi_m, grad, row0) in published {
-        let nums =
-            parse_success(&gapsim(&["kernel", "--formulation", name, "--type", "6", "--xi-s", "0.3", "--nodes", WORKED_NODES]));
+        let nums = parse_success(&gapsim(&[
+            "kernel",
+            "--formulation",
+            name,
+            "--type",
+            "6",
+            "--xi-s",
+            "0.3",
+            "--nodes",
+            WORKED_NODES,
+        ]));
         assert!(close(nums[0], gap), "{name}: gap {}", nums[0]);
         assert!(close(nums[1], xi_m), "{name}: xi_m {}", nums[1]);
         for i in 0..8 {
-            assert!(close(nums[2 + i], grad[i]), "{name}: grad[{i}] {}", nums[2 + i]);
-            assert!(close(nums[10 + i], row0[i]), "{name}: hess[0][{i}] {}", nums[10 + i]);
+            assert!(
+                close(nums[2 + i], grad[i]),
+                "{name}: grad[{i}] {}",
+                nums[2 + i]
+            );
+            assert!(
+                close(nums[10 + i], row0[i]),
+                "{name}: hess[0][{i}] {}",
+                nums[10 + i]
+            );
         }
-        assert_equals_library(&nums, name.parse().unwrap(), ApproxType::Type6, &WORKED_Q, 0.3);
+        assert_equals_library(
+            &nums,
+            name.parse().unwrap(),
+            ApproxType::Type6,
+            &WORKED_Q,
+            0.3,
+        );
     }
 }
 
@@ -171,7 +220,11 @@ fn every_kernel_round_trips() {
             ]));
             assert_equals_library(&nums, f, ty, &WORKED_Q, 0.3);
             let hess_zero = nums[10..].iter().all(|&v| v == 0.0);
-            assert_eq!(hess_zero, ty == ApproxType::Type1, "{f} type {ty}: Hessian all zero only for Type 1");
+            assert_eq!(
+                hess_zero,
+                ty == ApproxType::Type1,
+                "{f} type {ty}: Hessian all zero only for Type 1"
+            );
         }
     }
 }
@@ -179,10 +232,38 @@ fn every_kernel_round_trips() {
 /// `--formulation` defaults to slave-normal.
 #[test]
 fn formulation_defaults_to_slave_normal() {
-    let implicit = gapsim(&["kernel", "--type", "4", "--xi-s", "0.3", "--nodes", WORKED_NODES]);
-    let explicit = gapsim(&["kernel", "--formulation", "slave-normal", "--type", "4", "--xi-s", "0.3", "--nodes", WORKED_NODES]);
+    let implicit = gapsim(&[
+        "kernel",
+        "--type",
+        "4",
+        "--xi-s",
+        "0.3",
+        "--nodes",
+        WORKED_NODES,
+    ]);
+    let explicit = gapsim(&[
+        "kernel",
+        "--formulation",
+        "slave-normal",
+        "--type",
+        "4",
+        "--xi-s",
+        "0.3",
+        "--nodes",
+        WORKED_NODES,
+    ]);
     assert_eq!(parse_success(&implicit), parse_success(&explicit));
-    let other = gapsim(&["kernel", "--formulation", "closest-point", "--type", "4", "--xi-s", "0.3", "--nodes", WORKED_NODES]);
+    let other = gapsim(&[
+        "kernel",
+        "--formulation",
+        "closest-point",
+        "--type",
+        "4",
+        "--xi-s",
+        "0.3",
+        "--nodes",
+        WORKED_NODES,
+    ]);
     assert_ne!(parse_success(&implicit), parse_success(&other));
 }
 
@@ -192,13 +273,32 @@ fn negative_values() {
     let nodes = "-0.1,1,2,1.1,2.1,0.9,-0.3,1.05";
     let q = [-0.1, 1.0, 2.0, 1.1, 2.1, 0.9, -0.3, 1.05];
     let runs = [
-        gapsim(&["kernel", "--type", "6", &format!("--xi-s={}", -0.5), &format!("--nodes={nodes}")]),
+        gapsim(&[
+            "kernel",
+            "--type",
+            "6",
+            &format!("--xi-s={}", -0.5),
+            &format!("--nodes={nodes}"),
+        ]),
         gapsim(&["kernel", "--type", "6", "--xi-s", "-0.5", "--nodes", nodes]),
         gapsim(&["kernel", "--nodes", nodes, "--xi-s", "-0.5", "--type", "6"]),
-        gapsim(&["kernel", "--nodes", nodes, "--type=6", "--xi-s=-0.5", "--formulation=slave-normal"]),
+        gapsim(&[
+            "kernel",
+            "--nodes",
+            nodes,
+            "--type=6",
+            "--xi-s=-0.5",
+            "--formulation=slave-normal",
+        ]),
     ];
     for out in &runs {
-        assert_equals_library(&parse_success(out), Formulation::SlaveNormal, ApproxType::Type6, &q, -0.5);
+        assert_equals_library(
+            &parse_success(out),
+            Formulation::SlaveNormal,
+            ApproxType::Type6,
+            &q,
+            -0.5,
+        );
     }
 }
 
@@ -209,25 +309,53 @@ fn assert_fails(args: &[&str], expect: &[&str]) {
     let out = gapsim(args);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!out.status.success(), "{args:?} should fail");
-    assert!(out.status.code().is_some_and(|c| c != 0), "{args:?}: exit status {:?}", out.status);
-    assert!(out.stdout.is_empty(), "{args:?}: stdout {:?}", String::from_utf8_lossy(&out.stdout));
+    assert!(
+        out.status.code().is_some_and(|c| c != 0),
+        "{args:?}: exit status {:?}",
+        out.status
+    );
+    assert!(
+        out.stdout.is_empty(),
+        "{args:?}: stdout {:?}",
+        String::from_utf8_lossy(&out.stdout)
+    );
     assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
     for e in expect {
-        assert!(stderr.contains(e), "{args:?}: stderr should mention `{e}`: {stderr}");
+        assert!(
+            stderr.contains(e),
+            "{args:?}: stderr should mention `{e}`: {stderr}"
+        );
     }
 }
 
 #[test]
 fn bad_input_is_reported() {
-    let k = |ty: &'static str, xi: &'static str, nodes: &'static str| ["kernel", "--type", ty, "--xi-s", xi, "--nodes", nodes];
+    let k = |ty: &'static str, xi: &'static str, nodes: &'static str| {
+        ["kernel", "--type", ty, "--xi-s", xi, "--nodes", nodes]
+    };
     // Wrong number of coordinates.
-    assert_fails(&k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1"), &["--nodes", "expected 8", "got 7"]);
-    assert_fails(&k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,1,5"), &["--nodes", "got 9"]);
+    assert_fails(
+        &k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1"),
+        &["--nodes", "expected 8", "got 7"],
+    );
+    assert_fails(
+        &k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,1,5"),
+        &["--nodes", "got 9"],
+    );
     assert_fails(&k("6", "0.3", ""), &["--nodes"]);
     // Unparsable or non-finite numbers.
-    assert_fails(&k("6", "0.3", "0,1,2,abc,2.1,0.9,-0.1,1"), &["--nodes", "coordinate 4", "abc"]);
-    assert_fails(&k("6", "0.3", "0,1,2,1.1,NaN,0.9,-0.1,1"), &["--nodes", "coordinate 5", "finite"]);
-    assert_fails(&k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,inf"), &["--nodes", "finite"]);
+    assert_fails(
+        &k("6", "0.3", "0,1,2,abc,2.1,0.9,-0.1,1"),
+        &["--nodes", "coordinate 4", "abc"],
+    );
+    assert_fails(
+        &k("6", "0.3", "0,1,2,1.1,NaN,0.9,-0.1,1"),
+        &["--nodes", "coordinate 5", "finite"],
+    );
+    assert_fails(
+        &k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,inf"),
+        &["--nodes", "finite"],
+    );
     assert_fails(&k("6", "nan", WORKED_NODES), &["--xi-s", "finite"]);
     assert_fails(&k("6", "x", WORKED_NODES), &["--xi-s"]);
     // Type out of range or not a number, unknown formulation.
@@ -235,15 +363,34 @@ fn bad_input_is_reported() {
         assert_fails(&k(ty, "0.3", WORKED_NODES), &["--type"]);
     }
     assert_fails(
-        &["kernel", "--formulation", "nearest", "--type", "6", "--xi-s", "0.3", "--nodes", WORKED_NODES],
+        &[
+            "kernel",
+            "--formulation",
+            "nearest",
+            "--type",
+            "6",
+            "--xi-s",
+            "0.3",
+            "--nodes",
+            WORKED_NODES,
+        ],
         &["--formulation", "slave-normal", "closest-point"],
     );
     // Missing arguments, unknown subcommand.
     assert_fails(&["kernel", "--type", "6", "--xi-s", "0.3"], &["--nodes"]);
-    assert_fails(&["kernel", "--type", "6", "--nodes", WORKED_NODES], &["--xi-s"]);
+    assert_fails(
+        &["kernel", "--type", "6", "--nodes", WORKED_NODES],
+        &["--xi-s"],
+    );
     assert_fails(&["frobnicate"], &["frobnicate"]);
     // Degenerate geometry, reported by the kernel's typed error.
-    assert_fails(&k("6", "0.3", "1,1,1,1,2.1,0.9,-0.1,1"), &["degenerate slave segment"]);
-    assert_fails(&k("3", "0.3", "0,1,2,1.1,0.5,0.5,0.5,0.5"), &["degenerate master segment"]);
+    assert_fails(
+        &k("6", "0.3", "1,1,1,1,2.1,0.9,-0.1,1"),
+        &["degenerate slave segment"],
+    );
+    assert_fails(
+        &k("3", "0.3", "0,1,2,1.1,0.5,0.5,0.5,0.5"),
+        &["degenerate master segment"],
+    );
     assert_fails(&k("6", "0.3", "0,1,2,1,1.5,0.5,1.5,-0.5"), &["projection"]);
 }

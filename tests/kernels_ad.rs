@@ -37,8 +37,8 @@
 //! (`1 / cos` of the slave–master angle for `xi'`, its square for `xi''`).
 
 use contact_kernels::{
-    ApproxType, EntityOrder, Formulation, GapDerivatives, KernelError, Segment, evaluate,
-    op_count, project,
+    ApproxType, EntityOrder, Formulation, GapDerivatives, KernelError, Segment, evaluate, op_count,
+    project,
 };
 use nalgebra::{Matrix2, SMatrix, SVector};
 use num_dual::{Dual2SVec64, DualNum, hessian};
@@ -154,9 +154,16 @@ struct Reference {
 
 /// Type 6: num-dual's full gradient and Hessian of [`gap`].
 fn exact_reference(f: Formulation, q: &[f64; 8], xi_s: f64) -> Reference {
-    let (gap, grad, hess) =
-        hessian(|v: SVector<Dual2SVec64<8>, 8>| gap(f, &to_array(&v), xi_s), &V8::from(*q));
-    Reference { gap, xi_m: xi_closed_form(f, q, xi_s), grad, hess }
+    let (gap, grad, hess) = hessian(
+        |v: SVector<Dual2SVec64<8>, 8>| gap(f, &to_array(&v), xi_s),
+        &V8::from(*q),
+    );
+    Reference {
+        gap,
+        xi_m: xi_closed_form(f, q, xi_s),
+        grad,
+        hess,
+    }
 }
 
 /// Partial derivatives of one scalar entity component `E(q, xi)` at fixed
@@ -230,7 +237,9 @@ fn kept_derivatives(
     let mut d2 = p.e_qq;
     if xi_varies {
         d1 += xi1 * p.e_xi;
-        d2 += p.e_qxi * xi1.transpose() + xi1 * p.e_qxi.transpose() + xi1 * xi1.transpose() * p.e_xixi;
+        d2 += p.e_qxi * xi1.transpose()
+            + xi1 * p.e_qxi.transpose()
+            + xi1 * xi1.transpose() * p.e_xixi;
     }
     if xi_quadratic {
         d2 += xi2 * p.e_xi;
@@ -249,9 +258,16 @@ fn kept_derivatives(
 /// g'  = n'^T x + x'^T n
 /// g'' = sum_i ( x_i n_i'' + n_i' x_i'^T + x_i' n_i'^T + n_i x_i'' )
 /// ```
-fn truncated_reference(f: Formulation, row: [EntityOrder; 3], q: &[f64; 8], xi_s: f64) -> Reference {
-    let (xi_m, xi1, xi2) =
-        hessian(|v: SVector<Dual2SVec64<8>, 8>| xi_closed_form(f, &to_array(&v), xi_s), &V8::from(*q));
+fn truncated_reference(
+    f: Formulation,
+    row: [EntityOrder; 3],
+    q: &[f64; 8],
+    xi_s: f64,
+) -> Reference {
+    let (xi_m, xi1, xi2) = hessian(
+        |v: SVector<Dual2SVec64<8>, 8>| xi_closed_form(f, &to_array(&v), xi_s),
+        &V8::from(*q),
+    );
     let [xo, xmo, no] = row;
     let parts = entity_partials(f, q, xi_s, xi_m);
     let mut gap = 0.0;
@@ -266,7 +282,12 @@ fn truncated_reference(f: Formulation, row: [EntityOrder; 3], q: &[f64; 8], xi_s
         grad += n1 * x + x1 * n;
         hess += n2 * x + n1 * x1.transpose() + x1 * n1.transpose() + x2 * n;
     }
-    Reference { gap, xi_m, grad, hess }
+    Reference {
+        gap,
+        xi_m,
+        grad,
+        hess,
+    }
 }
 
 /// The reference for `(f, ty)`: Type 6 from the full num-dual Hessian, the
@@ -287,7 +308,9 @@ fn relative_to_slave_node_1(q: &[f64; 8]) -> [f64; 8] {
 /// The configuration's size `L`: the largest coordinate difference from
 /// slave node 1 (the kernels' own measure).
 fn size(q: &[f64; 8]) -> f64 {
-    relative_to_slave_node_1(q).iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+    relative_to_slave_node_1(q)
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()))
 }
 
 // ---------------------------------------------------------------------------
@@ -346,9 +369,14 @@ fn assert_matches(
     r: &Reference,
     tol: f64,
 ) -> Errors {
-    let out = evaluate(f, ty, q, xi_s)
-        .unwrap_or_else(|e| panic!("{what}: {f} type {ty} q={q:?} xi_s={xi_s}: unexpected error {e}"));
-    assert_eq!(out.hess.is_some(), ty.has_hessian(), "{what}: {f} type {ty}: Hessian presence");
+    let out = evaluate(f, ty, q, xi_s).unwrap_or_else(|e| {
+        panic!("{what}: {f} type {ty} q={q:?} xi_s={xi_s}: unexpected error {e}")
+    });
+    assert_eq!(
+        out.hess.is_some(),
+        ty.has_hessian(),
+        "{what}: {f} type {ty}: Hessian presence"
+    );
     let e = errors(&out, r, ty, size(q));
     assert!(
         e.max() <= tol,
@@ -371,7 +399,14 @@ fn assert_matches(
 /// computed at `q_ref` (the same configuration, possibly in shifted
 /// coordinates).
 #[track_caller]
-fn check_all_types(what: &str, f: Formulation, q: &[f64; 8], q_ref: &[f64; 8], xi_s: f64, tol: f64) -> Errors {
+fn check_all_types(
+    what: &str,
+    f: Formulation,
+    q: &[f64; 8],
+    q_ref: &[f64; 8],
+    xi_s: f64,
+    tol: f64,
+) -> Errors {
     let mut worst = Errors::default();
     for ty in ApproxType::ALL {
         let r = reference(f, ty, q_ref, xi_s);
@@ -404,7 +439,10 @@ struct Shape {
 
 impl Shape {
     fn q(&self, f: Formulation) -> [f64; 8] {
-        let t_s = [self.slave_len * self.slave_angle.cos(), self.slave_len * self.slave_angle.sin()];
+        let t_s = [
+            self.slave_len * self.slave_angle.cos(),
+            self.slave_len * self.slave_angle.sin(),
+        ];
         let a_m = self.slave_angle + std::f64::consts::PI + self.master_angle;
         let t_m = [self.master_len * a_m.cos(), self.master_len * a_m.sin()];
         let xs1 = self.origin;
@@ -417,7 +455,10 @@ impl Shape {
         };
         let p = [x_s[0] + self.gap * n[0], x_s[1] + self.gap * n[1]];
         // x_m(xi_m) = p: midpoint c_m = p - xi_m t_m / 2.
-        let c_m = [p[0] - 0.5 * self.xi_m * t_m[0], p[1] - 0.5 * self.xi_m * t_m[1]];
+        let c_m = [
+            p[0] - 0.5 * self.xi_m * t_m[0],
+            p[1] - 0.5 * self.xi_m * t_m[1],
+        ];
         [
             xs1[0],
             xs1[1],
@@ -537,14 +578,39 @@ fn published(f: Formulation) -> Published {
 /// carry 11–15 significant digits, i.e. a rounding error below 1e-11
 /// relative).
 #[track_caller]
-fn assert_published(what: &str, gap: f64, xi_m: f64, grad: &[f64], hess_row0: Option<&[f64]>, p: &Published) {
+fn assert_published(
+    what: &str,
+    gap: f64,
+    xi_m: f64,
+    grad: &[f64],
+    hess_row0: Option<&[f64]>,
+    p: &Published,
+) {
     let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * b.abs() + 1e-13;
-    assert!(close(gap, p.gap), "{what}: gap {gap} vs published {}", p.gap);
-    assert!(close(xi_m, p.xi_m), "{what}: xi_m {xi_m} vs published {}", p.xi_m);
+    assert!(
+        close(gap, p.gap),
+        "{what}: gap {gap} vs published {}",
+        p.gap
+    );
+    assert!(
+        close(xi_m, p.xi_m),
+        "{what}: xi_m {xi_m} vs published {}",
+        p.xi_m
+    );
     for i in 0..8 {
-        assert!(close(grad[i], p.grad[i]), "{what}: grad[{i}] {} vs published {}", grad[i], p.grad[i]);
+        assert!(
+            close(grad[i], p.grad[i]),
+            "{what}: grad[{i}] {} vs published {}",
+            grad[i],
+            p.grad[i]
+        );
         if let Some(h) = hess_row0 {
-            assert!(close(h[i], p.hess_row0[i]), "{what}: hess[0][{i}] {} vs published {}", h[i], p.hess_row0[i]);
+            assert!(
+                close(h[i], p.hess_row0[i]),
+                "{what}: hess[0][{i}] {} vs published {}",
+                h[i],
+                p.hess_row0[i]
+            );
         }
     }
 }
@@ -554,7 +620,14 @@ fn reference_reproduces_the_worked_example() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         let r = exact_reference(f, &WORKED_Q, WORKED_XI_S);
         let row: Vec<f64> = r.hess.row(0).iter().copied().collect();
-        assert_published(&format!("num-dual reference, {f}"), r.gap, r.xi_m, r.grad.as_slice(), Some(&row), &published(f));
+        assert_published(
+            &format!("num-dual reference, {f}"),
+            r.gap,
+            r.xi_m,
+            r.grad.as_slice(),
+            Some(&row),
+            &published(f),
+        );
     }
 }
 
@@ -572,7 +645,10 @@ fn reference_truncation_with_everything_quadratic_is_exact() {
             let full = truncated_reference(f, table_row(ApproxType::Type6), &q, s.xi_s);
             let l = size(&q);
             assert!((exact.gap - full.gap).abs() <= 1e-12 * l);
-            assert!((exact.xi_m - s.xi_m).abs() <= 1e-12 * (1.0 + s.xi_m.abs()), "constructed xi_m");
+            assert!(
+                (exact.xi_m - s.xi_m).abs() <= 1e-12 * (1.0 + s.xi_m.abs()),
+                "constructed xi_m"
+            );
             assert!((exact.gap - s.gap).abs() <= 1e-12 * l, "constructed gap");
             assert!((exact.grad - full.grad).norm() <= 1e-12 * exact.grad.norm().max(1.0));
             assert!((exact.hess - full.hess).norm() <= 1e-12 * exact.hess.norm().max(1.0 / l));
@@ -597,12 +673,27 @@ fn truncation_table_matches_design() {
 #[test]
 fn worked_example_type6() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
-        let out = evaluate(f, ApproxType::Type6, &WORKED_Q, WORKED_XI_S).expect("worked example evaluates");
+        let out = evaluate(f, ApproxType::Type6, &WORKED_Q, WORKED_XI_S)
+            .expect("worked example evaluates");
         let h = out.hess.expect("Type 6 has a Hessian");
         let row: Vec<f64> = h.row(0).iter().copied().collect();
-        assert_published(&format!("kernel, {f}"), out.gap, out.xi_m, out.grad.as_slice(), Some(&row), &published(f));
+        assert_published(
+            &format!("kernel, {f}"),
+            out.gap,
+            out.xi_m,
+            out.grad.as_slice(),
+            Some(&row),
+            &published(f),
+        );
         let p = project(f, &WORKED_Q, WORKED_XI_S).expect("worked example projects");
-        assert_published(&format!("projection, {f}"), p.gap, p.xi_m, out.grad.as_slice(), None, &published(f));
+        assert_published(
+            &format!("projection, {f}"),
+            p.gap,
+            p.xi_m,
+            out.grad.as_slice(),
+            None,
+            &published(f),
+        );
     }
 }
 
@@ -627,7 +718,14 @@ fn random_constructed_configurations() {
         for k in 0..400 {
             let s = Shape::random(&mut rng);
             let q = s.q(f);
-            worst = worst.worst(check_all_types(&format!("random #{k}"), f, &q, &q, s.xi_s, TOL));
+            worst = worst.worst(check_all_types(
+                &format!("random #{k}"),
+                f,
+                &q,
+                &q,
+                s.xi_s,
+                TOL,
+            ));
         }
         eprintln!("{f}: worst scaled errors over 400 random configurations: {worst:?}");
     }
@@ -657,7 +755,14 @@ fn random_uniform_configurations() {
                 continue;
             }
             kept += 1;
-            worst = worst.worst(check_all_types(&format!("uniform #{k}"), f, &q, &q, xi_s, TOL));
+            worst = worst.worst(check_all_types(
+                &format!("uniform #{k}"),
+                f,
+                &q,
+                &q,
+                xi_s,
+                TOL,
+            ));
         }
         eprintln!("{f}: {kept}/400 uniform draws kept; worst scaled errors {worst:?}");
         assert!(kept >= 200, "{f}: only {kept} of 400 draws were well-posed");
@@ -677,10 +782,20 @@ fn far_from_origin() {
         let mut worst = Errors::default();
         for k in 0..100 {
             let mut s = Shape::random(&mut rng);
-            s.origin = [1e6 + rng.random_range(-1.0..1.0), -1e6 + rng.random_range(-1.0..1.0)];
+            s.origin = [
+                1e6 + rng.random_range(-1.0..1.0),
+                -1e6 + rng.random_range(-1.0..1.0),
+            ];
             let q = s.q(f);
             let q_rel = relative_to_slave_node_1(&q);
-            worst = worst.worst(check_all_types(&format!("far #{k}"), f, &q, &q_rel, s.xi_s, TOL));
+            worst = worst.worst(check_all_types(
+                &format!("far #{k}"),
+                f,
+                &q,
+                &q_rel,
+                s.xi_s,
+                TOL,
+            ));
         }
         eprintln!("{f}: far from origin, worst scaled errors {worst:?}");
     }
@@ -711,9 +826,17 @@ fn tiny_and_huge_scales() {
                         grad: b.grad,
                         hess: b.hess.map(|h| h * s),
                     };
-                    let r = Reference { gap: a.gap, xi_m: a.xi_m, grad: a.grad, hess: a.hess.unwrap_or_else(M8::zeros) };
+                    let r = Reference {
+                        gap: a.gap,
+                        xi_m: a.xi_m,
+                        grad: a.grad,
+                        hess: a.hess.unwrap_or_else(M8::zeros),
+                    };
                     let e = errors(&scaled, &r, ty, size(&q1));
-                    assert!(e.max() <= TOL, "{f} type {ty} scale {s:e} #{k}: scaling law broken, {e:?}");
+                    assert!(
+                        e.max() <= TOL,
+                        "{f} type {ty} scale {s:e} #{k}: scaling law broken, {e:?}"
+                    );
                 }
             }
         }
@@ -752,10 +875,16 @@ fn large_rotations() {
                     gap: a.gap,
                     xi_m: a.xi_m,
                     grad: rot * a.grad,
-                    hess: a.hess.map(|h| rot * h * rot.transpose()).unwrap_or_else(M8::zeros),
+                    hess: a
+                        .hess
+                        .map(|h| rot * h * rot.transpose())
+                        .unwrap_or_else(M8::zeros),
                 };
                 let e = errors(&b, &r, ty, size(&q0));
-                assert!(e.max() <= TOL, "{f} type {ty} rotation {theta}: covariance broken, {e:?}");
+                assert!(
+                    e.max() <= TOL,
+                    "{f} type {ty} rotation {theta}: covariance broken, {e:?}"
+                );
             }
         }
     }
@@ -776,7 +905,14 @@ fn steep_master() {
             s.master_angle = sign * deg.to_radians();
             s.xi_m = rng.random_range(-0.9..0.9);
             let q = s.q(f);
-            worst = worst.worst(check_all_types(&format!("steep {deg:.1}° #{k}"), f, &q, &q, s.xi_s, TOL));
+            worst = worst.worst(check_all_types(
+                &format!("steep {deg:.1}° #{k}"),
+                f,
+                &q,
+                &q,
+                s.xi_s,
+                TOL,
+            ));
         }
         eprintln!("{f}: steep master, worst scaled errors {worst:?}");
     }
@@ -794,7 +930,11 @@ fn segment_ends_and_penetration() {
             let q = s.q(f);
             check_all_types(&format!("xi_m = {xi_m}"), f, &q, &q, s.xi_s, TOL);
             let p = project(f, &q, s.xi_s).unwrap();
-            assert!((p.xi_m - xi_m).abs() <= 1e-12, "{f}: projection at the end: xi_m {}", p.xi_m);
+            assert!(
+                (p.xi_m - xi_m).abs() <= 1e-12,
+                "{f}: projection at the end: xi_m {}",
+                p.xi_m
+            );
         }
         for xi_s in [-1.0, 1.0] {
             let s = Shape { xi_s, ..base };
@@ -807,8 +947,16 @@ fn segment_ends_and_penetration() {
             check_all_types(&format!("penetration {gap}"), f, &q, &q, s.xi_s, TOL);
             for ty in ApproxType::ALL {
                 let out = evaluate(f, ty, &q, s.xi_s).unwrap();
-                assert!(out.gap < 0.0, "{f} type {ty}: penetration must give g < 0, got {}", out.gap);
-                assert!((out.gap - gap).abs() <= 1e-12, "{f} type {ty}: g {} vs constructed {gap}", out.gap);
+                assert!(
+                    out.gap < 0.0,
+                    "{f} type {ty}: penetration must give g < 0, got {}",
+                    out.gap
+                );
+                assert!(
+                    (out.gap - gap).abs() <= 1e-12,
+                    "{f} type {ty}: g {} vs constructed {gap}",
+                    out.gap
+                );
             }
         }
     }
@@ -834,14 +982,26 @@ fn zero_length_segments_are_typed_errors() {
         let slave = [1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0, 0.0];
         for e in all_errors(f, &slave, 0.2) {
             assert!(
-                matches!(e, KernelError::DegenerateSegment { segment: Segment::Slave, .. }),
+                matches!(
+                    e,
+                    KernelError::DegenerateSegment {
+                        segment: Segment::Slave,
+                        ..
+                    }
+                ),
                 "{f}: zero-length slave gave {e:?}"
             );
         }
         let master = [0.0, 1.0, 2.0, 1.0, 1.0, 0.5, 1.0, 0.5];
         for e in all_errors(f, &master, 0.2) {
             assert!(
-                matches!(e, KernelError::DegenerateSegment { segment: Segment::Master, .. }),
+                matches!(
+                    e,
+                    KernelError::DegenerateSegment {
+                        segment: Segment::Master,
+                        ..
+                    }
+                ),
                 "{f}: zero-length master gave {e:?}"
             );
         }
@@ -858,11 +1018,21 @@ fn perpendicular_master() {
     for q in [exact, nearly] {
         for e in all_errors(Formulation::SlaveNormal, &q, 0.1) {
             assert!(
-                matches!(e, KernelError::NoProjection { .. } | KernelError::ProjectionOutOfReach { .. }),
+                matches!(
+                    e,
+                    KernelError::NoProjection { .. } | KernelError::ProjectionOutOfReach { .. }
+                ),
                 "slave-normal, perpendicular master {q:?}: {e:?}"
             );
         }
-        check_all_types("closest-point, perpendicular master", Formulation::ClosestPoint, &q, &q, 0.1, TOL);
+        check_all_types(
+            "closest-point, perpendicular master",
+            Formulation::ClosestPoint,
+            &q,
+            &q,
+            0.1,
+            TOL,
+        );
     }
 }
 
@@ -903,14 +1073,25 @@ fn translation_invariance() {
         for k in 0..50 {
             let s = Shape::random(&mut rng);
             let q = s.q(f);
-            let t = [rng.random_range(-100.0..100.0), rng.random_range(-100.0..100.0)];
+            let t = [
+                rng.random_range(-100.0..100.0),
+                rng.random_range(-100.0..100.0),
+            ];
             let qt: [f64; 8] = std::array::from_fn(|i| q[i] + t[i % 2]);
             for ty in ApproxType::ALL {
                 let a = evaluate(f, ty, &q, s.xi_s).unwrap();
                 let b = evaluate(f, ty, &qt, s.xi_s).unwrap();
-                let r = Reference { gap: a.gap, xi_m: a.xi_m, grad: a.grad, hess: a.hess.unwrap_or_else(M8::zeros) };
+                let r = Reference {
+                    gap: a.gap,
+                    xi_m: a.xi_m,
+                    grad: a.grad,
+                    hess: a.hess.unwrap_or_else(M8::zeros),
+                };
                 let e = errors(&b, &r, ty, size(&q));
-                assert!(e.max() <= TOL, "{f} type {ty} #{k}: translation by {t:?} changed the result: {e:?}");
+                assert!(
+                    e.max() <= TOL,
+                    "{f} type {ty} #{k}: translation by {t:?} changed the result: {e:?}"
+                );
             }
         }
     }
@@ -930,7 +1111,12 @@ fn project_agrees_with_evaluate() {
             let l = size(&q);
             for ty in ApproxType::ALL {
                 let out = evaluate(f, ty, &q, s.xi_s).unwrap();
-                assert!((out.gap - p.gap).abs() <= 1e-13 * l, "{f} type {ty}: gap {} vs project {}", out.gap, p.gap);
+                assert!(
+                    (out.gap - p.gap).abs() <= 1e-13 * l,
+                    "{f} type {ty}: gap {} vs project {}",
+                    out.gap,
+                    p.gap
+                );
                 assert!(
                     (out.xi_m - p.xi_m).abs() <= 1e-13 * (1.0 + p.xi_m.abs()),
                     "{f} type {ty}: xi_m {} vs project {}",
@@ -950,10 +1136,17 @@ fn op_counts_are_reported() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         let counts: Vec<u32> = ApproxType::ALL
             .iter()
-            .map(|&ty| op_count(f, Some(ty)).expect("compiled formulation has op counts").total())
+            .map(|&ty| {
+                op_count(f, Some(ty))
+                    .expect("compiled formulation has op counts")
+                    .total()
+            })
             .collect();
         assert!(op_count(f, None).expect("projection op count").total() > 0);
-        assert!(counts[1..].iter().all(|&c| c > counts[0]), "{f}: op counts {counts:?}");
+        assert!(
+            counts[1..].iter().all(|&c| c > counts[0]),
+            "{f}: op counts {counts:?}"
+        );
     }
 }
 
@@ -974,16 +1167,30 @@ fn check_contract(q: &[f64; 8], xi_s: f64) -> Result<(), TestCaseError> {
         for ty in ApproxType::ALL {
             match evaluate(f, ty, q, xi_s) {
                 Ok(out) => {
-                    prop_assert!(out.gap.is_finite() && out.xi_m.is_finite(), "{f} {ty}: {out:?}");
+                    prop_assert!(
+                        out.gap.is_finite() && out.xi_m.is_finite(),
+                        "{f} {ty}: {out:?}"
+                    );
                     prop_assert!(out.grad.iter().all(|v| v.is_finite()), "{f} {ty}: {out:?}");
-                    prop_assert_eq!(out.hess.is_some(), ty != ApproxType::Type1, "{} {}: Hessian presence", f, ty);
+                    prop_assert_eq!(
+                        out.hess.is_some(),
+                        ty != ApproxType::Type1,
+                        "{} {}: Hessian presence",
+                        f,
+                        ty
+                    );
                     if let Some(h) = out.hess {
                         prop_assert!(h.iter().all(|v| v.is_finite()), "{f} {ty}: {h}");
                         let asym = (h - h.transpose()).amax();
-                        prop_assert!(asym <= 1e-12 * h.amax(), "{f} {ty}: asymmetric Hessian by {asym:e}: {h}");
+                        prop_assert!(
+                            asym <= 1e-12 * h.amax(),
+                            "{f} {ty}: asymmetric Hessian by {asym:e}: {h}"
+                        );
                     }
                 }
-                Err(e) => prop_assert!(!matches!(e, KernelError::NotCompiled(_)), "{f} {ty}: {e:?}"),
+                Err(e) => {
+                    prop_assert!(!matches!(e, KernelError::NotCompiled(_)), "{f} {ty}: {e:?}")
+                }
             }
         }
     }
@@ -1039,23 +1246,41 @@ proptest! {
 #[test]
 fn types_are_distinguishable() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
-        let outs: Vec<GapDerivatives> =
-            ApproxType::ALL.iter().map(|&ty| evaluate(f, ty, &WORKED_Q, WORKED_XI_S).unwrap()).collect();
+        let outs: Vec<GapDerivatives> = ApproxType::ALL
+            .iter()
+            .map(|&ty| evaluate(f, ty, &WORKED_Q, WORKED_XI_S).unwrap())
+            .collect();
         let h6 = outs[5].hess.unwrap();
         let hess_of = |k: usize| outs[k].hess.unwrap_or_else(M8::zeros);
         let grad1_error = (outs[0].grad - outs[5].grad).norm() / outs[5].grad.norm();
         match f {
-            Formulation::SlaveNormal => assert!(grad1_error > 1e-3, "{f}: Type 1 gradient is exact?"),
-            Formulation::ClosestPoint => assert!(grad1_error <= TOL, "{f}: Type 1 gradient {grad1_error:e} off"),
+            Formulation::SlaveNormal => {
+                assert!(grad1_error > 1e-3, "{f}: Type 1 gradient is exact?")
+            }
+            Formulation::ClosestPoint => assert!(
+                grad1_error <= TOL,
+                "{f}: Type 1 gradient {grad1_error:e} off"
+            ),
         }
         for a in 0..6 {
             for b in a + 1..6 {
                 let d = (hess_of(a) - hess_of(b)).norm() / h6.norm();
-                let coincide = f == Formulation::ClosestPoint && matches!((a + 1, b + 1), (3, 4) | (5, 6));
+                let coincide =
+                    f == Formulation::ClosestPoint && matches!((a + 1, b + 1), (3, 4) | (5, 6));
                 if coincide {
-                    assert!(d <= TOL, "{f}: Types {} and {} should coincide, differ by {d:e}", a + 1, b + 1);
+                    assert!(
+                        d <= TOL,
+                        "{f}: Types {} and {} should coincide, differ by {d:e}",
+                        a + 1,
+                        b + 1
+                    );
                 } else {
-                    assert!(d > 1e-3, "{f}: Types {} and {} are indistinguishable ({d:e})", a + 1, b + 1);
+                    assert!(
+                        d > 1e-3,
+                        "{f}: Types {} and {} are indistinguishable ({d:e})",
+                        a + 1,
+                        b + 1
+                    );
                 }
             }
         }

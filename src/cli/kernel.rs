@@ -23,9 +23,11 @@ const COORDINATE_NAMES: [&str; 8] = ["xs1", "ys1", "xs2", "ys2", "xm1", "ym1", "
 
 /// Arguments of `gapsim kernel`.
 #[derive(Debug, Clone, Args)]
-#[command(after_help = "Example:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n\n\
+#[command(
+    after_help = "Example:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n\n\
 Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[8],\"hess\":[[8]x8]} \
-(derivatives with respect to the 8 coordinates; hess is all zeros for Type 1).")]
+(derivatives with respect to the 8 coordinates; hess is all zeros for Type 1)."
+)]
 pub struct KernelArgs {
     /// Contact formulation: `slave-normal` (projection along the slave
     /// normal, the paper's) or `closest-point` (orthogonal projection onto
@@ -73,7 +75,9 @@ impl From<&GapDerivatives> for KernelOutput {
             gap: d.gap,
             xi_m: d.xi_m,
             grad: std::array::from_fn(|i| d.grad[i]),
-            hess: std::array::from_fn(|i| std::array::from_fn(|j| d.hess.map_or(0.0, |h| h[(i, j)]))),
+            hess: std::array::from_fn(|i| {
+                std::array::from_fn(|j| d.hess.map_or(0.0, |h| h[(i, j)]))
+            }),
         }
     }
 }
@@ -104,11 +108,15 @@ pub enum KernelCommandError {
 /// Runs `gapsim kernel`: evaluates the kernel and prints one JSON line on
 /// stdout.
 pub fn run(args: &KernelArgs) -> CommandResult {
-    let out = contact_kernels::evaluate(args.formulation, args.ty, &args.nodes, args.xi_s).map_err(|reason| {
-        KernelCommandError::Kernel { formulation: args.formulation, ty: args.ty, reason }
-    })?;
+    let out = contact_kernels::evaluate(args.formulation, args.ty, &args.nodes, args.xi_s)
+        .map_err(|reason| KernelCommandError::Kernel {
+            formulation: args.formulation,
+            ty: args.ty,
+            reason,
+        })?;
     let mut stdout = std::io::stdout().lock();
-    serde_json::to_writer(&mut stdout, &KernelOutput::from(&out)).map_err(KernelCommandError::Json)?;
+    serde_json::to_writer(&mut stdout, &KernelOutput::from(&out))
+        .map_err(KernelCommandError::Json)?;
     writeln!(stdout).map_err(KernelCommandError::Output)?;
     stdout.flush().map_err(KernelCommandError::Output)?;
     Ok(())
@@ -116,8 +124,15 @@ pub fn run(args: &KernelArgs) -> CommandResult {
 
 /// Parses a finite number (rejects `nan`, `inf`).
 fn parse_finite(s: &str) -> Result<f64, String> {
-    let v: f64 = s.trim().parse().map_err(|_| format!("`{s}` is not a number"))?;
-    if v.is_finite() { Ok(v) } else { Err(format!("`{s}` is not a finite number")) }
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(format!("`{s}` is not a finite number"))
+    }
 }
 
 /// Parses exactly eight comma-separated finite coordinates.
@@ -132,7 +147,8 @@ fn parse_nodes(s: &str) -> Result<[f64; 8], String> {
     }
     let mut q = [0.0; 8];
     for (i, part) in parts.iter().enumerate() {
-        q[i] = parse_finite(part).map_err(|e| format!("coordinate {} ({}): {e}", i + 1, COORDINATE_NAMES[i]))?;
+        q[i] = parse_finite(part)
+            .map_err(|e| format!("coordinate {} ({}): {e}", i + 1, COORDINATE_NAMES[i]))?;
     }
     Ok(q)
 }
@@ -143,12 +159,30 @@ mod tests {
 
     #[test]
     fn parses_nodes() {
-        assert_eq!(parse_nodes("0,1,2,3,4,5,6,-7.5").unwrap(), [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, -7.5]);
-        assert_eq!(parse_nodes(" -0.1, 1e-3 ,2,3,4,5,6,7").unwrap()[..2], [-0.1, 1e-3]);
+        assert_eq!(
+            parse_nodes("0,1,2,3,4,5,6,-7.5").unwrap(),
+            [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, -7.5]
+        );
+        assert_eq!(
+            parse_nodes(" -0.1, 1e-3 ,2,3,4,5,6,7").unwrap()[..2],
+            [-0.1, 1e-3]
+        );
         assert!(parse_nodes("1,2,3,4,5,6,7").unwrap_err().contains("got 7"));
-        assert!(parse_nodes("1,2,3,4,5,6,7,8,").unwrap_err().contains("got 9"));
-        assert!(parse_nodes("1,2,3,x,5,6,7,8").unwrap_err().contains("coordinate 4 (ys2)"));
-        assert!(parse_nodes("1,2,3,4,NaN,6,7,8").unwrap_err().contains("not a finite number"));
+        assert!(
+            parse_nodes("1,2,3,4,5,6,7,8,")
+                .unwrap_err()
+                .contains("got 9")
+        );
+        assert!(
+            parse_nodes("1,2,3,x,5,6,7,8")
+                .unwrap_err()
+                .contains("coordinate 4 (ys2)")
+        );
+        assert!(
+            parse_nodes("1,2,3,4,NaN,6,7,8")
+                .unwrap_err()
+                .contains("not a finite number")
+        );
         assert!(parse_nodes("1,2,3,4,5,6,7,inf").is_err());
     }
 
@@ -161,7 +195,9 @@ mod tests {
             hess: None,
         };
         let json = serde_json::to_string(&KernelOutput::from(&d)).unwrap();
-        assert!(json.starts_with(r#"{"gap":0.5,"xi_m":-0.25,"grad":[1.0,2.0,3.0,4.0,5.0,6.0,7.0,8.0],"hess":[[0.0,"#));
+        assert!(json.starts_with(
+            r#"{"gap":0.5,"xi_m":-0.25,"grad":[1.0,2.0,3.0,4.0,5.0,6.0,7.0,8.0],"hess":[[0.0,"#
+        ));
         assert_eq!(json.matches("0.0").count(), 64);
     }
 }
