@@ -205,8 +205,13 @@ fn validate(q: &[f64; 8], xi_s: f64) -> Result<Local, KernelError> {
     let size = d.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let threshold = DEGENERATE_LENGTH * size;
     for (segment, a) in [(Segment::Slave, 0), (Segment::Master, 4)] {
-        let length = (d[a + 2] - d[a]).hypot(d[a + 3] - d[a + 1]);
-        if !(length > threshold) {
+        // Squared lengths: no hypot in the hot path. (Configurations with
+        // coordinates below ~1e-150 underflow here and are reported as
+        // degenerate.)
+        let (dx, dy) = (d[a + 2] - d[a], d[a + 3] - d[a + 1]);
+        let length2 = dx * dx + dy * dy;
+        if !(length2 > threshold * threshold) {
+            let length = length2.sqrt();
             return Err(KernelError::DegenerateSegment { segment, length, threshold });
         }
     }
@@ -271,23 +276,33 @@ pub fn evaluate(
     let set = generated::kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
     let local = validate(q, xi_s)?;
     let xi_m = solve_projection(set.residual, &local, xi_s)?;
-    let mut grad = [0.0; 8];
-    let mut hess = [[0.0; 8]; 8];
-    let gap = match set.kernels[ty.index() - 1] {
-        generated::Kernel::Gradient(k) => k(&local.d, xi_s, xi_m, &mut grad),
-        generated::Kernel::Hessian(k) => k(&local.d, xi_s, xi_m, &mut grad, &mut hess),
+    let mut out = GapDerivatives { gap: 0.0, xi_m, grad: SVector::zeros(), hess: None };
+    // The kernels write straight into nalgebra's storage: the gradient's one
+    // column, and the Hessian's columns (symmetric, so row and column order
+    // agree).
+    let grad = &mut out.grad.data.0[0];
+    let finite = match set.kernels[ty.index() - 1] {
+        generated::Kernel::Gradient(k) => {
+            out.gap = k(&local.d, xi_s, xi_m, grad);
+            all_finite(grad)
+        }
+        generated::Kernel::Hessian(k) => {
+            let mut hess = SMatrix::<f64, 8, 8>::zeros();
+            out.gap = k(&local.d, xi_s, xi_m, grad, &mut hess.data.0);
+            let finite = all_finite(grad) & hess.data.0.iter().fold(true, |a, col| a & all_finite(col));
+            out.hess = Some(hess);
+            finite
+        }
     };
-    finite_or_no_projection(gap)?;
-    for v in grad.iter().chain(hess.iter().flatten()) {
-        finite_or_no_projection(*v)?;
+    if !(finite && out.gap.is_finite()) {
+        return Err(KernelError::NoProjection { r_xi: 0.0 });
     }
-    let has_hessian = matches!(set.kernels[ty.index() - 1], generated::Kernel::Hessian(_));
-    Ok(GapDerivatives {
-        gap,
-        xi_m,
-        grad: SVector::from(grad),
-        hess: has_hessian.then(|| SMatrix::from_fn(|i, j| hess[i][j])),
-    })
+    Ok(out)
+}
+
+/// Whether every value is finite (no early exit: the loop vectorises).
+fn all_finite(v: &[f64; 8]) -> bool {
+    v.iter().fold(true, |a, x| a & x.is_finite())
 }
 
 /// A non-finite output can only come from an (almost) singular projection.
