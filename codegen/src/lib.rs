@@ -28,6 +28,7 @@ pub mod diff;
 pub mod emit;
 pub mod expr;
 pub mod formulation;
+pub mod jet;
 pub mod lower;
 pub mod truncation;
 

@@ -30,9 +30,10 @@
 
 use std::collections::HashMap;
 
-use crate::diff::{add_opt, mul_opt, neg_opt, sub_opt, sum_opt, Differentiator};
+use crate::diff::{add_opt, mul_opt, Differentiator};
+use crate::jet::{JetArena, JetId, Matrix, Parts, Vector};
 use crate::expr::{Dag, Id};
-use crate::formulation::{Domain, Formulation, Value};
+use crate::formulation::{Formulation, Value};
 use crate::Error;
 
 /// How an entity depends on the displacements within a load step.
@@ -78,133 +79,6 @@ pub fn packed(j: usize, k: usize) -> usize {
     j * N - j * (j + 1) / 2 + k
 }
 
-/// A scalar with its (truncated) gradient and packed upper Hessian with
-/// respect to `q`; `None` entries are structural zeros.
-#[derive(Debug, Clone, Copy)]
-pub struct Jet {
-    /// The value.
-    pub v: Id,
-    /// First derivatives.
-    pub g: [Option<Id>; N],
-    /// Second derivatives, packed upper triangle.
-    pub h: [Option<Id>; NH],
-}
-
-/// Jet arithmetic over a DAG (the second-order chain rule).
-struct JetDomain<'a> {
-    dag: &'a mut Dag,
-}
-
-impl JetDomain<'_> {
-    fn constant_jet(&mut self, v: Id) -> Jet {
-        Jet { v, g: [None; N], h: [None; NH] }
-    }
-
-    /// `f(a)` given `f(a.v)`, `f'(a.v)`, `f''(a.v)`:
-    /// `(f o a)' = f' a'`, `(f o a)'' = f'' a' a'^T + f' a''`.
-    fn chain(&mut self, a: &Jet, f0: Id, f1: Id, f2: Option<Id>) -> Jet {
-        let dag = &mut *self.dag;
-        let g = a.g.map(|gj| mul_opt(dag, Some(f1), gj));
-        let mut h = [None; NH];
-        for j in 0..N {
-            for k in j..N {
-                let p = mul_opt(dag, a.g[j], a.g[k]);
-                let t1 = mul_opt(dag, f2, p);
-                let t2 = mul_opt(dag, Some(f1), a.h[packed(j, k)]);
-                h[packed(j, k)] = add_opt(dag, t1, t2);
-            }
-        }
-        Jet { v: f0, g, h }
-    }
-}
-
-impl Domain for JetDomain<'_> {
-    type S = Jet;
-    fn constant(&mut self, c: f64) -> Jet {
-        let v = self.dag.constant(c);
-        self.constant_jet(v)
-    }
-    fn add(&mut self, a: Jet, b: Jet) -> Jet {
-        let dag = &mut *self.dag;
-        Jet {
-            v: dag.add(a.v, b.v),
-            g: std::array::from_fn(|j| add_opt(dag, a.g[j], b.g[j])),
-            h: std::array::from_fn(|k| add_opt(dag, a.h[k], b.h[k])),
-        }
-    }
-    fn sub(&mut self, a: Jet, b: Jet) -> Jet {
-        let dag = &mut *self.dag;
-        Jet {
-            v: dag.sub(a.v, b.v),
-            g: std::array::from_fn(|j| sub_opt(dag, a.g[j], b.g[j])),
-            h: std::array::from_fn(|k| sub_opt(dag, a.h[k], b.h[k])),
-        }
-    }
-    fn mul(&mut self, a: Jet, b: Jet) -> Jet {
-        let dag = &mut *self.dag;
-        let v = dag.mul(a.v, b.v);
-        let g = std::array::from_fn(|j| {
-            let t1 = mul_opt(dag, a.g[j], Some(b.v));
-            let t2 = mul_opt(dag, Some(a.v), b.g[j]);
-            add_opt(dag, t1, t2)
-        });
-        let mut h = [None; NH];
-        for j in 0..N {
-            for k in j..N {
-                let p = packed(j, k);
-                let t = [
-                    mul_opt(dag, a.h[p], Some(b.v)),
-                    mul_opt(dag, a.g[j], b.g[k]),
-                    mul_opt(dag, b.g[j], a.g[k]),
-                    mul_opt(dag, Some(a.v), b.h[p]),
-                ];
-                h[p] = sum_opt(dag, t);
-            }
-        }
-        Jet { v, g, h }
-    }
-    fn div(&mut self, a: Jet, b: Jet) -> Jet {
-        // a / b = a * (1/b); (1/b)' = -b'/b^2, (1/b)'' = 2 b' b'^T / b^3 - b''/b^2.
-        let dag = &mut *self.dag;
-        let r = dag.recip(b.v);
-        let r2 = dag.powi(r, 2);
-        let f1 = dag.neg(r2);
-        let r3 = dag.powi(r, 3);
-        let two = dag.constant(2.0);
-        let f2 = dag.mul(two, r3);
-        let rb = self.chain(&b, r, f1, Some(f2));
-        self.mul(a, rb)
-    }
-    fn neg(&mut self, a: Jet) -> Jet {
-        let dag = &mut *self.dag;
-        Jet { v: dag.neg(a.v), g: a.g.map(|x| neg_opt(dag, x)), h: a.h.map(|x| neg_opt(dag, x)) }
-    }
-    fn sqrt(&mut self, a: Jet) -> Jet {
-        // sqrt' = 1/(2 s), sqrt'' = -1/(4 s^3).
-        let dag = &mut *self.dag;
-        let s = dag.sqrt(a.v);
-        let r = dag.recip(s);
-        let half = dag.constant(0.5);
-        let f1 = dag.mul(half, r);
-        let r3 = dag.powi(r, 3);
-        let q = dag.constant(-0.25);
-        let f2 = dag.mul(q, r3);
-        self.chain(&a, s, f1, Some(f2))
-    }
-    fn powi(&mut self, a: Jet, n: i32) -> Jet {
-        let dag = &mut *self.dag;
-        let f0 = dag.powi(a.v, n);
-        let p1 = dag.powi(a.v, n - 1);
-        let c1 = dag.constant(f64::from(n));
-        let f1 = dag.mul(c1, p1);
-        let p2 = dag.powi(a.v, n - 2);
-        let c2 = dag.constant(f64::from(n * (n - 1)));
-        let f2 = dag.mul(c2, p2);
-        let f2 = crate::diff::nonzero(dag, f2);
-        self.chain(&a, f0, f1, f2)
-    }
-}
-
 /// The expressions of one kernel: the gap, its kept gradient and packed
 /// upper Hessian (all `None` for a type without second-order term).
 #[derive(Debug, Clone)]
@@ -248,93 +122,144 @@ pub fn derive(formulation: &Formulation, dag: &mut Dag, orders: [EntityOrder; 3]
     let mut diff = Differentiator::new();
     let xi_order = order_of(&formulation.implicit.name)?;
 
-    // Implicit derivatives of xi_m (only as far as the row needs them).
+    // Implicit derivatives of xi_m (only as far as the row needs them):
+    // xi' = -r_q / r_xi and
+    // xi'' = -(1/r_xi) (r_qq + r_qxi xi'^T + xi' r_qxi^T + r_xixi xi' xi'^T).
     let r = formulation.implicit.residual;
     let r_xi = diff.d(dag, r, xi).ok_or_else(|| Error::Truncation {
         file: origin.clone(),
         message: "the implicit residual does not depend on its variable".into(),
     })?;
     let inv_r_xi = dag.recip(r_xi);
-    let mut xi_d1 = [None; N];
-    let mut xi_d2 = [None; NH];
+    let minus_inv = dag.neg(inv_r_xi);
+    let mut xi_d1: Vector = [None; N];
     if xi_order >= EntityOrder::Linear {
         for j in 0..N {
             let r_q = diff.d(dag, r, q[j]);
-            let t = mul_opt(dag, r_q, Some(inv_r_xi));
-            xi_d1[j] = neg_opt(dag, t);
+            xi_d1[j] = mul_opt(dag, r_q, Some(minus_inv));
         }
     }
+    // xi'' in deferred form: -inv r_qq (a basis matrix) + sym(-inv r_qxi, xi')
+    // + (-inv r_xixi / 2) sym(xi', xi').
+    let mut r_qq: Matrix = [None; NH];
+    let mut r_qxi: Vector = [None; N];
+    let mut r_xixi = None;
     if xi_order == EntityOrder::Quadratic {
-        let r_qxi: Vec<Option<Id>> = (0..N).map(|j| diff.d(dag, r_xi, q[j])).collect();
-        let r_xixi = diff.d(dag, r_xi, xi);
         for j in 0..N {
             let r_qj = diff.d(dag, r, q[j]);
             for k in j..N {
-                let r_qq = diff.d_opt(dag, r_qj, q[k]);
-                let t = [
-                    r_qq,
-                    mul_opt(dag, r_qxi[j], xi_d1[k]),
-                    mul_opt(dag, xi_d1[j], r_qxi[k]),
-                    {
-                        let p = mul_opt(dag, xi_d1[j], xi_d1[k]);
-                        mul_opt(dag, r_xixi, p)
-                    },
-                ];
-                let s = sum_opt(dag, t);
-                let s = mul_opt(dag, s, Some(inv_r_xi));
-                xi_d2[packed(j, k)] = neg_opt(dag, s);
+                r_qq[packed(j, k)] = diff.d_opt(dag, r_qj, q[k]);
             }
+            r_qxi[j] = diff.d(dag, r_xi, q[j]);
         }
+        r_xixi = diff.d(dag, r_xi, xi);
     }
-    let xi_jet = Jet { v: dag.input(xi), g: xi_d1, h: xi_d2 };
+
+    let mut arena = JetArena::new(dag);
+    let xi_basis = (xi_order >= EntityOrder::Linear).then(|| arena.basis_vector(xi_d1));
+    let rqq_basis = (xi_order == EntityOrder::Quadratic).then(|| arena.basis_matrix(r_qq));
+
+    // `c xi''` as Hessian parts.
+    let xi2_parts = |arena: &mut JetArena, c: Id, parts: &mut Parts| {
+        let (Some(b), Some(m)) = (xi_basis, rqq_basis) else { return };
+        let dag = arena.dag();
+        let k = dag.mul(c, minus_inv);
+        parts.hm.push((m, k));
+        let u: Vector = r_qxi.map(|x| mul_opt(dag, x, Some(k)));
+        add_rank2(dag, &mut parts.hs, b, u);
+        if let Some(rxx) = r_xixi {
+            let half = dag.constant(0.5);
+            let t = dag.mul(half, rxx);
+            let t = dag.mul(t, k);
+            add_pair(dag, &mut parts.hp, (b, b), t);
+        }
+    };
+
+    let mut jets: HashMap<String, Value<JetId>> = HashMap::new();
+    {
+        let x = arena.dag().input(xi);
+        let mut parts = Parts::default();
+        if let Some(b) = xi_basis {
+            let one = arena.dag().constant(1.0);
+            parts.gl.push((b, one));
+            let one = arena.dag().constant(1.0);
+            xi2_parts(&mut arena, one, &mut parts);
+        }
+        let jet = arena.entity(x, parts);
+        jets.insert(formulation.implicit.name.clone(), Value::Scalar(jet));
+    }
 
     // Entity jets by the truncated chain rule.
-    let mut jets: HashMap<String, Value<Jet>> = HashMap::new();
-    jets.insert(formulation.implicit.name.clone(), Value::Scalar(xi_jet));
     for entity in &formulation.entities {
         let order = order_of(&entity.name)?;
-        let mut comp = |e: Id| -> Jet {
-            let mut g = [None; N];
-            let mut h = [None; NH];
+        let mut comp = |arena: &mut JetArena, e: Id| -> JetId {
+            let mut parts = Parts::default();
             if order >= EntityOrder::Linear {
-                let e_xi = diff.d(dag, e, xi);
-                for j in 0..N {
-                    let e_q = diff.d(dag, e, q[j]);
-                    let chain = mul_opt(dag, e_xi, xi_d1[j]);
-                    g[j] = add_opt(dag, e_q, chain);
+                let dag = arena.dag();
+                let e_xi = diff.d(dag, e, xi).filter(|_| xi_basis.is_some());
+                parts.g = Some(std::array::from_fn(|j| diff.d(dag, e, q[j])));
+                if let (Some(b), Some(c)) = (xi_basis, e_xi) {
+                    parts.gl.push((b, c));
                 }
                 if order == EntityOrder::Quadratic {
-                    let e_xixi = diff.d_opt(dag, e_xi, xi);
-                    let e_qxi: Vec<Option<Id>> = (0..N).map(|j| diff.d_opt(dag, e_xi, q[j])).collect();
+                    let mut h: Matrix = [None; NH];
                     for j in 0..N {
                         let e_qj = diff.d(dag, e, q[j]);
                         for k in j..N {
-                            let e_qq = diff.d_opt(dag, e_qj, q[k]);
-                            let p = mul_opt(dag, xi_d1[j], xi_d1[k]);
-                            let t = [
-                                e_qq,
-                                mul_opt(dag, e_qxi[j], xi_d1[k]),
-                                mul_opt(dag, xi_d1[j], e_qxi[k]),
-                                mul_opt(dag, e_xixi, p),
-                                mul_opt(dag, e_xi, xi_d2[packed(j, k)]),
-                            ];
-                            h[packed(j, k)] = sum_opt(dag, t);
+                            h[packed(j, k)] = diff.d_opt(dag, e_qj, q[k]);
                         }
+                    }
+                    parts.h = Some(h);
+                    if let Some(b) = xi_basis {
+                        // E_qxi xi'^T + xi' E_xiq = sym(E_qxi, xi').
+                        let u: Vector = std::array::from_fn(|j| diff.d_opt(dag, e_xi, q[j]));
+                        add_rank2(dag, &mut parts.hs, b, u);
+                        // E_xixi xi' xi'^T = (E_xixi / 2) sym(xi', xi').
+                        if let Some(e_xixi) = diff.d_opt(dag, e_xi, xi) {
+                            let half = dag.constant(0.5);
+                            let t = dag.mul(half, e_xixi);
+                            add_pair(dag, &mut parts.hp, (b, b), t);
+                        }
+                    }
+                    if let Some(c) = e_xi {
+                        xi2_parts(arena, c, &mut parts);
                     }
                 }
             }
-            Jet { v: e, g, h }
+            arena.entity(e, parts)
         };
         let v = match entity.value {
-            Value::Scalar(s) => Value::Scalar(comp(s)),
-            Value::Vec2([a, b]) => Value::Vec2([comp(a), comp(b)]),
+            Value::Scalar(s) => Value::Scalar(comp(&mut arena, s)),
+            Value::Vec2([a, b]) => {
+                let a = comp(&mut arena, a);
+                Value::Vec2([a, comp(&mut arena, b)])
+            }
         };
         jets.insert(entity.name.clone(), v);
     }
 
-    let mut domain = JetDomain { dag };
-    let gap = formulation.eval_gap(&mut domain, &jets)?;
-    Ok(KernelExprs { gap: gap.v, grad: gap.g, hess: gap.h })
+    let gap = formulation.eval_gap(&mut arena, &jets)?;
+    let (v, grad, hess) = arena.materialize(gap);
+    Ok(KernelExprs { gap: v, grad, hess })
+}
+
+/// Adds `sym(u, B_b)` to a list of rank-2 terms.
+fn add_rank2(dag: &mut Dag, hs: &mut Vec<(usize, Vector)>, b: usize, u: Vector) {
+    if u.iter().all(Option::is_none) {
+        return;
+    }
+    match hs.iter_mut().find(|(k, _)| *k == b) {
+        Some((_, w)) => *w = std::array::from_fn(|i| add_opt(dag, w[i], u[i])),
+        None => hs.push((b, u)),
+    }
+}
+
+/// Adds `c sym(B_s, B_t)` to a list of pair terms.
+fn add_pair(dag: &mut Dag, hp: &mut Vec<((usize, usize), Id)>, key: (usize, usize), c: Id) {
+    match hp.iter_mut().find(|(k, _)| *k == key) {
+        Some((_, w)) => *w = dag.add(*w, c),
+        None => hp.push((key, c)),
+    }
 }
 
 /// The value of the formulation's gap (no derivatives).
