@@ -380,6 +380,36 @@ impl Dag {
         (out, roots)
     }
 
+    /// Rebuilds the expressions `roots` in this DAG with the symbol `sym`
+    /// replaced by the expression `with` (which must not contain `sym`),
+    /// simplifying on the way. Nodes that do not depend on `sym` keep their
+    /// ids.
+    pub fn replace(&mut self, roots: &[Option<Id>], sym: Sym, with: Id) -> Vec<Option<Id>> {
+        let live = self.reachable(roots.iter().flatten().copied());
+        let mut map: Vec<Id> = (0..live.len()).map(|i| Id(i as u32)).collect();
+        for i in 0..live.len() {
+            if !live[i] {
+                continue;
+            }
+            let node = self.nodes[i];
+            let m = |id: Id| map[id.index()];
+            let new = match node {
+                Node::Input(s) if s == sym => with,
+                Node::Const(_) | Node::Input(_) => Id(i as u32),
+                _ if node.children().all(|c| m(c) == c) => Id(i as u32),
+                Node::Add(a, b) => self.add(m(a), m(b)),
+                Node::Sub(a, b) => self.sub(m(a), m(b)),
+                Node::Mul(a, b) => self.mul(m(a), m(b)),
+                Node::Recip(a) => self.recip(m(a)),
+                Node::Neg(a) => self.neg(m(a)),
+                Node::Sqrt(a) => self.sqrt(m(a)),
+                Node::Powi(a, n) => self.powi(m(a), n),
+            };
+            map[i] = new;
+        }
+        roots.iter().map(|r| r.map(|id| map[id.index()])).collect()
+    }
+
     /// Marks the nodes reachable from `roots`.
     pub fn reachable(&self, roots: impl IntoIterator<Item = Id>) -> Vec<bool> {
         let mut live = vec![false; self.len()];

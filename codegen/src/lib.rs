@@ -102,12 +102,18 @@ const ZERO_COORDS: [usize; 2] = [0, 1];
 /// The programs of one formulation.
 #[derive(Debug, Clone)]
 pub struct FormulationPrograms {
+    /// Whether the projection residual is affine in its variable. Then every
+    /// kernel solves the projection itself in closed form (one exact Newton
+    /// step from `xi = 0`, sharing subexpressions with the derivatives) and
+    /// returns `xi_m` as its last output; otherwise the kernels take the
+    /// converged `xi_m` as input.
+    pub affine: bool,
     /// `[r, r_xi]` of the projection at `xi`.
     pub residual: Program,
-    /// The gap value at `xi_m`.
+    /// The gap value (`[g]`, or `[g, xi_m]` when affine).
     pub gap: Program,
-    /// Per type (1..=6): outputs `[g, grad(8), packed upper hess(36)]`, and
-    /// whether any Hessian entry survives.
+    /// Per type (1..=6): outputs `[g, grad(8), packed upper hess(36)]` (plus
+    /// `xi_m` when affine), and whether any Hessian entry survives.
     pub kernels: Vec<(Program, bool)>,
 }
 
@@ -116,11 +122,37 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
     let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
         Program::lower(dag, outs, &f.coords, &ZERO_COORDS, f.param, f.implicit.sym)
     };
+    let xi = f.implicit.sym;
+    // Closed-form projection when r is affine in xi: xi_m = -r(q, 0) / r_xi(q).
+    let closed_form = |dag: &mut expr::Dag| -> Option<expr::Id> {
+        let [r, r_xi] = truncation::residual(f, dag);
+        if diff::Differentiator::new().d(dag, r_xi, xi).is_some() {
+            return None;
+        }
+        let zero = dag.constant(0.0);
+        let r0 = dag.replace(&[Some(r)], xi, zero)[0].expect("some");
+        let inv = dag.recip(r_xi);
+        let t = dag.mul(r0, inv);
+        Some(dag.neg(t))
+    };
+    // Outputs with the projection solved inside the kernel, when affine.
+    let finish = |dag: &mut expr::Dag, outs: Vec<Option<expr::Id>>| -> Vec<Option<expr::Id>> {
+        match closed_form(dag) {
+            Some(x) => {
+                let mut outs = dag.replace(&outs, xi, x);
+                outs.push(Some(x));
+                outs
+            }
+            None => outs,
+        }
+    };
     let mut dag = f.dag.clone();
+    let affine = closed_form(&mut dag).is_some();
     let [r, r_xi] = truncation::residual(f, &mut dag);
     let residual = lower(&dag, &[Some(r), Some(r_xi)]);
     let g = truncation::gap_value(f, &mut dag)?;
-    let gap = lower(&dag, &[Some(g)]);
+    let outs = finish(&mut dag, vec![Some(g)]);
+    let gap = lower(&dag, &outs);
     let mut kernels = Vec::new();
     for row in TYPES {
         // A fresh DAG per type: nothing of another type's chains leaks in.
@@ -129,9 +161,10 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
         let mut outs = vec![Some(k.gap)];
         outs.extend(k.grad);
         outs.extend(k.hess);
+        let outs = finish(&mut dag, outs);
         kernels.push((lower(&dag, &outs), k.has_hessian()));
     }
-    Ok(FormulationPrograms { residual, gap, kernels })
+    Ok(FormulationPrograms { affine, residual, gap, kernels })
 }
 
 /// Generates the kernels source for all `sources`.
@@ -142,7 +175,8 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
     let mut names = Vec::new();
     let mut docs = Vec::new();
     let mut arms = Vec::new();
-    let (d, xi_s, xi_m, xi) = (format_ident!("d"), format_ident!("xi_s"), format_ident!("xi_m"), format_ident!("xi"));
+    let (d, xi_s, xi_m, xi, xi_in) =
+        (format_ident!("d"), format_ident!("xi_s"), format_ident!("xi_m"), format_ident!("xi"), format_ident!("xi_in"));
     for src in sources {
         let f = Formulation::parse(&src.name, &src.text)?;
         let variant = emit::camel(&src.name);
@@ -174,15 +208,35 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
             }
         });
 
+        // Kernels take `xi_m: &mut f64`: the converged projection on input
+        // (Newton formulations), the projection used on output.
+        let affine = p.affine;
+        let xi_io = |prog: &Program| {
+            if affine {
+                let x = emit::output(*prog.outputs.last().expect("xi_m output"));
+                (quote!(), quote!(*#xi_m = #x;))
+            } else {
+                (quote!(let #xi_in = *#xi_m;), quote!())
+            }
+        };
+        let projection_doc = if affine {
+            " The projection is solved in closed form inside (the residual is affine in `xi`); `xi_m` receives it."
+        } else {
+            " `xi_m` holds the converged projection."
+        };
+
         let gap_fn = format_ident!("{}_gap", snake);
-        let gap_body = emit::body(&p.gap, &d, &xi_s, &xi_m);
+        let gap_body = emit::body(&p.gap, &d, &xi_s, &xi_in);
         let g = emit::output(p.gap.outputs[0]);
-        let gap_doc = format!(" The `{name}` gap at `xi_m`.{}", emit::ops_doc(&p.gap.op_count()));
+        let (xi_read, xi_write) = xi_io(&p.gap);
+        let gap_doc = format!(" The `{name}` gap.{projection_doc}{}", emit::ops_doc(&p.gap.op_count()));
         reports.push(KernelReport { formulation: name.clone(), kernel: gap_fn.to_string(), ops: p.gap.op_count() });
         items.push(quote! {
             #[doc = #gap_doc]
-            pub(crate) fn #gap_fn(#d: &[f64; 8], #xi_s: f64, #xi_m: f64) -> f64 {
+            pub(crate) fn #gap_fn(#d: &[f64; 8], #xi_s: f64, #xi_m: &mut f64) -> f64 {
+                #xi_read
                 #gap_body
+                #xi_write
                 #g
             }
         });
@@ -201,16 +255,19 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
                 if *has_hess { " and Hessian" } else { " (no second-order term)" },
                 emit::ops_doc(&ops)
             );
-            let body = emit::body(prog, &d, &xi_s, &xi_m);
+            let body = emit::body(prog, &d, &xi_s, &xi_in);
             let g = emit::output(prog.outputs[0]);
             let store = emit::store_derivatives(prog, 1, *has_hess);
+            let (xi_read, xi_write) = xi_io(prog);
             if *has_hess {
                 kernel_refs.push(quote!(Kernel::Hessian(#kfn)));
                 items.push(quote! {
                     #[doc = #kdoc]
-                    pub(crate) fn #kfn(#d: &[f64; 8], #xi_s: f64, #xi_m: f64, grad: &mut [f64; 8], hess: &mut [[f64; 8]; 8]) -> f64 {
+                    pub(crate) fn #kfn(#d: &[f64; 8], #xi_s: f64, #xi_m: &mut f64, grad: &mut [f64; 8], hess: &mut [[f64; 8]; 8]) -> f64 {
+                        #xi_read
                         #body
                         #store
+                        #xi_write
                         #g
                     }
                 });
@@ -218,26 +275,33 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
                 kernel_refs.push(quote!(Kernel::Gradient(#kfn)));
                 items.push(quote! {
                     #[doc = #kdoc]
-                    pub(crate) fn #kfn(#d: &[f64; 8], #xi_s: f64, #xi_m: f64, grad: &mut [f64; 8]) -> f64 {
+                    pub(crate) fn #kfn(#d: &[f64; 8], #xi_s: f64, #xi_m: &mut f64, grad: &mut [f64; 8]) -> f64 {
+                        #xi_read
                         #body
                         #store
+                        #xi_write
                         #g
                     }
                 });
             }
         }
-        let mut proj_ops = p.residual.op_count();
-        let gops = p.gap.op_count();
-        proj_ops.add += gops.add;
-        proj_ops.mul += gops.mul;
-        proj_ops.div += gops.div;
-        proj_ops.sqrt += gops.sqrt;
-        proj_ops.neg += gops.neg;
+        // The projection kernel: the gap kernel, plus one residual
+        // evaluation per Newton iteration when not in closed form.
+        let mut proj_ops = p.gap.op_count();
+        if !affine {
+            let rops = p.residual.op_count();
+            proj_ops.add += rops.add;
+            proj_ops.mul += rops.mul;
+            proj_ops.div += rops.div;
+            proj_ops.sqrt += rops.sqrt;
+            proj_ops.neg += rops.neg;
+        }
         let proj_ops = emit::ops_literal(&proj_ops);
         let set_doc = format!(" The kernels of `{name}`.");
         items.push(quote! {
             #[doc = #set_doc]
             static #set: KernelSet = KernelSet {
+                closed_form_projection: #affine,
                 residual: #res_fn,
                 gap: #gap_fn,
                 kernels: [#(#kernel_refs),*],

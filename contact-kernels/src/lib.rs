@@ -51,12 +51,14 @@ mod generated {
 
     /// `(d, xi_s, xi) -> [r, dr/dxi]`: the projection residual.
     pub(crate) type ResidualFn = fn(&[f64; 8], f64, f64) -> [f64; 2];
-    /// `(d, xi_s, xi_m) -> g`.
-    pub(crate) type GapFn = fn(&[f64; 8], f64, f64) -> f64;
-    /// `(d, xi_s, xi_m, grad) -> g`.
-    pub(crate) type GradientFn = fn(&[f64; 8], f64, f64, &mut [f64; 8]) -> f64;
-    /// `(d, xi_s, xi_m, grad, hess) -> g`.
-    pub(crate) type HessianFn = fn(&[f64; 8], f64, f64, &mut [f64; 8], &mut [[f64; 8]; 8]) -> f64;
+    /// `(d, xi_s, xi_m) -> g`. `xi_m`: the converged projection on input
+    /// (Newton formulations; ignored when the projection is in closed
+    /// form), the projection used on output.
+    pub(crate) type GapFn = fn(&[f64; 8], f64, &mut f64) -> f64;
+    /// `(d, xi_s, xi_m, grad) -> g` (`xi_m` as for [`GapFn`]).
+    pub(crate) type GradientFn = fn(&[f64; 8], f64, &mut f64, &mut [f64; 8]) -> f64;
+    /// `(d, xi_s, xi_m, grad, hess) -> g` (`xi_m` as for [`GapFn`]).
+    pub(crate) type HessianFn = fn(&[f64; 8], f64, &mut f64, &mut [f64; 8], &mut [[f64; 8]; 8]) -> f64;
 
     /// One approximation type's kernel. All take `d`, the coordinates
     /// relative to slave node 1 (`d[0] = d[1] = 0`, not read).
@@ -70,6 +72,9 @@ mod generated {
 
     /// The generated kernels of one formulation.
     pub(crate) struct KernelSet {
+        /// The residual is affine in `xi`: every kernel solves the
+        /// projection itself (no Newton iteration needed).
+        pub(crate) closed_form_projection: bool,
         pub(crate) residual: ResidualFn,
         pub(crate) gap: GapFn,
         pub(crate) kernels: [Kernel; 6],
@@ -259,10 +264,30 @@ fn solve_projection(
 pub fn project(formulation: Formulation, q: &[f64; 8], xi_s: f64) -> Result<Projection, KernelError> {
     let set = generated::kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
     let local = validate(q, xi_s)?;
-    let xi_m = solve_projection(set.residual, &local, xi_s)?;
-    let gap = (set.gap)(&local.d, xi_s, xi_m);
+    let mut xi_m = start_projection(set, &local, xi_s)?;
+    let gap = (set.gap)(&local.d, xi_s, &mut xi_m);
+    check_projection(set, &local, xi_s, xi_m)?;
     finite_or_no_projection(gap)?;
     Ok(Projection { gap, xi_m })
+}
+
+/// The projection a kernel starts from: `0` when the kernels solve it in
+/// closed form, the Newton solution otherwise.
+fn start_projection(set: &generated::KernelSet, local: &Local, xi_s: f64) -> Result<f64, KernelError> {
+    if set.closed_form_projection { Ok(0.0) } else { solve_projection(set.residual, local, xi_s) }
+}
+
+/// Rejects a projection the kernel could not find (non-finite: the
+/// residual's `dr/dxi` vanished) or that lies out of reach.
+fn check_projection(set: &generated::KernelSet, local: &Local, xi_s: f64, xi_m: f64) -> Result<(), KernelError> {
+    if !xi_m.is_finite() {
+        let [_, r_xi] = (set.residual)(&local.d, xi_s, 0.0);
+        return Err(KernelError::NoProjection { r_xi });
+    }
+    if xi_m.abs() > XI_M_LIMIT {
+        return Err(KernelError::ProjectionOutOfReach { xi_m });
+    }
+    Ok(())
 }
 
 /// Evaluates the gap and its derivatives as approximation type `ty` keeps
@@ -275,7 +300,7 @@ pub fn evaluate(
 ) -> Result<GapDerivatives, KernelError> {
     let set = generated::kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
     let local = validate(q, xi_s)?;
-    let xi_m = solve_projection(set.residual, &local, xi_s)?;
+    let mut xi_m = start_projection(set, &local, xi_s)?;
     let mut out = GapDerivatives { gap: 0.0, xi_m, grad: SVector::zeros(), hess: None };
     // The kernels write straight into nalgebra's storage: the gradient's one
     // column, and the Hessian's columns (symmetric, so row and column order
@@ -283,17 +308,19 @@ pub fn evaluate(
     let grad = &mut out.grad.data.0[0];
     let finite = match set.kernels[ty.index() - 1] {
         generated::Kernel::Gradient(k) => {
-            out.gap = k(&local.d, xi_s, xi_m, grad);
+            out.gap = k(&local.d, xi_s, &mut xi_m, grad);
             all_finite(grad)
         }
         generated::Kernel::Hessian(k) => {
             let mut hess = SMatrix::<f64, 8, 8>::zeros();
-            out.gap = k(&local.d, xi_s, xi_m, grad, &mut hess.data.0);
+            out.gap = k(&local.d, xi_s, &mut xi_m, grad, &mut hess.data.0);
             let finite = all_finite(grad) & hess.data.0.iter().fold(true, |a, col| a & all_finite(col));
             out.hess = Some(hess);
             finite
         }
     };
+    check_projection(set, &local, xi_s, xi_m)?;
+    out.xi_m = xi_m;
     if !(finite && out.gap.is_finite()) {
         return Err(KernelError::NoProjection { r_xi: 0.0 });
     }
