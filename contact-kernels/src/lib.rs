@@ -352,3 +352,36 @@ pub fn op_count(formulation: Formulation, ty: Option<ApproxType>) -> Option<OpCo
 pub fn compiled_formulations() -> Vec<Formulation> {
     Formulation::ALL.into_iter().filter(|f| generated::kernel_set(*f).is_some()).collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A residual that is not affine in `xi` (`r = xi^3 + xi - d[2]`), as a
+    /// curved-segment formulation would have: the Newton path must converge.
+    fn cubic(d: &[f64; 8], _xi_s: f64, xi: f64) -> [f64; 2] {
+        [xi * xi * xi + xi - d[2], 3.0 * xi * xi + 1.0]
+    }
+
+    /// `r = xi^2 + 1`: no real root.
+    fn no_root(_d: &[f64; 8], _xi_s: f64, xi: f64) -> [f64; 2] {
+        [xi * xi + 1.0, 2.0 * xi]
+    }
+
+    #[test]
+    fn newton_projection_converges_for_a_nonlinear_residual() {
+        let local = Local { d: [0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0] };
+        let xi = solve_projection(cubic, &local, 0.0).unwrap();
+        // xi = 1 solves xi^3 + xi = 2; Newton's tolerance is 1e-12.
+        assert!((xi - 1.0).abs() < 1e-12, "{xi}");
+    }
+
+    #[test]
+    fn newton_projection_reports_failure() {
+        let local = Local { d: [0.0; 8] };
+        match solve_projection(no_root, &local, 0.0) {
+            Err(KernelError::NoProjection { .. } | KernelError::ProjectionDiverged { .. } | KernelError::ProjectionOutOfReach { .. }) => {}
+            other => panic!("expected a projection failure, got {other:?}"),
+        }
+    }
+}
