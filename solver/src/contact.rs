@@ -118,6 +118,9 @@ pub fn shape2(xi: f64) -> [f64; 2] {
     [(1.0 - xi) / 2.0, (1.0 + xi) / 2.0]
 }
 
+/// A master segment index with the projection onto it.
+pub type Paired = (usize, Projection);
+
 /// Static data of one slave integration point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
@@ -214,7 +217,10 @@ impl Taylor {
                     ..*s
                 }
             }
-            None => PointEval { gap: s.gap + s.grad.dot(&d), ..*s },
+            None => PointEval {
+                gap: s.gap + s.grad.dot(&d),
+                ..*s
+            },
         }
     }
 }
@@ -283,7 +289,10 @@ impl ContactLayout {
                 ends.insert(seg[1], m);
             }
             adjacency.push(
-                pair.master.iter().map(|seg| [ends.get(&seg[0]).copied(), starts.get(&seg[1]).copied()]).collect(),
+                pair.master
+                    .iter()
+                    .map(|seg| [ends.get(&seg[0]).copied(), starts.get(&seg[1]).copied()])
+                    .collect(),
             );
             let young = mesh
                 .bodies
@@ -295,7 +304,11 @@ impl ContactLayout {
         ContactLayout {
             points,
             multipliers,
-            formulations: model.contacts.iter().map(|c| formulation.unwrap_or(c.formulation)).collect(),
+            formulations: model
+                .contacts
+                .iter()
+                .map(|c| formulation.unwrap_or(c.formulation))
+                .collect(),
             modes: model.contacts.iter().map(|c| c.mode).collect(),
             masters: model.contacts.iter().map(|c| c.master.clone()).collect(),
             adjacency,
@@ -327,10 +340,17 @@ impl ContactLayout {
     ) -> Result<Option<Projection>, PointFailure> {
         let pt = &self.points[i];
         counts.project += 1;
-        match contact_kernels::project(self.formulations[pt.pair], &Self::q(mesh, u, self.nodes(pt, master)), pt.xi_s)
-        {
+        match contact_kernels::project(
+            self.formulations[pt.pair],
+            &Self::q(mesh, u, self.nodes(pt, master)),
+            pt.xi_s,
+        ) {
             Ok(p) => Ok(Some(p)),
-            Err(e) if slave_side(&e) => Err(PointFailure { point: i, master_segment: Some(master), error: e }),
+            Err(e) if slave_side(&e) => Err(PointFailure {
+                point: i,
+                master_segment: Some(master),
+                error: e,
+            }),
             Err(_) => Ok(None),
         }
     }
@@ -350,7 +370,9 @@ impl ContactLayout {
         if let Some(mut cur) = start {
             let mut previous = None;
             for _ in 0..n_master {
-                let Some(p) = self.project_on(mesh, u, i, cur, counts)? else { break };
+                let Some(p) = self.project_on(mesh, u, i, cur, counts)? else {
+                    break;
+                };
                 if p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL {
                     return Ok(Some((cur, p)));
                 }
@@ -366,10 +388,11 @@ impl ContactLayout {
         }
         let mut best: Option<(usize, Projection)> = None;
         for m in 0..n_master {
-            if let Some(p) = self.project_on(mesh, u, i, m, counts)? {
-                if p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL && best.is_none_or(|(_, b)| p.gap.abs() < b.gap.abs()) {
-                    best = Some((m, p));
-                }
+            if let Some(p) = self.project_on(mesh, u, i, m, counts)?
+                && p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL
+                && best.is_none_or(|(_, b)| p.gap.abs() < b.gap.abs())
+            {
+                best = Some((m, p));
             }
         }
         Ok(best)
@@ -406,16 +429,22 @@ impl ContactLayout {
                 Ok(e) if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL => return Ok(Some(e)),
                 Ok(_) => {}
                 Err(e) if slave_side(&e) => {
-                    return Err(PointFailure { point: i, master_segment: Some(m), error: e });
+                    return Err(PointFailure {
+                        point: i,
+                        master_segment: Some(m),
+                        error: e,
+                    });
                 }
                 Err(_) => {}
             }
         }
         match self.find_master(mesh, u, i, start, counts)? {
             None => Ok(None),
-            Some((m, _)) => eval(m, counts)
-                .map(Some)
-                .map_err(|error| PointFailure { point: i, master_segment: Some(m), error }),
+            Some((m, _)) => eval(m, counts).map(Some).map_err(|error| PointFailure {
+                point: i,
+                master_segment: Some(m),
+                error,
+            }),
         }
     }
 
@@ -429,19 +458,48 @@ impl ContactLayout {
         pairing: &[Option<usize>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
-        let results: Vec<(Result<Option<PointEval>, PointFailure>, KernelCounts)> = (0..self.points.len())
-            .into_par_iter()
-            .with_min_len(PAR_MIN_LEN)
-            .map(|i| {
-                let mut c = KernelCounts::default();
-                (self.pair_and_evaluate(mesh, u, i, pairing[i], ty, &mut c), c)
-            })
-            .collect();
+        let results: Vec<(Result<Option<PointEval>, PointFailure>, KernelCounts)> =
+            (0..self.points.len())
+                .into_par_iter()
+                .with_min_len(PAR_MIN_LEN)
+                .map(|i| {
+                    let mut c = KernelCounts::default();
+                    (
+                        self.pair_and_evaluate(mesh, u, i, pairing[i], ty, &mut c),
+                        c,
+                    )
+                })
+                .collect();
         let mut counts = KernelCounts::default();
         let mut out = Vec::with_capacity(results.len());
         for (r, c) in results {
             counts += c;
             out.push(r?);
+        }
+        Ok((out, counts))
+    }
+
+    /// Pairs every point from scratch (sequentially): each point's search
+    /// starts from the master segment found for the previous point of the
+    /// same pair, so along a face the walk usually finds it in a step or
+    /// two instead of trying every master segment.
+    pub fn initial_pairing(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+    ) -> Result<(Vec<Option<usize>>, KernelCounts), PointFailure> {
+        let mut counts = KernelCounts::default();
+        let mut out = Vec::with_capacity(self.points.len());
+        let mut seed: Option<(usize, usize)> = None;
+        for (i, pt) in self.points.iter().enumerate() {
+            let start = seed.filter(|(pair, _)| *pair == pt.pair).map(|(_, m)| m);
+            let found = self
+                .find_master(mesh, u, i, start, &mut counts)?
+                .map(|(m, _)| m);
+            if let Some(m) = found {
+                seed = Some((pt.pair, m));
+            }
+            out.push(found);
         }
         Ok((out, counts))
     }
@@ -453,7 +511,7 @@ impl ContactLayout {
         mesh: &Mesh,
         u: &[f64],
         pairing: &[Option<usize>],
-    ) -> Result<(Vec<Option<(usize, Projection)>>, KernelCounts), PointFailure> {
+    ) -> Result<(Vec<Option<Paired>>, KernelCounts), PointFailure> {
         let results: Vec<_> = (0..self.points.len())
             .into_par_iter()
             .with_min_len(PAR_MIN_LEN)
@@ -474,7 +532,12 @@ impl ContactLayout {
     /// Which multipliers carry a constraint row (see the module docs):
     /// persistent pairs: those with an active integration point;
     /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
-    pub fn active_multipliers(&self, evals: &[Option<PointEval>], lambda: &[f64], length_scale: f64) -> Vec<bool> {
+    pub fn active_multipliers(
+        &self,
+        evals: &[Option<PointEval>],
+        lambda: &[f64],
+        length_scale: f64,
+    ) -> Vec<bool> {
         let n = self.multipliers.len();
         let mut weight = vec![0.0; n];
         let mut weighted_gap = vec![0.0; n];
@@ -513,7 +576,10 @@ fn slave_side(e: &KernelError) -> bool {
         e,
         KernelError::NonFinite { .. }
             | KernelError::NotCompiled(_)
-            | KernelError::DegenerateSegment { segment: Segment::Slave, .. }
+            | KernelError::DegenerateSegment {
+                segment: Segment::Slave,
+                ..
+            }
     )
 }
 
@@ -527,7 +593,11 @@ mod tests {
             let rule = gauss_legendre(n);
             assert_eq!(rule.len(), n);
             for k in 0..2 * n {
-                let exact = if k % 2 == 1 { 0.0 } else { 2.0 / (k as f64 + 1.0) };
+                let exact = if k % 2 == 1 {
+                    0.0
+                } else {
+                    2.0 / (k as f64 + 1.0)
+                };
                 let q: f64 = rule.iter().map(|(x, w)| w * x.powi(k as i32)).sum();
                 assert!((q - exact).abs() < 1e-14, "n={n} k={k}: {q} vs {exact}");
             }
@@ -550,7 +620,9 @@ mod tests {
         };
         let u0 = SVector::<f64, 8>::from_fn(|i, _| 0.01 * i as f64);
         let t = Taylor { at_start, u0 };
-        let u: Vec<f64> = (0..8).map(|i| 0.01 * i as f64 + 0.02 * (i as f64).cos()).collect();
+        let u: Vec<f64> = (0..8)
+            .map(|i| 0.01 * i as f64 + 0.02 * (i as f64).cos())
+            .collect();
         let e = t.expand(&u);
         let step = 1e-6;
         for k in 0..8 {

@@ -23,6 +23,9 @@
 //! # Ok::<(), solver::SolverError>(())
 //! ```
 #![warn(missing_docs)]
+// Index loops mirror the component formulas; negated comparisons
+// (`!(x > 0.0)`) deliberately reject NaN as well.
+#![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod assembly;
 pub mod contact;
@@ -38,9 +41,9 @@ pub mod solution;
 pub mod vtk;
 
 #[cfg(test)]
-mod testutil;
-#[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod testutil;
 
 pub use contact_kernels::{ApproxType, Formulation, KernelError};
 pub use error::SolverError;
@@ -49,7 +52,8 @@ pub use mesh::{Mesh, Side};
 pub use model::{ContactMode, Model};
 pub use scene::{Scene, SceneError};
 pub use solution::{
-    ContactPointId, ContactPointReport, Cutback, CutbackReason, KernelCounts, Solution, State, StepRecord, Timings,
+    ContactPointId, ContactPointReport, Cutback, CutbackReason, KernelCounts, Solution, State,
+    StepRecord, Timings,
 };
 
 /// Scenes shipped with the solver.
@@ -104,7 +108,9 @@ impl std::str::FromStr for Method {
         if t.eq_ignore_ascii_case("complete") {
             return Ok(Method::Complete);
         }
-        t.parse::<ApproxType>().map(Method::Approx).map_err(|_| ParseMethodError(s.to_owned()))
+        t.parse::<ApproxType>()
+            .map(Method::Approx)
+            .map_err(|_| ParseMethodError(s.to_owned()))
     }
 }
 
@@ -126,6 +132,9 @@ pub struct SolveOptions {
     pub max_cutbacks: usize,
     /// Converged when `|r| <= tolerance * max(1, |f_ext|)`.
     pub tolerance: f64,
+    /// Tangent-only multiplier regularisation `delta` (see
+    /// [`crate::newton`]); 0 disables it.
+    pub regularization: f64,
 }
 
 impl Default for SolveOptions {
@@ -138,6 +147,7 @@ impl Default for SolveOptions {
             max_iterations: 30,
             max_cutbacks: 8,
             tolerance: 1e-10,
+            regularization: newton::DEFAULT_REGULARIZATION,
         }
     }
 }
@@ -154,6 +164,7 @@ impl SolveOptions {
             max_iterations: scene.newton.max_iterations,
             max_cutbacks: scene.newton.max_cutbacks,
             tolerance: scene.newton.tolerance,
+            regularization: newton::DEFAULT_REGULARIZATION,
         }
     }
 }

@@ -6,10 +6,19 @@
 //! *index list* is the pattern: when it equals the previous call's, the
 //! stored symbolic structure, value permutation (`Argsort`) and symbolic LU
 //! are reused and only the numeric factorisation runs.
+//!
+//! faer factorises a numerically singular matrix without error; the solution
+//! is then non-finite or huge. Both are reported as singular (see
+//! [`NEAR_SINGULAR`]).
 
 use faer::prelude::*;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
+
+/// A solution with `|b|_inf < NEAR_SINGULAR |A|_max |x|_inf` counts as
+/// numerically singular (its condition exceeds `1e13`: the pivots are
+/// round-off, e.g. an unsupported rigid-body mode).
+pub const NEAR_SINGULAR: f64 = 1e-13;
 
 /// Why the linear system could not be solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -34,6 +43,7 @@ struct Pattern {
 pub struct SparseSolver {
     pattern: Option<Pattern>,
     symbolic_factorisations: usize,
+    symbolic_time: std::time::Duration,
 }
 
 impl SparseSolver {
@@ -47,6 +57,11 @@ impl SparseSolver {
         self.symbolic_factorisations
     }
 
+    /// Time spent in symbolic analysis (pattern, ordering, symbolic LU).
+    pub fn symbolic_time(&self) -> std::time::Duration {
+        self.symbolic_time
+    }
+
     /// Solves `A x = b` for the `n x n` matrix given by the triplets
     /// `(rows[k], cols[k], vals[k])`.
     pub fn solve(
@@ -57,18 +72,36 @@ impl SparseSolver {
         vals: &[f64],
         b: &[f64],
     ) -> Result<Vec<f64>, LinearError> {
-        let same = self.pattern.as_ref().is_some_and(|p| p.rows == rows && p.cols == cols);
+        let same = self
+            .pattern
+            .as_ref()
+            .is_some_and(|p| p.rows == rows && p.cols == cols);
         if !same {
+            let t = std::time::Instant::now();
             self.pattern = None;
-            let idx: Vec<Pair<usize, usize>> = rows.iter().zip(cols).map(|(&r, &c)| Pair { row: r, col: c }).collect();
+            let idx: Vec<Pair<usize, usize>> = rows
+                .iter()
+                .zip(cols)
+                .map(|(&r, &c)| Pair { row: r, col: c })
+                .collect();
             let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
                 .map_err(|e| LinearError::Singular(format!("pattern: {e:?}")))?;
             let lu = SymbolicLu::try_new(symbolic.as_ref())
                 .map_err(|e| LinearError::Singular(format!("symbolic LU: {e:?}")))?;
             self.symbolic_factorisations += 1;
-            self.pattern = Some(Pattern { rows: rows.to_vec(), cols: cols.to_vec(), symbolic, argsort, lu });
+            self.pattern = Some(Pattern {
+                rows: rows.to_vec(),
+                cols: cols.to_vec(),
+                symbolic,
+                argsort,
+                lu,
+            });
+            self.symbolic_time += t.elapsed();
         }
-        let p = self.pattern.as_ref().ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        let p = self
+            .pattern
+            .as_ref()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
         let a = SparseColMat::new_from_argsort(p.symbolic.clone(), &p.argsort, vals)
             .map_err(|e| LinearError::Singular(format!("values: {e:?}")))?;
         let lu = Lu::try_new_with_symbolic(p.lu.clone(), a.as_ref())
@@ -77,7 +110,22 @@ impl SparseSolver {
         lu.solve_in_place(x.as_mut());
         let out: Vec<f64> = (0..n).map(|i| x[(i, 0)]).collect();
         if let Some(i) = out.iter().position(|v| !v.is_finite()) {
-            return Err(LinearError::Singular(format!("numerically singular (solution component {i} is {})", out[i])));
+            return Err(LinearError::Singular(format!(
+                "numerically singular (solution component {i} is {})",
+                out[i]
+            )));
+        }
+        // |A| |x| / |b| estimates the condition number seen by this right-hand
+        // side; beyond 1/NEAR_SINGULAR the pivots are round-off noise
+        let a_max = vals.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let x_max = out.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let b_max = b.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        if b_max < NEAR_SINGULAR * a_max * x_max {
+            return Err(LinearError::Singular(format!(
+                "numerically singular (|A| |x| / |b| = {:.1e} exceeds {:.0e})",
+                a_max * x_max / b_max,
+                1.0 / NEAR_SINGULAR
+            )));
         }
         Ok(out)
     }
@@ -105,6 +153,9 @@ mod tests {
         assert!((4.0 * y[0] + y[1] + y[2] - 1.0).abs() < 1e-12);
         assert_eq!(s.symbolic_factorisations(), 1);
         let singular = [1.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
-        assert!(s.solve(3, &rows, &cols, &singular, &[1.0, 2.0, 3.0]).is_err());
+        assert!(
+            s.solve(3, &rows, &cols, &singular, &[1.0, 2.0, 3.0])
+                .is_err()
+        );
     }
 }

@@ -47,7 +47,11 @@ impl Material {
         match self.model {
             PlaneModel::PlaneStress => {
                 let c = e / (1.0 - nu * nu);
-                [[c, c * nu, 0.0], [c * nu, c, 0.0], [0.0, 0.0, c * (1.0 - nu) / 2.0]]
+                [
+                    [c, c * nu, 0.0],
+                    [c * nu, c, 0.0],
+                    [0.0, 0.0, c * (1.0 - nu) / 2.0],
+                ]
             }
             PlaneModel::PlaneStrain => {
                 let c = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
@@ -63,7 +67,10 @@ impl Material {
     /// Why the constants are not admissible, if they are not.
     pub fn check(&self) -> Result<(), String> {
         if !(self.young.is_finite() && self.young > 0.0) {
-            return Err(format!("Young's modulus must be positive and finite, got {}", self.young));
+            return Err(format!(
+                "Young's modulus must be positive and finite, got {}",
+                self.young
+            ));
         }
         let upper = match self.model {
             PlaneModel::PlaneStress => 1.0,
@@ -85,7 +92,11 @@ mod tests {
 
     #[test]
     fn plane_stress_matrix_matches_design() {
-        let m = Material { young: 1000.0, poisson: 0.3, model: PlaneModel::PlaneStress };
+        let m = Material {
+            young: 1000.0,
+            poisson: 0.3,
+            model: PlaneModel::PlaneStress,
+        };
         let d = m.d_matrix();
         let c = 1000.0 / 0.91;
         assert!((d[0][0] - c).abs() < 1e-12);
@@ -96,9 +107,17 @@ mod tests {
 
     #[test]
     fn inadmissible_constants_are_rejected() {
-        let m = Material { young: 1.0, poisson: 0.5, model: PlaneModel::PlaneStrain };
+        let m = Material {
+            young: 1.0,
+            poisson: 0.5,
+            model: PlaneModel::PlaneStrain,
+        };
         assert!(m.check().is_err());
-        let m = Material { young: -1.0, poisson: 0.3, model: PlaneModel::PlaneStress };
+        let m = Material {
+            young: -1.0,
+            poisson: 0.3,
+            model: PlaneModel::PlaneStress,
+        };
         assert!(m.check().is_err());
     }
 }

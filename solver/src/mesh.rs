@@ -87,7 +87,9 @@ pub enum MeshError {
         body: String,
     },
     /// An element's reference Jacobian is not positive.
-    #[error("element {element} of body `{body}` is inverted or degenerate (detJ0 = {det_j0:e}); nodes must run counter-clockwise")]
+    #[error(
+        "element {element} of body `{body}` is inverted or degenerate (detJ0 = {det_j0:e}); nodes must run counter-clockwise"
+    )]
     InvalidElement {
         /// The body.
         body: String,
@@ -97,7 +99,9 @@ pub enum MeshError {
         det_j0: f64,
     },
     /// An element refers to a node outside its body.
-    #[error("element {element} of body `{body}` refers to node {node}, which the body does not have")]
+    #[error(
+        "element {element} of body `{body}` refers to node {node}, which the body does not have"
+    )]
     BadConnectivity {
         /// The body.
         body: String,
@@ -149,10 +153,22 @@ impl Mesh {
 
     /// Appends a structured rectangular block (see the module docs).
     /// Returns the body's index.
-    pub fn add_block(&mut self, name: &str, material: Material, block: Block) -> Result<usize, MeshError> {
-        let Block { origin, size, nx, ny } = block;
+    pub fn add_block(
+        &mut self,
+        name: &str,
+        material: Material,
+        block: Block,
+    ) -> Result<usize, MeshError> {
+        let Block {
+            origin,
+            size,
+            nx,
+            ny,
+        } = block;
         if nx == 0 || ny == 0 || !(size[0] > 0.0) || !(size[1] > 0.0) {
-            return Err(MeshError::EmptyBlock { body: name.to_owned() });
+            return Err(MeshError::EmptyBlock {
+                body: name.to_owned(),
+            });
         }
         let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
         for j in 0..=ny {
@@ -182,7 +198,9 @@ impl Mesh {
         block: Option<Block>,
     ) -> Result<usize, MeshError> {
         if nodes_ref.iter().flatten().any(|v| !v.is_finite()) {
-            return Err(MeshError::NonFinite { body: name.to_owned() });
+            return Err(MeshError::NonFinite {
+                body: name.to_owned(),
+            });
         }
         let node0 = self.nodes_ref.len();
         let elem0 = self.elements.len();
@@ -191,20 +209,27 @@ impl Mesh {
         let mut conn = Vec::with_capacity(elements.len());
         for (e, el) in elements.iter().enumerate() {
             if let Some(&node) = el.iter().find(|&&n| n >= nodes_ref.len()) {
-                return Err(MeshError::BadConnectivity { body: name.to_owned(), element: e, node });
+                return Err(MeshError::BadConnectivity {
+                    body: name.to_owned(),
+                    element: e,
+                    node,
+                });
             }
             let x = el.map(|n| nodes_ref[n]);
-            let geom = QuadGeometry::new(&x).map_err(|InvalidElement { det_j0 }| MeshError::InvalidElement {
-                body: name.to_owned(),
-                element: elem0 + e,
-                det_j0,
+            let geom = QuadGeometry::new(&x).map_err(|InvalidElement { det_j0 }| {
+                MeshError::InvalidElement {
+                    body: name.to_owned(),
+                    element: elem0 + e,
+                    det_j0,
+                }
             })?;
             geometry.push(geom);
             conn.push(el.map(|n| n + node0));
         }
         self.nodes_ref.extend_from_slice(nodes_ref);
         self.elements.extend(conn);
-        self.element_body.extend(std::iter::repeat_n(body, elements.len()));
+        self.element_body
+            .extend(std::iter::repeat_n(body, elements.len()));
         self.geometry.extend(geometry);
         self.bodies.push(Body {
             name: name.to_owned(),
@@ -252,7 +277,11 @@ impl Mesh {
                 hi[c] = hi[c].max(p[c]);
             }
         }
-        if self.nodes_ref.is_empty() { 0.0 } else { (hi[0] - lo[0]).hypot(hi[1] - lo[1]) }
+        if self.nodes_ref.is_empty() {
+            0.0
+        } else {
+            (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+        }
     }
 
     /// The tolerance used when nodes are selected by coordinates.
@@ -271,7 +300,8 @@ impl Mesh {
         range
             .filter(|&n| {
                 let p = self.nodes_ref[n];
-                x.is_none_or(|x| (p[0] - x).abs() <= tol) && y.is_none_or(|y| (p[1] - y).abs() <= tol)
+                x.is_none_or(|x| (p[0] - x).abs() <= tol)
+                    && y.is_none_or(|y| (p[1] - y).abs() <= tol)
             })
             .collect()
     }
@@ -289,13 +319,37 @@ mod tests {
     use super::*;
     use crate::material::PlaneModel;
 
-    const MAT: Material = Material { young: 1.0, poisson: 0.0, model: PlaneModel::PlaneStress };
+    const MAT: Material = Material {
+        young: 1.0,
+        poisson: 0.0,
+        model: PlaneModel::PlaneStress,
+    };
 
     #[test]
     fn block_numbering_and_sides_are_counter_clockwise() {
         let mut m = Mesh::new();
-        m.add_block("a", MAT, Block { origin: [0.0, 0.0], size: [2.0, 1.0], nx: 2, ny: 1 }).unwrap();
-        m.add_block("b", MAT, Block { origin: [0.0, 1.0], size: [2.0, 1.0], nx: 2, ny: 1 }).unwrap();
+        m.add_block(
+            "a",
+            MAT,
+            Block {
+                origin: [0.0, 0.0],
+                size: [2.0, 1.0],
+                nx: 2,
+                ny: 1,
+            },
+        )
+        .unwrap();
+        m.add_block(
+            "b",
+            MAT,
+            Block {
+                origin: [0.0, 1.0],
+                size: [2.0, 1.0],
+                nx: 2,
+                ny: 1,
+            },
+        )
+        .unwrap();
         assert_eq!(m.node_count(), 12);
         assert_eq!(m.elements[2], [6, 7, 10, 9]);
         let top = m.block_side(0, Side::Top).unwrap();
@@ -313,7 +367,12 @@ mod tests {
     fn clockwise_elements_are_rejected() {
         let mut m = Mesh::new();
         let err = m
-            .add_body("c", MAT, &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]], &[[0, 3, 2, 1]])
+            .add_body(
+                "c",
+                MAT,
+                &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                &[[0, 3, 2, 1]],
+            )
             .unwrap_err();
         assert!(matches!(err, MeshError::InvalidElement { .. }));
     }

@@ -111,7 +111,9 @@ pub enum ModelError {
         b: f64,
     },
     /// A node with free dofs that belongs to no element.
-    #[error("node {node} belongs to no element and is not fully prescribed (its equations would be empty)")]
+    #[error(
+        "node {node} belongs to no element and is not fully prescribed (its equations would be empty)"
+    )]
     OrphanNode {
         /// The node.
         node: usize,
@@ -137,26 +139,43 @@ impl Model {
     pub fn check(&self) -> Result<(), ModelError> {
         let ndof = 2 * self.mesh.node_count();
         if !self.load_factor_end.is_finite() {
-            return Err(ModelError::NonFinite { what: "the final load factor" });
+            return Err(ModelError::NonFinite {
+                what: "the final load factor",
+            });
         }
         let mut prescribed: Vec<Option<f64>> = vec![None; ndof];
         for p in &self.prescribed {
             if p.dof >= ndof {
-                return Err(ModelError::DofOutOfRange { what: "prescribed", dof: p.dof, count: ndof });
+                return Err(ModelError::DofOutOfRange {
+                    what: "prescribed",
+                    dof: p.dof,
+                    count: ndof,
+                });
             }
             if !p.value.is_finite() {
-                return Err(ModelError::NonFinite { what: "a prescribed displacement" });
+                return Err(ModelError::NonFinite {
+                    what: "a prescribed displacement",
+                });
             }
-            if let Some(a) = prescribed[p.dof] {
-                if a != p.value {
-                    return Err(ModelError::ConflictingPrescribed { dof: p.dof, node: p.dof / 2, a, b: p.value });
-                }
+            if let Some(a) = prescribed[p.dof]
+                && a != p.value
+            {
+                return Err(ModelError::ConflictingPrescribed {
+                    dof: p.dof,
+                    node: p.dof / 2,
+                    a,
+                    b: p.value,
+                });
             }
             prescribed[p.dof] = Some(p.value);
         }
         for l in &self.loads {
             if l.dof >= ndof {
-                return Err(ModelError::DofOutOfRange { what: "load", dof: l.dof, count: ndof });
+                return Err(ModelError::DofOutOfRange {
+                    what: "load",
+                    dof: l.dof,
+                    count: ndof,
+                });
             }
             if !l.value.is_finite() {
                 return Err(ModelError::NonFinite { what: "a load" });
@@ -168,18 +187,26 @@ impl Model {
                 in_element[n] = true;
             }
         }
-        if let Some(node) = (0..self.mesh.node_count())
-            .find(|&n| !in_element[n] && (prescribed[2 * n].is_none() || prescribed[2 * n + 1].is_none()))
-        {
+        if let Some(node) = (0..self.mesh.node_count()).find(|&n| {
+            !in_element[n] && (prescribed[2 * n].is_none() || prescribed[2 * n + 1].is_none())
+        }) {
             return Err(ModelError::OrphanNode { node });
         }
         for pair in &self.contacts {
-            let err = |message: String| ModelError::Contact { pair: pair.name.clone(), message };
+            let err = |message: String| ModelError::Contact {
+                pair: pair.name.clone(),
+                message,
+            };
             if pair.slave.is_empty() || pair.master.is_empty() {
-                return Err(err("the slave and the master face need at least one segment each".into()));
+                return Err(err(
+                    "the slave and the master face need at least one segment each".into(),
+                ));
             }
             if !(1..=8).contains(&pair.gauss_points) {
-                return Err(err(format!("gauss_points must be in 1..=8, got {}", pair.gauss_points)));
+                return Err(err(format!(
+                    "gauss_points must be in 1..=8, got {}",
+                    pair.gauss_points
+                )));
             }
             for seg in pair.slave.iter().chain(&pair.master) {
                 if seg.iter().any(|&n| n >= self.mesh.node_count()) {
@@ -190,8 +217,14 @@ impl Model {
                     return Err(err(format!("segment {seg:?} has zero length")));
                 }
             }
-            let slave_nodes: std::collections::HashSet<usize> = pair.slave.iter().flatten().copied().collect();
-            if pair.master.iter().flatten().any(|n| slave_nodes.contains(n)) {
+            let slave_nodes: std::collections::HashSet<usize> =
+                pair.slave.iter().flatten().copied().collect();
+            if pair
+                .master
+                .iter()
+                .flatten()
+                .any(|n| slave_nodes.contains(n))
+            {
                 return Err(err("the slave and the master face share a node".into()));
             }
         }

@@ -22,17 +22,34 @@
 //! quadratic convergence makes this unambiguous. The paper scene converges
 //! far below the tolerance and never uses it.
 //!
+//! Multiplier regularisation (tangent only): the linearised constraints can
+//! be rank deficient. In the paper scene, both layers are clamped at
+//! `x = 0`, so in the reference configuration the interface gap is a
+//! function of the 7 free interface offsets while there are 8 multiplier
+//! rows: the saddle-point matrix is exactly singular in one multiplier
+//! direction, the LU's round-off picks an arbitrary (load-proportional)
+//! component there, and with a gap Hessian (Types 2–6, complete) Newton
+//! stalls in the first step. Each linear solve therefore uses the tangent
+//! with `-eps` on the diagonal of the active multiplier rows,
+//! `eps = delta max|G|^2 / max|K_uu|` (`delta` =
+//! [`DEFAULT_REGULARIZATION`], [`crate::SolveOptions::regularization`]),
+//! which selects the minimum-norm multiplier in a null direction. The
+//! residual is not modified, so converged states are those of the
+//! unregularised problem; for `delta` in `[1e-12, 1e-8]` the paper scene's
+//! results and iteration counts do not depend on `delta`.
+//!
 //! An attempt fails when the residual is not finite, grows above
 //! `1e10 max(|r_0|, 1)`, the iteration limit is reached, the linear system is
-//! singular (faer's error or a non-finite solution) or a kernel fails during
+//! singular (see [`crate::linear`]) or a kernel fails during
 //! the iterations. A failed attempt is discarded (the converged state is
 //! restored) and the increment is halved; the rest of the scheduled step is
 //! then done with the halved increment. Each cut-back is recorded; after
-//! `max_cutbacks` cut-backs within one scheduled step the solve stops with a
+//! `max_cutbacks` cut-backs within one scheduled step (or when a further
+//! halving could not advance the load factor) the solve stops with a
 //! [`SolverError`]. A kernel failure at a converged state (step start) stops
 //! the solve at once, since a smaller increment cannot change that state.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
@@ -42,8 +59,8 @@ use crate::error::SolverError;
 use crate::linear::SparseSolver;
 use crate::model::Model;
 use crate::solution::{
-    ContactPointId, ContactPointReport, Cutback, CutbackReason, MultiplierDofInfo, Solution, State, StepRecord,
-    Timings,
+    ContactPointId, ContactPointReport, Cutback, CutbackReason, MultiplierDofInfo, Solution, State,
+    StepRecord, Timings,
 };
 use crate::{Method, SolveOptions};
 
@@ -55,6 +72,9 @@ pub const DIVERGENCE_FACTOR: f64 = 1e10;
 /// longer halves per iteration has reached the round-off floor of the
 /// residual evaluation and is accepted (and flagged in the step record).
 pub const STAGNATION_FACTOR: f64 = 100.0;
+
+/// Default of [`SolveOptions::regularization`].
+pub const DEFAULT_REGULARIZATION: f64 = 1e-10;
 
 /// A converged attempt.
 struct Converged {
@@ -100,10 +120,15 @@ impl<'a> Run<'a> {
             return Err(SolverError::Options("steps must be at least 1".into()));
         }
         if opts.max_iterations == 0 {
-            return Err(SolverError::Options("max_iterations must be at least 1".into()));
+            return Err(SolverError::Options(
+                "max_iterations must be at least 1".into(),
+            ));
         }
         if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
-            return Err(SolverError::Options(format!("tolerance must be positive, got {}", opts.tolerance)));
+            return Err(SolverError::Options(format!(
+                "tolerance must be positive, got {}",
+                opts.tolerance
+            )));
         }
         model.check()?;
         let layout = ContactLayout::new(model, opts.formulation);
@@ -134,7 +159,12 @@ impl<'a> Run<'a> {
 
     fn point_id(&self, f: &PointFailure) -> ContactPointId {
         let p = &self.layout.points[f.point];
-        ContactPointId { pair: p.pair, slave_segment: p.slave_segment, gauss: p.gauss, master_segment: f.master_segment }
+        ContactPointId {
+            pair: p.pair,
+            slave_segment: p.slave_segment,
+            gauss: p.gauss,
+            master_segment: f.master_segment,
+        }
     }
 
     fn state(&self) -> State {
@@ -152,10 +182,14 @@ impl<'a> Run<'a> {
         let t = Instant::now();
         let (initial, counts) = self
             .layout
-            .project_all(&self.model.mesh, &self.u, &self.pairing)
-            .map_err(|f| SolverError::Kernel { point: self.point_id(&f), load_factor: 0.0, error: f.error })?;
+            .initial_pairing(&self.model.mesh, &self.u)
+            .map_err(|f| SolverError::Kernel {
+                point: self.point_id(&f),
+                load_factor: 0.0,
+                error: f.error,
+            })?;
         self.counts += counts;
-        self.pairing = initial.iter().map(|p| p.map(|(m, _)| m)).collect();
+        self.pairing = initial;
         self.timings.contact_evaluation += t.elapsed();
         if self.opts.record_steps {
             self.snapshots.push(self.state());
@@ -168,7 +202,11 @@ impl<'a> Run<'a> {
             let mut cuts = 0;
             while (target - self.load_factor).abs() > 1e-12 * end.abs().max(f64::MIN_POSITIVE) {
                 let remaining = target - self.load_factor;
-                let to = if increment / remaining >= 1.0 - 1e-9 { target } else { self.load_factor + increment };
+                let to = if increment / remaining >= 1.0 - 1e-9 {
+                    target
+                } else {
+                    self.load_factor + increment
+                };
                 match self.attempt(to)? {
                     Ok(c) => self.commit(step, to, c),
                     Err((reason, residuals, iterations)) => {
@@ -181,7 +219,9 @@ impl<'a> Run<'a> {
                             reason: reason.clone(),
                             residuals,
                         });
-                        if cuts > self.opts.max_cutbacks {
+                        // a further halving could not advance the load factor
+                        let exhausted = (increment / 2.0).abs() <= 1e-12 * end.abs();
+                        if cuts > self.opts.max_cutbacks || exhausted {
                             return Err(self.give_up(step, to, cuts - 1, reason));
                         }
                         increment /= 2.0;
@@ -192,13 +232,32 @@ impl<'a> Run<'a> {
         self.finish(start)
     }
 
-    fn give_up(&self, step: usize, attempted: f64, cutbacks: usize, reason: CutbackReason) -> SolverError {
+    fn give_up(
+        &self,
+        step: usize,
+        attempted: f64,
+        cutbacks: usize,
+        reason: CutbackReason,
+    ) -> SolverError {
         match reason {
-            CutbackReason::Singular { message } => {
-                SolverError::Singular { load_factor: self.load_factor, attempted, cutbacks, message }
-            }
-            CutbackReason::Kernel { point, error } => SolverError::Kernel { point, load_factor: attempted, error },
-            reason => SolverError::Diverged { step, load_factor: self.load_factor, attempted, cutbacks, reason },
+            CutbackReason::Singular { message } => SolverError::Singular {
+                load_factor: self.load_factor,
+                attempted,
+                cutbacks,
+                message,
+            },
+            CutbackReason::Kernel { point, error } => SolverError::Kernel {
+                point,
+                load_factor: attempted,
+                error,
+            },
+            reason => SolverError::Diverged {
+                step,
+                load_factor: self.load_factor,
+                attempted,
+                cutbacks,
+                reason,
+            },
         }
     }
 
@@ -235,14 +294,20 @@ impl<'a> Run<'a> {
         let (evals, counts) = self
             .layout
             .evaluate_all(&self.model.mesh, &self.u, &self.pairing, ty)
-            .map_err(|f| SolverError::Kernel { point: self.point_id(&f), load_factor: self.load_factor, error: f.error })?;
+            .map_err(|f| SolverError::Kernel {
+                point: self.point_id(&f),
+                load_factor: self.load_factor,
+                error: f.error,
+            })?;
         self.counts += counts;
         self.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
         let taylor = evals
             .into_iter()
             .map(|e| {
                 e.map(|at_start| Taylor {
-                    u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| self.u[2 * at_start.nodes[k / 2] + k % 2]),
+                    u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| {
+                        self.u[2 * at_start.nodes[k / 2] + k % 2]
+                    }),
                     at_start,
                 })
             })
@@ -256,7 +321,10 @@ impl<'a> Run<'a> {
     /// outer `Err` stops the solve; the inner one asks for a cut-back (with
     /// the iterations spent).
     #[allow(clippy::type_complexity)]
-    fn attempt(&mut self, to: f64) -> Result<Result<Converged, (CutbackReason, Vec<f64>, usize)>, SolverError> {
+    fn attempt(
+        &mut self,
+        to: f64,
+    ) -> Result<Result<Converged, (CutbackReason, Vec<f64>, usize)>, SolverError> {
         if let Method::Approx(ty) = self.opts.method {
             self.ensure_taylor(ty)?;
         }
@@ -278,20 +346,34 @@ impl<'a> Run<'a> {
                     let taylor = self.taylor.as_deref().unwrap_or(&[]);
                     taylor.iter().map(|t| t.map(|t| t.expand(&u))).collect()
                 }
-                Method::Complete => match self.layout.evaluate_all(mesh, &u, &pairing, ApproxType::Type6) {
-                    Ok((evals, counts)) => {
-                        self.counts += counts;
-                        pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
-                        evals
+                Method::Complete => {
+                    match self
+                        .layout
+                        .evaluate_all(mesh, &u, &pairing, ApproxType::Type6)
+                    {
+                        Ok((evals, counts)) => {
+                            self.counts += counts;
+                            pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+                            evals
+                        }
+                        Err(f) => {
+                            self.timings.contact_evaluation += t.elapsed();
+                            let point = self.point_id(&f);
+                            return Ok(Err((
+                                CutbackReason::Kernel {
+                                    point,
+                                    error: f.error,
+                                },
+                                residuals,
+                                it,
+                            )));
+                        }
                     }
-                    Err(f) => {
-                        self.timings.contact_evaluation += t.elapsed();
-                        let point = self.point_id(&f);
-                        return Ok(Err((CutbackReason::Kernel { point, error: f.error }, residuals, it)));
-                    }
-                },
+                }
             };
-            let active = self.layout.active_multipliers(&evals, &lambda, self.length_scale);
+            let active = self
+                .layout
+                .active_multipliers(&evals, &lambda, self.length_scale);
             let mut sys = System::new(n_eq);
             assemble_contact(&self.layout, &evals, &lambda, &active, &self.dofs, &mut sys);
             self.timings.contact_evaluation += t.elapsed();
@@ -307,7 +389,8 @@ impl<'a> Run<'a> {
                 return Ok(Err((CutbackReason::NonFiniteResidual, residuals, it)));
             }
             let tol_abs = self.opts.tolerance * f_ext.max(1.0);
-            let at_floor = it >= 2 && norm <= STAGNATION_FACTOR * tol_abs && norm >= 0.5 * residuals[it - 1];
+            let at_floor =
+                it >= 2 && norm <= STAGNATION_FACTOR * tol_abs && norm >= 0.5 * residuals[it - 1];
             if norm <= tol_abs || at_floor {
                 let unpaired = self
                     .layout
@@ -322,6 +405,12 @@ impl<'a> Run<'a> {
                         master_segment: None,
                     })
                     .collect();
+                // inactive rows read l_a = 0 (satisfied to round-off): make it exact
+                for (l, &on) in lambda.iter_mut().zip(&active) {
+                    if !on {
+                        *l = 0.0;
+                    }
+                }
                 return Ok(Ok(Converged {
                     u,
                     lambda,
@@ -335,18 +424,61 @@ impl<'a> Run<'a> {
                 }));
             }
             if it == self.opts.max_iterations {
-                return Ok(Err((CutbackReason::MaxIterations { residual: norm }, residuals, it)));
+                return Ok(Err((
+                    CutbackReason::MaxIterations { residual: norm },
+                    residuals,
+                    it,
+                )));
             }
             let bound = DIVERGENCE_FACTOR * residuals[0].max(1.0);
             if norm > bound {
-                return Ok(Err((CutbackReason::Diverging { residual: norm, bound }, residuals, it)));
+                return Ok(Err((
+                    CutbackReason::Diverging {
+                        residual: norm,
+                        bound,
+                    },
+                    residuals,
+                    it,
+                )));
             }
             let t = Instant::now();
-            let solved = self.linear.solve(n_eq, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
+            if self.opts.regularization > 0.0 && self.dofs.n_mult > 0 {
+                let n_free = self.dofs.n_free;
+                let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
+                for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+                    if r < n_free && c < n_free {
+                        k_max = k_max.max(v.abs());
+                    } else if r < n_free || c < n_free {
+                        g_max = g_max.max(v.abs());
+                    }
+                }
+                let eps = if k_max > 0.0 {
+                    self.opts.regularization * g_max * g_max / k_max
+                } else {
+                    0.0
+                };
+                for (m, &on) in active.iter().enumerate() {
+                    let row = self.dofs.mult_eq(m);
+                    sys.rows.push(row);
+                    sys.cols.push(row);
+                    sys.vals.push(if on { -eps } else { 0.0 });
+                }
+            }
+            let solved = self
+                .linear
+                .solve(n_eq, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
             self.timings.linear_solve += t.elapsed();
             let dx = match solved {
                 Ok(dx) => dx,
-                Err(e) => return Ok(Err((CutbackReason::Singular { message: e.to_string() }, residuals, it))),
+                Err(e) => {
+                    return Ok(Err((
+                        CutbackReason::Singular {
+                            message: e.to_string(),
+                        },
+                        residuals,
+                        it,
+                    )));
+                }
             };
             for (dof, ud) in u.iter_mut().enumerate() {
                 if let Some(e) = self.dofs.eq(dof) {
@@ -364,7 +496,11 @@ impl<'a> Run<'a> {
         let (projections, _) = self
             .layout
             .project_all(&self.model.mesh, &self.u, &self.pairing)
-            .map_err(|f| SolverError::Kernel { point: self.point_id(&f), load_factor: self.load_factor, error: f.error })?;
+            .map_err(|f| SolverError::Kernel {
+                point: self.point_id(&f),
+                load_factor: self.load_factor,
+                error: f.error,
+            })?;
         let contact_points = self
             .layout
             .points
@@ -383,7 +519,8 @@ impl<'a> Run<'a> {
             })
             .collect();
         let mut timings = self.timings;
-        timings.total = start.elapsed().max(Duration::ZERO);
+        timings.symbolic_factorisation = self.linear.symbolic_time();
+        timings.total = start.elapsed();
         Ok(Solution {
             method: self.opts.method,
             formulations: self.layout.formulations.clone(),
@@ -403,7 +540,10 @@ impl<'a> Run<'a> {
                 .layout
                 .multipliers
                 .iter()
-                .map(|m| MultiplierDofInfo { pair: m.pair, node: m.node })
+                .map(|m| MultiplierDofInfo {
+                    pair: m.pair,
+                    node: m.node,
+                })
                 .collect(),
             final_state: self.state(),
             snapshots: self.snapshots.clone(),

@@ -40,7 +40,10 @@ const CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.
 fn parent_gradients(xi: f64, eta: f64) -> [[f64; 2]; 4] {
     let mut out = [[0.0; 2]; 4];
     for (a, c) in CORNERS.iter().enumerate() {
-        out[a] = [c[0] * (1.0 + c[1] * eta) / 4.0, c[1] * (1.0 + c[0] * xi) / 4.0];
+        out[a] = [
+            c[0] * (1.0 + c[1] * eta) / 4.0,
+            c[1] * (1.0 + c[0] * xi) / 4.0,
+        ];
     }
     out
 }
@@ -87,7 +90,10 @@ impl QuadGeometry {
                 continue;
             }
             // dN/dX = dN/dxi J^-1 (row vectors)
-            let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+            let inv = [
+                [j[1][1] / det, -j[0][1] / det],
+                [-j[1][0] / det, j[0][0] / det],
+            ];
             for a in 0..4 {
                 grads_ref[gp][a] = [
                     dn[a][0] * inv[0][0] + dn[a][1] * inv[1][0],
@@ -99,7 +105,10 @@ impl QuadGeometry {
         if !(worst > 0.0) {
             return Err(InvalidElement { det_j0: worst });
         }
-        Ok(QuadGeometry { grads_ref, weight_ref })
+        Ok(QuadGeometry {
+            grads_ref,
+            weight_ref,
+        })
     }
 
     /// The reference area `sum w detJ0`.
@@ -139,7 +148,11 @@ fn point_state(grads: &[[f64; 2]; 4], u: &[f64; 8], d: &[[f64; 3]; 3]) -> PointS
     let f = [[1.0 + h[0][0], h[0][1]], [h[1][0], 1.0 + h[1][1]]];
     // E = (H + H^T + H^T H)/2, without the cancellation of F^T F - I
     let hh = |j: usize, k: usize| h[0][j] * h[0][k] + h[1][j] * h[1][k];
-    let e_v = [h[0][0] + hh(0, 0) / 2.0, h[1][1] + hh(1, 1) / 2.0, h[0][1] + h[1][0] + hh(0, 1)];
+    let e_v = [
+        h[0][0] + hh(0, 0) / 2.0,
+        h[1][1] + hh(1, 1) / 2.0,
+        h[0][1] + h[1][0] + hh(0, 1),
+    ];
     let mut s_v = [0.0; 3];
     for r in 0..3 {
         s_v[r] = d[r][0] * e_v[0] + d[r][1] * e_v[1] + d[r][2] * e_v[2];
@@ -150,7 +163,11 @@ fn point_state(grads: &[[f64; 2]; 4], u: &[f64; 8], d: &[[f64; 3]; 3]) -> PointS
 /// Evaluates the element at displacements `u` (reference frame).
 pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> QuadResponse {
     let d = material.d_matrix();
-    let mut out = QuadResponse { f_int: [0.0; 8], k: [[0.0; 8]; 8], energy: 0.0 };
+    let mut out = QuadResponse {
+        f_int: [0.0; 8],
+        k: [[0.0; 8]; 8],
+        energy: 0.0,
+    };
     for gp in 0..4 {
         let g = &geom.grads_ref[gp];
         let w = geom.weight_ref[gp];
@@ -180,7 +197,10 @@ pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> 
         }
         for a in 0..4 {
             for bn in a..4 {
-                let sg = [s_v[0] * g[bn][0] + s_v[2] * g[bn][1], s_v[2] * g[bn][0] + s_v[1] * g[bn][1]];
+                let sg = [
+                    s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
+                    s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
+                ];
                 let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
                 for i in 0..2 {
                     out.k[2 * a + i][2 * bn + i] += geo;
@@ -202,7 +222,9 @@ pub fn quad_energy(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> f6
     (0..4)
         .map(|gp| {
             let s = point_state(&geom.grads_ref[gp], u, &d);
-            geom.weight_ref[gp] * 0.5 * (s.e_v[0] * s.s_v[0] + s.e_v[1] * s.s_v[1] + s.e_v[2] * s.s_v[2])
+            geom.weight_ref[gp]
+                * 0.5
+                * (s.e_v[0] * s.s_v[0] + s.e_v[1] * s.s_v[1] + s.e_v[2] * s.s_v[2])
         })
         .sum()
 }
@@ -220,7 +242,11 @@ pub struct QuadStress {
 }
 
 /// Stresses at each Gauss point of the element.
-pub fn quad_point_stresses(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> [QuadStress; 4] {
+pub fn quad_point_stresses(
+    geom: &QuadGeometry,
+    u: &[f64; 8],
+    material: &Material,
+) -> [QuadStress; 4] {
     let d = material.d_matrix();
     std::array::from_fn(|gp| {
         let PointState { f, e_v, s_v } = point_state(&geom.grads_ref[gp], u, &d);
@@ -249,7 +275,11 @@ pub fn quad_point_stresses(geom: &QuadGeometry, u: &[f64; 8], material: &Materia
 /// Stresses averaged over the Gauss points (equal weights).
 pub fn quad_mean_stress(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> QuadStress {
     let pts = quad_point_stresses(geom, u, material);
-    let mut m = QuadStress { pk2: [0.0; 3], cauchy: [0.0; 3], green: [0.0; 3] };
+    let mut m = QuadStress {
+        pk2: [0.0; 3],
+        cauchy: [0.0; 3],
+        green: [0.0; 3],
+    };
     for p in &pts {
         for c in 0..3 {
             m.pk2[c] += p.pk2[c] / 4.0;
@@ -266,7 +296,11 @@ mod tests {
     use crate::material::PlaneModel;
     use crate::testutil::Lcg;
 
-    const MAT: Material = Material { young: 1000.0, poisson: 0.3, model: PlaneModel::PlaneStress };
+    const MAT: Material = Material {
+        young: 1000.0,
+        poisson: 0.3,
+        model: PlaneModel::PlaneStress,
+    };
 
     fn distorted() -> [[f64; 2]; 4] {
         [[0.1, -0.05], [1.2, 0.1], [1.0, 0.7], [-0.1, 0.55]]
@@ -322,13 +356,21 @@ mod tests {
                     let mut um = u;
                     up[p] += h;
                     um[p] -= h;
-                    let fd_e = (quad_energy(&g, &up, &mat) - quad_energy(&g, &um, &mat)) / (2.0 * h);
-                    assert!((fd_e - r.f_int[p]).abs() < 1e-6 * scale.max(1.0), "force {p}");
+                    let fd_e =
+                        (quad_energy(&g, &up, &mat) - quad_energy(&g, &um, &mat)) / (2.0 * h);
+                    assert!(
+                        (fd_e - r.f_int[p]).abs() < 1e-6 * scale.max(1.0),
+                        "force {p}"
+                    );
                     let rp = quad_response(&g, &up, &mat);
                     let rm = quad_response(&g, &um, &mat);
                     for q in 0..8 {
                         let fd = (rp.f_int[q] - rm.f_int[q]) / (2.0 * h);
-                        assert!((fd - r.k[q][p]).abs() < 1e-6 * scale, "K[{q}][{p}]: {fd} vs {}", r.k[q][p]);
+                        assert!(
+                            (fd - r.k[q][p]).abs() < 1e-6 * scale,
+                            "K[{q}][{p}]: {fd} vs {}",
+                            r.k[q][p]
+                        );
                     }
                 }
             }

@@ -291,7 +291,11 @@ pub struct ContactSpec {
     /// The master face.
     pub master: FaceSpec,
     /// Gap formulation.
-    #[serde(default = "default_formulation", deserialize_with = "de_formulation", serialize_with = "ser_formulation")]
+    #[serde(
+        default = "default_formulation",
+        deserialize_with = "de_formulation",
+        serialize_with = "ser_formulation"
+    )]
     pub formulation: Formulation,
     /// Persistent or unilateral.
     #[serde(default)]
@@ -313,7 +317,11 @@ pub struct LoadingSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub default_steps: Option<usize>,
     /// Default method.
-    #[serde(default = "default_method", deserialize_with = "de_method", serialize_with = "ser_method")]
+    #[serde(
+        default = "default_method",
+        deserialize_with = "de_method",
+        serialize_with = "ser_method"
+    )]
     pub method: Method,
 }
 
@@ -427,7 +435,13 @@ impl Scene {
                 Some(span) => locate(text, span.start),
                 None => (0, 0, String::from("(document)")),
             };
-            SceneError::Syntax { origin: origin.to_owned(), line, column, field, message: e.message().trim().to_owned() }
+            SceneError::Syntax {
+                origin: origin.to_owned(),
+                line,
+                column,
+                field,
+                message: e.message().trim().to_owned(),
+            }
         })?;
         scene.origin = origin.to_owned();
         scene.build_model()?;
@@ -438,8 +452,10 @@ impl Scene {
     pub fn from_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
         let path = path.as_ref();
         let origin = path.display().to_string();
-        let text =
-            std::fs::read_to_string(path).map_err(|e| SceneError::Io { origin: origin.clone(), message: e.to_string() })?;
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+            origin: origin.clone(),
+            message: e.to_string(),
+        })?;
         Scene::from_toml_str(&text, &origin)
     }
 
@@ -459,19 +475,34 @@ impl Scene {
 
     /// The step count of a single run.
     pub fn default_steps(&self) -> usize {
-        self.loading.default_steps.or(self.loading.steps.first().copied()).unwrap_or(1)
+        self.loading
+            .default_steps
+            .or(self.loading.steps.first().copied())
+            .unwrap_or(1)
     }
 
     fn invalid(&self, field: impl Into<String>, message: impl Into<String>) -> SceneError {
-        SceneError::Invalid { origin: self.origin.clone(), field: field.into(), message: message.into() }
+        SceneError::Invalid {
+            origin: self.origin.clone(),
+            field: field.into(),
+            message: message.into(),
+        }
     }
 
-    fn body_index(&self, mesh: &Mesh, field: String, body: &Option<String>) -> Result<Option<usize>, SceneError> {
+    fn body_index(
+        &self,
+        mesh: &Mesh,
+        field: String,
+        body: &Option<String>,
+    ) -> Result<Option<usize>, SceneError> {
         match body {
             None => Ok(None),
             Some(name) => mesh.body_index(name).map(Some).ok_or_else(|| {
                 let names: Vec<&str> = self.bodies.iter().map(|b| b.name.as_str()).collect();
-                self.invalid(field, format!("no body named `{name}` (bodies: {})", names.join(", ")))
+                self.invalid(
+                    field,
+                    format!("no body named `{name}` (bodies: {})", names.join(", ")),
+                )
             }),
         }
     }
@@ -492,12 +523,17 @@ impl Scene {
                 return Err(self.invalid(field, "give either `at` or `x`/`y`, not both"));
             }
             (Some(p), None, None) => (Some(p[0]), Some(p[1])),
-            (None, None, None) => return Err(self.invalid(field, "select nodes with `x`, `y` or `at`")),
+            (None, None, None) => {
+                return Err(self.invalid(field, "select nodes with `x`, `y` or `at`"));
+            }
             (None, x, y) => (x, y),
         };
         let nodes = mesh.select_nodes(b, x, y);
         if nodes.is_empty() {
-            return Err(self.invalid(field, format!("no node at x = {x:?}, y = {y:?}{}", in_body(body))));
+            return Err(self.invalid(
+                field,
+                format!("no node at x = {x:?}, y = {y:?}{}", in_body(body)),
+            ));
         }
         Ok(nodes)
     }
@@ -511,14 +547,23 @@ impl Scene {
         for (i, b) in self.bodies.iter().enumerate() {
             let f = format!("body[{i}]");
             if self.bodies[..i].iter().any(|o| o.name == b.name) {
-                return Err(self.invalid(format!("{f}.name"), format!("duplicate body name `{}`", b.name)));
+                return Err(self.invalid(
+                    format!("{f}.name"),
+                    format!("duplicate body name `{}`", b.name),
+                ));
             }
-            let material = b
-                .material
-                .or(self.material)
-                .ok_or_else(|| self.invalid(format!("{f}.material"), "no material (and no default [material])"))?;
+            let material = b.material.or(self.material).ok_or_else(|| {
+                self.invalid(
+                    format!("{f}.material"),
+                    "no material (and no default [material])",
+                )
+            })?;
             material.check().map_err(|m| {
-                let field = if b.material.is_some() { format!("{f}.material") } else { "material".into() };
+                let field = if b.material.is_some() {
+                    format!("{f}.material")
+                } else {
+                    "material".into()
+                };
                 self.invalid(field, m)
             })?;
             for (k, v) in [("nx", b.nx), ("ny", b.ny)] {
@@ -527,13 +572,22 @@ impl Scene {
                 }
             }
             if !(b.size[0] > 0.0 && b.size[1] > 0.0 && b.size.iter().all(|v| v.is_finite())) {
-                return Err(self.invalid(format!("{f}.size"), "width and height must be positive and finite"));
+                return Err(self.invalid(
+                    format!("{f}.size"),
+                    "width and height must be positive and finite",
+                ));
             }
             if !b.origin.iter().all(|v| v.is_finite()) {
                 return Err(self.invalid(format!("{f}.origin"), "must be finite"));
             }
-            let block = Block { origin: b.origin, size: b.size, nx: b.nx * self.refine.x, ny: b.ny * self.refine.y };
-            mesh.add_block(&b.name, material, block).map_err(|e| self.invalid(f.clone(), e.to_string()))?;
+            let block = Block {
+                origin: b.origin,
+                size: b.size,
+                nx: b.nx * self.refine.x,
+                ny: b.ny * self.refine.y,
+            };
+            mesh.add_block(&b.name, material, block)
+                .map_err(|e| self.invalid(f.clone(), e.to_string()))?;
         }
         if mesh.bodies.is_empty() {
             return Err(self.invalid("body", "at least one [[body]] is needed"));
@@ -543,7 +597,12 @@ impl Scene {
             match prescribed.iter().find(|p| p.dof == dof) {
                 Some(p) if p.value != value => Err(self.invalid(
                     field,
-                    format!("node {} component {} is already prescribed to {}", dof / 2, dof % 2, p.value),
+                    format!(
+                        "node {} component {} is already prescribed to {}",
+                        dof / 2,
+                        dof % 2,
+                        p.value
+                    ),
                 )),
                 Some(_) => Ok(()),
                 None => {
@@ -588,11 +647,18 @@ impl Scene {
             if nodes.len() > 1 {
                 return Err(self.invalid(
                     format!("{f}.at"),
-                    format!("{} nodes sit at {:?} (bodies share no nodes); name the `body`", nodes.len(), l.at),
+                    format!(
+                        "{} nodes sit at {:?} (bodies share no nodes); name the `body`",
+                        nodes.len(),
+                        l.at
+                    ),
                 ));
             }
             for c in 0..2 {
-                loads.push(PointLoad { dof: 2 * nodes[0] + c, value: l.force[c] });
+                loads.push(PointLoad {
+                    dof: 2 * nodes[0] + c,
+                    value: l.force[c],
+                });
             }
         }
         let mut contacts = Vec::new();
@@ -602,7 +668,8 @@ impl Scene {
                 let b = self
                     .body_index(&mesh, format!("{f}.{which}.body"), &Some(spec.body.clone()))?
                     .ok_or_else(|| self.invalid(format!("{f}.{which}.body"), "missing"))?;
-                mesh.block_side(b, spec.side).ok_or_else(|| self.invalid(format!("{f}.{which}"), "not a block body"))
+                mesh.block_side(b, spec.side)
+                    .ok_or_else(|| self.invalid(format!("{f}.{which}"), "not a block body"))
             };
             let slave = face("slave", &c.slave)?;
             let master = face("master", &c.master)?;
@@ -626,7 +693,10 @@ impl Scene {
             return Err(self.invalid("loading.load_factor_end", "must be finite"));
         }
         if l.steps.is_empty() || l.steps.contains(&0) {
-            return Err(self.invalid("loading.steps", "needs at least one step count, each at least 1"));
+            return Err(self.invalid(
+                "loading.steps",
+                "needs at least one step count, each at least 1",
+            ));
         }
         if l.default_steps == Some(0) {
             return Err(self.invalid("loading.default_steps", "must be at least 1"));
@@ -638,14 +708,24 @@ impl Scene {
         if n.max_iterations == 0 {
             return Err(self.invalid("newton.max_iterations", "must be at least 1"));
         }
-        let model = Model { mesh, prescribed, loads, contacts, load_factor_end: l.load_factor_end };
-        model.check().map_err(|e| self.invalid("(model)", e.to_string()))?;
+        let model = Model {
+            mesh,
+            prescribed,
+            loads,
+            contacts,
+            load_factor_end: l.load_factor_end,
+        };
+        model
+            .check()
+            .map_err(|e| self.invalid("(model)", e.to_string()))?;
         Ok(model)
     }
 }
 
 fn in_body(body: &Option<String>) -> String {
-    body.as_ref().map(|b| format!(" in body `{b}`")).unwrap_or_default()
+    body.as_ref()
+        .map(|b| format!(" in body `{b}`"))
+        .unwrap_or_default()
 }
 
 /// Line, column and dotted field path of a byte offset in a TOML text:
@@ -677,7 +757,10 @@ fn locate(text: &str, offset: usize) -> (usize, usize, String) {
         line_start += line.len();
     }
     let line = current.trim_end_matches(['\n', '\r']);
-    let col = offset.saturating_sub(line_start).min(line.len());
+    let mut col = offset.saturating_sub(line_start).min(line.len());
+    while !line.is_char_boundary(col) {
+        col -= 1;
+    }
     let mut path: Vec<String> = Vec::new();
     if !header.is_empty() {
         path.push(header);
@@ -724,8 +807,12 @@ fn locate(text: &str, offset: usize) -> (usize, usize, String) {
             path.push(p);
         }
     }
-    let field = if path.is_empty() { "(document)".to_owned() } else { path.join(".") };
-    (line_no + 1, col + 1, field)
+    let field = if path.is_empty() {
+        "(document)".to_owned()
+    } else {
+        path.join(".")
+    };
+    (line_no + 1, line[..col].chars().count() + 1, field)
 }
 
 #[cfg(test)]
@@ -780,7 +867,7 @@ steps = [2]
         let msg = e.to_string();
         assert!(msg.starts_with("bad.toml:"), "{msg}");
         assert!(msg.contains("body[0].nx"), "{msg}");
-        assert!(matches!(e, SceneError::Syntax { line: 11, .. }), "{e:?}");
+        assert!(matches!(e, SceneError::Syntax { line: 10, .. }), "{e:?}");
     }
 
     #[test]
@@ -788,7 +875,10 @@ steps = [2]
         let msg = err(&GOOD.replace("ny = 1", "ny = 1\nnxx = 3")).to_string();
         assert!(msg.contains("nxx") && msg.contains("body[0]"), "{msg}");
         let msg = err(&GOOD.replace("ny = 1", "")).to_string();
-        assert!(msg.contains("missing field `ny`") && msg.contains("body[0]"), "{msg}");
+        assert!(
+            msg.contains("missing field `ny`") && msg.contains("body[0]"),
+            "{msg}"
+        );
     }
 
     #[test]
@@ -803,8 +893,17 @@ steps = [2]
             "{GOOD}\n[[contact]]\nslave = {{ body = \"a\", side = \"bottm\" }}\nmaster = {{ body = \"a\", side = \"top\" }}\n"
         );
         let msg = err(&text).to_string();
-        assert!(msg.contains("contact[0].slave.side") && msg.contains("bottm"), "{msg}");
+        assert!(
+            msg.contains("contact[0].slave.side") && msg.contains("bottm"),
+            "{msg}"
+        );
         let msg = err(&GOOD.replace("steps = [2]", "steps = [2]\nmethod = \"seven\"")).to_string();
+        assert!(msg.contains("loading.method"), "{msg}");
+        // non-ASCII text before the error on the same line
+        let msg = err(&GOOD.replace("nx = 2", "name2 = \"Müller\"")).to_string();
+        assert!(msg.contains("body[0]") && msg.contains("name2"), "{msg}");
+        let msg =
+            err(&GOOD.replace("[loading]", "[loading]\nmethod = { x = \"ü\", y = 3 }")).to_string();
         assert!(msg.contains("loading.method"), "{msg}");
     }
 }

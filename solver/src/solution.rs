@@ -28,7 +28,11 @@ pub struct ContactPointId {
 
 impl std::fmt::Display for ContactPointId {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "pair {}, slave segment {}, Gauss point {}", self.pair, self.slave_segment, self.gauss)?;
+        write!(
+            f,
+            "pair {}, slave segment {}, Gauss point {}",
+            self.pair, self.slave_segment, self.gauss
+        )?;
         if let Some(m) = self.master_segment {
             write!(f, ", master segment {m}")?;
         }
@@ -71,14 +75,19 @@ impl std::fmt::Display for CutbackReason {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             CutbackReason::MaxIterations { residual } => {
-                write!(f, "no convergence within the iteration limit (residual {residual:.3e})")
+                write!(
+                    f,
+                    "no convergence within the iteration limit (residual {residual:.3e})"
+                )
             }
             CutbackReason::NonFiniteResidual => write!(f, "non-finite residual"),
             CutbackReason::Diverging { residual, bound } => {
                 write!(f, "diverging (residual {residual:.3e} above {bound:.3e})")
             }
             CutbackReason::Singular { message } => write!(f, "{message}"),
-            CutbackReason::Kernel { point, error } => write!(f, "contact kernel failed at {point}: {error}"),
+            CutbackReason::Kernel { point, error } => {
+                write!(f, "contact kernel failed at {point}: {error}")
+            }
         }
     }
 }
@@ -130,6 +139,9 @@ pub struct Timings {
     pub contact_evaluation: Duration,
     /// Symbolic and numeric factorisation and solve.
     pub linear_solve: Duration,
+    /// The part of `linear_solve` spent in symbolic analysis (only when the
+    /// sparsity pattern changed).
+    pub symbolic_factorisation: Duration,
     /// The whole solve.
     pub total: Duration,
 }
@@ -253,15 +265,21 @@ impl Solution {
 
     /// The largest `|gap|` over the paired integration points.
     pub fn max_abs_gap(&self) -> f64 {
-        self.contact_points.iter().filter_map(|p| p.gap).fold(0.0, |m, g| m.max(g.abs()))
+        self.contact_points
+            .iter()
+            .filter_map(|p| p.gap)
+            .fold(0.0, |m, g| m.max(g.abs()))
     }
 
     /// The range of `xi_m` over the paired integration points.
     pub fn xi_m_range(&self) -> Option<(f64, f64)> {
-        self.contact_points.iter().filter_map(|p| p.xi_m).fold(None, |acc, x| match acc {
-            None => Some((x, x)),
-            Some((lo, hi)) => Some((f64::min(lo, x), f64::max(hi, x))),
-        })
+        self.contact_points
+            .iter()
+            .filter_map(|p| p.xi_m)
+            .fold(None, |acc, x| match acc {
+                None => Some((x, x)),
+                Some((lo, hi)) => Some((f64::min(lo, x), f64::max(hi, x))),
+            })
     }
 
     /// Integration points that project into no master segment at the end.
@@ -269,7 +287,12 @@ impl Solution {
         self.contact_points
             .iter()
             .filter(|p| p.master_segment.is_none())
-            .map(|p| ContactPointId { pair: p.pair, slave_segment: p.slave_segment, gauss: p.gauss, master_segment: None })
+            .map(|p| ContactPointId {
+                pair: p.pair,
+                slave_segment: p.slave_segment,
+                gauss: p.gauss,
+                master_segment: None,
+            })
             .collect()
     }
 
@@ -279,7 +302,11 @@ impl Solution {
         (0..self.mesh.elements.len())
             .map(|e| {
                 let mat = &self.mesh.bodies[self.mesh.element_body[e]].material;
-                quad_mean_stress(&self.mesh.geometry[e], &self.mesh.element_displacements(e, &u), mat)
+                quad_mean_stress(
+                    &self.mesh.geometry[e],
+                    &self.mesh.element_displacements(e, &u),
+                    mat,
+                )
             })
             .collect()
     }

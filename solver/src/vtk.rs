@@ -26,11 +26,21 @@ pub fn write_vtu(path: impl AsRef<Path>, solution: &Solution) -> std::io::Result
 }
 
 /// Writes `state` (e.g. one of [`Solution::snapshots`]) to `path`.
-pub fn write_vtu_state(path: impl AsRef<Path>, solution: &Solution, state: &State) -> std::io::Result<()> {
+pub fn write_vtu_state(
+    path: impl AsRef<Path>,
+    solution: &Solution,
+    state: &State,
+) -> std::io::Result<()> {
     std::fs::write(path, vtu_string(solution, state))
 }
 
-fn array(out: &mut String, ty: &str, name: &str, components: usize, values: impl Iterator<Item = String>) {
+fn array(
+    out: &mut String,
+    ty: &str,
+    name: &str,
+    components: usize,
+    values: impl Iterator<Item = String>,
+) {
     let _ = write!(out, "        <DataArray type=\"{ty}\" Name=\"{name}\"");
     if components > 1 {
         let _ = write!(out, " NumberOfComponents=\"{components}\"");
@@ -57,7 +67,11 @@ fn array(out: &mut String, ty: &str, name: &str, components: usize, values: impl
 }
 
 fn num(v: f64) -> String {
-    if v.is_finite() { format!("{v:e}") } else { "nan".to_owned() }
+    if v.is_finite() {
+        format!("{v:e}")
+    } else {
+        "nan".to_owned()
+    }
 }
 
 /// The `.vtu` document of `state`.
@@ -76,30 +90,92 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n",
     );
     out.push_str("  <UnstructuredGrid>\n");
-    let _ = writeln!(out, "    <Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{m}\">");
+    let _ = writeln!(
+        out,
+        "    <Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{m}\">"
+    );
     out.push_str("      <PointData Vectors=\"displacement\" Scalars=\"contact_pressure\">\n");
     array(
         &mut out,
         "Float64",
         "displacement",
         3,
-        state.displacements.iter().flat_map(|d| [num(d[0]), num(d[1]), num(0.0)]),
+        state
+            .displacements
+            .iter()
+            .flat_map(|d| [num(d[0]), num(d[1]), num(0.0)]),
     );
-    array(&mut out, "Float64", "multiplier", 1, multiplier.iter().map(|&v| num(v)));
-    array(&mut out, "Float64", "contact_pressure", 1, multiplier.iter().map(|&v| num(-v)));
+    array(
+        &mut out,
+        "Float64",
+        "multiplier",
+        1,
+        multiplier.iter().map(|&v| num(v)),
+    );
+    array(
+        &mut out,
+        "Float64",
+        "contact_pressure",
+        1,
+        multiplier.iter().map(|&v| num(-v)),
+    );
     out.push_str("      </PointData>\n");
     out.push_str("      <CellData Scalars=\"body\">\n");
-    array(&mut out, "Float64", "cauchy_stress", 3, stresses.iter().flat_map(|s| s.cauchy.map(num)));
-    array(&mut out, "Float64", "pk2_stress", 3, stresses.iter().flat_map(|s| s.pk2.map(num)));
-    array(&mut out, "Int32", "body", 1, mesh.element_body.iter().map(|b| b.to_string()));
+    array(
+        &mut out,
+        "Float64",
+        "cauchy_stress",
+        3,
+        stresses.iter().flat_map(|s| s.cauchy.map(num)),
+    );
+    array(
+        &mut out,
+        "Float64",
+        "pk2_stress",
+        3,
+        stresses.iter().flat_map(|s| s.pk2.map(num)),
+    );
+    array(
+        &mut out,
+        "Int32",
+        "body",
+        1,
+        mesh.element_body.iter().map(|b| b.to_string()),
+    );
     out.push_str("      </CellData>\n");
     out.push_str("      <Points>\n");
-    array(&mut out, "Float64", "reference_coordinates", 3, mesh.nodes_ref.iter().flat_map(|p| [num(p[0]), num(p[1]), num(0.0)]));
+    array(
+        &mut out,
+        "Float64",
+        "reference_coordinates",
+        3,
+        mesh.nodes_ref
+            .iter()
+            .flat_map(|p| [num(p[0]), num(p[1]), num(0.0)]),
+    );
     out.push_str("      </Points>\n");
     out.push_str("      <Cells>\n");
-    array(&mut out, "Int64", "connectivity", 1, mesh.elements.iter().flatten().map(|v| v.to_string()));
-    array(&mut out, "Int64", "offsets", 1, (1..=m).map(|k| (4 * k).to_string()));
-    array(&mut out, "UInt8", "types", 1, (0..m).map(|_| VTK_QUAD.to_string()));
+    array(
+        &mut out,
+        "Int64",
+        "connectivity",
+        1,
+        mesh.elements.iter().flatten().map(|v| v.to_string()),
+    );
+    array(
+        &mut out,
+        "Int64",
+        "offsets",
+        1,
+        (1..=m).map(|k| (4 * k).to_string()),
+    );
+    array(
+        &mut out,
+        "UInt8",
+        "types",
+        1,
+        (0..m).map(|_| VTK_QUAD.to_string()),
+    );
     out.push_str("      </Cells>\n");
     out.push_str("    </Piece>\n");
     out.push_str("  </UnstructuredGrid>\n");
