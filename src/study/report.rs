@@ -6,7 +6,7 @@ use std::fmt::Write as _;
 use contact_kernels::{ApproxType, Formulation};
 use solver::Method;
 
-use super::{FormulationStudy, HeavyStudy, Run, StudyResults};
+use super::{FormulationStudy, Run, StudyResults};
 
 /// The CSV header: the six contract columns, then extras.
 pub const CSV_HEADER: &str = "type,steps,strain_energy,error_percent,newton_iterations,wall_seconds,\
@@ -62,15 +62,27 @@ pub enum Verdict {
     AtTolerance,
     /// The error falls like `N^-order`.
     Converges {
-        /// Fitted order (minus the slope of log|e| against log N).
+        /// Fitted order `p` of `e(N) = a + C N^-p` over the finer half of
+        /// the step counts.
         order: f64,
+        /// The local orders between the first two and the last two step
+        /// counts of that range.
+        local: (f64, f64),
     },
-    /// The error does not fall to zero: it stays near `plateau` percent.
+    /// The error tends to a non-zero limit as `N` grows.
     DoesNotVanish {
-        /// The error at the largest step count.
-        plateau: f64,
-        /// Fitted slope of log|e| against log N.
-        slope: f64,
+        /// The extrapolated limit (percent).
+        limit: f64,
+    },
+    /// The error changes sign among the finer step counts: not yet in its
+    /// asymptotic range, no order can be read off.
+    PreAsymptotic,
+    /// The error falls, but no order fits yet (the best fit lies at the edge
+    /// of the searched range).
+    NotAsymptotic {
+        /// The local orders between the first two and the last two step
+        /// counts of the finer half.
+        local: (f64, f64),
     },
     /// Some solves failed.
     Failed,
@@ -83,64 +95,116 @@ pub struct Convergence {
     pub ty: ApproxType,
     /// The verdict.
     pub verdict: Verdict,
+    /// The limit `a` of `e(N) = a + C N^-p` fitted to the finer half of the
+    /// step counts (percent).
+    pub limit: f64,
     /// Whether the error changes sign over the step counts.
     pub sign_changes: bool,
 }
 
-/// Least-squares slope of `log|e|` against `log N`.
-fn slope(points: &[(f64, f64)]) -> f64 {
-    let n = points.len() as f64;
-    let (sx, sy) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x.ln(), b + y.abs().ln()));
-    let (mx, my) = (sx / n, sy / n);
-    let (num, den) = points.iter().fold((0.0, 0.0), |(a, b), (x, y)| {
-        let dx = x.ln() - mx;
-        (a + dx * (y.abs().ln() - my), b + dx * dx)
-    });
-    num / den
+/// Least squares `e(N) = a + C N^-p` over a grid of orders `p`: returns
+/// `(a, p)` of the best fit.
+fn power_fit(points: &[(f64, f64)]) -> (f64, f64) {
+    let mut best = (f64::INFINITY, 0.0, 0.0);
+    for k in 0..=(P_MAX * 100.0) as usize - (P_MIN * 100.0) as usize {
+        let p = P_MIN + k as f64 * 0.01;
+        // Linear least squares in (a, C) with basis [1, N^-p].
+        let (mut s11, mut s1x, mut sxx, mut s1y, mut sxy) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for (n, e) in points {
+            let x = n.powf(-p);
+            s11 += 1.0;
+            s1x += x;
+            sxx += x * x;
+            s1y += e;
+            sxy += x * e;
+        }
+        let det = s11 * sxx - s1x * s1x;
+        if det.abs() < 1e-300 {
+            continue;
+        }
+        let a = (sxx * s1y - s1x * sxy) / det;
+        let c = (s11 * sxy - s1x * s1y) / det;
+        let res: f64 = points.iter().map(|(n, e)| (a + c * n.powf(-p) - e).powi(2)).sum();
+        if res < best.0 {
+            best = (res, a, p);
+        }
+    }
+    (best.1, best.2)
 }
 
+/// The range of orders the fit considers.
+const P_MIN: f64 = 0.25;
+/// See [`P_MIN`].
+const P_MAX: f64 = 4.0;
+
 /// Estimates how `ty`'s error falls with the number of steps.
+///
+/// The finer half of the step counts (at least three) is the *tail*. A sign
+/// change in the tail means the error is not yet asymptotic. Otherwise the
+/// tail is fitted with `e(N) = a + C N^-p`: a limit `a` of the finest
+/// error's sign and above 30 % of it means the error does not vanish; a
+/// best order at the edge of the searched range `[0.25, 4]` means no
+/// asymptotic order can be read off yet; otherwise the error converges to
+/// zero with order `p`.
 pub fn convergence(study: &FormulationStudy, ty: ApproxType) -> Convergence {
     let runs: Vec<&Run> = study.runs.iter().filter(|r| r.method == Method::Approx(ty)).collect();
     let errors: Vec<(f64, f64)> = runs.iter().filter_map(|r| r.error_percent.map(|e| (r.steps as f64, e))).collect();
-    let sign_changes = errors.windows(2).any(|w| w[0].1.signum() != w[1].1.signum() && w[0].1 != 0.0 && w[1].1 != 0.0);
+    let sign_changes = errors.windows(2).any(|w| w[0].1 * w[1].1 < 0.0);
+    let mk = |verdict, limit| Convergence { ty, verdict, limit, sign_changes };
     if errors.len() < runs.len() || errors.len() < 2 {
-        return Convergence { ty, verdict: Verdict::Failed, sign_changes };
+        return mk(Verdict::Failed, f64::NAN);
     }
-    let above: Vec<(f64, f64)> = errors.iter().copied().filter(|(_, e)| e.abs() > ERROR_FLOOR_PERCENT).collect();
-    if above.is_empty() {
-        return Convergence { ty, verdict: Verdict::AtTolerance, sign_changes };
+    let mut sorted = errors.clone();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0));
+    if sorted.iter().all(|(_, e)| e.abs() <= ERROR_FLOOR_PERCENT) {
+        return mk(Verdict::AtTolerance, 0.0);
     }
-    if above.len() < 2 {
-        // Only the coarsest step count is above tolerance: it vanishes fast.
-        return Convergence { ty, verdict: Verdict::Converges { order: f64::INFINITY }, sign_changes };
+    let start = (sorted.len() / 2).min(sorted.len().saturating_sub(3));
+    let tail = &sorted[start..];
+    if tail.iter().all(|(_, e)| e.abs() <= ERROR_FLOOR_PERCENT) {
+        return mk(Verdict::Converges { order: f64::INFINITY, local: (f64::INFINITY, f64::INFINITY) }, 0.0);
     }
-    let s = slope(&above);
-    let first = errors.first().map(|p| p.1.abs()).unwrap_or(0.0);
-    let last = errors.last().map(|p| p.1).unwrap_or(0.0);
-    // A factor 5 in N: an error that falls by less than a factor 2 (slope
-    // above -0.43) is not going to zero at any useful rate.
-    let verdict = if s > -0.43 && last.abs() > 0.5 * first {
-        Verdict::DoesNotVanish { plateau: last, slope: s }
-    } else {
-        Verdict::Converges { order: -s }
-    };
-    Convergence { ty, verdict, sign_changes }
+    if tail.windows(2).any(|w| w[0].1 * w[1].1 < 0.0) {
+        return mk(Verdict::PreAsymptotic, f64::NAN);
+    }
+    let last = tail.last().expect("non-empty").1;
+    let local_order = |w: &[(f64, f64)]| (w[0].1 / w[1].1).abs().ln() / (w[1].0 / w[0].0).ln();
+    let local = (local_order(&tail[..2]), local_order(&tail[tail.len() - 2..]));
+    let (limit, order) = power_fit(tail);
+    if order <= P_MIN + 1e-9 || order >= P_MAX - 1e-9 {
+        return mk(Verdict::NotAsymptotic { local }, limit);
+    }
+    if limit * last > 0.0 && limit.abs() > 0.3 * last.abs() {
+        return mk(Verdict::DoesNotVanish { limit }, limit);
+    }
+    mk(Verdict::Converges { order, local }, limit)
 }
 
 impl std::fmt::Display for Convergence {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match &self.verdict {
             Verdict::AtTolerance => write!(f, "at solver tolerance for every step count"),
-            Verdict::Converges { order } if order.is_infinite() => write!(f, "below tolerance beyond the coarsest step count"),
-            Verdict::Converges { order } => write!(f, "converges to zero, order {order:.2}"),
-            Verdict::DoesNotVanish { plateau, slope } => {
-                write!(f, "does not vanish: {plateau:+.3e} % at the finest step count (slope {slope:.2})")
+            Verdict::Converges { order, .. } if order.is_infinite() => write!(f, "below tolerance on the finer step counts"),
+            Verdict::Converges { order, local: (a, b) } if (b - a).abs() > 0.25 * a.abs().max(b.abs()) => write!(
+                f,
+                "falls over the finer step counts, but not yet asymptotically: local order {a:.2} -> {b:.2} \
+                 (fitted {order:.2}); extrapolated limit {:+.1e} %",
+                self.limit
+            ),
+            Verdict::Converges { order, local: (a, b) } => {
+                write!(f, "converges to zero, order {order:.2} (local order {a:.2} -> {b:.2})")
+            }
+            Verdict::DoesNotVanish { limit } => {
+                write!(f, "does not vanish: tends to about {limit:+.2e} % (extrapolated)")
+            }
+            Verdict::PreAsymptotic => write!(f, "changes sign among the finer step counts: not yet asymptotic"),
+            Verdict::NotAsymptotic { local: (a, b) } => {
+                write!(f, "falls, but no asymptotic order yet (local order {a:.2} -> {b:.2})")
             }
             Verdict::Failed => write!(f, "some solves failed"),
         }?;
-        if self.sign_changes {
-            write!(f, "; the sign changes")?;
+        if self.sign_changes && !matches!(self.verdict, Verdict::PreAsymptotic) {
+            write!(f, " (the sign changes at coarse step counts)")?;
         }
         Ok(())
     }
@@ -149,9 +213,13 @@ impl std::fmt::Display for Convergence {
 fn short_order(c: &Convergence) -> String {
     match &c.verdict {
         Verdict::AtTolerance => "exact".into(),
-        Verdict::Converges { order } if order.is_infinite() => "fast".into(),
-        Verdict::Converges { order } => format!("{order:.2}"),
-        Verdict::DoesNotVanish { .. } => "does not vanish".into(),
+        Verdict::Converges { order, .. } if order.is_infinite() => "fast".into(),
+        Verdict::Converges { order, local: (a, b) } if (b - a).abs() > 0.25 * a.abs().max(b.abs()) => {
+            format!("{order:.2} (pre-asymptotic)")
+        }
+        Verdict::Converges { order, .. } => format!("{order:.2}"),
+        Verdict::DoesNotVanish { limit } => format!("→ {limit:+.1e}"),
+        Verdict::PreAsymptotic | Verdict::NotAsymptotic { .. } => "pre-asymptotic".into(),
         Verdict::Failed => "failed".into(),
     }
 }
@@ -442,9 +510,70 @@ pub fn splice_readme(readme: &str, section: &str) -> Option<String> {
     Some(format!("{}\n{}\n{}", &readme[..b], section.trim_end(), &readme[e..]))
 }
 
-/// Cost ratios of one heavy-study type at `steps`: `(contact, total)`.
-pub fn heavy_ratios(h: &HeavyStudy, ty: ApproxType, steps: usize) -> Option<(f64, f64)> {
-    let c = h.study.run(Method::Complete, steps)?;
-    let r = h.study.run(Method::Approx(ty), steps)?;
-    Some((r.contact_seconds / c.contact_seconds, r.wall_seconds / c.wall_seconds))
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::{FormulationStudy, Run};
+
+    fn study(errors: impl Fn(f64) -> f64) -> FormulationStudy {
+        let runs = (2..=10)
+            .map(|k| {
+                let n = 2 * k;
+                Run {
+                    formulation: Formulation::SlaveNormal,
+                    method: Method::Approx(ApproxType::Type3),
+                    steps: n,
+                    strain_energy: Some(1.0),
+                    error_percent: Some(errors(n as f64)),
+                    newton_iterations: 1,
+                    cutbacks: 0,
+                    wall_seconds: 1.0,
+                    contact_seconds: 1.0,
+                    solid_seconds: 0.0,
+                    solve_seconds: 0.0,
+                    kernel_evaluations: 0,
+                    projections: 0,
+                    max_abs_gap: None,
+                    kernel_ops: None,
+                    failure: None,
+                }
+            })
+            .collect();
+        FormulationStudy { formulation: Formulation::SlaveNormal, runs }
+    }
+
+    #[test]
+    fn second_order_error_is_recognised() {
+        let c = convergence(&study(|n| 3.0 / (n * n)), ApproxType::Type3);
+        match c.verdict {
+            // Exact power law: the fitted order is 2 to rounding.
+            Verdict::Converges { order, .. } => assert!((order - 2.0).abs() < 1e-9, "{order}"),
+            v => panic!("{v:?}"),
+        }
+        assert!(c.limit.abs() < 1e-12, "{}", c.limit);
+    }
+
+    #[test]
+    fn a_plateau_is_not_called_convergence() {
+        let c = convergence(&study(|n| 0.34 + 5.5 / n), ApproxType::Type3);
+        match c.verdict {
+            // a + b/N is inside the fitted family: the limit is exact.
+            Verdict::DoesNotVanish { limit } => assert!((limit - 0.34).abs() < 1e-9, "{limit}"),
+            v => panic!("{v:?}"),
+        }
+    }
+
+    #[test]
+    fn sign_changes_on_the_fine_steps_are_pre_asymptotic() {
+        let c = convergence(&study(|n| (n * 0.9).cos() / n), ApproxType::Type3);
+        assert_eq!(c.verdict, Verdict::PreAsymptotic);
+    }
+
+    #[test]
+    fn readme_section_is_replaced_between_markers() {
+        let text = format!("intro\n{README_BEGIN}\nold\n{README_END}\ntail\n");
+        let new = splice_readme(&text, "new results").unwrap();
+        assert_eq!(new, format!("intro\n{README_BEGIN}\nnew results\n{README_END}\ntail\n"));
+        assert!(splice_readme("no markers", "x").is_none());
+    }
 }
