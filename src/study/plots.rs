@@ -97,11 +97,12 @@ fn draw_error_vs_steps<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &Fo
         .x_label_area_size(45)
         .y_label_area_size(70)
         .right_y_label_area_size(40)
-        .build_cartesian_2d((lo * 0.9..hi * 1.25).log_scale(), yr.log_scale())?;
+        .build_cartesian_2d(lo - 1.0..hi + 2.5, yr.log_scale())?;
     chart
         .configure_mesh()
-        .x_desc("number of load steps")
+        .x_desc("number of load steps   (filled marker: error > 0, energy above complete; hollow: error < 0)")
         .y_desc("|error| (%)")
+        .x_labels(steps.len() + 2)
         .x_label_formatter(&|v| format!("{v:.0}"))
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .draw()?;
@@ -122,7 +123,7 @@ fn draw_error_vs_steps<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &Fo
         if let Some((n, e)) = pts.last() {
             chart.draw_series(std::iter::once(Text::new(
                 format!("T{ty}"),
-                (*n * 1.04, e.abs().max(FLOOR)),
+                (*n + 0.5, e.abs().max(FLOOR)),
                 ("sans-serif", 16).into_font().color(&color),
             )))?;
         }
@@ -133,11 +134,6 @@ fn draw_error_vs_steps<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &Fo
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()?;
-    root.draw(&Text::new(
-        "filled marker: error > 0 (energy above complete); hollow: error < 0",
-        (80, 40),
-        ("sans-serif", 14).into_font(),
-    ))?;
     Ok(())
 }
 
@@ -169,6 +165,8 @@ fn draw_speed_panel<DB: DrawingBackend>(
     let complete: Vec<f64> = s.runs.iter().filter(|r| r.method == Method::Complete).map(|r| 1e3 * time(r)).collect();
     let xr = log_range(pts.iter().map(|p| p.0).chain(complete.iter().copied()));
     let yr = log_range(pts.iter().map(|p| p.1));
+    // One more decade below the data: room for the legend.
+    let yr = yr.start / 10.0..yr.end;
     let mut chart = ChartBuilder::on(area)
         .caption(title, ("sans-serif", 18))
         .margin(10)
@@ -181,12 +179,18 @@ fn draw_speed_panel<DB: DrawingBackend>(
         .y_desc("|error| (%)")
         .y_label_formatter(&|v| format!("{v:.0e}"))
         .draw()?;
-    // The complete formulation: vertical lines at its fastest and slowest.
-    let (cmin, cmax) = complete.iter().fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(*v), b.max(*v)));
-    for (x, label) in [(cmin, "complete (fewest steps)"), (cmax, "complete (most steps)")] {
+    // The complete formulation: vertical lines at the fewest and most steps.
+    let steps = s.steps();
+    let (nmin, nmax) = (steps[0], *steps.last().expect("non-empty"));
+    let complete_at = |n: usize| s.run(Method::Complete, n).map_or(f64::NAN, |r| 1e3 * time(r));
+    let (cmin, cmax) = (complete_at(nmin), complete_at(nmax));
+    for (x, label, y) in [
+        (cmin, format!("complete, {nmin} steps"), yr.end / 2.5),
+        (cmax, format!("complete, {nmax} steps"), yr.end / 8.0),
+    ] {
         if x.is_finite() && x > 0.0 {
             chart.draw_series(LineSeries::new([(x, yr.start), (x, yr.end)], BLACK.mix(0.5).stroke_width(1)))?;
-            chart.draw_series(std::iter::once(Text::new(label, (x * 1.03, yr.end / 3.0), ("sans-serif", 12).into_font())))?;
+            chart.draw_series(std::iter::once(Text::new(label, (x * 1.03, y), ("sans-serif", 12).into_font())))?;
         }
     }
     let front = pareto_front(&pts);
@@ -213,7 +217,7 @@ fn draw_speed_panel<DB: DrawingBackend>(
     chart.draw_series(front.iter().map(|&i| Circle::new(pts[i], 8, BLACK.stroke_width(1))))?;
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperRight)
+        .position(SeriesLabelPosition::LowerRight)
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()?;
