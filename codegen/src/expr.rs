@@ -143,8 +143,8 @@ impl Dag {
     pub fn add(&mut self, a: Id, b: Id) -> Id {
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => return self.constant(x + y),
-            (Some(x), None) if x == 0.0 => return b,
-            (None, Some(y)) if y == 0.0 => return a,
+            (Some(0.0), None) => return b,
+            (None, Some(0.0)) => return a,
             _ => {}
         }
         match (self.node(a), self.node(b)) {
@@ -175,8 +175,8 @@ impl Dag {
         }
         match (self.as_const(a), self.as_const(b)) {
             (Some(x), Some(y)) => return self.constant(x - y),
-            (Some(x), None) if x == 0.0 => return self.neg(b),
-            (None, Some(y)) if y == 0.0 => return a,
+            (Some(0.0), None) => return self.neg(b),
+            (None, Some(0.0)) => return a,
             _ => {}
         }
         match (self.node(a), self.node(b)) {
@@ -220,11 +220,11 @@ impl Dag {
                     return self.neg(p);
                 }
                 // c1 * (c2 * x) = (c1 c2) * x
-                if let Node::Mul(x, y) = self.node(other) {
-                    if let Some(c2) = self.as_const(x) {
-                        let k = self.constant(c * c2);
-                        return self.mul(k, y);
-                    }
+                if let Node::Mul(x, y) = self.node(other)
+                    && let Some(c2) = self.as_const(x)
+                {
+                    let k = self.constant(c * c2);
+                    return self.mul(k, y);
                 }
             }
             (None, None) => {}

@@ -215,6 +215,8 @@ fn validate(q: &[f64; 8], xi_s: f64) -> Result<Local, KernelError> {
         // degenerate.)
         let (dx, dy) = (d[a + 2] - d[a], d[a + 3] - d[a + 1]);
         let length2 = dx * dx + dy * dy;
+        // Written so that a NaN length is also rejected.
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(length2 > threshold * threshold) {
             let length = length2.sqrt();
             return Err(KernelError::DegenerateSegment { segment, length, threshold });
