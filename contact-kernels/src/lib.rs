@@ -197,10 +197,11 @@ struct Local {
 
 /// The one place where degenerate input is detected.
 fn validate(q: &[f64; 8], xi_s: f64) -> Result<Local, KernelError> {
-    for (index, &value) in q.iter().chain(std::iter::once(&xi_s)).enumerate() {
-        if !value.is_finite() {
-            return Err(KernelError::NonFinite { index, value });
-        }
+    if !(all_finite(q) && xi_s.is_finite()) {
+        // Cold path: name the first offending input.
+        let (index, value) =
+            q.iter().chain(std::iter::once(&xi_s)).copied().enumerate().find(|(_, v)| !v.is_finite()).expect("one is not finite");
+        return Err(KernelError::NonFinite { index, value });
     }
     let mut d = [0.0; 8];
     for i in 0..4 {
@@ -316,7 +317,7 @@ pub fn evaluate(
         generated::Kernel::Hessian(k) => {
             let mut hess = SMatrix::<f64, 8, 8>::zeros();
             out.gap = k(&local.d, xi_s, &mut xi_m, grad, &mut hess.data.0);
-            let finite = all_finite(grad) & hess.data.0.iter().fold(true, |a, col| a & all_finite(col));
+            let finite = all_finite(grad) & all_finite(hess.as_slice());
             out.hess = Some(hess);
             finite
         }
@@ -329,9 +330,13 @@ pub fn evaluate(
     Ok(out)
 }
 
-/// Whether every value is finite (no early exit: the loop vectorises).
-fn all_finite(v: &[f64; 8]) -> bool {
-    v.iter().fold(true, |a, x| a & x.is_finite())
+/// Whether every value is finite, with integer operations that vectorise:
+/// a value is NaN or infinite exactly when its exponent bits are all ones,
+/// i.e. when adding one to the exponent field carries into the sign bit.
+fn all_finite(v: &[f64]) -> bool {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    const EXPONENT_ONE: u64 = 0x0010_0000_0000_0000;
+    v.iter().fold(0u64, |acc, x| acc | ((x.to_bits() & EXPONENT) + EXPONENT_ONE)) >> 63 == 0
 }
 
 /// A non-finite output can only come from an (almost) singular projection.
