@@ -5,7 +5,8 @@
 //!
 //! ```text
 //! formulation file --syn--> formulation::Formulation (expressions in a hash-consed expr::Dag)
-//!   --> truncation::derive (entity jets, implicit xi_m, one row of truncation::TYPES)
+//!   --> truncation::derive (entity jets (jet.rs), implicit xi_m, one row of truncation::TYPES)
+//!   --> closed-form projection substituted when r(q, xi) is affine in xi
 //!   --> lower::Program (relative coordinates, dead-code removal, CSE, instruction list)
 //!   --> emit (quote! + prettyplease) --> kernels.rs
 //! ```

@@ -23,7 +23,9 @@
 //!
 //! and the entity's own row then zeroes `E'` and/or `E''`. The gap is the
 //! formulation's expression of the entities, differentiated as a truncated
-//! second-order jet (for `g = n . x`: `g' = n'^T x + x'^T n`,
+//! second-order jet ([`crate::jet`], which keeps `xi'`, `xi''` and the
+//! rank-2 chain terms unexpanded until the end) — for `g = n . x`:
+//! `g' = n'^T x + x'^T n`,
 //! `g'' = sum_i (x_i n_i'' + n_i' x_i'^T + x_i' n_i'^T + n_i x_i'')`).
 //!
 //! The six types are the six rows of [`TYPES`].

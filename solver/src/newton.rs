@@ -48,6 +48,9 @@
 //! halving could not advance the load factor) the solve stops with a
 //! [`SolverError`]. A kernel failure at a converged state (step start) stops
 //! the solve at once, since a smaller increment cannot change that state.
+//!
+//! [`IterationProbe`] runs one iteration of the complete formulation at a
+//! given state, phase by phase, with the same code (for benchmarks).
 
 use std::time::Instant;
 
@@ -75,6 +78,48 @@ pub const STAGNATION_FACTOR: f64 = 100.0;
 
 /// Default of [`SolveOptions::regularization`].
 pub const DEFAULT_REGULARIZATION: f64 = 1e-10;
+
+/// The integration point of a kernel failure.
+fn failure_point(layout: &ContactLayout, f: &PointFailure) -> ContactPointId {
+    let p = &layout.points[f.point];
+    ContactPointId {
+        pair: p.pair,
+        slave_segment: p.slave_segment,
+        gauss: p.gauss,
+        master_segment: f.master_segment,
+    }
+}
+
+/// Adds the tangent-only multiplier regularisation (module docs): `-eps` on
+/// the diagonal of the active multiplier rows (an explicit zero on the
+/// inactive ones, so the pattern does not depend on the active set), with
+/// `eps = delta max|G|^2 / max|K_uu|`. Nothing when `delta` is 0 or there
+/// are no multipliers.
+fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta: f64) {
+    if !(delta > 0.0) || dofs.n_mult == 0 {
+        return;
+    }
+    let n_free = dofs.n_free;
+    let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
+    for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+        if r < n_free && c < n_free {
+            k_max = k_max.max(v.abs());
+        } else if r < n_free || c < n_free {
+            g_max = g_max.max(v.abs());
+        }
+    }
+    let eps = if k_max > 0.0 {
+        delta * g_max * g_max / k_max
+    } else {
+        0.0
+    };
+    for (m, &on) in active.iter().enumerate() {
+        let row = dofs.mult_eq(m);
+        sys.rows.push(row);
+        sys.cols.push(row);
+        sys.vals.push(if on { -eps } else { 0.0 });
+    }
+}
 
 /// A converged attempt.
 struct Converged {
@@ -158,13 +203,7 @@ impl<'a> Run<'a> {
     }
 
     fn point_id(&self, f: &PointFailure) -> ContactPointId {
-        let p = &self.layout.points[f.point];
-        ContactPointId {
-            pair: p.pair,
-            slave_segment: p.slave_segment,
-            gauss: p.gauss,
-            master_segment: f.master_segment,
-        }
+        failure_point(&self.layout, f)
     }
 
     fn state(&self) -> State {
@@ -442,28 +481,7 @@ impl<'a> Run<'a> {
                 )));
             }
             let t = Instant::now();
-            if self.opts.regularization > 0.0 && self.dofs.n_mult > 0 {
-                let n_free = self.dofs.n_free;
-                let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
-                for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
-                    if r < n_free && c < n_free {
-                        k_max = k_max.max(v.abs());
-                    } else if r < n_free || c < n_free {
-                        g_max = g_max.max(v.abs());
-                    }
-                }
-                let eps = if k_max > 0.0 {
-                    self.opts.regularization * g_max * g_max / k_max
-                } else {
-                    0.0
-                };
-                for (m, &on) in active.iter().enumerate() {
-                    let row = self.dofs.mult_eq(m);
-                    sys.rows.push(row);
-                    sys.cols.push(row);
-                    sys.vals.push(if on { -eps } else { 0.0 });
-                }
-            }
+            regularize(&mut sys, &self.dofs, &active, self.opts.regularization);
             let solved = self
                 .linear
                 .solve(n_eq, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
@@ -549,5 +567,284 @@ impl<'a> Run<'a> {
             snapshots: self.snapshots.clone(),
             contact_points,
         })
+    }
+}
+
+/// The contact phase of one Newton iteration ([`IterationProbe::contact`]):
+/// a fresh system holding the contact contributions, and which multipliers
+/// carry a constraint row.
+#[derive(Debug, Clone)]
+pub struct ContactPhase {
+    /// Residual and triplets with the contact terms only.
+    pub system: System,
+    /// Active multipliers (see [`ContactLayout::active_multipliers`]).
+    pub active: Vec<bool>,
+}
+
+/// Wall-clock time of the phases of one probed iteration, split as in
+/// [`Timings`], and the residual norm at the probed state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IterationSample {
+    /// Re-projection, Type 6 kernel, active set and contact scatter.
+    pub contact_evaluation: std::time::Duration,
+    /// Solid elements and external force.
+    pub solid_assembly: std::time::Duration,
+    /// Regularisation, numeric LU (symbolic analysis only when the pattern
+    /// changed) and solve.
+    pub linear_solve: std::time::Duration,
+    /// `|r|` at the probed state.
+    pub residual_norm: f64,
+}
+
+impl IterationSample {
+    /// The sum of the three phases.
+    pub fn total(&self) -> std::time::Duration {
+        self.contact_evaluation + self.solid_assembly + self.linear_solve
+    }
+}
+
+/// One Newton iteration of the **complete** formulation at a fixed state,
+/// split into the phases that [`Timings`] reports — for benchmarks and
+/// profiling (`benches/solver_scaling.rs`, `examples/scaling_table.rs`).
+///
+/// Each phase runs the same code as an iteration of [`crate::solve`]:
+/// [`contact`](Self::contact) re-projects every slave integration point,
+/// evaluates the Type 6 kernel and scatters the contact terms into a fresh
+/// [`System`]; [`solid`](Self::solid) adds the solid elements and the
+/// external force; [`linear_solve`](Self::linear_solve) adds the multiplier
+/// regularisation and solves with the probe's [`SparseSolver`], whose
+/// symbolic factorisation is computed on the first call and reused after.
+/// The state is never updated, so every call repeats the same iteration.
+pub struct IterationProbe<'a> {
+    model: &'a Model,
+    regularization: f64,
+    layout: ContactLayout,
+    dofs: DofMap,
+    linear: SparseSolver,
+    length_scale: f64,
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    pairing: Vec<Option<usize>>,
+    load_factor: f64,
+}
+
+impl<'a> IterationProbe<'a> {
+    /// The iteration from `state` (e.g. a converged
+    /// [`Solution::final_state`]) towards load factor `load_factor`: the
+    /// prescribed dofs are set to `load_factor u_ref` and the external force
+    /// is `load_factor f_ref`, as in the first iteration of a step ending
+    /// there. The points are paired from scratch at `state`. Uses
+    /// `options.formulation` and `options.regularization`; `options.method`
+    /// must be [`Method::Complete`].
+    pub fn new(
+        model: &'a Model,
+        options: &SolveOptions,
+        state: &State,
+        load_factor: f64,
+    ) -> Result<IterationProbe<'a>, SolverError> {
+        if options.method != Method::Complete {
+            return Err(SolverError::Options(format!(
+                "the iteration probe evaluates the complete formulation, not `{}`",
+                options.method
+            )));
+        }
+        model.check()?;
+        let layout = ContactLayout::new(model, options.formulation);
+        let dofs = DofMap::new(model, layout.multipliers.len());
+        let nodes = model.mesh.node_count();
+        if state.displacements.len() != nodes || state.multipliers.len() != dofs.n_mult {
+            return Err(SolverError::Options(format!(
+                "state has {} displacements and {} multipliers, the model {} nodes and {} multipliers",
+                state.displacements.len(),
+                state.multipliers.len(),
+                nodes,
+                dofs.n_mult
+            )));
+        }
+        let mut u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
+        for p in &model.prescribed {
+            u[p.dof] = load_factor * p.value;
+        }
+        let (pairing, _) =
+            layout
+                .initial_pairing(&model.mesh, &u)
+                .map_err(|f| SolverError::Kernel {
+                    point: failure_point(&layout, &f),
+                    load_factor,
+                    error: f.error,
+                })?;
+        Ok(IterationProbe {
+            model,
+            regularization: options.regularization,
+            length_scale: model.mesh.size(),
+            u,
+            lambda: state.multipliers.clone(),
+            pairing,
+            load_factor,
+            layout,
+            dofs,
+            linear: SparseSolver::new(),
+        })
+    }
+
+    /// Number of equations (free dofs plus multipliers).
+    pub fn equations(&self) -> usize {
+        self.dofs.n_eq()
+    }
+
+    /// Number of slave integration points.
+    pub fn contact_points(&self) -> usize {
+        self.layout.points.len()
+    }
+
+    /// Symbolic factorisations computed so far (1 after the first
+    /// [`linear_solve`](Self::linear_solve)).
+    pub fn symbolic_factorisations(&self) -> usize {
+        self.linear.symbolic_factorisations()
+    }
+
+    /// Time spent in symbolic analysis so far.
+    pub fn symbolic_time(&self) -> std::time::Duration {
+        self.linear.symbolic_time()
+    }
+
+    /// Phase 1: re-projection and Type 6 kernel at every integration point,
+    /// active set, and the contact scatter into a fresh system.
+    pub fn contact(&self) -> Result<ContactPhase, SolverError> {
+        let (evals, _) = self
+            .layout
+            .evaluate_all(&self.model.mesh, &self.u, &self.pairing, ApproxType::Type6)
+            .map_err(|f| SolverError::Kernel {
+                point: failure_point(&self.layout, &f),
+                load_factor: self.load_factor,
+                error: f.error,
+            })?;
+        let active = self
+            .layout
+            .active_multipliers(&evals, &self.lambda, self.length_scale);
+        let mut system = System::new(self.dofs.n_eq());
+        assemble_contact(
+            &self.layout,
+            &evals,
+            &self.lambda,
+            &active,
+            &self.dofs,
+            &mut system,
+        );
+        Ok(ContactPhase { system, active })
+    }
+
+    /// Phase 2: adds the solid elements' forces and tangents and the
+    /// external force to `system`; returns `|f_ext|`.
+    pub fn solid(&self, system: &mut System) -> f64 {
+        assemble_solid(self.model, &self.dofs, &self.u, system);
+        add_external(self.model, &self.dofs, self.load_factor, system)
+    }
+
+    /// Phase 3: regularisation and the sparse LU solve of the assembled
+    /// system (contact then solid, as in a solve); returns the Newton
+    /// correction `dx` with `K dx = r`.
+    pub fn linear_solve(&mut self, assembled: ContactPhase) -> Result<Vec<f64>, SolverError> {
+        let ContactPhase { mut system, active } = assembled;
+        regularize(&mut system, &self.dofs, &active, self.regularization);
+        self.linear
+            .solve(
+                self.dofs.n_eq(),
+                &system.rows,
+                &system.cols,
+                &system.vals,
+                &system.residual,
+            )
+            .map_err(|e| SolverError::Singular {
+                load_factor: self.load_factor,
+                attempted: self.load_factor,
+                cutbacks: 0,
+                message: e.to_string(),
+            })
+    }
+
+    /// The three phases in order, timed.
+    pub fn iteration(&mut self) -> Result<IterationSample, SolverError> {
+        let t = Instant::now();
+        let mut phase = self.contact()?;
+        let contact_evaluation = t.elapsed();
+        let t = Instant::now();
+        self.solid(&mut phase.system);
+        let solid_assembly = t.elapsed();
+        let residual_norm = phase.system.residual_norm();
+        let t = Instant::now();
+        self.linear_solve(phase)?;
+        let linear_solve = t.elapsed();
+        Ok(IterationSample {
+            contact_evaluation,
+            solid_assembly,
+            linear_solve,
+            residual_norm,
+        })
+    }
+}
+
+#[cfg(test)]
+mod probe_tests {
+    use super::*;
+    use crate::Scene;
+
+    /// The probe reproduces the solver's own iterates: from the reference
+    /// state towards the first step's load factor, its residual norm is the
+    /// step's first one, and after applying its correction the second.
+    #[test]
+    fn probe_matches_the_first_newton_iterations() {
+        let scene = Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "paper")
+            .unwrap()
+            .refined(2, 1);
+        let mut model = scene.build_model().unwrap();
+        // the first of four steps only
+        model.load_factor_end /= 4.0;
+        let opts = SolveOptions {
+            steps: 1,
+            ..SolveOptions::default()
+        };
+        let solution = crate::solve_model(&model, &opts).unwrap();
+        let first = &solution.step_records[0];
+        let to = first.load_factor;
+        let n = model.mesh.node_count();
+        let zero = State {
+            load_factor: 0.0,
+            displacements: vec![[0.0; 2]; n],
+            multipliers: vec![0.0; solution.multiplier_dofs.len()],
+        };
+        let mut probe = IterationProbe::new(&model, &opts, &zero, to).unwrap();
+        assert_eq!(probe.equations(), solution.equations);
+        let sample = probe.iteration().unwrap();
+        let r0 = first.residuals[0];
+        assert!((sample.residual_norm - r0).abs() <= 1e-12 * r0);
+        // apply the correction as the solver does
+        let mut phase = probe.contact().unwrap();
+        probe.solid(&mut phase.system);
+        let dx = probe.linear_solve(phase).unwrap();
+        assert_eq!(probe.symbolic_factorisations(), 1);
+        let dofs = DofMap::new(&model, zero.multipliers.len());
+        let mut u = vec![0.0; 2 * n];
+        for (dof, ud) in u.iter_mut().enumerate() {
+            if let Some(e) = dofs.eq(dof) {
+                *ud -= dx[e];
+            }
+        }
+        let next = State {
+            load_factor: 0.0,
+            displacements: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
+            multipliers: (0..dofs.n_mult).map(|m| -dx[dofs.mult_eq(m)]).collect(),
+        };
+        let probe = IterationProbe::new(&model, &opts, &next, to).unwrap();
+        let mut phase = probe.contact().unwrap();
+        probe.solid(&mut phase.system);
+        let r1 = first.residuals[1];
+        assert!((phase.system.residual_norm() - r1).abs() <= 1e-9 * r0);
+        // only the complete formulation is probed
+        let approx = SolveOptions {
+            method: Method::Approx(ApproxType::Type3),
+            ..opts.clone()
+        };
+        assert!(IterationProbe::new(&model, &approx, &zero, to).is_err());
     }
 }
