@@ -1,0 +1,131 @@
+//! Solver scaling benchmark: the three phases of one Newton iteration of the
+//! complete formulation on refined versions of the paper scene, from about
+//! 1e3 to 1e5 equations.
+//!
+//! ```text
+//! cargo bench --bench solver_scaling
+//! cargo bench --bench solver_scaling -- 'solid_assembly'   # one phase
+//! ```
+//!
+//! For each refinement `(x, y)` of `scenes/stacked-cantilever.toml` the first
+//! of the scene's load steps is solved; from that converged state
+//! [`solver::newton::IterationProbe`] evaluates the first Newton iteration of
+//! the second step (the same code as a solve's iteration). Benchmarks, in the
+//! group `solver_scaling` with the equation count as parameter:
+//!
+//! * `solid_assembly/<n>`: solid element forces and tangents, scatter into
+//!   triplets, external force;
+//! * `contact_evaluation/<n>`: re-projection and Type 6 kernel at every slave
+//!   integration point, active set, contact scatter into a fresh system;
+//! * `linear_solve/<n>`: regularisation, numeric LU with the symbolic
+//!   factorisation reused (computed once before measuring), and the solve.
+//!
+//! Each routine's input (the system after the previous phase) is cloned in
+//! an untimed setup. Flat sampling, 10 samples, 1 s warm-up and 2 s
+//! measurement, raised for the linear solve to 12 times one solve (the
+//! largest size's LU takes about 1.2 s, so that benchmark takes about
+//! 15 s); the whole run takes about three minutes on two cores. `cargo run --release --example scaling_table`
+//! prints the same measurement as a table without criterion.
+
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, criterion_group, criterion_main};
+use solver::newton::IterationProbe;
+use solver::{Method, Model, Scene, SolveOptions, State, solve_model};
+
+/// Measurement time per benchmark (the linear solve's is raised to fit 10
+/// samples of one iteration at the larger sizes).
+const MEASUREMENT: Duration = Duration::from_secs(2);
+
+/// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
+const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
+
+/// A refined model, its options, the converged state after the first load
+/// step and the load factor of the second.
+fn setup(refine: (usize, usize)) -> (Model, SolveOptions, State, f64) {
+    let scene = Scene::from_toml_str(
+        solver::scenes::STACKED_CANTILEVER,
+        "stacked-cantilever.toml",
+    )
+    .expect("the paper scene parses")
+    .refined(refine.0, refine.1);
+    let model = scene.build_model().expect("the refined scene builds");
+    let opts = SolveOptions {
+        method: Method::Complete,
+        ..SolveOptions::from_scene(&scene)
+    };
+    let step = model.load_factor_end / opts.steps as f64;
+    let mut first = model.clone();
+    first.load_factor_end = step;
+    let solution = solve_model(
+        &first,
+        &SolveOptions {
+            steps: 1,
+            ..opts.clone()
+        },
+    )
+    .expect("the first load step converges");
+    (model, opts, solution.final_state, 2.0 * step)
+}
+
+fn solver_scaling(c: &mut Criterion) {
+    let mut group = c.benchmark_group("solver_scaling");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(MEASUREMENT);
+    for refine in SIZES {
+        let (model, opts, state, load_factor) = setup(refine);
+        let mut probe =
+            IterationProbe::new(&model, &opts, &state, load_factor).expect("probe builds");
+        let n = probe.equations();
+        // inputs of the later phases, and the symbolic LU (built once)
+        let after_contact = probe.contact().expect("contact evaluates");
+        let mut assembled = after_contact.clone();
+        probe.solid(&mut assembled.system);
+        probe
+            .linear_solve(assembled.clone())
+            .expect("the system solves");
+        // one numeric solve, to size the measurement time of that benchmark
+        let t = Instant::now();
+        probe
+            .linear_solve(assembled.clone())
+            .expect("the system solves");
+        let lu_time = t.elapsed();
+
+        group.bench_with_input(BenchmarkId::new("solid_assembly", n), &n, |b, _| {
+            b.iter_batched(
+                || after_contact.system.clone(),
+                |mut system| {
+                    probe.solid(&mut system);
+                    system
+                },
+                BatchSize::LargeInput,
+            )
+        });
+        group.bench_with_input(BenchmarkId::new("contact_evaluation", n), &n, |b, _| {
+            b.iter(|| black_box(probe.contact().expect("contact evaluates")))
+        });
+        // 10 flat samples of one iteration at least, with some slack
+        group.measurement_time(MEASUREMENT.max(lu_time * 12));
+        group.bench_with_input(BenchmarkId::new("linear_solve", n), &n, |b, _| {
+            b.iter_batched(
+                || assembled.clone(),
+                |input| probe.linear_solve(input).expect("the system solves"),
+                BatchSize::LargeInput,
+            )
+        });
+        group.measurement_time(MEASUREMENT);
+        assert_eq!(
+            probe.symbolic_factorisations(),
+            1,
+            "the pattern must not change between iterations"
+        );
+    }
+    group.finish();
+}
+
+criterion_group!(benches, solver_scaling);
+criterion_main!(benches);

@@ -1,0 +1,271 @@
+//! Solver scaling: the cost of one Newton iteration (complete formulation)
+//! on refined versions of the paper scene, as a Markdown table.
+//!
+//! ```text
+//! cargo run --release --example scaling_table            # the default sizes
+//! cargo run --release --example scaling_table -- 8x4 26x13   # refine factors
+//! ```
+//!
+//! For each refinement `(x, y)` of `scenes/stacked-cantilever.toml` (every
+//! body's `nx` times `x`, `ny` times `y`; `y = x / 2` keeps the elements
+//! square), the first of the scene's load steps is solved with
+//! [`solver::solve_model`]; from that converged state,
+//! [`solver::newton::IterationProbe`] runs the first Newton iteration of the
+//! second step (the same code as a solve's iteration): once to build the
+//! symbolic LU, then `REPS` more times, timed phase by phase. The table gives
+//! the medians: solid assembly, contact evaluation (re-projection, Type 6
+//! kernel, contact scatter) and linear solve (numeric LU with the symbolic
+//! factorisation reused, plus the solve), their sum, and the one-off
+//! symbolic analysis. Below the table: the least-squares exponent `p` of
+//! `time ∝ equations^p` on a log-log scale per phase, and the peak resident
+//! memory (`VmHWM` from `/proc/self/status`, Linux; the sizes run in
+//! increasing order, so it is that of the largest size).
+//!
+//! The benchmark with criterion is `cargo bench --bench solver_scaling`.
+
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+use solver::newton::{IterationProbe, IterationSample};
+use solver::{Method, Scene, SolveOptions, solve_model};
+
+/// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
+const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
+
+/// Timed iterations per size (after the one building the symbolic LU);
+/// fewer for sizes above [`LARGE`] equations.
+const REPS: usize = 7;
+const REPS_LARGE: usize = 5;
+const LARGE: usize = 50_000;
+
+/// One measured size.
+struct Row {
+    refine: (usize, usize),
+    equations: usize,
+    contact_points: usize,
+    solid: f64,
+    contact: f64,
+    linear: f64,
+    total: f64,
+    symbolic: f64,
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Three significant digits or so.
+fn fmt_ms(v: f64) -> String {
+    if v < 10.0 {
+        format!("{v:.2}")
+    } else if v < 100.0 {
+        format!("{v:.1}")
+    } else {
+        format!("{v:.0}")
+    }
+}
+
+/// Least-squares slope of `ln y` against `ln x`.
+fn exponent(x: &[f64], y: &[f64]) -> f64 {
+    let lx: Vec<f64> = x.iter().map(|v| v.ln()).collect();
+    let ly: Vec<f64> = y.iter().map(|v| v.ln()).collect();
+    let n = lx.len() as f64;
+    let (mx, my) = (lx.iter().sum::<f64>() / n, ly.iter().sum::<f64>() / n);
+    let sxy: f64 = lx.iter().zip(&ly).map(|(a, b)| (a - mx) * (b - my)).sum();
+    let sxx: f64 = lx.iter().map(|a| (a - mx) * (a - mx)).sum();
+    sxy / sxx
+}
+
+/// `VmHWM` (peak resident set) from `/proc/self/status`.
+fn peak_memory() -> Option<String> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(format!("{:.0} MiB", kib / 1024.0))
+}
+
+fn parse_size(s: &str) -> Option<(usize, usize)> {
+    let (x, y) = s.split_once(['x', ','])?;
+    let (x, y) = (x.trim().parse().ok()?, y.trim().parse().ok()?);
+    (x > 0 && y > 0).then_some((x, y))
+}
+
+fn measure(base: &Scene, refine: (usize, usize)) -> Result<Row, Box<dyn std::error::Error>> {
+    let scene = base.refined(refine.0, refine.1);
+    let model = scene.build_model()?;
+    let opts = SolveOptions {
+        method: Method::Complete,
+        ..SolveOptions::from_scene(&scene)
+    };
+    let steps = opts.steps;
+    let step = model.load_factor_end / steps as f64;
+    // the converged state after the first load step
+    let mut first = model.clone();
+    first.load_factor_end = step;
+    let t = Instant::now();
+    let solution = solve_model(
+        &first,
+        &SolveOptions {
+            steps: 1,
+            ..opts.clone()
+        },
+    )?;
+    eprintln!(
+        "refine {}x{}: {} equations; step 1 of {steps} solved in {:.2} s ({} Newton iterations)",
+        refine.0,
+        refine.1,
+        solution.equations,
+        t.elapsed().as_secs_f64(),
+        solution.newton_iterations
+    );
+    // the first iteration of the second step
+    let mut probe = IterationProbe::new(&model, &opts, &solution.final_state, 2.0 * step)?;
+    drop(solution);
+    let warm = probe.iteration()?;
+    let symbolic = ms(probe.symbolic_time());
+    let reps = if probe.equations() > LARGE {
+        REPS_LARGE
+    } else {
+        REPS
+    };
+    let samples: Vec<IterationSample> = (0..reps)
+        .map(|_| probe.iteration())
+        .collect::<Result<_, _>>()?;
+    if probe.symbolic_factorisations() != 1 {
+        return Err(format!(
+            "{} symbolic factorisations (expected 1: the pattern must not change)",
+            probe.symbolic_factorisations()
+        )
+        .into());
+    }
+    let pick =
+        |f: fn(&IterationSample) -> Duration| median(samples.iter().map(|s| ms(f(s))).collect());
+    let row = Row {
+        refine,
+        equations: probe.equations(),
+        contact_points: probe.contact_points(),
+        solid: pick(|s| s.solid_assembly),
+        contact: pick(|s| s.contact_evaluation),
+        linear: pick(|s| s.linear_solve),
+        total: pick(|s| s.total()),
+        symbolic,
+    };
+    eprintln!(
+        "  |r| = {:.3e}; first iteration {:.0} ms (symbolic {:.0} ms), then median {:.1} ms over {reps}",
+        warm.residual_norm,
+        ms(warm.total()),
+        symbolic,
+        row.total
+    );
+    Ok(row)
+}
+
+fn main() -> ExitCode {
+    let mut sizes: Vec<(usize, usize)> = Vec::new();
+    for arg in std::env::args().skip(1) {
+        match parse_size(&arg) {
+            Some(s) => sizes.push(s),
+            None => {
+                eprintln!("expected refine factors like `26x13`, got `{arg}`");
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    if sizes.is_empty() {
+        sizes = SIZES.to_vec();
+    }
+    let base = match Scene::from_toml_str(
+        solver::scenes::STACKED_CANTILEVER,
+        "stacked-cantilever.toml",
+    ) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let mut rows = Vec::new();
+    for &size in &sizes {
+        match measure(&base, size) {
+            Ok(r) => rows.push(r),
+            Err(e) => {
+                eprintln!("refine {}x{}: {e}", size.0, size.1);
+                return ExitCode::FAILURE;
+            }
+        }
+    }
+    let peak = peak_memory().unwrap_or_else(|| "n/a".into());
+
+    println!(
+        "One Newton iteration, complete formulation, paper scene refined \
+         (first iteration of load step 2 of {}; median of {REPS} runs, {REPS_LARGE} above {LARGE} equations; \
+         {} rayon threads):\n",
+        base.default_steps(),
+        rayon_threads()
+    );
+    println!(
+        "| refine (x, y) | equations | contact points | assembly ms | contact ms | solve ms | total ms | symbolic LU ms (once) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    for r in &rows {
+        println!(
+            "| {} x {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.refine.0,
+            r.refine.1,
+            r.equations,
+            r.contact_points,
+            fmt_ms(r.solid),
+            fmt_ms(r.contact),
+            fmt_ms(r.linear),
+            fmt_ms(r.total),
+            fmt_ms(r.symbolic)
+        );
+    }
+    println!();
+    if rows.len() >= 2 {
+        let n: Vec<f64> = rows.iter().map(|r| r.equations as f64).collect();
+        let cp: Vec<f64> = rows.iter().map(|r| r.contact_points as f64).collect();
+        let fit = |f: fn(&Row) -> f64| exponent(&n, &rows.iter().map(f).collect::<Vec<_>>());
+        println!(
+            "Growth, time ∝ equations^p (least squares on log-log): assembly p = {:.2}, \
+             contact p = {:.2} (contact points ∝ equations^{:.2}), solve p = {:.2}, total p = {:.2}.",
+            fit(|r| r.solid),
+            fit(|r| r.contact),
+            exponent(&n, &cp),
+            fit(|r| r.linear),
+            fit(|r| r.total)
+        );
+        println!();
+    }
+    if let Some(last) = rows.last() {
+        println!(
+            "Peak memory (VmHWM) after the largest size ({} equations): {peak}.",
+            last.equations
+        );
+    }
+    ExitCode::SUCCESS
+}
+
+/// The size of rayon's global pool (assembly and contact run on it).
+fn rayon_threads() -> usize {
+    std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1)
+        .min(
+            std::env::var("RAYON_NUM_THREADS")
+                .ok()
+                .and_then(|v| v.parse().ok())
+                .filter(|&n: &usize| n > 0)
+                .unwrap_or(usize::MAX),
+        )
+}
