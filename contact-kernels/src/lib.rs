@@ -40,7 +40,7 @@ mod types;
 
 pub use types::{ApproxType, EntityOrder, Formulation, OpCount, ParseNameError};
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::{ArrayStorage, SMatrix, SVector};
 
 #[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
 mod generated {
@@ -304,30 +304,30 @@ pub fn evaluate(
     let set = generated::kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
     let local = validate(q, xi_s)?;
     let mut xi_m = start_projection(set, &local, xi_s)?;
-    let mut out = GapDerivatives { gap: 0.0, xi_m, grad: SVector::zeros(), hess: None };
-    // The kernels write straight into nalgebra's storage: the gradient's one
-    // column, and the Hessian's columns (symmetric, so row and column order
-    // agree).
-    let grad = &mut out.grad.data.0[0];
-    let finite = match set.kernels[ty.index() - 1] {
+    let mut grad = [0.0; 8];
+    // Symmetric, so the kernel's row-major writes are also nalgebra's
+    // column-major storage.
+    let mut hess = [[0.0; 8]; 8];
+    let (gap, finite, has_hessian) = match set.kernels[ty.index() - 1] {
         generated::Kernel::Gradient(k) => {
-            out.gap = k(&local.d, xi_s, &mut xi_m, grad);
-            all_finite(grad)
+            let gap = k(&local.d, xi_s, &mut xi_m, &mut grad);
+            (gap, all_finite(&grad), false)
         }
         generated::Kernel::Hessian(k) => {
-            let mut hess = SMatrix::<f64, 8, 8>::zeros();
-            out.gap = k(&local.d, xi_s, &mut xi_m, grad, &mut hess.data.0);
-            let finite = all_finite(grad) & all_finite(hess.as_slice());
-            out.hess = Some(hess);
-            finite
+            let gap = k(&local.d, xi_s, &mut xi_m, &mut grad, &mut hess);
+            (gap, all_finite(&grad) & all_finite(hess.as_flattened()), true)
         }
     };
     check_projection(set, &local, xi_s, xi_m)?;
-    out.xi_m = xi_m;
-    if !(finite && out.gap.is_finite()) {
+    if !(finite && gap.is_finite()) {
         return Err(KernelError::NoProjection { r_xi: 0.0 });
     }
-    Ok(out)
+    Ok(GapDerivatives {
+        gap,
+        xi_m,
+        grad: SVector::from_array_storage(ArrayStorage([grad])),
+        hess: has_hessian.then(|| SMatrix::from_array_storage(ArrayStorage(hess))),
+    })
 }
 
 /// Whether every value is finite, with integer operations that vectorise:
