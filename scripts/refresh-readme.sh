@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Regenerates every measured table of README.md on this machine:
+# the kernel benchmark, the solver scaling table and the study section
+# (with its CSV and plots in docs/study). Takes about ten minutes.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+# Replaces the lines between <!-- NAME:begin --> and <!-- NAME:end --> of
+# README.md with the contents of FILE.
+splice() {
+  local name=$1 file=$2
+  awk -v b="<!-- $name:begin -->" -v e="<!-- $name:end -->" -v f="$file" '
+    $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
+    $0 == e { skip = 0 }
+    !skip { print }' README.md > README.md.tmp
+  mv README.md.tmp README.md
+}
+
+cargo bench --bench kernels
+cargo run -q --release --example bench_table > target/bench-table.md
+splice bench target/bench-table.md
+
+cargo run -q --release --example scaling_table > target/scaling-table.md
+splice scaling target/scaling-table.md
+
+cargo run -q --release -- study --out docs/study --readme README.md
