@@ -18,7 +18,7 @@
 
 use rayon::prelude::*;
 
-use crate::contact::{ContactLayout, PointEval, shape2};
+use crate::contact::{ContactLayout, NodeTie, PointEval, shape2};
 use crate::model::Model;
 use crate::quad::{QuadResponse, quad_response};
 
@@ -208,6 +208,57 @@ pub fn assemble_contact(
             sys.residual[row] = lambda[m];
             sys.push(row, row, 1.0);
         }
+    }
+}
+
+/// Adds the node ties of the complete formulation (see
+/// [`crate::contact`], "Points stuck at a master node"): tie `k`, with the
+/// point's evaluation on its paired segment `evals[point]` (its regular
+/// term, added by [`assemble_contact`]) and on the other segment
+/// `others[k]`, adds the potential `mu (g_o - g_p)`:
+///
+/// ```text
+/// r_u  += mu (g_o' - g_p')        K_uu += mu (g_o'' - g_p'')
+/// r_mu  = g_o - g_p               K_u,mu = K_mu,u = g_o' - g_p'
+/// ```
+///
+/// with the tie's equation `first + k` (after the free dofs and
+/// multipliers) and an explicit zero `K_mu,mu`.
+pub fn assemble_ties(
+    ties: &[NodeTie],
+    evals: &[Option<PointEval>],
+    others: &[PointEval],
+    dofs: &DofMap,
+    first: usize,
+    sys: &mut System,
+) {
+    for (k, (tie, other)) in ties.iter().zip(others).enumerate() {
+        let row = first + k;
+        let Some(paired) = &evals[tie.point] else {
+            // an inactive point cannot be tied; keep the row regular
+            sys.residual[row] = tie.mu;
+            sys.push(row, row, 1.0);
+            continue;
+        };
+        sys.residual[row] = other.gap - paired.gap;
+        for (ev, sign) in [(other, 1.0), (paired, -1.0)] {
+            let eqs: [Option<usize>; 8] =
+                std::array::from_fn(|j| dofs.eq(2 * ev.nodes[j / 2] + j % 2));
+            for p in 0..8 {
+                let Some(ep) = eqs[p] else { continue };
+                sys.residual[ep] += sign * tie.mu * ev.grad[p];
+                sys.push(ep, row, sign * ev.grad[p]);
+                sys.push(row, ep, sign * ev.grad[p]);
+                if let Some(h) = &ev.hess {
+                    for q in 0..8 {
+                        if let Some(eq) = eqs[q] {
+                            sys.push(ep, eq, sign * tie.mu * h[(p, q)]);
+                        }
+                    }
+                }
+            }
+        }
+        sys.push(row, row, 0.0);
     }
 }
 

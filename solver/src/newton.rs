@@ -8,19 +8,33 @@
 //! 2. Types 1–6: at the step start (converged state `u0`) every contact
 //!    integration point is re-paired and the type's Taylor coefficients are
 //!    evaluated; they stay frozen during the step. Complete: every iteration
-//!    re-projects and evaluates the exact kernel;
+//!    re-projects and evaluates the exact kernel on the paired master
+//!    segments;
 //! 3. iterate `K du = -r` until `|r| <= tol max(1, |lambda_L f_ref|)`
 //!    (Euclidean norms; `r` over the free dofs and the multipliers;
-//!    `tol = 1e-10` by default).
+//!    `tol = 1e-10` by default);
+//! 4. complete formulation: at a converged iterate, re-pair the points
+//!    whose projection left their master segment (and tie or release the
+//!    points stuck at a master node); if anything changed, evaluate the
+//!    same iterate again and go on with step 3. The pairing changes only
+//!    there, apart from the first [`REPAIR_AT_ONCE_ITERATIONS`] iterates;
+//!    see [`crate::contact`], "Pairing in the complete formulation", for
+//!    why (re-pairing at every iteration made Newton cycle on refined
+//!    meshes). Each tie adds one equation after the multipliers.
+//!
+//! A step's residual history ([`crate::StepRecord::residuals`]) then holds
+//! one more entry per pairing change (the same iterate, evaluated again);
+//! the iteration count is the number of linear solves.
 //!
 //! Round-off floor: the residual of a fine mesh with large displacements
 //! cannot be evaluated more accurately than about
 //! `eps E |u| / h` per element (absolute displacements over small elements),
-//! which may exceed `1e-10 |f|`. From the third iterate on, a residual below
-//! `100 tol max(1, |f|)` that no longer halves per iteration is accepted as
-//! converged and the step is flagged (`StepRecord::roundoff_floor`); Newton's
-//! quadratic convergence makes this unambiguous. The paper scene converges
-//! far below the tolerance and never uses it.
+//! which may exceed `1e-10 |f|`. From the third iterate on (of the current
+//! pairing), a residual below `100 tol max(1, |f|)` that no longer halves
+//! per iteration is accepted as converged and the step is flagged
+//! (`StepRecord::roundoff_floor`); Newton's quadratic convergence makes this
+//! unambiguous. The paper scene converges far below the tolerance and never
+//! uses it.
 //!
 //! Multiplier regularisation (tangent only): the linearised constraints can
 //! be rank deficient. In the paper scene, both layers are clamped at
@@ -40,9 +54,11 @@
 //!
 //! An attempt fails when the residual is not finite, grows above
 //! `1e10 max(|r_0|, 1)`, the iteration limit is reached, the linear system is
-//! singular (see [`crate::linear`]) or a kernel fails during
-//! the iterations. A failed attempt is discarded (the converged state is
-//! restored) and the increment is halved; the rest of the scheduled step is
+//! singular (see [`crate::linear`]), a kernel fails during the iterations
+//! or (complete formulation) a point stuck at the end of a master chain
+//! misses it by more than the band. A failed attempt is discarded (the
+//! converged state is restored) and the increment is halved; the rest of
+//! the scheduled step is
 //! then done with the halved increment. Each cut-back is recorded; after
 //! `max_cutbacks` cut-backs within one scheduled step (or when a further
 //! halving could not advance the load factor) the solve stops with a
@@ -56,8 +72,13 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
-use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_solid};
-use crate::contact::{ContactLayout, KernelCounts, PointEval, PointFailure, Taylor};
+use crate::assembly::{
+    DofMap, System, add_external, assemble_contact, assemble_solid, assemble_ties,
+};
+use crate::contact::{
+    ContactLayout, KernelCounts, NodeTie, PairingUpdate, PointEval, PointFailure, Taylor,
+    XI_STUCK_BAND,
+};
 use crate::error::SolverError;
 use crate::linear::SparseSolver;
 use crate::model::Model;
@@ -75,6 +96,12 @@ pub const DIVERGENCE_FACTOR: f64 = 1e10;
 /// longer halves per iteration has reached the round-off floor of the
 /// residual evaluation and is accepted (and flagged in the step record).
 pub const STAGNATION_FACTOR: f64 = 100.0;
+
+/// Complete formulation: in this many first iterates of an attempt
+/// (iterates 1 and 2, after the first corrections), a point whose
+/// projection leaves its master segment is re-paired at once; from then on
+/// the pairing only changes at converged iterates (module docs).
+pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 
 /// Default of [`SolveOptions::regularization`].
 pub const DEFAULT_REGULARIZATION: f64 = 1e-10;
@@ -121,6 +148,109 @@ fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta: f64) {
     }
 }
 
+/// What [`PairingGuard::apply`] decided at a converged iterate.
+#[derive(Debug, Clone, PartialEq)]
+enum GuardOutcome {
+    /// Some points were re-paired or tied: iterate on.
+    Changed,
+    /// The pairing stands. Lists the points kept on a pairing their
+    /// projection misses by less than [`XI_STUCK_BAND`].
+    Settled(Vec<usize>),
+    /// A point's pairing cycles and its projection misses by more than the
+    /// band.
+    Stuck {
+        /// The point.
+        point: usize,
+        /// Its projection coordinate (on its master segment, or for an
+        /// inactive point on the segment it projects into).
+        xi_m: f64,
+    },
+}
+
+/// The pairing changes of one attempt of the complete formulation (module
+/// docs of [`crate::contact`], "Pairing in the complete formulation" and
+/// "Points stuck at a master node").
+#[derive(Debug, Default)]
+struct PairingGuard {
+    /// `(point, pairing)` the point has been switched away from.
+    left: Vec<(usize, Option<usize>)>,
+    /// Points released from a tie in this attempt: one more switch (the
+    /// side `theta` chose may be wrong when other points moved meanwhile).
+    released: Vec<usize>,
+    /// Points that made their last allowed switch in this attempt.
+    settled: Vec<usize>,
+}
+
+impl PairingGuard {
+    /// Applies the pairing `updates` due at a converged iterate with
+    /// contact evaluations `evals` (see
+    /// [`ContactLayout::pairing_updates`]; tied points excluded) to
+    /// `pairing`, tying a point whose pairing cycles between two adjacent
+    /// master segments (appended to `ties`).
+    fn apply(
+        &mut self,
+        layout: &ContactLayout,
+        updates: &[PairingUpdate],
+        evals: &[Option<PointEval>],
+        pairing: &mut [Option<usize>],
+        ties: &mut Vec<NodeTie>,
+    ) -> GuardOutcome {
+        let mut changed = false;
+        let mut kept = Vec::new();
+        for &(i, target) in updates {
+            let current = pairing[i];
+            let to = target.map(|(m, _)| m);
+            // how far the projection misses the current pairing
+            let (xi_m, within) = match (&evals[i], target) {
+                (Some(e), _) => (e.xi_m, e.xi_m.abs() <= 1.0 + XI_STUCK_BAND),
+                (None, Some((_, p))) => (p.xi_m, p.xi_m.abs() >= 1.0 - XI_STUCK_BAND),
+                (None, None) => (f64::NAN, true),
+            };
+            if self.settled.contains(&i) {
+                if !within {
+                    return GuardOutcome::Stuck { point: i, xi_m };
+                }
+                kept.push(i);
+                continue;
+            }
+            if let Some(k) = self.released.iter().position(|&j| j == i) {
+                self.released.swap_remove(k);
+                self.settled.push(i);
+            } else if self.left.contains(&(i, to)) {
+                // back to a pairing the point has left: stuck at the node
+                // between the two (or at the chain's end)
+                let pair = layout.points[i].pair;
+                if let (Some(p), Some(o)) = (current, to)
+                    && layout.shared_node(pair, p, o).is_some()
+                {
+                    ties.push(NodeTie {
+                        point: i,
+                        paired: p,
+                        other: o,
+                        mu: 0.0,
+                    });
+                    changed = true;
+                    continue;
+                }
+                self.settled.push(i);
+                if within {
+                    kept.push(i);
+                    continue;
+                }
+                // no tie possible: back to the other side, once
+            }
+            self.left.push((i, current));
+            pairing[i] = to;
+            changed = true;
+        }
+        if changed {
+            GuardOutcome::Changed
+        } else {
+            GuardOutcome::Settled(kept)
+        }
+    }
+}
+
 /// A converged attempt.
 struct Converged {
     u: Vec<f64>,
@@ -130,7 +260,10 @@ struct Converged {
     residuals: Vec<f64>,
     energy: f64,
     active_multipliers: usize,
+    ties: Vec<NodeTie>,
     unpaired: Vec<ContactPointId>,
+    node_ties: Vec<ContactPointId>,
+    kept_outside: Vec<ContactPointId>,
     roundoff_floor: bool,
 }
 
@@ -148,6 +281,7 @@ pub(crate) struct Run<'a> {
     u: Vec<f64>,
     lambda: Vec<f64>,
     pairing: Vec<Option<usize>>,
+    ties: Vec<NodeTie>,
     load_factor: f64,
     energy: f64,
     taylor: Option<Vec<Option<Taylor>>>,
@@ -190,6 +324,7 @@ impl<'a> Run<'a> {
             u: vec![0.0; 2 * model.mesh.node_count()],
             lambda: vec![0.0; layout.multipliers.len()],
             pairing: vec![None; n_points],
+            ties: Vec::new(),
             layout,
             load_factor: 0.0,
             energy: 0.0,
@@ -204,6 +339,17 @@ impl<'a> Run<'a> {
 
     fn point_id(&self, f: &PointFailure) -> ContactPointId {
         failure_point(&self.layout, f)
+    }
+
+    /// Integration point `i` (no master segment).
+    fn point_index_id(&self, i: usize) -> ContactPointId {
+        let p = &self.layout.points[i];
+        ContactPointId {
+            pair: p.pair,
+            slave_segment: p.slave_segment,
+            gauss: p.gauss,
+            master_segment: None,
+        }
     }
 
     fn state(&self) -> State {
@@ -304,6 +450,7 @@ impl<'a> Run<'a> {
         self.u = c.u;
         self.lambda = c.lambda;
         self.pairing = c.pairing;
+        self.ties = c.ties;
         self.load_factor = to;
         self.energy = c.energy;
         self.iterations += c.iterations;
@@ -315,6 +462,8 @@ impl<'a> Run<'a> {
             residuals: c.residuals,
             strain_energy: c.energy,
             unpaired: c.unpaired,
+            node_ties: c.node_ties,
+            kept_outside: c.kept_outside,
             active_multipliers: c.active_multipliers,
             roundoff_floor: c.roundoff_floor,
         });
@@ -367,34 +516,35 @@ impl<'a> Run<'a> {
         if let Method::Approx(ty) = self.opts.method {
             self.ensure_taylor(ty)?;
         }
-        let mesh = &self.model.mesh;
         let mut u = self.u.clone();
         for p in &self.model.prescribed {
             u[p.dof] = to * p.value;
         }
         let mut lambda = self.lambda.clone();
         let mut pairing = self.pairing.clone();
+        let mut ties = self.ties.clone();
+        let mut guard = PairingGuard::default();
         let mut residuals = Vec::new();
+        // index into `residuals` of the first iterate with the current pairing
+        let mut phase_start = 0;
         let n_eq = self.dofs.n_eq();
         let mut it = 0;
         loop {
             // contact
             let t = Instant::now();
-            let evals: Vec<Option<PointEval>> = match self.opts.method {
+            let (evals, others) = match self.opts.method {
                 Method::Approx(_) => {
                     let taylor = self.taylor.as_deref().unwrap_or(&[]);
-                    taylor.iter().map(|t| t.map(|t| t.expand(&u))).collect()
+                    let evals: Vec<Option<PointEval>> =
+                        taylor.iter().map(|t| t.map(|t| t.expand(&u))).collect();
+                    (evals, Vec::new())
                 }
                 Method::Complete => {
-                    match self
-                        .layout
-                        .evaluate_all(mesh, &u, &pairing, ApproxType::Type6)
-                    {
-                        Ok((evals, counts)) => {
-                            self.counts += counts;
-                            pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
-                            evals
-                        }
+                    // re-pair at once in the first iterates, until the first
+                    // pairing change at a converged iterate
+                    let at_once = (1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it) && phase_start == 0;
+                    match self.evaluate_complete(&u, &mut pairing, &ties, at_once) {
+                        Ok(e) => e,
                         Err(f) => {
                             self.timings.contact_evaluation += t.elapsed();
                             let point = self.point_id(&f);
@@ -413,8 +563,10 @@ impl<'a> Run<'a> {
             let active = self
                 .layout
                 .active_multipliers(&evals, &lambda, self.length_scale);
-            let mut sys = System::new(n_eq);
+            let n_sys = n_eq + ties.len();
+            let mut sys = System::new(n_sys);
             assemble_contact(&self.layout, &evals, &lambda, &active, &self.dofs, &mut sys);
+            assemble_ties(&ties, &evals, &others, &self.dofs, n_eq, &mut sys);
             self.timings.contact_evaluation += t.elapsed();
             // solid
             let t = Instant::now();
@@ -428,9 +580,54 @@ impl<'a> Run<'a> {
                 return Ok(Err((CutbackReason::NonFiniteResidual, residuals, it)));
             }
             let tol_abs = self.opts.tolerance * f_ext.max(1.0);
-            let at_floor =
-                it >= 2 && norm <= STAGNATION_FACTOR * tol_abs && norm >= 0.5 * residuals[it - 1];
+            let last = residuals.len() - 1;
+            let at_floor = last >= phase_start + 2
+                && norm <= STAGNATION_FACTOR * tol_abs
+                && norm >= 0.5 * residuals[last - 1];
             if norm <= tol_abs || at_floor {
+                let mut kept = Vec::new();
+                if self.opts.method == Method::Complete {
+                    let t = Instant::now();
+                    let outcome = self.update_pairing(
+                        &u,
+                        &lambda,
+                        &evals,
+                        &mut pairing,
+                        &mut ties,
+                        &mut guard,
+                    );
+                    self.timings.contact_evaluation += t.elapsed();
+                    match outcome {
+                        Ok(GuardOutcome::Changed) => {
+                            // the same iterate again, with the new pairing
+                            phase_start = residuals.len();
+                            continue;
+                        }
+                        Ok(GuardOutcome::Settled(k)) => kept = k,
+                        Ok(GuardOutcome::Stuck { point, xi_m }) => {
+                            let point = ContactPointId {
+                                master_segment: pairing[point],
+                                ..self.point_index_id(point)
+                            };
+                            return Ok(Err((
+                                CutbackReason::StuckAtMasterNode { point, xi_m },
+                                residuals,
+                                it,
+                            )));
+                        }
+                        Err(f) => {
+                            let point = self.point_id(&f);
+                            return Ok(Err((
+                                CutbackReason::Kernel {
+                                    point,
+                                    error: f.error,
+                                },
+                                residuals,
+                                it,
+                            )));
+                        }
+                    }
+                }
                 let unpaired = self
                     .layout
                     .points
@@ -450,15 +647,24 @@ impl<'a> Run<'a> {
                         *l = 0.0;
                     }
                 }
+                let with_master = |i: usize| ContactPointId {
+                    master_segment: pairing[i],
+                    ..self.point_index_id(i)
+                };
+                let node_ties = ties.iter().map(|t| with_master(t.point)).collect();
+                let kept_outside = kept.into_iter().map(with_master).collect();
                 return Ok(Ok(Converged {
                     u,
                     lambda,
                     pairing,
+                    ties,
                     iterations: it,
                     residuals,
                     energy: sys.energy,
                     active_multipliers: active.iter().filter(|a| **a).count(),
                     unpaired,
+                    node_ties,
+                    kept_outside,
                     roundoff_floor: norm > tol_abs,
                 }));
             }
@@ -484,7 +690,7 @@ impl<'a> Run<'a> {
             regularize(&mut sys, &self.dofs, &active, self.opts.regularization);
             let solved = self
                 .linear
-                .solve(n_eq, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
+                .solve(n_sys, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
             self.timings.linear_solve += t.elapsed();
             let dx = match solved {
                 Ok(dx) => dx,
@@ -506,8 +712,103 @@ impl<'a> Run<'a> {
             for (m, l) in lambda.iter_mut().enumerate() {
                 *l -= dx[self.dofs.mult_eq(m)];
             }
+            for (k, tie) in ties.iter_mut().enumerate() {
+                tie.mu -= dx[n_eq + k];
+            }
             it += 1;
         }
+    }
+
+    /// The complete formulation's contact evaluation at one iterate: the
+    /// Type 6 kernel of every point on its paired master segment (see
+    /// [`ContactLayout::evaluate_paired`]; `pairing` is updated where a
+    /// kernel failure forced a re-pairing) and of every tied point on its
+    /// other segment.
+    fn evaluate_complete(
+        &mut self,
+        u: &[f64],
+        pairing: &mut Vec<Option<usize>>,
+        ties: &[NodeTie],
+        at_once: bool,
+    ) -> Result<(Vec<Option<PointEval>>, Vec<PointEval>), PointFailure> {
+        let mesh = &self.model.mesh;
+        let (mut evals, counts) = if at_once {
+            self.layout
+                .evaluate_all(mesh, u, pairing, ApproxType::Type6)?
+        } else {
+            self.layout
+                .evaluate_paired(mesh, u, pairing, ApproxType::Type6)?
+        };
+        self.counts += counts;
+        let mut counts = KernelCounts::default();
+        for t in ties {
+            if evals[t.point].is_none_or(|e| e.master != t.paired) {
+                evals[t.point] = Some(
+                    self.layout
+                        .evaluate_on(mesh, u, t.point, t.paired, ApproxType::Type6, &mut counts)
+                        .map_err(|error| PointFailure {
+                            point: t.point,
+                            master_segment: Some(t.paired),
+                            error,
+                        })?,
+                );
+            }
+        }
+        *pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+        let others = ties
+            .iter()
+            .map(|t| {
+                self.layout
+                    .evaluate_on(mesh, u, t.point, t.other, ApproxType::Type6, &mut counts)
+                    .map_err(|error| PointFailure {
+                        point: t.point,
+                        master_segment: Some(t.other),
+                        error,
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        self.counts += counts;
+        Ok((evals, others))
+    }
+
+    /// The pairing update of the complete formulation at a converged
+    /// iterate (module docs of [`crate::contact`]): releases the ties whose
+    /// `theta` left `[0, 1]` (to the paired segment for `theta < 0`, to the
+    /// other one for `theta > 1`), then re-pairs the untied points whose
+    /// projection left their segment, tying those that cycle.
+    fn update_pairing(
+        &mut self,
+        u: &[f64],
+        lambda: &[f64],
+        evals: &[Option<PointEval>],
+        pairing: &mut [Option<usize>],
+        ties: &mut Vec<NodeTie>,
+        guard: &mut PairingGuard,
+    ) -> Result<GuardOutcome, PointFailure> {
+        let (updates, counts) = self.layout.pairing_updates(&self.model.mesh, u, evals)?;
+        self.counts += counts;
+        let updates: Vec<_> = updates
+            .into_iter()
+            .filter(|(i, _)| ties.iter().all(|t| t.point != *i))
+            .collect();
+        let mut released = false;
+        ties.retain(|t| {
+            let theta = t.theta(&self.layout, lambda).unwrap_or(-1.0);
+            if (0.0..=1.0).contains(&theta) {
+                return true;
+            }
+            if theta > 1.0 {
+                pairing[t.point] = Some(t.other);
+            }
+            guard.released.push(t.point);
+            released = true;
+            false
+        });
+        let outcome = guard.apply(&self.layout, &updates, evals, pairing, ties);
+        Ok(match outcome {
+            GuardOutcome::Settled(_) if released => GuardOutcome::Changed,
+            o => o,
+        })
     }
 
     fn finish(self, start: Instant) -> Result<Solution, SolverError> {
@@ -608,8 +909,10 @@ impl IterationSample {
 /// profiling (`benches/solver_scaling.rs`, `examples/scaling_table.rs`).
 ///
 /// Each phase runs the same code as an iteration of [`crate::solve`]:
-/// [`contact`](Self::contact) re-projects every slave integration point,
-/// evaluates the Type 6 kernel and scatters the contact terms into a fresh
+/// [`contact`](Self::contact) re-projects every slave integration point
+/// onto its paired master segment (the probe pairs from scratch at its
+/// state and has no node ties), evaluates the Type 6 kernel and scatters
+/// the contact terms into a fresh
 /// [`System`]; [`solid`](Self::solid) adds the solid elements and the
 /// external force; [`linear_solve`](Self::linear_solve) adds the multiplier
 /// regularisation and solves with the probe's [`SparseSolver`], whose
@@ -713,7 +1016,7 @@ impl<'a> IterationProbe<'a> {
     pub fn contact(&self) -> Result<ContactPhase, SolverError> {
         let (evals, _) = self
             .layout
-            .evaluate_all(&self.model.mesh, &self.u, &self.pairing, ApproxType::Type6)
+            .evaluate_paired(&self.model.mesh, &self.u, &self.pairing, ApproxType::Type6)
             .map_err(|f| SolverError::Kernel {
                 point: failure_point(&self.layout, &f),
                 load_factor: self.load_factor,

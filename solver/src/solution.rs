@@ -69,6 +69,17 @@ pub enum CutbackReason {
         /// The kernel's error.
         error: KernelError,
     },
+    /// Complete formulation: an integration point is stuck at a master node
+    /// (its pairing cycles between two master segments, or between a
+    /// segment and none at the chain's end) and its projection misses the
+    /// kept segment by more than [`crate::contact::XI_STUCK_BAND`] (see
+    /// [`crate::contact`], "Pairing in the complete formulation").
+    StuckAtMasterNode {
+        /// The point, with the master segment it was kept on.
+        point: ContactPointId,
+        /// Its projection coordinate there.
+        xi_m: f64,
+    },
 }
 
 impl std::fmt::Display for CutbackReason {
@@ -88,6 +99,11 @@ impl std::fmt::Display for CutbackReason {
             CutbackReason::Kernel { point, error } => {
                 write!(f, "contact kernel failed at {point}: {error}")
             }
+            CutbackReason::StuckAtMasterNode { point, xi_m } => write!(
+                f,
+                "{point} is stuck at a master node: its pairing cycles and xi_m = {xi_m:.6} \
+                 misses the segment by more than the band"
+            ),
         }
     }
 }
@@ -123,6 +139,16 @@ pub struct StepRecord {
     /// Integration points projecting into no master segment at the end of
     /// the step.
     pub unpaired: Vec<ContactPointId>,
+    /// Complete formulation: integration points held at a master node at
+    /// the converged state (`master_segment`: the segment they are paired
+    /// with; see [`crate::contact`], "Points stuck at a master node").
+    /// Empty for Types 1–6.
+    pub node_ties: Vec<ContactPointId>,
+    /// Complete formulation: stuck integration points that could not be
+    /// tied (at the end of a master chain), kept on a pairing
+    /// (`master_segment`, `None` = inactive) their projection misses by less
+    /// than [`crate::contact::XI_STUCK_BAND`]. Empty for Types 1–6.
+    pub kept_outside: Vec<ContactPointId>,
     /// Multipliers carrying a constraint row at the converged state.
     pub active_multipliers: usize,
     /// Accepted at the round-off floor (see [`crate::newton`]) rather than

@@ -851,3 +851,221 @@ fn method_names_parse() {
     assert_eq!(Method::Approx(ApproxType::Type2).to_string(), "2");
     assert_eq!(Method::Complete.to_string(), "complete");
 }
+
+/// The paper scene refined 2 x 1 (14 + 14 elements), complete formulation,
+/// 4 steps: it used to stop in step 3 (load factor 7.48 -> 7.49, 8
+/// cut-backs) because slave segment 4, Gauss point 0 reached the node
+/// between master segments 9 and 10 and the re-pairing at every iteration
+/// made Newton cycle between them. Now it converges without cut-backs; at
+/// load factor 7.5 that point is tied to the node (it projects exactly onto
+/// it from both segments, with the same gap); the final state is the same
+/// for 4 and 8 steps (path independence), where every point projects into
+/// its master segment; and every type solves the scene too.
+#[test]
+fn refined_paper_scene_converges_across_master_nodes() {
+    let scene = paper_scene().refined(2, 1);
+    let opts = |method, steps| SolveOptions {
+        method,
+        steps,
+        record_steps: true,
+        ..SolveOptions::from_scene(&scene)
+    };
+    let four = solve(&scene, &opts(Method::Complete, 4)).unwrap();
+    assert!(four.cutbacks.is_empty(), "{:?}", four.cutbacks);
+    assert_eq!(four.step_records.len(), 4);
+    assert!(four.step_records.iter().all(|r| r.kept_outside.is_empty()));
+    let third = &four.step_records[2];
+    assert_eq!(third.load_factor, 7.5);
+    assert_eq!(third.node_ties.len(), 1, "{:?}", third.node_ties);
+    let tie = third.node_ties[0];
+    assert_eq!((tie.slave_segment, tie.gauss), (4, 0));
+    let paired = tie.master_segment.unwrap();
+    assert!(paired == 9 || paired == 10, "{tie:?}");
+
+    // at the tied state the point projects onto the shared master node
+    let model = scene.build_model().unwrap();
+    let layout = ContactLayout::new(&model, None);
+    let i = layout
+        .points
+        .iter()
+        .position(|p| p.slave_segment == 4 && p.gauss == 0)
+        .unwrap();
+    let pt = layout.points[i];
+    let other = 19 - paired;
+    assert!(layout.shared_node(0, paired, other).is_some());
+    let state = &four.snapshots[3];
+    assert_eq!(state.load_factor, 7.5);
+    let project = |m: usize| {
+        let nodes = [
+            pt.slave_nodes[0],
+            pt.slave_nodes[1],
+            layout.masters[0][m][0],
+            layout.masters[0][m][1],
+        ];
+        let q: [f64; 8] = std::array::from_fn(|k| {
+            model.mesh.nodes_ref[nodes[k / 2]][k % 2] + state.displacements[nodes[k / 2]][k % 2]
+        });
+        contact_kernels::project(crate::Formulation::SlaveNormal, &q, pt.xi_s).unwrap()
+    };
+    let (p, o) = (project(paired), project(other));
+    assert!(
+        (p.xi_m.abs() - 1.0).abs() < 1e-9 && (o.xi_m.abs() - 1.0).abs() < 1e-9,
+        "{p:?} {o:?}"
+    );
+    assert!(p.xi_m * o.xi_m < 0.0);
+    assert!((p.gap - o.gap).abs() < 1e-12, "{p:?} {o:?}");
+
+    let eight = solve(&scene, &opts(Method::Complete, 8)).unwrap();
+    assert!(eight.cutbacks.is_empty());
+    assert!(
+        (four.strain_energy / eight.strain_energy - 1.0).abs() < 1e-8,
+        "{} vs {}",
+        four.strain_energy,
+        eight.strain_energy
+    );
+    let (ta, tb) = (tip(&four), tip(&eight));
+    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+    let (lo, hi) = four.xi_m_range().unwrap();
+    assert!(lo >= -1.0 && hi <= 1.0);
+    assert!(four.unpaired_points().is_empty());
+
+    for ty in ApproxType::ALL {
+        let sol = solve(&scene, &opts(Method::Approx(ty), 4)).unwrap();
+        assert!(sol.cutbacks.is_empty(), "type {ty}: {:?}", sol.cutbacks);
+        let err = sol.strain_energy / four.strain_energy - 1.0;
+        assert!(err.abs() < 3e-2, "type {ty}: error {err:e}");
+        assert!(sol.step_records.iter().all(|r| r.node_ties.is_empty()));
+    }
+}
+
+/// The node tie's contributions (`mu (g_o - g_p)`, see
+/// [`crate::assembly::assemble_ties`]): the assembled tangent of the whole
+/// system with ties equals central differences of its residual in every
+/// unknown (displacements, multipliers and the ties' `mu`), at random
+/// states of the paper scene with points tied across the nodes between
+/// adjacent master segments.
+#[test]
+fn node_tie_tangent_matches_finite_differences() {
+    use crate::assembly::assemble_ties;
+    use crate::contact::NodeTie;
+    let model = paper_model();
+    let mut rng = Lcg::new(7);
+    for formulation in crate::Formulation::ALL {
+        let layout = ContactLayout::new(&model, Some(formulation));
+        let dofs = DofMap::new(&model, layout.multipliers.len());
+        let (u, lam) = random_state(&model, &layout, &mut rng, 0.05, 50.0);
+        // Gauss point 1 of slave segment s paired with master s, tied
+        // towards master s + 1 (they share a node); another point tied the
+        // other way
+        let pick = |seg: usize, gauss: usize| {
+            layout
+                .points
+                .iter()
+                .position(|p| p.slave_segment == seg && p.gauss == gauss)
+                .unwrap()
+        };
+        let ties = vec![
+            NodeTie {
+                point: pick(2, 1),
+                paired: 2,
+                other: 3,
+                mu: rng.uniform(-5.0, 5.0),
+            },
+            NodeTie {
+                point: pick(5, 0),
+                paired: 5,
+                other: 4,
+                mu: rng.uniform(-5.0, 5.0),
+            },
+        ];
+        for t in &ties {
+            assert!(layout.shared_node(0, t.paired, t.other).is_some());
+        }
+        let pairing: Vec<Option<usize>> = layout
+            .points
+            .iter()
+            .map(|p| Some(p.slave_segment))
+            .collect();
+        let n_eq = dofs.n_eq();
+        let n = n_eq + ties.len();
+        let system = |u: &[f64], lam: &[f64], mus: &[f64]| {
+            let (evals, _) = layout
+                .evaluate_paired(&model.mesh, u, &pairing, ApproxType::Type6)
+                .unwrap();
+            let ties: Vec<NodeTie> = ties
+                .iter()
+                .zip(mus)
+                .map(|(t, &mu)| NodeTie { mu, ..*t })
+                .collect();
+            let mut counts = crate::contact::KernelCounts::default();
+            let others: Vec<PointEval> = ties
+                .iter()
+                .map(|t| {
+                    layout
+                        .evaluate_on(
+                            &model.mesh,
+                            u,
+                            t.point,
+                            t.other,
+                            ApproxType::Type6,
+                            &mut counts,
+                        )
+                        .unwrap()
+                })
+                .collect();
+            let active = layout.active_multipliers(&evals, lam, model.mesh.size());
+            let mut sys = System::new(n);
+            assemble_contact(&layout, &evals, lam, &active, &dofs, &mut sys);
+            assemble_ties(&ties, &evals, &others, &dofs, n_eq, &mut sys);
+            assemble_solid(&model, &dofs, u, &mut sys);
+            add_external(&model, &dofs, 1.0, &mut sys);
+            let mut k = vec![vec![0.0; n]; n];
+            for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+                k[r][c] += v;
+            }
+            (sys.residual, k)
+        };
+        let mus: Vec<f64> = ties.iter().map(|t| t.mu).collect();
+        let (_, k) = system(&u, &lam, &mus);
+        let scale = k.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let tie_scale = (n_eq..n)
+            .flat_map(|t| k[t].iter().copied())
+            .fold(0.0_f64, |m, v| m.max(v.abs()));
+        let h = 1e-6;
+        let (mut worst, mut worst_tie) = (0.0_f64, 0.0_f64);
+        for j in 0..n {
+            let perturbed = |s: f64| {
+                let (mut u, mut l, mut m) = (u.clone(), lam.clone(), mus.clone());
+                if j < dofs.n_free {
+                    let dof = (0..u.len()).find(|&d| dofs.eq(d) == Some(j)).unwrap();
+                    u[dof] += s;
+                } else if j < n_eq {
+                    l[j - dofs.n_free] += s;
+                } else {
+                    m[j - n_eq] += s;
+                }
+                system(&u, &l, &m).0
+            };
+            let (rp, rm) = (perturbed(h), perturbed(-h));
+            for i in 0..n {
+                let fd = (rp[i] - rm[i]) / (2.0 * h);
+                let e = (fd - k[i][j]).abs();
+                worst = worst.max(e / scale);
+                if i >= n_eq || j >= n_eq {
+                    worst_tie = worst_tie.max(e / tie_scale);
+                }
+            }
+        }
+        assert!(
+            worst < 1e-7,
+            "{formulation}: relative tangent error {worst:e}"
+        );
+        // the tie rows and columns on their own scale (the segments are not
+        // collinear, so they are not empty)
+        assert!(tie_scale > 1e-2, "{formulation}: tie rows {tie_scale:e}");
+        assert!(
+            worst_tie < 1e-7,
+            "{formulation}: relative tie tangent error {worst_tie:e}"
+        );
+    }
+}
