@@ -85,6 +85,14 @@ pub fn run(args: &RunArgs) -> CommandResult {
         }
         println!("                ({} iterations spent in failed attempts)", sol.failed_iterations);
     }
+    for r in &sol.step_records {
+        for p in &r.node_ties {
+            println!("node tie        load factor {}: {p} is held at a master node", r.load_factor);
+        }
+        for p in &r.kept_outside {
+            println!("kept outside    load factor {}: {p} misses its master segment slightly", r.load_factor);
+        }
+    }
     println!("max |gap|       {:.3e}", sol.max_abs_gap());
     if let Some((lo, hi)) = sol.xi_m_range() {
         println!("xi_m range      [{lo:.6}, {hi:.6}]");
