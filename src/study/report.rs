@@ -265,12 +265,12 @@ fn ratio(a: f64, b: f64) -> String {
     if a.is_finite() && b.is_finite() && b > 0.0 { format!("{:.2}", a / b) } else { "–".into() }
 }
 
-/// The cost table of a study: per type and step count, time ratios to the
-/// complete formulation at the same step count.
-fn cost_table(out: &mut String, s: &FormulationStudy) {
+/// The cost table of a study: per type and step count (`steps`, or all),
+/// time ratios to the complete formulation at the same step count.
+fn cost_table(out: &mut String, s: &FormulationStudy, steps: Option<&[usize]>) {
     let _ = writeln!(out, "| type | steps | error % | kernel ops | Newton its | contact time / complete | total time / complete |");
     let _ = writeln!(out, "|---|---:|---:|---:|---:|---:|---:|");
-    for n in s.steps() {
+    for n in steps.map_or_else(|| s.steps(), <[usize]>::to_vec) {
         let Some(c) = s.run(Method::Complete, n) else { continue };
         let _ = writeln!(
             out,
@@ -360,11 +360,15 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
              measured in the same run.\n",
             h.study.formulation, h.solid_elements, h.contact_points
         );
-        cost_table(&mut out, &h.study);
+        cost_table(&mut out, &h.study, None);
         out.push('\n');
     }
-    let _ = writeln!(out, "#### Cost on the paper scene ({})\n", results.formulations[0].formulation);
-    cost_table(&mut out, &results.formulations[0]);
+    let _ = writeln!(
+        out,
+        "#### Cost on the paper scene ({}, {lo} and {hi} steps; every step count in the CSV)\n",
+        results.formulations[0].formulation
+    );
+    cost_table(&mut out, &results.formulations[0], Some(&[lo, hi]));
     out.push('\n');
 
     // Plots.
@@ -491,7 +495,7 @@ pub fn terminal_summary(results: &StudyResults) -> String {
     if let Some(h) = &results.heavy {
         let _ = writeln!(out, "\ncontact-heavy variant ({} solid elements, {} contact points):", h.solid_elements, h.contact_points);
         let mut t = String::new();
-        cost_table(&mut t, &h.study);
+        cost_table(&mut t, &h.study, None);
         out.push_str(&t);
     }
     out
