@@ -454,6 +454,13 @@ impl Dag {
         v[id.index()]
     }
 
+    /// [`Dag::check_invariants`] in debug builds only.
+    pub fn check_invariants_debug(&self) {
+        if cfg!(debug_assertions) {
+            self.check_invariants();
+        }
+    }
+
     /// Checks the structural invariants: children precede parents, the memo
     /// maps every node to its own id, commutative operands are canonical and
     /// constants are finite.

@@ -220,12 +220,3 @@ impl Program {
         self.outputs.iter().map(|o| o.map_or(0.0, |o| val(&regs, o))).collect()
     }
 }
-
-impl Dag {
-    /// [`Dag::check_invariants`] in debug builds only.
-    pub fn check_invariants_debug(&self) {
-        if cfg!(debug_assertions) {
-            self.check_invariants();
-        }
-    }
-}
