@@ -2,11 +2,15 @@
 //! 16 steps, one repeat, the scene's formulation only, no contact-heavy
 //! variant), and its outputs.
 
-use gapsim::study::{self, plots, report, StudyOptions};
+use gapsim::study::{self, StudyOptions, plots, report};
 use solver::{ApproxType, Method, Scene};
 
 fn results() -> study::StudyResults {
-    let scene = Scene::from_toml_str(solver::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml").unwrap();
+    let scene = Scene::from_toml_str(
+        solver::scenes::STACKED_CANTILEVER,
+        "stacked-cantilever.toml",
+    )
+    .unwrap();
     let options = StudyOptions {
         repeats: 1,
         steps: Some(vec![4, 8, 16]),
@@ -25,35 +29,74 @@ fn study_invariants_hold_and_outputs_are_written() {
 
     // The complete formulation is path independent: the same energy for
     // every step count, to the Newton tolerance (1e-10 residual -> ~1e-9).
-    let complete: Vec<f64> = s.steps().iter().map(|n| s.run(Method::Complete, *n).unwrap().strain_energy.unwrap()).collect();
+    let complete: Vec<f64> = s
+        .steps()
+        .iter()
+        .map(|n| s.run(Method::Complete, *n).unwrap().strain_energy.unwrap())
+        .collect();
     for u in &complete {
-        assert!((u - complete[0]).abs() <= 1e-8 * complete[0], "{complete:?}");
+        assert!(
+            (u - complete[0]).abs() <= 1e-8 * complete[0],
+            "{complete:?}"
+        );
     }
     // The sanity anchor of the paper scene.
     assert!((complete[0] - 0.56498).abs() < 1e-4, "{}", complete[0]);
 
     // Type 6's error falls as the number of steps grows, at about second
     // order.
-    let e6: Vec<f64> = s.steps().iter().map(|n| s.run(Method::Approx(ApproxType::Type6), *n).unwrap().error_percent.unwrap().abs()).collect();
+    let e6: Vec<f64> = s
+        .steps()
+        .iter()
+        .map(|n| {
+            s.run(Method::Approx(ApproxType::Type6), *n)
+                .unwrap()
+                .error_percent
+                .unwrap()
+                .abs()
+        })
+        .collect();
     assert!(e6.windows(2).all(|w| w[1] < w[0]), "{e6:?}");
     match report::convergence(s, ApproxType::Type6).verdict {
-        report::Verdict::Converges { order, .. } => assert!((1.5..2.5).contains(&order), "order {order}"),
+        report::Verdict::Converges { order, .. } => {
+            assert!((1.5..2.5).contains(&order), "order {order}")
+        }
         v => panic!("Type 6: {v:?}"),
     }
     // Every type's error is defined and below 5 % on this scene.
     for run in s.runs.iter().filter(|r| r.method != Method::Complete) {
-        let e = run.error_percent.unwrap_or_else(|| panic!("{:?} failed: {:?}", run.method, run.failure));
-        assert!(e.abs() < 5.0, "{:?} at {} steps: {e} %", run.method, run.steps);
+        let e = run
+            .error_percent
+            .unwrap_or_else(|| panic!("{:?} failed: {:?}", run.method, run.failure));
+        assert!(
+            e.abs() < 5.0,
+            "{:?} at {} steps: {e} %",
+            run.method,
+            run.steps
+        );
     }
 
     // The CSV starts with the contract's columns, one row per run.
     let csv = report::csv(s);
     let mut lines = csv.lines();
-    assert!(lines.next().unwrap().starts_with("type,steps,strain_energy,error_percent,newton_iterations,wall_seconds"));
+    assert!(
+        lines
+            .next()
+            .unwrap()
+            .starts_with("type,steps,strain_energy,error_percent,newton_iterations,wall_seconds")
+    );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 21);
-    assert!(rows.iter().all(|r| r[0] == "complete" || r[0].parse::<usize>().is_ok_and(|t| (1..=6).contains(&t))));
-    assert!(rows.iter().filter(|r| r[0] == "complete").all(|r| r[3].is_empty()));
+    assert!(
+        rows.iter().all(
+            |r| r[0] == "complete" || r[0].parse::<usize>().is_ok_and(|t| (1..=6).contains(&t))
+        )
+    );
+    assert!(
+        rows.iter()
+            .filter(|r| r[0] == "complete")
+            .all(|r| r[3].is_empty())
+    );
 
     // Plots and the Markdown section are produced.
     let dir = std::env::temp_dir().join(format!("gapsim-study-test-{}", std::process::id()));

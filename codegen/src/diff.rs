@@ -65,7 +65,11 @@ pub fn sum_opt(dag: &mut Dag, terms: impl IntoIterator<Item = Option<Id>>) -> Op
 
 /// Maps a node that folded to the constant zero back to a structural zero.
 pub fn nonzero(dag: &Dag, id: Id) -> Option<Id> {
-    if dag.as_const(id) == Some(0.0) { None } else { Some(id) }
+    if dag.as_const(id) == Some(0.0) {
+        None
+    } else {
+        Some(id)
+    }
 }
 
 impl Differentiator {

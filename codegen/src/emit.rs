@@ -9,7 +9,7 @@ use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
 use crate::lower::{Instr, OpCount, Operand, Program, Source};
-use crate::truncation::{packed, N};
+use crate::truncation::{N, packed};
 
 fn idx(i: usize) -> proc_macro2::Literal {
     proc_macro2::Literal::usize_unsuffixed(i)
@@ -28,8 +28,14 @@ fn reg(r: u32) -> Ident {
 pub fn float_literal(c: f64) -> TokenStream {
     assert!(c.is_finite(), "non-finite constant {c}");
     let text = format!("{:?}", c.abs());
-    let lit: TokenStream = text.parse().expect("a finite float prints as a valid literal");
-    if c.is_sign_negative() && c != 0.0 { quote!((-#lit)) } else { lit }
+    let lit: TokenStream = text
+        .parse()
+        .expect("a finite float prints as a valid literal");
+    if c.is_sign_negative() && c != 0.0 {
+        quote!((-#lit))
+    } else {
+        lit
+    }
 }
 
 fn operand(o: Operand) -> TokenStream {
@@ -130,7 +136,13 @@ pub fn ops_doc(ops: &OpCount) -> String {
 
 /// An `OpCount { .. }` literal of the run-time crate.
 pub fn ops_literal(ops: &OpCount) -> TokenStream {
-    let OpCount { add, mul, div, sqrt, neg } = *ops;
+    let OpCount {
+        add,
+        mul,
+        div,
+        sqrt,
+        neg,
+    } = *ops;
     quote!(OpCount { add: #add, mul: #mul, div: #div, sqrt: #sqrt, neg: #neg })
 }
 
@@ -154,7 +166,9 @@ pub fn camel(name: &str) -> Ident {
         .split(['-', '_'])
         .map(|w| {
             let mut c = w.chars();
-            c.next().map(|f| f.to_ascii_uppercase().to_string() + c.as_str()).unwrap_or_default()
+            c.next()
+                .map(|f| f.to_ascii_uppercase().to_string() + c.as_str())
+                .unwrap_or_default()
         })
         .collect();
     Ident::new(&s, Span::call_site())

@@ -116,7 +116,10 @@ impl Dag {
             return id;
         }
         let id = Id(u32::try_from(self.nodes.len()).expect("expression DAG exceeds u32 ids"));
-        debug_assert!(node.children().all(|c| c < id), "children must precede parents");
+        debug_assert!(
+            node.children().all(|c| c < id),
+            "children must precede parents"
+        );
         self.nodes.push(node);
         self.memo.insert(node, id);
         id
@@ -128,7 +131,10 @@ impl Dag {
     /// If `value` is not finite (formulations only contain finite literals,
     /// and folding that overflows is a generator bug).
     pub fn constant(&mut self, value: f64) -> Id {
-        assert!(value.is_finite(), "non-finite constant {value} in an expression");
+        assert!(
+            value.is_finite(),
+            "non-finite constant {value} in an expression"
+        );
         // One zero: -0.0 and 0.0 are the same constant.
         let value = if value == 0.0 { 0.0 } else { value };
         self.intern(Node::Const(value.to_bits()))
@@ -321,7 +327,9 @@ impl Dag {
     /// otherwise. The nodes built here bypass the canonical sign rules; they
     /// are meant for outputs only, just before lowering.
     pub fn absorb_negation(&mut self, id: Id) -> Id {
-        let Node::Neg(z) = self.node(id) else { return id };
+        let Node::Neg(z) = self.node(id) else {
+            return id;
+        };
         match self.node(z) {
             Node::Sub(x, y) => self.intern(Node::Sub(y, x)),
             Node::Mul(c, x) if self.as_const(c).is_some() => {
@@ -337,7 +345,9 @@ impl Dag {
     /// `c x ± c y` is rewritten `c (x ± y)`, one multiplication fewer.
     fn common_factor(&self, a: Id, b: Id) -> Option<(Id, Id, Id)> {
         match (self.node(a), self.node(b)) {
-            (Node::Mul(c1, x), Node::Mul(c2, y)) if c1 == c2 && self.as_const(c1).is_some() => Some((c1, x, y)),
+            (Node::Mul(c1, x), Node::Mul(c2, y)) if c1 == c2 && self.as_const(c1).is_some() => {
+                Some((c1, x, y))
+            }
             _ => None,
         }
     }
@@ -351,7 +361,11 @@ impl Dag {
 
     /// Rebuilds the expressions `roots` with some symbols replaced by
     /// constants, simplifying on the way. Returns the new ids (in a new DAG).
-    pub fn substitute(&self, roots: &[Option<Id>], values: &HashMap<Sym, f64>) -> (Dag, Vec<Option<Id>>) {
+    pub fn substitute(
+        &self,
+        roots: &[Option<Id>],
+        values: &HashMap<Sym, f64>,
+    ) -> (Dag, Vec<Option<Id>>) {
         let mut out = Dag::new();
         let mut map: Vec<Option<Id>> = vec![None; self.len()];
         let live = self.reachable(roots.iter().flatten().copied());
@@ -376,7 +390,10 @@ impl Dag {
             };
             map[i] = Some(new);
         }
-        let roots = roots.iter().map(|r| r.map(|id| map[id.index()].expect("root is live"))).collect();
+        let roots = roots
+            .iter()
+            .map(|r| r.map(|id| map[id.index()].expect("root is live")))
+            .collect();
         (out, roots)
     }
 
@@ -441,7 +458,9 @@ impl Dag {
             }
             v[i] = match self.nodes[i] {
                 Node::Const(bits) => f64::from_bits(bits),
-                Node::Input(s) => *values.get(&s).unwrap_or_else(|| panic!("no value for symbol {s:?}")),
+                Node::Input(s) => *values
+                    .get(&s)
+                    .unwrap_or_else(|| panic!("no value for symbol {s:?}")),
                 Node::Add(a, b) => v[a.index()] + v[b.index()],
                 Node::Sub(a, b) => v[a.index()] - v[b.index()],
                 Node::Mul(a, b) => v[a.index()] * v[b.index()],
@@ -468,17 +487,34 @@ impl Dag {
     /// # Panics
     /// On the first violated invariant, with a description.
     pub fn check_invariants(&self) {
-        assert_eq!(self.memo.len(), self.nodes.len(), "memo and arena disagree in size");
+        assert_eq!(
+            self.memo.len(),
+            self.nodes.len(),
+            "memo and arena disagree in size"
+        );
         for (i, node) in self.nodes.iter().enumerate() {
             let id = Id(i as u32);
             for c in node.children() {
-                assert!(c < id, "node {i} ({node:?}) has child {c:?} not preceding it");
+                assert!(
+                    c < id,
+                    "node {i} ({node:?}) has child {c:?} not preceding it"
+                );
             }
-            assert_eq!(self.memo.get(node), Some(&id), "memo does not map node {i} to itself");
+            assert_eq!(
+                self.memo.get(node),
+                Some(&id),
+                "memo does not map node {i} to itself"
+            );
             match *node {
-                Node::Const(bits) => assert!(f64::from_bits(bits).is_finite(), "non-finite constant"),
+                Node::Const(bits) => {
+                    assert!(f64::from_bits(bits).is_finite(), "non-finite constant")
+                }
                 Node::Add(a, b) | Node::Mul(a, b) => {
-                    assert_eq!(self.order(a, b), (a, b), "node {i}: commutative operands not canonical")
+                    assert_eq!(
+                        self.order(a, b),
+                        (a, b),
+                        "node {i}: commutative operands not canonical"
+                    )
                 }
                 _ => {}
             }

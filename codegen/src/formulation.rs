@@ -42,8 +42,8 @@ use proc_macro2::{Span, TokenStream};
 use syn::parse::Parser;
 use syn::spanned::Spanned;
 
-use crate::expr::{Dag, Id, Sym};
 use crate::Error;
+use crate::expr::{Dag, Id, Sym};
 
 /// A value of the formulation language.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -163,7 +163,12 @@ pub const IMPLICIT_SYM: Sym = Sym(9);
 
 fn err(span: Span, origin: &str, msg: impl Into<String>) -> Error {
     let start = span.start();
-    Error::Formulation { file: origin.to_owned(), line: start.line, column: start.column + 1, message: msg.into() }
+    Error::Formulation {
+        file: origin.to_owned(),
+        line: start.line,
+        column: start.column + 1,
+        message: msg.into(),
+    }
 }
 
 impl Formulation {
@@ -178,11 +183,26 @@ impl Formulation {
             .map(|l| l.strip_prefix(' ').unwrap_or(l))
             .collect::<Vec<_>>()
             .join("\n");
-        let body: String =
-            text.lines().map(|l| if l.trim_start().starts_with("//!") { "" } else { l }).collect::<Vec<_>>().join("\n");
-        let stmts = syn::Block::parse_within.parse_str(&body).map_err(|e| err(e.span(), &origin, e.to_string()))?;
+        let body: String = text
+            .lines()
+            .map(|l| {
+                if l.trim_start().starts_with("//!") {
+                    ""
+                } else {
+                    l
+                }
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        let stmts = syn::Block::parse_within
+            .parse_str(&body)
+            .map_err(|e| err(e.span(), &origin, e.to_string()))?;
 
-        let mut b = Builder { origin: origin.clone(), dag: Dag::new(), env: HashMap::new() };
+        let mut b = Builder {
+            origin: origin.clone(),
+            dag: Dag::new(),
+            env: HashMap::new(),
+        };
         let mut inputs_seen = false;
         let mut implicit: Option<Implicit> = None;
         let mut entities: Vec<Entity> = Vec::new();
@@ -202,7 +222,8 @@ impl Formulation {
                     if gap.is_some() {
                         return Err(err(m.span(), &origin, "`gap!` given twice"));
                     }
-                    let e: syn::Expr = syn::parse2(m.mac.tokens.clone()).map_err(|e| err(e.span(), &origin, e.to_string()))?;
+                    let e: syn::Expr = syn::parse2(m.mac.tokens.clone())
+                        .map_err(|e| err(e.span(), &origin, e.to_string()))?;
                     gap = Some(e);
                 }
                 syn::Stmt::Local(local) => {
@@ -214,26 +235,45 @@ impl Formulation {
                     };
                     let name = pat.ident.to_string();
                     let Some(init) = &local.init else {
-                        return Err(err(local.span(), &origin, format!("`let {name}` needs a value")));
+                        return Err(err(
+                            local.span(),
+                            &origin,
+                            format!("`let {name}` needs a value"),
+                        ));
                     };
                     if b.env.contains_key(&name) {
-                        return Err(err(pat.ident.span(), &origin, format!("`{name}` is already defined")));
+                        return Err(err(
+                            pat.ident.span(),
+                            &origin,
+                            format!("`{name}` is already defined"),
+                        ));
                     }
                     let value = match &*init.expr {
                         syn::Expr::Macro(m) if m.mac.path.is_ident("implicit") => {
                             if implicit.is_some() {
-                                return Err(err(m.span(), &origin, "only one `implicit!` variable is supported"));
+                                return Err(err(
+                                    m.span(),
+                                    &origin,
+                                    "only one `implicit!` variable is supported",
+                                ));
                             }
                             let residual = b.implicit(&m.mac.tokens, m.span())?;
-                            implicit = Some(Implicit { name: name.clone(), sym: IMPLICIT_SYM, residual });
+                            implicit = Some(Implicit {
+                                name: name.clone(),
+                                sym: IMPLICIT_SYM,
+                                residual,
+                            });
                             let x = b.dag.input(IMPLICIT_SYM);
                             Value::Scalar(x)
                         }
                         syn::Expr::Macro(m) if m.mac.path.is_ident("entity") => {
-                            let e: syn::Expr =
-                                syn::parse2(m.mac.tokens.clone()).map_err(|e| err(e.span(), &origin, e.to_string()))?;
+                            let e: syn::Expr = syn::parse2(m.mac.tokens.clone())
+                                .map_err(|e| err(e.span(), &origin, e.to_string()))?;
                             let v = b.eval(&e)?;
-                            entities.push(Entity { name: name.clone(), value: v });
+                            entities.push(Entity {
+                                name: name.clone(),
+                                value: v,
+                            });
                             v
                         }
                         e => b.eval(e)?,
@@ -245,24 +285,53 @@ impl Formulation {
                         other.span(),
                         &origin,
                         "expected `inputs!(..)`, `let name = ...;` or `gap!(..)`",
-                    ))
+                    ));
                 }
             }
         }
         let whole = Span::call_site();
         if !inputs_seen {
-            return Err(err(whole, &origin, "missing `inputs!(p1, p2, p3, p4; xi_s)`"));
+            return Err(err(
+                whole,
+                &origin,
+                "missing `inputs!(p1, p2, p3, p4; xi_s)`",
+            ));
         }
-        let implicit = implicit.ok_or_else(|| err(whole, &origin, "missing the projection `let xi_m = implicit!(xi => ...)`"))?;
+        let implicit = implicit.ok_or_else(|| {
+            err(
+                whole,
+                &origin,
+                "missing the projection `let xi_m = implicit!(xi => ...)`",
+            )
+        })?;
         let gap = gap.ok_or_else(|| err(whole, &origin, "missing `gap!(...)`"))?;
-        Ok(Formulation { name: name.to_owned(), doc, dag: b.dag, coords, param: PARAM_SYM, implicit, entities, gap })
+        Ok(Formulation {
+            name: name.to_owned(),
+            doc,
+            dag: b.dag,
+            coords,
+            param: PARAM_SYM,
+            implicit,
+            entities,
+            gap,
+        })
     }
 
     /// Interprets the gap expression in `domain`, with each entity name bound
     /// to `entity_values[name]` (the implicit variable included).
-    pub fn eval_gap<D: Domain>(&self, domain: &mut D, entity_values: &HashMap<String, Value<D::S>>) -> Result<D::S, Error> {
+    pub fn eval_gap<D: Domain>(
+        &self,
+        domain: &mut D,
+        entity_values: &HashMap<String, Value<D::S>>,
+    ) -> Result<D::S, Error> {
         let origin = format!("{}.rs", self.name);
-        match eval_expr(domain, entity_values, &self.gap, &origin, "the gap may only use entities")? {
+        match eval_expr(
+            domain,
+            entity_values,
+            &self.gap,
+            &origin,
+            "the gap may only use entities",
+        )? {
             Value::Scalar(s) => Ok(s),
             Value::Vec2(_) => Err(err(self.gap.span(), &origin, "the gap must be a scalar")),
         }
@@ -278,11 +347,19 @@ struct Builder {
 impl Builder {
     fn declare_inputs(&mut self, tokens: &TokenStream, span: Span) -> Result<(), Error> {
         let text = tokens.to_string();
-        let (points, params) = text
-            .split_once(';')
-            .ok_or_else(|| err(span, &self.origin, "expected `inputs!(p1, p2, p3, p4; xi_s)`"))?;
+        let (points, params) = text.split_once(';').ok_or_else(|| {
+            err(
+                span,
+                &self.origin,
+                "expected `inputs!(p1, p2, p3, p4; xi_s)`",
+            )
+        })?;
         let points: Vec<&str> = points.split(',').map(str::trim).collect();
-        let params: Vec<&str> = params.split(',').map(str::trim).filter(|s| !s.is_empty()).collect();
+        let params: Vec<&str> = params
+            .split(',')
+            .map(str::trim)
+            .filter(|s| !s.is_empty())
+            .collect();
         if points.len() != 4 || params.len() != 1 {
             return Err(err(
                 span,
@@ -314,7 +391,8 @@ impl Builder {
     }
 
     fn implicit(&mut self, tokens: &TokenStream, span: Span) -> Result<Id, Error> {
-        let closure = syn::parse2::<ImplicitDef>(tokens.clone()).map_err(|e| err(e.span(), &self.origin, e.to_string()))?;
+        let closure = syn::parse2::<ImplicitDef>(tokens.clone())
+            .map_err(|e| err(e.span(), &self.origin, e.to_string()))?;
         let var = closure.var.to_string();
         let x = self.dag.input(IMPLICIT_SYM);
         let previous = self.env.insert(var.clone(), Value::Scalar(x));
@@ -325,7 +403,11 @@ impl Builder {
         };
         match r? {
             Value::Scalar(r) => Ok(r),
-            Value::Vec2(_) => Err(err(span, &self.origin, "the implicit residual must be a scalar")),
+            Value::Vec2(_) => Err(err(
+                span,
+                &self.origin,
+                "the implicit residual must be a scalar",
+            )),
         }
     }
 
@@ -364,8 +446,18 @@ fn eval_expr<D: Domain>(
         syn::Expr::Group(g) => ev(d, &g.expr),
         syn::Expr::Lit(l) => Ok(Scalar(d.constant(literal(&l.lit, origin)?))),
         syn::Expr::Path(p) => {
-            let name = p.path.get_ident().map(|i| i.to_string()).unwrap_or_default();
-            env.get(&name).copied().ok_or_else(|| err(p.span(), origin, format!("{unknown}: `{}`", quote::quote!(#p))))
+            let name = p
+                .path
+                .get_ident()
+                .map(|i| i.to_string())
+                .unwrap_or_default();
+            env.get(&name).copied().ok_or_else(|| {
+                err(
+                    p.span(),
+                    origin,
+                    format!("{unknown}: `{}`", quote::quote!(#p)),
+                )
+            })
         }
         syn::Expr::Unary(u) => match u.op {
             syn::UnOp::Neg(_) => Ok(match ev(d, &u.expr)? {
@@ -382,7 +474,11 @@ fn eval_expr<D: Domain>(
             match (v, m.to_string().as_str()) {
                 (Vec2([x, _]), "x") => Ok(Scalar(x)),
                 (Vec2([_, y]), "y") => Ok(Scalar(y)),
-                (Vec2(_), other) => Err(err(m.span(), origin, format!("no component `{other}` (use `.x` or `.y`)"))),
+                (Vec2(_), other) => Err(err(
+                    m.span(),
+                    origin,
+                    format!("no component `{other}` (use `.x` or `.y`)"),
+                )),
                 (Scalar(_), _) => Err(err(f.span(), origin, "a scalar has no components")),
             }
         }
@@ -391,17 +487,28 @@ fn eval_expr<D: Domain>(
             let bad = |what: &str| err(b.span(), origin, format!("cannot {what}"));
             match (&b.op, l, r) {
                 (syn::BinOp::Add(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.add(a, c))),
-                (syn::BinOp::Add(_), Vec2([a, b2]), Vec2([c, e2])) => Ok(Vec2([d.add(a, c), d.add(b2, e2)])),
+                (syn::BinOp::Add(_), Vec2([a, b2]), Vec2([c, e2])) => {
+                    Ok(Vec2([d.add(a, c), d.add(b2, e2)]))
+                }
                 (syn::BinOp::Sub(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.sub(a, c))),
-                (syn::BinOp::Sub(_), Vec2([a, b2]), Vec2([c, e2])) => Ok(Vec2([d.sub(a, c), d.sub(b2, e2)])),
-                (syn::BinOp::Add(_) | syn::BinOp::Sub(_), _, _) => Err(bad("add or subtract a scalar and a vector")),
+                (syn::BinOp::Sub(_), Vec2([a, b2]), Vec2([c, e2])) => {
+                    Ok(Vec2([d.sub(a, c), d.sub(b2, e2)]))
+                }
+                (syn::BinOp::Add(_) | syn::BinOp::Sub(_), _, _) => {
+                    Err(bad("add or subtract a scalar and a vector"))
+                }
                 (syn::BinOp::Mul(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.mul(a, c))),
-                (syn::BinOp::Mul(_), Scalar(s), Vec2([a, c])) | (syn::BinOp::Mul(_), Vec2([a, c]), Scalar(s)) => {
+                (syn::BinOp::Mul(_), Scalar(s), Vec2([a, c]))
+                | (syn::BinOp::Mul(_), Vec2([a, c]), Scalar(s)) => {
                     Ok(Vec2([d.mul(s, a), d.mul(s, c)]))
                 }
-                (syn::BinOp::Mul(_), Vec2(_), Vec2(_)) => Err(bad("multiply two vectors (use `dot`)")),
+                (syn::BinOp::Mul(_), Vec2(_), Vec2(_)) => {
+                    Err(bad("multiply two vectors (use `dot`)"))
+                }
                 (syn::BinOp::Div(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.div(a, c))),
-                (syn::BinOp::Div(_), Vec2([a, c]), Scalar(s)) => Ok(Vec2([d.div(a, s), d.div(c, s)])),
+                (syn::BinOp::Div(_), Vec2([a, c]), Scalar(s)) => {
+                    Ok(Vec2([d.div(a, s), d.div(c, s)]))
+                }
                 (syn::BinOp::Div(_), _, Vec2(_)) => Err(bad("divide by a vector")),
                 _ => Err(err(b.span(), origin, "only `+ - * /` are supported")),
             }
@@ -410,12 +517,20 @@ fn eval_expr<D: Domain>(
             let syn::Expr::Path(fp) = &*c.func else {
                 return Err(err(c.func.span(), origin, "expected a function name"));
             };
-            let fname = fp.path.get_ident().map(|i| i.to_string()).unwrap_or_default();
+            let fname = fp
+                .path
+                .get_ident()
+                .map(|i| i.to_string())
+                .unwrap_or_default();
             let arity = |n: usize| -> Result<(), Error> {
                 if c.args.len() == n {
                     Ok(())
                 } else {
-                    Err(err(c.span(), origin, format!("`{fname}` takes {n} argument(s), got {}", c.args.len())))
+                    Err(err(
+                        c.span(),
+                        origin,
+                        format!("`{fname}` takes {n} argument(s), got {}", c.args.len()),
+                    ))
                 }
             };
             let args: Vec<&syn::Expr> = c.args.iter().collect();
@@ -424,7 +539,9 @@ fn eval_expr<D: Domain>(
                 "lerp" => {
                     arity(3)?;
                     let (a, b2, xi) = (ev(d, args[0])?, ev(d, args[1])?, ev(d, args[2])?);
-                    let Scalar(xi) = xi else { return Err(type_err("a scalar third argument")) };
+                    let Scalar(xi) = xi else {
+                        return Err(type_err("a scalar third argument"));
+                    };
                     let half = d.constant(0.5);
                     let one = d.constant(1.0);
                     let m = d.sub(one, xi);
@@ -438,7 +555,9 @@ fn eval_expr<D: Domain>(
                     };
                     match (a, b2) {
                         (Scalar(a), Scalar(b)) => Ok(Scalar(comb(d, a, b))),
-                        (Vec2([ax, ay]), Vec2([bx, by])) => Ok(Vec2([comb(d, ax, bx), comb(d, ay, by)])),
+                        (Vec2([ax, ay]), Vec2([bx, by])) => {
+                            Ok(Vec2([comb(d, ax, bx), comb(d, ay, by)]))
+                        }
                         _ => Err(type_err("two values of the same kind")),
                     }
                 }
@@ -481,11 +600,23 @@ fn eval_expr<D: Domain>(
                 }
                 "powi" => {
                     arity(2)?;
-                    let Scalar(x) = ev(d, args[0])? else { return Err(type_err("a scalar base")) };
+                    let Scalar(x) = ev(d, args[0])? else {
+                        return Err(type_err("a scalar base"));
+                    };
                     let n = match args[1] {
-                        syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) => i.base10_parse::<i32>().ok(),
-                        syn::Expr::Unary(syn::ExprUnary { op: syn::UnOp::Neg(_), expr, .. }) => match &**expr {
-                            syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Int(i), .. }) => i.base10_parse::<i32>().ok().map(|n| -n),
+                        syn::Expr::Lit(syn::ExprLit {
+                            lit: syn::Lit::Int(i),
+                            ..
+                        }) => i.base10_parse::<i32>().ok(),
+                        syn::Expr::Unary(syn::ExprUnary {
+                            op: syn::UnOp::Neg(_),
+                            expr,
+                            ..
+                        }) => match &**expr {
+                            syn::Expr::Lit(syn::ExprLit {
+                                lit: syn::Lit::Int(i),
+                                ..
+                            }) => i.base10_parse::<i32>().ok().map(|n| -n),
                             _ => None,
                         },
                         _ => None,
@@ -503,7 +634,9 @@ fn eval_expr<D: Domain>(
                 other => Err(err(
                     fp.span(),
                     origin,
-                    format!("unknown function `{other}` (known: lerp, dot, perp, norm, sqrt, powi, vec2)"),
+                    format!(
+                        "unknown function `{other}` (known: lerp, dot, perp, norm, sqrt, powi, vec2)"
+                    ),
                 )),
             }
         }
@@ -517,7 +650,8 @@ fn literal(lit: &syn::Lit, origin: &str) -> Result<f64, Error> {
         syn::Lit::Int(i) => i.base10_parse::<f64>().ok(),
         _ => None,
     };
-    v.filter(|v| v.is_finite()).ok_or_else(|| err(lit.span(), origin, "expected a finite number"))
+    v.filter(|v| v.is_finite())
+        .ok_or_else(|| err(lit.span(), origin, "expected a finite number"))
 }
 
 #[cfg(test)]
@@ -538,15 +672,26 @@ mod tests {
     fn errors_name_line_and_problem() {
         let bad = SN.replace("norm(t_s)", "nrm(t_s)");
         let e = Formulation::parse("sn", &bad).unwrap_err().to_string();
-        assert!(e.contains("sn.rs:7:") && e.contains("unknown function `nrm`"), "{e}");
+        assert!(
+            e.contains("sn.rs:7:") && e.contains("unknown function `nrm`"),
+            "{e}"
+        );
         let bad = SN.replace("- x_s, t_s)", "- x_s, t_z)");
         let e = Formulation::parse("sn", &bad).unwrap_err().to_string();
         assert!(e.contains("unknown name") && e.contains("t_z"), "{e}");
         let bad = SN.replace("dot(n, x_ms)", "n");
         let f = Formulation::parse("sn", &bad).unwrap();
         let mut dag = f.dag.clone();
-        let env: HashMap<String, Value<Id>> =
-            f.entities.iter().map(|e| (e.name.clone(), e.value)).collect();
-        assert!(f.eval_gap(&mut dag, &env).unwrap_err().to_string().contains("scalar"));
+        let env: HashMap<String, Value<Id>> = f
+            .entities
+            .iter()
+            .map(|e| (e.name.clone(), e.value))
+            .collect();
+        assert!(
+            f.eval_gap(&mut dag, &env)
+                .unwrap_err()
+                .to_string()
+                .contains("scalar")
+        );
     }
 }

@@ -29,7 +29,7 @@
 use crate::diff::{add_opt, mul_opt, neg_opt, nonzero};
 use crate::expr::{Dag, Id};
 use crate::formulation::Domain;
-use crate::truncation::{packed, N, NH};
+use crate::truncation::{N, NH, packed};
 
 /// A vector of structural-zero-aware entries.
 pub type Vector = [Option<Id>; N];
@@ -58,7 +58,15 @@ struct JetData {
 
 impl JetData {
     fn constant(v: Id) -> JetData {
-        JetData { v, g: [None; N], gl: Vec::new(), h: [None; NH], hm: Vec::new(), hs: Vec::new(), hp: Vec::new() }
+        JetData {
+            v,
+            g: [None; N],
+            gl: Vec::new(),
+            h: [None; NH],
+            hm: Vec::new(),
+            hs: Vec::new(),
+            hp: Vec::new(),
+        }
     }
 }
 
@@ -89,7 +97,11 @@ pub struct JetArena<'a> {
 }
 
 /// Merges `(key, value)` lists sorted by key, combining equal keys.
-fn merge<K: Ord + Copy, V: Clone>(a: &[(K, V)], b: &[(K, V)], mut both: impl FnMut(&V, &V) -> Option<V>) -> Vec<(K, V)> {
+fn merge<K: Ord + Copy, V: Clone>(
+    a: &[(K, V)],
+    b: &[(K, V)],
+    mut both: impl FnMut(&V, &V) -> Option<V>,
+) -> Vec<(K, V)> {
     let mut out = Vec::with_capacity(a.len() + b.len());
     let (mut i, mut j) = (0, 0);
     while i < a.len() || j < b.len() {
@@ -117,7 +129,12 @@ fn is_zero(v: &Vector) -> bool {
 impl<'a> JetArena<'a> {
     /// An arena over `dag`.
     pub fn new(dag: &'a mut Dag) -> Self {
-        JetArena { dag, jets: Vec::new(), vectors: Vec::new(), matrices: Vec::new() }
+        JetArena {
+            dag,
+            jets: Vec::new(),
+            vectors: Vec::new(),
+            matrices: Vec::new(),
+        }
     }
 
     /// The DAG.
@@ -167,7 +184,11 @@ impl<'a> JetArena<'a> {
             gl: b.gl.iter().map(|(k, c)| (*k, dag.neg(*c))).collect(),
             h: b.h.map(|x| neg_opt(dag, x)),
             hm: b.hm.iter().map(|(k, c)| (*k, dag.neg(*c))).collect(),
-            hs: b.hs.iter().map(|(k, u)| (*k, u.map(|x| neg_opt(dag, x)))).collect(),
+            hs: b
+                .hs
+                .iter()
+                .map(|(k, u)| (*k, u.map(|x| neg_opt(dag, x))))
+                .collect(),
             hp: b.hp.iter().map(|(k, c)| (*k, dag.neg(*c))).collect(),
         }
     }
@@ -203,11 +224,28 @@ impl<'a> JetArena<'a> {
         JetData {
             v: a.v,
             g: a.g.map(|x| m(dag, x)),
-            gl: a.gl.iter().filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c))).collect(),
+            gl: a
+                .gl
+                .iter()
+                .filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c)))
+                .collect(),
             h: a.h.map(|x| m(dag, x)),
-            hm: a.hm.iter().filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c))).collect(),
-            hs: a.hs.iter().map(|(k, u)| (*k, u.map(|x| m(dag, x)))).filter(|(_, u)| !is_zero(u)).collect(),
-            hp: a.hp.iter().filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c))).collect(),
+            hm: a
+                .hm
+                .iter()
+                .filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c)))
+                .collect(),
+            hs: a
+                .hs
+                .iter()
+                .map(|(k, u)| (*k, u.map(|x| m(dag, x))))
+                .filter(|(_, u)| !is_zero(u))
+                .collect(),
+            hp: a
+                .hp
+                .iter()
+                .filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c)))
+                .collect(),
         }
     }
 
@@ -235,7 +273,9 @@ impl<'a> JetArena<'a> {
         let mut merged: Vec<(usize, Vector)> = Vec::new();
         for (k, u) in hs {
             match merged.last_mut() {
-                Some((lk, lu)) if *lk == k => *lu = std::array::from_fn(|i| add_opt(dag, lu[i], u[i])),
+                Some((lk, lu)) if *lk == k => {
+                    *lu = std::array::from_fn(|i| add_opt(dag, lu[i], u[i]))
+                }
                 _ => merged.push((k, u)),
             }
         }
@@ -261,12 +301,28 @@ impl<'a> JetArena<'a> {
 
     /// The Hessian parts of `x` only (gradient parts cleared).
     fn hessian_parts(x: &JetData) -> JetData {
-        JetData { v: x.v, g: [None; N], gl: Vec::new(), h: x.h, hm: x.hm.clone(), hs: x.hs.clone(), hp: x.hp.clone() }
+        JetData {
+            v: x.v,
+            g: [None; N],
+            gl: Vec::new(),
+            h: x.h,
+            hm: x.hm.clone(),
+            hs: x.hs.clone(),
+            hp: x.hp.clone(),
+        }
     }
 
     /// The gradient parts of `x` only.
     fn gradient_parts(x: &JetData) -> JetData {
-        JetData { v: x.v, g: x.g, gl: x.gl.clone(), h: [None; NH], hm: Vec::new(), hs: Vec::new(), hp: Vec::new() }
+        JetData {
+            v: x.v,
+            g: x.g,
+            gl: x.gl.clone(),
+            h: [None; NH],
+            hm: Vec::new(),
+            hs: Vec::new(),
+            hp: Vec::new(),
+        }
     }
 
     /// `f(a)` from `f(a.v)`, `f'(a.v)`, `f''(a.v)`.

@@ -165,7 +165,12 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
         let outs = finish(&mut dag, outs);
         kernels.push((lower(&dag, &outs), k.has_hessian()));
     }
-    Ok(FormulationPrograms { affine, residual, gap, kernels })
+    Ok(FormulationPrograms {
+        affine,
+        residual,
+        gap,
+        kernels,
+    })
 }
 
 /// Generates the kernels source for all `sources`.
@@ -176,13 +181,22 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
     let mut names = Vec::new();
     let mut docs = Vec::new();
     let mut arms = Vec::new();
-    let (d, xi_s, xi_m, xi, xi_in) =
-        (format_ident!("d"), format_ident!("xi_s"), format_ident!("xi_m"), format_ident!("xi"), format_ident!("xi_in"));
+    let (d, xi_s, xi_m, xi, xi_in) = (
+        format_ident!("d"),
+        format_ident!("xi_s"),
+        format_ident!("xi_m"),
+        format_ident!("xi"),
+        format_ident!("xi_in"),
+    );
     for src in sources {
         let f = Formulation::parse(&src.name, &src.text)?;
         let variant = emit::camel(&src.name);
         let name = &src.name;
-        let doc = if f.doc.is_empty() { format!(" The `{name}` formulation.") } else { format!(" {}", f.doc.replace('\n', "\n ")) };
+        let doc = if f.doc.is_empty() {
+            format!(" The `{name}` formulation.")
+        } else {
+            format!(" {}", f.doc.replace('\n', "\n "))
+        };
         variants.push(quote!(#[doc = #doc] #variant,));
         names.push(quote!(Formulation::#variant => #name,));
         let doc_text = f.doc.clone();
@@ -198,9 +212,19 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
 
         let res_fn = format_ident!("{}_residual", snake);
         let res_body = emit::body(&p.residual, &d, &xi_s, &xi);
-        let (r, r_xi) = (emit::output(p.residual.outputs[0]), emit::output(p.residual.outputs[1]));
-        let res_doc = format!(" `[r, dr/dxi]` of the `{name}` projection at `xi`.{}", emit::ops_doc(&p.residual.op_count()));
-        reports.push(KernelReport { formulation: name.clone(), kernel: res_fn.to_string(), ops: p.residual.op_count() });
+        let (r, r_xi) = (
+            emit::output(p.residual.outputs[0]),
+            emit::output(p.residual.outputs[1]),
+        );
+        let res_doc = format!(
+            " `[r, dr/dxi]` of the `{name}` projection at `xi`.{}",
+            emit::ops_doc(&p.residual.op_count())
+        );
+        reports.push(KernelReport {
+            formulation: name.clone(),
+            kernel: res_fn.to_string(),
+            ops: p.residual.op_count(),
+        });
         items.push(quote! {
             #[doc = #res_doc]
             pub(crate) fn #res_fn(#d: &[f64; 8], #xi_s: f64, #xi: f64) -> [f64; 2] {
@@ -230,8 +254,15 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
         let gap_body = emit::body(&p.gap, &d, &xi_s, &xi_in);
         let g = emit::output(p.gap.outputs[0]);
         let (xi_read, xi_write) = xi_io(&p.gap);
-        let gap_doc = format!(" The `{name}` gap.{projection_doc}{}", emit::ops_doc(&p.gap.op_count()));
-        reports.push(KernelReport { formulation: name.clone(), kernel: gap_fn.to_string(), ops: p.gap.op_count() });
+        let gap_doc = format!(
+            " The `{name}` gap.{projection_doc}{}",
+            emit::ops_doc(&p.gap.op_count())
+        );
+        reports.push(KernelReport {
+            formulation: name.clone(),
+            kernel: gap_fn.to_string(),
+            ops: p.gap.op_count(),
+        });
         items.push(quote! {
             #[doc = #gap_doc]
             pub(crate) fn #gap_fn(#d: &[f64; 8], #xi_s: f64, #xi_m: &mut f64) -> f64 {
@@ -247,13 +278,21 @@ pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
         for (t, (prog, has_hess)) in p.kernels.iter().enumerate() {
             let kfn = format_ident!("{}_type{}", snake, t + 1);
             let ops = prog.op_count();
-            reports.push(KernelReport { formulation: name.clone(), kernel: kfn.to_string(), ops });
+            reports.push(KernelReport {
+                formulation: name.clone(),
+                kernel: kfn.to_string(),
+                ops,
+            });
             op_lits.push(emit::ops_literal(&ops));
             let orders = TYPES[t].map(|o| o.name().to_lowercase()).join(", ");
             let kdoc = format!(
                 " `{name}`, type {} (xi_m, x_ms, n: {orders}): gap, gradient{}.{}",
                 t + 1,
-                if *has_hess { " and Hessian" } else { " (no second-order term)" },
+                if *has_hess {
+                    " and Hessian"
+                } else {
+                    " (no second-order term)"
+                },
                 emit::ops_doc(&ops)
             );
             let body = emit::body(prog, &d, &xi_s, &xi_in);

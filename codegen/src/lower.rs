@@ -158,9 +158,11 @@ impl Program {
                 Node::Const(_) => unreachable!("handled above"),
                 Node::Input(s) if s == param => Instr::Load(Source::Param),
                 Node::Input(s) if s == implicit => Instr::Load(Source::Implicit),
-                Node::Input(s) => Instr::Load(Source::Coord(
-                    coords.iter().position(|c| *c == s).expect("every input symbol is a coordinate, the parameter or the implicit"),
-                )),
+                Node::Input(s) => {
+                    Instr::Load(Source::Coord(coords.iter().position(|c| *c == s).expect(
+                        "every input symbol is a coordinate, the parameter or the implicit",
+                    )))
+                }
                 Node::Add(a, b) => Instr::Add(o(a), o(b)),
                 Node::Sub(a, b) => Instr::Sub(o(a), o(b)),
                 Node::Mul(a, b) => Instr::Mul(o(a), o(b)),
@@ -173,7 +175,10 @@ impl Program {
             reg[i] = Some(Operand::Reg(instrs.len() as u32));
             instrs.push(instr);
         }
-        let outputs = roots.iter().map(|r| r.map(|id| reg[id.index()].expect("root is live"))).collect();
+        let outputs = roots
+            .iter()
+            .map(|r| r.map(|id| reg[id.index()].expect("root is live")))
+            .collect();
         Program { instrs, outputs }
     }
 
@@ -217,6 +222,9 @@ impl Program {
             };
             regs.push(v);
         }
-        self.outputs.iter().map(|o| o.map_or(0.0, |o| val(&regs, o))).collect()
+        self.outputs
+            .iter()
+            .map(|o| o.map_or(0.0, |o| val(&regs, o)))
+            .collect()
     }
 }

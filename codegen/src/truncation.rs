@@ -32,11 +32,11 @@
 
 use std::collections::HashMap;
 
-use crate::diff::{add_opt, mul_opt, Differentiator};
-use crate::jet::{JetArena, JetId, Matrix, Parts, Vector};
+use crate::Error;
+use crate::diff::{Differentiator, add_opt, mul_opt};
 use crate::expr::{Dag, Id};
 use crate::formulation::{Formulation, Value};
-use crate::Error;
+use crate::jet::{JetArena, JetId, Matrix, Parts, Vector};
 
 /// How an entity depends on the displacements within a load step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -67,7 +67,14 @@ pub const ENTITY_NAMES: [&str; 3] = ["xi_m", "x_ms", "n"];
 /// `[xi_m, x_ms, n]`.
 pub const TYPES: [[EntityOrder; 3]; 6] = {
     use EntityOrder::{Constant as C, Linear as L, Quadratic as Q};
-    [[C, L, C], [L, L, L], [L, Q, L], [Q, Q, L], [L, Q, Q], [Q, Q, Q]]
+    [
+        [C, L, C],
+        [L, L, L],
+        [L, Q, L],
+        [Q, Q, L],
+        [L, Q, Q],
+        [Q, Q, Q],
+    ]
 };
 
 /// Number of coordinates.
@@ -103,19 +110,37 @@ impl KernelExprs {
 /// Builds the kernel expressions of `formulation` under the truncation row
 /// `orders` (for `[xi_m, x_ms, n]`, see [`TYPES`]), adding nodes to `dag`
 /// (which must be the formulation's DAG or a clone of it).
-pub fn derive(formulation: &Formulation, dag: &mut Dag, orders: [EntityOrder; 3]) -> Result<KernelExprs, Error> {
+pub fn derive(
+    formulation: &Formulation,
+    dag: &mut Dag,
+    orders: [EntityOrder; 3],
+) -> Result<KernelExprs, Error> {
     let origin = format!("{}.rs", formulation.name);
     let order_of = |name: &str| -> Result<EntityOrder, Error> {
-        ENTITY_NAMES.iter().position(|n| *n == name).map(|i| orders[i]).ok_or_else(|| Error::Truncation {
-            file: origin.clone(),
-            message: format!("entity `{name}` has no column in the truncation table (known: {})", ENTITY_NAMES.join(", ")),
-        })
+        ENTITY_NAMES
+            .iter()
+            .position(|n| *n == name)
+            .map(|i| orders[i])
+            .ok_or_else(|| Error::Truncation {
+                file: origin.clone(),
+                message: format!(
+                    "entity `{name}` has no column in the truncation table (known: {})",
+                    ENTITY_NAMES.join(", ")
+                ),
+            })
     };
-    let mut declared: Vec<&str> = formulation.entities.iter().map(|e| e.name.as_str()).collect();
+    let mut declared: Vec<&str> = formulation
+        .entities
+        .iter()
+        .map(|e| e.name.as_str())
+        .collect();
     declared.push(&formulation.implicit.name);
     for name in ENTITY_NAMES {
         if !declared.contains(&name) {
-            return Err(Error::Truncation { file: origin.clone(), message: format!("the formulation does not define entity `{name}`") });
+            return Err(Error::Truncation {
+                file: origin.clone(),
+                message: format!("the formulation does not define entity `{name}`"),
+            });
         }
     }
 
@@ -163,7 +188,9 @@ pub fn derive(formulation: &Formulation, dag: &mut Dag, orders: [EntityOrder; 3]
 
     // `c xi''` as Hessian parts.
     let xi2_parts = |arena: &mut JetArena, c: Id, parts: &mut Parts| {
-        let (Some(b), Some(m)) = (xi_basis, rqq_basis) else { return };
+        let (Some(b), Some(m)) = (xi_basis, rqq_basis) else {
+            return;
+        };
         let dag = arena.dag();
         let k = dag.mul(c, minus_inv);
         parts.hm.push((m, k));
@@ -266,7 +293,11 @@ fn add_pair(dag: &mut Dag, hp: &mut Vec<((usize, usize), Id)>, key: (usize, usiz
 
 /// The value of the formulation's gap (no derivatives).
 pub fn gap_value(formulation: &Formulation, dag: &mut Dag) -> Result<Id, Error> {
-    let mut env: HashMap<String, Value<Id>> = formulation.entities.iter().map(|e| (e.name.clone(), e.value)).collect();
+    let mut env: HashMap<String, Value<Id>> = formulation
+        .entities
+        .iter()
+        .map(|e| (e.name.clone(), e.value))
+        .collect();
     let x = dag.input(formulation.implicit.sym);
     env.insert(formulation.implicit.name.clone(), Value::Scalar(x));
     formulation.eval_gap(dag, &env)
@@ -276,7 +307,9 @@ pub fn gap_value(formulation: &Formulation, dag: &mut Dag) -> Result<Id, Error> 
 /// variable: `[r, r_xi]`.
 pub fn residual(formulation: &Formulation, dag: &mut Dag) -> [Id; 2] {
     let r = formulation.implicit.residual;
-    let r_xi = Differentiator::new().d(dag, r, formulation.implicit.sym).unwrap_or_else(|| dag.constant(0.0));
+    let r_xi = Differentiator::new()
+        .d(dag, r, formulation.implicit.sym)
+        .unwrap_or_else(|| dag.constant(0.0));
     [r, r_xi]
 }
 

@@ -43,7 +43,11 @@ fn generated_kernels_match_golden_file() {
         return;
     }
     let diff = similar::TextDiff::from_lines(&golden, &generated.code);
-    let shown: String = diff.unified_diff().context_radius(3).header("golden", "generated").to_string();
+    let shown: String = diff
+        .unified_diff()
+        .context_radius(3)
+        .header("golden", "generated")
+        .to_string();
     let shown: String = shown.lines().take(200).collect::<Vec<_>>().join("\n");
     panic!(
         "generated kernels differ from {} (run with GAPSIM_BLESS=1 to accept):\n{shown}",

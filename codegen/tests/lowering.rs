@@ -10,11 +10,14 @@ use std::collections::HashMap;
 
 use codegen::expr::Sym;
 use codegen::formulation::{IMPLICIT_SYM, PARAM_SYM};
-use codegen::truncation::{derive, N};
+use codegen::truncation::{N, derive};
 use codegen::{Formulation, TYPES};
 
 fn load(name: &str) -> Formulation {
-    let path = format!("{}/../contact-kernels/formulations/{name}.rs", env!("CARGO_MANIFEST_DIR"));
+    let path = format!(
+        "{}/../contact-kernels/formulations/{name}.rs",
+        env!("CARGO_MANIFEST_DIR")
+    );
     Formulation::parse(name, &std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
@@ -43,19 +46,37 @@ fn programs_agree_with_direct_evaluation() {
             for _ in 0..20 {
                 // Slave roughly along x at y = 1, master roughly along -x at y = 0.9.
                 let origin = [3.0 * rng.next(), 3.0 * rng.next()];
-                let rel = [0.0, 0.0, 2.0 + 0.3 * rng.next(), 0.2 * rng.next(), 2.0 + 0.3 * rng.next(), -0.1 + 0.1 * rng.next(), 0.1 * rng.next(), -0.1 + 0.2 * rng.next()];
+                let rel = [
+                    0.0,
+                    0.0,
+                    2.0 + 0.3 * rng.next(),
+                    0.2 * rng.next(),
+                    2.0 + 0.3 * rng.next(),
+                    -0.1 + 0.1 * rng.next(),
+                    0.1 * rng.next(),
+                    -0.1 + 0.2 * rng.next(),
+                ];
                 let (xi_s, xi_in) = (rng.next(), rng.next());
                 let mut got = prog.run(&rel, xi_s, xi_in);
                 // Affine projections are solved inside the program, which
                 // returns xi_m last; otherwise xi_m is the input.
-                let xi_m = if programs.affine { got.pop().unwrap() } else { xi_in };
-                let mut vals: HashMap<Sym, f64> = (0..N).map(|i| (Sym(i as u16), rel[i] + origin[i % 2])).collect();
+                let xi_m = if programs.affine {
+                    got.pop().unwrap()
+                } else {
+                    xi_in
+                };
+                let mut vals: HashMap<Sym, f64> = (0..N)
+                    .map(|i| (Sym(i as u16), rel[i] + origin[i % 2]))
+                    .collect();
                 vals.insert(PARAM_SYM, xi_s);
                 vals.insert(IMPLICIT_SYM, xi_m);
                 if programs.affine {
                     // The returned xi_m solves r = 0 (r is O(1) here).
                     let r = programs.residual.run(&rel, xi_s, xi_m)[0];
-                    assert!(r.abs() < 1e-12, "{name}: residual {r} at the program's xi_m");
+                    assert!(
+                        r.abs() < 1e-12,
+                        "{name}: residual {r} at the program's xi_m"
+                    );
                 }
                 let want: Vec<f64> = std::iter::once(Some(k.gap))
                     .chain(k.grad)
@@ -66,7 +87,11 @@ fn programs_agree_with_direct_evaluation() {
                 for (i, (g, w)) in got.iter().zip(&want).enumerate() {
                     // Both are O(1) quantities here; rounding differs by the
                     // translation (|origin| <= 3), so 1e-12 absolute.
-                    assert!((g - w).abs() <= 1e-12 * (1.0 + w.abs()), "{name} type {}: output {i}: {g} vs {w}", t + 1);
+                    assert!(
+                        (g - w).abs() <= 1e-12 * (1.0 + w.abs()),
+                        "{name} type {}: output {i}: {g} vs {w}",
+                        t + 1
+                    );
                 }
             }
         }
@@ -77,27 +102,62 @@ fn programs_agree_with_direct_evaluation() {
 fn type_one_has_no_hessian_and_type_six_keeps_every_entry() {
     for name in ["slave-normal", "closest-point"] {
         let p = codegen::programs(&load(name)).unwrap();
-        assert!(!p.kernels[0].1, "{name}: type 1 must have no second-order term");
+        assert!(
+            !p.kernels[0].1,
+            "{name}: type 1 must have no second-order term"
+        );
         for (t, (_, has)) in p.kernels.iter().enumerate().skip(1) {
             assert!(*has, "{name}: type {} must have a Hessian", t + 1);
         }
         // Fewer kept terms never cost more than the full type.
-        let ops: Vec<u32> = p.kernels.iter().map(|(prog, _)| prog.op_count().total()).collect();
+        let ops: Vec<u32> = p
+            .kernels
+            .iter()
+            .map(|(prog, _)| prog.op_count().total())
+            .collect();
         assert!(ops.iter().all(|&o| o <= ops[5]), "{name}: {ops:?}");
     }
 }
 
 #[test]
 fn malformed_formulations_are_reported_with_position() {
-    let text = std::fs::read_to_string(format!("{}/../contact-kernels/formulations/slave-normal.rs", env!("CARGO_MANIFEST_DIR"))).unwrap();
+    let text = std::fs::read_to_string(format!(
+        "{}/../contact-kernels/formulations/slave-normal.rs",
+        env!("CARGO_MANIFEST_DIR")
+    ))
+    .unwrap();
     let cases = [
-        (text.replace("let n = entity!", "let nn = entity!").replace("dot(n, x_ms)", "dot(nn, x_ms)"), "entity `n`"),
-        (text.replace("gap!(dot(n, x_ms));", "gap!(dot(n, x_s));"), "the gap may only use entities"),
-        (text.replace("inputs!(xs1, xs2, xm1, xm2; xi_s);", "inputs!(xs1, xs2, xm1; xi_s);"), "four points"),
-        (text.replace("norm(t_s)", "norm(t_s, t_s)"), "takes 1 argument"),
+        (
+            text.replace("let n = entity!", "let nn = entity!")
+                .replace("dot(n, x_ms)", "dot(nn, x_ms)"),
+            "entity `n`",
+        ),
+        (
+            text.replace("gap!(dot(n, x_ms));", "gap!(dot(n, x_s));"),
+            "the gap may only use entities",
+        ),
+        (
+            text.replace(
+                "inputs!(xs1, xs2, xm1, xm2; xi_s);",
+                "inputs!(xs1, xs2, xm1; xi_s);",
+            ),
+            "four points",
+        ),
+        (
+            text.replace("norm(t_s)", "norm(t_s, t_s)"),
+            "takes 1 argument",
+        ),
     ];
     for (src, expect) in cases {
-        let err = codegen::generate(&[codegen::Source { name: "bad".into(), text: src, compiled: true }]).unwrap_err();
-        assert!(err.to_string().contains(expect), "expected `{expect}` in: {err}");
+        let err = codegen::generate(&[codegen::Source {
+            name: "bad".into(),
+            text: src,
+            compiled: true,
+        }])
+        .unwrap_err();
+        assert!(
+            err.to_string().contains(expect),
+            "expected `{expect}` in: {err}"
+        );
     }
 }

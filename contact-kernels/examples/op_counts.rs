@@ -3,7 +3,7 @@
 //! ```text
 //! cargo run -p contact-kernels --example op_counts
 //! ```
-use contact_kernels::{compiled_formulations, op_count, ApproxType};
+use contact_kernels::{ApproxType, compiled_formulations, op_count};
 
 fn main() {
     println!("| formulation | kernel | add | mul | div | sqrt | neg | total |");
@@ -13,7 +13,15 @@ fn main() {
             .chain(ApproxType::ALL.map(|t| (format!("type {t}"), op_count(f, Some(t)))));
         for (kernel, ops) in rows {
             let o = ops.expect("compiled formulations have op counts");
-            println!("| {f} | {kernel} | {} | {} | {} | {} | {} | {} |", o.add, o.mul, o.div, o.sqrt, o.neg, o.total());
+            println!(
+                "| {f} | {kernel} | {} | {} | {} | {} | {} | {} |",
+                o.add,
+                o.mul,
+                o.div,
+                o.sqrt,
+                o.neg,
+                o.total()
+            );
         }
     }
 }

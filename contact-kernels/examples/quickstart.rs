@@ -4,7 +4,7 @@
 //! ```text
 //! cargo run -p contact-kernels --example quickstart
 //! ```
-use contact_kernels::{evaluate, project, ApproxType, Formulation, KernelError};
+use contact_kernels::{ApproxType, Formulation, KernelError, evaluate, project};
 
 fn main() -> Result<(), KernelError> {
     // q = [xs1, ys1, xs2, ys2, xm1, ym1, xm2, ym2], current coordinates.

@@ -58,7 +58,8 @@ mod generated {
     /// `(d, xi_s, xi_m, grad) -> g` (`xi_m` as for [`GapFn`]).
     pub(crate) type GradientFn = fn(&[f64; 8], f64, &mut f64, &mut [f64; 8]) -> f64;
     /// `(d, xi_s, xi_m, grad, hess) -> g` (`xi_m` as for [`GapFn`]).
-    pub(crate) type HessianFn = fn(&[f64; 8], f64, &mut f64, &mut [f64; 8], &mut [[f64; 8]; 8]) -> f64;
+    pub(crate) type HessianFn =
+        fn(&[f64; 8], f64, &mut f64, &mut [f64; 8], &mut [[f64; 8]; 8]) -> f64;
 
     /// One approximation type's kernel. All take `d`, the coordinates
     /// relative to slave node 1 (`d[0] = d[1] = 0`, not read).
@@ -112,7 +113,9 @@ pub enum KernelError {
     /// The projection equation has no (finite) solution, e.g. for the
     /// slave-normal formulation when the master segment is perpendicular to
     /// the slave segment (`t_m . t_s = 0`).
-    #[error("no projection: the projection equation r(q, xi) = 0 has no finite solution (dr/dxi = {r_xi:e})")]
+    #[error(
+        "no projection: the projection equation r(q, xi) = 0 has no finite solution (dr/dxi = {r_xi:e})"
+    )]
     NoProjection {
         /// The derivative of the projection residual with respect to `xi`
         /// where the solve gave up.
@@ -127,7 +130,9 @@ pub enum KernelError {
         xi_m: f64,
     },
     /// The Newton iteration for the projection did not converge.
-    #[error("the projection did not converge in {iterations} Newton iterations (last |dxi| = {last_step:e})")]
+    #[error(
+        "the projection did not converge in {iterations} Newton iterations (last |dxi| = {last_step:e})"
+    )]
     ProjectionDiverged {
         /// Iterations performed.
         iterations: usize,
@@ -199,8 +204,13 @@ struct Local {
 fn validate(q: &[f64; 8], xi_s: f64) -> Result<Local, KernelError> {
     if !(all_finite(q) && xi_s.is_finite()) {
         // Cold path: name the first offending input.
-        let (index, value) =
-            q.iter().chain(std::iter::once(&xi_s)).copied().enumerate().find(|(_, v)| !v.is_finite()).expect("one is not finite");
+        let (index, value) = q
+            .iter()
+            .chain(std::iter::once(&xi_s))
+            .copied()
+            .enumerate()
+            .find(|(_, v)| !v.is_finite())
+            .expect("one is not finite");
         return Err(KernelError::NonFinite { index, value });
     }
     let mut d = [0.0; 8];
@@ -220,7 +230,11 @@ fn validate(q: &[f64; 8], xi_s: f64) -> Result<Local, KernelError> {
         #[allow(clippy::neg_cmp_op_on_partial_ord)]
         if !(length2 > threshold * threshold) {
             let length = length2.sqrt();
-            return Err(KernelError::DegenerateSegment { segment, length, threshold });
+            return Err(KernelError::DegenerateSegment {
+                segment,
+                length,
+                threshold,
+            });
         }
     }
     Ok(Local { d })
@@ -258,13 +272,20 @@ fn solve_projection(
             return Ok(xi);
         }
     }
-    Err(KernelError::ProjectionDiverged { iterations: PROJECTION_ITERATIONS, last_step })
+    Err(KernelError::ProjectionDiverged {
+        iterations: PROJECTION_ITERATIONS,
+        last_step,
+    })
 }
 
 /// Projects the slave point `x_s(xi_s)` onto the master segment and returns
 /// the gap and `xi_m` (no derivatives): the kernel a solver calls to
 /// re-project and re-pair.
-pub fn project(formulation: Formulation, q: &[f64; 8], xi_s: f64) -> Result<Projection, KernelError> {
+pub fn project(
+    formulation: Formulation,
+    q: &[f64; 8],
+    xi_s: f64,
+) -> Result<Projection, KernelError> {
     let set = generated::kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
     let local = validate(q, xi_s)?;
     let mut xi_m = start_projection(set, &local, xi_s)?;
@@ -276,13 +297,26 @@ pub fn project(formulation: Formulation, q: &[f64; 8], xi_s: f64) -> Result<Proj
 
 /// The projection a kernel starts from: `0` when the kernels solve it in
 /// closed form, the Newton solution otherwise.
-fn start_projection(set: &generated::KernelSet, local: &Local, xi_s: f64) -> Result<f64, KernelError> {
-    if set.closed_form_projection { Ok(0.0) } else { solve_projection(set.residual, local, xi_s) }
+fn start_projection(
+    set: &generated::KernelSet,
+    local: &Local,
+    xi_s: f64,
+) -> Result<f64, KernelError> {
+    if set.closed_form_projection {
+        Ok(0.0)
+    } else {
+        solve_projection(set.residual, local, xi_s)
+    }
 }
 
 /// Rejects a projection the kernel could not find (non-finite: the
 /// residual's `dr/dxi` vanished) or that lies out of reach.
-fn check_projection(set: &generated::KernelSet, local: &Local, xi_s: f64, xi_m: f64) -> Result<(), KernelError> {
+fn check_projection(
+    set: &generated::KernelSet,
+    local: &Local,
+    xi_s: f64,
+    xi_m: f64,
+) -> Result<(), KernelError> {
     if !xi_m.is_finite() {
         let [_, r_xi] = (set.residual)(&local.d, xi_s, 0.0);
         return Err(KernelError::NoProjection { r_xi });
@@ -315,7 +349,11 @@ pub fn evaluate(
         }
         generated::Kernel::Hessian(k) => {
             let gap = k(&local.d, xi_s, &mut xi_m, &mut grad, &mut hess);
-            (gap, all_finite(&grad) & all_finite(hess.as_flattened()), true)
+            (
+                gap,
+                all_finite(&grad) & all_finite(hess.as_flattened()),
+                true,
+            )
         }
     };
     check_projection(set, &local, xi_s, xi_m)?;
@@ -336,12 +374,19 @@ pub fn evaluate(
 fn all_finite(v: &[f64]) -> bool {
     const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
     const EXPONENT_ONE: u64 = 0x0010_0000_0000_0000;
-    v.iter().fold(0u64, |acc, x| acc | ((x.to_bits() & EXPONENT) + EXPONENT_ONE)) >> 63 == 0
+    v.iter().fold(0u64, |acc, x| {
+        acc | ((x.to_bits() & EXPONENT) + EXPONENT_ONE)
+    }) >> 63
+        == 0
 }
 
 /// A non-finite output can only come from an (almost) singular projection.
 fn finite_or_no_projection(v: f64) -> Result<(), KernelError> {
-    if v.is_finite() { Ok(()) } else { Err(KernelError::NoProjection { r_xi: 0.0 }) }
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(KernelError::NoProjection { r_xi: 0.0 })
+    }
 }
 
 /// The generated kernel's operation count for `(formulation, ty)`, or the
@@ -357,7 +402,10 @@ pub fn op_count(formulation: Formulation, ty: Option<ApproxType>) -> Option<OpCo
 
 /// The formulations compiled into this build.
 pub fn compiled_formulations() -> Vec<Formulation> {
-    Formulation::ALL.into_iter().filter(|f| generated::kernel_set(*f).is_some()).collect()
+    Formulation::ALL
+        .into_iter()
+        .filter(|f| generated::kernel_set(*f).is_some())
+        .collect()
 }
 
 #[cfg(test)]
@@ -377,7 +425,9 @@ mod tests {
 
     #[test]
     fn newton_projection_converges_for_a_nonlinear_residual() {
-        let local = Local { d: [0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0] };
+        let local = Local {
+            d: [0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+        };
         let xi = solve_projection(cubic, &local, 0.0).unwrap();
         // xi = 1 solves xi^3 + xi = 2; Newton's tolerance is 1e-12.
         assert!((xi - 1.0).abs() < 1e-12, "{xi}");
@@ -387,7 +437,11 @@ mod tests {
     fn newton_projection_reports_failure() {
         let local = Local { d: [0.0; 8] };
         match solve_projection(no_root, &local, 0.0) {
-            Err(KernelError::NoProjection { .. } | KernelError::ProjectionDiverged { .. } | KernelError::ProjectionOutOfReach { .. }) => {}
+            Err(
+                KernelError::NoProjection { .. }
+                | KernelError::ProjectionDiverged { .. }
+                | KernelError::ProjectionOutOfReach { .. },
+            ) => {}
             other => panic!("expected a projection failure, got {other:?}"),
         }
     }

@@ -94,23 +94,32 @@ pub struct ParseNameError {
 impl std::str::FromStr for ApproxType {
     type Err = ParseNameError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        let t = s.trim().trim_start_matches("type").trim_start_matches("Type");
-        t.parse::<usize>().ok().and_then(ApproxType::from_index).ok_or_else(|| ParseNameError {
-            what: "approximation type",
-            given: s.to_owned(),
-            expected: "1, 2, 3, 4, 5, 6".to_owned(),
-        })
+        let t = s
+            .trim()
+            .trim_start_matches("type")
+            .trim_start_matches("Type");
+        t.parse::<usize>()
+            .ok()
+            .and_then(ApproxType::from_index)
+            .ok_or_else(|| ParseNameError {
+                what: "approximation type",
+                given: s.to_owned(),
+                expected: "1, 2, 3, 4, 5, 6".to_owned(),
+            })
     }
 }
 
 impl std::str::FromStr for Formulation {
     type Err = ParseNameError;
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Formulation::ALL.into_iter().find(|f| f.name() == s.trim()).ok_or_else(|| ParseNameError {
-            what: "formulation",
-            given: s.to_owned(),
-            expected: Formulation::ALL.map(|f| f.name()).join(", "),
-        })
+        Formulation::ALL
+            .into_iter()
+            .find(|f| f.name() == s.trim())
+            .ok_or_else(|| ParseNameError {
+                what: "formulation",
+                given: s.to_owned(),
+                expected: Formulation::ALL.map(|f| f.name()).join(", "),
+            })
     }
 }
 

@@ -49,7 +49,10 @@ pub struct RunArgs {
 pub fn load_scene(path: Option<&PathBuf>) -> Result<Scene, solver::SceneError> {
     match path {
         Some(p) => Scene::from_file(p),
-        None => Scene::from_toml_str(solver::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml (embedded)"),
+        None => Scene::from_toml_str(
+            solver::scenes::STACKED_CANTILEVER,
+            "stacked-cantilever.toml (embedded)",
+        ),
     }
 }
 
@@ -70,11 +73,23 @@ pub fn run(args: &RunArgs) -> CommandResult {
     let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
     let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
     println!("scene           {name}");
-    println!("method          {} ({} load steps, formulation {})", sol.method, sol.steps, forms.join(", "));
-    println!("equations       {} (free dofs and multipliers)", sol.equations);
+    println!(
+        "method          {} ({} load steps, formulation {})",
+        sol.method,
+        sol.steps,
+        forms.join(", ")
+    );
+    println!(
+        "equations       {} (free dofs and multipliers)",
+        sol.equations
+    );
     println!("load factor     {}", sol.load_factor);
     println!("strain energy   {:.10}", sol.strain_energy);
-    println!("Newton          {} iterations ({:?} per step)", sol.newton_iterations, sol.iterations_per_step());
+    println!(
+        "Newton          {} iterations ({:?} per step)",
+        sol.newton_iterations,
+        sol.iterations_per_step()
+    );
     if !sol.cutbacks.is_empty() {
         println!("cut-backs       {}", sol.cutbacks.len());
         for c in &sol.cutbacks {
@@ -83,14 +98,23 @@ pub fn run(args: &RunArgs) -> CommandResult {
                 c.step, c.from_load_factor, c.attempted_load_factor, c.reason
             );
         }
-        println!("                ({} iterations spent in failed attempts)", sol.failed_iterations);
+        println!(
+            "                ({} iterations spent in failed attempts)",
+            sol.failed_iterations
+        );
     }
     for r in &sol.step_records {
         for p in &r.node_ties {
-            println!("node tie        load factor {}: {p} is held at a master node", r.load_factor);
+            println!(
+                "node tie        load factor {}: {p} is held at a master node",
+                r.load_factor
+            );
         }
         for p in &r.kept_outside {
-            println!("kept outside    load factor {}: {p} misses its master segment slightly", r.load_factor);
+            println!(
+                "kept outside    load factor {}: {p} misses its master segment slightly",
+                r.load_factor
+            );
         }
     }
     println!("max |gap|       {:.3e}", sol.max_abs_gap());
@@ -99,7 +123,10 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     let unpaired = sol.unpaired_points();
     if !unpaired.is_empty() {
-        println!("unpaired        {} integration point(s) project into no master segment:", unpaired.len());
+        println!(
+            "unpaired        {} integration point(s) project into no master segment:",
+            unpaired.len()
+        );
         for p in &unpaired {
             println!("  {p}");
         }
@@ -113,10 +140,16 @@ pub fn run(args: &RunArgs) -> CommandResult {
             let p = sol.mesh.nodes_ref[n];
             (p[0] - load.at[0]).hypot(p[1] - load.at[1])
         };
-        let nearest = bodies.iter().filter_map(|b| sol.node_at(b, load.at)).min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
+        let nearest = bodies
+            .iter()
+            .filter_map(|b| sol.node_at(b, load.at))
+            .min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
         if let Some(node) = nearest {
             let [ux, uy] = sol.displacement(node);
-            println!("loaded node     ({}, {}) moves by ({ux:.6}, {uy:.6})", load.at[0], load.at[1]);
+            println!(
+                "loaded node     ({}, {}) moves by ({ux:.6}, {uy:.6})",
+                load.at[0], load.at[1]
+            );
         }
     }
     let t = &sol.timings;
@@ -127,22 +160,32 @@ pub fn run(args: &RunArgs) -> CommandResult {
         1e3 * t.contact_evaluation.as_secs_f64(),
         1e3 * t.linear_solve.as_secs_f64()
     );
-    println!("kernel calls    {} evaluations, {} projections", sol.kernel_counts.evaluate, sol.kernel_counts.project);
+    println!(
+        "kernel calls    {} evaluations, {} projections",
+        sol.kernel_counts.evaluate, sol.kernel_counts.project
+    );
 
     if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
         let mut written = Vec::new();
         if args.every_step {
             for (i, state) in sol.snapshots.iter().enumerate() {
                 let path = dir.join(format!("step-{i:04}.vtu"));
-                solver::vtk::write_vtu_state(&path, &sol, state).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                solver::vtk::write_vtu_state(&path, &sol, state)
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
                 written.push(path);
             }
         }
         let path = dir.join("final.vtu");
-        solver::vtk::write_vtu(&path, &sol).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        solver::vtk::write_vtu(&path, &sol)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         written.push(path);
-        println!("wrote           {} .vtu file(s) to {}", written.len(), dir.display());
+        println!(
+            "wrote           {} .vtu file(s) to {}",
+            written.len(),
+            dir.display()
+        );
     }
     Ok(())
 }

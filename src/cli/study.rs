@@ -9,10 +9,10 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use gapsim::study::{self, plots, report, StudyOptions};
+use gapsim::study::{self, StudyOptions, plots, report};
 
-use super::run::load_scene;
 use super::CommandResult;
+use super::run::load_scene;
 
 /// Arguments of `gapsim study`.
 #[derive(Debug, Clone, Args)]
@@ -56,10 +56,15 @@ pub fn run(args: &StudyArgs) -> CommandResult {
         repeats: args.repeats as usize,
         steps: (!args.steps.is_empty()).then(|| args.steps.clone()),
         all_formulations: !args.only_scene_formulation,
-        heavy_steps: if args.no_heavy { Vec::new() } else { StudyOptions::default().heavy_steps },
+        heavy_steps: if args.no_heavy {
+            Vec::new()
+        } else {
+            StudyOptions::default().heavy_steps
+        },
         ..StudyOptions::default()
     };
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
 
     let bar = indicatif::ProgressBar::new(0);
     bar.set_style(
@@ -76,7 +81,11 @@ pub fn run(args: &StudyArgs) -> CommandResult {
         Ok(())
     };
     for (i, s) in results.formulations.iter().enumerate() {
-        let name = if i == 0 { "study.csv".to_owned() } else { format!("study-{}.csv", s.formulation) };
+        let name = if i == 0 {
+            "study.csv".to_owned()
+        } else {
+            format!("study-{}.csv", s.formulation)
+        };
         write(&name, &report::csv(s))?;
     }
     if let Some(h) = &results.heavy {
@@ -88,17 +97,30 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     let command = format!("gapsim {command}");
     write("results.md", &report::markdown(&results, "", &command))?;
     print!("{}", report::terminal_summary(&results));
-    println!("\nwrote study.csv, plots and results.md to {}", args.out.display());
+    println!(
+        "\nwrote study.csv, plots and results.md to {}",
+        args.out.display()
+    );
 
     if let Some(readme) = &args.readme {
-        let text = std::fs::read_to_string(readme).map_err(|e| format!("cannot read {}: {e}", readme.display()))?;
-        let base = readme.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+        let text = std::fs::read_to_string(readme)
+            .map_err(|e| format!("cannot read {}: {e}", readme.display()))?;
+        let base = readme
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(std::path::Path::new("."));
         let prefix = relative_prefix(base, &args.out);
         let section = report::markdown(&results, &prefix, &command);
         let new = report::splice_readme(&text, &section).ok_or_else(|| {
-            format!("{} has no `{}` ... `{}` section", readme.display(), report::README_BEGIN, report::README_END)
+            format!(
+                "{} has no `{}` ... `{}` section",
+                readme.display(),
+                report::README_BEGIN,
+                report::README_END
+            )
         })?;
-        std::fs::write(readme, new).map_err(|e| format!("cannot write {}: {e}", readme.display()))?;
+        std::fs::write(readme, new)
+            .map_err(|e| format!("cannot write {}: {e}", readme.display()))?;
         println!("updated the results section of {}", readme.display());
     }
     Ok(())

@@ -145,7 +145,9 @@ pub struct FormulationStudy {
 impl FormulationStudy {
     /// The run of `method` at `steps`.
     pub fn run(&self, method: Method, steps: usize) -> Option<&Run> {
-        self.runs.iter().find(|r| r.method == method && r.steps == steps)
+        self.runs
+            .iter()
+            .find(|r| r.method == method && r.steps == steps)
     }
 
     /// The step counts studied, ascending.
@@ -194,7 +196,10 @@ pub fn contact_heavy_variant(scene: &Scene, refine: usize, gauss_points: usize) 
     for c in &mut s.contacts {
         c.gauss_points = gauss_points;
     }
-    s.name = Some(format!("{} (contact-heavy: x{refine} along the interface, {gauss_points} Gauss points per segment)", scene_name(scene)));
+    s.name = Some(format!(
+        "{} (contact-heavy: x{refine} along the interface, {gauss_points} Gauss points per segment)",
+        scene_name(scene)
+    ));
     s
 }
 
@@ -218,7 +223,11 @@ fn median(mut v: Vec<f64>) -> f64 {
     if n == 0 {
         return f64::NAN;
     }
-    if n % 2 == 1 { v[n / 2] } else { 0.5 * (v[n / 2 - 1] + v[n / 2]) }
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
 }
 
 fn secs(d: Duration) -> f64 {
@@ -268,7 +277,12 @@ fn measure(
     for _ in 0..repeats.max(1) {
         let sol = solver::solve(scene, &options)?;
         let t = &sol.timings;
-        for (v, d) in times.iter_mut().zip([t.total, t.contact_evaluation, t.solid_assembly, t.linear_solve]) {
+        for (v, d) in times.iter_mut().zip([
+            t.total,
+            t.contact_evaluation,
+            t.solid_assembly,
+            t.linear_solve,
+        ]) {
             v.push(secs(d));
         }
         first.get_or_insert(sol);
@@ -321,7 +335,11 @@ fn study_formulation(
                     }
                 }
                 Err(source) if method == Method::Complete => {
-                    return Err(StudyError::Reference { formulation, steps: n, source });
+                    return Err(StudyError::Reference {
+                        formulation,
+                        steps: n,
+                        source,
+                    });
                 }
                 Err(e) => Run {
                     formulation,
@@ -349,16 +367,31 @@ fn study_formulation(
 }
 
 /// Runs the study on `scene`.
-pub fn run_study(scene: &Scene, options: &StudyOptions, progress: &dyn Progress) -> Result<StudyResults, StudyError> {
+pub fn run_study(
+    scene: &Scene,
+    options: &StudyOptions,
+    progress: &dyn Progress,
+) -> Result<StudyResults, StudyError> {
     let name = scene_name(scene);
-    let first = scene.contacts.first().ok_or_else(|| StudyError::NoContact(name.clone()))?.formulation;
-    let steps = options.steps.clone().unwrap_or_else(|| scene.loading.steps.clone());
+    let first = scene
+        .contacts
+        .first()
+        .ok_or_else(|| StudyError::NoContact(name.clone()))?
+        .formulation;
+    let steps = options
+        .steps
+        .clone()
+        .unwrap_or_else(|| scene.loading.steps.clone());
     if steps.is_empty() {
         return Err(StudyError::NoSteps);
     }
     let mut formulations = vec![first];
     if options.all_formulations {
-        formulations.extend(contact_kernels::compiled_formulations().into_iter().filter(|f| *f != first));
+        formulations.extend(
+            contact_kernels::compiled_formulations()
+                .into_iter()
+                .filter(|f| *f != first),
+        );
     }
     let per_formulation = (steps.len() * Method::ALL.len()) as u64;
     let heavy_count = (options.heavy_steps.len() * Method::ALL.len()) as u64;
@@ -366,14 +399,27 @@ pub fn run_study(scene: &Scene, options: &StudyOptions, progress: &dyn Progress)
 
     let mut studies = Vec::new();
     for &f in &formulations {
-        studies.push(study_formulation(scene, f, &steps, options.repeats, progress)?);
+        studies.push(study_formulation(
+            scene,
+            f,
+            &steps,
+            options.repeats,
+            progress,
+        )?);
     }
 
     let heavy = if options.heavy_steps.is_empty() {
         None
     } else {
-        let variant = contact_heavy_variant(scene, options.heavy_refine, options.heavy_gauss_points);
-        let study = study_formulation(&variant, first, &options.heavy_steps, options.repeats, progress)?;
+        let variant =
+            contact_heavy_variant(scene, options.heavy_refine, options.heavy_gauss_points);
+        let study = study_formulation(
+            &variant,
+            first,
+            &options.heavy_steps,
+            options.repeats,
+            progress,
+        )?;
         let model = variant.build_model().map_err(|e| StudyError::Reference {
             formulation: first,
             steps: options.heavy_steps[0],
@@ -381,7 +427,11 @@ pub fn run_study(scene: &Scene, options: &StudyOptions, progress: &dyn Progress)
         })?;
         Some(HeavyStudy {
             solid_elements: model.mesh.elements.len(),
-            contact_points: model.contacts.iter().map(|c| c.slave.len() * c.gauss_points).sum(),
+            contact_points: model
+                .contacts
+                .iter()
+                .map(|c| c.slave.len() * c.gauss_points)
+                .sum(),
             study,
         })
     };
@@ -389,9 +439,18 @@ pub fn run_study(scene: &Scene, options: &StudyOptions, progress: &dyn Progress)
     let mut options_def = SolveOptions::from_scene(scene);
     options_def.method = Method::Complete;
     options_def.formulation = Some(first);
-    let deformed = solver::solve(scene, &options_def)
-        .map_err(|source| StudyError::Reference { formulation: first, steps: options_def.steps, source })?;
+    let deformed = solver::solve(scene, &options_def).map_err(|source| StudyError::Reference {
+        formulation: first,
+        steps: options_def.steps,
+        source,
+    })?;
     progress.advance("deformed configuration");
 
-    Ok(StudyResults { scene_name: name, repeats: options.repeats, formulations: studies, heavy, deformed })
+    Ok(StudyResults {
+        scene_name: name,
+        repeats: options.repeats,
+        formulations: studies,
+        heavy,
+        deformed,
+    })
 }

@@ -48,7 +48,10 @@ fn type_color(ty: ApproxType) -> RGBColor {
 type DrawResult<DB> = Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
 fn plot_err(path: &Path, e: impl std::fmt::Display) -> StudyError {
-    StudyError::Plot { path: path.display().to_string(), message: e.to_string() }
+    StudyError::Plot {
+        path: path.display().to_string(),
+        message: e.to_string(),
+    }
 }
 
 /// Draws `$draw` (an expression using the drawing area `$root`) into
@@ -75,7 +78,9 @@ macro_rules! both {
 const FLOOR: f64 = 1e-10;
 
 fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
-    let (lo, hi) = values.filter(|v| v.is_finite() && *v > 0.0).fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
     if !lo.is_finite() {
         return FLOOR..1.0;
     }
@@ -85,14 +90,20 @@ fn log_range(values: impl Iterator<Item = f64>) -> std::ops::Range<f64> {
 }
 
 /// Plot 1: |error| against load steps.
-fn draw_error_vs_steps<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &FormulationStudy) -> DrawResult<DB> {
+fn draw_error_vs_steps<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    s: &FormulationStudy,
+) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let steps = s.steps();
     let (lo, hi) = (steps[0] as f64, *steps.last().expect("non-empty") as f64);
     let errors = s.runs.iter().filter_map(|r| r.error_percent.map(f64::abs));
     let yr = log_range(errors);
     let mut chart = ChartBuilder::on(root)
-        .caption(format!("Strain-energy error against load steps ({})", s.formulation), ("sans-serif", 22))
+        .caption(
+            format!("Strain-energy error against load steps ({})", s.formulation),
+            ("sans-serif", 22),
+        )
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
@@ -110,14 +121,27 @@ fn draw_error_vs_steps<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &Fo
         let color = type_color(ty);
         let pts: Vec<(f64, f64)> = steps
             .iter()
-            .filter_map(|n| s.run(Method::Approx(ty), *n).and_then(|r| r.error_percent).map(|e| (*n as f64, e)))
+            .filter_map(|n| {
+                s.run(Method::Approx(ty), *n)
+                    .and_then(|r| r.error_percent)
+                    .map(|e| (*n as f64, e))
+            })
             .collect();
         chart
-            .draw_series(LineSeries::new(pts.iter().map(|(n, e)| (*n, e.abs().max(FLOOR))), color.stroke_width(2)))?
+            .draw_series(LineSeries::new(
+                pts.iter().map(|(n, e)| (*n, e.abs().max(FLOOR))),
+                color.stroke_width(2),
+            ))?
             .label(format!("Type {ty}"))
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2)));
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
         chart.draw_series(pts.iter().map(|(n, e)| {
-            let style = if *e >= 0.0 { color.filled() } else { color.stroke_width(2) };
+            let style = if *e >= 0.0 {
+                color.filled()
+            } else {
+                color.stroke_width(2)
+            };
             Circle::new((*n, e.abs().max(FLOOR)), 5, style)
         }))?;
         if let Some((n, e)) = pts.last() {
@@ -140,8 +164,15 @@ fn draw_error_vs_steps<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &Fo
 /// Indices of the Pareto-optimal points (no other point is both faster and
 /// more accurate), sorted by time.
 pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
-    let mut idx: Vec<usize> = (0..points.len()).filter(|&i| points[i].0.is_finite() && points[i].1.is_finite()).collect();
-    idx.sort_by(|&a, &b| points[a].0.total_cmp(&points[b].0).then(points[a].1.total_cmp(&points[b].1)));
+    let mut idx: Vec<usize> = (0..points.len())
+        .filter(|&i| points[i].0.is_finite() && points[i].1.is_finite())
+        .collect();
+    idx.sort_by(|&a, &b| {
+        points[a]
+            .0
+            .total_cmp(&points[b].0)
+            .then(points[a].1.total_cmp(&points[b].1))
+    });
     let mut front = Vec::new();
     let mut best = f64::INFINITY;
     for i in idx {
@@ -160,9 +191,26 @@ fn draw_speed_panel<DB: DrawingBackend>(
     title: &str,
     time: fn(&super::Run) -> f64,
 ) -> DrawResult<DB> {
-    let runs: Vec<&super::Run> = s.runs.iter().filter(|r| matches!(r.method, Method::Approx(_)) && r.error_percent.is_some()).collect();
-    let pts: Vec<(f64, f64)> = runs.iter().map(|r| (1e3 * time(r), r.error_percent.map_or(f64::NAN, |e| e.abs().max(FLOOR)))).collect();
-    let complete: Vec<f64> = s.runs.iter().filter(|r| r.method == Method::Complete).map(|r| 1e3 * time(r)).collect();
+    let runs: Vec<&super::Run> = s
+        .runs
+        .iter()
+        .filter(|r| matches!(r.method, Method::Approx(_)) && r.error_percent.is_some())
+        .collect();
+    let pts: Vec<(f64, f64)> = runs
+        .iter()
+        .map(|r| {
+            (
+                1e3 * time(r),
+                r.error_percent.map_or(f64::NAN, |e| e.abs().max(FLOOR)),
+            )
+        })
+        .collect();
+    let complete: Vec<f64> = s
+        .runs
+        .iter()
+        .filter(|r| r.method == Method::Complete)
+        .map(|r| 1e3 * time(r))
+        .collect();
     let xr = log_range(pts.iter().map(|p| p.0).chain(complete.iter().copied()));
     let yr = log_range(pts.iter().map(|p| p.1));
     // One more decade below the data: room for the legend.
@@ -182,21 +230,35 @@ fn draw_speed_panel<DB: DrawingBackend>(
     // The complete formulation: vertical lines at the fewest and most steps.
     let steps = s.steps();
     let (nmin, nmax) = (steps[0], *steps.last().expect("non-empty"));
-    let complete_at = |n: usize| s.run(Method::Complete, n).map_or(f64::NAN, |r| 1e3 * time(r));
+    let complete_at = |n: usize| {
+        s.run(Method::Complete, n)
+            .map_or(f64::NAN, |r| 1e3 * time(r))
+    };
     let (cmin, cmax) = (complete_at(nmin), complete_at(nmax));
     for (x, label, y) in [
         (cmin, format!("complete, {nmin} steps"), yr.end / 2.5),
         (cmax, format!("complete, {nmax} steps"), yr.end / 8.0),
     ] {
         if x.is_finite() && x > 0.0 {
-            chart.draw_series(LineSeries::new([(x, yr.start), (x, yr.end)], BLACK.mix(0.5).stroke_width(1)))?;
-            chart.draw_series(std::iter::once(Text::new(label, (x * 1.03, y), ("sans-serif", 12).into_font())))?;
+            chart.draw_series(LineSeries::new(
+                [(x, yr.start), (x, yr.end)],
+                BLACK.mix(0.5).stroke_width(1),
+            ))?;
+            chart.draw_series(std::iter::once(Text::new(
+                label,
+                (x * 1.03, y),
+                ("sans-serif", 12).into_font(),
+            )))?;
         }
     }
     let front = pareto_front(&pts);
-    chart.draw_series(LineSeries::new(front.iter().map(|&i| pts[i]), BLACK.stroke_width(2)))?.label("Pareto front").legend(|(x, y)| {
-        PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
-    });
+    chart
+        .draw_series(LineSeries::new(
+            front.iter().map(|&i| pts[i]),
+            BLACK.stroke_width(2),
+        ))?
+        .label("Pareto front")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
     for ty in ApproxType::ALL {
         let color = type_color(ty);
         let mine: Vec<(f64, f64, usize)> = runs
@@ -206,15 +268,26 @@ fn draw_speed_panel<DB: DrawingBackend>(
             .map(|(r, p)| (p.0, p.1, r.steps))
             .collect();
         chart
-            .draw_series(mine.iter().map(|(x, y, _)| Circle::new((*x, *y), 5, color.filled())))?
+            .draw_series(
+                mine.iter()
+                    .map(|(x, y, _)| Circle::new((*x, *y), 5, color.filled())),
+            )?
             .label(format!("Type {ty}"))
             .legend(move |(x, y)| Circle::new((x + 10, y), 5, color.filled()));
         // Label the coarsest point of each type with its step count.
         if let Some((x, y, n)) = mine.first() {
-            chart.draw_series(std::iter::once(Text::new(format!("T{ty}, {n}"), (*x * 1.05, *y), ("sans-serif", 12).into_font().color(&color))))?;
+            chart.draw_series(std::iter::once(Text::new(
+                format!("T{ty}, {n}"),
+                (*x * 1.05, *y),
+                ("sans-serif", 12).into_font().color(&color),
+            )))?;
         }
     }
-    chart.draw_series(front.iter().map(|&i| Circle::new(pts[i], 8, BLACK.stroke_width(1))))?;
+    chart.draw_series(
+        front
+            .iter()
+            .map(|&i| Circle::new(pts[i], 8, BLACK.stroke_width(1))),
+    )?;
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::LowerRight)
@@ -225,11 +298,18 @@ fn draw_speed_panel<DB: DrawingBackend>(
 }
 
 /// Plot 2: |error| against wall time and against contact time.
-fn draw_error_vs_time<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &FormulationStudy, what: &str) -> DrawResult<DB> {
+fn draw_error_vs_time<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    s: &FormulationStudy,
+    what: &str,
+) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let (title, body) = root.split_vertically(40);
     title.draw(&Text::new(
-        format!("Speed against error, {what} ({}); circled: Pareto front", s.formulation),
+        format!(
+            "Speed against error, {what} ({}); circled: Pareto front",
+            s.formulation
+        ),
         (20, 10),
         ("sans-serif", 20).into_font(),
     ))?;
@@ -240,14 +320,27 @@ fn draw_error_vs_time<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, s: &For
 }
 
 /// Plot 3: the deformed configuration with the contact elements.
-fn draw_deformed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, sol: &Solution) -> DrawResult<DB> {
+fn draw_deformed<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    sol: &Solution,
+) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let mesh = &sol.mesh;
     let u = &sol.final_state.displacements;
-    let cur: Vec<(f64, f64)> = mesh.nodes_ref.iter().zip(u).map(|(x, d)| (x[0] + d[0], x[1] + d[1])).collect();
+    let cur: Vec<(f64, f64)> = mesh
+        .nodes_ref
+        .iter()
+        .zip(u)
+        .map(|(x, d)| (x[0] + d[0], x[1] + d[1]))
+        .collect();
     let refp: Vec<(f64, f64)> = mesh.nodes_ref.iter().map(|x| (x[0], x[1])).collect();
     let all = cur.iter().chain(&refp);
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let (mut x0, mut x1, mut y0, mut y1) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for p in all {
         x0 = x0.min(p.0);
         x1 = x1.max(p.0);
@@ -273,25 +366,47 @@ fn draw_deformed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, sol: &Soluti
         .x_label_area_size(35)
         .y_label_area_size(45)
         .build_cartesian_2d(xr, yr)?;
-    chart.configure_mesh().disable_mesh().x_desc("x").y_desc("y").draw()?;
-    let body_colors = [RGBColor(0, 114, 178), RGBColor(213, 94, 0), RGBColor(0, 158, 115), RGBColor(204, 121, 167)];
+    chart
+        .configure_mesh()
+        .disable_mesh()
+        .x_desc("x")
+        .y_desc("y")
+        .draw()?;
+    let body_colors = [
+        RGBColor(0, 114, 178),
+        RGBColor(213, 94, 0),
+        RGBColor(0, 158, 115),
+        RGBColor(204, 121, 167),
+    ];
     for (e, conn) in mesh.elements.iter().enumerate() {
         let outline = |p: &[(f64, f64)]| {
             let mut v: Vec<(f64, f64)> = conn.iter().map(|&n| p[n]).collect();
             v.push(v[0]);
             v
         };
-        chart.draw_series(std::iter::once(PathElement::new(outline(&refp), RGBColor(190, 190, 190).stroke_width(1))))?;
+        chart.draw_series(std::iter::once(PathElement::new(
+            outline(&refp),
+            RGBColor(190, 190, 190).stroke_width(1),
+        )))?;
         let color = body_colors[mesh.element_body[e] % body_colors.len()];
-        chart.draw_series(std::iter::once(Polygon::new(outline(&cur), color.mix(0.15))))?;
-        chart.draw_series(std::iter::once(PathElement::new(outline(&cur), color.stroke_width(1))))?;
+        chart.draw_series(std::iter::once(Polygon::new(
+            outline(&cur),
+            color.mix(0.15),
+        )))?;
+        chart.draw_series(std::iter::once(PathElement::new(
+            outline(&cur),
+            color.stroke_width(1),
+        )))?;
     }
     // Contact elements: master segments, slave segments, integration points
     // joined to their projections, labelled C1, C2, ...
     let mut seen_slave = Vec::new();
     for p in &sol.contact_points {
         if let Some(m) = p.master_nodes {
-            chart.draw_series(std::iter::once(PathElement::new(vec![cur[m[0]], cur[m[1]]], BLACK.stroke_width(3))))?;
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![cur[m[0]], cur[m[1]]],
+                BLACK.stroke_width(3),
+            )))?;
         }
         chart.draw_series(std::iter::once(PathElement::new(
             vec![cur[p.slave_nodes[0]], cur[p.slave_nodes[1]]],
@@ -301,11 +416,21 @@ fn draw_deformed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, sol: &Soluti
         let n2 = 0.5 * (1.0 + p.xi_s);
         let [a, b] = p.slave_nodes;
         let xs = (n1 * cur[a].0 + n2 * cur[b].0, n1 * cur[a].1 + n2 * cur[b].1);
-        chart.draw_series(std::iter::once(Circle::new(xs, 3, RGBColor(200, 0, 0).filled())))?;
+        chart.draw_series(std::iter::once(Circle::new(
+            xs,
+            3,
+            RGBColor(200, 0, 0).filled(),
+        )))?;
         if let (Some(m), Some(xi)) = (p.master_nodes, p.xi_m) {
             let (m1, m2) = (0.5 * (1.0 - xi), 0.5 * (1.0 + xi));
-            let xm = (m1 * cur[m[0]].0 + m2 * cur[m[1]].0, m1 * cur[m[0]].1 + m2 * cur[m[1]].1);
-            chart.draw_series(std::iter::once(PathElement::new(vec![xs, xm], RGBColor(200, 0, 0).stroke_width(1))))?;
+            let xm = (
+                m1 * cur[m[0]].0 + m2 * cur[m[1]].0,
+                m1 * cur[m[0]].1 + m2 * cur[m[1]].1,
+            );
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![xs, xm],
+                RGBColor(200, 0, 0).stroke_width(1),
+            )))?;
         }
         if !seen_slave.contains(&(p.pair, p.slave_segment)) {
             seen_slave.push((p.pair, p.slave_segment));
@@ -326,13 +451,22 @@ fn draw_deformed<DB: DrawingBackend>(root: &DrawingArea<DB, Shift>, sol: &Soluti
 pub fn write_all(results: &StudyResults, dir: &Path) -> Result<(), StudyError> {
     for s in &results.formulations {
         let f = s.formulation;
-        both!(dir, format!("error-vs-steps-{f}"), (900, 620), |root| draw_error_vs_steps(&root, s));
-        both!(dir, format!("error-vs-time-{f}"), (1300, 600), |root| draw_error_vs_time(&root, s, "paper scene"));
+        both!(dir, format!("error-vs-steps-{f}"), (900, 620), |root| {
+            draw_error_vs_steps(&root, s)
+        });
+        both!(dir, format!("error-vs-time-{f}"), (1300, 600), |root| {
+            draw_error_vs_time(&root, s, "paper scene")
+        });
     }
     if let Some(h) = &results.heavy {
-        both!(dir, "error-vs-time-contact-heavy", (1300, 600), |root| draw_error_vs_time(&root, &h.study, "contact-heavy variant"));
+        both!(dir, "error-vs-time-contact-heavy", (1300, 600), |root| {
+            draw_error_vs_time(&root, &h.study, "contact-heavy variant")
+        });
     }
-    both!(dir, "deformed", (1300, 520), |root| draw_deformed(&root, &results.deformed));
+    both!(dir, "deformed", (1300, 520), |root| draw_deformed(
+        &root,
+        &results.deformed
+    ));
     Ok(())
 }
 

@@ -13,11 +13,17 @@ pub const CSV_HEADER: &str = "type,steps,strain_energy,error_percent,newton_iter
 contact_seconds,solid_seconds,solve_seconds,kernel_evaluations,projections,max_abs_gap,kernel_ops,cutbacks,formulation,failure";
 
 fn opt(v: Option<f64>) -> String {
-    v.filter(|x| x.is_finite()).map(|x| format!("{x:e}")).unwrap_or_default()
+    v.filter(|x| x.is_finite())
+        .map(|x| format!("{x:e}"))
+        .unwrap_or_default()
 }
 
 fn num(x: f64) -> String {
-    if x.is_finite() { format!("{x:e}") } else { String::new() }
+    if x.is_finite() {
+        format!("{x:e}")
+    } else {
+        String::new()
+    }
 }
 
 /// The CSV text of one formulation's study (one row per run).
@@ -25,7 +31,11 @@ pub fn csv(study: &FormulationStudy) -> String {
     let mut out = String::from(CSV_HEADER);
     out.push('\n');
     for r in &study.runs {
-        let failure = r.failure.as_deref().unwrap_or("").replace([',', '\n', '"'], ";");
+        let failure = r
+            .failure
+            .as_deref()
+            .unwrap_or("")
+            .replace([',', '\n', '"'], ";");
         let _ = writeln!(
             out,
             "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
@@ -124,7 +134,10 @@ fn power_fit(points: &[(f64, f64)]) -> (f64, f64) {
         }
         let a = (sxx * s1y - s1x * sxy) / det;
         let c = (s11 * sxy - s1x * s1y) / det;
-        let res: f64 = points.iter().map(|(n, e)| (a + c * n.powf(-p) - e).powi(2)).sum();
+        let res: f64 = points
+            .iter()
+            .map(|(n, e)| (a + c * n.powf(-p) - e).powi(2))
+            .sum();
         if res < best.0 {
             best = (res, a, p);
         }
@@ -147,10 +160,22 @@ const P_MAX: f64 = 4.0;
 /// asymptotic order can be read off yet; otherwise the error converges to
 /// zero with order `p`.
 pub fn convergence(study: &FormulationStudy, ty: ApproxType) -> Convergence {
-    let runs: Vec<&Run> = study.runs.iter().filter(|r| r.method == Method::Approx(ty)).collect();
-    let errors: Vec<(f64, f64)> = runs.iter().filter_map(|r| r.error_percent.map(|e| (r.steps as f64, e))).collect();
+    let runs: Vec<&Run> = study
+        .runs
+        .iter()
+        .filter(|r| r.method == Method::Approx(ty))
+        .collect();
+    let errors: Vec<(f64, f64)> = runs
+        .iter()
+        .filter_map(|r| r.error_percent.map(|e| (r.steps as f64, e)))
+        .collect();
     let sign_changes = errors.windows(2).any(|w| w[0].1 * w[1].1 < 0.0);
-    let mk = |verdict, limit| Convergence { ty, verdict, limit, sign_changes };
+    let mk = |verdict, limit| Convergence {
+        ty,
+        verdict,
+        limit,
+        sign_changes,
+    };
     if errors.len() < runs.len() || errors.len() < 2 {
         return mk(Verdict::Failed, f64::NAN);
     }
@@ -162,14 +187,23 @@ pub fn convergence(study: &FormulationStudy, ty: ApproxType) -> Convergence {
     let start = (sorted.len() / 2).min(sorted.len().saturating_sub(3));
     let tail = &sorted[start..];
     if tail.iter().all(|(_, e)| e.abs() <= ERROR_FLOOR_PERCENT) {
-        return mk(Verdict::Converges { order: f64::INFINITY, local: (f64::INFINITY, f64::INFINITY) }, 0.0);
+        return mk(
+            Verdict::Converges {
+                order: f64::INFINITY,
+                local: (f64::INFINITY, f64::INFINITY),
+            },
+            0.0,
+        );
     }
     if tail.windows(2).any(|w| w[0].1 * w[1].1 < 0.0) {
         return mk(Verdict::PreAsymptotic, f64::NAN);
     }
     let last = tail.last().expect("non-empty").1;
     let local_order = |w: &[(f64, f64)]| (w[0].1 / w[1].1).abs().ln() / (w[1].0 / w[0].0).ln();
-    let local = (local_order(&tail[..2]), local_order(&tail[tail.len() - 2..]));
+    let local = (
+        local_order(&tail[..2]),
+        local_order(&tail[tail.len() - 2..]),
+    );
     let (limit, order) = power_fit(tail);
     if order <= P_MIN + 1e-9 || order >= P_MAX - 1e-9 {
         return mk(Verdict::NotAsymptotic { local }, limit);
@@ -184,22 +218,42 @@ impl std::fmt::Display for Convergence {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match &self.verdict {
             Verdict::AtTolerance => write!(f, "at solver tolerance for every step count"),
-            Verdict::Converges { order, .. } if order.is_infinite() => write!(f, "below tolerance on the finer step counts"),
-            Verdict::Converges { order, local: (a, b) } if (b - a).abs() > 0.25 * a.abs().max(b.abs()) => write!(
+            Verdict::Converges { order, .. } if order.is_infinite() => {
+                write!(f, "below tolerance on the finer step counts")
+            }
+            Verdict::Converges {
+                order,
+                local: (a, b),
+            } if (b - a).abs() > 0.25 * a.abs().max(b.abs()) => write!(
                 f,
                 "falls over the finer step counts, but not yet asymptotically: local order {a:.2} -> {b:.2} \
                  (fitted {order:.2}); extrapolated limit {:+.1e} %",
                 self.limit
             ),
-            Verdict::Converges { order, local: (a, b) } => {
-                write!(f, "converges to zero, order {order:.2} (local order {a:.2} -> {b:.2})")
+            Verdict::Converges {
+                order,
+                local: (a, b),
+            } => {
+                write!(
+                    f,
+                    "converges to zero, order {order:.2} (local order {a:.2} -> {b:.2})"
+                )
             }
             Verdict::DoesNotVanish { limit } => {
-                write!(f, "does not vanish: tends to about {limit:+.2e} % (extrapolated)")
+                write!(
+                    f,
+                    "does not vanish: tends to about {limit:+.2e} % (extrapolated)"
+                )
             }
-            Verdict::PreAsymptotic => write!(f, "changes sign among the finer step counts: not yet asymptotic"),
+            Verdict::PreAsymptotic => write!(
+                f,
+                "changes sign among the finer step counts: not yet asymptotic"
+            ),
             Verdict::NotAsymptotic { local: (a, b) } => {
-                write!(f, "falls, but no asymptotic order yet (local order {a:.2} -> {b:.2})")
+                write!(
+                    f,
+                    "falls, but no asymptotic order yet (local order {a:.2} -> {b:.2})"
+                )
             }
             Verdict::Failed => write!(f, "some solves failed"),
         }?;
@@ -214,7 +268,10 @@ fn short_order(c: &Convergence) -> String {
     match &c.verdict {
         Verdict::AtTolerance => "exact".into(),
         Verdict::Converges { order, .. } if order.is_infinite() => "fast".into(),
-        Verdict::Converges { order, local: (a, b) } if (b - a).abs() > 0.25 * a.abs().max(b.abs()) => {
+        Verdict::Converges {
+            order,
+            local: (a, b),
+        } if (b - a).abs() > 0.25 * a.abs().max(b.abs()) => {
             format!("{order:.2} (pre-asymptotic)")
         }
         Verdict::Converges { order, .. } => format!("{order:.2}"),
@@ -226,24 +283,42 @@ fn short_order(c: &Convergence) -> String {
 
 fn fmt_err(r: Option<&Run>) -> String {
     match r {
-        Some(Run { error_percent: Some(e), .. }) => format!("{e:+.3e}"),
-        Some(Run { failure: Some(_), .. }) => "failed".into(),
+        Some(Run {
+            error_percent: Some(e),
+            ..
+        }) => format!("{e:+.3e}"),
+        Some(Run {
+            failure: Some(_), ..
+        }) => "failed".into(),
         _ => "–".into(),
     }
 }
 
 fn orders_text(ty: ApproxType) -> String {
-    ty.orders().map(|o| format!("{o:?}").to_lowercase()).join(", ")
+    ty.orders()
+        .map(|o| format!("{o:?}").to_lowercase())
+        .join(", ")
 }
 
 /// The machine the study ran on (CPU model and core count).
 pub fn machine_description() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).and_then(|l| l.split(':').nth(1)).map(|s| s.trim().to_owned()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_owned())
+        })
         .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1);
-    format!("{cpu}, {cores} cores available, {} {}", std::env::consts::OS, std::env::consts::ARCH)
+    let cores = std::thread::available_parallelism()
+        .map(|n| n.get())
+        .unwrap_or(1);
+    format!(
+        "{cpu}, {cores} cores available, {} {}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
 }
 
 /// The plot files of a study, relative to its output directory.
@@ -251,27 +326,48 @@ pub fn plot_files(results: &StudyResults) -> Vec<(String, String)> {
     let mut v = Vec::new();
     for s in &results.formulations {
         let f = s.formulation;
-        v.push((format!("Error against load steps ({f})"), format!("error-vs-steps-{f}.png")));
-        v.push((format!("Speed against error ({f})"), format!("error-vs-time-{f}.png")));
+        v.push((
+            format!("Error against load steps ({f})"),
+            format!("error-vs-steps-{f}.png"),
+        ));
+        v.push((
+            format!("Speed against error ({f})"),
+            format!("error-vs-time-{f}.png"),
+        ));
     }
     if results.heavy.is_some() {
-        v.push(("Speed against error, contact-heavy variant".into(), "error-vs-time-contact-heavy.png".into()));
+        v.push((
+            "Speed against error, contact-heavy variant".into(),
+            "error-vs-time-contact-heavy.png".into(),
+        ));
     }
-    v.push(("Deformed configuration at the final load factor".into(), "deformed.png".into()));
+    v.push((
+        "Deformed configuration at the final load factor".into(),
+        "deformed.png".into(),
+    ));
     v
 }
 
 fn ratio(a: f64, b: f64) -> String {
-    if a.is_finite() && b.is_finite() && b > 0.0 { format!("{:.2}", a / b) } else { "–".into() }
+    if a.is_finite() && b.is_finite() && b > 0.0 {
+        format!("{:.2}", a / b)
+    } else {
+        "–".into()
+    }
 }
 
 /// The cost table of a study: per type and step count (`steps`, or all),
 /// time ratios to the complete formulation at the same step count.
 fn cost_table(out: &mut String, s: &FormulationStudy, steps: Option<&[usize]>) {
-    let _ = writeln!(out, "| type | steps | error % | kernel ops | Newton its | contact time / complete | total time / complete |");
+    let _ = writeln!(
+        out,
+        "| type | steps | error % | kernel ops | Newton its | contact time / complete | total time / complete |"
+    );
     let _ = writeln!(out, "|---|---:|---:|---:|---:|---:|---:|");
     for n in steps.map_or_else(|| s.steps(), <[usize]>::to_vec) {
-        let Some(c) = s.run(Method::Complete, n) else { continue };
+        let Some(c) = s.run(Method::Complete, n) else {
+            continue;
+        };
         let _ = writeln!(
             out,
             "| complete | {n} | – | {} | {} | 1.00 ({:.2} ms) | 1.00 ({:.2} ms) |",
@@ -281,7 +377,9 @@ fn cost_table(out: &mut String, s: &FormulationStudy, steps: Option<&[usize]>) {
             1e3 * c.wall_seconds
         );
         for ty in ApproxType::ALL {
-            let Some(r) = s.run(Method::Approx(ty), n) else { continue };
+            let Some(r) = s.run(Method::Approx(ty), n) else {
+                continue;
+            };
             let _ = writeln!(
                 out,
                 "| {ty} | {n} | {} | {} | {} | {} | {} |",
@@ -300,7 +398,11 @@ fn cost_table(out: &mut String, s: &FormulationStudy, steps: Option<&[usize]>) {
 pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> String {
     let mut out = String::new();
     let forms: Vec<Formulation> = results.formulations.iter().map(|s| s.formulation).collect();
-    let _ = writeln!(out, "Generated by `{command}` on {}.", machine_description());
+    let _ = writeln!(
+        out,
+        "Generated by `{command}` on {}.",
+        machine_description()
+    );
     let _ = writeln!(
         out,
         "Scene: {}. Times are medians of {} repeated solves (release build); errors are \
@@ -311,7 +413,10 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
     // Error table at the coarsest and finest step counts.
     let steps = results.formulations[0].steps();
     let (lo, hi) = (steps[0], *steps.last().expect("non-empty"));
-    let _ = writeln!(out, "#### Strain-energy error (%) at {lo} and {hi} load steps\n");
+    let _ = writeln!(
+        out,
+        "#### Strain-energy error (%) at {lo} and {hi} load steps\n"
+    );
     let mut header = String::from("| type | xi_m, x_ms, n | kernel ops |");
     let mut rule = String::from("|---|---|---:|");
     for f in &forms {
@@ -320,7 +425,12 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
     }
     let _ = writeln!(out, "{header}\n{rule}");
     for ty in ApproxType::ALL {
-        let ops: Vec<String> = forms.iter().map(|f| super::kernel_ops(*f, Method::Approx(ty)).map_or("–".into(), |o| o.to_string())).collect();
+        let ops: Vec<String> = forms
+            .iter()
+            .map(|f| {
+                super::kernel_ops(*f, Method::Approx(ty)).map_or("–".into(), |o| o.to_string())
+            })
+            .collect();
         let _ = write!(out, "| {ty} | {} | {} |", orders_text(ty), ops.join(" / "));
         for s in &results.formulations {
             let c = convergence(s, ty);
@@ -338,7 +448,11 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
         out,
         "\nKernel ops are the generated kernel's floating-point operations per integration point \
          ({}); the complete formulation evaluates the Type-6 kernel and re-projects at every iteration.\n",
-        forms.iter().map(|f| f.to_string()).collect::<Vec<_>>().join(" / ")
+        forms
+            .iter()
+            .map(|f| f.to_string())
+            .collect::<Vec<_>>()
+            .join(" / ")
     );
 
     // Convergence in words.
@@ -390,7 +504,11 @@ pub fn reading(results: &StudyResults) -> String {
         let hi = *steps.last().expect("non-empty");
         let mut by_error: Vec<(ApproxType, f64)> = ApproxType::ALL
             .into_iter()
-            .filter_map(|t| s.run(Method::Approx(t), hi).and_then(|r| r.error_percent).map(|e| (t, e.abs())))
+            .filter_map(|t| {
+                s.run(Method::Approx(t), hi)
+                    .and_then(|r| r.error_percent)
+                    .map(|e| (t, e.abs()))
+            })
             .collect();
         by_error.sort_by(|a, b| a.1.total_cmp(&b.1));
         if let (Some(best), Some(worst)) = (by_error.first(), by_error.last()) {
@@ -403,7 +521,10 @@ pub fn reading(results: &StudyResults) -> String {
         // Types whose energies coincide at every step count.
         let mut groups: Vec<Vec<ApproxType>> = Vec::new();
         for t in ApproxType::ALL {
-            let energies: Vec<Option<f64>> = steps.iter().map(|n| s.run(Method::Approx(t), *n).and_then(|r| r.strain_energy)).collect();
+            let energies: Vec<Option<f64>> = steps
+                .iter()
+                .map(|n| s.run(Method::Approx(t), *n).and_then(|r| r.strain_energy))
+                .collect();
             let same = groups.iter_mut().find(|g| {
                 let e0: Vec<Option<f64>> = steps.iter().map(|n| s.run(Method::Approx(g[0]), *n).and_then(|r| r.strain_energy)).collect();
                 e0.iter().zip(&energies).all(|(a, b)| matches!((a, b), (Some(a), Some(b)) if (a - b).abs() <= 1e-9 * a.abs()))
@@ -416,10 +537,19 @@ pub fn reading(results: &StudyResults) -> String {
         let coinciding: Vec<String> = groups
             .iter()
             .filter(|g| g.len() > 1)
-            .map(|g| g.iter().map(|t| t.to_string()).collect::<Vec<_>>().join(" = "))
+            .map(|g| {
+                g.iter()
+                    .map(|t| t.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" = ")
+            })
             .collect();
         if coinciding.is_empty() {
-            let _ = writeln!(out, "- {}: all six types give different energies.", s.formulation);
+            let _ = writeln!(
+                out,
+                "- {}: all six types give different energies.",
+                s.formulation
+            );
         } else {
             let _ = writeln!(
                 out,
@@ -434,9 +564,18 @@ pub fn reading(results: &StudyResults) -> String {
             .map(|t| t.to_string())
             .collect();
         if vanishing.is_empty() {
-            let _ = writeln!(out, "- {}: every type's error falls as the steps get smaller.", s.formulation);
+            let _ = writeln!(
+                out,
+                "- {}: every type's error falls as the steps get smaller.",
+                s.formulation
+            );
         } else {
-            let _ = writeln!(out, "- {}: the error of Type(s) {} does not vanish with more steps.", s.formulation, vanishing.join(", "));
+            let _ = writeln!(
+                out,
+                "- {}: the error of Type(s) {} does not vanish with more steps.",
+                s.formulation,
+                vanishing.join(", ")
+            );
         }
     }
     if let Some(h) = &results.heavy {
@@ -445,7 +584,11 @@ pub fn reading(results: &StudyResults) -> String {
         if let Some(c) = s.run(Method::Complete, hi) {
             let cheapest = ApproxType::ALL
                 .into_iter()
-                .filter_map(|t| s.run(Method::Approx(t), hi).filter(|r| r.wall_seconds.is_finite()).map(|r| (t, r)))
+                .filter_map(|t| {
+                    s.run(Method::Approx(t), hi)
+                        .filter(|r| r.wall_seconds.is_finite())
+                        .map(|r| (t, r))
+                })
                 .min_by(|a, b| a.1.wall_seconds.total_cmp(&b.1.wall_seconds));
             if let Some((t, r)) = cheapest {
                 let _ = writeln!(
@@ -480,7 +623,11 @@ pub fn terminal_summary(results: &StudyResults) -> String {
                     Some(r) if r.failure.is_some() => "failed".to_owned(),
                     Some(r) => match r.error_percent {
                         Some(e) => format!("{e:+.2e} ({:.1})", 1e3 * r.wall_seconds),
-                        None => format!("U={:.6} ({:.1})", r.strain_energy.unwrap_or(f64::NAN), 1e3 * r.wall_seconds),
+                        None => format!(
+                            "U={:.6} ({:.1})",
+                            r.strain_energy.unwrap_or(f64::NAN),
+                            1e3 * r.wall_seconds
+                        ),
                     },
                     None => "–".into(),
                 };
@@ -493,7 +640,11 @@ pub fn terminal_summary(results: &StudyResults) -> String {
         }
     }
     if let Some(h) = &results.heavy {
-        let _ = writeln!(out, "\ncontact-heavy variant ({} solid elements, {} contact points):", h.solid_elements, h.contact_points);
+        let _ = writeln!(
+            out,
+            "\ncontact-heavy variant ({} solid elements, {} contact points):",
+            h.solid_elements, h.contact_points
+        );
         let mut t = String::new();
         cost_table(&mut t, &h.study, None);
         out.push_str(&t);
@@ -511,7 +662,12 @@ pub const README_END: &str = "<!-- study:end -->";
 pub fn splice_readme(readme: &str, section: &str) -> Option<String> {
     let b = readme.find(README_BEGIN)? + README_BEGIN.len();
     let e = readme[b..].find(README_END)? + b;
-    Some(format!("{}\n{}\n{}", &readme[..b], section.trim_end(), &readme[e..]))
+    Some(format!(
+        "{}\n{}\n{}",
+        &readme[..b],
+        section.trim_end(),
+        &readme[e..]
+    ))
 }
 
 #[cfg(test)]
@@ -543,7 +699,10 @@ mod tests {
                 }
             })
             .collect();
-        FormulationStudy { formulation: Formulation::SlaveNormal, runs }
+        FormulationStudy {
+            formulation: Formulation::SlaveNormal,
+            runs,
+        }
     }
 
     #[test]
@@ -577,7 +736,10 @@ mod tests {
     fn readme_section_is_replaced_between_markers() {
         let text = format!("intro\n{README_BEGIN}\nold\n{README_END}\ntail\n");
         let new = splice_readme(&text, "new results").unwrap();
-        assert_eq!(new, format!("intro\n{README_BEGIN}\nnew results\n{README_END}\ntail\n"));
+        assert_eq!(
+            new,
+            format!("intro\n{README_BEGIN}\nnew results\n{README_END}\ntail\n")
+        );
         assert!(splice_readme("no markers", "x").is_none());
     }
 }
