@@ -847,6 +847,67 @@ load_factor_end = 1.0
 steps = [2]
 "#;
 
+    /// FNV-1a over the model's `Debug` text: node coordinates to the bit
+    /// (shortest round-trip), node numbering, element order, body ranges,
+    /// supports, loads and contact segments in order.
+    fn fingerprint(model: &Model) -> u64 {
+        format!("{model:?}")
+            .bytes()
+            .fold(0xcbf2_9ce4_8422_2325, |h, b| {
+                (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+            })
+    }
+
+    #[test]
+    fn paper_scene_builds_the_same_model() {
+        let scene =
+            Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml")
+                .unwrap();
+        let m = scene.build_model().unwrap();
+        assert_eq!(m.mesh.node_count(), 32);
+        assert_eq!(m.mesh.elements.len(), 14);
+        assert_eq!(m.mesh.elements[0], [0, 1, 9, 8]);
+        assert_eq!(m.mesh.elements[6], [6, 7, 15, 14]);
+        assert_eq!(m.mesh.elements[7], [16, 17, 25, 24]);
+        assert_eq!(m.mesh.elements[13], [22, 23, 31, 30]);
+        assert_eq!(m.mesh.nodes_ref[31], [7.0, 1.0]);
+        let fixed: Vec<usize> = m.prescribed.iter().map(|p| p.dof).collect();
+        assert_eq!(fixed, [0, 1, 16, 17, 32, 33, 48, 49]);
+        assert!(m.prescribed.iter().all(|p| p.value == 0.0));
+        let loads: Vec<(usize, f64)> = m.loads.iter().map(|l| (l.dof, l.value)).collect();
+        assert_eq!(loads, [(62, 0.0), (63, -0.08)]);
+        assert_eq!(m.contacts.len(), 1);
+        let c = &m.contacts[0];
+        assert_eq!(c.name, "interface");
+        let slave: Vec<[usize; 2]> = (16..23).map(|n| [n, n + 1]).collect();
+        let master: Vec<[usize; 2]> = (8..15).rev().map(|n| [n + 1, n]).collect();
+        assert_eq!(c.slave, slave);
+        assert_eq!(c.master, master);
+        assert_eq!(
+            (c.formulation, c.mode, c.gauss_points),
+            (
+                Formulation::SlaveNormal,
+                crate::model::ContactMode::Persistent,
+                2
+            )
+        );
+        assert_eq!(m.load_factor_end, 10.0);
+        // the whole model, bit for bit, for the scene and refined variants
+        let prints: Vec<u64> = [(1, 1), (2, 1), (4, 2), (3, 3), (16, 1)]
+            .map(|(x, y)| fingerprint(&scene.refined(x, y).build_model().unwrap()))
+            .to_vec();
+        assert_eq!(
+            prints,
+            [
+                8689335778407627383,
+                2183681067980692126,
+                17199187239843751079,
+                3864826904333325836,
+                18108556103099798236
+            ]
+        );
+    }
+
     #[test]
     fn minimal_scene_parses_with_defaults() {
         let s = Scene::from_toml_str(GOOD, "good.toml").unwrap();
