@@ -1,5 +1,9 @@
 //! Why a scene could not be read, and where in its file.
 
+use serde_path_to_error::Segment;
+
+use super::Scene;
+
 /// Why a scene could not be read.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SceneError {
@@ -21,8 +25,9 @@ pub enum SceneError {
         line: usize,
         /// 1-based column.
         column: usize,
-        /// The dotted path of the field (e.g. `body[1].nx`), as far as it
-        /// can be located.
+        /// The dotted path of the field (e.g. `body[1].nx`,
+        /// `loading.steps[0]`, or the unknown key itself), or `(document)`
+        /// for a TOML syntax error, which comes before any field.
         field: String,
         /// What is wrong.
         message: String,
@@ -40,106 +45,107 @@ pub enum SceneError {
     },
 }
 
-/// A TOML error (syntax, unknown or missing key, wrong type) as a
-/// [`SceneError::Syntax`] that names `origin`, the line and column, and the
-/// field.
-pub(super) fn syntax(text: &str, origin: &str, e: &toml::de::Error) -> SceneError {
-    let (line, column, field) = match e.span() {
-        Some(span) => locate(text, span.start),
-        None => (0, 0, String::from("(document)")),
+/// Parses `text` as a scene. A TOML error (syntax, unknown or missing key,
+/// wrong type) becomes a [`SceneError::Syntax`] that names `origin`, the
+/// line and column of the TOML crate's span, and the field's path as
+/// `serde_path_to_error` tracked it (`(document)` for a syntax error, which
+/// comes before any field).
+pub(super) fn parse(text: &str, origin: &str) -> Result<Scene, SceneError> {
+    let syntax = |e: &toml::de::Error, field: String| {
+        let (line, column) = match e.span() {
+            Some(span) => line_column(text, span.start),
+            None => (0, 0),
+        };
+        SceneError::Syntax {
+            origin: origin.to_owned(),
+            line,
+            column,
+            field,
+            message: e.message().trim().to_owned(),
+        }
     };
-    SceneError::Syntax {
-        origin: origin.to_owned(),
-        line,
-        column,
-        field,
-        message: e.message().trim().to_owned(),
+    let document = toml::Deserializer::parse(text).map_err(|e| syntax(&e, field_path(&[])))?;
+    serde_path_to_error::deserialize(document).map_err(|e| {
+        let segments: Vec<&Segment> = e.path().iter().collect();
+        syntax(e.inner(), field_path(&segments))
+    })
+}
+
+/// The dotted path of a field (`body[1].nx`), or `(document)` for the
+/// whole text.
+fn field_path(segments: &[&Segment]) -> String {
+    let mut path = String::new();
+    for segment in segments {
+        match segment {
+            Segment::Seq { index } => path.push_str(&format!("[{index}]")),
+            Segment::Map { key } | Segment::Enum { variant: key } => {
+                if !path.is_empty() {
+                    path.push('.');
+                }
+                path.push_str(key);
+            }
+            Segment::Unknown => {}
+        }
+    }
+    if path.is_empty() {
+        "(document)".to_owned()
+    } else {
+        path
     }
 }
 
-/// Line, column and dotted field path of a byte offset in a TOML text:
-/// the last table header at or before it (`[[body]]` counted into
-/// `body[i]`) and the keys on its line before the offset (inline tables
-/// nest).
-fn locate(text: &str, offset: usize) -> (usize, usize, String) {
-    let offset = offset.min(text.len());
-    let mut header = String::new();
-    let mut counts: std::collections::HashMap<String, usize> = std::collections::HashMap::new();
-    let mut line_no = 0;
-    let mut line_start = 0;
-    let mut current = "";
-    for (i, line) in text.split_inclusive('\n').enumerate() {
-        line_no = i;
-        current = line;
-        let t = line.trim();
-        if let Some(name) = t.strip_prefix("[[").and_then(|r| r.split("]]").next()) {
-            let name = name.trim().to_owned();
-            let k = counts.entry(name.clone()).or_insert(0);
-            header = format!("{name}[{k}]");
-            *k += 1;
-        } else if let Some(name) = t.strip_prefix('[').and_then(|r| r.split(']').next()) {
-            header = name.trim().to_owned();
-        }
-        if offset < line_start + line.len() {
-            break;
-        }
-        line_start += line.len();
+/// The 1-based line and column (in characters) of a byte offset in `text`.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
     }
-    let line = current.trim_end_matches(['\n', '\r']);
-    let mut col = offset.saturating_sub(line_start).min(line.len());
-    while !line.is_char_boundary(col) {
-        col -= 1;
+    let before = &text[..offset];
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    (
+        before.matches('\n').count() + 1,
+        before[line_start..].chars().count() + 1,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn line_and_column_count_characters_from_one() {
+        let text = "a = 1\nname = \"Müller\" x\n";
+        assert_eq!(line_column(text, 0), (1, 1));
+        assert_eq!(line_column(text, 6), (2, 1));
+        let x = text.find(" x").unwrap() + 1;
+        assert_eq!(line_column(text, x), (2, 17));
+        // inside a multi-byte character: its start
+        let u = text.find('ü').unwrap();
+        assert_eq!(line_column(text, u + 1), line_column(text, u));
+        assert_eq!(line_column(text, usize::MAX), (3, 1));
     }
-    let mut path: Vec<String> = Vec::new();
-    if !header.is_empty() {
-        path.push(header);
+
+    #[test]
+    fn paths_name_array_elements_and_unknown_keys() {
+        let text = crate::scenes::STACKED_CANTILEVER;
+        let e = parse(
+            &text.replace("steps = [4, 6", "steps = [4, \"6\""),
+            "s.toml",
+        )
+        .unwrap_err();
+        assert!(
+            matches!(&e, SceneError::Syntax { field, line: 54, column: 13, .. } if field == "loading.steps[1]"),
+            "{e:?}"
+        );
+        let e = parse(&text.replace("ny = 1", "ny = 1\nnz = 2"), "s.toml").unwrap_err();
+        assert!(
+            matches!(&e, SceneError::Syntax { field, .. } if field == "body[0].nz"),
+            "{e:?}"
+        );
+        let e = parse(&text.replace("nx = 7", "nx = = 7"), "s.toml").unwrap_err();
+        assert!(
+            matches!(&e, SceneError::Syntax { field, line: 25, column: 6, .. } if field == "(document)"),
+            "{e:?}"
+        );
     }
-    if !line.trim_start().starts_with('[') {
-        // keys before the offset on this line
-        let mut stack: Vec<String> = Vec::new();
-        let mut pending: Option<String> = None;
-        let mut word = String::new();
-        let mut in_str: Option<char> = None;
-        for ch in line[..col].chars() {
-            if let Some(q) = in_str {
-                if ch == q {
-                    in_str = None;
-                }
-                continue;
-            }
-            match ch {
-                '"' | '\'' => in_str = Some(ch),
-                '=' => {
-                    pending = Some(word.trim().to_owned());
-                    word.clear();
-                }
-                '{' => {
-                    if let Some(p) = pending.take() {
-                        stack.push(p);
-                    }
-                    word.clear();
-                }
-                '}' => {
-                    stack.pop();
-                    word.clear();
-                }
-                ',' => {
-                    pending = None;
-                    word.clear();
-                }
-                '#' => break,
-                c => word.push(c),
-            }
-        }
-        path.extend(stack);
-        if let Some(p) = pending.filter(|p| !p.is_empty()) {
-            path.push(p);
-        }
-    }
-    let field = if path.is_empty() {
-        "(document)".to_owned()
-    } else {
-        path.join(".")
-    };
-    (line_no + 1, line[..col].chars().count() + 1, field)
 }

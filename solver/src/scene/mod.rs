@@ -79,7 +79,8 @@
 //! The module is laid out by concept:
 //!
 //! * `spec.rs`: the serde types above (the schema) and their defaults;
-//! * `error.rs`: [`SceneError`] and the position of a TOML error;
+//! * `error.rs`: [`SceneError`], and parsing with the position and field
+//!   path of a TOML error;
 //! * `validate.rs`: the checks of values that need no mesh (counts, finite
 //!   numbers, materials, names), each naming its field;
 //! * `source/`: mesh sources, which make the bodies and resolve the faces
@@ -109,7 +110,7 @@ impl Scene {
     /// Parses and validates a scene; `origin` names the text in error
     /// messages (usually the file name).
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
-        let mut scene: Scene = toml::from_str(text).map_err(|e| error::syntax(text, origin, &e))?;
+        let mut scene = error::parse(text, origin)?;
         scene.origin = origin.to_owned();
         scene.build_model()?;
         Ok(scene)
