@@ -4,11 +4,13 @@
 //!
 //! Each check names the field it rejects (`body[1].name`,
 //! `contact[0].gauss_points`, ...) in a [`SceneError::Invalid`].
-//! [`Scene::build_model`] calls each where the value is first needed, so the
-//! first error a scene reports is the first one met in file order of the
-//! sections: refinement, bodies, supports, prescribed displacements, loads,
-//! contacts, loading, Newton. Checks that depend on how a body was made
-//! (a block's `nx`, `size`, `origin`) belong to its mesh source.
+//! [`Scene::build_model`] calls each where the value is first needed, so a
+//! scene with several faults reports the first in this order: `[refine]`;
+//! each body (its name and material here, then its source's own checks,
+//! such as a block's `nx`, `size` and `origin`); supports; prescribed
+//! displacements; loads; contacts; `[loading]`; `[newton]`. Checks that
+//! depend on how a body was made belong to its mesh source, and checks that
+//! need the mesh (a selection that finds no node) to `select.rs`.
 
 use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError};
 use crate::material::Material;
