@@ -19,63 +19,67 @@ use crate::model::ContactMode;
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Scene {
-    /// A name for reports.
+    /// `name`: a name for reports (default: the file name).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
-    /// Free text.
+    /// `description`: free text.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
-    /// The default material.
+    /// `[material]`: the material of every body without its own
+    /// (`young`, `poisson`, `model` = `plane-stress` (default) or
+    /// `plane-strain`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<Material>,
-    /// The bodies (`[[body]]`).
+    /// The bodies (`[[body]]`, at least one), in mesh order.
     #[serde(rename = "body")]
     pub bodies: Vec<BodySpec>,
-    /// Supports (`[[fix]]`).
+    /// Supports (`[[fix]]`, default none).
     #[serde(default, rename = "fix")]
     pub fixes: Vec<FixSpec>,
-    /// Point loads (`[[load]]`).
+    /// Point loads (`[[load]]`, default none).
     #[serde(default, rename = "load")]
     pub loads: Vec<LoadSpec>,
-    /// Prescribed displacements (`[[prescribe]]`).
+    /// Prescribed displacements (`[[prescribe]]`, default none).
     #[serde(default, rename = "prescribe")]
     pub prescribes: Vec<PrescribeSpec>,
-    /// Contact pairs (`[[contact]]`).
+    /// Contact pairs (`[[contact]]`, default none).
     #[serde(default, rename = "contact")]
     pub contacts: Vec<ContactSpec>,
-    /// The load schedule.
+    /// `[loading]`: the load schedule (required).
     pub loading: LoadingSpec,
-    /// Mesh refinement factors.
+    /// `[refine]`: mesh refinement factors (default 1 and 1).
     #[serde(default)]
     pub refine: RefineSpec,
-    /// Newton settings.
+    /// `[newton]`: Newton settings (defaults as in [`NewtonSpec`]).
     #[serde(default)]
     pub newton: NewtonSpec,
-    /// Where the scene came from (file name), for messages.
+    /// Where the scene came from (file name), for messages; not part of
+    /// the file.
     #[serde(skip)]
     pub origin: String,
 }
 
-/// A body: a structured rectangular block.
+/// A body (`[[body]]`): a structured rectangular block of `nx` by `ny`
+/// 4-node quadrilaterals (see [`crate::mesh::block`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
-    /// Unique name.
+    /// `name`: unique among the bodies; selections and faces refer to it.
     pub name: String,
-    /// Lower-left corner.
+    /// `origin`: the lower-left corner `[x, y]` (reference frame, finite).
     pub origin: [f64; 2],
-    /// Width and height.
+    /// `size`: width and height (positive, finite).
     pub size: [f64; 2],
-    /// Elements along x.
+    /// `nx`: elements along x (at least 1; times `[refine] x`).
     pub nx: usize,
-    /// Elements along y.
+    /// `ny`: elements along y (at least 1; times `[refine] y`).
     pub ny: usize,
     /// Material (default: the scene's `[material]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<Material>,
 }
 
-/// Which displacement components.
+/// Which displacement components (`dofs = "x" | "y" | "xy"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 pub enum Dofs {
     /// x only.
@@ -101,112 +105,124 @@ impl Dofs {
     }
 }
 
-/// Supports: zero displacement of the selected nodes.
+/// Supports (`[[fix]]`): zero displacement of the selected nodes. Select
+/// with `at`, or with `x` and/or `y` (every node on that line); `body`
+/// restricts the selection to one body. At least one node must match.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FixSpec {
-    /// Restrict to this body.
+    /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// Nodes with this reference x.
+    /// `x`: the nodes with this reference x.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x: Option<f64>,
-    /// Nodes with this reference y.
+    /// `y`: the nodes with this reference y.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y: Option<f64>,
-    /// The node(s) at this reference point.
+    /// `at`: the node(s) at this reference point (not with `x`/`y`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub at: Option<[f64; 2]>,
-    /// Components fixed.
+    /// `dofs`: the components fixed (default `"xy"`).
     #[serde(default)]
     pub dofs: Dofs,
 }
 
-/// A proportional point force on one node.
+/// A proportional point force on one node (`[[load]]`): `lambda_L force`.
+/// Exactly one node (of `body`, if given) must sit at `at`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
-    /// Restrict to this body.
+    /// `body`: restrict to this body (needed where bodies touch).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// The node's reference position.
+    /// `at`: the node's reference position.
     pub at: [f64; 2],
-    /// The force at load factor one.
+    /// `force`: `[fx, fy]` at load factor one (finite).
     pub force: [f64; 2],
 }
 
-/// Proportional prescribed displacements.
+/// Proportional prescribed displacements (`[[prescribe]]`):
+/// `lambda_L (ux, uy)` on the nodes selected as in [`FixSpec`]. A component
+/// left out is free; a node's component prescribed twice must agree.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PrescribeSpec {
-    /// Restrict to this body.
+    /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// Nodes with this reference x.
+    /// `x`: the nodes with this reference x.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x: Option<f64>,
-    /// Nodes with this reference y.
+    /// `y`: the nodes with this reference y.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y: Option<f64>,
-    /// The node(s) at this reference point.
+    /// `at`: the node(s) at this reference point (not with `x`/`y`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub at: Option<[f64; 2]>,
-    /// x displacement at load factor one.
+    /// `ux`: the x displacement at load factor one (finite).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ux: Option<f64>,
-    /// y displacement at load factor one.
+    /// `uy`: the y displacement at load factor one (finite).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uy: Option<f64>,
 }
 
-/// A face: one side of a body.
+/// A face (`{ body = .., side = .. }`): one side of a block body, as a
+/// chain of segments counter-clockwise around the body (resolved by the
+/// body's mesh source).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FaceSpec {
-    /// The body.
+    /// `body`: the body's name.
     pub body: String,
-    /// The side.
+    /// `side`: `bottom`, `right`, `top` or `left`.
     pub side: Side,
 }
 
-/// A contact pair.
+/// A contact pair (`[[contact]]`) between faces of two different bodies.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ContactSpec {
-    /// A name for reports (default `contact[i]`).
+    /// `name`: a name for reports (default `contact[i]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
-    /// The slave face (carries integration points and multipliers).
+    /// `slave`: the slave face (carries integration points and
+    /// multipliers).
     pub slave: FaceSpec,
-    /// The master face.
+    /// `master`: the master face.
     pub master: FaceSpec,
-    /// Gap formulation.
+    /// `formulation`: the gap formulation, `slave-normal` (default) or
+    /// `closest-point`.
     #[serde(
         default = "default_formulation",
         deserialize_with = "de_formulation",
         serialize_with = "ser_formulation"
     )]
     pub formulation: Formulation,
-    /// Persistent or unilateral.
+    /// `mode`: `persistent` (default) or `unilateral`.
     #[serde(default)]
     pub mode: ContactMode,
-    /// Gauss points per slave segment.
+    /// `gauss_points`: Gauss points per slave segment, 1..=8 (default 2).
     #[serde(default = "default_gauss_points")]
     pub gauss_points: usize,
 }
 
-/// The load schedule and default method.
+/// The load schedule and default method (`[loading]`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadingSpec {
-    /// Final load factor (from 0).
+    /// `load_factor_end`: the final load factor (from 0; finite).
     pub load_factor_end: f64,
-    /// Step counts for studies.
+    /// `steps`: the step counts of a study (at least one, each at least
+    /// 1).
     pub steps: Vec<usize>,
-    /// Step count of a single run (default: the first of `steps`).
+    /// `default_steps`: the step count of a single run (at least 1;
+    /// default: the first of `steps`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub default_steps: Option<usize>,
-    /// Default method.
+    /// `method`: the default method, `"complete"` (default) or an
+    /// approximation type 1..6 (a number or its text).
     #[serde(
         default = "default_method",
         deserialize_with = "de_method",
@@ -215,14 +231,15 @@ pub struct LoadingSpec {
     pub method: Method,
 }
 
-/// Refinement factors for every body's `nx` and `ny`.
+/// Refinement factors for every body's `nx` and `ny` (`[refine]`);
+/// [`Scene::refined`] multiplies them further.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RefineSpec {
-    /// Factor on `nx`.
+    /// `x`: the factor on `nx` (at least 1, default 1).
     #[serde(default = "one")]
     pub x: usize,
-    /// Factor on `ny`.
+    /// `y`: the factor on `ny` (at least 1, default 1).
     #[serde(default = "one")]
     pub y: usize,
 }
@@ -233,17 +250,19 @@ impl Default for RefineSpec {
     }
 }
 
-/// Newton settings.
+/// Newton settings (`[newton]`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NewtonSpec {
-    /// Relative residual tolerance.
+    /// `tolerance`: converged when `|r| <= tolerance * max(1, |f_ext|)`
+    /// (positive, default 1e-10).
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
-    /// Iterations per attempt.
+    /// `max_iterations`: Newton iterations per attempt (at least 1,
+    /// default 30).
     #[serde(default = "default_max_iterations")]
     pub max_iterations: usize,
-    /// Cut-backs per scheduled step.
+    /// `max_cutbacks`: bisections per scheduled step (default 8).
     #[serde(default = "default_max_cutbacks")]
     pub max_cutbacks: usize,
 }
