@@ -3,10 +3,18 @@
 //! A [`MeshSource`] makes the bodies it owns and answers the selections
 //! whose meaning depends on how a body was made. Today there is one source,
 //! [`Blocks`]: every `[[body]]` is a structured rectangular block
-//! (`origin`, `size`, `nx`, `ny`) and its faces are its four sides. A reader
-//! of mesh files (`[mesh] file = ...`, bodies and groups by physical name)
-//! is another source in a file next to `blocks.rs`; [`Sources::of`] lists
-//! it after the blocks, and it owns the bodies that are not blocks.
+//! (`origin`, `size`, `nx`, `ny`) and its faces are its four sides.
+//! Selection by reference coordinates does not depend on the source and
+//! stays with the mesh ([`Mesh::select_nodes`]).
+//!
+//! A reader of mesh files (`[mesh] file = ...`, bodies, curves and points
+//! by physical name) is another source in a file next to `blocks.rs`:
+//! [`Sources::of`] lists it after the blocks and it owns the bodies that
+//! are not blocks; it appends each through [`Mesh::add_body`], keeping the
+//! map from the file's node tags to mesh nodes, and answers faces and node
+//! groups by name (a trait method each, with a default of `None` so the
+//! blocks need not change), orienting each edge by the element that owns
+//! it.
 //!
 //! Invariants every source keeps:
 //!
