@@ -6,61 +6,31 @@
 //! nodes counter-clockwise. Each body owns a contiguous range of nodes and of
 //! elements.
 //!
-//! A structured rectangular block with origin `(x0, y0)`, size `(w, h)` and
-//! `nx x ny` elements has the nodes `(i, j)`, `i = 0..=nx`, `j = 0..=ny`, at
-//! `(x0 + i w/nx, y0 + j h/ny)`, numbered `j (nx + 1) + i` within the body,
-//! and the elements `(i, j)` with nodes `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`.
+//! The [`Mesh`] owns what every body has, however it was made: nodes,
+//! connectivity, the body ranges, the precomputed element geometry and the
+//! selection of nodes by reference coordinates. Bodies are appended one at a
+//! time, each with fresh nodes ([`Mesh::add_body`] checks the connectivity
+//! and that every element's reference Jacobian is positive), so that
 //!
-//! A block's sides are chains of 2-node segments ordered counter-clockwise
-//! around the body (so the outward normal of a segment with tangent `t` is
-//! `(t.y, -t.x)/|t|`): `bottom` left to right, `right` bottom to top, `top`
-//! right to left, `left` top to bottom.
+//! * bodies share no nodes, and a body's nodes and elements are contiguous;
+//! * node and element numbers are those of the order in which bodies were
+//!   appended, then the body-local order of the generator.
+//!
+//! Body generators live next to this file: [`block`] (structured
+//! rectangular blocks, with their sides as counter-clockwise segment
+//! chains). A reader of an unstructured mesh file is another generator that
+//! ends in [`Mesh::add_body`].
 
 use std::ops::Range;
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use crate::material::Material;
 use crate::quad::{InvalidElement, QuadGeometry};
 
-/// A structured rectangular block of elements.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Block {
-    /// Lower-left corner (reference frame).
-    pub origin: [f64; 2],
-    /// Width and height.
-    pub size: [f64; 2],
-    /// Elements along x.
-    pub nx: usize,
-    /// Elements along y.
-    pub ny: usize,
-}
+pub mod block;
 
-/// A side of a rectangular block.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Side {
-    /// `y = y0`, segments left to right.
-    Bottom,
-    /// `x = x0 + w`, segments bottom to top.
-    Right,
-    /// `y = y0 + h`, segments right to left.
-    Top,
-    /// `x = x0`, segments top to bottom.
-    Left,
-}
-
-impl Side {
-    /// The side's name as written in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Side::Bottom => "bottom",
-            Side::Right => "right",
-            Side::Top => "top",
-            Side::Left => "left",
-        }
-    }
-}
+pub use block::{Block, Side};
 
 /// One body of the mesh.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -151,44 +121,6 @@ impl Mesh {
         self.push_body(name, material, nodes_ref, elements, None)
     }
 
-    /// Appends a structured rectangular block (see the module docs).
-    /// Returns the body's index.
-    pub fn add_block(
-        &mut self,
-        name: &str,
-        material: Material,
-        block: Block,
-    ) -> Result<usize, MeshError> {
-        let Block {
-            origin,
-            size,
-            nx,
-            ny,
-        } = block;
-        if nx == 0 || ny == 0 || !(size[0] > 0.0) || !(size[1] > 0.0) {
-            return Err(MeshError::EmptyBlock {
-                body: name.to_owned(),
-            });
-        }
-        let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
-        for j in 0..=ny {
-            for i in 0..=nx {
-                nodes.push([
-                    origin[0] + size[0] * i as f64 / nx as f64,
-                    origin[1] + size[1] * j as f64 / ny as f64,
-                ]);
-            }
-        }
-        let id = |i: usize, j: usize| j * (nx + 1) + i;
-        let mut elements = Vec::with_capacity(nx * ny);
-        for j in 0..ny {
-            for i in 0..nx {
-                elements.push([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        self.push_body(name, material, &nodes, &elements, Some(block))
-    }
-
     fn push_body(
         &mut self,
         name: &str,
@@ -251,21 +183,6 @@ impl Mesh {
         self.bodies.iter().position(|b| b.name == name)
     }
 
-    /// The segments (global node pairs) of a side of a block body, ordered
-    /// counter-clockwise around the body. `None` if the body is not a block.
-    pub fn block_side(&self, body: usize, side: Side) -> Option<Vec<[usize; 2]>> {
-        let b = self.bodies.get(body)?;
-        let Block { nx, ny, .. } = b.block?;
-        let base = b.nodes.start;
-        let id = |i: usize, j: usize| base + j * (nx + 1) + i;
-        Some(match side {
-            Side::Bottom => (0..nx).map(|i| [id(i, 0), id(i + 1, 0)]).collect(),
-            Side::Right => (0..ny).map(|j| [id(nx, j), id(nx, j + 1)]).collect(),
-            Side::Top => (0..nx).rev().map(|i| [id(i + 1, ny), id(i, ny)]).collect(),
-            Side::Left => (0..ny).rev().map(|j| [id(0, j + 1), id(0, j)]).collect(),
-        })
-    }
-
     /// The length of the diagonal of the bounding box of all nodes (a
     /// length scale for tolerances).
     pub fn size(&self) -> f64 {
@@ -324,44 +241,6 @@ mod tests {
         poisson: 0.0,
         model: PlaneModel::PlaneStress,
     };
-
-    #[test]
-    fn block_numbering_and_sides_are_counter_clockwise() {
-        let mut m = Mesh::new();
-        m.add_block(
-            "a",
-            MAT,
-            Block {
-                origin: [0.0, 0.0],
-                size: [2.0, 1.0],
-                nx: 2,
-                ny: 1,
-            },
-        )
-        .unwrap();
-        m.add_block(
-            "b",
-            MAT,
-            Block {
-                origin: [0.0, 1.0],
-                size: [2.0, 1.0],
-                nx: 2,
-                ny: 1,
-            },
-        )
-        .unwrap();
-        assert_eq!(m.node_count(), 12);
-        assert_eq!(m.elements[2], [6, 7, 10, 9]);
-        let top = m.block_side(0, Side::Top).unwrap();
-        assert_eq!(top, vec![[5, 4], [4, 3]]);
-        let bottom = m.block_side(1, Side::Bottom).unwrap();
-        assert_eq!(bottom, vec![[6, 7], [7, 8]]);
-        assert_eq!(m.block_side(0, Side::Left).unwrap(), vec![[3, 0]]);
-        assert_eq!(m.block_side(0, Side::Right).unwrap(), vec![[2, 5]]);
-        // interface nodes exist twice
-        assert_eq!(m.select_nodes(None, None, Some(1.0)).len(), 6);
-        assert_eq!(m.select_nodes(Some(1), Some(2.0), Some(2.0)), vec![11]);
-    }
 
     #[test]
     fn clockwise_elements_are_rejected() {

@@ -1,0 +1,123 @@
+//! The model builder: from a [`Scene`] to the [`Model`] the solver works on.
+//!
+//! The order of everything the solver sees is fixed here and is part of the
+//! results (assembly and the contact points follow it):
+//!
+//! * bodies in `[[body]]` order, each appended by its mesh source with
+//!   fresh nodes (bodies share no nodes);
+//! * prescribed degrees of freedom in the order `[[fix]]` then
+//!   `[[prescribe]]`, each item's nodes in increasing index, then its
+//!   components x, y; a degree of freedom appears once (a second item may
+//!   only repeat its value);
+//! * point loads in `[[load]]` order, x then y;
+//! * contact pairs in `[[contact]]` order, each face's segments as its
+//!   source orders them (counter-clockwise around the body).
+
+use super::source::Sources;
+use super::{Scene, SceneError};
+use crate::mesh::Mesh;
+use crate::model::{ContactPair, Model, PointLoad, Prescribed};
+
+impl Scene {
+    /// Builds the finite-element model.
+    pub fn build_model(&self) -> Result<Model, SceneError> {
+        self.check_refine()?;
+        let mut sources = Sources::of(self);
+        let mut mesh = Mesh::new();
+        for i in 0..self.bodies.len() {
+            let material = self.check_body(i)?;
+            sources.add_body(&mut mesh, i, material)?;
+        }
+        if mesh.bodies.is_empty() {
+            return Err(self.invalid("body", "at least one [[body]] is needed"));
+        }
+        let mut prescribed: Vec<Prescribed> = Vec::new();
+        let mut add_prescribed = |field: &str, dof: usize, value: f64| -> Result<(), SceneError> {
+            match prescribed.iter().find(|p| p.dof == dof) {
+                Some(p) if p.value != value => Err(self.invalid(
+                    field,
+                    format!(
+                        "node {} component {} is already prescribed to {}",
+                        dof / 2,
+                        dof % 2,
+                        p.value
+                    ),
+                )),
+                Some(_) => Ok(()),
+                None => {
+                    prescribed.push(Prescribed { dof, value });
+                    Ok(())
+                }
+            }
+        };
+        for (i, fx) in self.fixes.iter().enumerate() {
+            let f = format!("fix[{i}]");
+            for n in self.select(&mesh, &f, &fx.body, fx.x, fx.y, fx.at)? {
+                for &c in fx.dofs.components() {
+                    add_prescribed(&f, 2 * n + c, 0.0)?;
+                }
+            }
+        }
+        for (i, p) in self.prescribes.iter().enumerate() {
+            let f = format!("prescribe[{i}]");
+            self.check_prescribe(&f, p)?;
+            for n in self.select(&mesh, &f, &p.body, p.x, p.y, p.at)? {
+                for (c, v) in [(0, p.ux), (1, p.uy)] {
+                    if let Some(v) = v {
+                        add_prescribed(&f, 2 * n + c, v)?;
+                    }
+                }
+            }
+        }
+        let mut loads = Vec::new();
+        for (i, l) in self.loads.iter().enumerate() {
+            let f = format!("load[{i}]");
+            self.check_load(&f, l)?;
+            let nodes = self.select(&mesh, &f, &l.body, None, None, Some(l.at))?;
+            if nodes.len() > 1 {
+                return Err(self.invalid(
+                    format!("{f}.at"),
+                    format!(
+                        "{} nodes sit at {:?} (bodies share no nodes); name the `body`",
+                        nodes.len(),
+                        l.at
+                    ),
+                ));
+            }
+            for c in 0..2 {
+                loads.push(PointLoad {
+                    dof: 2 * nodes[0] + c,
+                    value: l.force[c],
+                });
+            }
+        }
+        let mut contacts = Vec::new();
+        for (i, c) in self.contacts.iter().enumerate() {
+            let f = format!("contact[{i}]");
+            let slave = self.face(&mesh, &sources, &f, "slave", &c.slave)?;
+            let master = self.face(&mesh, &sources, &f, "master", &c.master)?;
+            self.check_contact(&f, c)?;
+            contacts.push(ContactPair {
+                name: c.name.clone().unwrap_or_else(|| f.clone()),
+                slave,
+                master,
+                formulation: c.formulation,
+                mode: c.mode,
+                gauss_points: c.gauss_points,
+            });
+        }
+        self.check_loading()?;
+        self.check_newton()?;
+        let model = Model {
+            mesh,
+            prescribed,
+            loads,
+            contacts,
+            load_factor_end: self.loading.load_factor_end,
+        };
+        model
+            .check()
+            .map_err(|e| self.invalid("(model)", e.to_string()))?;
+        Ok(model)
+    }
+}

@@ -1,0 +1,308 @@
+//! Scene files (TOML).
+//!
+//! A scene describes bodies made of structured rectangular blocks of Q4
+//! elements, their materials, supports, proportional loads, prescribed
+//! displacements, contact pairs and the load schedule. Unknown keys are
+//! errors. The paper scene, `scenes/stacked-cantilever.toml`, reads:
+//!
+//! ```toml
+//! name = "stacked-cantilever"
+//!
+//! [material]                  # default for bodies without their own
+//! young = 1000.0
+//! poisson = 0.3
+//! model = "plane-stress"      # or "plane-strain"; default plane-stress
+//!
+//! [[body]]                    # bodies share no nodes
+//! name = "master"
+//! origin = [0.0, 0.0]         # lower-left corner
+//! size = [7.0, 0.5]           # width, height
+//! nx = 7                      # elements along x
+//! ny = 1                      # elements along y
+//! # material = { young = .., poisson = .. }   (optional, per body)
+//!
+//! [[body]]
+//! name = "slave"
+//! origin = [0.0, 0.5]
+//! size = [7.0, 0.5]
+//! nx = 7
+//! ny = 1
+//!
+//! [[fix]]                     # supports (zero displacement)
+//! x = 0.0                     # nodes with reference x = 0 (optional `y`,
+//!                             # or `at = [x, y]`; optional `body`)
+//! dofs = "xy"                 # "x", "y" or "xy" (default)
+//!
+//! [[load]]                    # point force  load_factor * force
+//! body = "slave"              # optional unless the point is ambiguous
+//! at = [7.0, 1.0]             # exactly one node must sit there
+//! force = [0.0, -0.08]
+//!
+//! [[contact]]
+//! name = "interface"          # optional
+//! slave = { body = "slave", side = "bottom" }    # side: bottom|right|top|left
+//! master = { body = "master", side = "top" }
+//! formulation = "slave-normal"   # or "closest-point" (default slave-normal)
+//! mode = "persistent"            # or "unilateral" (default persistent)
+//! gauss_points = 2               # per slave segment, 1..=8 (default 2)
+//!
+//! [loading]
+//! load_factor_end = 10.0
+//! steps = [4, 6, 8, 10, 12, 14, 16, 18, 20]   # step counts of the study
+//! default_steps = 4           # for a single run (default: first of `steps`)
+//! method = "complete"         # or 1..6 (an approximation type)
+//! ```
+//!
+//! Optional sections:
+//!
+//! ```toml
+//! [[prescribe]]               # prescribed displacement  load_factor * (ux, uy)
+//! body = "block"              # selection as in [[fix]]: x, y or at
+//! y = 2.0
+//! uy = -0.1                   # ux and/or uy
+//!
+//! [refine]                    # multiply every body's nx and ny
+//! x = 4                       # default 1
+//! y = 2                       # default 1
+//!
+//! [newton]
+//! tolerance = 1e-10           # |r| <= tolerance * max(1, |f_ext|)
+//! max_iterations = 30         # per attempt
+//! max_cutbacks = 8            # bisections per scheduled step
+//! ```
+//!
+//! Block sides are ordered counter-clockwise around their body (see
+//! [`crate::mesh::block`]). Coordinates select nodes within `1e-9` times the size
+//! of the mesh. Errors name the file, the field (e.g. `body[1].nx`) and what
+//! is wrong.
+//!
+//! The module is laid out by concept:
+//!
+//! * `spec.rs`: the serde types above (the schema) and their defaults;
+//! * `error.rs`: [`SceneError`], and parsing with the position and field
+//!   path of a TOML error;
+//! * `validate.rs`: the checks of values that need no mesh (counts, finite
+//!   numbers, materials, names), each naming its field;
+//! * `source/`: mesh sources, which make the bodies and resolve the faces
+//!   that depend on how a body was made (`source/blocks.rs`: the
+//!   structured rectangular blocks of `[[body]]`);
+//! * `select.rs`: node selection by reference coordinates and face
+//!   resolution by body name;
+//! * `build.rs`: [`Scene::build_model`], from a scene to a
+//!   [`Model`](crate::model::Model).
+
+use std::path::Path;
+
+mod build;
+mod error;
+mod select;
+mod source;
+mod spec;
+mod validate;
+
+pub use error::SceneError;
+pub use spec::{
+    BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, NewtonSpec,
+    PrescribeSpec, RefineSpec, Scene,
+};
+
+impl Scene {
+    /// Parses and validates a scene; `origin` names the text in error
+    /// messages (usually the file name).
+    pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let mut scene = error::parse(text, origin)?;
+        scene.origin = origin.to_owned();
+        scene.build_model()?;
+        Ok(scene)
+    }
+
+    /// Reads a scene file.
+    pub fn from_file(path: impl AsRef<Path>) -> Result<Scene, SceneError> {
+        let path = path.as_ref();
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+            origin: origin.clone(),
+            message: e.to_string(),
+        })?;
+        Scene::from_toml_str(&text, &origin)
+    }
+
+    /// The scene as TOML text (the `origin` is not written).
+    pub fn to_toml_string(&self) -> String {
+        toml::to_string(self).unwrap_or_else(|e| format!("# cannot serialise: {e}"))
+    }
+
+    /// A copy with every body's `nx` and `ny` multiplied (on top of the
+    /// scene's own `[refine]`).
+    pub fn refined(&self, x: usize, y: usize) -> Scene {
+        let mut s = self.clone();
+        s.refine.x *= x;
+        s.refine.y *= y;
+        s
+    }
+
+    /// The step count of a single run.
+    pub fn default_steps(&self) -> usize {
+        self.loading
+            .default_steps
+            .or(self.loading.steps.first().copied())
+            .unwrap_or(1)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Method;
+    use crate::model::Model;
+    use contact_kernels::Formulation;
+
+    fn err(text: &str) -> SceneError {
+        Scene::from_toml_str(text, "bad.toml").unwrap_err()
+    }
+
+    const GOOD: &str = r#"
+[material]
+young = 100.0
+poisson = 0.25
+
+[[body]]
+name = "a"
+origin = [0.0, 0.0]
+size = [2.0, 1.0]
+nx = 2
+ny = 1
+
+[[fix]]
+x = 0.0
+
+[[load]]
+at = [2.0, 1.0]
+force = [0.0, -1.0]
+
+[loading]
+load_factor_end = 1.0
+steps = [2]
+"#;
+
+    /// FNV-1a over the model's `Debug` text: node coordinates to the bit
+    /// (shortest round-trip), node numbering, element order, body ranges,
+    /// supports, loads and contact segments in order.
+    fn fingerprint(model: &Model) -> u64 {
+        format!("{model:?}")
+            .bytes()
+            .fold(0xcbf2_9ce4_8422_2325, |h, b| {
+                (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
+            })
+    }
+
+    #[test]
+    fn paper_scene_builds_the_same_model() {
+        let scene =
+            Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml")
+                .unwrap();
+        let m = scene.build_model().unwrap();
+        assert_eq!(m.mesh.node_count(), 32);
+        assert_eq!(m.mesh.elements.len(), 14);
+        assert_eq!(m.mesh.elements[0], [0, 1, 9, 8]);
+        assert_eq!(m.mesh.elements[6], [6, 7, 15, 14]);
+        assert_eq!(m.mesh.elements[7], [16, 17, 25, 24]);
+        assert_eq!(m.mesh.elements[13], [22, 23, 31, 30]);
+        assert_eq!(m.mesh.nodes_ref[31], [7.0, 1.0]);
+        let fixed: Vec<usize> = m.prescribed.iter().map(|p| p.dof).collect();
+        assert_eq!(fixed, [0, 1, 16, 17, 32, 33, 48, 49]);
+        assert!(m.prescribed.iter().all(|p| p.value == 0.0));
+        let loads: Vec<(usize, f64)> = m.loads.iter().map(|l| (l.dof, l.value)).collect();
+        assert_eq!(loads, [(62, 0.0), (63, -0.08)]);
+        assert_eq!(m.contacts.len(), 1);
+        let c = &m.contacts[0];
+        assert_eq!(c.name, "interface");
+        let slave: Vec<[usize; 2]> = (16..23).map(|n| [n, n + 1]).collect();
+        let master: Vec<[usize; 2]> = (8..15).rev().map(|n| [n + 1, n]).collect();
+        assert_eq!(c.slave, slave);
+        assert_eq!(c.master, master);
+        assert_eq!(
+            (c.formulation, c.mode, c.gauss_points),
+            (
+                Formulation::SlaveNormal,
+                crate::model::ContactMode::Persistent,
+                2
+            )
+        );
+        assert_eq!(m.load_factor_end, 10.0);
+        // the whole model, bit for bit, for the scene and refined variants
+        let prints: Vec<u64> = [(1, 1), (2, 1), (4, 2), (3, 3), (16, 1)]
+            .map(|(x, y)| fingerprint(&scene.refined(x, y).build_model().unwrap()))
+            .to_vec();
+        assert_eq!(
+            prints,
+            [
+                8689335778407627383,
+                2183681067980692126,
+                17199187239843751079,
+                3864826904333325836,
+                18108556103099798236
+            ]
+        );
+    }
+
+    #[test]
+    fn minimal_scene_parses_with_defaults() {
+        let s = Scene::from_toml_str(GOOD, "good.toml").unwrap();
+        assert_eq!(s.loading.method, Method::Complete);
+        assert_eq!(s.default_steps(), 2);
+        assert_eq!(s.newton.max_iterations, 30);
+        let m = s.build_model().unwrap();
+        assert_eq!(m.prescribed.len(), 4);
+        assert_eq!(m.loads.len(), 2);
+        let again = Scene::from_toml_str(&s.to_toml_string(), "round-trip").unwrap();
+        assert_eq!(again.bodies, s.bodies);
+    }
+
+    #[test]
+    fn wrong_type_names_the_field_and_the_file() {
+        let text = GOOD.replace("nx = 2", "nx = \"two\"");
+        let e = err(&text);
+        let msg = e.to_string();
+        assert!(msg.starts_with("bad.toml:"), "{msg}");
+        assert!(msg.contains("body[0].nx"), "{msg}");
+        assert!(matches!(e, SceneError::Syntax { line: 10, .. }), "{e:?}");
+    }
+
+    #[test]
+    fn unknown_and_missing_fields_are_named() {
+        let msg = err(&GOOD.replace("ny = 1", "ny = 1\nnxx = 3")).to_string();
+        assert!(msg.contains("nxx") && msg.contains("body[0]"), "{msg}");
+        let msg = err(&GOOD.replace("ny = 1", "")).to_string();
+        assert!(
+            msg.contains("missing field `ny`") && msg.contains("body[0]"),
+            "{msg}"
+        );
+    }
+
+    #[test]
+    fn invalid_values_name_the_field() {
+        let msg = err(&GOOD.replace("nx = 2", "nx = 0")).to_string();
+        assert_eq!(msg, "bad.toml: body[0].nx: must be at least 1");
+        let msg = err(&GOOD.replace("at = [2.0, 1.0]", "at = [2.5, 1.0]")).to_string();
+        assert!(msg.contains("load[0]") && msg.contains("no node"), "{msg}");
+        let msg = err(&GOOD.replace("poisson = 0.25", "poisson = 1.5")).to_string();
+        assert!(msg.contains("material") && msg.contains("Poisson"), "{msg}");
+        let text = format!(
+            "{GOOD}\n[[contact]]\nslave = {{ body = \"a\", side = \"bottm\" }}\nmaster = {{ body = \"a\", side = \"top\" }}\n"
+        );
+        let msg = err(&text).to_string();
+        assert!(
+            msg.contains("contact[0].slave.side") && msg.contains("bottm"),
+            "{msg}"
+        );
+        let msg = err(&GOOD.replace("steps = [2]", "steps = [2]\nmethod = \"seven\"")).to_string();
+        assert!(msg.contains("loading.method"), "{msg}");
+        // non-ASCII text before the error on the same line
+        let msg = err(&GOOD.replace("nx = 2", "name2 = \"Müller\"")).to_string();
+        assert!(msg.contains("body[0]") && msg.contains("name2"), "{msg}");
+        let msg =
+            err(&GOOD.replace("[loading]", "[loading]\nmethod = { x = \"ü\", y = 3 }")).to_string();
+        assert!(msg.contains("loading.method"), "{msg}");
+    }
+}

@@ -1,0 +1,336 @@
+//! The scene file's schema: the serde types of a scene (TOML), their
+//! defaults and how the non-derived fields read and write.
+//!
+//! These types are the file format and nothing else: they hold what was
+//! written, unvalidated (see `validate.rs` and `build.rs` for what makes
+//! sense, and the [module docs](super) for an annotated example). Unknown
+//! keys are errors (`deny_unknown_fields` everywhere); every default is
+//! written next to its field.
+
+use contact_kernels::Formulation;
+use serde::{Deserialize, Deserializer, Serialize, Serializer};
+
+use crate::Method;
+use crate::material::Material;
+use crate::mesh::Side;
+use crate::model::ContactMode;
+
+/// A scene (see the module docs for the file format).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    /// `name`: a name for reports (default: the file name).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `description`: free text.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// `[material]`: the material of every body without its own
+    /// (`young`, `poisson`, `model` = `plane-stress` (default) or
+    /// `plane-strain`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<Material>,
+    /// The bodies (`[[body]]`, at least one), in mesh order.
+    #[serde(rename = "body")]
+    pub bodies: Vec<BodySpec>,
+    /// Supports (`[[fix]]`, default none).
+    #[serde(default, rename = "fix")]
+    pub fixes: Vec<FixSpec>,
+    /// Point loads (`[[load]]`, default none).
+    #[serde(default, rename = "load")]
+    pub loads: Vec<LoadSpec>,
+    /// Prescribed displacements (`[[prescribe]]`, default none).
+    #[serde(default, rename = "prescribe")]
+    pub prescribes: Vec<PrescribeSpec>,
+    /// Contact pairs (`[[contact]]`, default none).
+    #[serde(default, rename = "contact")]
+    pub contacts: Vec<ContactSpec>,
+    /// `[loading]`: the load schedule (required).
+    pub loading: LoadingSpec,
+    /// `[refine]`: mesh refinement factors (default 1 and 1).
+    #[serde(default)]
+    pub refine: RefineSpec,
+    /// `[newton]`: Newton settings (defaults as in [`NewtonSpec`]).
+    #[serde(default)]
+    pub newton: NewtonSpec,
+    /// Where the scene came from (file name), for messages; not part of
+    /// the file.
+    #[serde(skip)]
+    pub origin: String,
+}
+
+/// A body (`[[body]]`): a structured rectangular block of `nx` by `ny`
+/// 4-node quadrilaterals (see [`crate::mesh::block`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// `name`: unique among the bodies; selections and faces refer to it.
+    pub name: String,
+    /// `origin`: the lower-left corner `[x, y]` (reference frame, finite).
+    pub origin: [f64; 2],
+    /// `size`: width and height (positive, finite).
+    pub size: [f64; 2],
+    /// `nx`: elements along x (at least 1; times `[refine] x`).
+    pub nx: usize,
+    /// `ny`: elements along y (at least 1; times `[refine] y`).
+    pub ny: usize,
+    /// Material (default: the scene's `[material]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<Material>,
+}
+
+/// Which displacement components (`dofs = "x" | "y" | "xy"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+pub enum Dofs {
+    /// x only.
+    #[serde(rename = "x")]
+    X,
+    /// y only.
+    #[serde(rename = "y")]
+    Y,
+    /// Both.
+    #[default]
+    #[serde(rename = "xy")]
+    XY,
+}
+
+impl Dofs {
+    /// The displacement components (0 = x, 1 = y) fixed.
+    pub(super) fn components(self) -> &'static [usize] {
+        match self {
+            Dofs::X => &[0],
+            Dofs::Y => &[1],
+            Dofs::XY => &[0, 1],
+        }
+    }
+}
+
+/// Supports (`[[fix]]`): zero displacement of the selected nodes. Select
+/// with `at`, or with `x` and/or `y` (every node on that line); `body`
+/// restricts the selection to one body. At least one node must match.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixSpec {
+    /// `body`: restrict the selection to this body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// `x`: the nodes with this reference x.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub x: Option<f64>,
+    /// `y`: the nodes with this reference y.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y: Option<f64>,
+    /// `at`: the node(s) at this reference point (not with `x`/`y`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 2]>,
+    /// `dofs`: the components fixed (default `"xy"`).
+    #[serde(default)]
+    pub dofs: Dofs,
+}
+
+/// A proportional point force on one node (`[[load]]`): `lambda_L force`.
+/// Exactly one node (of `body`, if given) must sit at `at`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// `body`: restrict to this body (needed where bodies touch).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// `at`: the node's reference position.
+    pub at: [f64; 2],
+    /// `force`: `[fx, fy]` at load factor one (finite).
+    pub force: [f64; 2],
+}
+
+/// Proportional prescribed displacements (`[[prescribe]]`):
+/// `lambda_L (ux, uy)` on the nodes selected as in [`FixSpec`]. A component
+/// left out is free; a node's component prescribed twice must agree.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrescribeSpec {
+    /// `body`: restrict the selection to this body.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// `x`: the nodes with this reference x.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub x: Option<f64>,
+    /// `y`: the nodes with this reference y.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub y: Option<f64>,
+    /// `at`: the node(s) at this reference point (not with `x`/`y`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 2]>,
+    /// `ux`: the x displacement at load factor one (finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ux: Option<f64>,
+    /// `uy`: the y displacement at load factor one (finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uy: Option<f64>,
+}
+
+/// A face (`{ body = .., side = .. }`): one side of a block body, as a
+/// chain of segments counter-clockwise around the body (resolved by the
+/// body's mesh source).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FaceSpec {
+    /// `body`: the body's name.
+    pub body: String,
+    /// `side`: `bottom`, `right`, `top` or `left`.
+    pub side: Side,
+}
+
+/// A contact pair (`[[contact]]`) between faces of two different bodies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// `name`: a name for reports (default `contact[i]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `slave`: the slave face (carries integration points and
+    /// multipliers).
+    pub slave: FaceSpec,
+    /// `master`: the master face.
+    pub master: FaceSpec,
+    /// `formulation`: the gap formulation, `slave-normal` (default) or
+    /// `closest-point`.
+    #[serde(
+        default = "default_formulation",
+        deserialize_with = "de_formulation",
+        serialize_with = "ser_formulation"
+    )]
+    pub formulation: Formulation,
+    /// `mode`: `persistent` (default) or `unilateral`.
+    #[serde(default)]
+    pub mode: ContactMode,
+    /// `gauss_points`: Gauss points per slave segment, 1..=8 (default 2).
+    #[serde(default = "default_gauss_points")]
+    pub gauss_points: usize,
+}
+
+/// The load schedule and default method (`[loading]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadingSpec {
+    /// `load_factor_end`: the final load factor (from 0; finite).
+    pub load_factor_end: f64,
+    /// `steps`: the step counts of a study (at least one, each at least
+    /// 1).
+    pub steps: Vec<usize>,
+    /// `default_steps`: the step count of a single run (at least 1;
+    /// default: the first of `steps`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub default_steps: Option<usize>,
+    /// `method`: the default method, `"complete"` (default) or an
+    /// approximation type 1..6 (a number or its text).
+    #[serde(
+        default = "default_method",
+        deserialize_with = "de_method",
+        serialize_with = "ser_method"
+    )]
+    pub method: Method,
+}
+
+/// Refinement factors for every body's `nx` and `ny` (`[refine]`);
+/// [`Scene::refined`] multiplies them further.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RefineSpec {
+    /// `x`: the factor on `nx` (at least 1, default 1).
+    #[serde(default = "one")]
+    pub x: usize,
+    /// `y`: the factor on `ny` (at least 1, default 1).
+    #[serde(default = "one")]
+    pub y: usize,
+}
+
+impl Default for RefineSpec {
+    fn default() -> Self {
+        RefineSpec { x: 1, y: 1 }
+    }
+}
+
+/// Newton settings (`[newton]`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NewtonSpec {
+    /// `tolerance`: converged when `|r| <= tolerance * max(1, |f_ext|)`
+    /// (positive, default 1e-10).
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// `max_iterations`: Newton iterations per attempt (at least 1,
+    /// default 30).
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: usize,
+    /// `max_cutbacks`: bisections per scheduled step (default 8).
+    #[serde(default = "default_max_cutbacks")]
+    pub max_cutbacks: usize,
+}
+
+impl Default for NewtonSpec {
+    fn default() -> Self {
+        NewtonSpec {
+            tolerance: default_tolerance(),
+            max_iterations: default_max_iterations(),
+            max_cutbacks: default_max_cutbacks(),
+        }
+    }
+}
+
+fn one() -> usize {
+    1
+}
+fn default_tolerance() -> f64 {
+    1e-10
+}
+fn default_max_iterations() -> usize {
+    30
+}
+fn default_max_cutbacks() -> usize {
+    8
+}
+fn default_gauss_points() -> usize {
+    2
+}
+fn default_formulation() -> Formulation {
+    Formulation::SlaveNormal
+}
+fn default_method() -> Method {
+    Method::Complete
+}
+
+fn de_formulation<'de, D: Deserializer<'de>>(d: D) -> Result<Formulation, D::Error> {
+    let s = String::deserialize(d)?;
+    s.parse().map_err(serde::de::Error::custom)
+}
+
+fn ser_formulation<S: Serializer>(f: &Formulation, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(f.name())
+}
+
+fn de_method<'de, D: Deserializer<'de>>(d: D) -> Result<Method, D::Error> {
+    struct V;
+    impl serde::de::Visitor<'_> for V {
+        type Value = Method;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("\"complete\" or an approximation type 1..6")
+        }
+        fn visit_str<E: serde::de::Error>(self, v: &str) -> Result<Method, E> {
+            v.parse().map_err(E::custom)
+        }
+        fn visit_i64<E: serde::de::Error>(self, v: i64) -> Result<Method, E> {
+            self.visit_str(&v.to_string())
+        }
+        fn visit_u64<E: serde::de::Error>(self, v: u64) -> Result<Method, E> {
+            self.visit_str(&v.to_string())
+        }
+    }
+    d.deserialize_any(V)
+}
+
+fn ser_method<S: Serializer>(m: &Method, s: S) -> Result<S::Ok, S::Error> {
+    match m {
+        Method::Complete => s.serialize_str("complete"),
+        Method::Approx(t) => s.serialize_u64(t.index() as u64),
+    }
+}

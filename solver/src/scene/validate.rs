@@ -1,0 +1,130 @@
+//! The checks of a scene's values that need no mesh: refinement factors,
+//! body names and materials, prescribed values, load vectors, contact
+//! settings, the load schedule and the Newton settings.
+//!
+//! Each check names the field it rejects (`body[1].name`,
+//! `contact[0].gauss_points`, ...) in a [`SceneError::Invalid`].
+//! [`Scene::build_model`] calls each where the value is first needed, so a
+//! scene with several faults reports the first in this order: `[refine]`;
+//! each body (its name and material here, then its source's own checks,
+//! such as a block's `nx`, `size` and `origin`); supports; prescribed
+//! displacements; loads; contacts; `[loading]`; `[newton]`. Checks that
+//! depend on how a body was made belong to its mesh source, and checks that
+//! need the mesh (a selection that finds no node) to `select.rs`.
+
+use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError};
+use crate::material::Material;
+
+impl Scene {
+    /// An [`SceneError::Invalid`] for `field` of this scene.
+    pub(super) fn invalid(
+        &self,
+        field: impl Into<String>,
+        message: impl Into<String>,
+    ) -> SceneError {
+        SceneError::Invalid {
+            origin: self.origin.clone(),
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+
+    /// `[refine]`: both factors at least 1.
+    pub(super) fn check_refine(&self) -> Result<(), SceneError> {
+        if self.refine.x == 0 || self.refine.y == 0 {
+            return Err(self.invalid("refine", "factors must be at least 1"));
+        }
+        Ok(())
+    }
+
+    /// `body[i]`: a name no earlier body has, and a valid material (its own
+    /// or the scene's default), which it returns.
+    pub(super) fn check_body(&self, i: usize) -> Result<Material, SceneError> {
+        let b = &self.bodies[i];
+        let f = format!("body[{i}]");
+        if self.bodies[..i].iter().any(|o| o.name == b.name) {
+            return Err(self.invalid(
+                format!("{f}.name"),
+                format!("duplicate body name `{}`", b.name),
+            ));
+        }
+        let material = b.material.or(self.material).ok_or_else(|| {
+            self.invalid(
+                format!("{f}.material"),
+                "no material (and no default [material])",
+            )
+        })?;
+        material.check().map_err(|m| {
+            let field = if b.material.is_some() {
+                format!("{f}.material")
+            } else {
+                "material".into()
+            };
+            self.invalid(field, m)
+        })?;
+        Ok(material)
+    }
+
+    /// `prescribe[i]` (named `f`): at least one component, each finite.
+    pub(super) fn check_prescribe(&self, f: &str, p: &PrescribeSpec) -> Result<(), SceneError> {
+        if p.ux.is_none() && p.uy.is_none() {
+            return Err(self.invalid(f, "give `ux` and/or `uy`"));
+        }
+        for (c, v) in [(0, p.ux), (1, p.uy)] {
+            if v.is_some_and(|v| !v.is_finite()) {
+                return Err(self.invalid(format!("{f}.{}", ["ux", "uy"][c]), "must be finite"));
+            }
+        }
+        Ok(())
+    }
+
+    /// `load[i]` (named `f`): a finite force.
+    pub(super) fn check_load(&self, f: &str, l: &LoadSpec) -> Result<(), SceneError> {
+        if !l.force.iter().all(|v| v.is_finite()) {
+            return Err(self.invalid(format!("{f}.force"), "must be finite"));
+        }
+        Ok(())
+    }
+
+    /// `contact[i]` (named `f`): two different bodies and 1..=8 Gauss
+    /// points.
+    pub(super) fn check_contact(&self, f: &str, c: &ContactSpec) -> Result<(), SceneError> {
+        if c.slave.body == c.master.body {
+            return Err(self.invalid(f, "slave and master must be different bodies"));
+        }
+        if !(1..=8).contains(&c.gauss_points) {
+            return Err(self.invalid(format!("{f}.gauss_points"), "must be in 1..=8"));
+        }
+        Ok(())
+    }
+
+    /// `[loading]`: a finite final load factor and positive step counts.
+    pub(super) fn check_loading(&self) -> Result<(), SceneError> {
+        let l = &self.loading;
+        if !l.load_factor_end.is_finite() {
+            return Err(self.invalid("loading.load_factor_end", "must be finite"));
+        }
+        if l.steps.is_empty() || l.steps.contains(&0) {
+            return Err(self.invalid(
+                "loading.steps",
+                "needs at least one step count, each at least 1",
+            ));
+        }
+        if l.default_steps == Some(0) {
+            return Err(self.invalid("loading.default_steps", "must be at least 1"));
+        }
+        Ok(())
+    }
+
+    /// `[newton]`: a positive tolerance and at least one iteration.
+    pub(super) fn check_newton(&self) -> Result<(), SceneError> {
+        let n = &self.newton;
+        if !(n.tolerance.is_finite() && n.tolerance > 0.0) {
+            return Err(self.invalid("newton.tolerance", "must be positive"));
+        }
+        if n.max_iterations == 0 {
+            return Err(self.invalid("newton.max_iterations", "must be at least 1"));
+        }
+        Ok(())
+    }
+}
