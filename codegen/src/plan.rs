@@ -20,6 +20,7 @@
 //!   functions return the gap.
 //! * `ops == program.op_count()` for every function.
 
+use crate::formulation::Arity;
 use crate::lower::{OpCount, Program};
 use crate::programs::{FormulationPrograms, programs};
 use crate::signature::Signature;
@@ -176,11 +177,18 @@ pub enum Delivery {
 }
 
 impl KernelPlan {
-    /// Parses and lowers every source and describes the result.
+    /// Parses and lowers every source and describes the result (inputs as
+    /// the contact-kernels run-time serves them, [`Arity::SegmentPair`]).
     pub fn build(sources: &[Source]) -> Result<KernelPlan, Error> {
+        Self::build_with(sources, Arity::SegmentPair)
+    }
+
+    /// [`KernelPlan::build`] for formulations whose `inputs!` satisfy
+    /// `arity`.
+    pub fn build_with(sources: &[Source], arity: Arity) -> Result<KernelPlan, Error> {
         let mut formulations = Vec::new();
         for src in sources {
-            let f = Formulation::parse(&src.name, &src.text)?;
+            let f = Formulation::parse_with(&src.name, &src.text, arity)?;
             let kernels = if src.compiled {
                 Some(KernelSetPlan::new(&f, &programs(&f)?))
             } else {

@@ -26,9 +26,11 @@
 //!   `n` scratch values for the relative coordinates; it fits every kernel
 //!   with `n` coordinates.
 //!
-//! A batched call (#9) is a loop of [`Kernel::eval_into`]-style calls over
-//! `chunks_exact(n)` of a flat coordinate array, sharing the scratch; the
-//! generated functions already take slices.
+//! A batched call (#9) fits beside [`Kernel::eval`]: the generated
+//! functions and the validation already work on slices, so
+//! `eval_batch(&self, qs: &[f64], xi_s: &[f64], out: &mut GapBatch)` is the
+//! same steps over `qs.chunks_exact(n)` into structure-of-arrays buffers
+//! (one status per point, as the solver treats failures per point).
 
 use crate::generated::{self, KernelSet, kernel_set};
 use crate::validate::{all_finite, relative_coordinates};
