@@ -22,8 +22,14 @@ use crate::{KernelError, Segment};
 /// A segment shorter than this times the configuration's size is degenerate.
 pub const DEGENERATE_LENGTH: f64 = 1e-10;
 
+/// The dimension of every point: the formulation language's values are
+/// 2-vectors (`KernelSet::dim` records it). A constant, so that the loops
+/// below unroll when the coordinate count is known at the call site.
+const DIM: usize = 2;
+
 /// Validates `q` and `xi_s` for `set` and writes the coordinates relative
 /// to the first point into `d` (`d.len() == q.len()` is the caller's).
+#[inline]
 pub(crate) fn relative_coordinates(
     set: &KernelSet,
     q: &[f64],
@@ -37,6 +43,7 @@ pub(crate) fn relative_coordinates(
         });
     }
     debug_assert_eq!(d.len(), q.len());
+    debug_assert_eq!(set.dim, DIM);
     if !(all_finite(q) && xi_s.is_finite()) {
         // Cold path: name the first offending input.
         let (index, value) = q
@@ -48,15 +55,14 @@ pub(crate) fn relative_coordinates(
             .expect("one is not finite");
         return Err(KernelError::NonFinite { index, value });
     }
-    let dim = set.dim;
-    for (dp, qp) in d.chunks_exact_mut(dim).zip(q.chunks_exact(dim)) {
-        for k in 0..dim {
+    for (dp, qp) in d.chunks_exact_mut(DIM).zip(q.chunks_exact(DIM)) {
+        for k in 0..DIM {
             dp[k] = qp[k] - q[k];
         }
     }
     let size = d.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let threshold = DEGENERATE_LENGTH * size;
-    let points = set.coords / dim;
+    let points = q.len() / DIM;
     let half = points / 2;
     for (segment, first, last) in [
         (Segment::Slave, 0, half - 1),
@@ -65,9 +71,9 @@ pub(crate) fn relative_coordinates(
         // Squared lengths: no hypot in the hot path. (Configurations with
         // coordinates below ~1e-150 underflow here and are reported as
         // degenerate.)
-        let (a, b) = (first * dim, last * dim);
+        let (a, b) = (first * DIM, last * DIM);
         let mut length2 = 0.0;
-        for k in 0..dim {
+        for k in 0..DIM {
             let c = d[b + k] - d[a + k];
             length2 += c * c;
         }
@@ -88,6 +94,7 @@ pub(crate) fn relative_coordinates(
 /// Whether every value is finite, with integer operations that vectorise:
 /// a value is NaN or infinite exactly when its exponent bits are all ones,
 /// i.e. when adding one to the exponent field carries into the sign bit.
+#[inline]
 pub(crate) fn all_finite(v: &[f64]) -> bool {
     const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
     const EXPONENT_ONE: u64 = 0x0010_0000_0000_0000;
