@@ -104,7 +104,7 @@ pub struct Generated {
 }
 
 /// Generates the Rust kernels source for all `sources`: parse, derive and
-/// lower ([`programs`]), describe ([`KernelPlan`]), emit
+/// lower ([`programs()`]), describe ([`KernelPlan`]), emit
 /// ([`emit::RustEmitter`]).
 pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
     let plan = KernelPlan::build(sources)?;
