@@ -1,22 +1,27 @@
 //! Kernel benchmark: every compiled (formulation, type) kernel through
-//! `contact_kernels::evaluate`, the projection kernel through
-//! `contact_kernels::project`, and num-dual's `hessian` of the same gap
-//! written generically (the function of `tests/kernels_ad.rs`), all at the
-//! same configuration (design.md's worked example).
+//! `contact_kernels::evaluate` (values, nalgebra) and through the
+//! `Kernel::eval` handle (into a reused `GapOut`), the projection kernel
+//! through `contact_kernels::project` and the `Projector` handle, and
+//! num-dual's `hessian` of the same gap written generically (the function of
+//! `tests/kernels_ad.rs`), all at the same configuration (design.md's worked
+//! example), in one run so the handle/value ratio can be read off.
 //!
 //! Run `cargo bench --bench kernels`, then
 //! `cargo run --release --example bench_table` for the Markdown table.
 //! Results land in `target/criterion/<formulation>/<id>/new/estimates.json`
 //! with `<id>` one of `type1`..`type6`, `project`, `num-dual-hessian`
-//! (the names `examples/bench_table.rs` reads).
+//! (the value API) and `type1-handle`..`type6-handle`, `project-handle`
+//! (the handles): the names `examples/bench_table.rs` reads.
 //!
-//! Warm-up and measurement are 1 s each so the whole run takes well under a
-//! minute of measurement (16 benchmarks).
+//! Warm-up and measurement are 1 s each so the whole run takes about a
+//! minute of measurement (30 benchmarks).
 
 use std::hint::black_box;
 use std::time::Duration;
 
-use contact_kernels::{ApproxType, Formulation, compiled_formulations, evaluate, project};
+use contact_kernels::{
+    ApproxType, Formulation, GapOut, Kernel, Projector, compiled_formulations, evaluate, project,
+};
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::SVector;
 use num_dual::{Dual2SVec64, DualNum, hessian};
@@ -72,9 +77,28 @@ fn kernels(c: &mut Criterion) {
             group.bench_function(format!("type{}", ty.index()), |b| {
                 b.iter(|| evaluate(f, ty, black_box(&Q), black_box(XI_S)).unwrap())
             });
+            let kernel = Kernel::new(f, ty).unwrap();
+            let mut out = GapOut::new(&kernel);
+            group.bench_function(format!("type{}-handle", ty.index()), |b| {
+                b.iter(|| {
+                    kernel
+                        .eval(black_box(&Q), black_box(XI_S), &mut out)
+                        .unwrap();
+                    black_box(&out);
+                })
+            });
         }
         group.bench_function("project", |b| {
             b.iter(|| project(f, black_box(&Q), black_box(XI_S)).unwrap())
+        });
+        let projector = Projector::new(f).unwrap();
+        let mut scratch = vec![0.0; projector.coords()];
+        group.bench_function("project-handle", |b| {
+            b.iter(|| {
+                projector
+                    .project(black_box(&Q), black_box(XI_S), &mut scratch)
+                    .unwrap()
+            })
         });
         group.bench_function("num-dual-hessian", |b| {
             b.iter(|| {

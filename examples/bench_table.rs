@@ -5,7 +5,9 @@
 //! ```
 //!
 //! Reads criterion's results (`<criterion dir>/<formulation>/<id>/new/estimates.json`,
-//! the median's point estimate in ns) written by `benches/kernels.rs`, and
+//! the median's point estimate in ns) written by `benches/kernels.rs` (the
+//! value API `type1`..`type6`, `project`, `num-dual-hessian`; the handles
+//! `<id>-handle`, shown as `–` when absent), and
 //! the generated kernels' operation counts from `contact_kernels::op_count`.
 //! The criterion directory is, in order: the first argument, `$CRITERION_HOME`,
 //! `$CARGO_TARGET_DIR/criterion`, or the `criterion` folder of the target
@@ -66,32 +68,44 @@ fn ops_columns(ops: Option<OpCount>) -> String {
     }
 }
 
+/// The handle's columns: its median and its ratio to the value API's
+/// median `value_ns` (`–` when the handle was not benchmarked).
+fn handle_columns(dir: &Path, group: &str, id: &str, value_ns: f64) -> String {
+    match median_ns(dir, group, &format!("{id}-handle")) {
+        Ok(t) => format!("{t:.1} | {:.2}", t / value_ns),
+        Err(_) => "– | –".to_owned(),
+    }
+}
+
 fn table(dir: &Path) -> Result<String, String> {
     let mut out = String::new();
     out.push_str(
-        "| formulation | type | ns/eval | speed-up vs num-dual hessian | add | mul | div | sqrt | neg | total ops |\n",
+        "| formulation | type | ns/eval | speed-up vs num-dual hessian | handle ns/eval | handle / value | add | mul | div | sqrt | neg | total ops |\n",
     );
-    out.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    out.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
     for f in compiled_formulations() {
         let name = f.name();
         let reference = median_ns(dir, name, "num-dual-hessian")?;
         for ty in ApproxType::ALL {
-            let t = median_ns(dir, name, &format!("type{}", ty.index()))?;
+            let id = format!("type{}", ty.index());
+            let t = median_ns(dir, name, &id)?;
             out.push_str(&format!(
-                "| {name} | {} | {t:.1} | {:.1}× | {} |\n",
+                "| {name} | {} | {t:.1} | {:.1}× | {} | {} |\n",
                 ty.index(),
                 reference / t,
+                handle_columns(dir, name, &id, t),
                 ops_columns(op_count(f, Some(ty)))
             ));
         }
         let t = median_ns(dir, name, "project")?;
         out.push_str(&format!(
-            "| {name} | projection (g, xi_m) | {t:.1} | {:.1}× | {} |\n",
+            "| {name} | projection (g, xi_m) | {t:.1} | {:.1}× | {} | {} |\n",
             reference / t,
+            handle_columns(dir, name, "project", t),
             ops_columns(op_count(f, None))
         ));
         out.push_str(&format!(
-            "| {name} | num-dual `hessian` (Type 6) | {reference:.1} | 1.0× | {} |\n",
+            "| {name} | num-dual `hessian` (Type 6) | {reference:.1} | 1.0× | – | – | {} |\n",
             ops_columns(None)
         ));
     }
@@ -104,7 +118,9 @@ fn main() -> ExitCode {
         Ok(t) => {
             println!(
                 "Median time per evaluation (criterion, design.md's worked example; kernels via \
-                 `contact_kernels::evaluate`, including input validation and the projection solve).\n"
+                 `contact_kernels::evaluate`, including input validation and the projection solve; \
+                 handle: `Kernel::eval` into a reused `GapOut` / `Projector::project`, and its \
+                 time relative to the value API in the same run).\n"
             );
             print!("{t}");
             ExitCode::SUCCESS

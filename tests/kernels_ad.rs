@@ -37,8 +37,8 @@
 //! (`1 / cos` of the slave–master angle for `xi'`, its square for `xi''`).
 
 use contact_kernels::{
-    ApproxType, EntityOrder, Formulation, GapDerivatives, KernelError, Segment, evaluate, op_count,
-    project,
+    ApproxType, EntityOrder, Formulation, GapDerivatives, GapOut, Kernel, KernelError, Projector,
+    Segment, evaluate, op_count, project,
 };
 use nalgebra::{Matrix2, SMatrix, SVector};
 use num_dual::{Dual2SVec64, DualNum, hessian};
@@ -1160,6 +1160,7 @@ fn op_counts_are_reported() {
 /// formulations are compiled by default). `project` likewise.
 fn check_contract(q: &[f64; 8], xi_s: f64) -> Result<(), TestCaseError> {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+        handles_agree(f, q, xi_s)?;
         match project(f, q, xi_s) {
             Ok(p) => prop_assert!(p.gap.is_finite() && p.xi_m.is_finite(), "{f}: {p:?}"),
             Err(e) => prop_assert!(!matches!(e, KernelError::NotCompiled(_)), "{f}: {e:?}"),
@@ -1192,6 +1193,40 @@ fn check_contract(q: &[f64; 8], xi_s: f64) -> Result<(), TestCaseError> {
                     prop_assert!(!matches!(e, KernelError::NotCompiled(_)), "{f} {ty}: {e:?}")
                 }
             }
+        }
+    }
+    Ok(())
+}
+
+/// The handles (`Kernel::eval` into a reused `GapOut`, `Projector::project`)
+/// give what the value API gives, bit for bit, errors included.
+fn handles_agree(f: Formulation, q: &[f64; 8], xi_s: f64) -> Result<(), TestCaseError> {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let projector = Projector::new(f).unwrap();
+    let mut scratch = vec![0.0; projector.coords()];
+    match (
+        project(f, q, xi_s),
+        projector.project(q, xi_s, &mut scratch),
+    ) {
+        (Ok(a), Ok(b)) => prop_assert_eq!(bits(&[a.gap, a.xi_m]), bits(&[b.gap, b.xi_m])),
+        (a, b) => prop_assert_eq!(format!("{a:?}"), format!("{b:?}"), "{} project", f),
+    }
+    let mut out = GapOut::with_coords(q.len());
+    for ty in ApproxType::ALL {
+        let kernel = Kernel::new(f, ty).unwrap();
+        match (evaluate(f, ty, q, xi_s), kernel.eval(q, xi_s, &mut out)) {
+            (Ok(a), Ok(())) => {
+                prop_assert_eq!(bits(&[a.gap, a.xi_m]), bits(&[out.gap(), out.xi_m()]));
+                prop_assert_eq!(bits(a.grad.as_slice()), bits(out.grad()));
+                prop_assert_eq!(
+                    a.hess.map(|h| bits(h.as_slice())),
+                    out.hess().map(bits),
+                    "{} {}",
+                    f,
+                    ty
+                );
+            }
+            (a, b) => prop_assert_eq!(format!("{a:?}"), format!("{b:?}"), "{} {}", f, ty),
         }
     }
     Ok(())

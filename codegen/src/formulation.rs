@@ -15,9 +15,12 @@
 //! gap!(dot(n, x_ms));
 //! ```
 //!
-//! * `inputs!(p1, p2, p3, p4; s)` declares the four nodal points (2-vectors,
-//!   in kernel order: slave 1, slave 2, master 1, master 2 — the eight
-//!   coordinates `q`) and the slave parameter `s` (`xi_s`).
+//! * `inputs!(p1, p2, p3, p4; s)` declares the nodal points (2-vectors, in
+//!   kernel order: slave 1, slave 2, master 1, master 2 — the coordinates
+//!   `q`) and the slave parameter `s` (`xi_s`); they become the kernels'
+//!   [`Signature`]. [`Formulation::parse`] accepts the shape the
+//!   contact-kernels run-time serves ([`Arity::SegmentPair`]);
+//!   [`Formulation::parse_with`] any number of points and parameters.
 //! * `implicit!(xi => r)` defines a scalar as the root of `r(q, xi) = 0`;
 //!   the generator never solves it in closed form: its derivatives come from
 //!   implicit differentiation and its value from a Newton solve at run time.
@@ -44,6 +47,7 @@ use syn::spanned::Spanned;
 
 use crate::Error;
 use crate::expr::{Dag, Id, Sym};
+use crate::signature::Signature;
 
 /// A value of the formulation language.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -144,10 +148,9 @@ pub struct Formulation {
     pub doc: String,
     /// The DAG holding every expression.
     pub dag: Dag,
-    /// Symbols of the eight coordinates `q`, in kernel order.
-    pub coords: [Sym; 8],
-    /// Symbol of the slave parameter `xi_s`.
-    pub param: Sym,
+    /// The kernel inputs `inputs!` declares (points, parameters, the
+    /// implicit unknown) and the sizes and symbols that follow.
+    pub signature: Signature,
     /// The implicit variable (the projection coordinate).
     pub implicit: Implicit,
     /// The entities, in file order.
@@ -156,10 +159,16 @@ pub struct Formulation {
     pub gap: syn::Expr,
 }
 
-/// Symbol numbering: `q` first, then `xi_s`, then the implicit variable.
-pub const PARAM_SYM: Sym = Sym(8);
-/// The implicit variable's symbol.
-pub const IMPLICIT_SYM: Sym = Sym(9);
+/// Which `inputs!` declarations a parse accepts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Arity {
+    /// Exactly what the contact-kernels run-time serves today: four points
+    /// (a slave and a master two-node segment) and one parameter (`xi_s`).
+    SegmentPair,
+    /// Any number of points (at least one) and of parameters: for
+    /// generators and tests that do not feed the contact-kernels run-time.
+    Any,
+}
 
 fn err(span: Span, origin: &str, msg: impl Into<String>) -> Error {
     let start = span.start();
@@ -173,8 +182,14 @@ fn err(span: Span, origin: &str, msg: impl Into<String>) -> Error {
 
 impl Formulation {
     /// Parses a formulation file. `name` is the formulation's name (the
-    /// file stem), used in messages and generated identifiers.
+    /// file stem), used in messages and generated identifiers. The inputs
+    /// must be [`Arity::SegmentPair`]'s.
     pub fn parse(name: &str, text: &str) -> Result<Formulation, Error> {
+        Self::parse_with(name, text, Arity::SegmentPair)
+    }
+
+    /// Parses a formulation file whose `inputs!` satisfy `arity`.
+    pub fn parse_with(name: &str, text: &str, arity: Arity) -> Result<Formulation, Error> {
         let origin = format!("{name}.rs");
         let doc: String = text
             .lines()
@@ -202,12 +217,13 @@ impl Formulation {
             origin: origin.clone(),
             dag: Dag::new(),
             env: HashMap::new(),
+            arity,
+            signature: None,
         };
         let mut inputs_seen = false;
         let mut implicit: Option<Implicit> = None;
         let mut entities: Vec<Entity> = Vec::new();
         let mut gap: Option<syn::Expr> = None;
-        let coords = std::array::from_fn(|i| Sym(i as u16));
 
         for stmt in &stmts {
             match stmt {
@@ -258,12 +274,13 @@ impl Formulation {
                                 ));
                             }
                             let residual = b.implicit(&m.mac.tokens, m.span())?;
+                            let sym = b.implicit_sym();
                             implicit = Some(Implicit {
                                 name: name.clone(),
-                                sym: IMPLICIT_SYM,
+                                sym,
                                 residual,
                             });
-                            let x = b.dag.input(IMPLICIT_SYM);
+                            let x = b.dag.input(sym);
                             Value::Scalar(x)
                         }
                         syn::Expr::Macro(m) if m.mac.path.is_ident("entity") => {
@@ -305,12 +322,13 @@ impl Formulation {
             )
         })?;
         let gap = gap.ok_or_else(|| err(whole, &origin, "missing `gap!(...)`"))?;
+        let mut signature = b.signature.expect("`inputs!` was seen");
+        signature.set_implicit(implicit.name.clone());
         Ok(Formulation {
             name: name.to_owned(),
             doc,
             dag: b.dag,
-            coords,
-            param: PARAM_SYM,
+            signature,
             implicit,
             entities,
             gap,
@@ -342,9 +360,21 @@ struct Builder {
     origin: String,
     dag: Dag,
     env: HashMap<String, Value<Id>>,
+    arity: Arity,
+    /// Set by `inputs!` (the implicit unknown's name is filled in last).
+    signature: Option<Signature>,
 }
 
 impl Builder {
+    /// The implicit unknown's symbol (after `inputs!`, which `let`
+    /// statements require).
+    fn implicit_sym(&self) -> Sym {
+        self.signature
+            .as_ref()
+            .expect("`inputs!` precedes every `let`")
+            .implicit_sym()
+    }
+
     fn declare_inputs(&mut self, tokens: &TokenStream, span: Span) -> Result<(), Error> {
         let text = tokens.to_string();
         let (points, params) = text.split_once(';').ok_or_else(|| {
@@ -360,24 +390,44 @@ impl Builder {
             .map(str::trim)
             .filter(|s| !s.is_empty())
             .collect();
-        if points.len() != 4 || params.len() != 1 {
+        let fits = match self.arity {
+            Arity::SegmentPair => points.len() == 4 && params.len() == 1,
+            Arity::Any => !points.is_empty() && points.iter().all(|p| !p.is_empty()),
+        };
+        if !fits {
+            let expected = match self.arity {
+                Arity::SegmentPair => {
+                    "four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)`"
+                }
+                Arity::Any => "at least one point: `inputs!(p1, ...; s1, ...)`",
+            };
             return Err(err(
                 span,
                 &self.origin,
                 format!(
-                    "expected four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)`, got {} and {}",
+                    "expected {expected}, got {} and {}",
                     points.len(),
                     params.len()
                 ),
             ));
         }
+        let sig = Signature::new(
+            2,
+            points.iter().map(|p| (*p).to_owned()).collect(),
+            params.iter().map(|p| (*p).to_owned()).collect(),
+            String::new(),
+        );
         for (i, p) in points.iter().enumerate() {
-            let x = self.dag.input(Sym(2 * i as u16));
-            let y = self.dag.input(Sym(2 * i as u16 + 1));
+            let x = self.dag.input(sig.coord_sym(2 * i));
+            let y = self.dag.input(sig.coord_sym(2 * i + 1));
             self.bind(p, Value::Vec2([x, y]), span)?;
         }
-        let s = self.dag.input(PARAM_SYM);
-        self.bind(params[0], Value::Scalar(s), span)
+        for (i, p) in params.iter().enumerate() {
+            let s = self.dag.input(sig.param_sym(i));
+            self.bind(p, Value::Scalar(s), span)?;
+        }
+        self.signature = Some(sig);
+        Ok(())
     }
 
     fn bind(&mut self, name: &str, v: Value<Id>, span: Span) -> Result<(), Error> {
@@ -394,7 +444,7 @@ impl Builder {
         let closure = syn::parse2::<ImplicitDef>(tokens.clone())
             .map_err(|e| err(e.span(), &self.origin, e.to_string()))?;
         let var = closure.var.to_string();
-        let x = self.dag.input(IMPLICIT_SYM);
+        let x = self.dag.input(self.implicit_sym());
         let previous = self.env.insert(var.clone(), Value::Scalar(x));
         let r = self.eval(&closure.residual);
         match previous {

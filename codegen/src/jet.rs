@@ -1,7 +1,8 @@
 //! Truncated second-order jets with deferred scaling.
 //!
 //! A jet is a scalar `v` with its gradient and Hessian with respect to the
-//! eight coordinates `q`. The second-order chain and product rules
+//! `n` coordinates `q` of a [`Signature`] (every vector is `n` long, every
+//! packed matrix `n (n + 1) / 2`; the arena's signature fixes both). The second-order chain and product rules
 //!
 //! ```text
 //! (a b)'  = a' b + a b'            (a b)'' = a'' b + a b'' + a' b'^T + b' a'^T
@@ -21,7 +22,7 @@
 //!
 //! The Hessian of the gap then contains `(n . x_xi) xi''` as one scaled
 //! matrix and `sum_i n_i (x_i,qxi xi'^T + ...)` as one rank-2 term, instead
-//! of a dense 8x8 block per vector component. [`JetArena::materialize`]
+//! of a dense `n x n` block per vector component. [`JetArena::materialize`]
 //! expands everything at the end.
 //!
 //! All entries are `Option<Id>` (`None` = structural zero).
@@ -29,12 +30,14 @@
 use crate::diff::{add_opt, mul_opt, neg_opt, nonzero};
 use crate::expr::{Dag, Id};
 use crate::formulation::Domain;
-use crate::truncation::{N, NH, packed};
+use crate::signature::Signature;
 
-/// A vector of structural-zero-aware entries.
-pub type Vector = [Option<Id>; N];
-/// A packed upper-triangular symmetric matrix.
-pub type Matrix = [Option<Id>; NH];
+/// A vector of structural-zero-aware entries, one per coordinate
+/// ([`Signature::coords`] long).
+pub type Vector = Vec<Option<Id>>;
+/// A packed upper-triangular symmetric matrix
+/// ([`Signature::packed_len`] long, see [`Signature::packed`]).
+pub type Matrix = Vec<Option<Id>>;
 
 /// Handle of a jet in a [`JetArena`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -57,12 +60,12 @@ struct JetData {
 }
 
 impl JetData {
-    fn constant(v: Id) -> JetData {
+    fn constant(v: Id, sig: &Signature) -> JetData {
         JetData {
             v,
-            g: [None; N],
+            g: vec![None; sig.coords()],
             gl: Vec::new(),
-            h: [None; NH],
+            h: vec![None; sig.packed_len()],
             hm: Vec::new(),
             hs: Vec::new(),
             hp: Vec::new(),
@@ -91,6 +94,7 @@ pub struct Parts {
 /// Jets over a DAG, with registered basis vectors and matrices.
 pub struct JetArena<'a> {
     dag: &'a mut Dag,
+    sig: &'a Signature,
     jets: Vec<JetData>,
     vectors: Vec<Vector>,
     matrices: Vec<Matrix>,
@@ -127,10 +131,12 @@ fn is_zero(v: &Vector) -> bool {
 }
 
 impl<'a> JetArena<'a> {
-    /// An arena over `dag`.
-    pub fn new(dag: &'a mut Dag) -> Self {
+    /// An arena over `dag`, for jets with respect to the coordinates of
+    /// `sig`.
+    pub fn new(dag: &'a mut Dag, sig: &'a Signature) -> Self {
         JetArena {
             dag,
+            sig,
             jets: Vec::new(),
             vectors: Vec::new(),
             matrices: Vec::new(),
@@ -161,10 +167,14 @@ impl<'a> JetArena<'a> {
 
     /// A jet with value `v` and the given derivative parts.
     pub fn entity(&mut self, v: Id, parts: Parts) -> JetId {
-        let mut j = JetData::constant(v);
-        j.g = parts.g.unwrap_or([None; N]);
+        let mut j = JetData::constant(v, self.sig);
+        if let Some(g) = parts.g {
+            j.g = g;
+        }
         j.gl = parts.gl;
-        j.h = parts.h.unwrap_or([None; NH]);
+        if let Some(h) = parts.h {
+            j.h = h;
+        }
         j.hm = parts.hm;
         j.hs = parts.hs.into_iter().filter(|(_, u)| !is_zero(u)).collect();
         j.hp = parts.hp;
@@ -180,14 +190,14 @@ impl<'a> JetArena<'a> {
         let dag = &mut *self.dag;
         JetData {
             v: b.v,
-            g: b.g.map(|x| neg_opt(dag, x)),
+            g: b.g.iter().map(|&x| neg_opt(dag, x)).collect(),
             gl: b.gl.iter().map(|(k, c)| (*k, dag.neg(*c))).collect(),
-            h: b.h.map(|x| neg_opt(dag, x)),
+            h: b.h.iter().map(|&x| neg_opt(dag, x)).collect(),
             hm: b.hm.iter().map(|(k, c)| (*k, dag.neg(*c))).collect(),
             hs: b
                 .hs
                 .iter()
-                .map(|(k, u)| (*k, u.map(|x| neg_opt(dag, x))))
+                .map(|(k, u)| (*k, u.iter().map(|&x| neg_opt(dag, x)).collect()))
                 .collect(),
             hp: b.hp.iter().map(|(k, c)| (*k, dag.neg(*c))).collect(),
         }
@@ -201,12 +211,16 @@ impl<'a> JetArena<'a> {
         let sum = |dag: &mut Dag, x: &Id, y: &Id| add_opt(dag, Some(*x), Some(*y));
         JetData {
             v: a.v,
-            g: std::array::from_fn(|i| add_opt(dag, a.g[i], b.g[i])),
+            g: (0..a.g.len())
+                .map(|i| add_opt(dag, a.g[i], b.g[i]))
+                .collect(),
             gl: merge(&a.gl, &b.gl, |x, y| sum(dag, x, y)),
-            h: std::array::from_fn(|i| add_opt(dag, a.h[i], b.h[i])),
+            h: (0..a.h.len())
+                .map(|i| add_opt(dag, a.h[i], b.h[i]))
+                .collect(),
             hm: merge(&a.hm, &b.hm, |x, y| sum(dag, x, y)),
             hs: merge(&a.hs, &b.hs, |x, y| {
-                let u: Vector = std::array::from_fn(|i| add_opt(dag, x[i], y[i]));
+                let u: Vector = (0..x.len()).map(|i| add_opt(dag, x[i], y[i])).collect();
                 (!is_zero(&u)).then_some(u)
             }),
             hp: merge(&a.hp, &b.hp, |x, y| sum(dag, x, y)),
@@ -223,13 +237,13 @@ impl<'a> JetArena<'a> {
         };
         JetData {
             v: a.v,
-            g: a.g.map(|x| m(dag, x)),
+            g: a.g.iter().map(|&x| m(dag, x)).collect(),
             gl: a
                 .gl
                 .iter()
                 .filter_map(|(k, c)| mc(dag, *c).map(|c| (*k, c)))
                 .collect(),
-            h: a.h.map(|x| m(dag, x)),
+            h: a.h.iter().map(|&x| m(dag, x)).collect(),
             hm: a
                 .hm
                 .iter()
@@ -238,7 +252,7 @@ impl<'a> JetArena<'a> {
             hs: a
                 .hs
                 .iter()
-                .map(|(k, u)| (*k, u.map(|x| m(dag, x))))
+                .map(|(k, u)| (*k, u.iter().map(|&x| m(dag, x)).collect::<Vector>()))
                 .filter(|(_, u)| !is_zero(u))
                 .collect(),
             hp: a
@@ -251,30 +265,38 @@ impl<'a> JetArena<'a> {
 
     /// `a' b'^T + b' a'^T` as Hessian parts (gradient parts empty).
     fn sym_outer(&mut self, a: &JetData, b: &JetData) -> JetData {
+        let sig = self.sig;
         let dag = &mut *self.dag;
-        let mut out = JetData::constant(a.v);
-        for j in 0..N {
-            for k in j..N {
+        let mut out = JetData::constant(a.v, sig);
+        let n = sig.coords();
+        for j in 0..n {
+            for k in j..n {
                 let t1 = mul_opt(dag, a.g[j], b.g[k]);
                 let t2 = mul_opt(dag, b.g[j], a.g[k]);
-                out.h[packed(j, k)] = add_opt(dag, t1, t2);
+                out.h[sig.packed(j, k)] = add_opt(dag, t1, t2);
             }
         }
         // sym(A + sum a_s B_s, C + sum b_t B_t) = sym(A, C) + sum_t sym(b_t A, B_t)
         //   + sum_s sym(a_s C, B_s) + sum_st a_s b_t sym(B_s, B_t).
         let mut hs: Vec<(usize, Vector)> = Vec::new();
         for (t, bt) in &b.gl {
-            hs.push((*t, a.g.map(|x| mul_opt(dag, x, Some(*bt)))));
+            hs.push((
+                *t,
+                a.g.iter().map(|&x| mul_opt(dag, x, Some(*bt))).collect(),
+            ));
         }
         for (s, as_) in &a.gl {
-            hs.push((*s, b.g.map(|x| mul_opt(dag, x, Some(*as_)))));
+            hs.push((
+                *s,
+                b.g.iter().map(|&x| mul_opt(dag, x, Some(*as_))).collect(),
+            ));
         }
         hs.sort_by_key(|t| t.0);
         let mut merged: Vec<(usize, Vector)> = Vec::new();
         for (k, u) in hs {
             match merged.last_mut() {
                 Some((lk, lu)) if *lk == k => {
-                    *lu = std::array::from_fn(|i| add_opt(dag, lu[i], u[i]))
+                    *lu = (0..lu.len()).map(|i| add_opt(dag, lu[i], u[i])).collect()
                 }
                 _ => merged.push((k, u)),
             }
@@ -303,9 +325,9 @@ impl<'a> JetArena<'a> {
     fn hessian_parts(x: &JetData) -> JetData {
         JetData {
             v: x.v,
-            g: [None; N],
+            g: vec![None; x.g.len()],
             gl: Vec::new(),
-            h: x.h,
+            h: x.h.clone(),
             hm: x.hm.clone(),
             hs: x.hs.clone(),
             hp: x.hp.clone(),
@@ -316,9 +338,9 @@ impl<'a> JetArena<'a> {
     fn gradient_parts(x: &JetData) -> JetData {
         JetData {
             v: x.v,
-            g: x.g,
+            g: x.g.clone(),
             gl: x.gl.clone(),
-            h: [None; NH],
+            h: vec![None; x.h.len()],
             hm: Vec::new(),
             hs: Vec::new(),
             hp: Vec::new(),
@@ -345,6 +367,7 @@ impl<'a> JetArena<'a> {
     /// Expands a jet into its value, dense gradient and packed Hessian.
     pub fn materialize(&mut self, id: JetId) -> (Id, Vector, Matrix) {
         let j = self.jets[id.0].clone();
+        let sig = self.sig;
         let dag = &mut *self.dag;
         let mut g = j.g;
         for (b, c) in &j.gl {
@@ -363,20 +386,24 @@ impl<'a> JetArena<'a> {
         // Fold c (B_s B_t^T + B_t B_s^T) into the rank-2 term of B_t.
         let mut hs = j.hs.clone();
         for ((s, t), c) in &j.hp {
-            let u: Vector = self.vectors[*s].map(|x| mul_opt(dag, x, Some(*c)));
+            let u: Vector = self.vectors[*s]
+                .iter()
+                .map(|&x| mul_opt(dag, x, Some(*c)))
+                .collect();
             match hs.iter_mut().find(|(k, _)| k == t) {
-                Some((_, w)) => *w = std::array::from_fn(|i| add_opt(dag, w[i], u[i])),
+                Some((_, w)) => *w = (0..w.len()).map(|i| add_opt(dag, w[i], u[i])).collect(),
                 None => hs.push((*t, u)),
             }
         }
         for (b, u) in &hs {
-            let bv = self.vectors[*b];
-            for jj in 0..N {
-                for k in jj..N {
+            let bv = &self.vectors[*b];
+            let n = sig.coords();
+            for jj in 0..n {
+                for k in jj..n {
                     let t1 = mul_opt(dag, u[jj], bv[k]);
                     let t2 = mul_opt(dag, bv[jj], u[k]);
                     let t = add_opt(dag, t1, t2);
-                    let p = packed(jj, k);
+                    let p = sig.packed(jj, k);
                     h[p] = add_opt(dag, h[p], t);
                 }
             }
@@ -389,7 +416,8 @@ impl Domain for JetArena<'_> {
     type S = JetId;
     fn constant(&mut self, c: f64) -> JetId {
         let v = self.dag.constant(c);
-        self.push(JetData::constant(v))
+        let j = JetData::constant(v, self.sig);
+        self.push(j)
     }
     fn add(&mut self, a: JetId, b: JetId) -> JetId {
         let (x, y) = (self.jets[a.0].clone(), self.jets[b.0].clone());
@@ -437,7 +465,7 @@ impl Domain for JetArena<'_> {
     }
     fn neg(&mut self, a: JetId) -> JetId {
         let x = self.jets[a.0].clone();
-        let zero = JetData::constant(x.v);
+        let zero = JetData::constant(x.v, self.sig);
         let mut s = self.combine(&zero, &x, true);
         s.v = self.dag.neg(x.v);
         self.push(s)

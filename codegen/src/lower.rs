@@ -2,8 +2,8 @@
 //!
 //! The instruction list is the only input of the emitter. It is produced by
 //!
-//! 1. **relative coordinates**: the coordinates of slave node 1 are
-//!    substituted by zero (the caller passes coordinates relative to that
+//! 1. **relative coordinates**: the coordinates of the first point (slave
+//!    node 1, [`Signature::origin_coords`]) are substituted by zero (the caller passes coordinates relative to that
 //!    node; formulations are translation invariant), and the expressions are
 //!    rebuilt and re-simplified;
 //! 2. **dead-code removal**: only nodes reachable from the outputs are kept;
@@ -20,7 +20,7 @@
 //! | instruction | meaning | counted as |
 //! |---|---|---|
 //! | `Load(Coord(i))` | `d[i]` | — |
-//! | `Load(Param)` | `xi_s` | — |
+//! | `Load(Param(i))` | parameter `i` (`xi_s`) | — |
 //! | `Load(Implicit)` | `xi_m` (or `xi` in the residual) | — |
 //! | `Add(a, b)`, `Sub(a, b)` | `a + b`, `a - b` | add |
 //! | `Mul(a, b)` | `a * b` | mul |
@@ -33,14 +33,15 @@
 use std::collections::HashMap;
 
 use crate::expr::{Dag, Id, Node, Sym};
+use crate::signature::Signature;
 
 /// Where a loaded value comes from.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Source {
     /// Relative coordinate `d[i]`.
     Coord(usize),
-    /// The slave parameter `xi_s`.
-    Param,
+    /// Scalar parameter `i` of the signature (`xi_s`).
+    Param(usize),
     /// The implicit variable's value.
     Implicit,
 }
@@ -99,6 +100,31 @@ impl OpCount {
     }
 }
 
+impl std::ops::Add for OpCount {
+    type Output = OpCount;
+    fn add(self, o: OpCount) -> OpCount {
+        OpCount {
+            add: self.add + o.add,
+            mul: self.mul + o.mul,
+            div: self.div + o.div,
+            sqrt: self.sqrt + o.sqrt,
+            neg: self.neg + o.neg,
+        }
+    }
+}
+
+impl std::ops::AddAssign for OpCount {
+    fn add_assign(&mut self, o: OpCount) {
+        *self = *self + o;
+    }
+}
+
+impl std::iter::Sum for OpCount {
+    fn sum<I: Iterator<Item = OpCount>>(iter: I) -> OpCount {
+        iter.fold(OpCount::default(), |a, b| a + b)
+    }
+}
+
 impl std::fmt::Display for OpCount {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
@@ -124,18 +150,18 @@ pub struct Program {
 }
 
 impl Program {
-    /// Lowers `outputs` (expressions of `dag`) with coordinates
-    /// `zero_coords` replaced by zero; `coords[i]` is the symbol loaded from
-    /// `d[i]`, `param` and `implicit` the other inputs.
-    pub fn lower(
-        dag: &Dag,
-        outputs: &[Option<Id>],
-        coords: &[Sym],
-        zero_coords: &[usize],
-        param: Sym,
-        implicit: Sym,
-    ) -> Program {
-        let zeros: HashMap<Sym, f64> = zero_coords.iter().map(|&i| (coords[i], 0.0)).collect();
+    /// Lowers `outputs` (expressions of `dag` over the inputs of `sig`)
+    /// with the origin's coordinates ([`Signature::origin_coords`]) replaced
+    /// by zero; coordinate `i` is loaded from `d[i]`.
+    pub fn lower(dag: &Dag, outputs: &[Option<Id>], sig: &Signature) -> Program {
+        let coords = sig.coord_syms();
+        let params: Vec<Sym> = (0..sig.params().len()).map(|i| sig.param_sym(i)).collect();
+        let implicit = sig.implicit_sym();
+        let zeros: HashMap<Sym, f64> = sig
+            .origin_coords()
+            .into_iter()
+            .map(|i| (coords[i], 0.0))
+            .collect();
         let (mut dag, mut roots) = dag.substitute(outputs, &zeros);
         for r in roots.iter_mut().flatten() {
             *r = dag.absorb_negation(*r);
@@ -156,8 +182,10 @@ impl Program {
             let o = |id: Id| reg[id.index()].expect("children precede parents");
             let instr = match node {
                 Node::Const(_) => unreachable!("handled above"),
-                Node::Input(s) if s == param => Instr::Load(Source::Param),
                 Node::Input(s) if s == implicit => Instr::Load(Source::Implicit),
+                Node::Input(s) if params.contains(&s) => Instr::Load(Source::Param(
+                    params.iter().position(|p| *p == s).expect("contained"),
+                )),
                 Node::Input(s) => {
                     Instr::Load(Source::Coord(coords.iter().position(|c| *c == s).expect(
                         "every input symbol is a coordinate, the parameter or the implicit",
@@ -199,8 +227,10 @@ impl Program {
         c
     }
 
-    /// Interprets the program (reference semantics for tests).
-    pub fn run(&self, d: &[f64], param: f64, implicit: f64) -> Vec<f64> {
+    /// Interprets the program (reference semantics for tests): `d` the
+    /// relative coordinates, `params` the parameters, `implicit` the
+    /// implicit unknown.
+    pub fn run(&self, d: &[f64], params: &[f64], implicit: f64) -> Vec<f64> {
         let mut regs: Vec<f64> = Vec::with_capacity(self.instrs.len());
         let val = |regs: &Vec<f64>, o: Operand| match o {
             Operand::Reg(r) => regs[r as usize],
@@ -209,7 +239,7 @@ impl Program {
         for i in &self.instrs {
             let v = match *i {
                 Instr::Load(Source::Coord(k)) => d[k],
-                Instr::Load(Source::Param) => param,
+                Instr::Load(Source::Param(i)) => params[i],
                 Instr::Load(Source::Implicit) => implicit,
                 Instr::Add(a, b) => val(&regs, a) + val(&regs, b),
                 Instr::Sub(a, b) => val(&regs, a) - val(&regs, b),

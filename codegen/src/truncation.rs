@@ -77,27 +77,17 @@ pub const TYPES: [[EntityOrder; 3]; 6] = {
     ]
 };
 
-/// Number of coordinates.
-pub const N: usize = 8;
-/// Entries of the packed upper triangle of an `N x N` symmetric matrix.
-pub const NH: usize = N * (N + 1) / 2;
-
-/// Index of `(j, k)`, `j <= k`, in the packed upper triangle (row-major).
-pub fn packed(j: usize, k: usize) -> usize {
-    debug_assert!(j <= k && k < N);
-    j * N - j * (j + 1) / 2 + k
-}
-
 /// The expressions of one kernel: the gap, its kept gradient and packed
-/// upper Hessian (all `None` for a type without second-order term).
+/// upper Hessian (all `None` for a type without second-order term), sized
+/// by the formulation's [`crate::signature::Signature`].
 #[derive(Debug, Clone)]
 pub struct KernelExprs {
     /// The gap value.
     pub gap: Id,
-    /// Kept first derivatives.
-    pub grad: [Option<Id>; N],
-    /// Kept second derivatives (packed upper triangle).
-    pub hess: [Option<Id>; NH],
+    /// Kept first derivatives (`n`).
+    pub grad: Vector,
+    /// Kept second derivatives (packed upper triangle, `n (n + 1) / 2`).
+    pub hess: Matrix,
 }
 
 impl KernelExprs {
@@ -144,7 +134,8 @@ pub fn derive(
         }
     }
 
-    let q = formulation.coords;
+    let sig = &formulation.signature;
+    let (n, q) = (sig.coords(), sig.coord_syms());
     let xi = formulation.implicit.sym;
     let mut diff = Differentiator::new();
     let xi_order = order_of(&formulation.implicit.name)?;
@@ -159,30 +150,30 @@ pub fn derive(
     })?;
     let inv_r_xi = dag.recip(r_xi);
     let minus_inv = dag.neg(inv_r_xi);
-    let mut xi_d1: Vector = [None; N];
+    let mut xi_d1: Vector = vec![None; n];
     if xi_order >= EntityOrder::Linear {
-        for j in 0..N {
+        for j in 0..n {
             let r_q = diff.d(dag, r, q[j]);
             xi_d1[j] = mul_opt(dag, r_q, Some(minus_inv));
         }
     }
     // xi'' in deferred form: -inv r_qq (a basis matrix) + sym(-inv r_qxi, xi')
     // + (-inv r_xixi / 2) sym(xi', xi').
-    let mut r_qq: Matrix = [None; NH];
-    let mut r_qxi: Vector = [None; N];
+    let mut r_qq: Matrix = vec![None; sig.packed_len()];
+    let mut r_qxi: Vector = vec![None; n];
     let mut r_xixi = None;
     if xi_order == EntityOrder::Quadratic {
-        for j in 0..N {
+        for j in 0..n {
             let r_qj = diff.d(dag, r, q[j]);
-            for k in j..N {
-                r_qq[packed(j, k)] = diff.d_opt(dag, r_qj, q[k]);
+            for k in j..n {
+                r_qq[sig.packed(j, k)] = diff.d_opt(dag, r_qj, q[k]);
             }
             r_qxi[j] = diff.d(dag, r_xi, q[j]);
         }
         r_xixi = diff.d(dag, r_xi, xi);
     }
 
-    let mut arena = JetArena::new(dag);
+    let mut arena = JetArena::new(dag, sig);
     let xi_basis = (xi_order >= EntityOrder::Linear).then(|| arena.basis_vector(xi_d1));
     let rqq_basis = (xi_order == EntityOrder::Quadratic).then(|| arena.basis_matrix(r_qq));
 
@@ -194,7 +185,7 @@ pub fn derive(
         let dag = arena.dag();
         let k = dag.mul(c, minus_inv);
         parts.hm.push((m, k));
-        let u: Vector = r_qxi.map(|x| mul_opt(dag, x, Some(k)));
+        let u: Vector = r_qxi.iter().map(|&x| mul_opt(dag, x, Some(k))).collect();
         add_rank2(dag, &mut parts.hs, b, u);
         if let Some(rxx) = r_xixi {
             let half = dag.constant(0.5);
@@ -226,22 +217,22 @@ pub fn derive(
             if order >= EntityOrder::Linear {
                 let dag = arena.dag();
                 let e_xi = diff.d(dag, e, xi).filter(|_| xi_basis.is_some());
-                parts.g = Some(std::array::from_fn(|j| diff.d(dag, e, q[j])));
+                parts.g = Some((0..n).map(|j| diff.d(dag, e, q[j])).collect());
                 if let (Some(b), Some(c)) = (xi_basis, e_xi) {
                     parts.gl.push((b, c));
                 }
                 if order == EntityOrder::Quadratic {
-                    let mut h: Matrix = [None; NH];
-                    for j in 0..N {
+                    let mut h: Matrix = vec![None; sig.packed_len()];
+                    for j in 0..n {
                         let e_qj = diff.d(dag, e, q[j]);
-                        for k in j..N {
-                            h[packed(j, k)] = diff.d_opt(dag, e_qj, q[k]);
+                        for k in j..n {
+                            h[sig.packed(j, k)] = diff.d_opt(dag, e_qj, q[k]);
                         }
                     }
                     parts.h = Some(h);
                     if let Some(b) = xi_basis {
                         // E_qxi xi'^T + xi' E_xiq = sym(E_qxi, xi').
-                        let u: Vector = std::array::from_fn(|j| diff.d_opt(dag, e_xi, q[j]));
+                        let u: Vector = (0..n).map(|j| diff.d_opt(dag, e_xi, q[j])).collect();
                         add_rank2(dag, &mut parts.hs, b, u);
                         // E_xixi xi' xi'^T = (E_xixi / 2) sym(xi', xi').
                         if let Some(e_xixi) = diff.d_opt(dag, e_xi, xi) {
@@ -278,7 +269,7 @@ fn add_rank2(dag: &mut Dag, hs: &mut Vec<(usize, Vector)>, b: usize, u: Vector) 
         return;
     }
     match hs.iter_mut().find(|(k, _)| *k == b) {
-        Some((_, w)) => *w = std::array::from_fn(|i| add_opt(dag, w[i], u[i])),
+        Some((_, w)) => *w = (0..w.len()).map(|i| add_opt(dag, w[i], u[i])).collect(),
         None => hs.push((b, u)),
     }
 }
@@ -311,21 +302,4 @@ pub fn residual(formulation: &Formulation, dag: &mut Dag) -> [Id; 2] {
         .d(dag, r, formulation.implicit.sym)
         .unwrap_or_else(|| dag.constant(0.0));
     [r, r_xi]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn packed_index_is_a_bijection() {
-        let mut seen = [false; NH];
-        for j in 0..N {
-            for k in j..N {
-                assert!(!seen[packed(j, k)]);
-                seen[packed(j, k)] = true;
-            }
-        }
-        assert!(seen.iter().all(|&s| s));
-    }
 }

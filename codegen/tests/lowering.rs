@@ -9,8 +9,7 @@
 use std::collections::HashMap;
 
 use codegen::expr::Sym;
-use codegen::formulation::{IMPLICIT_SYM, PARAM_SYM};
-use codegen::truncation::{N, derive};
+use codegen::truncation::derive;
 use codegen::{Formulation, TYPES};
 
 fn load(name: &str) -> Formulation {
@@ -38,6 +37,7 @@ fn programs_agree_with_direct_evaluation() {
     for name in ["slave-normal", "closest-point"] {
         let f = load(name);
         let programs = codegen::programs(&f).unwrap();
+        let sig = &f.signature;
         for (t, row) in TYPES.iter().enumerate() {
             let mut dag = f.dag.clone();
             let k = derive(&f, &mut dag, *row).unwrap();
@@ -57,7 +57,7 @@ fn programs_agree_with_direct_evaluation() {
                     -0.1 + 0.2 * rng.next(),
                 ];
                 let (xi_s, xi_in) = (rng.next(), rng.next());
-                let mut got = prog.run(&rel, xi_s, xi_in);
+                let mut got = prog.run(&rel, &[xi_s], xi_in);
                 // Affine projections are solved inside the program, which
                 // returns xi_m last; otherwise xi_m is the input.
                 let xi_m = if programs.affine {
@@ -65,22 +65,22 @@ fn programs_agree_with_direct_evaluation() {
                 } else {
                     xi_in
                 };
-                let mut vals: HashMap<Sym, f64> = (0..N)
-                    .map(|i| (Sym(i as u16), rel[i] + origin[i % 2]))
+                let mut vals: HashMap<Sym, f64> = (0..sig.coords())
+                    .map(|i| (sig.coord_sym(i), rel[i] + origin[i % 2]))
                     .collect();
-                vals.insert(PARAM_SYM, xi_s);
-                vals.insert(IMPLICIT_SYM, xi_m);
+                vals.insert(sig.param_sym(0), xi_s);
+                vals.insert(sig.implicit_sym(), xi_m);
                 if programs.affine {
                     // The returned xi_m solves r = 0 (r is O(1) here).
-                    let r = programs.residual.run(&rel, xi_s, xi_m)[0];
+                    let r = programs.residual.run(&rel, &[xi_s], xi_m)[0];
                     assert!(
                         r.abs() < 1e-12,
                         "{name}: residual {r} at the program's xi_m"
                     );
                 }
                 let want: Vec<f64> = std::iter::once(Some(k.gap))
-                    .chain(k.grad)
-                    .chain(k.hess)
+                    .chain(k.grad.iter().copied())
+                    .chain(k.hess.iter().copied())
                     .map(|e| e.map_or(0.0, |id| dag.eval(id, &vals)))
                     .collect();
                 assert_eq!(got.len(), want.len());

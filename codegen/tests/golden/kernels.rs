@@ -54,7 +54,8 @@ pub(crate) fn kernel_set(f: Formulation) -> Option<&'static KernelSet> {
     }
 }
 /// `[r, dr/dxi]` of the `closest-point` projection at `xi`. Cost: 26 ops (11 add, 15 mul, 0 div, 0 sqrt, 0 neg).
-pub(crate) fn closest_point_residual(d: &[f64; 8], xi_s: f64, xi: f64) -> [f64; 2] {
+pub(crate) fn closest_point_residual(d: &[f64], xi_s: f64, xi: f64) -> [f64; 2] {
+    let d = &d[..8];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -92,7 +93,8 @@ pub(crate) fn closest_point_residual(d: &[f64; 8], xi_s: f64, xi: f64) -> [f64; 
     [v28, v33]
 }
 /// The `closest-point` gap. The projection is solved in closed form inside (the residual is affine in `xi`); `xi_m` receives it. Cost: 45 ops (17 add, 24 mul, 2 div, 1 sqrt, 1 neg).
-pub(crate) fn closest_point_gap(d: &[f64; 8], xi_s: f64, xi_m: &mut f64) -> f64 {
+pub(crate) fn closest_point_gap(d: &[f64], xi_s: f64, xi_m: &mut f64) -> f64 {
+    let d = &d[..8];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -150,11 +152,13 @@ pub(crate) fn closest_point_gap(d: &[f64; 8], xi_s: f64, xi_m: &mut f64) -> f64 
 }
 /// `closest-point`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1 sqrt, 5 neg).
 pub(crate) fn closest_point_type1(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
+    grad: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -234,12 +238,15 @@ pub(crate) fn closest_point_type1(
 }
 /// `closest-point`, type 2 (xi_m, x_ms, n: linear, linear, linear): gap, gradient and Hessian. Cost: 204 ops (81 add, 115 mul, 2 div, 1 sqrt, 5 neg).
 pub(crate) fn closest_point_type2(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -459,81 +466,84 @@ pub(crate) fn closest_point_type2(
     grad[5] = v200;
     grad[6] = v165;
     grad[7] = v167;
-    hess[0][0] = 0.0;
-    hess[0][1] = 0.0;
-    hess[1][0] = 0.0;
-    hess[0][2] = 0.0;
-    hess[2][0] = 0.0;
-    hess[0][3] = 0.0;
-    hess[3][0] = 0.0;
-    hess[0][4] = v78;
-    hess[4][0] = v78;
-    hess[0][5] = v201;
-    hess[5][0] = v201;
-    hess[0][6] = v202;
-    hess[6][0] = v202;
-    hess[0][7] = v80;
-    hess[7][0] = v80;
-    hess[1][1] = 0.0;
-    hess[1][2] = 0.0;
-    hess[2][1] = 0.0;
-    hess[1][3] = 0.0;
-    hess[3][1] = 0.0;
-    hess[1][4] = v82;
-    hess[4][1] = v82;
-    hess[1][5] = v203;
-    hess[5][1] = v203;
-    hess[1][6] = v204;
-    hess[6][1] = v204;
-    hess[1][7] = v84;
-    hess[7][1] = v84;
-    hess[2][2] = 0.0;
-    hess[2][3] = 0.0;
-    hess[3][2] = 0.0;
-    hess[2][4] = v86;
-    hess[4][2] = v86;
-    hess[2][5] = v205;
-    hess[5][2] = v205;
-    hess[2][6] = v206;
-    hess[6][2] = v206;
-    hess[2][7] = v88;
-    hess[7][2] = v88;
-    hess[3][3] = 0.0;
-    hess[3][4] = v90;
-    hess[4][3] = v90;
-    hess[3][5] = v207;
-    hess[5][3] = v207;
-    hess[3][6] = v208;
-    hess[6][3] = v208;
-    hess[3][7] = v92;
-    hess[7][3] = v92;
-    hess[4][4] = v209;
-    hess[4][5] = v173;
-    hess[5][4] = v173;
-    hess[4][6] = v176;
-    hess[6][4] = v176;
-    hess[4][7] = v180;
-    hess[7][4] = v180;
-    hess[5][5] = v183;
-    hess[5][6] = v186;
-    hess[6][5] = v186;
-    hess[5][7] = v190;
-    hess[7][5] = v190;
-    hess[6][6] = v192;
-    hess[6][7] = v195;
-    hess[7][6] = v195;
-    hess[7][7] = v210;
+    hess[0] = 0.0;
+    hess[1] = 0.0;
+    hess[8] = 0.0;
+    hess[2] = 0.0;
+    hess[16] = 0.0;
+    hess[3] = 0.0;
+    hess[24] = 0.0;
+    hess[4] = v78;
+    hess[32] = v78;
+    hess[5] = v201;
+    hess[40] = v201;
+    hess[6] = v202;
+    hess[48] = v202;
+    hess[7] = v80;
+    hess[56] = v80;
+    hess[9] = 0.0;
+    hess[10] = 0.0;
+    hess[17] = 0.0;
+    hess[11] = 0.0;
+    hess[25] = 0.0;
+    hess[12] = v82;
+    hess[33] = v82;
+    hess[13] = v203;
+    hess[41] = v203;
+    hess[14] = v204;
+    hess[49] = v204;
+    hess[15] = v84;
+    hess[57] = v84;
+    hess[18] = 0.0;
+    hess[19] = 0.0;
+    hess[26] = 0.0;
+    hess[20] = v86;
+    hess[34] = v86;
+    hess[21] = v205;
+    hess[42] = v205;
+    hess[22] = v206;
+    hess[50] = v206;
+    hess[23] = v88;
+    hess[58] = v88;
+    hess[27] = 0.0;
+    hess[28] = v90;
+    hess[35] = v90;
+    hess[29] = v207;
+    hess[43] = v207;
+    hess[30] = v208;
+    hess[51] = v208;
+    hess[31] = v92;
+    hess[59] = v92;
+    hess[36] = v209;
+    hess[37] = v173;
+    hess[44] = v173;
+    hess[38] = v176;
+    hess[52] = v176;
+    hess[39] = v180;
+    hess[60] = v180;
+    hess[45] = v183;
+    hess[46] = v186;
+    hess[53] = v186;
+    hess[47] = v190;
+    hess[61] = v190;
+    hess[54] = v192;
+    hess[55] = v195;
+    hess[62] = v195;
+    hess[63] = v210;
     *xi_m = v103;
     v197
 }
 /// `closest-point`, type 3 (xi_m, x_ms, n: linear, quadratic, linear): gap, gradient and Hessian. Cost: 207 ops (79 add, 117 mul, 2 div, 1 sqrt, 8 neg).
 pub(crate) fn closest_point_type3(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -756,81 +766,84 @@ pub(crate) fn closest_point_type3(
     grad[5] = v206;
     grad[6] = v173;
     grad[7] = v175;
-    hess[0][0] = 0.0;
-    hess[0][1] = 0.0;
-    hess[1][0] = 0.0;
-    hess[0][2] = 0.0;
-    hess[2][0] = 0.0;
-    hess[0][3] = 0.0;
-    hess[3][0] = 0.0;
-    hess[0][4] = v82;
-    hess[4][0] = v82;
-    hess[0][5] = v207;
-    hess[5][0] = v207;
-    hess[0][6] = v85;
-    hess[6][0] = v85;
-    hess[0][7] = v84;
-    hess[7][0] = v84;
-    hess[1][1] = 0.0;
-    hess[1][2] = 0.0;
-    hess[2][1] = 0.0;
-    hess[1][3] = 0.0;
-    hess[3][1] = 0.0;
-    hess[1][4] = v87;
-    hess[4][1] = v87;
-    hess[1][5] = v208;
-    hess[5][1] = v208;
-    hess[1][6] = v90;
-    hess[6][1] = v90;
-    hess[1][7] = v89;
-    hess[7][1] = v89;
-    hess[2][2] = 0.0;
-    hess[2][3] = 0.0;
-    hess[3][2] = 0.0;
-    hess[2][4] = v92;
-    hess[4][2] = v92;
-    hess[2][5] = v209;
-    hess[5][2] = v209;
-    hess[2][6] = v95;
-    hess[6][2] = v95;
-    hess[2][7] = v94;
-    hess[7][2] = v94;
-    hess[3][3] = 0.0;
-    hess[3][4] = v97;
-    hess[4][3] = v97;
-    hess[3][5] = v210;
-    hess[5][3] = v210;
-    hess[3][6] = v100;
-    hess[6][3] = v100;
-    hess[3][7] = v99;
-    hess[7][3] = v99;
-    hess[4][4] = v211;
-    hess[4][5] = v181;
-    hess[5][4] = v181;
-    hess[4][6] = v184;
-    hess[6][4] = v184;
-    hess[4][7] = v188;
-    hess[7][4] = v188;
-    hess[5][5] = v191;
-    hess[5][6] = v194;
-    hess[6][5] = v194;
-    hess[5][7] = v198;
-    hess[7][5] = v198;
-    hess[6][6] = v200;
-    hess[6][7] = v212;
-    hess[7][6] = v212;
-    hess[7][7] = v213;
+    hess[0] = 0.0;
+    hess[1] = 0.0;
+    hess[8] = 0.0;
+    hess[2] = 0.0;
+    hess[16] = 0.0;
+    hess[3] = 0.0;
+    hess[24] = 0.0;
+    hess[4] = v82;
+    hess[32] = v82;
+    hess[5] = v207;
+    hess[40] = v207;
+    hess[6] = v85;
+    hess[48] = v85;
+    hess[7] = v84;
+    hess[56] = v84;
+    hess[9] = 0.0;
+    hess[10] = 0.0;
+    hess[17] = 0.0;
+    hess[11] = 0.0;
+    hess[25] = 0.0;
+    hess[12] = v87;
+    hess[33] = v87;
+    hess[13] = v208;
+    hess[41] = v208;
+    hess[14] = v90;
+    hess[49] = v90;
+    hess[15] = v89;
+    hess[57] = v89;
+    hess[18] = 0.0;
+    hess[19] = 0.0;
+    hess[26] = 0.0;
+    hess[20] = v92;
+    hess[34] = v92;
+    hess[21] = v209;
+    hess[42] = v209;
+    hess[22] = v95;
+    hess[50] = v95;
+    hess[23] = v94;
+    hess[58] = v94;
+    hess[27] = 0.0;
+    hess[28] = v97;
+    hess[35] = v97;
+    hess[29] = v210;
+    hess[43] = v210;
+    hess[30] = v100;
+    hess[51] = v100;
+    hess[31] = v99;
+    hess[59] = v99;
+    hess[36] = v211;
+    hess[37] = v181;
+    hess[44] = v181;
+    hess[38] = v184;
+    hess[52] = v184;
+    hess[39] = v188;
+    hess[60] = v188;
+    hess[45] = v191;
+    hess[46] = v194;
+    hess[53] = v194;
+    hess[47] = v198;
+    hess[61] = v198;
+    hess[54] = v200;
+    hess[55] = v212;
+    hess[62] = v212;
+    hess[63] = v213;
     *xi_m = v111;
     v203
 }
 /// `closest-point`, type 4 (xi_m, x_ms, n: quadratic, quadratic, linear): gap, gradient and Hessian. Cost: 275 ops (105 add, 155 mul, 2 div, 1 sqrt, 12 neg).
 pub(crate) fn closest_point_type4(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -1121,81 +1134,84 @@ pub(crate) fn closest_point_type4(
     grad[5] = v278;
     grad[6] = v228;
     grad[7] = v230;
-    hess[0][0] = 0.0;
-    hess[0][1] = 0.0;
-    hess[1][0] = 0.0;
-    hess[0][2] = 0.0;
-    hess[2][0] = 0.0;
-    hess[0][3] = 0.0;
-    hess[3][0] = 0.0;
-    hess[0][4] = v111;
-    hess[4][0] = v111;
-    hess[0][5] = v114;
-    hess[5][0] = v114;
-    hess[0][6] = v117;
-    hess[6][0] = v117;
-    hess[0][7] = v119;
-    hess[7][0] = v119;
-    hess[1][1] = 0.0;
-    hess[1][2] = 0.0;
-    hess[2][1] = 0.0;
-    hess[1][3] = 0.0;
-    hess[3][1] = 0.0;
-    hess[1][4] = v121;
-    hess[4][1] = v121;
-    hess[1][5] = v124;
-    hess[5][1] = v124;
-    hess[1][6] = v127;
-    hess[6][1] = v127;
-    hess[1][7] = v129;
-    hess[7][1] = v129;
-    hess[2][2] = 0.0;
-    hess[2][3] = 0.0;
-    hess[3][2] = 0.0;
-    hess[2][4] = v131;
-    hess[4][2] = v131;
-    hess[2][5] = v134;
-    hess[5][2] = v134;
-    hess[2][6] = v137;
-    hess[6][2] = v137;
-    hess[2][7] = v139;
-    hess[7][2] = v139;
-    hess[3][3] = 0.0;
-    hess[3][4] = v141;
-    hess[4][3] = v141;
-    hess[3][5] = v144;
-    hess[5][3] = v144;
-    hess[3][6] = v147;
-    hess[6][3] = v147;
-    hess[3][7] = v149;
-    hess[7][3] = v149;
-    hess[4][4] = v243;
-    hess[4][5] = v247;
-    hess[5][4] = v247;
-    hess[4][6] = v251;
-    hess[6][4] = v251;
-    hess[4][7] = v279;
-    hess[7][4] = v279;
-    hess[5][5] = v257;
-    hess[5][6] = v261;
-    hess[6][5] = v261;
-    hess[5][7] = v280;
-    hess[7][5] = v280;
-    hess[6][6] = v267;
-    hess[6][7] = v281;
-    hess[7][6] = v281;
-    hess[7][7] = v274;
+    hess[0] = 0.0;
+    hess[1] = 0.0;
+    hess[8] = 0.0;
+    hess[2] = 0.0;
+    hess[16] = 0.0;
+    hess[3] = 0.0;
+    hess[24] = 0.0;
+    hess[4] = v111;
+    hess[32] = v111;
+    hess[5] = v114;
+    hess[40] = v114;
+    hess[6] = v117;
+    hess[48] = v117;
+    hess[7] = v119;
+    hess[56] = v119;
+    hess[9] = 0.0;
+    hess[10] = 0.0;
+    hess[17] = 0.0;
+    hess[11] = 0.0;
+    hess[25] = 0.0;
+    hess[12] = v121;
+    hess[33] = v121;
+    hess[13] = v124;
+    hess[41] = v124;
+    hess[14] = v127;
+    hess[49] = v127;
+    hess[15] = v129;
+    hess[57] = v129;
+    hess[18] = 0.0;
+    hess[19] = 0.0;
+    hess[26] = 0.0;
+    hess[20] = v131;
+    hess[34] = v131;
+    hess[21] = v134;
+    hess[42] = v134;
+    hess[22] = v137;
+    hess[50] = v137;
+    hess[23] = v139;
+    hess[58] = v139;
+    hess[27] = 0.0;
+    hess[28] = v141;
+    hess[35] = v141;
+    hess[29] = v144;
+    hess[43] = v144;
+    hess[30] = v147;
+    hess[51] = v147;
+    hess[31] = v149;
+    hess[59] = v149;
+    hess[36] = v243;
+    hess[37] = v247;
+    hess[44] = v247;
+    hess[38] = v251;
+    hess[52] = v251;
+    hess[39] = v279;
+    hess[60] = v279;
+    hess[45] = v257;
+    hess[46] = v261;
+    hess[53] = v261;
+    hess[47] = v280;
+    hess[61] = v280;
+    hess[54] = v267;
+    hess[55] = v281;
+    hess[62] = v281;
+    hess[63] = v274;
     *xi_m = v160;
     v275
 }
 /// `closest-point`, type 5 (xi_m, x_ms, n: linear, quadratic, quadratic): gap, gradient and Hessian. Cost: 277 ops (111 add, 154 mul, 2 div, 1 sqrt, 9 neg).
 pub(crate) fn closest_point_type5(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -1488,81 +1504,84 @@ pub(crate) fn closest_point_type5(
     grad[5] = v277;
     grad[6] = v242;
     grad[7] = v244;
-    hess[0][0] = 0.0;
-    hess[0][1] = 0.0;
-    hess[1][0] = 0.0;
-    hess[0][2] = 0.0;
-    hess[2][0] = 0.0;
-    hess[0][3] = 0.0;
-    hess[3][0] = 0.0;
-    hess[0][4] = v121;
-    hess[4][0] = v121;
-    hess[0][5] = v278;
-    hess[5][0] = v278;
-    hess[0][6] = v124;
-    hess[6][0] = v124;
-    hess[0][7] = v123;
-    hess[7][0] = v123;
-    hess[1][1] = 0.0;
-    hess[1][2] = 0.0;
-    hess[2][1] = 0.0;
-    hess[1][3] = 0.0;
-    hess[3][1] = 0.0;
-    hess[1][4] = v126;
-    hess[4][1] = v126;
-    hess[1][5] = v279;
-    hess[5][1] = v279;
-    hess[1][6] = v129;
-    hess[6][1] = v129;
-    hess[1][7] = v128;
-    hess[7][1] = v128;
-    hess[2][2] = 0.0;
-    hess[2][3] = 0.0;
-    hess[3][2] = 0.0;
-    hess[2][4] = v131;
-    hess[4][2] = v131;
-    hess[2][5] = v280;
-    hess[5][2] = v280;
-    hess[2][6] = v134;
-    hess[6][2] = v134;
-    hess[2][7] = v133;
-    hess[7][2] = v133;
-    hess[3][3] = 0.0;
-    hess[3][4] = v136;
-    hess[4][3] = v136;
-    hess[3][5] = v281;
-    hess[5][3] = v281;
-    hess[3][6] = v139;
-    hess[6][3] = v139;
-    hess[3][7] = v138;
-    hess[7][3] = v138;
-    hess[4][4] = v282;
-    hess[4][5] = v250;
-    hess[5][4] = v250;
-    hess[4][6] = v253;
-    hess[6][4] = v253;
-    hess[4][7] = v257;
-    hess[7][4] = v257;
-    hess[5][5] = v260;
-    hess[5][6] = v264;
-    hess[6][5] = v264;
-    hess[5][7] = v268;
-    hess[7][5] = v268;
-    hess[6][6] = v283;
-    hess[6][7] = v271;
-    hess[7][6] = v271;
-    hess[7][7] = v273;
+    hess[0] = 0.0;
+    hess[1] = 0.0;
+    hess[8] = 0.0;
+    hess[2] = 0.0;
+    hess[16] = 0.0;
+    hess[3] = 0.0;
+    hess[24] = 0.0;
+    hess[4] = v121;
+    hess[32] = v121;
+    hess[5] = v278;
+    hess[40] = v278;
+    hess[6] = v124;
+    hess[48] = v124;
+    hess[7] = v123;
+    hess[56] = v123;
+    hess[9] = 0.0;
+    hess[10] = 0.0;
+    hess[17] = 0.0;
+    hess[11] = 0.0;
+    hess[25] = 0.0;
+    hess[12] = v126;
+    hess[33] = v126;
+    hess[13] = v279;
+    hess[41] = v279;
+    hess[14] = v129;
+    hess[49] = v129;
+    hess[15] = v128;
+    hess[57] = v128;
+    hess[18] = 0.0;
+    hess[19] = 0.0;
+    hess[26] = 0.0;
+    hess[20] = v131;
+    hess[34] = v131;
+    hess[21] = v280;
+    hess[42] = v280;
+    hess[22] = v134;
+    hess[50] = v134;
+    hess[23] = v133;
+    hess[58] = v133;
+    hess[27] = 0.0;
+    hess[28] = v136;
+    hess[35] = v136;
+    hess[29] = v281;
+    hess[43] = v281;
+    hess[30] = v139;
+    hess[51] = v139;
+    hess[31] = v138;
+    hess[59] = v138;
+    hess[36] = v282;
+    hess[37] = v250;
+    hess[44] = v250;
+    hess[38] = v253;
+    hess[52] = v253;
+    hess[39] = v257;
+    hess[60] = v257;
+    hess[45] = v260;
+    hess[46] = v264;
+    hess[53] = v264;
+    hess[47] = v268;
+    hess[61] = v268;
+    hess[54] = v283;
+    hess[55] = v271;
+    hess[62] = v271;
+    hess[63] = v273;
     *xi_m = v150;
     v274
 }
 /// `closest-point`, type 6 (xi_m, x_ms, n: quadratic, quadratic, quadratic): gap, gradient and Hessian. Cost: 339 ops (137 add, 188 mul, 2 div, 1 sqrt, 11 neg).
 pub(crate) fn closest_point_type6(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -1917,75 +1936,77 @@ pub(crate) fn closest_point_type6(
     grad[5] = v341;
     grad[6] = v293;
     grad[7] = v295;
-    hess[0][0] = 0.0;
-    hess[0][1] = 0.0;
-    hess[1][0] = 0.0;
-    hess[0][2] = 0.0;
-    hess[2][0] = 0.0;
-    hess[0][3] = 0.0;
-    hess[3][0] = 0.0;
-    hess[0][4] = v150;
-    hess[4][0] = v150;
-    hess[0][5] = v153;
-    hess[5][0] = v153;
-    hess[0][6] = v156;
-    hess[6][0] = v156;
-    hess[0][7] = v158;
-    hess[7][0] = v158;
-    hess[1][1] = 0.0;
-    hess[1][2] = 0.0;
-    hess[2][1] = 0.0;
-    hess[1][3] = 0.0;
-    hess[3][1] = 0.0;
-    hess[1][4] = v160;
-    hess[4][1] = v160;
-    hess[1][5] = v163;
-    hess[5][1] = v163;
-    hess[1][6] = v166;
-    hess[6][1] = v166;
-    hess[1][7] = v168;
-    hess[7][1] = v168;
-    hess[2][2] = 0.0;
-    hess[2][3] = 0.0;
-    hess[3][2] = 0.0;
-    hess[2][4] = v170;
-    hess[4][2] = v170;
-    hess[2][5] = v173;
-    hess[5][2] = v173;
-    hess[2][6] = v176;
-    hess[6][2] = v176;
-    hess[2][7] = v178;
-    hess[7][2] = v178;
-    hess[3][3] = 0.0;
-    hess[3][4] = v180;
-    hess[4][3] = v180;
-    hess[3][5] = v183;
-    hess[5][3] = v183;
-    hess[3][6] = v186;
-    hess[6][3] = v186;
-    hess[3][7] = v188;
-    hess[7][3] = v188;
-    hess[4][4] = v308;
-    hess[4][5] = v312;
-    hess[5][4] = v312;
-    hess[4][6] = v316;
-    hess[6][4] = v316;
-    hess[4][7] = v342;
-    hess[7][4] = v342;
-    hess[5][5] = v322;
-    hess[5][6] = v343;
-    hess[6][5] = v343;
-    hess[5][7] = v344;
-    hess[7][5] = v344;
-    hess[6][6] = v345;
-    hess[6][7] = v334;
-    hess[7][6] = v334;
-    hess[7][7] = v337;
+    hess[0] = 0.0;
+    hess[1] = 0.0;
+    hess[8] = 0.0;
+    hess[2] = 0.0;
+    hess[16] = 0.0;
+    hess[3] = 0.0;
+    hess[24] = 0.0;
+    hess[4] = v150;
+    hess[32] = v150;
+    hess[5] = v153;
+    hess[40] = v153;
+    hess[6] = v156;
+    hess[48] = v156;
+    hess[7] = v158;
+    hess[56] = v158;
+    hess[9] = 0.0;
+    hess[10] = 0.0;
+    hess[17] = 0.0;
+    hess[11] = 0.0;
+    hess[25] = 0.0;
+    hess[12] = v160;
+    hess[33] = v160;
+    hess[13] = v163;
+    hess[41] = v163;
+    hess[14] = v166;
+    hess[49] = v166;
+    hess[15] = v168;
+    hess[57] = v168;
+    hess[18] = 0.0;
+    hess[19] = 0.0;
+    hess[26] = 0.0;
+    hess[20] = v170;
+    hess[34] = v170;
+    hess[21] = v173;
+    hess[42] = v173;
+    hess[22] = v176;
+    hess[50] = v176;
+    hess[23] = v178;
+    hess[58] = v178;
+    hess[27] = 0.0;
+    hess[28] = v180;
+    hess[35] = v180;
+    hess[29] = v183;
+    hess[43] = v183;
+    hess[30] = v186;
+    hess[51] = v186;
+    hess[31] = v188;
+    hess[59] = v188;
+    hess[36] = v308;
+    hess[37] = v312;
+    hess[44] = v312;
+    hess[38] = v316;
+    hess[52] = v316;
+    hess[39] = v342;
+    hess[60] = v342;
+    hess[45] = v322;
+    hess[46] = v343;
+    hess[53] = v343;
+    hess[47] = v344;
+    hess[61] = v344;
+    hess[54] = v345;
+    hess[55] = v334;
+    hess[62] = v334;
+    hess[63] = v337;
     *xi_m = v199;
     v338
 }
 /// The kernels of `closest-point`.
 static CLOSEST_POINT: KernelSet = KernelSet {
+    dim: 2,
+    coords: 8,
     closed_form_projection: true,
     residual: closest_point_residual,
     gap: closest_point_gap,
@@ -2050,7 +2071,8 @@ static CLOSEST_POINT: KernelSet = KernelSet {
     },
 };
 /// `[r, dr/dxi]` of the `slave-normal` projection at `xi`. Cost: 28 ops (11 add, 15 mul, 0 div, 0 sqrt, 2 neg).
-pub(crate) fn slave_normal_residual(d: &[f64; 8], xi_s: f64, xi: f64) -> [f64; 2] {
+pub(crate) fn slave_normal_residual(d: &[f64], xi_s: f64, xi: f64) -> [f64; 2] {
+    let d = &d[..8];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -2090,7 +2112,8 @@ pub(crate) fn slave_normal_residual(d: &[f64; 8], xi_s: f64, xi: f64) -> [f64; 2
     [v27, v35]
 }
 /// The `slave-normal` gap. The projection is solved in closed form inside (the residual is affine in `xi`); `xi_m` receives it. Cost: 45 ops (17 add, 24 mul, 2 div, 1 sqrt, 1 neg).
-pub(crate) fn slave_normal_gap(d: &[f64; 8], xi_s: f64, xi_m: &mut f64) -> f64 {
+pub(crate) fn slave_normal_gap(d: &[f64], xi_s: f64, xi_m: &mut f64) -> f64 {
+    let d = &d[..8];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -2148,11 +2171,13 @@ pub(crate) fn slave_normal_gap(d: &[f64; 8], xi_s: f64, xi_m: &mut f64) -> f64 {
 }
 /// `slave-normal`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1 sqrt, 5 neg).
 pub(crate) fn slave_normal_type1(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
+    grad: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -2232,12 +2257,15 @@ pub(crate) fn slave_normal_type1(
 }
 /// `slave-normal`, type 2 (xi_m, x_ms, n: linear, linear, linear): gap, gradient and Hessian. Cost: 201 ops (81 add, 113 mul, 2 div, 1 sqrt, 4 neg).
 pub(crate) fn slave_normal_type2(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -2454,81 +2482,84 @@ pub(crate) fn slave_normal_type2(
     grad[5] = v145;
     grad[6] = v147;
     grad[7] = v150;
-    hess[0][0] = v196;
-    hess[0][1] = v156;
-    hess[1][0] = v156;
-    hess[0][2] = v159;
-    hess[2][0] = v159;
-    hess[0][3] = v197;
-    hess[3][0] = v197;
-    hess[0][4] = v163;
-    hess[4][0] = v163;
-    hess[0][5] = v165;
-    hess[5][0] = v165;
-    hess[0][6] = v167;
-    hess[6][0] = v167;
-    hess[0][7] = v169;
-    hess[7][0] = v169;
-    hess[1][1] = v172;
-    hess[1][2] = v175;
-    hess[2][1] = v175;
-    hess[1][3] = v198;
-    hess[3][1] = v198;
-    hess[1][4] = v199;
-    hess[4][1] = v199;
-    hess[1][5] = v200;
-    hess[5][1] = v200;
-    hess[1][6] = v201;
-    hess[6][1] = v201;
-    hess[1][7] = v202;
-    hess[7][1] = v202;
-    hess[2][2] = v187;
-    hess[2][3] = v190;
-    hess[3][2] = v190;
-    hess[2][4] = v203;
-    hess[4][2] = v203;
-    hess[2][5] = v204;
-    hess[5][2] = v204;
-    hess[2][6] = v205;
-    hess[6][2] = v205;
-    hess[2][7] = v206;
-    hess[7][2] = v206;
-    hess[3][3] = v207;
-    hess[3][4] = v179;
-    hess[4][3] = v179;
-    hess[3][5] = v181;
-    hess[5][3] = v181;
-    hess[3][6] = v183;
-    hess[6][3] = v183;
-    hess[3][7] = v185;
-    hess[7][3] = v185;
-    hess[4][4] = 0.0;
-    hess[4][5] = 0.0;
-    hess[5][4] = 0.0;
-    hess[4][6] = 0.0;
-    hess[6][4] = 0.0;
-    hess[4][7] = 0.0;
-    hess[7][4] = 0.0;
-    hess[5][5] = 0.0;
-    hess[5][6] = 0.0;
-    hess[6][5] = 0.0;
-    hess[5][7] = 0.0;
-    hess[7][5] = 0.0;
-    hess[6][6] = 0.0;
-    hess[6][7] = 0.0;
-    hess[7][6] = 0.0;
-    hess[7][7] = 0.0;
+    hess[0] = v196;
+    hess[1] = v156;
+    hess[8] = v156;
+    hess[2] = v159;
+    hess[16] = v159;
+    hess[3] = v197;
+    hess[24] = v197;
+    hess[4] = v163;
+    hess[32] = v163;
+    hess[5] = v165;
+    hess[40] = v165;
+    hess[6] = v167;
+    hess[48] = v167;
+    hess[7] = v169;
+    hess[56] = v169;
+    hess[9] = v172;
+    hess[10] = v175;
+    hess[17] = v175;
+    hess[11] = v198;
+    hess[25] = v198;
+    hess[12] = v199;
+    hess[33] = v199;
+    hess[13] = v200;
+    hess[41] = v200;
+    hess[14] = v201;
+    hess[49] = v201;
+    hess[15] = v202;
+    hess[57] = v202;
+    hess[18] = v187;
+    hess[19] = v190;
+    hess[26] = v190;
+    hess[20] = v203;
+    hess[34] = v203;
+    hess[21] = v204;
+    hess[42] = v204;
+    hess[22] = v205;
+    hess[50] = v205;
+    hess[23] = v206;
+    hess[58] = v206;
+    hess[27] = v207;
+    hess[28] = v179;
+    hess[35] = v179;
+    hess[29] = v181;
+    hess[43] = v181;
+    hess[30] = v183;
+    hess[51] = v183;
+    hess[31] = v185;
+    hess[59] = v185;
+    hess[36] = 0.0;
+    hess[37] = 0.0;
+    hess[44] = 0.0;
+    hess[38] = 0.0;
+    hess[52] = 0.0;
+    hess[39] = 0.0;
+    hess[60] = 0.0;
+    hess[45] = 0.0;
+    hess[46] = 0.0;
+    hess[53] = 0.0;
+    hess[47] = 0.0;
+    hess[61] = 0.0;
+    hess[54] = 0.0;
+    hess[55] = 0.0;
+    hess[62] = 0.0;
+    hess[63] = 0.0;
     *xi_m = v81;
     v192
 }
 /// `slave-normal`, type 3 (xi_m, x_ms, n: linear, quadratic, linear): gap, gradient and Hessian. Cost: 247 ops (103 add, 135 mul, 2 div, 1 sqrt, 6 neg).
 pub(crate) fn slave_normal_type3(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -2791,81 +2822,84 @@ pub(crate) fn slave_normal_type3(
     grad[5] = v147;
     grad[6] = v149;
     grad[7] = v152;
-    hess[0][0] = v239;
-    hess[0][1] = v158;
-    hess[1][0] = v158;
-    hess[0][2] = v161;
-    hess[2][0] = v161;
-    hess[0][3] = v240;
-    hess[3][0] = v240;
-    hess[0][4] = v167;
-    hess[4][0] = v167;
-    hess[0][5] = v171;
-    hess[5][0] = v171;
-    hess[0][6] = v174;
-    hess[6][0] = v174;
-    hess[0][7] = v177;
-    hess[7][0] = v177;
-    hess[1][1] = v180;
-    hess[1][2] = v183;
-    hess[2][1] = v183;
-    hess[1][3] = v241;
-    hess[3][1] = v241;
-    hess[1][4] = v242;
-    hess[4][1] = v242;
-    hess[1][5] = v243;
-    hess[5][1] = v243;
-    hess[1][6] = v195;
-    hess[6][1] = v195;
-    hess[1][7] = v244;
-    hess[7][1] = v244;
-    hess[2][2] = v199;
-    hess[2][3] = v202;
-    hess[3][2] = v202;
-    hess[2][4] = v245;
-    hess[4][2] = v245;
-    hess[2][5] = v246;
-    hess[5][2] = v246;
-    hess[2][6] = v247;
-    hess[6][2] = v247;
-    hess[2][7] = v248;
-    hess[7][2] = v248;
-    hess[3][3] = v249;
-    hess[3][4] = v212;
-    hess[4][3] = v212;
-    hess[3][5] = v215;
-    hess[5][3] = v215;
-    hess[3][6] = v217;
-    hess[6][3] = v217;
-    hess[3][7] = v219;
-    hess[7][3] = v219;
-    hess[4][4] = v250;
-    hess[4][5] = v251;
-    hess[5][4] = v251;
-    hess[4][6] = v224;
-    hess[6][4] = v224;
-    hess[4][7] = v227;
-    hess[7][4] = v227;
-    hess[5][5] = v229;
-    hess[5][6] = v231;
-    hess[6][5] = v231;
-    hess[5][7] = v252;
-    hess[7][5] = v252;
-    hess[6][6] = v233;
-    hess[6][7] = v234;
-    hess[7][6] = v234;
-    hess[7][7] = v253;
+    hess[0] = v239;
+    hess[1] = v158;
+    hess[8] = v158;
+    hess[2] = v161;
+    hess[16] = v161;
+    hess[3] = v240;
+    hess[24] = v240;
+    hess[4] = v167;
+    hess[32] = v167;
+    hess[5] = v171;
+    hess[40] = v171;
+    hess[6] = v174;
+    hess[48] = v174;
+    hess[7] = v177;
+    hess[56] = v177;
+    hess[9] = v180;
+    hess[10] = v183;
+    hess[17] = v183;
+    hess[11] = v241;
+    hess[25] = v241;
+    hess[12] = v242;
+    hess[33] = v242;
+    hess[13] = v243;
+    hess[41] = v243;
+    hess[14] = v195;
+    hess[49] = v195;
+    hess[15] = v244;
+    hess[57] = v244;
+    hess[18] = v199;
+    hess[19] = v202;
+    hess[26] = v202;
+    hess[20] = v245;
+    hess[34] = v245;
+    hess[21] = v246;
+    hess[42] = v246;
+    hess[22] = v247;
+    hess[50] = v247;
+    hess[23] = v248;
+    hess[58] = v248;
+    hess[27] = v249;
+    hess[28] = v212;
+    hess[35] = v212;
+    hess[29] = v215;
+    hess[43] = v215;
+    hess[30] = v217;
+    hess[51] = v217;
+    hess[31] = v219;
+    hess[59] = v219;
+    hess[36] = v250;
+    hess[37] = v251;
+    hess[44] = v251;
+    hess[38] = v224;
+    hess[52] = v224;
+    hess[39] = v227;
+    hess[60] = v227;
+    hess[45] = v229;
+    hess[46] = v231;
+    hess[53] = v231;
+    hess[47] = v252;
+    hess[61] = v252;
+    hess[54] = v233;
+    hess[55] = v234;
+    hess[62] = v234;
+    hess[63] = v253;
     *xi_m = v83;
     v235
 }
 /// `slave-normal`, type 4 (xi_m, x_ms, n: quadratic, quadratic, linear): gap, gradient and Hessian. Cost: 324 ops (127 add, 183 mul, 2 div, 1 sqrt, 11 neg).
 pub(crate) fn slave_normal_type4(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -3205,81 +3239,84 @@ pub(crate) fn slave_normal_type4(
     grad[5] = v197;
     grad[6] = v199;
     grad[7] = v202;
-    hess[0][0] = v325;
-    hess[0][1] = v214;
-    hess[1][0] = v214;
-    hess[0][2] = v217;
-    hess[2][0] = v217;
-    hess[0][3] = v221;
-    hess[3][0] = v221;
-    hess[0][4] = v225;
-    hess[4][0] = v225;
-    hess[0][5] = v229;
-    hess[5][0] = v229;
-    hess[0][6] = v233;
-    hess[6][0] = v233;
-    hess[0][7] = v237;
-    hess[7][0] = v237;
-    hess[1][1] = v240;
-    hess[1][2] = v243;
-    hess[2][1] = v243;
-    hess[1][3] = v247;
-    hess[3][1] = v247;
-    hess[1][4] = v252;
-    hess[4][1] = v252;
-    hess[1][5] = v257;
-    hess[5][1] = v257;
-    hess[1][6] = v262;
-    hess[6][1] = v262;
-    hess[1][7] = v267;
-    hess[7][1] = v267;
-    hess[2][2] = v269;
-    hess[2][3] = v272;
-    hess[3][2] = v272;
-    hess[2][4] = v326;
-    hess[4][2] = v326;
-    hess[2][5] = v327;
-    hess[5][2] = v327;
-    hess[2][6] = v328;
-    hess[6][2] = v328;
-    hess[2][7] = v329;
-    hess[7][2] = v329;
-    hess[3][3] = v283;
-    hess[3][4] = v286;
-    hess[4][3] = v286;
-    hess[3][5] = v289;
-    hess[5][3] = v289;
-    hess[3][6] = v292;
-    hess[6][3] = v292;
-    hess[3][7] = v295;
-    hess[7][3] = v295;
-    hess[4][4] = v297;
-    hess[4][5] = v300;
-    hess[5][4] = v300;
-    hess[4][6] = v303;
-    hess[6][4] = v303;
-    hess[4][7] = v306;
-    hess[7][4] = v306;
-    hess[5][5] = v308;
-    hess[5][6] = v311;
-    hess[6][5] = v311;
-    hess[5][7] = v314;
-    hess[7][5] = v314;
-    hess[6][6] = v316;
-    hess[6][7] = v319;
-    hess[7][6] = v319;
-    hess[7][7] = v330;
+    hess[0] = v325;
+    hess[1] = v214;
+    hess[8] = v214;
+    hess[2] = v217;
+    hess[16] = v217;
+    hess[3] = v221;
+    hess[24] = v221;
+    hess[4] = v225;
+    hess[32] = v225;
+    hess[5] = v229;
+    hess[40] = v229;
+    hess[6] = v233;
+    hess[48] = v233;
+    hess[7] = v237;
+    hess[56] = v237;
+    hess[9] = v240;
+    hess[10] = v243;
+    hess[17] = v243;
+    hess[11] = v247;
+    hess[25] = v247;
+    hess[12] = v252;
+    hess[33] = v252;
+    hess[13] = v257;
+    hess[41] = v257;
+    hess[14] = v262;
+    hess[49] = v262;
+    hess[15] = v267;
+    hess[57] = v267;
+    hess[18] = v269;
+    hess[19] = v272;
+    hess[26] = v272;
+    hess[20] = v326;
+    hess[34] = v326;
+    hess[21] = v327;
+    hess[42] = v327;
+    hess[22] = v328;
+    hess[50] = v328;
+    hess[23] = v329;
+    hess[58] = v329;
+    hess[27] = v283;
+    hess[28] = v286;
+    hess[35] = v286;
+    hess[29] = v289;
+    hess[43] = v289;
+    hess[30] = v292;
+    hess[51] = v292;
+    hess[31] = v295;
+    hess[59] = v295;
+    hess[36] = v297;
+    hess[37] = v300;
+    hess[44] = v300;
+    hess[38] = v303;
+    hess[52] = v303;
+    hess[39] = v306;
+    hess[60] = v306;
+    hess[45] = v308;
+    hess[46] = v311;
+    hess[53] = v311;
+    hess[47] = v314;
+    hess[61] = v314;
+    hess[54] = v316;
+    hess[55] = v319;
+    hess[62] = v319;
+    hess[63] = v330;
     *xi_m = v133;
     v321
 }
 /// `slave-normal`, type 5 (xi_m, x_ms, n: linear, quadratic, quadratic): gap, gradient and Hessian. Cost: 316 ops (135 add, 172 mul, 2 div, 1 sqrt, 6 neg).
 pub(crate) fn slave_normal_type5(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -3611,81 +3648,84 @@ pub(crate) fn slave_normal_type5(
     grad[5] = v216;
     grad[6] = v218;
     grad[7] = v221;
-    hess[0][0] = v309;
-    hess[0][1] = v227;
-    hess[1][0] = v227;
-    hess[0][2] = v230;
-    hess[2][0] = v230;
-    hess[0][3] = v310;
-    hess[3][0] = v310;
-    hess[0][4] = v236;
-    hess[4][0] = v236;
-    hess[0][5] = v240;
-    hess[5][0] = v240;
-    hess[0][6] = v243;
-    hess[6][0] = v243;
-    hess[0][7] = v246;
-    hess[7][0] = v246;
-    hess[1][1] = v249;
-    hess[1][2] = v252;
-    hess[2][1] = v252;
-    hess[1][3] = v311;
-    hess[3][1] = v311;
-    hess[1][4] = v312;
-    hess[4][1] = v312;
-    hess[1][5] = v313;
-    hess[5][1] = v313;
-    hess[1][6] = v264;
-    hess[6][1] = v264;
-    hess[1][7] = v314;
-    hess[7][1] = v314;
-    hess[2][2] = v268;
-    hess[2][3] = v271;
-    hess[3][2] = v271;
-    hess[2][4] = v315;
-    hess[4][2] = v315;
-    hess[2][5] = v316;
-    hess[5][2] = v316;
-    hess[2][6] = v317;
-    hess[6][2] = v317;
-    hess[2][7] = v318;
-    hess[7][2] = v318;
-    hess[3][3] = v279;
-    hess[3][4] = v282;
-    hess[4][3] = v282;
-    hess[3][5] = v285;
-    hess[5][3] = v285;
-    hess[3][6] = v287;
-    hess[6][3] = v287;
-    hess[3][7] = v289;
-    hess[7][3] = v289;
-    hess[4][4] = v319;
-    hess[4][5] = v320;
-    hess[5][4] = v320;
-    hess[4][6] = v294;
-    hess[6][4] = v294;
-    hess[4][7] = v297;
-    hess[7][4] = v297;
-    hess[5][5] = v299;
-    hess[5][6] = v301;
-    hess[6][5] = v301;
-    hess[5][7] = v321;
-    hess[7][5] = v321;
-    hess[6][6] = v303;
-    hess[6][7] = v304;
-    hess[7][6] = v304;
-    hess[7][7] = v322;
+    hess[0] = v309;
+    hess[1] = v227;
+    hess[8] = v227;
+    hess[2] = v230;
+    hess[16] = v230;
+    hess[3] = v310;
+    hess[24] = v310;
+    hess[4] = v236;
+    hess[32] = v236;
+    hess[5] = v240;
+    hess[40] = v240;
+    hess[6] = v243;
+    hess[48] = v243;
+    hess[7] = v246;
+    hess[56] = v246;
+    hess[9] = v249;
+    hess[10] = v252;
+    hess[17] = v252;
+    hess[11] = v311;
+    hess[25] = v311;
+    hess[12] = v312;
+    hess[33] = v312;
+    hess[13] = v313;
+    hess[41] = v313;
+    hess[14] = v264;
+    hess[49] = v264;
+    hess[15] = v314;
+    hess[57] = v314;
+    hess[18] = v268;
+    hess[19] = v271;
+    hess[26] = v271;
+    hess[20] = v315;
+    hess[34] = v315;
+    hess[21] = v316;
+    hess[42] = v316;
+    hess[22] = v317;
+    hess[50] = v317;
+    hess[23] = v318;
+    hess[58] = v318;
+    hess[27] = v279;
+    hess[28] = v282;
+    hess[35] = v282;
+    hess[29] = v285;
+    hess[43] = v285;
+    hess[30] = v287;
+    hess[51] = v287;
+    hess[31] = v289;
+    hess[59] = v289;
+    hess[36] = v319;
+    hess[37] = v320;
+    hess[44] = v320;
+    hess[38] = v294;
+    hess[52] = v294;
+    hess[39] = v297;
+    hess[60] = v297;
+    hess[45] = v299;
+    hess[46] = v301;
+    hess[53] = v301;
+    hess[47] = v321;
+    hess[61] = v321;
+    hess[54] = v303;
+    hess[55] = v304;
+    hess[62] = v304;
+    hess[63] = v322;
     *xi_m = v122;
     v305
 }
 /// `slave-normal`, type 6 (xi_m, x_ms, n: quadratic, quadratic, quadratic): gap, gradient and Hessian. Cost: 387 ops (159 add, 216 mul, 2 div, 1 sqrt, 9 neg).
 pub(crate) fn slave_normal_type6(
-    d: &[f64; 8],
+    d: &[f64],
     xi_s: f64,
     xi_m: &mut f64,
-    grad: &mut [f64; 8],
-    hess: &mut [[f64; 8]; 8],
+    grad: &mut [f64],
+    hess: &mut [f64],
 ) -> f64 {
+    let d = &d[..8];
+    let grad = &mut grad[..8];
+    let hess = &mut hess[..64];
     let v0 = d[2];
     let v1 = d[3];
     let v2 = d[4];
@@ -4088,75 +4128,77 @@ pub(crate) fn slave_normal_type6(
     grad[5] = v256;
     grad[6] = v258;
     grad[7] = v261;
-    hess[0][0] = v387;
-    hess[0][1] = v279;
-    hess[1][0] = v279;
-    hess[0][2] = v282;
-    hess[2][0] = v282;
-    hess[0][3] = v286;
-    hess[3][0] = v286;
-    hess[0][4] = v290;
-    hess[4][0] = v290;
-    hess[0][5] = v294;
-    hess[5][0] = v294;
-    hess[0][6] = v298;
-    hess[6][0] = v298;
-    hess[0][7] = v302;
-    hess[7][0] = v302;
-    hess[1][1] = v388;
-    hess[1][2] = v307;
-    hess[2][1] = v307;
-    hess[1][3] = v310;
-    hess[3][1] = v310;
-    hess[1][4] = v315;
-    hess[4][1] = v315;
-    hess[1][5] = v320;
-    hess[5][1] = v320;
-    hess[1][6] = v325;
-    hess[6][1] = v325;
-    hess[1][7] = v330;
-    hess[7][1] = v330;
-    hess[2][2] = v332;
-    hess[2][3] = v335;
-    hess[3][2] = v335;
-    hess[2][4] = v389;
-    hess[4][2] = v389;
-    hess[2][5] = v390;
-    hess[5][2] = v390;
-    hess[2][6] = v391;
-    hess[6][2] = v391;
-    hess[2][7] = v392;
-    hess[7][2] = v392;
-    hess[3][3] = v345;
-    hess[3][4] = v348;
-    hess[4][3] = v348;
-    hess[3][5] = v351;
-    hess[5][3] = v351;
-    hess[3][6] = v354;
-    hess[6][3] = v354;
-    hess[3][7] = v357;
-    hess[7][3] = v357;
-    hess[4][4] = v359;
-    hess[4][5] = v362;
-    hess[5][4] = v362;
-    hess[4][6] = v365;
-    hess[6][4] = v365;
-    hess[4][7] = v368;
-    hess[7][4] = v368;
-    hess[5][5] = v370;
-    hess[5][6] = v373;
-    hess[6][5] = v373;
-    hess[5][7] = v376;
-    hess[7][5] = v376;
-    hess[6][6] = v378;
-    hess[6][7] = v381;
-    hess[7][6] = v381;
-    hess[7][7] = v393;
+    hess[0] = v387;
+    hess[1] = v279;
+    hess[8] = v279;
+    hess[2] = v282;
+    hess[16] = v282;
+    hess[3] = v286;
+    hess[24] = v286;
+    hess[4] = v290;
+    hess[32] = v290;
+    hess[5] = v294;
+    hess[40] = v294;
+    hess[6] = v298;
+    hess[48] = v298;
+    hess[7] = v302;
+    hess[56] = v302;
+    hess[9] = v388;
+    hess[10] = v307;
+    hess[17] = v307;
+    hess[11] = v310;
+    hess[25] = v310;
+    hess[12] = v315;
+    hess[33] = v315;
+    hess[13] = v320;
+    hess[41] = v320;
+    hess[14] = v325;
+    hess[49] = v325;
+    hess[15] = v330;
+    hess[57] = v330;
+    hess[18] = v332;
+    hess[19] = v335;
+    hess[26] = v335;
+    hess[20] = v389;
+    hess[34] = v389;
+    hess[21] = v390;
+    hess[42] = v390;
+    hess[22] = v391;
+    hess[50] = v391;
+    hess[23] = v392;
+    hess[58] = v392;
+    hess[27] = v345;
+    hess[28] = v348;
+    hess[35] = v348;
+    hess[29] = v351;
+    hess[43] = v351;
+    hess[30] = v354;
+    hess[51] = v354;
+    hess[31] = v357;
+    hess[59] = v357;
+    hess[36] = v359;
+    hess[37] = v362;
+    hess[44] = v362;
+    hess[38] = v365;
+    hess[52] = v365;
+    hess[39] = v368;
+    hess[60] = v368;
+    hess[45] = v370;
+    hess[46] = v373;
+    hess[53] = v373;
+    hess[47] = v376;
+    hess[61] = v376;
+    hess[54] = v378;
+    hess[55] = v381;
+    hess[62] = v381;
+    hess[63] = v393;
     *xi_m = v162;
     v383
 }
 /// The kernels of `slave-normal`.
 static SLAVE_NORMAL: KernelSet = KernelSet {
+    dim: 2,
+    coords: 8,
     closed_form_projection: true,
     residual: slave_normal_residual,
     gap: slave_normal_gap,

@@ -1,0 +1,380 @@
+//! The kernel plan: everything the generator emits, described without any
+//! target language.
+//!
+//! [`KernelPlan::build`] turns parsed formulations and their lowered
+//! [`Program`]s into one plan; an [`crate::emit::Emitter`] turns the plan
+//! into source text. Emitters read only the plan: names, documentation,
+//! inputs and outputs by name and length, instruction lists and op counts.
+//!
+//! ## Invariants
+//!
+//! * Every [`Output`] names a contiguous run `first..first + len` of its
+//!   function's `program.outputs` ([`Layout::PackedSymmetric`]: the
+//!   `n (n + 1) / 2` entries of the packed upper triangle, see
+//!   [`Signature::packed`]; emitters store the full symmetric matrix).
+//! * Every [`Input`] loaded by a program's `Load` instructions is listed:
+//!   [`InputKind::Coords`] for `Load(Coord(i))` (`i < n`),
+//!   [`InputKind::Param`] for `Load(Param(i))`, [`InputKind::Implicit`] or
+//!   [`InputKind::ImplicitInOut`] for `Load(Implicit)`.
+//! * A function has at least one [`Delivery::Return`] output; the kernel
+//!   functions return the gap.
+//! * `ops == program.op_count()` for every function.
+
+use crate::formulation::Arity;
+use crate::lower::{OpCount, Program};
+use crate::programs::{FormulationPrograms, programs};
+use crate::signature::Signature;
+use crate::truncation::{EntityOrder, TYPES};
+use crate::{Error, Formulation, Source};
+
+/// The whole generated unit: every formulation (compiled in or not), the
+/// truncation table and the kernels.
+#[derive(Debug, Clone)]
+pub struct KernelPlan {
+    /// One entry per source, in source order.
+    pub formulations: Vec<FormulationPlan>,
+    /// The truncation table: `[xi_m, x_ms, n]` orders of types 1..=6.
+    pub truncation: Vec<[EntityOrder; 3]>,
+}
+
+/// One formulation: its enum variant and, if compiled in, its kernels.
+#[derive(Debug, Clone)]
+pub struct FormulationPlan {
+    /// The formulation name (file stem, e.g. `slave-normal`).
+    pub name: String,
+    /// The type-name form (`SlaveNormal`).
+    pub variant: String,
+    /// The formulation file's `//!` documentation (may be empty).
+    pub doc: String,
+    /// The kernels; `None` when not compiled in.
+    pub kernels: Option<KernelSetPlan>,
+}
+
+/// The generated functions of one compiled formulation.
+#[derive(Debug, Clone)]
+pub struct KernelSetPlan {
+    /// The identifier form of the name (`slave_normal`); functions are
+    /// named `{ident}_residual`, `{ident}_gap`, `{ident}_type{t}`.
+    pub ident: String,
+    /// Documentation of the set.
+    pub doc: String,
+    /// The inputs `inputs!` declares and their sizes.
+    pub signature: Signature,
+    /// The residual is affine in the implicit unknown: every kernel solves
+    /// the projection itself and writes it to its in/out implicit input.
+    pub closed_form_projection: bool,
+    /// `[r, dr/dxi]` of the projection at `xi`.
+    pub residual: FunctionPlan,
+    /// The gap alone.
+    pub gap: FunctionPlan,
+    /// Types 1..=6.
+    pub kernels: Vec<FunctionPlan>,
+    /// The projection kernel's cost: the gap, plus one residual evaluation
+    /// per Newton iteration when not in closed form.
+    pub projection_ops: OpCount,
+}
+
+/// One generated function.
+#[derive(Debug, Clone)]
+pub struct FunctionPlan {
+    /// Its name.
+    pub name: String,
+    /// Its documentation (one paragraph, ends with its cost).
+    pub doc: String,
+    /// What it is.
+    pub role: Role,
+    /// Its inputs, in argument order.
+    pub inputs: Vec<Input>,
+    /// Its outputs, in argument order for stored ones.
+    pub outputs: Vec<Output>,
+    /// The instruction list.
+    pub program: Program,
+    /// `program.op_count()`.
+    pub ops: OpCount,
+}
+
+/// What a generated function computes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// The projection residual and its derivative.
+    Residual,
+    /// The gap alone.
+    Gap,
+    /// An approximation type's gap with its kept derivatives.
+    Kernel {
+        /// The type, 1..=6.
+        ty: usize,
+        /// Whether any second-order term survives (else no Hessian output).
+        hessian: bool,
+    },
+}
+
+/// A function input.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Input {
+    /// Its name.
+    pub name: String,
+    /// Number of scalars.
+    pub len: usize,
+    /// Where the program loads it.
+    pub kind: InputKind,
+}
+
+/// How an input is passed and loaded.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InputKind {
+    /// The relative coordinates (`len = n`), read by `Load(Coord(i))`.
+    Coords,
+    /// Scalar parameter `i` of the signature.
+    Param(usize),
+    /// The implicit unknown's value, by value.
+    Implicit,
+    /// The implicit unknown by reference: read on entry (its converged
+    /// value) unless the function solves it in closed form, in which case
+    /// an [`Delivery::Implicit`] output writes it on exit.
+    ImplicitInOut,
+}
+
+/// A function output: a run of program outputs.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Output {
+    /// Its name.
+    pub name: String,
+    /// Number of program outputs it covers.
+    pub len: usize,
+    /// Index of its first program output.
+    pub first: usize,
+    /// How its entries are arranged.
+    pub layout: Layout,
+    /// How it reaches the caller.
+    pub delivery: Delivery,
+}
+
+/// Arrangement of an output's entries.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Layout {
+    /// One scalar.
+    Scalar,
+    /// A vector of `len` entries.
+    Vector,
+    /// The packed upper triangle of a symmetric `n x n` matrix
+    /// (`len = n (n + 1) / 2`); stored as the full matrix, row-major.
+    PackedSymmetric {
+        /// The matrix dimension.
+        n: usize,
+    },
+}
+
+/// How an output reaches the caller.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Delivery {
+    /// Returned by value (several: as an array, in order).
+    Return,
+    /// Written into a caller's buffer (argument named like the output).
+    Store,
+    /// Written to the [`InputKind::ImplicitInOut`] input.
+    Implicit,
+}
+
+impl KernelPlan {
+    /// Parses and lowers every source and describes the result (inputs as
+    /// the contact-kernels run-time serves them, [`Arity::SegmentPair`]).
+    pub fn build(sources: &[Source]) -> Result<KernelPlan, Error> {
+        Self::build_with(sources, Arity::SegmentPair)
+    }
+
+    /// [`KernelPlan::build`] for formulations whose `inputs!` satisfy
+    /// `arity`.
+    pub fn build_with(sources: &[Source], arity: Arity) -> Result<KernelPlan, Error> {
+        let mut formulations = Vec::new();
+        for src in sources {
+            let f = Formulation::parse_with(&src.name, &src.text, arity)?;
+            let kernels = if src.compiled {
+                Some(KernelSetPlan::new(&f, &programs(&f)?))
+            } else {
+                None
+            };
+            formulations.push(FormulationPlan {
+                name: src.name.clone(),
+                variant: camel(&src.name),
+                doc: f.doc.clone(),
+                kernels,
+            });
+        }
+        Ok(KernelPlan {
+            formulations,
+            truncation: TYPES.to_vec(),
+        })
+    }
+}
+
+impl KernelSetPlan {
+    fn new(f: &Formulation, p: &FormulationPrograms) -> KernelSetPlan {
+        let name = &f.name;
+        let ident = f.name.replace('-', "_");
+        let sig = f.signature.clone();
+        let (n, nh) = (sig.coords(), sig.packed_len());
+        let affine = p.affine;
+        let coords = Input {
+            name: "d".into(),
+            len: n,
+            kind: InputKind::Coords,
+        };
+        let params = sig.params().iter().enumerate().map(|(i, s)| Input {
+            name: s.clone(),
+            len: 1,
+            kind: InputKind::Param(i),
+        });
+        let mut inputs: Vec<Input> = std::iter::once(coords).chain(params).collect();
+        let mut residual_inputs = inputs.clone();
+        residual_inputs.push(Input {
+            name: "xi".into(),
+            len: 1,
+            kind: InputKind::Implicit,
+        });
+        inputs.push(Input {
+            name: sig.implicit().to_owned(),
+            len: 1,
+            kind: InputKind::ImplicitInOut,
+        });
+        let scalar = |name: &str, first: usize, delivery: Delivery| Output {
+            name: name.into(),
+            len: 1,
+            first,
+            layout: Layout::Scalar,
+            delivery,
+        };
+        // The closed-form projection is the program's last output.
+        let implicit_out = |prog: &Program| {
+            affine.then(|| scalar(sig.implicit(), prog.outputs.len() - 1, Delivery::Implicit))
+        };
+
+        let ops = p.residual.op_count();
+        let residual = FunctionPlan {
+            name: format!("{ident}_residual"),
+            doc: format!(
+                "`[r, dr/dxi]` of the `{name}` projection at `xi`.{}",
+                ops_doc(&ops)
+            ),
+            role: Role::Residual,
+            inputs: residual_inputs,
+            outputs: vec![
+                scalar("r", 0, Delivery::Return),
+                scalar("r_xi", 1, Delivery::Return),
+            ],
+            program: p.residual.clone(),
+            ops,
+        };
+
+        let projection_doc = if affine {
+            " The projection is solved in closed form inside (the residual is affine in `xi`); `xi_m` receives it."
+        } else {
+            " `xi_m` holds the converged projection."
+        };
+        let ops = p.gap.op_count();
+        let gap = FunctionPlan {
+            name: format!("{ident}_gap"),
+            doc: format!("The `{name}` gap.{projection_doc}{}", ops_doc(&ops)),
+            role: Role::Gap,
+            inputs: inputs.clone(),
+            outputs: std::iter::once(scalar("g", 0, Delivery::Return))
+                .chain(implicit_out(&p.gap))
+                .collect(),
+            program: p.gap.clone(),
+            ops,
+        };
+
+        let kernels: Vec<FunctionPlan> = p
+            .kernels
+            .iter()
+            .enumerate()
+            .map(|(t, (prog, has_hess))| {
+                let ops = prog.op_count();
+                let orders = TYPES[t].map(|o| o.name().to_lowercase()).join(", ");
+                let doc = format!(
+                    "`{name}`, type {} (xi_m, x_ms, n: {orders}): gap, gradient{}.{}",
+                    t + 1,
+                    if *has_hess {
+                        " and Hessian"
+                    } else {
+                        " (no second-order term)"
+                    },
+                    ops_doc(&ops)
+                );
+                let mut outputs = vec![
+                    scalar("g", 0, Delivery::Return),
+                    Output {
+                        name: "grad".into(),
+                        len: n,
+                        first: 1,
+                        layout: Layout::Vector,
+                        delivery: Delivery::Store,
+                    },
+                ];
+                if *has_hess {
+                    outputs.push(Output {
+                        name: "hess".into(),
+                        len: nh,
+                        first: 1 + n,
+                        layout: Layout::PackedSymmetric { n },
+                        delivery: Delivery::Store,
+                    });
+                }
+                outputs.extend(implicit_out(prog));
+                FunctionPlan {
+                    name: format!("{ident}_type{}", t + 1),
+                    doc,
+                    role: Role::Kernel {
+                        ty: t + 1,
+                        hessian: *has_hess,
+                    },
+                    inputs: inputs.clone(),
+                    outputs,
+                    program: prog.clone(),
+                    ops,
+                }
+            })
+            .collect();
+
+        // The projection kernel: the gap kernel, plus one residual
+        // evaluation per Newton iteration when not in closed form.
+        let mut projection_ops = gap.ops;
+        if !affine {
+            projection_ops += residual.ops;
+        }
+        KernelSetPlan {
+            doc: format!("The kernels of `{name}`."),
+            ident,
+            signature: sig,
+            closed_form_projection: affine,
+            residual,
+            gap,
+            kernels,
+            projection_ops,
+        }
+    }
+}
+
+impl FunctionPlan {
+    /// The output named `name`, if any.
+    pub fn output(&self, name: &str) -> Option<&Output> {
+        self.outputs.iter().find(|o| o.name == name)
+    }
+}
+
+/// The cost sentence closing a function's documentation.
+fn ops_doc(ops: &OpCount) -> String {
+    format!(" Cost: {ops}.")
+}
+
+/// A type name from a formulation name (`slave-normal` -> `SlaveNormal`).
+pub fn camel(name: &str) -> String {
+    name.split(['-', '_'])
+        .map(|w| {
+            let mut c = w.chars();
+            c.next()
+                .map(|f| f.to_ascii_uppercase().to_string() + c.as_str())
+                .unwrap_or_default()
+        })
+        .collect()
+}

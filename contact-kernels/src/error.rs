@@ -1,0 +1,135 @@
+//! Why a kernel could not evaluate a configuration.
+//!
+//! Every data-dependent failure of the kernels is a [`KernelError`]; a
+//! kernel never returns NaN or infinity for input it accepted. Every field
+//! of an error is a value the kernel actually computed or received.
+
+use crate::Formulation;
+
+/// Why a kernel could not evaluate a configuration.
+///
+/// Every data-dependent failure of the kernels is one of these; a kernel
+/// never returns NaN or infinity for input it accepted.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum KernelError {
+    /// A coordinate or `xi_s` is NaN or infinite.
+    #[error("non-finite input: coordinate {index} is {value}")]
+    NonFinite {
+        /// Index into `q` (`0..n`), or `n` (`q.len()`, 8 for segment pairs)
+        /// for `xi_s`.
+        index: usize,
+        /// The offending value.
+        value: f64,
+    },
+    /// A segment has (numerically) zero length.
+    #[error("degenerate {segment} segment: length {length:e} is below {threshold:e}")]
+    DegenerateSegment {
+        /// Which segment.
+        segment: Segment,
+        /// Its length.
+        length: f64,
+        /// The smallest accepted length (relative to the configuration's size).
+        threshold: f64,
+    },
+    /// The projection equation has no (finite) solution, e.g. for the
+    /// slave-normal formulation when the master segment is perpendicular to
+    /// the slave segment (`t_m . t_s = 0`).
+    #[error(
+        "no projection: the projection equation r(q, xi) = 0 has no finite solution (dr/dxi = {r_xi:e})"
+    )]
+    NoProjection {
+        /// The derivative of the projection residual with respect to `xi`
+        /// where the solve gave up.
+        r_xi: f64,
+    },
+    /// The projection was found but lies absurdly far outside the master
+    /// segment (`|xi_m|` above [`crate::XI_M_LIMIT`]), where the gap and its
+    /// derivatives lose all accuracy.
+    #[error("projection too far from the master segment: xi_m = {xi_m:e}")]
+    ProjectionOutOfReach {
+        /// The projection coordinate.
+        xi_m: f64,
+    },
+    /// The Newton iteration for the projection did not converge.
+    #[error(
+        "the projection did not converge in {iterations} Newton iterations (last |dxi| = {last_step:e})"
+    )]
+    ProjectionDiverged {
+        /// Iterations performed.
+        iterations: usize,
+        /// The last Newton correction.
+        last_step: f64,
+    },
+    /// The projection was accepted (finite, within reach) but an output of
+    /// the kernel is NaN or infinite: the configuration's derivatives
+    /// overflow, or the projection is too close to singular for them.
+    #[error(
+        "non-finite {output} for a configuration whose projection was accepted (xi_m = {xi_m:e})"
+    )]
+    NonFiniteOutput {
+        /// The first non-finite output, in the order gap, gradient, Hessian.
+        output: OutputKind,
+        /// The projection coordinate the kernel used.
+        xi_m: f64,
+    },
+    /// The coordinate slice does not have the kernel's coordinate count.
+    #[error("expected {expected} coordinates, got {found}")]
+    CoordinateCount {
+        /// The kernel's coordinate count.
+        expected: usize,
+        /// `q.len()`.
+        found: usize,
+    },
+    /// A caller's output or scratch buffer was sized for another
+    /// coordinate count (see [`crate::GapOut::new`]).
+    #[error("buffer sized for {found} coordinates, the kernel has {expected}")]
+    BufferSize {
+        /// The kernel's coordinate count.
+        expected: usize,
+        /// The coordinate count the buffer was sized for.
+        found: usize,
+    },
+    /// This formulation was not compiled in (see the crate's features).
+    #[error("formulation `{0}` was not compiled into this build of contact-kernels")]
+    NotCompiled(Formulation),
+}
+
+/// The two segments of a contact pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Segment {
+    /// The slave segment (the first half of the points: `q[0..4]` for
+    /// two-node segments).
+    Slave,
+    /// The master segment (the second half: `q[4..8]`).
+    Master,
+}
+
+impl std::fmt::Display for Segment {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Segment::Slave => "slave",
+            Segment::Master => "master",
+        })
+    }
+}
+
+/// A kernel output, as named by [`KernelError::NonFiniteOutput`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputKind {
+    /// The gap.
+    Gap,
+    /// The gradient.
+    Gradient,
+    /// The Hessian.
+    Hessian,
+}
+
+impl std::fmt::Display for OutputKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            OutputKind::Gap => "gap",
+            OutputKind::Gradient => "gradient",
+            OutputKind::Hessian => "Hessian",
+        })
+    }
+}

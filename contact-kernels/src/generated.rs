@@ -1,0 +1,50 @@
+//! The kernels written by `build.rs` (see `OUT_DIR/kernels.rs`): the
+//! [`Formulation`] enum, the truncation table and one [`KernelSet`] per
+//! compiled formulation, with the run-time types they are written against.
+//!
+//! Every generated function takes `d`, the coordinates relative to the
+//! first point (slave node 1: `d[0..dim]` are zero and not read), as a slice
+//! of exactly `KernelSet::coords` values, and stores into `grad` (`coords`
+//! values) and `hess` (`coords * coords`, the full symmetric matrix,
+//! row-major). The callers in this crate guarantee these lengths (the
+//! functions reslice on entry and would panic otherwise).
+
+use crate::{EntityOrder, OpCount};
+
+/// `(d, xi_s, xi) -> [r, dr/dxi]`: the projection residual.
+pub(crate) type ResidualFn = fn(&[f64], f64, f64) -> [f64; 2];
+/// `(d, xi_s, xi_m) -> g`. `xi_m`: the converged projection on input
+/// (Newton formulations; ignored when the projection is in closed form),
+/// the projection used on output.
+pub(crate) type GapFn = fn(&[f64], f64, &mut f64) -> f64;
+/// `(d, xi_s, xi_m, grad) -> g` (`xi_m` as for [`GapFn`]).
+pub(crate) type GradientFn = fn(&[f64], f64, &mut f64, &mut [f64]) -> f64;
+/// `(d, xi_s, xi_m, grad, hess) -> g` (`xi_m` as for [`GapFn`]).
+pub(crate) type HessianFn = fn(&[f64], f64, &mut f64, &mut [f64], &mut [f64]) -> f64;
+
+/// One approximation type's kernel.
+#[derive(Clone, Copy)]
+pub(crate) enum Kernel {
+    /// First-order only (Type 1).
+    Gradient(GradientFn),
+    /// With the second-order term.
+    Hessian(HessianFn),
+}
+
+/// The generated kernels of one formulation.
+pub(crate) struct KernelSet {
+    /// The dimension of every point.
+    pub(crate) dim: usize,
+    /// The coordinate count `n` (points times `dim`).
+    pub(crate) coords: usize,
+    /// The residual is affine in `xi`: every kernel solves the
+    /// projection itself (no Newton iteration needed).
+    pub(crate) closed_form_projection: bool,
+    pub(crate) residual: ResidualFn,
+    pub(crate) gap: GapFn,
+    pub(crate) kernels: [Kernel; 6],
+    pub(crate) ops: [OpCount; 6],
+    pub(crate) projection_ops: OpCount,
+}
+
+include!(concat!(env!("OUT_DIR"), "/kernels.rs"));

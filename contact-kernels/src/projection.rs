@@ -1,0 +1,185 @@
+//! The projection: solving the formulation's `r(q, xi) = 0` for `xi_m`,
+//! rejecting projections that do not exist or lie out of reach, and the
+//! projection handle [`Projector`] (gap and `xi_m`, no derivatives).
+//!
+//! When the residual is affine in `xi` the generated kernels solve it in
+//! closed form themselves ([`start`] returns `0`, ignored by them);
+//! otherwise [`start`] runs Newton's method on the generated residual.
+//! Either way [`check`] validates the `xi_m` a kernel used.
+
+use crate::generated::{KernelSet, ResidualFn, kernel_set};
+use crate::validate::relative_coordinates;
+use crate::{Formulation, KernelError, OutputKind, Projection};
+
+/// `|xi_m|` beyond which a projection is rejected as out of reach.
+pub const XI_M_LIMIT: f64 = 1e6;
+
+/// Newton iterations allowed for the projection.
+const PROJECTION_ITERATIONS: usize = 20;
+
+/// A Newton correction below this (relative to `1 + |xi|`) ends the
+/// projection solve.
+const PROJECTION_TOLERANCE: f64 = 1e-12;
+
+/// Solves the formulation's projection equation `r(q, xi) = 0` by Newton's
+/// method from `xi = 0` (one step for straight segments, where `r` is linear
+/// in `xi`; a second step confirms convergence). `d`: relative coordinates.
+pub(crate) fn solve(residual: ResidualFn, d: &[f64], xi_s: f64) -> Result<f64, KernelError> {
+    let mut xi = 0.0_f64;
+    let mut last_step = f64::INFINITY;
+    for _ in 0..PROJECTION_ITERATIONS {
+        let [r, r_xi] = residual(d, xi_s, xi);
+        let step = r / r_xi;
+        if !step.is_finite() {
+            return Err(KernelError::NoProjection { r_xi });
+        }
+        xi -= step;
+        if xi.abs() > XI_M_LIMIT {
+            return Err(KernelError::ProjectionOutOfReach { xi_m: xi });
+        }
+        last_step = step.abs();
+        if last_step <= PROJECTION_TOLERANCE * (1.0 + xi.abs()) {
+            return Ok(xi);
+        }
+    }
+    Err(KernelError::ProjectionDiverged {
+        iterations: PROJECTION_ITERATIONS,
+        last_step,
+    })
+}
+
+/// The projection a kernel starts from: `0` when the kernels solve it in
+/// closed form, the Newton solution otherwise.
+pub(crate) fn start(set: &KernelSet, d: &[f64], xi_s: f64) -> Result<f64, KernelError> {
+    if set.closed_form_projection {
+        Ok(0.0)
+    } else {
+        solve(set.residual, d, xi_s)
+    }
+}
+
+/// Rejects a projection the kernel could not find (non-finite: the
+/// residual's `dr/dxi` vanished) or that lies out of reach.
+pub(crate) fn check(set: &KernelSet, d: &[f64], xi_s: f64, xi_m: f64) -> Result<(), KernelError> {
+    if !xi_m.is_finite() {
+        let [_, r_xi] = (set.residual)(d, xi_s, 0.0);
+        return Err(KernelError::NoProjection { r_xi });
+    }
+    if xi_m.abs() > XI_M_LIMIT {
+        return Err(KernelError::ProjectionOutOfReach { xi_m });
+    }
+    Ok(())
+}
+
+/// The projection kernel of one formulation: projects a slave point onto
+/// the master segment and returns the gap and `xi_m` (no derivatives), as a
+/// solver does to re-project and re-pair.
+#[derive(Clone, Copy)]
+pub struct Projector {
+    formulation: Formulation,
+    set: &'static KernelSet,
+}
+
+impl std::fmt::Debug for Projector {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Projector")
+            .field("formulation", &self.formulation)
+            .field("coords", &self.coords())
+            .finish()
+    }
+}
+
+impl Projector {
+    /// The projection kernel of `formulation`, or
+    /// [`KernelError::NotCompiled`].
+    pub fn new(formulation: Formulation) -> Result<Projector, KernelError> {
+        let set = kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
+        Ok(Projector { formulation, set })
+    }
+
+    /// The formulation.
+    pub fn formulation(&self) -> Formulation {
+        self.formulation
+    }
+
+    /// The coordinate count `n` every `q` must have.
+    pub fn coords(&self) -> usize {
+        self.set.coords
+    }
+
+    /// Projects the slave point `x_s(xi_s)` of configuration `q` (`n`
+    /// coordinates) onto the master segment. `scratch` is the caller's
+    /// buffer of `n` values for the relative coordinates (overwritten).
+    pub fn project(
+        &self,
+        q: &[f64],
+        xi_s: f64,
+        scratch: &mut [f64],
+    ) -> Result<Projection, KernelError> {
+        if scratch.len() != self.set.coords {
+            return Err(KernelError::BufferSize {
+                expected: self.set.coords,
+                found: scratch.len(),
+            });
+        }
+        self.project_into(q, xi_s, scratch)
+    }
+
+    /// [`Projector::project`] with `d.len() == n` checked by the caller.
+    #[inline]
+    pub(crate) fn project_into(
+        &self,
+        q: &[f64],
+        xi_s: f64,
+        d: &mut [f64],
+    ) -> Result<Projection, KernelError> {
+        let set = self.set;
+        relative_coordinates(set, q, xi_s, d)?;
+        let mut xi_m = start(set, d, xi_s)?;
+        let gap = (set.gap)(d, xi_s, &mut xi_m);
+        check(set, d, xi_s, xi_m)?;
+        if !gap.is_finite() {
+            return Err(KernelError::NonFiniteOutput {
+                output: OutputKind::Gap,
+                xi_m,
+            });
+        }
+        Ok(Projection { gap, xi_m })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A residual that is not affine in `xi` (`r = xi^3 + xi - d[2]`), as a
+    /// curved-segment formulation would have: the Newton path must converge.
+    fn cubic(d: &[f64], _xi_s: f64, xi: f64) -> [f64; 2] {
+        [xi * xi * xi + xi - d[2], 3.0 * xi * xi + 1.0]
+    }
+
+    /// `r = xi^2 + 1`: no real root.
+    fn no_root(_d: &[f64], _xi_s: f64, xi: f64) -> [f64; 2] {
+        [xi * xi + 1.0, 2.0 * xi]
+    }
+
+    #[test]
+    fn newton_projection_converges_for_a_nonlinear_residual() {
+        let d = [0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+        let xi = solve(cubic, &d, 0.0).unwrap();
+        // xi = 1 solves xi^3 + xi = 2; Newton's tolerance is 1e-12.
+        assert!((xi - 1.0).abs() < 1e-12, "{xi}");
+    }
+
+    #[test]
+    fn newton_projection_reports_failure() {
+        match solve(no_root, &[0.0; 8], 0.0) {
+            Err(
+                KernelError::NoProjection { .. }
+                | KernelError::ProjectionDiverged { .. }
+                | KernelError::ProjectionOutOfReach { .. },
+            ) => {}
+            other => panic!("expected a projection failure, got {other:?}"),
+        }
+    }
+}

@@ -1,0 +1,126 @@
+//! The handles against the value API: same bits, reused buffers, typed
+//! size errors.
+
+use super::*;
+
+/// design.md's worked example.
+const Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
+const XI_S: f64 = 0.3;
+
+/// A few configurations around the worked example (deterministic).
+fn configurations() -> Vec<([f64; 8], f64)> {
+    let mut out = vec![(Q, XI_S)];
+    for k in 1..8 {
+        let t = k as f64;
+        let mut q = Q;
+        for (i, v) in q.iter_mut().enumerate() {
+            *v += 0.05 * (t * (i as f64 + 1.0)).sin() + 100.0 * (k % 3) as f64;
+        }
+        out.push((q, -0.9 + 0.25 * t));
+    }
+    out
+}
+
+#[test]
+fn a_reused_gap_out_gives_the_bits_of_evaluate() {
+    for f in compiled_formulations() {
+        for ty in ApproxType::ALL {
+            let kernel = Kernel::new(f, ty).unwrap();
+            assert_eq!(kernel.has_hessian(), ty.has_hessian());
+            assert_eq!(kernel.op_count(), op_count(f, Some(ty)).unwrap());
+            let mut out = GapOut::new(&kernel);
+            // Fill the buffers with another type's values first: reuse must
+            // not leak them.
+            Kernel::new(f, ApproxType::Type6)
+                .unwrap()
+                .eval(&Q, XI_S, &mut out)
+                .unwrap();
+            for (q, xi_s) in configurations() {
+                let want = evaluate(f, ty, &q, xi_s).unwrap();
+                kernel.eval(&q, xi_s, &mut out).unwrap();
+                assert_eq!(out.gap().to_bits(), want.gap.to_bits(), "{f} {ty}");
+                assert_eq!(out.xi_m().to_bits(), want.xi_m.to_bits(), "{f} {ty}");
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(out.grad()), bits(want.grad.as_slice()), "{f} {ty}");
+                match (out.hess(), want.hess) {
+                    (None, None) => {}
+                    (Some(h), Some(w)) => assert_eq!(bits(h), bits(w.as_slice()), "{f} {ty}"),
+                    (h, w) => panic!("{f} {ty}: Hessian presence {h:?} vs {w:?}"),
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn the_projector_gives_the_bits_of_project() {
+    for f in compiled_formulations() {
+        let p = Projector::new(f).unwrap();
+        let mut scratch = vec![0.0; p.coords()];
+        for (q, xi_s) in configurations() {
+            let want = project(f, &q, xi_s).unwrap();
+            let got = p.project(&q, xi_s, &mut scratch).unwrap();
+            assert_eq!(got.gap.to_bits(), want.gap.to_bits());
+            assert_eq!(got.xi_m.to_bits(), want.xi_m.to_bits());
+        }
+    }
+}
+
+#[test]
+fn wrong_sizes_are_typed_errors() {
+    let kernel = Kernel::new(Formulation::SlaveNormal, ApproxType::Type3).unwrap();
+    let mut out = GapOut::new(&kernel);
+    assert_eq!(kernel.coords(), PAIR_COORDS);
+    for len in [0, 6, 7, 9, 12] {
+        let q = vec![0.5; len];
+        assert_eq!(
+            kernel.eval(&q, XI_S, &mut out),
+            Err(KernelError::CoordinateCount {
+                expected: 8,
+                found: len
+            })
+        );
+    }
+    let mut small = GapOut::with_coords(6);
+    assert_eq!(
+        kernel.eval(&Q, XI_S, &mut small),
+        Err(KernelError::BufferSize {
+            expected: 8,
+            found: 6
+        })
+    );
+    let p = Projector::new(Formulation::SlaveNormal).unwrap();
+    assert_eq!(
+        p.project(&Q, XI_S, &mut [0.0; 7]),
+        Err(KernelError::BufferSize {
+            expected: 8,
+            found: 7
+        })
+    );
+    assert!(matches!(
+        p.project(&Q[..6], XI_S, &mut [0.0; 8]),
+        Err(KernelError::CoordinateCount { found: 6, .. })
+    ));
+    // Input errors index `q` as given; `xi_s` is `q.len()`.
+    assert_eq!(
+        kernel.eval(&Q, f64::NAN, &mut out).unwrap_err().to_string(),
+        "non-finite input: coordinate 8 is NaN"
+    );
+}
+
+#[test]
+fn formulations_not_compiled_in_are_reported() {
+    for f in Formulation::ALL {
+        let compiled = compiled_formulations().contains(&f);
+        for ty in ApproxType::ALL {
+            match Kernel::new(f, ty) {
+                Ok(_) => assert!(compiled),
+                Err(e) => {
+                    assert!(!compiled);
+                    assert_eq!(e, KernelError::NotCompiled(f));
+                }
+            }
+        }
+        assert_eq!(Projector::new(f).is_ok(), compiled);
+    }
+}

@@ -1,0 +1,105 @@
+//! The one validation point: raw input in, validated relative coordinates
+//! or a [`KernelError`] out.
+//!
+//! [`relative_coordinates`] checks, in this order, that `q` has the kernel
+//! set's coordinate count, that every coordinate and `xi_s` is finite, and
+//! that neither segment is degenerate; it writes the coordinates relative to
+//! the first point (slave node 1) into the caller's buffer. All kernels
+//! depend on coordinate differences only, so this keeps their accuracy far
+//! from the origin.
+//!
+//! ## Segment layout
+//!
+//! The points are a slave segment's nodes followed by a master segment's
+//! nodes, equally many each (two and two for straight segments). A segment
+//! is degenerate when the chord between its end nodes (its first and last
+//! node) is shorter than [`DEGENERATE_LENGTH`] times the configuration's
+//! size (the largest relative coordinate).
+
+use crate::generated::KernelSet;
+use crate::{KernelError, Segment};
+
+/// A segment shorter than this times the configuration's size is degenerate.
+pub const DEGENERATE_LENGTH: f64 = 1e-10;
+
+/// The dimension of every point: the formulation language's values are
+/// 2-vectors (`KernelSet::dim` records it). A constant, so that the loops
+/// below unroll when the coordinate count is known at the call site.
+const DIM: usize = 2;
+
+/// Validates `q` and `xi_s` for `set` and writes the coordinates relative
+/// to the first point into `d` (`d.len() == q.len()` is the caller's).
+#[inline]
+pub(crate) fn relative_coordinates(
+    set: &KernelSet,
+    q: &[f64],
+    xi_s: f64,
+    d: &mut [f64],
+) -> Result<(), KernelError> {
+    if q.len() != set.coords {
+        return Err(KernelError::CoordinateCount {
+            expected: set.coords,
+            found: q.len(),
+        });
+    }
+    debug_assert_eq!(d.len(), q.len());
+    debug_assert_eq!(set.dim, DIM);
+    if !(all_finite(q) && xi_s.is_finite()) {
+        // Cold path: name the first offending input.
+        let (index, value) = q
+            .iter()
+            .chain(std::iter::once(&xi_s))
+            .copied()
+            .enumerate()
+            .find(|(_, v)| !v.is_finite())
+            .expect("one is not finite");
+        return Err(KernelError::NonFinite { index, value });
+    }
+    for (dp, qp) in d.chunks_exact_mut(DIM).zip(q.chunks_exact(DIM)) {
+        for k in 0..DIM {
+            dp[k] = qp[k] - q[k];
+        }
+    }
+    let size = d.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let threshold = DEGENERATE_LENGTH * size;
+    let points = q.len() / DIM;
+    let half = points / 2;
+    for (segment, first, last) in [
+        (Segment::Slave, 0, half - 1),
+        (Segment::Master, half, points - 1),
+    ] {
+        // Squared lengths: no hypot in the hot path. (Configurations with
+        // coordinates below ~1e-150 underflow here and are reported as
+        // degenerate.)
+        let (a, b) = (first * DIM, last * DIM);
+        let mut length2 = 0.0;
+        for k in 0..DIM {
+            let c = d[b + k] - d[a + k];
+            length2 += c * c;
+        }
+        // Written so that a NaN length is also rejected.
+        #[allow(clippy::neg_cmp_op_on_partial_ord)]
+        if !(length2 > threshold * threshold) {
+            let length = length2.sqrt();
+            return Err(KernelError::DegenerateSegment {
+                segment,
+                length,
+                threshold,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Whether every value is finite, with integer operations that vectorise:
+/// a value is NaN or infinite exactly when its exponent bits are all ones,
+/// i.e. when adding one to the exponent field carries into the sign bit.
+#[inline]
+pub(crate) fn all_finite(v: &[f64]) -> bool {
+    const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+    const EXPONENT_ONE: u64 = 0x0010_0000_0000_0000;
+    v.iter().fold(0u64, |acc, x| {
+        acc | ((x.to_bits() & EXPONENT) + EXPONENT_ONE)
+    }) >> 63
+        == 0
+}
