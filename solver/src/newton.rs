@@ -86,7 +86,7 @@ use crate::solution::{
     ContactPointId, ContactPointReport, Cutback, CutbackReason, MultiplierDofInfo, Solution, State,
     StepRecord, Timings,
 };
-use crate::{Method, SolveOptions};
+use crate::options::{Method, SolveOptions};
 
 /// The residual may grow to this factor times `max(|r_0|, 1)` before an
 /// attempt counts as diverging.
@@ -103,8 +103,7 @@ pub const STAGNATION_FACTOR: f64 = 100.0;
 /// the pairing only changes at converged iterates (module docs).
 pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 
-/// Default of [`SolveOptions::regularization`].
-pub const DEFAULT_REGULARIZATION: f64 = 1e-10;
+pub use crate::options::DEFAULT_REGULARIZATION;
 
 /// The integration point of a kernel failure.
 fn failure_point(layout: &ContactLayout, f: &PointFailure) -> ContactPointId {

@@ -9,7 +9,7 @@ use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
-use crate::Method;
+use crate::options::Method;
 use crate::mesh::Mesh;
 use crate::quad::{QuadStress, quad_mean_stress};
 
