@@ -12,7 +12,8 @@
 //!   at each step start; the complete formulation re-projects and evaluates
 //!   the exact kernel every iteration ([`Method`]).
 //! * Solution: Newton–Raphson per load step with bisection cut-backs
-//!   ([`newton`]), sparse LU from faer with symbolic reuse ([`linear`]).
+//!   ([`newton`]), a sparse direct solver (faer's LU) with symbolic reuse behind the
+//!   [`linear::LinearSolver`] seam ([`linear`]).
 //!
 //! ```no_run
 //! use solver::{Scene, SolveOptions, solve};
@@ -30,12 +31,12 @@
 pub mod assembly;
 pub mod contact;
 mod error;
-pub mod options;
 pub mod linear;
 pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod newton;
+pub mod options;
 pub mod quad;
 pub mod scene;
 pub mod solution;
@@ -48,6 +49,7 @@ mod testutil;
 
 pub use contact_kernels::{ApproxType, Formulation, KernelError};
 pub use error::SolverError;
+pub use linear::LinearSolverKind;
 pub use material::{Material, PlaneModel};
 pub use mesh::{Mesh, Side};
 pub use model::{ContactMode, Model};

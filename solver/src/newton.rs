@@ -80,13 +80,13 @@ use crate::contact::{
     XI_STUCK_BAND,
 };
 use crate::error::SolverError;
-use crate::linear::SparseSolver;
+use crate::linear::LinearSolver;
 use crate::model::Model;
+use crate::options::{Method, SolveOptions};
 use crate::solution::{
     ContactPointId, ContactPointReport, Cutback, CutbackReason, MultiplierDofInfo, Solution, State,
     StepRecord, Timings,
 };
-use crate::options::{Method, SolveOptions};
 
 /// The residual may grow to this factor times `max(|r_0|, 1)` before an
 /// attempt counts as diverging.
@@ -272,7 +272,7 @@ pub(crate) struct Run<'a> {
     opts: &'a SolveOptions,
     layout: ContactLayout,
     dofs: DofMap,
-    linear: SparseSolver,
+    linear: Box<dyn LinearSolver>,
     timings: Timings,
     counts: KernelCounts,
     length_scale: f64,
@@ -316,7 +316,7 @@ impl<'a> Run<'a> {
             model,
             opts,
             dofs,
-            linear: SparseSolver::new(),
+            linear: opts.linear.build(),
             timings: Timings::default(),
             counts: KernelCounts::default(),
             length_scale: model.mesh.size(),
@@ -687,9 +687,9 @@ impl<'a> Run<'a> {
             }
             let t = Instant::now();
             regularize(&mut sys, &self.dofs, &active, self.opts.regularization);
-            let solved = self
-                .linear
-                .solve(n_sys, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
+            let solved =
+                self.linear
+                    .solve_system(n_sys, &sys.rows, &sys.cols, &sys.vals, &sys.residual);
             self.timings.linear_solve += t.elapsed();
             let dx = match solved {
                 Ok(dx) => dx,
@@ -914,7 +914,7 @@ impl IterationSample {
 /// the contact terms into a fresh
 /// [`System`]; [`solid`](Self::solid) adds the solid elements and the
 /// external force; [`linear_solve`](Self::linear_solve) adds the multiplier
-/// regularisation and solves with the probe's [`SparseSolver`], whose
+/// regularisation and solves with the probe's [`LinearSolver`], whose
 /// symbolic factorisation is computed on the first call and reused after.
 /// The state is never updated, so every call repeats the same iteration.
 pub struct IterationProbe<'a> {
@@ -922,7 +922,7 @@ pub struct IterationProbe<'a> {
     regularization: f64,
     layout: ContactLayout,
     dofs: DofMap,
-    linear: SparseSolver,
+    linear: Box<dyn LinearSolver>,
     length_scale: f64,
     u: Vec<f64>,
     lambda: Vec<f64>,
@@ -985,7 +985,7 @@ impl<'a> IterationProbe<'a> {
             load_factor,
             layout,
             dofs,
-            linear: SparseSolver::new(),
+            linear: options.linear.build(),
         })
     }
 
@@ -1050,7 +1050,7 @@ impl<'a> IterationProbe<'a> {
         let ContactPhase { mut system, active } = assembled;
         regularize(&mut system, &self.dofs, &active, self.regularization);
         self.linear
-            .solve(
+            .solve_system(
                 self.dofs.n_eq(),
                 &system.rows,
                 &system.cols,

@@ -1,13 +1,14 @@
 //! The options of one solve: the contact [`Method`] and [`SolveOptions`].
 //!
-//! This module sits below everything else in the crate (it imports only the
-//! kernel types and, for [`SolveOptions::from_scene`], the scene), so the
-//! modules that read the options import them from here rather than from the
-//! crate root. The defaults are part of the behaviour: changing one changes
+//! This module sits below the solution modules (it imports only the kernel
+//! types, [`crate::linear::LinearSolverKind`] and, for
+//! [`SolveOptions::from_scene`], the scene), so the modules that read the
+//! options import them from here rather than from the crate root. The defaults are part of the behaviour: changing one changes
 //! every result.
 
 use contact_kernels::{ApproxType, Formulation};
 
+use crate::linear::LinearSolverKind;
 use crate::scene::Scene;
 
 /// Default of [`SolveOptions::regularization`] (see [`crate::newton`],
@@ -86,6 +87,8 @@ pub struct SolveOptions {
     /// Tangent-only multiplier regularisation `delta` (see
     /// [`crate::newton`]); 0 disables it.
     pub regularization: f64,
+    /// The linear solver of the Newton iterations.
+    pub linear: LinearSolverKind,
 }
 
 impl Default for SolveOptions {
@@ -99,6 +102,7 @@ impl Default for SolveOptions {
             max_cutbacks: 8,
             tolerance: 1e-10,
             regularization: DEFAULT_REGULARIZATION,
+            linear: LinearSolverKind::Lu,
         }
     }
 }
@@ -116,6 +120,7 @@ impl SolveOptions {
             max_cutbacks: scene.newton.max_cutbacks,
             tolerance: scene.newton.tolerance,
             regularization: DEFAULT_REGULARIZATION,
+            linear: LinearSolverKind::Lu,
         }
     }
 }

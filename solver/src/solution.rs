@@ -9,8 +9,8 @@ use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
-use crate::options::Method;
 use crate::mesh::Mesh;
+use crate::options::Method;
 use crate::quad::{QuadStress, quad_mean_stress};
 
 /// Identifies one slave integration point.
