@@ -97,6 +97,9 @@ pub enum LinearSolverKind {
 }
 
 impl LinearSolverKind {
+    /// Every kind (the tests run each).
+    pub const ALL: [LinearSolverKind; 1] = [LinearSolverKind::Lu];
+
     /// A new solver of this kind with nothing cached.
     pub fn build(self) -> Box<dyn LinearSolver> {
         match self {
@@ -163,7 +166,7 @@ mod tests {
     /// pattern (one symbolic factorisation), and a singular one rejected.
     #[test]
     fn saddle_point_and_reuse() {
-        for kind in [LinearSolverKind::Lu] {
+        for kind in LinearSolverKind::ALL {
             // [2 1 1; 1 3 0; 1 0 0] x = [1, 2, 3]
             let rows = [0, 0, 0, 1, 1, 2, 2];
             let cols = [0, 1, 2, 0, 1, 0, 2];
