@@ -10,16 +10,15 @@
 //! ```
 //!
 //! and the tangent its exact derivative (see [`crate::quad`] and
-//! [`crate::contact`]). Element matrices are computed in parallel (rayon),
-//! collected in element order and scattered sequentially into coordinate
-//! triplets, so the result is deterministic. The triplet index order depends
+//! [`crate::contact`]). Element matrices are computed in parallel
+//! (`crate::par`), collected in element order and scattered sequentially
+//! into coordinate triplets, so the result is deterministic. The triplet index order depends
 //! only on the mesh, the prescribed set, the pairing and the presence of
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
-use rayon::prelude::*;
-
 use crate::contact::{ContactLayout, NodeTie, PointEval, shape2};
 use crate::model::Model;
+use crate::par;
 use crate::quad::{QuadResponse, quad_response};
 
 /// Marks a prescribed dof in [`DofMap::eq`].
@@ -113,18 +112,14 @@ impl System {
 /// displacements `u`.
 pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
     let mesh = &model.mesh;
-    let responses: Vec<QuadResponse> = (0..mesh.elements.len())
-        .into_par_iter()
-        .with_min_len(PAR_MIN_LEN)
-        .map(|e| {
-            let material = &mesh.bodies[mesh.element_body[e]].material;
-            quad_response(
-                &mesh.geometry[e],
-                &mesh.element_displacements(e, u),
-                material,
-            )
-        })
-        .collect();
+    let responses: Vec<QuadResponse> = par::map(mesh.elements.len(), PAR_MIN_LEN, |e| {
+        let material = &mesh.bodies[mesh.element_body[e]].material;
+        quad_response(
+            &mesh.geometry[e],
+            &mesh.element_displacements(e, u),
+            material,
+        )
+    });
     sys.rows.reserve(64 * responses.len());
     sys.cols.reserve(64 * responses.len());
     sys.vals.reserve(64 * responses.len());

@@ -163,10 +163,10 @@
 
 use contact_kernels::{ApproxType, Formulation, KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
-use rayon::prelude::*;
 
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
+use crate::par;
 
 /// A projection with `|xi_m| <= 1 + XI_INSIDE_TOL` lies inside the master
 /// segment.
@@ -180,7 +180,8 @@ pub const XI_INSIDE_TOL: f64 = 1e-9;
 /// `|xi_m| >= 1 - XI_STUCK_BAND`.
 pub const XI_STUCK_BAND: f64 = 1e-2;
 
-/// Points per rayon task (contact evaluation is cheap per point).
+/// Points per rayon task (contact evaluation is cheap per point; see
+/// [`crate::par`]).
 const PAR_MIN_LEN: usize = 256;
 
 /// Gauss–Legendre points and weights on `[-1, 1]` (Newton iteration on the
@@ -611,25 +612,9 @@ impl ContactLayout {
         pairing: &[Option<usize>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
-        let results: Vec<(Result<Option<PointEval>, PointFailure>, KernelCounts)> =
-            (0..self.points.len())
-                .into_par_iter()
-                .with_min_len(PAR_MIN_LEN)
-                .map(|i| {
-                    let mut c = KernelCounts::default();
-                    (
-                        self.pair_and_evaluate(mesh, u, i, pairing[i], ty, &mut c),
-                        c,
-                    )
-                })
-                .collect();
-        let mut counts = KernelCounts::default();
-        let mut out = Vec::with_capacity(results.len());
-        for (r, c) in results {
-            counts += c;
-            out.push(r?);
-        }
-        Ok((out, counts))
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
+            self.pair_and_evaluate(mesh, u, i, pairing[i], ty, c)
+        })
     }
 
     /// Evaluates type `ty` at every point on the master segment `pairing`
@@ -646,34 +631,18 @@ impl ContactLayout {
         pairing: &[Option<usize>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
-        let results: Vec<(Result<Option<PointEval>, PointFailure>, KernelCounts)> =
-            (0..self.points.len())
-                .into_par_iter()
-                .with_min_len(PAR_MIN_LEN)
-                .map(|i| {
-                    let mut c = KernelCounts::default();
-                    let r = match pairing[i] {
-                        None => Ok(None),
-                        Some(m) => match self.evaluate_on(mesh, u, i, m, ty, &mut c) {
-                            Ok(e) => Ok(Some(e)),
-                            Err(error) if slave_side(&error) => Err(PointFailure {
-                                point: i,
-                                master_segment: Some(m),
-                                error,
-                            }),
-                            Err(_) => self.pair_and_evaluate(mesh, u, i, None, ty, &mut c),
-                        },
-                    };
-                    (r, c)
-                })
-                .collect();
-        let mut counts = KernelCounts::default();
-        let mut out = Vec::with_capacity(results.len());
-        for (r, c) in results {
-            counts += c;
-            out.push(r?);
-        }
-        Ok((out, counts))
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| match pairing[i] {
+            None => Ok(None),
+            Some(m) => match self.evaluate_on(mesh, u, i, m, ty, c) {
+                Ok(e) => Ok(Some(e)),
+                Err(error) if slave_side(&error) => Err(PointFailure {
+                    point: i,
+                    master_segment: Some(m),
+                    error,
+                }),
+                Err(_) => self.pair_and_evaluate(mesh, u, i, None, ty, c),
+            },
+        })
     }
 
     /// The pairing changes due at a converged iterate of the complete
@@ -749,21 +718,9 @@ impl ContactLayout {
         u: &[f64],
         pairing: &[Option<usize>],
     ) -> Result<(Vec<Option<Paired>>, KernelCounts), PointFailure> {
-        let results: Vec<_> = (0..self.points.len())
-            .into_par_iter()
-            .with_min_len(PAR_MIN_LEN)
-            .map(|i| {
-                let mut c = KernelCounts::default();
-                (self.find_master(mesh, u, i, pairing[i], &mut c), c)
-            })
-            .collect();
-        let mut counts = KernelCounts::default();
-        let mut out = Vec::with_capacity(results.len());
-        for (r, c) in results {
-            counts += c;
-            out.push(r?);
-        }
-        Ok((out, counts))
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
+            self.find_master(mesh, u, i, pairing[i], c)
+        })
     }
 
     /// Which multipliers carry a constraint row (see the module docs):

@@ -37,6 +37,7 @@ pub mod mesh;
 pub mod model;
 pub mod newton;
 pub mod options;
+mod par;
 pub mod quad;
 pub mod scene;
 pub mod solution;
