@@ -164,6 +164,7 @@
 use contact_kernels::{ApproxType, Formulation, KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 
+use crate::ids::{ContactPointIndex, MultiplierIndex, PairId};
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
 use crate::par;
@@ -223,13 +224,13 @@ pub type Paired = (usize, Projection);
 /// A due pairing change: the point (index into [`ContactLayout::points`])
 /// and its new master segment with the projection onto it (`None`: it
 /// projects into no master segment).
-pub type PairingUpdate = (usize, Option<Paired>);
+pub type PairingUpdate = (ContactPointIndex, Option<Paired>);
 
 /// Static data of one slave integration point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactPoint {
-    /// Contact pair index.
-    pub pair: usize,
+    /// Contact pair.
+    pub pair: PairId,
     /// Slave segment index within the pair.
     pub slave_segment: usize,
     /// Gauss point index within the segment.
@@ -241,14 +242,14 @@ pub struct ContactPoint {
     /// The slave segment's nodes.
     pub slave_nodes: [usize; 2],
     /// Global multiplier indices of the slave segment's nodes.
-    pub multipliers: [usize; 2],
+    pub multipliers: [MultiplierIndex; 2],
 }
 
 /// One multiplier degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MultiplierDof {
     /// Contact pair.
-    pub pair: usize,
+    pub pair: PairId,
     /// Slave node it lives at.
     pub node: usize,
 }
@@ -273,7 +274,7 @@ impl std::ops::AddAssign for KernelCounts {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointFailure {
     /// Index into [`ContactLayout::points`].
-    pub point: usize,
+    pub point: ContactPointIndex,
     /// The master segment tried, if any.
     pub master_segment: Option<usize>,
     /// The kernel's error.
@@ -306,7 +307,7 @@ pub struct PointEval {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodeTie {
     /// Index into [`ContactLayout::points`].
-    pub point: usize,
+    pub point: ContactPointIndex,
     /// The master segment the point is paired with (its regular term).
     pub paired: usize,
     /// The adjacent master segment beyond the node.
@@ -321,9 +322,10 @@ impl NodeTie {
     /// one); `None` when the point carries no multiplier. The tie holds for
     /// `theta` in `[0, 1]`.
     pub fn theta(&self, layout: &ContactLayout, lambda: &[f64]) -> Option<f64> {
-        let pt = &layout.points[self.point];
+        let pt = layout.point(self.point);
         let nsh = shape2(pt.xi_s);
-        let lam = nsh[0] * lambda[pt.multipliers[0]] + nsh[1] * lambda[pt.multipliers[1]];
+        let lam =
+            nsh[0] * lambda[pt.multipliers[0].index()] + nsh[1] * lambda[pt.multipliers[1].index()];
         let force = lam * pt.weight_ref;
         (force != 0.0).then(|| self.mu / force)
     }
@@ -390,12 +392,13 @@ impl ContactLayout {
         let mut adjacency = Vec::new();
         let mut complementarity = Vec::new();
         for (p, pair) in model.contacts.iter().enumerate() {
+            let p = PairId::new(p);
             let mut mult_of_node = std::collections::HashMap::new();
             for seg in &pair.slave {
                 for &n in seg {
                     mult_of_node.entry(n).or_insert_with(|| {
                         multipliers.push(MultiplierDof { pair: p, node: n });
-                        multipliers.len() - 1
+                        MultiplierIndex::new(multipliers.len() - 1)
                     });
                 }
             }
@@ -456,8 +459,18 @@ impl ContactLayout {
         std::array::from_fn(|k| mesh.nodes_ref[nodes[k / 2]][k % 2] + u[2 * nodes[k / 2] + k % 2])
     }
 
+    /// The static data of point `i`.
+    pub fn point(&self, i: ContactPointIndex) -> &ContactPoint {
+        &self.points[i.index()]
+    }
+
+    /// The master segments of `pair`.
+    pub fn masters_of(&self, pair: PairId) -> &[[usize; 2]] {
+        &self.masters[pair.index()]
+    }
+
     fn nodes(&self, point: &ContactPoint, master: usize) -> [usize; 4] {
-        let m = self.masters[point.pair][master];
+        let m = self.masters_of(point.pair)[master];
         [point.slave_nodes[0], point.slave_nodes[1], m[0], m[1]]
     }
 
@@ -469,14 +482,14 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        i: usize,
+        i: ContactPointIndex,
         master: usize,
         counts: &mut KernelCounts,
     ) -> Result<Option<Projection>, PointFailure> {
-        let pt = &self.points[i];
+        let pt = self.point(i);
         counts.project += 1;
         match contact_kernels::project(
-            self.formulations[pt.pair],
+            self.formulations[pt.pair.index()],
             &Self::q(mesh, u, self.nodes(pt, master)),
             pt.xi_s,
         ) {
@@ -496,11 +509,11 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        i: usize,
+        i: ContactPointIndex,
         start: Option<usize>,
         counts: &mut KernelCounts,
     ) -> Result<Option<(usize, Projection)>, PointFailure> {
-        let pair = self.points[i].pair;
+        let pair = self.point(i).pair.index();
         let n_master = self.masters[pair].len();
         if let Some(mut cur) = start {
             let mut previous = None;
@@ -539,16 +552,16 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        i: usize,
+        i: ContactPointIndex,
         master: usize,
         ty: ApproxType,
         counts: &mut KernelCounts,
     ) -> Result<PointEval, KernelError> {
-        let pt = &self.points[i];
+        let pt = self.point(i);
         counts.evaluate += 1;
         let nodes = self.nodes(pt, master);
         contact_kernels::evaluate(
-            self.formulations[pt.pair],
+            self.formulations[pt.pair.index()],
             ty,
             &Self::q(mesh, u, nodes),
             pt.xi_s,
@@ -570,7 +583,7 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        i: usize,
+        i: ContactPointIndex,
         start: Option<usize>,
         ty: ApproxType,
         counts: &mut KernelCounts,
@@ -613,7 +626,8 @@ impl ContactLayout {
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
-            self.pair_and_evaluate(mesh, u, i, pairing[i], ty, c)
+            let start = pairing[i];
+            self.pair_and_evaluate(mesh, u, ContactPointIndex::new(i), start, ty, c)
         })
     }
 
@@ -631,17 +645,21 @@ impl ContactLayout {
         pairing: &[Option<usize>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
-        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| match pairing[i] {
-            None => Ok(None),
-            Some(m) => match self.evaluate_on(mesh, u, i, m, ty, c) {
-                Ok(e) => Ok(Some(e)),
-                Err(error) if slave_side(&error) => Err(PointFailure {
-                    point: i,
-                    master_segment: Some(m),
-                    error,
-                }),
-                Err(_) => self.pair_and_evaluate(mesh, u, i, None, ty, c),
-            },
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |raw, c| {
+            match pairing[raw] {
+                None => Ok(None),
+                Some(m) => match self.evaluate_on(mesh, u, ContactPointIndex::new(raw), m, ty, c) {
+                    Ok(e) => Ok(Some(e)),
+                    Err(error) if slave_side(&error) => Err(PointFailure {
+                        point: ContactPointIndex::new(raw),
+                        master_segment: Some(m),
+                        error,
+                    }),
+                    Err(_) => {
+                        self.pair_and_evaluate(mesh, u, ContactPointIndex::new(raw), None, ty, c)
+                    }
+                },
+            }
         })
     }
 
@@ -662,6 +680,7 @@ impl ContactLayout {
         let mut counts = KernelCounts::default();
         let mut out = Vec::new();
         for (i, ev) in evals.iter().enumerate() {
+            let i = ContactPointIndex::new(i);
             let current = match ev {
                 Some(e) if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL => continue,
                 Some(e) => Some(e.master),
@@ -677,8 +696,9 @@ impl ContactLayout {
 
     /// The node that master segments `a` and `b` of `pair` share, if they
     /// are adjacent along the chain.
-    pub fn shared_node(&self, pair: usize, a: usize, b: usize) -> Option<usize> {
-        let (sa, sb) = (self.masters[pair][a], self.masters[pair][b]);
+    pub fn shared_node(&self, pair: PairId, a: usize, b: usize) -> Option<usize> {
+        let masters = self.masters_of(pair);
+        let (sa, sb) = (masters[a], masters[b]);
         if a == b {
             return None;
         }
@@ -696,8 +716,9 @@ impl ContactLayout {
     ) -> Result<(Vec<Option<usize>>, KernelCounts), PointFailure> {
         let mut counts = KernelCounts::default();
         let mut out = Vec::with_capacity(self.points.len());
-        let mut seed: Option<(usize, usize)> = None;
+        let mut seed: Option<(PairId, usize)> = None;
         for (i, pt) in self.points.iter().enumerate() {
+            let i = ContactPointIndex::new(i);
             let start = seed.filter(|(pair, _)| *pair == pt.pair).map(|(_, m)| m);
             let found = self
                 .find_master(mesh, u, i, start, &mut counts)?
@@ -719,7 +740,8 @@ impl ContactLayout {
         pairing: &[Option<usize>],
     ) -> Result<(Vec<Option<Paired>>, KernelCounts), PointFailure> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
-            self.find_master(mesh, u, i, pairing[i], c)
+            let start = pairing[i];
+            self.find_master(mesh, u, ContactPointIndex::new(i), start, c)
         })
     }
 
@@ -739,8 +761,9 @@ impl ContactLayout {
             if let Some(ev) = ev {
                 let nsh = shape2(pt.xi_s);
                 for a in 0..2 {
-                    weight[pt.multipliers[a]] += pt.weight_ref * nsh[a];
-                    weighted_gap[pt.multipliers[a]] += pt.weight_ref * nsh[a] * ev.gap;
+                    let m = pt.multipliers[a].index();
+                    weight[m] += pt.weight_ref * nsh[a];
+                    weighted_gap[m] += pt.weight_ref * nsh[a] * ev.gap;
                 }
             }
         }
@@ -749,7 +772,7 @@ impl ContactLayout {
                 if !(weight[m] > 0.0) {
                     return false;
                 }
-                let pair = self.multipliers[m].pair;
+                let pair = self.multipliers[m].pair.index();
                 match self.modes[pair] {
                     ContactMode::Persistent => true,
                     ContactMode::Unilateral => {

@@ -31,6 +31,7 @@
 pub mod assembly;
 pub mod contact;
 mod error;
+pub mod ids;
 pub mod linear;
 pub mod material;
 pub mod mesh;

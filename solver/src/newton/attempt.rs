@@ -20,6 +20,7 @@ use contact_kernels::ApproxType;
 
 use crate::contact::{NodeTie, PointEval, Taylor};
 use crate::error::SolverError;
+use crate::ids::{ContactPointIndex, DofId, MultiplierIndex};
 use crate::options::Method;
 use crate::solution::{ContactPointId, CutbackReason};
 
@@ -116,7 +117,6 @@ impl Run<'_> {
         let mut residuals = Vec::new();
         // index into `residuals` of the first iterate with the current pairing
         let mut phase_start = 0;
-        let n_eq = self.setup.dofs.n_eq();
         let mut it = 0;
         loop {
             // contact
@@ -198,7 +198,7 @@ impl Run<'_> {
                                 GuardOutcome::Settled(k) => kept = k,
                                 GuardOutcome::Stuck { point, xi_m } => {
                                     let point = ContactPointId {
-                                        master_segment: pairing[point],
+                                        master_segment: pairing[point.index()],
                                         ..self.setup.point_id(point)
                                     };
                                     return Ok(AttemptOutcome::cut_back(
@@ -230,7 +230,7 @@ impl Run<'_> {
                     .zip(&evals)
                     .filter(|(_, e)| e.is_none())
                     .map(|(p, _)| ContactPointId {
-                        pair: p.pair,
+                        pair: p.pair.index(),
                         slave_segment: p.slave_segment,
                         gauss: p.gauss,
                         master_segment: None,
@@ -242,8 +242,8 @@ impl Run<'_> {
                         *l = 0.0;
                     }
                 }
-                let with_master = |i: usize| ContactPointId {
-                    master_segment: pairing[i],
+                let with_master = |i: ContactPointIndex| ContactPointId {
+                    master_segment: pairing[i.index()],
                     ..self.setup.point_id(i)
                 };
                 let node_ties = ties.iter().map(|t| with_master(t.point)).collect();
@@ -300,15 +300,15 @@ impl Run<'_> {
             };
             let dofs = &self.setup.dofs;
             for (dof, ud) in u.iter_mut().enumerate() {
-                if let Some(e) = dofs.eq(dof) {
-                    *ud -= dx[e];
+                if let Some(e) = dofs.eq(DofId::new(dof)) {
+                    *ud -= dx[e.index()];
                 }
             }
             for (m, l) in lambda.iter_mut().enumerate() {
-                *l -= dx[dofs.mult_eq(m)];
+                *l -= dx[dofs.mult_eq(MultiplierIndex::new(m)).index()];
             }
             for (k, tie) in ties.iter_mut().enumerate() {
-                tie.mu -= dx[n_eq + k];
+                tie.mu -= dx[dofs.tie_eq(k).index()];
             }
             it += 1;
         }

@@ -278,13 +278,13 @@ impl<'a> Run<'a> {
             .iter()
             .zip(&projections)
             .map(|(p, proj)| ContactPointReport {
-                pair: p.pair,
+                pair: p.pair.index(),
                 slave_segment: p.slave_segment,
                 gauss: p.gauss,
                 xi_s: p.xi_s,
                 slave_nodes: p.slave_nodes,
                 master_segment: proj.map(|(m, _)| m),
-                master_nodes: proj.map(|(m, _)| layout.masters[p.pair][m]),
+                master_nodes: proj.map(|(m, _)| layout.masters_of(p.pair)[m]),
                 xi_m: proj.map(|(_, pr)| pr.xi_m),
                 gap: proj.map(|(_, pr)| pr.gap),
             })
@@ -311,7 +311,7 @@ impl<'a> Run<'a> {
                 .multipliers
                 .iter()
                 .map(|m| MultiplierDofInfo {
-                    pair: m.pair,
+                    pair: m.pair.index(),
                     node: m.node,
                 })
                 .collect(),

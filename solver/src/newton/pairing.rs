@@ -13,6 +13,8 @@ use crate::contact::{
     ContactLayout, KernelCounts, NodeTie, PairingUpdate, PointEval, PointFailure, XI_STUCK_BAND,
 };
 
+use crate::ids::ContactPointIndex;
+
 use super::Setup;
 
 /// What [`PairingGuard::apply`] decided at a converged iterate.
@@ -22,12 +24,12 @@ pub(super) enum GuardOutcome {
     Changed,
     /// The pairing stands. Lists the points kept on a pairing their
     /// projection misses by less than [`XI_STUCK_BAND`].
-    Settled(Vec<usize>),
+    Settled(Vec<ContactPointIndex>),
     /// A point's pairing cycles and its projection misses by more than the
     /// band.
     Stuck {
         /// The point.
-        point: usize,
+        point: ContactPointIndex,
         /// Its projection coordinate (on its master segment, or for an
         /// inactive point on the segment it projects into).
         xi_m: f64,
@@ -40,12 +42,12 @@ pub(super) enum GuardOutcome {
 #[derive(Debug, Default)]
 pub(super) struct PairingGuard {
     /// `(point, pairing)` the point has been switched away from.
-    left: Vec<(usize, Option<usize>)>,
+    left: Vec<(ContactPointIndex, Option<usize>)>,
     /// Points released from a tie in this attempt: one more switch (the
     /// side `theta` chose may be wrong when other points moved meanwhile).
-    released: Vec<usize>,
+    released: Vec<ContactPointIndex>,
     /// Points that made their last allowed switch in this attempt.
-    settled: Vec<usize>,
+    settled: Vec<ContactPointIndex>,
 }
 
 impl PairingGuard {
@@ -65,10 +67,10 @@ impl PairingGuard {
         let mut changed = false;
         let mut kept = Vec::new();
         for &(i, target) in updates {
-            let current = pairing[i];
+            let current = pairing[i.index()];
             let to = target.map(|(m, _)| m);
             // how far the projection misses the current pairing
-            let (xi_m, within) = match (&evals[i], target) {
+            let (xi_m, within) = match (&evals[i.index()], target) {
                 (Some(e), _) => (e.xi_m, e.xi_m.abs() <= 1.0 + XI_STUCK_BAND),
                 (None, Some((_, p))) => (p.xi_m, p.xi_m.abs() >= 1.0 - XI_STUCK_BAND),
                 (None, None) => (f64::NAN, true),
@@ -86,7 +88,7 @@ impl PairingGuard {
             } else if self.left.contains(&(i, to)) {
                 // back to a pairing the point has left: stuck at the node
                 // between the two (or at the chain's end)
-                let pair = layout.points[i].pair;
+                let pair = layout.point(i).pair;
                 if let (Some(p), Some(o)) = (current, to)
                     && layout.shared_node(pair, p, o).is_some()
                 {
@@ -107,7 +109,7 @@ impl PairingGuard {
                 // no tie possible: back to the other side, once
             }
             self.left.push((i, current));
-            pairing[i] = to;
+            pairing[i.index()] = to;
             changed = true;
         }
         if changed {
@@ -146,7 +148,7 @@ impl PairingGuard {
                 return true;
             }
             if theta > 1.0 {
-                pairing[t.point] = Some(t.other);
+                pairing[t.point.index()] = Some(t.other);
             }
             self.released.push(t.point);
             released = true;

@@ -210,6 +210,7 @@ mod tests {
     use super::*;
     use crate::Scene;
     use crate::assembly::DofMap;
+    use crate::ids::{DofId, MultiplierIndex};
 
     /// The probe reproduces the solver's own iterates: from the reference
     /// state towards the first step's load factor, its residual norm is the
@@ -248,14 +249,16 @@ mod tests {
         let dofs = DofMap::new(&model, zero.multipliers.len());
         let mut u = vec![0.0; 2 * n];
         for (dof, ud) in u.iter_mut().enumerate() {
-            if let Some(e) = dofs.eq(dof) {
-                *ud -= dx[e];
+            if let Some(e) = dofs.eq(DofId::new(dof)) {
+                *ud -= dx[e.index()];
             }
         }
         let next = State {
             load_factor: 0.0,
             displacements: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
-            multipliers: (0..dofs.n_mult).map(|m| -dx[dofs.mult_eq(m)]).collect(),
+            multipliers: (0..dofs.n_mult)
+                .map(|m| -dx[dofs.mult_eq(MultiplierIndex::new(m)).index()])
+                .collect(),
         };
         let probe = IterationProbe::new(&model, &opts, &next, to).unwrap();
         let mut phase = probe.contact().unwrap();

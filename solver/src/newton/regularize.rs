@@ -8,6 +8,7 @@
 //! active set.
 
 use crate::assembly::{DofMap, System};
+use crate::ids::MultiplierIndex;
 
 /// Adds the tangent-only multiplier regularisation (module docs): `-eps` on
 /// the diagonal of the active multiplier rows (an explicit zero on the
@@ -33,9 +34,7 @@ pub(super) fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta
         0.0
     };
     for (m, &on) in active.iter().enumerate() {
-        let row = dofs.mult_eq(m);
-        sys.rows.push(row);
-        sys.cols.push(row);
-        sys.vals.push(if on { -eps } else { 0.0 });
+        let row = dofs.mult_eq(MultiplierIndex::new(m));
+        sys.push(row, row, if on { -eps } else { 0.0 });
     }
 }

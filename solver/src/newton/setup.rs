@@ -27,6 +27,7 @@ use crate::assembly::{
 };
 use crate::contact::{ContactLayout, KernelCounts, NodeTie, PointEval, PointFailure};
 use crate::error::SolverError;
+use crate::ids::ContactPointIndex;
 use crate::linear::{LinearError, LinearSolver};
 use crate::model::Model;
 use crate::options::SolveOptions;
@@ -82,9 +83,9 @@ impl<'a> Setup<'a> {
 
     /// The integration point of a kernel failure.
     pub(crate) fn failure_point(&self, f: &PointFailure) -> ContactPointId {
-        let p = &self.layout.points[f.point];
+        let p = self.layout.point(f.point);
         ContactPointId {
-            pair: p.pair,
+            pair: p.pair.index(),
             slave_segment: p.slave_segment,
             gauss: p.gauss,
             master_segment: f.master_segment,
@@ -92,10 +93,10 @@ impl<'a> Setup<'a> {
     }
 
     /// Integration point `i` (no master segment).
-    pub(crate) fn point_id(&self, i: usize) -> ContactPointId {
-        let p = &self.layout.points[i];
+    pub(crate) fn point_id(&self, i: ContactPointIndex) -> ContactPointId {
+        let p = self.layout.point(i);
         ContactPointId {
-            pair: p.pair,
+            pair: p.pair.index(),
             slave_segment: p.slave_segment,
             gauss: p.gauss,
             master_segment: None,
@@ -139,8 +140,8 @@ impl<'a> Setup<'a> {
         *counts_out += counts;
         let mut counts = KernelCounts::default();
         for t in ties {
-            if evals[t.point].is_none_or(|e| e.master != t.paired) {
-                evals[t.point] = Some(
+            if evals[t.point.index()].is_none_or(|e| e.master != t.paired) {
+                evals[t.point.index()] = Some(
                     self.layout
                         .evaluate_on(mesh, u, t.point, t.paired, ApproxType::Type6, &mut counts)
                         .map_err(|error| PointFailure {
@@ -181,11 +182,10 @@ impl<'a> Setup<'a> {
         let active = self
             .layout
             .active_multipliers(evals, lambda, self.length_scale);
-        let n_eq = self.dofs.n_eq();
-        let n_sys = n_eq + ties.len();
+        let n_sys = self.dofs.n_eq() + ties.len();
         let mut sys = System::new(n_sys);
         assemble_contact(&self.layout, evals, lambda, &active, &self.dofs, &mut sys);
-        assemble_ties(ties, evals, others, &self.dofs, n_eq, &mut sys);
+        assemble_ties(ties, evals, others, &self.dofs, &mut sys);
         (sys, active)
     }
 
