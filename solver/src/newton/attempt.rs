@@ -1,9 +1,15 @@
 //! One attempt: Newton's method from the converged state of a [`Run`] to a
 //! target load factor (see [`super`], steps 1–4 and the failure list).
 //!
-//! An attempt works on copies of the converged state and ends in an
-//! [`AttemptOutcome`]: converged (the caller commits it) or a cut-back
-//! request with the reason, the residual history and the iterations spent.
+//! An attempt works on an [`Iterate`], a copy of the converged state, and
+//! ends in an [`AttemptOutcome`]: converged (the caller commits it) or a
+//! cut-back request with the reason, the residual history and the
+//! iterations spent. Each iteration: contact evaluation
+//! (`Run::evaluate_contact`), contact and solid assembly, the convergence
+//! test (at a converged iterate the complete formulation lets the pairing
+//! guard settle the pairing, `Run::settle_pairing`, before `Run::accept`),
+//! the divergence tests, the regularised solve and the correction
+//! ([`Iterate::correct`]).
 //! Errors that a smaller increment cannot cure (a kernel failure at the
 //! converged state, when the Taylor coefficients of Types 1–6 are built)
 //! are returned as `Err` and stop the solve.
@@ -18,6 +24,7 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
+use crate::assembly::DofMap;
 use crate::contact::{NodeTie, PointEval, Taylor};
 use crate::error::SolverError;
 use crate::ids::{ContactPointIndex, DofId, MultiplierIndex};
@@ -29,18 +36,30 @@ use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR
 
 /// A converged attempt.
 pub(super) struct Converged {
-    pub(super) u: Vec<f64>,
-    pub(super) lambda: Vec<f64>,
-    pub(super) pairing: Vec<Option<usize>>,
+    /// The converged iterate (inactive multipliers exactly zero).
+    pub(super) state: Iterate,
+    /// Linear solves spent.
     pub(super) iterations: usize,
+    /// The residual norms of the evaluated iterates.
     pub(super) residuals: Vec<f64>,
+    /// Strain energy at the converged iterate.
     pub(super) energy: f64,
-    pub(super) active_multipliers: usize,
-    pub(super) ties: Vec<NodeTie>,
-    pub(super) unpaired: Vec<ContactPointId>,
-    pub(super) node_ties: Vec<ContactPointId>,
-    pub(super) kept_outside: Vec<ContactPointId>,
+    /// Accepted at the round-off floor rather than below the tolerance.
     pub(super) roundoff_floor: bool,
+    /// The contact points' state at the converged iterate.
+    pub(super) points: PointsReport,
+}
+
+/// The contact points' state at a converged iterate, for the step record.
+pub(super) struct PointsReport {
+    /// Multipliers carrying a constraint row.
+    pub(super) active_multipliers: usize,
+    /// Points that project into no master segment.
+    pub(super) unpaired: Vec<ContactPointId>,
+    /// Points tied to a master node.
+    pub(super) node_ties: Vec<ContactPointId>,
+    /// Points kept on a segment their projection misses (within the band).
+    pub(super) kept_outside: Vec<ContactPointId>,
 }
 
 /// A failed attempt: the caller cuts the increment back.
@@ -108,11 +127,13 @@ impl Run<'_> {
         if let Method::Approx(ty) = self.opts.method {
             self.ensure_taylor(ty)?;
         }
-        let mut u = self.u.clone();
-        self.setup.prescribe(&mut u, to);
-        let mut lambda = self.lambda.clone();
-        let mut pairing = self.pairing.clone();
-        let mut ties = self.ties.clone();
+        let mut x = Iterate {
+            u: self.u.clone(),
+            lambda: self.lambda.clone(),
+            pairing: self.pairing.clone(),
+            ties: self.ties.clone(),
+        };
+        self.setup.prescribe(&mut x.u, to);
         let mut guard = PairingGuard::default();
         let mut residuals = Vec::new();
         // index into `residuals` of the first iterate with the current pairing
@@ -121,48 +142,23 @@ impl Run<'_> {
         loop {
             // contact
             let t = Instant::now();
-            let (evals, others) = match self.opts.method {
-                Method::Approx(_) => {
-                    let taylor = self.taylor.as_deref().unwrap_or(&[]);
-                    let evals: Vec<Option<PointEval>> =
-                        taylor.iter().map(|t| t.map(|t| t.expand(&u))).collect();
-                    (evals, Vec::new())
-                }
-                Method::Complete => {
-                    // re-pair at once in the first iterates, until the first
-                    // pairing change at a converged iterate
-                    let at_once = (1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it) && phase_start == 0;
-                    match self.setup.evaluate_complete(
-                        &u,
-                        &pairing,
-                        &ties,
-                        at_once,
-                        &mut self.counts,
-                    ) {
-                        Ok((evals, others)) => {
-                            pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
-                            (evals, others)
-                        }
-                        Err(f) => {
-                            self.timings.contact_evaluation += t.elapsed();
-                            let point = self.setup.failure_point(&f);
-                            return Ok(AttemptOutcome::cut_back(
-                                CutbackReason::Kernel {
-                                    point,
-                                    error: f.error,
-                                },
-                                residuals,
-                                it,
-                            ));
-                        }
-                    }
+            // complete formulation: re-pair at once in the first iterates,
+            // until the first pairing change at a converged iterate
+            let at_once = (1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it) && phase_start == 0;
+            let (evals, others) = match self.evaluate_contact(&mut x, at_once) {
+                Ok(e) => e,
+                Err(reason) => {
+                    self.timings.contact_evaluation += t.elapsed();
+                    return Ok(AttemptOutcome::cut_back(reason, residuals, it));
                 }
             };
-            let (mut sys, active) = self.setup.contact_system(&evals, &others, &lambda, &ties);
+            let (mut sys, active) = self
+                .setup
+                .contact_system(&evals, &others, &x.lambda, &x.ties);
             self.timings.contact_evaluation += t.elapsed();
             // solid
             let t = Instant::now();
-            let f_ext = self.setup.add_solid(&u, to, &mut sys);
+            let f_ext = self.setup.add_solid(&x.u, to, &mut sys);
             self.timings.solid_assembly += t.elapsed();
 
             let norm = sys.residual_norm();
@@ -182,85 +178,24 @@ impl Run<'_> {
             if norm <= tol_abs || at_floor {
                 let mut kept = Vec::new();
                 if self.opts.method == Method::Complete {
-                    let t = Instant::now();
-                    let outcome =
-                        guard.update(&self.setup, &u, &lambda, &evals, &mut pairing, &mut ties);
-                    self.timings.contact_evaluation += t.elapsed();
-                    match outcome {
-                        Ok((outcome, counts)) => {
-                            self.counts += counts;
-                            match outcome {
-                                GuardOutcome::Changed => {
-                                    // the same iterate again, with the new pairing
-                                    phase_start = residuals.len();
-                                    continue;
-                                }
-                                GuardOutcome::Settled(k) => kept = k,
-                                GuardOutcome::Stuck { point, xi_m } => {
-                                    let point = ContactPointId {
-                                        master_segment: pairing[point.index()],
-                                        ..self.setup.point_id(point)
-                                    };
-                                    return Ok(AttemptOutcome::cut_back(
-                                        CutbackReason::StuckAtMasterNode { point, xi_m },
-                                        residuals,
-                                        it,
-                                    ));
-                                }
-                            }
+                    match self.settle_pairing(&mut guard, &mut x, &evals) {
+                        Ok(Settling::Changed) => {
+                            // the same iterate again, with the new pairing
+                            phase_start = residuals.len();
+                            continue;
                         }
-                        Err(f) => {
-                            let point = self.setup.failure_point(&f);
-                            return Ok(AttemptOutcome::cut_back(
-                                CutbackReason::Kernel {
-                                    point,
-                                    error: f.error,
-                                },
-                                residuals,
-                                it,
-                            ));
-                        }
+                        Ok(Settling::Settled(k)) => kept = k,
+                        Err(reason) => return Ok(AttemptOutcome::cut_back(reason, residuals, it)),
                     }
                 }
-                let unpaired = self
-                    .setup
-                    .layout
-                    .points
-                    .iter()
-                    .zip(&evals)
-                    .filter(|(_, e)| e.is_none())
-                    .map(|(p, _)| ContactPointId {
-                        pair: p.pair.index(),
-                        slave_segment: p.slave_segment,
-                        gauss: p.gauss,
-                        master_segment: None,
-                    })
-                    .collect();
-                // inactive rows read l_a = 0 (satisfied to round-off): make it exact
-                for (l, &on) in lambda.iter_mut().zip(&active) {
-                    if !on {
-                        *l = 0.0;
-                    }
-                }
-                let with_master = |i: ContactPointIndex| ContactPointId {
-                    master_segment: pairing[i.index()],
-                    ..self.setup.point_id(i)
-                };
-                let node_ties = ties.iter().map(|t| with_master(t.point)).collect();
-                let kept_outside = kept.into_iter().map(with_master).collect();
+                let points = self.accept(&mut x, &evals, &active, kept);
                 return Ok(AttemptOutcome::Converged(Converged {
-                    u,
-                    lambda,
-                    pairing,
-                    ties,
+                    state: x,
                     iterations: it,
                     residuals,
                     energy: sys.energy,
-                    active_multipliers: active.iter().filter(|a| **a).count(),
-                    unpaired,
-                    node_ties,
-                    kept_outside,
                     roundoff_floor: norm > tol_abs,
+                    points,
                 }));
             }
             if it == self.opts.max_iterations {
@@ -298,19 +233,171 @@ impl Run<'_> {
                     ));
                 }
             };
-            let dofs = &self.setup.dofs;
-            for (dof, ud) in u.iter_mut().enumerate() {
-                if let Some(e) = dofs.eq(DofId::new(dof)) {
-                    *ud -= dx[e.index()];
-                }
-            }
-            for (m, l) in lambda.iter_mut().enumerate() {
-                *l -= dx[dofs.mult_eq(MultiplierIndex::new(m)).index()];
-            }
-            for (k, tie) in ties.iter_mut().enumerate() {
-                tie.mu -= dx[dofs.tie_eq(k).index()];
-            }
+            x.correct(&self.setup.dofs, &dx);
             it += 1;
         }
     }
+
+    /// The contact evaluation of the current iterate: Types 1–6 expand the
+    /// frozen Taylor coefficients; the complete formulation evaluates the
+    /// exact kernel (re-pairing every point when `at_once`) and takes the
+    /// pairing the evaluation ended with.
+    fn evaluate_contact(
+        &mut self,
+        x: &mut Iterate,
+        at_once: bool,
+    ) -> Result<(Vec<Option<PointEval>>, Vec<PointEval>), CutbackReason> {
+        match self.opts.method {
+            Method::Approx(_) => {
+                let taylor = self.taylor.as_deref().unwrap_or(&[]);
+                let evals: Vec<Option<PointEval>> =
+                    taylor.iter().map(|t| t.map(|t| t.expand(&x.u))).collect();
+                Ok((evals, Vec::new()))
+            }
+            Method::Complete => {
+                match self.setup.evaluate_complete(
+                    &x.u,
+                    &x.pairing,
+                    &x.ties,
+                    at_once,
+                    &mut self.counts,
+                ) {
+                    Ok((evals, others)) => {
+                        x.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+                        Ok((evals, others))
+                    }
+                    Err(f) => Err(CutbackReason::Kernel {
+                        point: self.setup.failure_point(&f),
+                        error: f.error,
+                    }),
+                }
+            }
+        }
+    }
+
+    /// Complete formulation, at a converged iterate: the pairing guard's
+    /// update (see [`PairingGuard::update`]); a stuck point or a kernel
+    /// failure asks for a cut-back.
+    fn settle_pairing(
+        &mut self,
+        guard: &mut PairingGuard,
+        x: &mut Iterate,
+        evals: &[Option<PointEval>],
+    ) -> Result<Settling, CutbackReason> {
+        let t = Instant::now();
+        let outcome = guard.update(
+            &self.setup,
+            &x.u,
+            &x.lambda,
+            evals,
+            &mut x.pairing,
+            &mut x.ties,
+        );
+        self.timings.contact_evaluation += t.elapsed();
+        match outcome {
+            Ok((outcome, counts)) => {
+                self.counts += counts;
+                match outcome {
+                    GuardOutcome::Changed => Ok(Settling::Changed),
+                    GuardOutcome::Settled(k) => Ok(Settling::Settled(k)),
+                    GuardOutcome::Stuck { point, xi_m } => {
+                        let point = ContactPointId {
+                            master_segment: x.pairing[point.index()],
+                            ..self.setup.point_id(point)
+                        };
+                        Err(CutbackReason::StuckAtMasterNode { point, xi_m })
+                    }
+                }
+            }
+            Err(f) => Err(CutbackReason::Kernel {
+                point: self.setup.failure_point(&f),
+                error: f.error,
+            }),
+        }
+    }
+
+    /// Accepts the iterate `x` with contact evaluations `evals` and active
+    /// set `active` (the inactive multipliers are set to exactly zero), with
+    /// the points `kept` outside their segment: the points' report.
+    fn accept(
+        &self,
+        x: &mut Iterate,
+        evals: &[Option<PointEval>],
+        active: &[bool],
+        kept: Vec<ContactPointIndex>,
+    ) -> PointsReport {
+        let unpaired = self
+            .setup
+            .layout
+            .points
+            .iter()
+            .zip(evals)
+            .filter(|(_, e)| e.is_none())
+            .map(|(p, _)| ContactPointId {
+                pair: p.pair.index(),
+                slave_segment: p.slave_segment,
+                gauss: p.gauss,
+                master_segment: None,
+            })
+            .collect();
+        // inactive rows read l_a = 0 (satisfied to round-off): make it exact
+        for (l, &on) in x.lambda.iter_mut().zip(active) {
+            if !on {
+                *l = 0.0;
+            }
+        }
+        let pairing = &x.pairing;
+        let with_master = |i: ContactPointIndex| ContactPointId {
+            master_segment: pairing[i.index()],
+            ..self.setup.point_id(i)
+        };
+        let node_ties = x.ties.iter().map(|t| with_master(t.point)).collect();
+        let kept_outside = kept.into_iter().map(with_master).collect();
+        PointsReport {
+            active_multipliers: active.iter().filter(|a| **a).count(),
+            unpaired,
+            node_ties,
+            kept_outside,
+        }
+    }
+}
+
+/// The unknowns of an attempt's current iterate (copies of the converged
+/// state at the start).
+pub(super) struct Iterate {
+    /// Displacements (all dofs).
+    pub(super) u: Vec<f64>,
+    /// Multipliers.
+    pub(super) lambda: Vec<f64>,
+    /// Each point's master segment.
+    pub(super) pairing: Vec<Option<usize>>,
+    /// Node ties (complete formulation).
+    pub(super) ties: Vec<NodeTie>,
+}
+
+impl Iterate {
+    /// Applies the Newton correction: `x -= dx` on the free dofs, the
+    /// multipliers and the ties' multipliers.
+    fn correct(&mut self, dofs: &DofMap, dx: &[f64]) {
+        for (dof, ud) in self.u.iter_mut().enumerate() {
+            if let Some(e) = dofs.eq(DofId::new(dof)) {
+                *ud -= dx[e.index()];
+            }
+        }
+        for (m, l) in self.lambda.iter_mut().enumerate() {
+            *l -= dx[dofs.mult_eq(MultiplierIndex::new(m)).index()];
+        }
+        for (k, tie) in self.ties.iter_mut().enumerate() {
+            tie.mu -= dx[dofs.tie_eq(k).index()];
+        }
+    }
+}
+
+/// The pairing guard's decision at a converged iterate, for the attempt.
+enum Settling {
+    /// Points were re-paired, tied or released: evaluate the same iterate
+    /// again.
+    Changed,
+    /// The pairing stands; the points kept outside their segment.
+    Settled(Vec<ContactPointIndex>),
 }

@@ -243,10 +243,10 @@ impl<'a> Run<'a> {
 
     /// Makes a converged attempt towards `to` the converged state.
     fn commit(&mut self, step: usize, to: f64, c: Converged) {
-        self.u = c.u;
-        self.lambda = c.lambda;
-        self.pairing = c.pairing;
-        self.ties = c.ties;
+        self.u = c.state.u;
+        self.lambda = c.state.lambda;
+        self.pairing = c.state.pairing;
+        self.ties = c.state.ties;
         self.load_factor = to;
         self.energy = c.energy;
         self.iterations += c.iterations;
@@ -257,10 +257,10 @@ impl<'a> Run<'a> {
             iterations: c.iterations,
             residuals: c.residuals,
             strain_energy: c.energy,
-            unpaired: c.unpaired,
-            node_ties: c.node_ties,
-            kept_outside: c.kept_outside,
-            active_multipliers: c.active_multipliers,
+            unpaired: c.points.unpaired,
+            node_ties: c.points.node_ties,
+            kept_outside: c.points.kept_outside,
+            active_multipliers: c.points.active_multipliers,
             roundoff_floor: c.roundoff_floor,
         });
         if self.opts.record_steps {
