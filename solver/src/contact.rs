@@ -164,7 +164,7 @@
 use contact_kernels::{ApproxType, Formulation, KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 
-use crate::ids::{ContactPointIndex, MultiplierIndex, PairId};
+use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, PairId};
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
 use crate::par;
@@ -219,7 +219,7 @@ pub fn shape2(xi: f64) -> [f64; 2] {
 }
 
 /// A master segment index with the projection onto it.
-pub type Paired = (usize, Projection);
+pub type Paired = (MasterSegmentIndex, Projection);
 
 /// A due pairing change: the point (index into [`ContactLayout::points`])
 /// and its new master segment with the projection onto it (`None`: it
@@ -276,7 +276,7 @@ pub struct PointFailure {
     /// Index into [`ContactLayout::points`].
     pub point: ContactPointIndex,
     /// The master segment tried, if any.
-    pub master_segment: Option<usize>,
+    pub master_segment: Option<MasterSegmentIndex>,
     /// The kernel's error.
     pub error: KernelError,
 }
@@ -286,7 +286,7 @@ pub struct PointFailure {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointEval {
     /// Master segment index within the pair.
-    pub master: usize,
+    pub master: MasterSegmentIndex,
     /// `[slave 1, slave 2, master 1, master 2]` global node indices.
     pub nodes: [usize; 4],
     /// Gap (exact or Taylor-approximated).
@@ -309,9 +309,9 @@ pub struct NodeTie {
     /// Index into [`ContactLayout::points`].
     pub point: ContactPointIndex,
     /// The master segment the point is paired with (its regular term).
-    pub paired: usize,
+    pub paired: MasterSegmentIndex,
     /// The adjacent master segment beyond the node.
-    pub other: usize,
+    pub other: MasterSegmentIndex,
     /// The tie's multiplier `mu`.
     pub mu: f64,
 }
@@ -377,7 +377,7 @@ pub struct ContactLayout {
     /// Master segments of each pair.
     pub masters: Vec<Vec<[usize; 2]>>,
     /// `[previous, next]` master segment along each pair's chain.
-    adjacency: Vec<Vec<[Option<usize>; 2]>>,
+    adjacency: Vec<Vec<[Option<MasterSegmentIndex>; 2]>>,
     /// Active-set constant `c` per pair (unilateral mode).
     pub complementarity: Vec<f64>,
 }
@@ -423,8 +423,8 @@ impl ContactLayout {
             let mut starts = std::collections::HashMap::new();
             let mut ends = std::collections::HashMap::new();
             for (m, seg) in pair.master.iter().enumerate() {
-                starts.insert(seg[0], m);
-                ends.insert(seg[1], m);
+                starts.insert(seg[0], MasterSegmentIndex::new(m));
+                ends.insert(seg[1], MasterSegmentIndex::new(m));
             }
             adjacency.push(
                 pair.master
@@ -469,8 +469,8 @@ impl ContactLayout {
         &self.masters[pair.index()]
     }
 
-    fn nodes(&self, point: &ContactPoint, master: usize) -> [usize; 4] {
-        let m = self.masters_of(point.pair)[master];
+    fn nodes(&self, point: &ContactPoint, master: MasterSegmentIndex) -> [usize; 4] {
+        let m = self.masters_of(point.pair)[master.index()];
         [point.slave_nodes[0], point.slave_nodes[1], m[0], m[1]]
     }
 
@@ -483,7 +483,7 @@ impl ContactLayout {
         mesh: &Mesh,
         u: &[f64],
         i: ContactPointIndex,
-        master: usize,
+        master: MasterSegmentIndex,
         counts: &mut KernelCounts,
     ) -> Result<Option<Projection>, PointFailure> {
         let pt = self.point(i);
@@ -510,9 +510,9 @@ impl ContactLayout {
         mesh: &Mesh,
         u: &[f64],
         i: ContactPointIndex,
-        start: Option<usize>,
+        start: Option<MasterSegmentIndex>,
         counts: &mut KernelCounts,
-    ) -> Result<Option<(usize, Projection)>, PointFailure> {
+    ) -> Result<Option<Paired>, PointFailure> {
         let pair = self.point(i).pair.index();
         let n_master = self.masters[pair].len();
         if let Some(mut cur) = start {
@@ -524,7 +524,7 @@ impl ContactLayout {
                 if p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL {
                     return Ok(Some((cur, p)));
                 }
-                let next = self.adjacency[pair][cur][usize::from(p.xi_m > 0.0)];
+                let next = self.adjacency[pair][cur.index()][usize::from(p.xi_m > 0.0)];
                 match next {
                     Some(n) if Some(n) != previous => {
                         previous = Some(cur);
@@ -534,8 +534,8 @@ impl ContactLayout {
                 }
             }
         }
-        let mut best: Option<(usize, Projection)> = None;
-        for m in 0..n_master {
+        let mut best: Option<Paired> = None;
+        for m in (0..n_master).map(MasterSegmentIndex::new) {
             if let Some(p) = self.project_on(mesh, u, i, m, counts)?
                 && p.xi_m.abs() <= 1.0 + XI_INSIDE_TOL
                 && best.is_none_or(|(_, b)| p.gap.abs() < b.gap.abs())
@@ -553,7 +553,7 @@ impl ContactLayout {
         mesh: &Mesh,
         u: &[f64],
         i: ContactPointIndex,
-        master: usize,
+        master: MasterSegmentIndex,
         ty: ApproxType,
         counts: &mut KernelCounts,
     ) -> Result<PointEval, KernelError> {
@@ -584,11 +584,11 @@ impl ContactLayout {
         mesh: &Mesh,
         u: &[f64],
         i: ContactPointIndex,
-        start: Option<usize>,
+        start: Option<MasterSegmentIndex>,
         ty: ApproxType,
         counts: &mut KernelCounts,
     ) -> Result<Option<PointEval>, PointFailure> {
-        let eval = |master: usize, counts: &mut KernelCounts| {
+        let eval = |master: MasterSegmentIndex, counts: &mut KernelCounts| {
             self.evaluate_on(mesh, u, i, master, ty, counts)
         };
         if let Some(m) = start {
@@ -622,7 +622,7 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        pairing: &[Option<usize>],
+        pairing: &[Option<MasterSegmentIndex>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
@@ -642,7 +642,7 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        pairing: &[Option<usize>],
+        pairing: &[Option<MasterSegmentIndex>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |raw, c| {
@@ -696,9 +696,14 @@ impl ContactLayout {
 
     /// The node that master segments `a` and `b` of `pair` share, if they
     /// are adjacent along the chain.
-    pub fn shared_node(&self, pair: PairId, a: usize, b: usize) -> Option<usize> {
+    pub fn shared_node(
+        &self,
+        pair: PairId,
+        a: MasterSegmentIndex,
+        b: MasterSegmentIndex,
+    ) -> Option<usize> {
         let masters = self.masters_of(pair);
-        let (sa, sb) = (masters[a], masters[b]);
+        let (sa, sb) = (masters[a.index()], masters[b.index()]);
         if a == b {
             return None;
         }
@@ -713,10 +718,10 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-    ) -> Result<(Vec<Option<usize>>, KernelCounts), PointFailure> {
+    ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
         let mut counts = KernelCounts::default();
         let mut out = Vec::with_capacity(self.points.len());
-        let mut seed: Option<(PairId, usize)> = None;
+        let mut seed: Option<(PairId, MasterSegmentIndex)> = None;
         for (i, pt) in self.points.iter().enumerate() {
             let i = ContactPointIndex::new(i);
             let start = seed.filter(|(pair, _)| *pair == pt.pair).map(|(_, m)| m);
@@ -737,7 +742,7 @@ impl ContactLayout {
         &self,
         mesh: &Mesh,
         u: &[f64],
-        pairing: &[Option<usize>],
+        pairing: &[Option<MasterSegmentIndex>],
     ) -> Result<(Vec<Option<Paired>>, KernelCounts), PointFailure> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
             let start = pairing[i];
@@ -828,7 +833,7 @@ mod tests {
         let h = SMatrix::<f64, 8, 8>::from_fn(|i, j| 0.1 * ((i + j) as f64).sin());
         let h = (h + h.transpose()) * 0.5;
         let at_start = PointEval {
-            master: 0,
+            master: MasterSegmentIndex::new(0),
             nodes: [0, 1, 2, 3],
             gap: 0.2,
             xi_m: 0.1,

@@ -11,11 +11,13 @@
 //! | [`MultiplierIndex`] | multiplier dofs, pair by pair | `lambda`, `ContactLayout::multipliers` |
 //! | [`ContactPointIndex`] | slave integration points | `ContactLayout::points`, pairings, evaluations |
 //! | [`PairId`] | contact pairs | `Model::contacts`, per-pair tables of the layout |
+//! | [`MasterSegmentIndex`] | master segments of one pair, along its chain | `ContactPair::master`, pairings |
 //!
 //! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
 //! first (in dof order), then the multipliers, then one equation per node tie
-//! of the complete formulation. Node, element and segment indices stay the
-//! mesh's plain `usize` (the mesh and scene own them); reports in
+//! of the complete formulation. Node and element indices (and slave
+//! segments, which only reports name) stay the mesh's plain `usize` (the
+//! mesh and scene own them); reports in
 //! [`crate::solution`] keep plain `usize` fields too, converted where they
 //! are written.
 
@@ -83,4 +85,10 @@ index_type!(
 index_type!(
     /// A contact pair (index into [`Model::contacts`](crate::Model::contacts)).
     PairId
+);
+
+index_type!(
+    /// A master segment of one contact pair (index into its
+    /// [`ContactPair::master`](crate::model::ContactPair::master) list).
+    MasterSegmentIndex
 );

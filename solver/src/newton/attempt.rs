@@ -27,7 +27,7 @@ use contact_kernels::ApproxType;
 use crate::assembly::DofMap;
 use crate::contact::{NodeTie, PointEval, Taylor};
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, DofId, MultiplierIndex};
+use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex};
 use crate::options::Method;
 use crate::solution::{ContactPointId, CutbackReason};
 
@@ -302,7 +302,7 @@ impl Run<'_> {
                     GuardOutcome::Settled(k) => Ok(Settling::Settled(k)),
                     GuardOutcome::Stuck { point, xi_m } => {
                         let point = ContactPointId {
-                            master_segment: x.pairing[point.index()],
+                            master_segment: x.pairing[point.index()].map(MasterSegmentIndex::index),
                             ..self.setup.point_id(point)
                         };
                         Err(CutbackReason::StuckAtMasterNode { point, xi_m })
@@ -348,7 +348,7 @@ impl Run<'_> {
         }
         let pairing = &x.pairing;
         let with_master = |i: ContactPointIndex| ContactPointId {
-            master_segment: pairing[i.index()],
+            master_segment: pairing[i.index()].map(MasterSegmentIndex::index),
             ..self.setup.point_id(i)
         };
         let node_ties = x.ties.iter().map(|t| with_master(t.point)).collect();
@@ -370,7 +370,7 @@ pub(super) struct Iterate {
     /// Multipliers.
     pub(super) lambda: Vec<f64>,
     /// Each point's master segment.
-    pub(super) pairing: Vec<Option<usize>>,
+    pub(super) pairing: Vec<Option<MasterSegmentIndex>>,
     /// Node ties (complete formulation).
     pub(super) ties: Vec<NodeTie>,
 }

@@ -98,6 +98,7 @@ use std::time::Instant;
 
 use crate::contact::{KernelCounts, NodeTie, Taylor};
 use crate::error::SolverError;
+use crate::ids::MasterSegmentIndex;
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::{
@@ -135,7 +136,7 @@ pub(crate) struct Run<'a> {
     // converged state
     u: Vec<f64>,
     lambda: Vec<f64>,
-    pairing: Vec<Option<usize>>,
+    pairing: Vec<Option<MasterSegmentIndex>>,
     ties: Vec<NodeTie>,
     load_factor: f64,
     energy: f64,
@@ -283,8 +284,8 @@ impl<'a> Run<'a> {
                 gauss: p.gauss,
                 xi_s: p.xi_s,
                 slave_nodes: p.slave_nodes,
-                master_segment: proj.map(|(m, _)| m),
-                master_nodes: proj.map(|(m, _)| layout.masters_of(p.pair)[m]),
+                master_segment: proj.map(|(m, _)| m.index()),
+                master_nodes: proj.map(|(m, _)| layout.masters_of(p.pair)[m.index()]),
                 xi_m: proj.map(|(_, pr)| pr.xi_m),
                 gap: proj.map(|(_, pr)| pr.gap),
             })

@@ -13,7 +13,7 @@ use crate::contact::{
     ContactLayout, KernelCounts, NodeTie, PairingUpdate, PointEval, PointFailure, XI_STUCK_BAND,
 };
 
-use crate::ids::ContactPointIndex;
+use crate::ids::{ContactPointIndex, MasterSegmentIndex};
 
 use super::Setup;
 
@@ -42,7 +42,7 @@ pub(super) enum GuardOutcome {
 #[derive(Debug, Default)]
 pub(super) struct PairingGuard {
     /// `(point, pairing)` the point has been switched away from.
-    left: Vec<(ContactPointIndex, Option<usize>)>,
+    left: Vec<(ContactPointIndex, Option<MasterSegmentIndex>)>,
     /// Points released from a tie in this attempt: one more switch (the
     /// side `theta` chose may be wrong when other points moved meanwhile).
     released: Vec<ContactPointIndex>,
@@ -61,7 +61,7 @@ impl PairingGuard {
         layout: &ContactLayout,
         updates: &[PairingUpdate],
         evals: &[Option<PointEval>],
-        pairing: &mut [Option<usize>],
+        pairing: &mut [Option<MasterSegmentIndex>],
         ties: &mut Vec<NodeTie>,
     ) -> GuardOutcome {
         let mut changed = false;
@@ -132,7 +132,7 @@ impl PairingGuard {
         u: &[f64],
         lambda: &[f64],
         evals: &[Option<PointEval>],
-        pairing: &mut [Option<usize>],
+        pairing: &mut [Option<MasterSegmentIndex>],
         ties: &mut Vec<NodeTie>,
     ) -> Result<(GuardOutcome, KernelCounts), PointFailure> {
         let layout = &setup.layout;

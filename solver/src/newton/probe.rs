@@ -11,6 +11,7 @@ use std::time::Instant;
 use crate::assembly::System;
 use crate::contact::KernelCounts;
 use crate::error::SolverError;
+use crate::ids::MasterSegmentIndex;
 use crate::model::Model;
 use crate::options::{Method, SolveOptions};
 use crate::solution::State;
@@ -70,7 +71,7 @@ pub struct IterationProbe<'a> {
     regularization: f64,
     u: Vec<f64>,
     lambda: Vec<f64>,
-    pairing: Vec<Option<usize>>,
+    pairing: Vec<Option<MasterSegmentIndex>>,
     load_factor: f64,
 }
 

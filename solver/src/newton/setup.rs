@@ -27,7 +27,7 @@ use crate::assembly::{
 };
 use crate::contact::{ContactLayout, KernelCounts, NodeTie, PointEval, PointFailure};
 use crate::error::SolverError;
-use crate::ids::ContactPointIndex;
+use crate::ids::{ContactPointIndex, MasterSegmentIndex};
 use crate::linear::{LinearError, LinearSolver};
 use crate::model::Model;
 use crate::options::SolveOptions;
@@ -77,7 +77,7 @@ impl<'a> Setup<'a> {
     pub(crate) fn initial_pairing(
         &self,
         u: &[f64],
-    ) -> Result<(Vec<Option<usize>>, KernelCounts), PointFailure> {
+    ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
         self.layout.initial_pairing(&self.model.mesh, u)
     }
 
@@ -88,7 +88,7 @@ impl<'a> Setup<'a> {
             pair: p.pair.index(),
             slave_segment: p.slave_segment,
             gauss: p.gauss,
-            master_segment: f.master_segment,
+            master_segment: f.master_segment.map(MasterSegmentIndex::index),
         }
     }
 
@@ -124,7 +124,7 @@ impl<'a> Setup<'a> {
     pub(crate) fn evaluate_complete(
         &self,
         u: &[f64],
-        pairing: &[Option<usize>],
+        pairing: &[Option<MasterSegmentIndex>],
         ties: &[NodeTie],
         at_once: bool,
         counts_out: &mut KernelCounts,
