@@ -4,6 +4,12 @@
 //! Sign convention of the multipliers: with `Pi_c = sum w J0 lambda g`, a
 //! compressive contact has `lambda < 0`; the contact pressure is
 //! `p = -lambda`.
+//!
+//! This is the report boundary: indices here (pairs, segments, Gauss points,
+//! nodes) are plain `usize`, converted from the solver's typed indices
+//! ([`crate::ids`]) where the reports are written. Apart from
+//! [`Timings`], the values do not depend on thread scheduling: parallel maps
+//! return in index order and every sum runs sequentially (`crate::par`).
 
 use std::time::Duration;
 
