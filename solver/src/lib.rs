@@ -12,8 +12,16 @@
 //!   at each step start; the complete formulation re-projects and evaluates
 //!   the exact kernel every iteration ([`Method`]).
 //! * Solution: Newton–Raphson per load step with bisection cut-backs
-//!   ([`newton`]), a sparse direct solver (faer's LU) with symbolic reuse behind the
-//!   [`linear::LinearSolver`] seam ([`linear`]).
+//!   ([`newton`]), a sparse direct solver (faer's LU) with symbolic reuse
+//!   behind the [`linear::LinearSolver`] seam ([`linear`]).
+//!
+//! The modules, bottom up: [`ids`] (typed indices) and [`options`] (what a
+//! solve is asked to do; modules import it from there, not from the crate
+//! root); [`material`], [`quad`], [`mesh`], [`model`] (the discrete problem;
+//! [`scene`] builds it from TOML); [`contact`] and [`assembly`] (one Newton
+//! system); [`linear`] (its solution); [`newton`] (the load schedule and
+//! the iterations), which fills in the report types of [`solution`]
+//! (written as VTK by [`vtk`]).
 //!
 //! ```no_run
 //! use solver::{Scene, SolveOptions, solve};
