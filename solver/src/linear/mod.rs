@@ -192,4 +192,20 @@ mod tests {
             assert_eq!(kind.to_string().parse::<LinearSolverKind>(), Ok(kind));
         }
     }
+
+    /// The phases in the wrong order are errors, not panics: no pattern to
+    /// factor, no factorisation to solve with (one solve per factorisation).
+    #[test]
+    fn phases_out_of_order_are_errors() {
+        for kind in LinearSolverKind::ALL {
+            let mut s = kind.build();
+            assert!(s.factor(&[1.0]).is_err());
+            assert!(s.solve(&[1.0]).is_err());
+            s.analyse(1, &[0], &[0]).unwrap();
+            s.factor(&[2.0]).unwrap();
+            assert_eq!(s.solve(&[1.0]), Ok(vec![0.5]));
+            assert!(s.solve(&[1.0]).is_err());
+        }
+        assert!("ldlt".parse::<LinearSolverKind>().is_err());
+    }
 }
