@@ -83,9 +83,11 @@
 //! * `regularize`: the tangent-only multiplier regularisation;
 //! * `probe`: [`IterationProbe`], one iteration for benchmarks.
 //!
-//! Invariant: the converged state of `Run` (`u`, `lambda`, `pairing`,
-//! `ties`, `load_factor`) changes only in `Run::commit`, with a converged
-//! attempt; a failed attempt leaves it untouched.
+//! Invariants: the converged state of `Run` (`u`, `lambda`, `ties`,
+//! `load_factor`) changes only in `Run::commit`, with a converged attempt; a
+//! failed attempt leaves it untouched. Its `pairing` changes there too and,
+//! for Types 1–6, when the Taylor coefficients are built at the converged
+//! state (which re-pairs every point), once per converged state.
 
 mod attempt;
 mod pairing;
@@ -107,7 +109,7 @@ use crate::solution::{
 
 use attempt::{AttemptOutcome, Converged};
 use schedule::{ScheduledStep, give_up};
-pub(crate) use setup::Setup;
+use setup::Setup;
 
 pub use crate::options::DEFAULT_REGULARIZATION;
 pub use probe::{ContactPhase, IterationProbe, IterationSample};
