@@ -36,23 +36,23 @@ use crate::solution::ContactPointId;
 use super::regularize::regularize;
 
 /// The discretised problem of one solve (module docs).
-pub(crate) struct Setup<'a> {
+pub(super) struct Setup<'a> {
     /// The model solved.
-    pub(crate) model: &'a Model,
+    pub(super) model: &'a Model,
     /// Integration points, multipliers and master chains.
-    pub(crate) layout: ContactLayout,
+    pub(super) layout: ContactLayout,
     /// Equation numbers of the free dofs and the multipliers.
-    pub(crate) dofs: DofMap,
+    pub(super) dofs: DofMap,
     /// The linear solver, with its cached symbolic analysis.
-    pub(crate) linear: Box<dyn LinearSolver>,
+    pub(super) linear: Box<dyn LinearSolver>,
     /// The mesh size (scales the active-set threshold).
-    pub(crate) length_scale: f64,
+    pub(super) length_scale: f64,
 }
 
 impl<'a> Setup<'a> {
     /// Checks `model` and lays out its contact pairs and equations with
     /// `options.formulation` and `options.linear`.
-    pub(crate) fn new(model: &'a Model, options: &SolveOptions) -> Result<Setup<'a>, SolverError> {
+    pub(super) fn new(model: &'a Model, options: &SolveOptions) -> Result<Setup<'a>, SolverError> {
         model.check()?;
         let layout = ContactLayout::new(model, options.formulation);
         let dofs = DofMap::new(model, layout.multipliers.len());
@@ -66,7 +66,7 @@ impl<'a> Setup<'a> {
     }
 
     /// Sets the prescribed dofs of `u` to their values at load factor `to`.
-    pub(crate) fn prescribe(&self, u: &mut [f64], to: f64) {
+    pub(super) fn prescribe(&self, u: &mut [f64], to: f64) {
         for p in &self.model.prescribed {
             u[p.dof] = to * p.value;
         }
@@ -74,7 +74,7 @@ impl<'a> Setup<'a> {
 
     /// Pairs every point from scratch at displacements `u` (see
     /// [`ContactLayout::initial_pairing`]).
-    pub(crate) fn initial_pairing(
+    pub(super) fn initial_pairing(
         &self,
         u: &[f64],
     ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
@@ -82,7 +82,7 @@ impl<'a> Setup<'a> {
     }
 
     /// The integration point of a kernel failure.
-    pub(crate) fn failure_point(&self, f: &PointFailure) -> ContactPointId {
+    pub(super) fn failure_point(&self, f: &PointFailure) -> ContactPointId {
         let p = self.layout.point(f.point);
         ContactPointId {
             pair: p.pair.index(),
@@ -93,7 +93,7 @@ impl<'a> Setup<'a> {
     }
 
     /// Integration point `i` (no master segment).
-    pub(crate) fn point_id(&self, i: ContactPointIndex) -> ContactPointId {
+    pub(super) fn point_id(&self, i: ContactPointIndex) -> ContactPointId {
         let p = self.layout.point(i);
         ContactPointId {
             pair: p.pair.index(),
@@ -105,7 +105,7 @@ impl<'a> Setup<'a> {
 
     /// A kernel failure at a state of load factor `load_factor` as the
     /// solve's error.
-    pub(crate) fn kernel_error(&self, f: &PointFailure, load_factor: f64) -> SolverError {
+    pub(super) fn kernel_error(&self, f: &PointFailure, load_factor: f64) -> SolverError {
         SolverError::Kernel {
             point: self.failure_point(f),
             load_factor,
@@ -121,7 +121,7 @@ impl<'a> Setup<'a> {
     /// takes the new pairing from the evaluations' master segments. Kernel
     /// calls are added to `counts` (on failure only those of the first
     /// pass).
-    pub(crate) fn evaluate_complete(
+    pub(super) fn evaluate_complete(
         &self,
         u: &[f64],
         pairing: &[Option<MasterSegmentIndex>],
@@ -172,7 +172,7 @@ impl<'a> Setup<'a> {
     /// equation per free dof, multiplier and tie) holding the contact
     /// contributions of `evals` and then those of the `ties` (with `others`,
     /// their evaluations on the other segment).
-    pub(crate) fn contact_system(
+    pub(super) fn contact_system(
         &self,
         evals: &[Option<PointEval>],
         others: &[PointEval],
@@ -191,14 +191,14 @@ impl<'a> Setup<'a> {
 
     /// Adds the solid elements at displacements `u` and the external force
     /// at load factor `to` to `sys`; returns `|f_ext|`.
-    pub(crate) fn add_solid(&self, u: &[f64], to: f64, sys: &mut System) -> f64 {
+    pub(super) fn add_solid(&self, u: &[f64], to: f64, sys: &mut System) -> f64 {
         assemble_solid(self.model, &self.dofs, u, sys);
         add_external(self.model, &self.dofs, to, sys)
     }
 
     /// Adds the multiplier regularisation `delta` (see
     /// [`super::regularize`]) to `sys` and solves `K dx = r`.
-    pub(crate) fn solve(
+    pub(super) fn solve(
         &mut self,
         sys: &mut System,
         active: &[bool],
