@@ -10,16 +10,16 @@
 //! ```
 //!
 //! and the tangent its exact derivative (see [`crate::quad`] and
-//! [`crate::contact`]). Element matrices are computed in parallel (rayon),
-//! collected in element order and scattered sequentially into coordinate
-//! triplets, so the result is deterministic. The triplet index order depends
+//! [`crate::contact`]). Element matrices are computed in parallel
+//! (`crate::par`), collected in element order and scattered sequentially
+//! into coordinate triplets, so the result is deterministic. The triplet index order depends
 //! only on the mesh, the prescribed set, the pairing and the presence of
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
-use rayon::prelude::*;
-
 use crate::contact::{ContactLayout, NodeTie, PointEval, shape2};
+use crate::ids::{DofId, EquationIndex, MultiplierIndex};
 use crate::model::Model;
+use crate::par;
 use crate::quad::{QuadResponse, quad_response};
 
 /// Marks a prescribed dof in [`DofMap::eq`].
@@ -28,7 +28,11 @@ const PRESCRIBED: usize = usize::MAX;
 /// Elements per rayon task.
 const PAR_MIN_LEN: usize = 64;
 
-/// Equation numbers of the dofs and multipliers.
+/// Equation numbers of the dofs, multipliers and node ties.
+///
+/// Invariant: equations `0..n_free` are the free dofs in dof order,
+/// `n_free..n_eq()` the multipliers in [`MultiplierIndex`] order, and tie
+/// `k` of the complete formulation is equation `n_eq() + k`.
 #[derive(Debug, Clone)]
 pub struct DofMap {
     eq: Vec<usize>,
@@ -57,14 +61,25 @@ impl DofMap {
     }
 
     /// The equation of displacement dof `dof`, `None` if prescribed.
-    pub fn eq(&self, dof: usize) -> Option<usize> {
-        let e = self.eq[dof];
-        (e != PRESCRIBED).then_some(e)
+    pub fn eq(&self, dof: DofId) -> Option<EquationIndex> {
+        let e = self.eq[dof.index()];
+        (e != PRESCRIBED).then_some(EquationIndex::new(e))
+    }
+
+    /// The equations of the 8 dofs of `nodes` (`x` then `y` of each node, in
+    /// node order), `None` for prescribed ones.
+    pub fn node_eqs(&self, nodes: &[usize; 4]) -> [Option<EquationIndex>; 8] {
+        std::array::from_fn(|k| self.eq(DofId::of(nodes[k / 2], k % 2)))
     }
 
     /// The equation of multiplier `m`.
-    pub fn mult_eq(&self, m: usize) -> usize {
-        self.n_free + m
+    pub fn mult_eq(&self, m: MultiplierIndex) -> EquationIndex {
+        EquationIndex::new(self.n_free + m.index())
+    }
+
+    /// The equation of node tie `k` (after the multipliers).
+    pub fn tie_eq(&self, k: usize) -> EquationIndex {
+        EquationIndex::new(self.n_eq() + k)
     }
 
     /// Total number of equations.
@@ -97,9 +112,10 @@ impl System {
         }
     }
 
-    fn push(&mut self, r: usize, c: usize, v: f64) {
-        self.rows.push(r);
-        self.cols.push(c);
+    /// Appends the triplet `(r, c, v)`.
+    pub fn push(&mut self, r: EquationIndex, c: EquationIndex, v: f64) {
+        self.rows.push(r.index());
+        self.cols.push(c.index());
         self.vals.push(v);
     }
 
@@ -113,26 +129,22 @@ impl System {
 /// displacements `u`.
 pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
     let mesh = &model.mesh;
-    let responses: Vec<QuadResponse> = (0..mesh.elements.len())
-        .into_par_iter()
-        .with_min_len(PAR_MIN_LEN)
-        .map(|e| {
-            let material = &mesh.bodies[mesh.element_body[e]].material;
-            quad_response(
-                &mesh.geometry[e],
-                &mesh.element_displacements(e, u),
-                material,
-            )
-        })
-        .collect();
+    let responses: Vec<QuadResponse> = par::map(mesh.elements.len(), PAR_MIN_LEN, |e| {
+        let material = &mesh.bodies[mesh.element_body[e]].material;
+        quad_response(
+            &mesh.geometry[e],
+            &mesh.element_displacements(e, u),
+            material,
+        )
+    });
     sys.rows.reserve(64 * responses.len());
     sys.cols.reserve(64 * responses.len());
     sys.vals.reserve(64 * responses.len());
     for (el, resp) in mesh.elements.iter().zip(&responses) {
-        let eqs: [Option<usize>; 8] = std::array::from_fn(|k| dofs.eq(2 * el[k / 2] + k % 2));
+        let eqs = dofs.node_eqs(el);
         for p in 0..8 {
             let Some(ep) = eqs[p] else { continue };
-            sys.residual[ep] += resp.f_int[p];
+            sys.residual[ep.index()] += resp.f_int[p];
             for q in 0..8 {
                 if let Some(eq) = eqs[q] {
                     sys.push(ep, eq, resp.k[p][q]);
@@ -167,11 +179,12 @@ pub fn assemble_contact(
         let Some(ev) = ev else { continue };
         let nsh = shape2(pt.xi_s);
         let w = pt.weight_ref;
-        let lam = nsh[0] * lambda[pt.multipliers[0]] + nsh[1] * lambda[pt.multipliers[1]];
-        let eqs: [Option<usize>; 8] = std::array::from_fn(|k| dofs.eq(2 * ev.nodes[k / 2] + k % 2));
+        let lam =
+            nsh[0] * lambda[pt.multipliers[0].index()] + nsh[1] * lambda[pt.multipliers[1].index()];
+        let eqs = dofs.node_eqs(&ev.nodes);
         for p in 0..8 {
             if let Some(ep) = eqs[p] {
-                sys.residual[ep] += w * lam * ev.grad[p];
+                sys.residual[ep.index()] += w * lam * ev.grad[p];
             }
         }
         if let Some(h) = &ev.hess {
@@ -187,9 +200,9 @@ pub fn assemble_contact(
         for a in 0..2 {
             let m = pt.multipliers[a];
             let row = dofs.mult_eq(m);
-            let on = active[m];
+            let on = active[m.index()];
             if on {
-                sys.residual[row] += w * nsh[a] * ev.gap;
+                sys.residual[row.index()] += w * nsh[a] * ev.gap;
             }
             for p in 0..8 {
                 if let Some(ep) = eqs[p] {
@@ -201,11 +214,11 @@ pub fn assemble_contact(
         }
     }
     for (m, &on) in active.iter().enumerate() {
-        let row = dofs.mult_eq(m);
+        let row = dofs.mult_eq(MultiplierIndex::new(m));
         if on {
             sys.push(row, row, 0.0);
         } else {
-            sys.residual[row] = lambda[m];
+            sys.residual[row.index()] = lambda[m];
             sys.push(row, row, 1.0);
         }
     }
@@ -222,31 +235,29 @@ pub fn assemble_contact(
 /// r_mu  = g_o - g_p               K_u,mu = K_mu,u = g_o' - g_p'
 /// ```
 ///
-/// with the tie's equation `first + k` (after the free dofs and
+/// with the tie's equation [`DofMap::tie_eq`] (after the free dofs and
 /// multipliers) and an explicit zero `K_mu,mu`.
 pub fn assemble_ties(
     ties: &[NodeTie],
     evals: &[Option<PointEval>],
     others: &[PointEval],
     dofs: &DofMap,
-    first: usize,
     sys: &mut System,
 ) {
     for (k, (tie, other)) in ties.iter().zip(others).enumerate() {
-        let row = first + k;
-        let Some(paired) = &evals[tie.point] else {
+        let row = dofs.tie_eq(k);
+        let Some(paired) = &evals[tie.point.index()] else {
             // an inactive point cannot be tied; keep the row regular
-            sys.residual[row] = tie.mu;
+            sys.residual[row.index()] = tie.mu;
             sys.push(row, row, 1.0);
             continue;
         };
-        sys.residual[row] = other.gap - paired.gap;
+        sys.residual[row.index()] = other.gap - paired.gap;
         for (ev, sign) in [(other, 1.0), (paired, -1.0)] {
-            let eqs: [Option<usize>; 8] =
-                std::array::from_fn(|j| dofs.eq(2 * ev.nodes[j / 2] + j % 2));
+            let eqs = dofs.node_eqs(&ev.nodes);
             for p in 0..8 {
                 let Some(ep) = eqs[p] else { continue };
-                sys.residual[ep] += sign * tie.mu * ev.grad[p];
+                sys.residual[ep.index()] += sign * tie.mu * ev.grad[p];
                 sys.push(ep, row, sign * ev.grad[p]);
                 sys.push(row, ep, sign * ev.grad[p]);
                 if let Some(h) = &ev.hess {
@@ -269,8 +280,8 @@ pub fn add_external(model: &Model, dofs: &DofMap, load_factor: f64, sys: &mut Sy
         f[l.dof] += load_factor * l.value;
     }
     for (dof, v) in f.iter().enumerate() {
-        if let Some(e) = dofs.eq(dof) {
-            sys.residual[e] -= v;
+        if let Some(e) = dofs.eq(DofId::new(dof)) {
+            sys.residual[e.index()] -= v;
         }
     }
     f.iter().map(|v| v * v).sum::<f64>().sqrt()

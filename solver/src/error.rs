@@ -1,4 +1,9 @@
 //! The solver's error type.
+//!
+//! [`SolverError`] is the one error a solve returns: data-dependent
+//! failures (invalid scene, model or options, no convergence, a singular
+//! system, a kernel failure) are values of it, never panics. Indices in it
+//! are the plain `usize` of the reports ([`ContactPointId`]).
 
 use contact_kernels::KernelError;
 

@@ -4,6 +4,14 @@
 //! Loads and prescribed displacements are proportional to the load factor
 //! `lambda_L`: the external force is `lambda_L f_ref` and a prescribed degree
 //! of freedom has the value `lambda_L u_ref` (a fixed one has `u_ref = 0`).
+//!
+//! Invariants after [`Model::check`] (which every solve runs first): every
+//! dof and node index is in range, a dof is prescribed at most once (or
+//! twice to the same value), every value is finite, every node with a free
+//! dof belongs to an element, and every contact pair has non-empty slave and
+//! master faces of non-degenerate segments that share no node. Dofs are
+//! plain `usize` here (`2 node + component`, [`crate::ids::DofId`] inside
+//! the solver), since the scene builds the model.
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};

@@ -4,13 +4,19 @@
 //! Sign convention of the multipliers: with `Pi_c = sum w J0 lambda g`, a
 //! compressive contact has `lambda < 0`; the contact pressure is
 //! `p = -lambda`.
+//!
+//! This is the report boundary: indices here (pairs, segments, Gauss points,
+//! nodes) are plain `usize`, converted from the solver's typed indices
+//! ([`crate::ids`]) where the reports are written. Apart from
+//! [`Timings`], the values do not depend on thread scheduling: parallel maps
+//! return in index order and every sum runs sequentially (`crate::par`).
 
 use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
-use crate::Method;
 use crate::mesh::Mesh;
+use crate::options::Method;
 use crate::quad::{QuadStress, quad_mean_stress};
 
 /// Identifies one slave integration point.

@@ -6,6 +6,7 @@ use contact_kernels::ApproxType;
 
 use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_solid};
 use crate::contact::{ContactLayout, PointEval, Taylor};
+use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, PairId};
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Block, Mesh};
 use crate::model::{Model, PointLoad, Prescribed};
@@ -56,7 +57,9 @@ fn tangent_error(
         let mut u = u.to_vec();
         let mut l = lambda.to_vec();
         if j < dofs.n_free {
-            let dof = (0..u.len()).find(|&d| dofs.eq(d) == Some(j)).unwrap();
+            let dof = (0..u.len())
+                .find(|&d| dofs.eq(DofId::new(d)) == Some(EquationIndex::new(j)))
+                .unwrap();
             u[dof] += s;
         } else {
             l[j - dofs.n_free] += s;
@@ -476,7 +479,8 @@ fn contact_tangent_matches_finite_differences() {
             let (u, lam) = random_state(&model, &layout, &mut rng, 0.05, 50.0);
             let none = vec![None; layout.points.len()];
             let (paired, _) = layout.project_all(&model.mesh, &u, &none).unwrap();
-            let pairing: Vec<Option<usize>> = paired.iter().map(|p| p.map(|(m, _)| m)).collect();
+            let pairing: Vec<Option<MasterSegmentIndex>> =
+                paired.iter().map(|p| p.map(|(m, _)| m)).collect();
             assert!(pairing.iter().all(|p| p.is_some()));
             let complete = |u: &[f64]| {
                 layout
@@ -892,7 +896,15 @@ fn refined_paper_scene_converges_across_master_nodes() {
         .unwrap();
     let pt = layout.points[i];
     let other = 19 - paired;
-    assert!(layout.shared_node(0, paired, other).is_some());
+    assert!(
+        layout
+            .shared_node(
+                PairId::new(0),
+                MasterSegmentIndex::new(paired),
+                MasterSegmentIndex::new(other)
+            )
+            .is_some()
+    );
     let state = &four.snapshots[3];
     assert_eq!(state.load_factor, 7.5);
     let project = |m: usize| {
@@ -962,29 +974,34 @@ fn node_tie_tangent_matches_finite_differences() {
                 .points
                 .iter()
                 .position(|p| p.slave_segment == seg && p.gauss == gauss)
+                .map(ContactPointIndex::new)
                 .unwrap()
         };
         let ties = vec![
             NodeTie {
                 point: pick(2, 1),
-                paired: 2,
-                other: 3,
+                paired: MasterSegmentIndex::new(2),
+                other: MasterSegmentIndex::new(3),
                 mu: rng.uniform(-5.0, 5.0),
             },
             NodeTie {
                 point: pick(5, 0),
-                paired: 5,
-                other: 4,
+                paired: MasterSegmentIndex::new(5),
+                other: MasterSegmentIndex::new(4),
                 mu: rng.uniform(-5.0, 5.0),
             },
         ];
         for t in &ties {
-            assert!(layout.shared_node(0, t.paired, t.other).is_some());
+            assert!(
+                layout
+                    .shared_node(PairId::new(0), t.paired, t.other)
+                    .is_some()
+            );
         }
-        let pairing: Vec<Option<usize>> = layout
+        let pairing: Vec<Option<MasterSegmentIndex>> = layout
             .points
             .iter()
-            .map(|p| Some(p.slave_segment))
+            .map(|p| Some(MasterSegmentIndex::new(p.slave_segment)))
             .collect();
         let n_eq = dofs.n_eq();
         let n = n_eq + ties.len();
@@ -1016,7 +1033,7 @@ fn node_tie_tangent_matches_finite_differences() {
             let active = layout.active_multipliers(&evals, lam, model.mesh.size());
             let mut sys = System::new(n);
             assemble_contact(&layout, &evals, lam, &active, &dofs, &mut sys);
-            assemble_ties(&ties, &evals, &others, &dofs, n_eq, &mut sys);
+            assemble_ties(&ties, &evals, &others, &dofs, &mut sys);
             assemble_solid(&model, &dofs, u, &mut sys);
             add_external(&model, &dofs, 1.0, &mut sys);
             let mut k = vec![vec![0.0; n]; n];
@@ -1037,7 +1054,9 @@ fn node_tie_tangent_matches_finite_differences() {
             let perturbed = |s: f64| {
                 let (mut u, mut l, mut m) = (u.clone(), lam.clone(), mus.clone());
                 if j < dofs.n_free {
-                    let dof = (0..u.len()).find(|&d| dofs.eq(d) == Some(j)).unwrap();
+                    let dof = (0..u.len())
+                        .find(|&d| dofs.eq(DofId::new(d)) == Some(EquationIndex::new(j)))
+                        .unwrap();
                     u[dof] += s;
                 } else if j < n_eq {
                     l[j - dofs.n_free] += s;

@@ -1,0 +1,145 @@
+//! [`ContactLayout`]: the integration points, multipliers and master-chain
+//! adjacency of all contact pairs of a model, and the node geometry of a
+//! (point, master segment) pairing.
+//!
+//! Invariants: built once per solve from the model and never changed; a
+//! slave node shared by neighbouring slave segments carries one multiplier;
+//! `adjacency[pair][m]` is `[previous, next]` along the master chain (by the
+//! chain's shared nodes).
+
+use contact_kernels::Formulation;
+
+use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, PairId};
+use crate::mesh::Mesh;
+use crate::model::{ContactMode, Model};
+
+use super::{ContactPoint, MultiplierDof, gauss_legendre};
+
+/// The integration points, multipliers and master-chain adjacency of all
+/// contact pairs of a model.
+#[derive(Debug, Clone)]
+pub struct ContactLayout {
+    /// All slave integration points, pair by pair, segment by segment.
+    pub points: Vec<ContactPoint>,
+    /// All multiplier dofs, pair by pair, in slave-face order.
+    pub multipliers: Vec<MultiplierDof>,
+    /// The formulation of each pair (after an override).
+    pub formulations: Vec<Formulation>,
+    /// The mode of each pair.
+    pub modes: Vec<ContactMode>,
+    /// Master segments of each pair.
+    pub masters: Vec<Vec<[usize; 2]>>,
+    /// `[previous, next]` master segment along each pair's chain.
+    pub(super) adjacency: Vec<Vec<[Option<MasterSegmentIndex>; 2]>>,
+    /// Active-set constant `c` per pair (unilateral mode).
+    pub complementarity: Vec<f64>,
+}
+
+impl ContactLayout {
+    /// Lays out the contact pairs of `model`, with every pair's
+    /// formulation replaced by `formulation` when given.
+    pub fn new(model: &Model, formulation: Option<Formulation>) -> ContactLayout {
+        let mesh = &model.mesh;
+        let mut points = Vec::new();
+        let mut multipliers = Vec::new();
+        let mut adjacency = Vec::new();
+        let mut complementarity = Vec::new();
+        for (p, pair) in model.contacts.iter().enumerate() {
+            let p = PairId::new(p);
+            let mut mult_of_node = std::collections::HashMap::new();
+            for seg in &pair.slave {
+                for &n in seg {
+                    mult_of_node.entry(n).or_insert_with(|| {
+                        multipliers.push(MultiplierDof { pair: p, node: n });
+                        MultiplierIndex::new(multipliers.len() - 1)
+                    });
+                }
+            }
+            let rule = gauss_legendre(pair.gauss_points);
+            let mut total_len = 0.0;
+            for (s, seg) in pair.slave.iter().enumerate() {
+                let (a, b) = (mesh.nodes_ref[seg[0]], mesh.nodes_ref[seg[1]]);
+                let len = (b[0] - a[0]).hypot(b[1] - a[1]);
+                total_len += len;
+                for (g, &(xi, w)) in rule.iter().enumerate() {
+                    points.push(ContactPoint {
+                        pair: p,
+                        slave_segment: s,
+                        gauss: g,
+                        xi_s: xi,
+                        weight_ref: w * len / 2.0,
+                        slave_nodes: *seg,
+                        multipliers: [mult_of_node[&seg[0]], mult_of_node[&seg[1]]],
+                    });
+                }
+            }
+            let mut starts = std::collections::HashMap::new();
+            let mut ends = std::collections::HashMap::new();
+            for (m, seg) in pair.master.iter().enumerate() {
+                starts.insert(seg[0], MasterSegmentIndex::new(m));
+                ends.insert(seg[1], MasterSegmentIndex::new(m));
+            }
+            adjacency.push(
+                pair.master
+                    .iter()
+                    .map(|seg| [ends.get(&seg[0]).copied(), starts.get(&seg[1]).copied()])
+                    .collect(),
+            );
+            let young = mesh
+                .bodies
+                .iter()
+                .find(|b| b.nodes.contains(&pair.slave[0][0]))
+                .map_or(1.0, |b| b.material.young);
+            complementarity.push(young / (total_len / pair.slave.len() as f64));
+        }
+        ContactLayout {
+            points,
+            multipliers,
+            formulations: model
+                .contacts
+                .iter()
+                .map(|c| formulation.unwrap_or(c.formulation))
+                .collect(),
+            modes: model.contacts.iter().map(|c| c.mode).collect(),
+            masters: model.contacts.iter().map(|c| c.master.clone()).collect(),
+            adjacency,
+            complementarity,
+        }
+    }
+
+    /// Current coordinates `q` of four nodes.
+    pub(super) fn q(mesh: &Mesh, u: &[f64], nodes: [usize; 4]) -> [f64; 8] {
+        std::array::from_fn(|k| mesh.nodes_ref[nodes[k / 2]][k % 2] + u[2 * nodes[k / 2] + k % 2])
+    }
+
+    /// The static data of point `i`.
+    pub fn point(&self, i: ContactPointIndex) -> &ContactPoint {
+        &self.points[i.index()]
+    }
+
+    /// The master segments of `pair`.
+    pub fn masters_of(&self, pair: PairId) -> &[[usize; 2]] {
+        &self.masters[pair.index()]
+    }
+
+    pub(super) fn nodes(&self, point: &ContactPoint, master: MasterSegmentIndex) -> [usize; 4] {
+        let m = self.masters_of(point.pair)[master.index()];
+        [point.slave_nodes[0], point.slave_nodes[1], m[0], m[1]]
+    }
+
+    /// The node that master segments `a` and `b` of `pair` share, if they
+    /// are adjacent along the chain.
+    pub fn shared_node(
+        &self,
+        pair: PairId,
+        a: MasterSegmentIndex,
+        b: MasterSegmentIndex,
+    ) -> Option<usize> {
+        let masters = self.masters_of(pair);
+        let (sa, sb) = (masters[a.index()], masters[b.index()]);
+        if a == b {
+            return None;
+        }
+        sa.into_iter().find(|n| sb.contains(n))
+    }
+}

@@ -1,0 +1,80 @@
+//! The frozen Taylor expansion of Types 1–6 (see [`super`], "Types 1–6:
+//! Taylor coefficients frozen per load step").
+//!
+//! Invariant: the expansion is exact for the approximated problem: its
+//! gradient is the derivative of its gap and its Hessian that of its
+//! gradient, so Newton's tangent is exact within a step.
+
+use nalgebra::SVector;
+
+use super::PointEval;
+
+/// Frozen Taylor coefficients of one integration point for one load step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Taylor {
+    /// The kernel output at the step start.
+    pub at_start: PointEval,
+    /// The nodal displacements `u0` of `at_start.nodes` at the step start.
+    pub u0: SVector<f64, 8>,
+}
+
+impl Taylor {
+    /// The second-order expansion at displacements `u` (global vector).
+    pub fn expand(&self, u: &[f64]) -> PointEval {
+        let s = &self.at_start;
+        let d = SVector::<f64, 8>::from_fn(|k, _| u[2 * s.nodes[k / 2] + k % 2]) - self.u0;
+        match &s.hess {
+            Some(h) => {
+                let hd = h * d;
+                PointEval {
+                    gap: s.gap + s.grad.dot(&d) + 0.5 * d.dot(&hd),
+                    grad: s.grad + hd,
+                    ..*s
+                }
+            }
+            None => PointEval {
+                gap: s.gap + s.grad.dot(&d),
+                ..*s
+            },
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::SMatrix;
+
+    use super::*;
+    use crate::ids::MasterSegmentIndex;
+
+    #[test]
+    fn taylor_expansion_is_quadratic_with_exact_gradient() {
+        let h = SMatrix::<f64, 8, 8>::from_fn(|i, j| 0.1 * ((i + j) as f64).sin());
+        let h = (h + h.transpose()) * 0.5;
+        let at_start = PointEval {
+            master: MasterSegmentIndex::new(0),
+            nodes: [0, 1, 2, 3],
+            gap: 0.2,
+            xi_m: 0.1,
+            grad: SVector::<f64, 8>::from_fn(|i, _| i as f64 * 0.1 - 0.3),
+            hess: Some(h),
+        };
+        let u0 = SVector::<f64, 8>::from_fn(|i, _| 0.01 * i as f64);
+        let t = Taylor { at_start, u0 };
+        let u: Vec<f64> = (0..8)
+            .map(|i| 0.01 * i as f64 + 0.02 * (i as f64).cos())
+            .collect();
+        let e = t.expand(&u);
+        let step = 1e-6;
+        for k in 0..8 {
+            let mut up = u.clone();
+            let mut um = u.clone();
+            up[k] += step;
+            um[k] -= step;
+            let fd = (t.expand(&up).gap - t.expand(&um).gap) / (2.0 * step);
+            assert!((fd - e.grad[k]).abs() < 1e-9);
+        }
+        let at0 = t.expand(&u0.iter().copied().collect::<Vec<_>>());
+        assert_eq!(at0.gap, 0.2);
+    }
+}

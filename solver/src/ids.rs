@@ -1,0 +1,94 @@
+//! Typed indices for the index spaces that meet in the solver.
+//!
+//! Each is a `usize` in a newtype, so that a value of one space cannot be
+//! used where another is meant without saying so (`index()` gives the raw
+//! value for indexing a slice of that space; `new` wraps one):
+//!
+//! | type | space | slices it indexes |
+//! |---|---|---|
+//! | [`DofId`] | displacement dofs, `2 node + component` | `u`, `Model::prescribed[].dof` |
+//! | [`EquationIndex`] | rows/columns of the Newton system | `System::residual`, `dx` |
+//! | [`MultiplierIndex`] | multiplier dofs, pair by pair | `lambda`, `ContactLayout::multipliers` |
+//! | [`ContactPointIndex`] | slave integration points | `ContactLayout::points`, pairings, evaluations |
+//! | [`PairId`] | contact pairs | `Model::contacts`, per-pair tables of the layout |
+//! | [`MasterSegmentIndex`] | master segments of one pair, along its chain | `ContactPair::master`, pairings |
+//!
+//! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
+//! first (in dof order), then the multipliers, then one equation per node tie
+//! of the complete formulation. Node and element indices (and slave
+//! segments, which only reports name) stay the mesh's plain `usize` (the
+//! mesh and scene own them); reports in
+//! [`crate::solution`] keep plain `usize` fields too, converted where they
+//! are written.
+
+macro_rules! index_type {
+    ($(#[$meta:meta])* $name:ident) => {
+        $(#[$meta])*
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+        pub struct $name(usize);
+
+        impl $name {
+            /// Wraps a raw index.
+            #[inline]
+            pub const fn new(index: usize) -> $name {
+                $name(index)
+            }
+
+            /// The raw index.
+            #[inline]
+            pub const fn index(self) -> usize {
+                self.0
+            }
+        }
+
+        impl std::fmt::Display for $name {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                self.0.fmt(f)
+            }
+        }
+    };
+}
+
+index_type!(
+    /// A displacement degree of freedom: `2 node + component` (component 0
+    /// is `x`, 1 is `y`).
+    DofId
+);
+
+impl DofId {
+    /// The dof of `component` (0: `x`, 1: `y`) of `node`.
+    #[inline]
+    pub const fn of(node: usize, component: usize) -> DofId {
+        DofId(2 * node + component)
+    }
+}
+
+index_type!(
+    /// A row (and column) of the Newton system (see
+    /// [`crate::assembly::DofMap`]).
+    EquationIndex
+);
+
+index_type!(
+    /// A multiplier dof (index into
+    /// [`ContactLayout::multipliers`](crate::contact::ContactLayout::multipliers)
+    /// and the multiplier vector).
+    MultiplierIndex
+);
+
+index_type!(
+    /// A slave integration point (index into
+    /// [`ContactLayout::points`](crate::contact::ContactLayout::points)).
+    ContactPointIndex
+);
+
+index_type!(
+    /// A contact pair (index into [`Model::contacts`](crate::Model::contacts)).
+    PairId
+);
+
+index_type!(
+    /// A master segment of one contact pair (index into its
+    /// [`ContactPair::master`](crate::model::ContactPair::master) list).
+    MasterSegmentIndex
+);

@@ -1,0 +1,403 @@
+//! One attempt: Newton's method from the converged state of a [`Run`] to a
+//! target load factor (see [`super`], steps 1–4 and the failure list).
+//!
+//! An attempt works on an [`Iterate`], a copy of the converged state, and
+//! ends in an [`AttemptOutcome`]: converged (the caller commits it) or a
+//! cut-back request with the reason, the residual history and the
+//! iterations spent. Each iteration: contact evaluation
+//! (`Run::evaluate_contact`), contact and solid assembly, the convergence
+//! test (at a converged iterate the complete formulation lets the pairing
+//! guard settle the pairing, `Run::settle_pairing`, before `Run::accept`),
+//! the divergence tests, the regularised solve and the correction
+//! ([`Iterate::correct`]).
+//! Errors that a smaller increment cannot cure (a kernel failure at the
+//! converged state, when the Taylor coefficients of Types 1–6 are built)
+//! are returned as `Err` and stop the solve.
+//!
+//! Invariants: the iteration count is the number of linear solves; the
+//! residual history holds one entry per evaluated iterate (one more per
+//! pairing change of the complete formulation, which evaluates the same
+//! iterate again); the order of the phases within an iteration is that of
+//! [`Setup`](super::Setup) (contact, solid, regularised solve).
+
+use std::time::Instant;
+
+use contact_kernels::ApproxType;
+
+use crate::assembly::DofMap;
+use crate::contact::{NodeTie, PointEval, Taylor};
+use crate::error::SolverError;
+use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex};
+use crate::options::Method;
+use crate::solution::{ContactPointId, CutbackReason};
+
+use super::pairing::{GuardOutcome, PairingGuard};
+use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
+
+/// A converged attempt.
+pub(super) struct Converged {
+    /// The converged iterate (inactive multipliers exactly zero).
+    pub(super) state: Iterate,
+    /// Linear solves spent.
+    pub(super) iterations: usize,
+    /// The residual norms of the evaluated iterates.
+    pub(super) residuals: Vec<f64>,
+    /// Strain energy at the converged iterate.
+    pub(super) energy: f64,
+    /// Accepted at the round-off floor rather than below the tolerance.
+    pub(super) roundoff_floor: bool,
+    /// The contact points' state at the converged iterate.
+    pub(super) points: PointsReport,
+}
+
+/// The contact points' state at a converged iterate, for the step record.
+pub(super) struct PointsReport {
+    /// Multipliers carrying a constraint row.
+    pub(super) active_multipliers: usize,
+    /// Points that project into no master segment.
+    pub(super) unpaired: Vec<ContactPointId>,
+    /// Points tied to a master node.
+    pub(super) node_ties: Vec<ContactPointId>,
+    /// Points kept on a segment their projection misses (within the band).
+    pub(super) kept_outside: Vec<ContactPointId>,
+}
+
+/// A failed attempt: the caller cuts the increment back.
+pub(super) struct Failed {
+    /// Why the attempt failed.
+    pub(super) reason: CutbackReason,
+    /// The residual norms of the evaluated iterates.
+    pub(super) residuals: Vec<f64>,
+    /// Linear solves spent.
+    pub(super) iterations: usize,
+}
+
+/// How an attempt ended.
+pub(super) enum AttemptOutcome {
+    /// Converged: the new converged state.
+    Converged(Converged),
+    /// Failed: cut back.
+    CutBack(Failed),
+}
+
+impl AttemptOutcome {
+    fn cut_back(reason: CutbackReason, residuals: Vec<f64>, iterations: usize) -> AttemptOutcome {
+        AttemptOutcome::CutBack(Failed {
+            reason,
+            residuals,
+            iterations,
+        })
+    }
+}
+
+impl Run<'_> {
+    /// Builds the frozen Taylor coefficients at the converged state (Types
+    /// 1–6), re-pairing every point.
+    fn ensure_taylor(&mut self, ty: ApproxType) -> Result<(), SolverError> {
+        if self.taylor.is_some() {
+            return Ok(());
+        }
+        let t = Instant::now();
+        let (evals, counts) = self
+            .setup
+            .layout
+            .evaluate_all(&self.setup.model.mesh, &self.u, &self.pairing, ty)
+            .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
+        self.counts += counts;
+        self.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+        let taylor = evals
+            .into_iter()
+            .map(|e| {
+                e.map(|at_start| Taylor {
+                    u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| {
+                        self.u[2 * at_start.nodes[k / 2] + k % 2]
+                    }),
+                    at_start,
+                })
+            })
+            .collect();
+        self.taylor = Some(taylor);
+        self.timings.contact_evaluation += t.elapsed();
+        Ok(())
+    }
+
+    /// One Newton solve from the converged state to load factor `to` (module
+    /// docs).
+    pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
+        if let Method::Approx(ty) = self.opts.method {
+            self.ensure_taylor(ty)?;
+        }
+        let mut x = Iterate {
+            u: self.u.clone(),
+            lambda: self.lambda.clone(),
+            pairing: self.pairing.clone(),
+            ties: self.ties.clone(),
+        };
+        self.setup.prescribe(&mut x.u, to);
+        let mut guard = PairingGuard::default();
+        let mut residuals = Vec::new();
+        // index into `residuals` of the first iterate with the current pairing
+        let mut phase_start = 0;
+        let mut it = 0;
+        loop {
+            // contact
+            let t = Instant::now();
+            // complete formulation: re-pair at once in the first iterates,
+            // until the first pairing change at a converged iterate
+            let at_once = (1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it) && phase_start == 0;
+            let (evals, others) = match self.evaluate_contact(&mut x, at_once) {
+                Ok(e) => e,
+                Err(reason) => {
+                    self.timings.contact_evaluation += t.elapsed();
+                    return Ok(AttemptOutcome::cut_back(reason, residuals, it));
+                }
+            };
+            let (mut sys, active) = self
+                .setup
+                .contact_system(&evals, &others, &x.lambda, &x.ties);
+            self.timings.contact_evaluation += t.elapsed();
+            // solid
+            let t = Instant::now();
+            let f_ext = self.setup.add_solid(&x.u, to, &mut sys);
+            self.timings.solid_assembly += t.elapsed();
+
+            let norm = sys.residual_norm();
+            residuals.push(norm);
+            if !norm.is_finite() {
+                return Ok(AttemptOutcome::cut_back(
+                    CutbackReason::NonFiniteResidual,
+                    residuals,
+                    it,
+                ));
+            }
+            let tol_abs = self.opts.tolerance * f_ext.max(1.0);
+            let last = residuals.len() - 1;
+            let at_floor = last >= phase_start + 2
+                && norm <= STAGNATION_FACTOR * tol_abs
+                && norm >= 0.5 * residuals[last - 1];
+            if norm <= tol_abs || at_floor {
+                let mut kept = Vec::new();
+                if self.opts.method == Method::Complete {
+                    match self.settle_pairing(&mut guard, &mut x, &evals) {
+                        Ok(Settling::Changed) => {
+                            // the same iterate again, with the new pairing
+                            phase_start = residuals.len();
+                            continue;
+                        }
+                        Ok(Settling::Settled(k)) => kept = k,
+                        Err(reason) => return Ok(AttemptOutcome::cut_back(reason, residuals, it)),
+                    }
+                }
+                let points = self.accept(&mut x, &evals, &active, kept);
+                return Ok(AttemptOutcome::Converged(Converged {
+                    state: x,
+                    iterations: it,
+                    residuals,
+                    energy: sys.energy,
+                    roundoff_floor: norm > tol_abs,
+                    points,
+                }));
+            }
+            if it == self.opts.max_iterations {
+                return Ok(AttemptOutcome::cut_back(
+                    CutbackReason::MaxIterations { residual: norm },
+                    residuals,
+                    it,
+                ));
+            }
+            let bound = DIVERGENCE_FACTOR * residuals[0].max(1.0);
+            if norm > bound {
+                return Ok(AttemptOutcome::cut_back(
+                    CutbackReason::Diverging {
+                        residual: norm,
+                        bound,
+                    },
+                    residuals,
+                    it,
+                ));
+            }
+            let t = Instant::now();
+            let solved = self
+                .setup
+                .solve(&mut sys, &active, self.opts.regularization);
+            self.timings.linear_solve += t.elapsed();
+            let dx = match solved {
+                Ok(dx) => dx,
+                Err(e) => {
+                    return Ok(AttemptOutcome::cut_back(
+                        CutbackReason::Singular {
+                            message: e.to_string(),
+                        },
+                        residuals,
+                        it,
+                    ));
+                }
+            };
+            x.correct(&self.setup.dofs, &dx);
+            it += 1;
+        }
+    }
+
+    /// The contact evaluation of the current iterate: Types 1–6 expand the
+    /// frozen Taylor coefficients; the complete formulation evaluates the
+    /// exact kernel (re-pairing every point when `at_once`) and takes the
+    /// pairing the evaluation ended with.
+    fn evaluate_contact(
+        &mut self,
+        x: &mut Iterate,
+        at_once: bool,
+    ) -> Result<(Vec<Option<PointEval>>, Vec<PointEval>), CutbackReason> {
+        match self.opts.method {
+            Method::Approx(_) => {
+                let taylor = self.taylor.as_deref().unwrap_or(&[]);
+                let evals: Vec<Option<PointEval>> =
+                    taylor.iter().map(|t| t.map(|t| t.expand(&x.u))).collect();
+                Ok((evals, Vec::new()))
+            }
+            Method::Complete => {
+                match self.setup.evaluate_complete(
+                    &x.u,
+                    &x.pairing,
+                    &x.ties,
+                    at_once,
+                    &mut self.counts,
+                ) {
+                    Ok((evals, others)) => {
+                        x.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+                        Ok((evals, others))
+                    }
+                    Err(f) => Err(CutbackReason::Kernel {
+                        point: self.setup.failure_point(&f),
+                        error: f.error,
+                    }),
+                }
+            }
+        }
+    }
+
+    /// Complete formulation, at a converged iterate: the pairing guard's
+    /// update (see [`PairingGuard::update`]); a stuck point or a kernel
+    /// failure asks for a cut-back.
+    fn settle_pairing(
+        &mut self,
+        guard: &mut PairingGuard,
+        x: &mut Iterate,
+        evals: &[Option<PointEval>],
+    ) -> Result<Settling, CutbackReason> {
+        let t = Instant::now();
+        let outcome = guard.update(
+            &self.setup,
+            &x.u,
+            &x.lambda,
+            evals,
+            &mut x.pairing,
+            &mut x.ties,
+        );
+        self.timings.contact_evaluation += t.elapsed();
+        match outcome {
+            Ok((outcome, counts)) => {
+                self.counts += counts;
+                match outcome {
+                    GuardOutcome::Changed => Ok(Settling::Changed),
+                    GuardOutcome::Settled(k) => Ok(Settling::Settled(k)),
+                    GuardOutcome::Stuck { point, xi_m } => {
+                        let point = ContactPointId {
+                            master_segment: x.pairing[point.index()].map(MasterSegmentIndex::index),
+                            ..self.setup.point_id(point)
+                        };
+                        Err(CutbackReason::StuckAtMasterNode { point, xi_m })
+                    }
+                }
+            }
+            Err(f) => Err(CutbackReason::Kernel {
+                point: self.setup.failure_point(&f),
+                error: f.error,
+            }),
+        }
+    }
+
+    /// Accepts the iterate `x` with contact evaluations `evals` and active
+    /// set `active` (the inactive multipliers are set to exactly zero), with
+    /// the points `kept` outside their segment: the points' report.
+    fn accept(
+        &self,
+        x: &mut Iterate,
+        evals: &[Option<PointEval>],
+        active: &[bool],
+        kept: Vec<ContactPointIndex>,
+    ) -> PointsReport {
+        let unpaired = self
+            .setup
+            .layout
+            .points
+            .iter()
+            .zip(evals)
+            .filter(|(_, e)| e.is_none())
+            .map(|(p, _)| ContactPointId {
+                pair: p.pair.index(),
+                slave_segment: p.slave_segment,
+                gauss: p.gauss,
+                master_segment: None,
+            })
+            .collect();
+        // inactive rows read l_a = 0 (satisfied to round-off): make it exact
+        for (l, &on) in x.lambda.iter_mut().zip(active) {
+            if !on {
+                *l = 0.0;
+            }
+        }
+        let pairing = &x.pairing;
+        let with_master = |i: ContactPointIndex| ContactPointId {
+            master_segment: pairing[i.index()].map(MasterSegmentIndex::index),
+            ..self.setup.point_id(i)
+        };
+        let node_ties = x.ties.iter().map(|t| with_master(t.point)).collect();
+        let kept_outside = kept.into_iter().map(with_master).collect();
+        PointsReport {
+            active_multipliers: active.iter().filter(|a| **a).count(),
+            unpaired,
+            node_ties,
+            kept_outside,
+        }
+    }
+}
+
+/// The unknowns of an attempt's current iterate (copies of the converged
+/// state at the start).
+pub(super) struct Iterate {
+    /// Displacements (all dofs).
+    pub(super) u: Vec<f64>,
+    /// Multipliers.
+    pub(super) lambda: Vec<f64>,
+    /// Each point's master segment.
+    pub(super) pairing: Vec<Option<MasterSegmentIndex>>,
+    /// Node ties (complete formulation).
+    pub(super) ties: Vec<NodeTie>,
+}
+
+impl Iterate {
+    /// Applies the Newton correction: `x -= dx` on the free dofs, the
+    /// multipliers and the ties' multipliers.
+    fn correct(&mut self, dofs: &DofMap, dx: &[f64]) {
+        for (dof, ud) in self.u.iter_mut().enumerate() {
+            if let Some(e) = dofs.eq(DofId::new(dof)) {
+                *ud -= dx[e.index()];
+            }
+        }
+        for (m, l) in self.lambda.iter_mut().enumerate() {
+            *l -= dx[dofs.mult_eq(MultiplierIndex::new(m)).index()];
+        }
+        for (k, tie) in self.ties.iter_mut().enumerate() {
+            tie.mu -= dx[dofs.tie_eq(k).index()];
+        }
+    }
+}
+
+/// The pairing guard's decision at a converged iterate, for the attempt.
+enum Settling {
+    /// Points were re-paired, tied or released: evaluate the same iterate
+    /// again.
+    Changed,
+    /// The pairing stands; the points kept outside their segment.
+    Settled(Vec<ContactPointIndex>),
+}

@@ -1,0 +1,326 @@
+//! Load stepping, Newton–Raphson and cut-back.
+//!
+//! The load factor goes from 0 to `lambda_end` in `N` equal scheduled steps.
+//! Each step is solved by Newton's method on the free displacements and the
+//! multipliers:
+//!
+//! 1. prescribed dofs are set to `lambda_L u_ref` of the step's target;
+//! 2. Types 1–6: at the step start (converged state `u0`) every contact
+//!    integration point is re-paired and the type's Taylor coefficients are
+//!    evaluated; they stay frozen during the step. Complete: every iteration
+//!    re-projects and evaluates the exact kernel on the paired master
+//!    segments;
+//! 3. iterate `K du = -r` until `|r| <= tol max(1, |lambda_L f_ref|)`
+//!    (Euclidean norms; `r` over the free dofs and the multipliers;
+//!    `tol = 1e-10` by default);
+//! 4. complete formulation: at a converged iterate, re-pair the points
+//!    whose projection left their master segment (and tie or release the
+//!    points stuck at a master node); if anything changed, evaluate the
+//!    same iterate again and go on with step 3. The pairing changes only
+//!    there, apart from the first [`REPAIR_AT_ONCE_ITERATIONS`] iterates;
+//!    see [`crate::contact`], "Pairing in the complete formulation", for
+//!    why (re-pairing at every iteration made Newton cycle on refined
+//!    meshes). Each tie adds one equation after the multipliers.
+//!
+//! A step's residual history ([`crate::StepRecord::residuals`]) then holds
+//! one more entry per pairing change (the same iterate, evaluated again);
+//! the iteration count is the number of linear solves.
+//!
+//! Round-off floor: the residual of a fine mesh with large displacements
+//! cannot be evaluated more accurately than about
+//! `eps E |u| / h` per element (absolute displacements over small elements),
+//! which may exceed `1e-10 |f|`. From the third iterate on (of the current
+//! pairing), a residual below `100 tol max(1, |f|)` that no longer halves
+//! per iteration is accepted as converged and the step is flagged
+//! (`StepRecord::roundoff_floor`); Newton's quadratic convergence makes this
+//! unambiguous. The paper scene converges far below the tolerance and never
+//! uses it.
+//!
+//! Multiplier regularisation (tangent only): the linearised constraints can
+//! be rank deficient. In the paper scene, both layers are clamped at
+//! `x = 0`, so in the reference configuration the interface gap is a
+//! function of the 7 free interface offsets while there are 8 multiplier
+//! rows: the saddle-point matrix is exactly singular in one multiplier
+//! direction, the LU's round-off picks an arbitrary (load-proportional)
+//! component there, and with a gap Hessian (Types 2–6, complete) Newton
+//! stalls in the first step. Each linear solve therefore uses the tangent
+//! with `-eps` on the diagonal of the active multiplier rows,
+//! `eps = delta max|G|^2 / max|K_uu|` (`delta` =
+//! [`DEFAULT_REGULARIZATION`], [`crate::SolveOptions::regularization`]),
+//! which selects the minimum-norm multiplier in a null direction. The
+//! residual is not modified, so converged states are those of the
+//! unregularised problem; for `delta` in `[1e-12, 1e-8]` the paper scene's
+//! results and iteration counts do not depend on `delta`.
+//!
+//! An attempt fails when the residual is not finite, grows above
+//! `1e10 max(|r_0|, 1)`, the iteration limit is reached, the linear system is
+//! singular (see [`crate::linear`]), a kernel fails during the iterations
+//! or (complete formulation) a point stuck at the end of a master chain
+//! misses it by more than the band. A failed attempt is discarded (the
+//! converged state is restored) and the increment is halved; the rest of
+//! the scheduled step is
+//! then done with the halved increment. Each cut-back is recorded; after
+//! `max_cutbacks` cut-backs within one scheduled step (or when a further
+//! halving could not advance the load factor) the solve stops with a
+//! [`SolverError`]. A kernel failure at a converged state (step start) stops
+//! the solve at once, since a smaller increment cannot change that state.
+//!
+//! [`IterationProbe`] runs one iteration of the complete formulation at a
+//! given state, phase by phase, with the same code (for benchmarks).
+//!
+//! # Parts
+//!
+//! * this module: `Run`, the solve in progress (its converged state and
+//!   history), the driver over the schedule, and the [`Solution`] report;
+//! * `setup`: `Setup`, the discretised problem (contact layout, equation
+//!   numbering, linear solver) and the phases of one Newton iteration on it,
+//!   shared by `Run` and [`IterationProbe`];
+//! * `schedule`: the scheduled load steps and their bisection cut-backs;
+//! * `attempt`: one Newton solve from the converged state to a target load
+//!   factor, ending in an `AttemptOutcome`;
+//! * `pairing`: the pairing guard of the complete formulation (re-pairing
+//!   and node ties at converged iterates);
+//! * `regularize`: the tangent-only multiplier regularisation;
+//! * `probe`: [`IterationProbe`], one iteration for benchmarks.
+//!
+//! Invariants: the converged state of `Run` (`u`, `lambda`, `ties`,
+//! `load_factor`) changes only in `Run::commit`, with a converged attempt; a
+//! failed attempt leaves it untouched. Its `pairing` changes there too and,
+//! for Types 1–6, when the Taylor coefficients are built at the converged
+//! state (which re-pairs every point), once per converged state.
+
+mod attempt;
+mod pairing;
+mod probe;
+mod regularize;
+mod schedule;
+mod setup;
+
+use std::time::Instant;
+
+use crate::contact::{KernelCounts, NodeTie, Taylor};
+use crate::error::SolverError;
+use crate::ids::MasterSegmentIndex;
+use crate::model::Model;
+use crate::options::SolveOptions;
+use crate::solution::{
+    ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord, Timings,
+};
+
+use attempt::{AttemptOutcome, Converged};
+use schedule::{ScheduledStep, give_up};
+use setup::Setup;
+
+pub use crate::options::DEFAULT_REGULARIZATION;
+pub use probe::{ContactPhase, IterationProbe, IterationSample};
+
+/// The residual may grow to this factor times `max(|r_0|, 1)` before an
+/// attempt counts as diverging.
+pub const DIVERGENCE_FACTOR: f64 = 1e10;
+
+/// An iterate whose residual is within this factor of the tolerance and no
+/// longer halves per iteration has reached the round-off floor of the
+/// residual evaluation and is accepted (and flagged in the step record).
+pub const STAGNATION_FACTOR: f64 = 100.0;
+
+/// Complete formulation: in this many first iterates of an attempt
+/// (iterates 1 and 2, after the first corrections), a point whose
+/// projection leaves its master segment is re-paired at once; from then on
+/// the pairing only changes at converged iterates (module docs).
+pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
+
+/// The solve in progress.
+pub(crate) struct Run<'a> {
+    opts: &'a SolveOptions,
+    setup: Setup<'a>,
+    timings: Timings,
+    counts: KernelCounts,
+    // converged state
+    u: Vec<f64>,
+    lambda: Vec<f64>,
+    pairing: Vec<Option<MasterSegmentIndex>>,
+    ties: Vec<NodeTie>,
+    load_factor: f64,
+    energy: f64,
+    taylor: Option<Vec<Option<Taylor>>>,
+    // history
+    records: Vec<StepRecord>,
+    cutbacks: Vec<Cutback>,
+    snapshots: Vec<State>,
+    iterations: usize,
+    failed_iterations: usize,
+}
+
+impl<'a> Run<'a> {
+    pub(crate) fn new(model: &'a Model, opts: &'a SolveOptions) -> Result<Run<'a>, SolverError> {
+        if opts.steps == 0 {
+            return Err(SolverError::Options("steps must be at least 1".into()));
+        }
+        if opts.max_iterations == 0 {
+            return Err(SolverError::Options(
+                "max_iterations must be at least 1".into(),
+            ));
+        }
+        if !(opts.tolerance.is_finite() && opts.tolerance > 0.0) {
+            return Err(SolverError::Options(format!(
+                "tolerance must be positive, got {}",
+                opts.tolerance
+            )));
+        }
+        let setup = Setup::new(model, opts)?;
+        let n_points = setup.layout.points.len();
+        Ok(Run {
+            opts,
+            timings: Timings::default(),
+            counts: KernelCounts::default(),
+            u: vec![0.0; 2 * model.mesh.node_count()],
+            lambda: vec![0.0; setup.layout.multipliers.len()],
+            pairing: vec![None; n_points],
+            ties: Vec::new(),
+            setup,
+            load_factor: 0.0,
+            energy: 0.0,
+            taylor: None,
+            records: Vec::new(),
+            cutbacks: Vec::new(),
+            snapshots: Vec::new(),
+            iterations: 0,
+            failed_iterations: 0,
+        })
+    }
+
+    fn state(&self) -> State {
+        State {
+            load_factor: self.load_factor,
+            displacements: self.u.chunks(2).map(|c| [c[0], c[1]]).collect(),
+            multipliers: self.lambda.clone(),
+        }
+    }
+
+    /// Runs the whole schedule.
+    pub(crate) fn execute(mut self) -> Result<Solution, SolverError> {
+        let start = Instant::now();
+        // initial pairing in the reference configuration
+        let t = Instant::now();
+        let (initial, counts) = self
+            .setup
+            .initial_pairing(&self.u)
+            .map_err(|f| self.setup.kernel_error(&f, 0.0))?;
+        self.counts += counts;
+        self.pairing = initial;
+        self.timings.contact_evaluation += t.elapsed();
+        if self.opts.record_steps {
+            self.snapshots.push(self.state());
+        }
+        let end = self.setup.model.load_factor_end;
+        let steps = self.opts.steps;
+        for step in 1..=steps {
+            let mut schedule = ScheduledStep::new(step, steps, end, self.load_factor);
+            while let Some(to) = schedule.next_target(self.load_factor) {
+                match self.attempt(to)? {
+                    AttemptOutcome::Converged(c) => self.commit(step, to, c),
+                    AttemptOutcome::CutBack(failed) => {
+                        self.failed_iterations += failed.iterations;
+                        self.cutbacks.push(Cutback {
+                            step,
+                            from_load_factor: self.load_factor,
+                            attempted_load_factor: to,
+                            reason: failed.reason.clone(),
+                            residuals: failed.residuals,
+                        });
+                        if let Err(cutbacks) = schedule.cut_back(self.opts.max_cutbacks) {
+                            return Err(give_up(
+                                step,
+                                self.load_factor,
+                                to,
+                                cutbacks,
+                                failed.reason,
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+        self.finish(start)
+    }
+
+    /// Makes a converged attempt towards `to` the converged state.
+    fn commit(&mut self, step: usize, to: f64, c: Converged) {
+        self.u = c.state.u;
+        self.lambda = c.state.lambda;
+        self.pairing = c.state.pairing;
+        self.ties = c.state.ties;
+        self.load_factor = to;
+        self.energy = c.energy;
+        self.iterations += c.iterations;
+        self.taylor = None;
+        self.records.push(StepRecord {
+            step,
+            load_factor: to,
+            iterations: c.iterations,
+            residuals: c.residuals,
+            strain_energy: c.energy,
+            unpaired: c.points.unpaired,
+            node_ties: c.points.node_ties,
+            kept_outside: c.points.kept_outside,
+            active_multipliers: c.points.active_multipliers,
+            roundoff_floor: c.roundoff_floor,
+        });
+        if self.opts.record_steps {
+            self.snapshots.push(self.state());
+        }
+    }
+
+    fn finish(self, start: Instant) -> Result<Solution, SolverError> {
+        let layout = &self.setup.layout;
+        let (projections, _) = layout
+            .project_all(&self.setup.model.mesh, &self.u, &self.pairing)
+            .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
+        let contact_points = layout
+            .points
+            .iter()
+            .zip(&projections)
+            .map(|(p, proj)| ContactPointReport {
+                pair: p.pair.index(),
+                slave_segment: p.slave_segment,
+                gauss: p.gauss,
+                xi_s: p.xi_s,
+                slave_nodes: p.slave_nodes,
+                master_segment: proj.map(|(m, _)| m.index()),
+                master_nodes: proj.map(|(m, _)| layout.masters_of(p.pair)[m.index()]),
+                xi_m: proj.map(|(_, pr)| pr.xi_m),
+                gap: proj.map(|(_, pr)| pr.gap),
+            })
+            .collect();
+        let mut timings = self.timings;
+        timings.symbolic_factorisation = self.setup.linear.symbolic_time();
+        timings.total = start.elapsed();
+        Ok(Solution {
+            method: self.opts.method,
+            formulations: layout.formulations.clone(),
+            steps: self.opts.steps,
+            load_factor: self.load_factor,
+            strain_energy: self.energy,
+            newton_iterations: self.iterations,
+            failed_iterations: self.failed_iterations,
+            step_records: self.records.clone(),
+            cutbacks: self.cutbacks.clone(),
+            timings,
+            kernel_counts: self.counts,
+            symbolic_factorisations: self.setup.linear.symbolic_factorisations(),
+            equations: self.setup.dofs.n_eq(),
+            mesh: self.setup.model.mesh.clone(),
+            multiplier_dofs: layout
+                .multipliers
+                .iter()
+                .map(|m| MultiplierDofInfo {
+                    pair: m.pair.index(),
+                    node: m.node,
+                })
+                .collect(),
+            final_state: self.state(),
+            snapshots: self.snapshots.clone(),
+            contact_points,
+        })
+    }
+}

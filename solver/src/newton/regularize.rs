@@ -1,0 +1,40 @@
+//! The tangent-only multiplier regularisation (see [`super`], "Multiplier
+//! regularisation").
+//!
+//! Invariants: only the tangent changes, never the residual, so converged
+//! states are those of the unregularised problem; the added entries are one
+//! diagonal triplet per multiplier, after all other contributions, whether
+//! the multiplier is active or not, so the pattern does not depend on the
+//! active set.
+
+use crate::assembly::{DofMap, System};
+use crate::ids::MultiplierIndex;
+
+/// Adds the tangent-only multiplier regularisation (module docs): `-eps` on
+/// the diagonal of the active multiplier rows (an explicit zero on the
+/// inactive ones, so the pattern does not depend on the active set), with
+/// `eps = delta max|G|^2 / max|K_uu|`. Nothing when `delta` is 0 or there
+/// are no multipliers.
+pub(super) fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta: f64) {
+    if !(delta > 0.0) || dofs.n_mult == 0 {
+        return;
+    }
+    let n_free = dofs.n_free;
+    let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
+    for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+        if r < n_free && c < n_free {
+            k_max = k_max.max(v.abs());
+        } else if r < n_free || c < n_free {
+            g_max = g_max.max(v.abs());
+        }
+    }
+    let eps = if k_max > 0.0 {
+        delta * g_max * g_max / k_max
+    } else {
+        0.0
+    };
+    for (m, &on) in active.iter().enumerate() {
+        let row = dofs.mult_eq(MultiplierIndex::new(m));
+        sys.push(row, row, if on { -eps } else { 0.0 });
+    }
+}

@@ -1,0 +1,216 @@
+//! The discretised problem a Newton iteration works on, and the phases of
+//! one iteration on it.
+//!
+//! [`Setup`] is built once per solve (and once per [`super::IterationProbe`])
+//! from a checked [`Model`] and the [`SolveOptions`]: the contact layout, the
+//! equation numbering, the mesh size and the linear solver (which keeps its
+//! symbolic analysis across iterations). Its methods are the phases of an
+//! iteration, in the order [`super::attempt`] calls them:
+//!
+//! 1. the contact evaluation of the complete formulation
+//!    ([`Setup::evaluate_complete`]; Types 1–6 expand their frozen Taylor
+//!    coefficients instead);
+//! 2. the contact system ([`Setup::contact_system`]): active set, contact
+//!    and tie contributions into a fresh [`System`];
+//! 3. the solid elements and the external force ([`Setup::add_solid`]);
+//! 4. the regularised linear solve ([`Setup::solve`]).
+//!
+//! Invariant: the order of the contributions in the system (contact, ties,
+//! solid, external force, regularisation) is fixed here, for the solve and
+//! the probe alike; it fixes the triplet order and so every floating-point
+//! sum of the assembly.
+
+use contact_kernels::ApproxType;
+
+use crate::assembly::{
+    DofMap, System, add_external, assemble_contact, assemble_solid, assemble_ties,
+};
+use crate::contact::{ContactLayout, KernelCounts, NodeTie, PointEval, PointFailure};
+use crate::error::SolverError;
+use crate::ids::{ContactPointIndex, MasterSegmentIndex};
+use crate::linear::{LinearError, LinearSolver};
+use crate::model::Model;
+use crate::options::SolveOptions;
+use crate::solution::ContactPointId;
+
+use super::regularize::regularize;
+
+/// The discretised problem of one solve (module docs).
+pub(super) struct Setup<'a> {
+    /// The model solved.
+    pub(super) model: &'a Model,
+    /// Integration points, multipliers and master chains.
+    pub(super) layout: ContactLayout,
+    /// Equation numbers of the free dofs and the multipliers.
+    pub(super) dofs: DofMap,
+    /// The linear solver, with its cached symbolic analysis.
+    pub(super) linear: Box<dyn LinearSolver>,
+    /// The mesh size (scales the active-set threshold).
+    pub(super) length_scale: f64,
+}
+
+impl<'a> Setup<'a> {
+    /// Checks `model` and lays out its contact pairs and equations with
+    /// `options.formulation` and `options.linear`.
+    pub(super) fn new(model: &'a Model, options: &SolveOptions) -> Result<Setup<'a>, SolverError> {
+        model.check()?;
+        let layout = ContactLayout::new(model, options.formulation);
+        let dofs = DofMap::new(model, layout.multipliers.len());
+        Ok(Setup {
+            model,
+            layout,
+            dofs,
+            linear: options.linear.build(),
+            length_scale: model.mesh.size(),
+        })
+    }
+
+    /// Sets the prescribed dofs of `u` to their values at load factor `to`.
+    pub(super) fn prescribe(&self, u: &mut [f64], to: f64) {
+        for p in &self.model.prescribed {
+            u[p.dof] = to * p.value;
+        }
+    }
+
+    /// Pairs every point from scratch at displacements `u` (see
+    /// [`ContactLayout::initial_pairing`]).
+    pub(super) fn initial_pairing(
+        &self,
+        u: &[f64],
+    ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
+        self.layout.initial_pairing(&self.model.mesh, u)
+    }
+
+    /// The integration point of a kernel failure.
+    pub(super) fn failure_point(&self, f: &PointFailure) -> ContactPointId {
+        let p = self.layout.point(f.point);
+        ContactPointId {
+            pair: p.pair.index(),
+            slave_segment: p.slave_segment,
+            gauss: p.gauss,
+            master_segment: f.master_segment.map(MasterSegmentIndex::index),
+        }
+    }
+
+    /// Integration point `i` (no master segment).
+    pub(super) fn point_id(&self, i: ContactPointIndex) -> ContactPointId {
+        let p = self.layout.point(i);
+        ContactPointId {
+            pair: p.pair.index(),
+            slave_segment: p.slave_segment,
+            gauss: p.gauss,
+            master_segment: None,
+        }
+    }
+
+    /// A kernel failure at a state of load factor `load_factor` as the
+    /// solve's error.
+    pub(super) fn kernel_error(&self, f: &PointFailure, load_factor: f64) -> SolverError {
+        SolverError::Kernel {
+            point: self.failure_point(f),
+            load_factor,
+            error: f.error,
+        }
+    }
+
+    /// The complete formulation's contact evaluation at one iterate: the
+    /// Type 6 kernel of every point on its paired master segment (see
+    /// [`ContactLayout::evaluate_paired`]; with `at_once`, re-paired by
+    /// [`ContactLayout::evaluate_all`]) and of every tied point on its
+    /// other segment. A kernel failure may force a re-pairing: the caller
+    /// takes the new pairing from the evaluations' master segments. Kernel
+    /// calls are added to `counts` (on failure only those of the first
+    /// pass).
+    pub(super) fn evaluate_complete(
+        &self,
+        u: &[f64],
+        pairing: &[Option<MasterSegmentIndex>],
+        ties: &[NodeTie],
+        at_once: bool,
+        counts_out: &mut KernelCounts,
+    ) -> Result<(Vec<Option<PointEval>>, Vec<PointEval>), PointFailure> {
+        let mesh = &self.model.mesh;
+        let (mut evals, counts) = if at_once {
+            self.layout
+                .evaluate_all(mesh, u, pairing, ApproxType::Type6)?
+        } else {
+            self.layout
+                .evaluate_paired(mesh, u, pairing, ApproxType::Type6)?
+        };
+        *counts_out += counts;
+        let mut counts = KernelCounts::default();
+        for t in ties {
+            if evals[t.point.index()].is_none_or(|e| e.master != t.paired) {
+                evals[t.point.index()] = Some(
+                    self.layout
+                        .evaluate_on(mesh, u, t.point, t.paired, ApproxType::Type6, &mut counts)
+                        .map_err(|error| PointFailure {
+                            point: t.point,
+                            master_segment: Some(t.paired),
+                            error,
+                        })?,
+                );
+            }
+        }
+        let others = ties
+            .iter()
+            .map(|t| {
+                self.layout
+                    .evaluate_on(mesh, u, t.point, t.other, ApproxType::Type6, &mut counts)
+                    .map_err(|error| PointFailure {
+                        point: t.point,
+                        master_segment: Some(t.other),
+                        error,
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        *counts_out += counts;
+        Ok((evals, others))
+    }
+
+    /// The active multipliers at `(evals, lambda)` and a fresh system (one
+    /// equation per free dof, multiplier and tie) holding the contact
+    /// contributions of `evals` and then those of the `ties` (with `others`,
+    /// their evaluations on the other segment).
+    pub(super) fn contact_system(
+        &self,
+        evals: &[Option<PointEval>],
+        others: &[PointEval],
+        lambda: &[f64],
+        ties: &[NodeTie],
+    ) -> (System, Vec<bool>) {
+        let active = self
+            .layout
+            .active_multipliers(evals, lambda, self.length_scale);
+        let n_sys = self.dofs.n_eq() + ties.len();
+        let mut sys = System::new(n_sys);
+        assemble_contact(&self.layout, evals, lambda, &active, &self.dofs, &mut sys);
+        assemble_ties(ties, evals, others, &self.dofs, &mut sys);
+        (sys, active)
+    }
+
+    /// Adds the solid elements at displacements `u` and the external force
+    /// at load factor `to` to `sys`; returns `|f_ext|`.
+    pub(super) fn add_solid(&self, u: &[f64], to: f64, sys: &mut System) -> f64 {
+        assemble_solid(self.model, &self.dofs, u, sys);
+        add_external(self.model, &self.dofs, to, sys)
+    }
+
+    /// Adds the multiplier regularisation `delta` (see
+    /// [`super::regularize`]) to `sys` and solves `K dx = r`.
+    pub(super) fn solve(
+        &mut self,
+        sys: &mut System,
+        active: &[bool],
+        delta: f64,
+    ) -> Result<Vec<f64>, LinearError> {
+        regularize(sys, &self.dofs, active, delta);
+        self.linear.solve_system(
+            sys.residual.len(),
+            &sys.rows,
+            &sys.cols,
+            &sys.vals,
+            &sys.residual,
+        )
+    }
+}

@@ -1,0 +1,126 @@
+//! The options of one solve: the contact [`Method`] and [`SolveOptions`].
+//!
+//! This module sits below the solution modules (it imports only the kernel
+//! types, [`crate::linear::LinearSolverKind`] and, for
+//! [`SolveOptions::from_scene`], the scene), so the modules that read the
+//! options import them from here rather than from the crate root. The defaults are part of the behaviour: changing one changes
+//! every result.
+
+use contact_kernels::{ApproxType, Formulation};
+
+use crate::linear::LinearSolverKind;
+use crate::scene::Scene;
+
+/// Default of [`SolveOptions::regularization`] (see [`crate::newton`],
+/// "Multiplier regularisation").
+pub const DEFAULT_REGULARIZATION: f64 = 1e-10;
+
+/// How the contact gap is treated within a load step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Method {
+    /// Re-projection and the exact (Type 6) kernel at every Newton
+    /// iteration.
+    Complete,
+    /// The type's Taylor expansion frozen at each step start.
+    Approx(ApproxType),
+}
+
+impl Method {
+    /// The complete formulation followed by the six types.
+    pub const ALL: [Method; 7] = [
+        Method::Complete,
+        Method::Approx(ApproxType::Type1),
+        Method::Approx(ApproxType::Type2),
+        Method::Approx(ApproxType::Type3),
+        Method::Approx(ApproxType::Type4),
+        Method::Approx(ApproxType::Type5),
+        Method::Approx(ApproxType::Type6),
+    ];
+}
+
+impl std::fmt::Display for Method {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Method::Complete => f.write_str("complete"),
+            Method::Approx(t) => write!(f, "{}", t.index()),
+        }
+    }
+}
+
+/// Error parsing a [`Method`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown method `{0}` (expected `complete` or an approximation type 1..6)")]
+pub struct ParseMethodError(pub String);
+
+impl std::str::FromStr for Method {
+    type Err = ParseMethodError;
+    /// `"complete"`, or `"1"`..`"6"` (also `"type3"`).
+    fn from_str(s: &str) -> Result<Method, ParseMethodError> {
+        let t = s.trim();
+        if t.eq_ignore_ascii_case("complete") {
+            return Ok(Method::Complete);
+        }
+        t.parse::<ApproxType>()
+            .map(Method::Approx)
+            .map_err(|_| ParseMethodError(s.to_owned()))
+    }
+}
+
+/// Options of one solve.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SolveOptions {
+    /// Complete or an approximation type.
+    pub method: Method,
+    /// Number of equal load steps from 0 to the scene's final load factor.
+    pub steps: usize,
+    /// Replace every contact pair's formulation.
+    pub formulation: Option<Formulation>,
+    /// Keep the state after every converged (sub)step in
+    /// [`crate::Solution::snapshots`] (plus the initial state).
+    pub record_steps: bool,
+    /// Newton iterations per attempt.
+    pub max_iterations: usize,
+    /// Cut-backs (bisections) allowed per scheduled step.
+    pub max_cutbacks: usize,
+    /// Converged when `|r| <= tolerance * max(1, |f_ext|)`.
+    pub tolerance: f64,
+    /// Tangent-only multiplier regularisation `delta` (see
+    /// [`crate::newton`]); 0 disables it.
+    pub regularization: f64,
+    /// The linear solver of the Newton iterations.
+    pub linear: LinearSolverKind,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            method: Method::Complete,
+            steps: 4,
+            formulation: None,
+            record_steps: false,
+            max_iterations: 30,
+            max_cutbacks: 8,
+            tolerance: 1e-10,
+            regularization: DEFAULT_REGULARIZATION,
+            linear: LinearSolverKind::Lu,
+        }
+    }
+}
+
+impl SolveOptions {
+    /// The scene's defaults: its method, default step count and Newton
+    /// settings.
+    pub fn from_scene(scene: &Scene) -> SolveOptions {
+        SolveOptions {
+            method: scene.loading.method,
+            steps: scene.default_steps(),
+            formulation: None,
+            record_steps: false,
+            max_iterations: scene.newton.max_iterations,
+            max_cutbacks: scene.newton.max_cutbacks,
+            tolerance: scene.newton.tolerance,
+            regularization: DEFAULT_REGULARIZATION,
+            linear: LinearSolverKind::Lu,
+        }
+    }
+}
