@@ -3,8 +3,8 @@
 //! `Kernel::eval` handle (into a reused `GapOut`), the projection kernel
 //! through `contact_kernels::project` and the `Projector` handle, and
 //! num-dual's `hessian` of the same gap written generically (the function of
-//! `tests/kernels_ad.rs`), all at the same configuration (design.md's worked
-//! example), in one run so the handle/value ratio can be read off.
+//! `tests/kernels_ad.rs`), all at the same configuration (the worked example of
+//! docs/conventions.md), in one run so the handle/value ratio can be read off.
 //!
 //! Run `cargo bench --bench kernels`, then
 //! `cargo run --release --example bench_table` for the Markdown table.
@@ -26,7 +26,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::SVector;
 use num_dual::{Dual2SVec64, DualNum, hessian};
 
-/// design.md's worked example.
+/// the worked example of docs/conventions.md.
 const Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
 const XI_S: f64 = 0.3;
 

@@ -117,7 +117,7 @@ fn main() -> ExitCode {
     match table(&dir) {
         Ok(t) => {
             println!(
-                "Median time per evaluation (criterion, design.md's worked example; kernels via \
+                "Median time per evaluation (criterion, the worked example of docs/conventions.md; kernels via \
                  `contact_kernels::evaluate`, including input validation and the projection solve; \
                  handle: `Kernel::eval` into a reused `GapOut` / `Projector::project`, and its \
                  time relative to the value API in the same run).\n"

@@ -1,4 +1,4 @@
-//! The `gapsim kernel` contract (design.md), tested by running the binary.
+//! The `gapsim kernel` contract (docs/conventions.md), tested by running the binary.
 //!
 //! * Output: one JSON object `{"gap":..,"xi_m":..,"grad":[8],"hess":[[8]x8]}`
 //!   on stdout, whose numbers round-trip **exactly** to the library's
@@ -107,7 +107,7 @@ fn assert_equals_library(nums: &[f64], f: Formulation, ty: ApproxType, q: &[f64;
 /// A published worked example: formulation, g, xi_m, g', first row of g''.
 type Published = (&'static str, f64, f64, [f64; 8], [f64; 8]);
 
-/// design.md's worked example, Type 6, both formulations: the published
+/// the worked example of docs/conventions.md, Type 6, both formulations: the published
 /// digits (relative 1e-10 per entry, absolute 1e-13 for printed zeros).
 #[test]
 fn worked_example() {

@@ -4,13 +4,13 @@
 //! The reference is an **independent construction** that never calls into
 //! the generator:
 //!
-//! * The gap of both formulations of `design.md` is written once,
+//! * The gap of both formulations of docs/conventions.md is written once,
 //!   generically over num-dual numbers ([`gap`]); the projection uses the
 //!   closed form of straight segments (the kernels solve the implicit
 //!   residual instead).
 //! * Type 6 is compared with num-dual's full gradient and Hessian of that
 //!   function ([`exact_reference`]).
-//! * Types 1–5 are compared with design.md's truncated formula, assembled
+//! * Types 1–5 are compared with the truncated formula, assembled
 //!   here ([`truncated_reference`]) from num-dual partial derivatives of the
 //!   entities `x_ms(q, xi)` and `n(q, xi)` (taken at a fixed, independent
 //!   `xi`) and of the closed-form `xi_m(q)`.
@@ -201,7 +201,7 @@ fn entity_partials(f: Formulation, q: &[f64; 8], xi_s: f64, xi: f64) -> [Partial
     })
 }
 
-/// design.md's truncation table, written independently of the generator:
+/// the truncation table of docs/conventions.md, written independently of the generator:
 /// the orders kept for `[xi_m, x_ms, n]`.
 fn table_row(ty: ApproxType) -> [EntityOrder; 3] {
     use EntityOrder::{Constant as C, Linear as L, Quadratic as Q};
@@ -251,7 +251,7 @@ fn kept_derivatives(
     }
 }
 
-/// design.md's truncated `g`, `g'`, `g''` for one row of the table, assembled
+/// the truncated `g`, `g'`, `g''` for one row of the table, assembled
 /// from num-dual partial derivatives of the entities:
 ///
 /// ```text
@@ -486,7 +486,7 @@ impl Shape {
     }
 }
 
-/// The worked example of design.md.
+/// The worked example of docs/conventions.md.
 const WORKED_Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
 const WORKED_XI_S: f64 = 0.3;
 
@@ -512,7 +512,7 @@ fn seeded(seed: u64) -> ChaCha8Rng {
 // The reference itself (independent of the kernels).
 // ---------------------------------------------------------------------------
 
-/// The published worked example of design.md (the digits printed there).
+/// The published worked example of docs/conventions.md (the digits printed there).
 struct Published {
     gap: f64,
     xi_m: f64,
@@ -656,7 +656,7 @@ fn reference_truncation_with_everything_quadratic_is_exact() {
     }
 }
 
-/// The generated truncation table is design.md's.
+/// The generated truncation table is the one of docs/conventions.md.
 #[test]
 fn truncation_table_matches_design() {
     for ty in ApproxType::ALL {
@@ -668,7 +668,7 @@ fn truncation_table_matches_design() {
 // Kernels against the references.
 // ---------------------------------------------------------------------------
 
-/// design.md's worked example, Type 6, both formulations, against the
+/// the worked example of docs/conventions.md, Type 6, both formulations, against the
 /// printed digits (relative 1e-10 per entry).
 #[test]
 fn worked_example_type6() {
@@ -1273,7 +1273,7 @@ proptest! {
 
 /// The comparisons can tell the types apart: at the worked example the
 /// kernels' Hessians of different types differ by more than 1e-3 of the
-/// Type-6 Hessian's norm, except where design.md predicts that types
+/// Type-6 Hessian's norm, except where docs/conventions.md predicts that types
 /// coincide. With closest-point, n . x_xi = 0 and n_xi = 0, so the xi''
 /// term vanishes: Types 3 and 4, and Types 5 and 6, must agree (within
 /// [`TOL`]), and the Type-1 gradient is already exact. With slave-normal

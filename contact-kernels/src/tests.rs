@@ -3,7 +3,7 @@
 
 use super::*;
 
-/// design.md's worked example.
+/// the worked example of docs/conventions.md.
 const Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
 const XI_S: f64 = 0.3;
 

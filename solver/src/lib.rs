@@ -72,7 +72,7 @@ pub use solution::{
 
 /// Scenes shipped with the solver.
 pub mod scenes {
-    /// The paper scene, `scenes/stacked-cantilever.toml` (design.md, "The
+    /// The paper scene, `scenes/stacked-cantilever.toml` (docs/conventions.md, "The
     /// paper scene").
     pub const STACKED_CANTILEVER: &str = include_str!("../../scenes/stacked-cantilever.toml");
 }

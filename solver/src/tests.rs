@@ -518,7 +518,7 @@ fn tip(sol: &crate::Solution) -> [f64; 2] {
 }
 
 /// The paper scene, complete formulation: strain energy at load factor 10
-/// within 0.1 % of design.md's anchor 0.56498, loaded node displacement
+/// within 0.1 % of the sanity anchor of docs/conventions.md, 0.56498, loaded node displacement
 /// within 1e-3 of (-0.100, -1.447); every integration point stays inside
 /// its master segment; no cut-backs.
 #[test]
@@ -765,7 +765,7 @@ fn vtu_output_is_consistent() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The shipped paper scene is design.md's definition.
+/// The shipped paper scene is the definition in docs/conventions.md.
 #[test]
 fn paper_scene_file_is_the_design_scene() {
     let scene = paper_scene();
