@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use mshio::error::MshParserErrorKind;
 use mshio::{ElementType, MshFile, MshParserError};
 
 use super::error::MshErrorKind;
@@ -47,21 +48,19 @@ fn malformed(bytes: &[u8], error: &MshParserError<&[u8]>) -> MshErrorKind {
         .first()
         .and_then(|(rest, _)| offset_in(bytes, rest))
         .unwrap_or(bytes.len());
-    let messages: Vec<String> = error
-        .filter_msh_errors()
-        .map(|(_, kind)| kind.to_string())
-        .collect();
-    let (what, context) = match messages.split_first() {
-        Some((what, around)) => {
-            let around: Vec<&str> = around.iter().rev().map(String::as_str).collect();
-            let context = if around.is_empty() {
-                String::new()
-            } else {
-                format!(", in {}", around.join(" > "))
-            };
-            (what.clone(), context)
-        }
-        None => ("unexpected input".to_owned(), String::new()),
+    // The backtrace runs from the innermost entry outwards; nom's own
+    // entries say nothing a reader of the file can use.
+    let entries: Vec<&MshParserErrorKind> = error.filter_msh_errors().map(|(_, k)| k).collect();
+    let what = entries
+        .iter()
+        .find(|k| k.context().is_none())
+        .map(|k| k.to_string().trim_end_matches('.').to_owned())
+        .unwrap_or_else(|| "unexpected input".to_owned());
+    let contexts: Vec<&str> = entries.iter().rev().filter_map(|k| k.context()).collect();
+    let context = if contexts.is_empty() {
+        String::new()
+    } else {
+        format!(", in {}", contexts.join(" > "))
     };
     MshErrorKind::Malformed {
         offset,

@@ -117,7 +117,7 @@ pub enum MshErrorKind {
     },
     /// A node is off the plane z = 0: the mesh is not two-dimensional.
     #[error(
-        "node {node} has z = {z:e}, more than {tolerance:e} off the plane z = 0; gapsim reads 2D meshes in the xy-plane"
+        "node {node} has z = {z}, more than {tolerance:e} off the plane z = 0; gapsim reads 2D meshes in the xy-plane"
     )]
     NotPlanar {
         /// Gmsh tag of the node.

@@ -306,8 +306,13 @@ fn truncated_file_names_offset_and_line() {
     let MshErrorKind::Malformed { line, .. } = &e else {
         panic!("{e}");
     };
-    assert!(*line > 20, "{e}");
-    assert!(e.to_string().contains("truncated"), "{e}");
+    assert_eq!(*line, 25, "{e}");
+    let text = e.to_string();
+    assert!(text.contains("truncated"), "{text}");
+    assert!(
+        text.contains("in node section > node entity block (1 of 1)"),
+        "{text}"
+    );
 }
 
 #[test]
