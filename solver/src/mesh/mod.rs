@@ -29,6 +29,7 @@ use crate::material::Material;
 use crate::quad::{InvalidElement, QuadGeometry};
 
 pub mod block;
+pub mod gmsh;
 
 pub use block::{Block, Side};
 

@@ -1,0 +1,289 @@
+//! From the bytes of a file to the parts of an [`MshMesh`](super::MshMesh):
+//! the guard, `mshio`, the physical names and node tags, then the checks
+//! that give the mesh its invariants.
+
+use std::collections::HashMap;
+
+use mshio::error::MshParserErrorKind;
+use mshio::{ElementType, MshFile, MshParserError};
+
+use super::error::MshErrorKind;
+use super::guard::{self, line_of};
+use super::{Entity, MshElement, MshElementType, PhysicalGroup, node_tags, physical_names};
+
+/// Relative tolerance on |z| (times `max(1, max |x|, |y|)`).
+const PLANAR_TOLERANCE: f64 = 1e-9;
+
+/// What an [`MshMesh`](super::MshMesh) is made of.
+pub(super) struct Parts {
+    pub(super) nodes: Vec<[f64; 2]>,
+    pub(super) node_tags: Vec<u64>,
+    pub(super) node_index: HashMap<u64, usize>,
+    pub(super) elements: Vec<MshElement>,
+    pub(super) groups: Vec<PhysicalGroup>,
+}
+
+/// Reads and checks a whole file.
+pub(super) fn read(bytes: &[u8]) -> Result<Parts, MshErrorKind> {
+    let encoding = guard::check(bytes)?;
+    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| malformed(bytes, &e))?;
+    let names = physical_names::parse(bytes)?;
+    let (nodes, node_tags, node_index) = nodes(bytes, encoding, &msh)?;
+    let elements = elements(&msh, &node_index)?;
+    let groups = groups(&msh, names)?;
+    Ok(Parts {
+        nodes,
+        node_tags,
+        node_index,
+        elements,
+        groups,
+    })
+}
+
+/// `mshio`'s error as [`MshErrorKind::Malformed`]: where it stopped, the
+/// innermost message and the contexts around it (outermost first).
+fn malformed(bytes: &[u8], error: &MshParserError<&[u8]>) -> MshErrorKind {
+    let offset = error
+        .backtrace
+        .first()
+        .and_then(|(rest, _)| offset_in(bytes, rest))
+        .unwrap_or(bytes.len());
+    // The backtrace runs from the innermost entry outwards; nom's own
+    // entries say nothing a reader of the file can use.
+    let entries: Vec<&MshParserErrorKind> = error.filter_msh_errors().map(|(_, k)| k).collect();
+    let what = entries
+        .iter()
+        .find(|k| k.context().is_none())
+        .map(|k| k.to_string().trim_end_matches('.').to_owned())
+        .unwrap_or_else(|| "unexpected input".to_owned());
+    let contexts: Vec<&str> = entries.iter().rev().filter_map(|k| k.context()).collect();
+    let context = if contexts.is_empty() {
+        String::new()
+    } else {
+        format!(", in {}", contexts.join(" > "))
+    };
+    MshErrorKind::Malformed {
+        offset,
+        line: line_of(bytes, offset),
+        what,
+        context,
+    }
+}
+
+/// Where the slice `rest` starts in `bytes`, if it is part of it.
+fn offset_in(bytes: &[u8], rest: &[u8]) -> Option<usize> {
+    let offset = (rest.as_ptr() as usize).checked_sub(bytes.as_ptr() as usize)?;
+    (offset <= bytes.len()).then_some(offset)
+}
+
+type Nodes = (Vec<[f64; 2]>, Vec<u64>, HashMap<u64, usize>);
+
+/// The nodes in file order, their tags and the map from tags.
+fn nodes(
+    bytes: &[u8],
+    encoding: guard::Encoding,
+    msh: &MshFile<u64, i32, f64>,
+) -> Result<Nodes, MshErrorKind> {
+    let Some(section) = &msh.data.nodes else {
+        return Ok((Vec::new(), Vec::new(), HashMap::new()));
+    };
+    let tags = node_tags::node_tags(bytes, encoding)?;
+    let mismatch = || MshErrorKind::Malformed {
+        offset: 0,
+        line: 1,
+        what: "the node tags do not match the node blocks".to_owned(),
+        context: ", in the `$Nodes` section".to_owned(),
+    };
+    if tags.len() != section.node_blocks.len() {
+        return Err(mismatch());
+    }
+    let extent = section
+        .node_blocks
+        .iter()
+        .flat_map(|b| &b.nodes)
+        .fold(1.0_f64, |m, n| m.max(n.x.abs()).max(n.y.abs()));
+    let tolerance = PLANAR_TOLERANCE * extent;
+    let mut coordinates = Vec::new();
+    let mut node_tags = Vec::new();
+    let mut node_index = HashMap::new();
+    for (block, block_tags) in section.node_blocks.iter().zip(&tags) {
+        if block.nodes.len() != block_tags.len() {
+            return Err(mismatch());
+        }
+        for (node, &tag) in block.nodes.iter().zip(block_tags) {
+            if !(node.x.is_finite() && node.y.is_finite() && node.z.is_finite()) {
+                return Err(MshErrorKind::NonFiniteNode {
+                    node: tag,
+                    x: node.x,
+                    y: node.y,
+                    z: node.z,
+                });
+            }
+            if node.z.abs() > tolerance {
+                return Err(MshErrorKind::NotPlanar {
+                    node: tag,
+                    z: node.z,
+                    tolerance,
+                });
+            }
+            if node_index.insert(tag, coordinates.len()).is_some() {
+                return Err(MshErrorKind::DuplicateNode(tag));
+            }
+            coordinates.push([node.x, node.y]);
+            node_tags.push(tag);
+        }
+    }
+    Ok((coordinates, node_tags, node_index))
+}
+
+/// The elements in file order, with dense node indices.
+fn elements(
+    msh: &MshFile<u64, i32, f64>,
+    node_index: &HashMap<u64, usize>,
+) -> Result<Vec<MshElement>, MshErrorKind> {
+    let Some(section) = &msh.data.elements else {
+        return Ok(Vec::new());
+    };
+    let mut elements = Vec::new();
+    for block in &section.element_blocks {
+        let kind = match block.element_type {
+            ElementType::Pnt => MshElementType::Point,
+            ElementType::Lin2 => MshElementType::Line,
+            ElementType::Tri3 => MshElementType::Triangle,
+            ElementType::Qua4 => MshElementType::Quad,
+            other => {
+                return Err(MshErrorKind::UnsupportedElement {
+                    name: type_name(other),
+                    gmsh_type: other as i32,
+                    count: block.elements.len(),
+                    entity_dim: block.entity_dim,
+                    entity_tag: block.entity_tag,
+                });
+            }
+        };
+        if block.entity_dim != i32::from(kind.dim()) {
+            return Err(MshErrorKind::ElementDimension {
+                name: type_name(block.element_type),
+                element_dim: kind.dim(),
+                entity_dim: block.entity_dim,
+                entity_tag: block.entity_tag,
+            });
+        }
+        let entity = Entity {
+            dim: kind.dim(),
+            tag: block.entity_tag,
+        };
+        for element in &block.elements {
+            let mut nodes = [usize::MAX; 4];
+            for (slot, &tag) in nodes.iter_mut().zip(&element.nodes) {
+                *slot = *node_index.get(&tag).ok_or(MshErrorKind::UnknownNode {
+                    element: element.element_tag,
+                    node: tag,
+                })?;
+            }
+            elements.push(MshElement {
+                tag: element.element_tag,
+                kind,
+                entity,
+                nodes,
+            });
+        }
+    }
+    Ok(elements)
+}
+
+/// The named groups, each with the entities whose physical tags name it.
+fn groups(
+    msh: &MshFile<u64, i32, f64>,
+    names: Vec<physical_names::PhysicalName>,
+) -> Result<Vec<PhysicalGroup>, MshErrorKind> {
+    // (dim, physical tag) of every entity
+    let mut tagged: Vec<(u8, i32, i32)> = Vec::new(); // (dim, physical, entity)
+    if let Some(entities) = &msh.data.entities {
+        let mut add = |dim: u8, entity: i32, physical: &[i32]| {
+            tagged.extend(physical.iter().map(|&p| (dim, p, entity)));
+        };
+        for p in &entities.points {
+            add(0, p.tag, &p.physical_tags);
+        }
+        for c in &entities.curves {
+            add(1, c.tag, &c.physical_tags);
+        }
+        for s in &entities.surfaces {
+            add(2, s.tag, &s.physical_tags);
+        }
+        for v in &entities.volumes {
+            add(3, v.tag, &v.physical_tags);
+        }
+    }
+    let mut groups: Vec<PhysicalGroup> = Vec::new();
+    for name in names {
+        if groups
+            .iter()
+            .any(|g| g.dim == name.dim && g.name == name.name)
+        {
+            return Err(MshErrorKind::DuplicateGroupName {
+                name: name.name,
+                dim: name.dim,
+            });
+        }
+        let mut entities: Vec<i32> = tagged
+            .iter()
+            .filter(|&&(dim, physical, _)| dim == name.dim && physical == name.tag)
+            .map(|&(_, _, entity)| entity)
+            .collect();
+        entities.sort_unstable();
+        entities.dedup();
+        groups.push(PhysicalGroup {
+            name: name.name,
+            dim: name.dim,
+            tag: name.tag,
+            entities,
+        });
+    }
+    Ok(groups)
+}
+
+/// Gmsh's name of an element type (`9-node second order quadrangle`).
+fn type_name(t: ElementType) -> String {
+    let name = match t as i32 {
+        1 => "2-node line",
+        2 => "3-node triangle",
+        3 => "4-node quadrangle",
+        4 => "4-node tetrahedron",
+        5 => "8-node hexahedron",
+        6 => "6-node prism",
+        7 => "5-node pyramid",
+        8 => "3-node second order line",
+        9 => "6-node second order triangle",
+        10 => "9-node second order quadrangle",
+        11 => "10-node second order tetrahedron",
+        12 => "27-node second order hexahedron",
+        13 => "18-node second order prism",
+        14 => "14-node second order pyramid",
+        15 => "1-node point",
+        16 => "8-node second order quadrangle",
+        17 => "20-node second order hexahedron",
+        18 => "15-node second order prism",
+        19 => "13-node second order pyramid",
+        20 => "9-node third order incomplete triangle",
+        21 => "10-node third order triangle",
+        22 => "12-node fourth order incomplete triangle",
+        23 => "15-node fourth order triangle",
+        24 => "15-node fifth order incomplete triangle",
+        25 => "21-node fifth order triangle",
+        26 => "4-node third order line",
+        27 => "5-node fourth order line",
+        28 => "6-node fifth order line",
+        29 => "20-node third order tetrahedron",
+        30 => "35-node fourth order tetrahedron",
+        31 => "56-node fifth order tetrahedron",
+        _ => {
+            return match t.nodes() {
+                Ok(n) => format!("{n}-node {t:?} element"),
+                Err(()) => format!("{t:?} element"),
+            };
+        }
+    };
+    name.to_owned()
+}

@@ -1,0 +1,319 @@
+//! Gmsh MSH 4.1 meshes (ASCII and binary) and their physical groups.
+//!
+//! [`MshMesh::read`] reads a `.msh` file into a neutral structure that
+//! knows nothing about bodies, materials or the solver: the nodes, the
+//! elements of the four kinds a 2D linear mesh has (1-node points, 2-node
+//! lines, 3-node triangles, 4-node quadrangles), each with the geometric
+//! entity it lies on, and the named physical groups with their entities.
+//! The queries answer by physical name: the elements of a physical surface
+//! ([`MshMesh::surface_elements`]), the segments of a physical curve
+//! ([`MshMesh::curve_segments`]), the nodes of a physical curve or point
+//! ([`MshMesh::group_nodes`]). Turning groups into bodies, faces and
+//! supports is the scene's mesh source's job.
+//!
+//! The sections are read by `mshio` (`$Entities`, `$Nodes`, `$Elements`),
+//! except what it skips or drops: `$PhysicalNames` (`physical_names.rs`)
+//! and dense node tags (`node_tags.rs`). Input that would make `mshio`
+//! panic is rejected first (`guard.rs`), so that reading any bytes returns a
+//! `Result`; the tests truncate and corrupt files to hold that.
+//!
+//! Invariants of an [`MshMesh`]:
+//!
+//! * nodes are numbered densely from 0 in file order; `node_tag(i)` is the
+//!   file's tag of node `i` and `node_index` inverts it;
+//! * every node is finite and lies in the plane z = 0 (within
+//!   `1e-9 max(1, max |x|, |y|)`); only x and y are kept;
+//! * every element is one of [`MshElementType`], lies on an entity of its
+//!   own dimension and refers to existing nodes, in the file's node order
+//!   (Gmsh's: counter-clockwise about the surface's normal);
+//! * elements are in file order (block by block);
+//! * physical groups are those named in `$PhysicalNames` (unnamed physical
+//!   tags are not reachable); no two groups of one dimension share a name.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+mod convert;
+mod error;
+mod guard;
+mod node_tags;
+mod physical_names;
+
+#[cfg(test)]
+mod tests;
+
+pub use error::{MshError, MshErrorKind};
+
+/// The element types read; everything else is an error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum MshElementType {
+    /// 1-node point (Gmsh type 15).
+    Point,
+    /// 2-node line (type 1).
+    Line,
+    /// 3-node triangle (type 2).
+    Triangle,
+    /// 4-node quadrangle (type 3).
+    Quad,
+}
+
+impl MshElementType {
+    /// Nodes per element.
+    pub fn node_count(self) -> usize {
+        match self {
+            MshElementType::Point => 1,
+            MshElementType::Line => 2,
+            MshElementType::Triangle => 3,
+            MshElementType::Quad => 4,
+        }
+    }
+
+    /// The element's dimension (0 to 2).
+    pub fn dim(self) -> u8 {
+        match self {
+            MshElementType::Point => 0,
+            MshElementType::Line => 1,
+            MshElementType::Triangle | MshElementType::Quad => 2,
+        }
+    }
+
+    /// Gmsh's element type number.
+    pub fn gmsh_type(self) -> i32 {
+        match self {
+            MshElementType::Point => 15,
+            MshElementType::Line => 1,
+            MshElementType::Triangle => 2,
+            MshElementType::Quad => 3,
+        }
+    }
+}
+
+/// A geometric entity of the file: its dimension and tag.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Entity {
+    /// 0 point, 1 curve, 2 surface.
+    pub dim: u8,
+    /// The entity's tag (unique per dimension).
+    pub tag: i32,
+}
+
+/// One element of the file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct MshElement {
+    /// Gmsh's tag of the element.
+    pub tag: u64,
+    /// Its type.
+    pub kind: MshElementType,
+    /// The entity it lies on.
+    pub entity: Entity,
+    /// Its nodes (dense indices), padded with `usize::MAX`.
+    nodes: [usize; 4],
+}
+
+impl MshElement {
+    /// The element's nodes (dense indices), in the file's order;
+    /// `kind.node_count()` of them.
+    pub fn nodes(&self) -> &[usize] {
+        &self.nodes[..self.kind.node_count()]
+    }
+}
+
+/// A named physical group.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PhysicalGroup {
+    /// Its name in `$PhysicalNames`.
+    pub name: String,
+    /// Its dimension (0 to 3).
+    pub dim: u8,
+    /// Its physical tag.
+    pub tag: i32,
+    /// The tags of the entities (of dimension `dim`) that belong to it,
+    /// ascending.
+    pub entities: Vec<i32>,
+}
+
+/// A Gmsh mesh as read from a file; see the module docs for its
+/// invariants.
+#[derive(Debug, Clone)]
+pub struct MshMesh {
+    file: PathBuf,
+    nodes: Vec<[f64; 2]>,
+    node_tags: Vec<u64>,
+    node_index: HashMap<u64, usize>,
+    elements: Vec<MshElement>,
+    groups: Vec<PhysicalGroup>,
+}
+
+/// The dimensions a query accepts, and how its error says so.
+struct Expect {
+    dims: &'static [u8],
+    what: &'static str,
+}
+
+const SURFACE: Expect = Expect {
+    dims: &[2],
+    what: "2 (a physical surface)",
+};
+const CURVE: Expect = Expect {
+    dims: &[1],
+    what: "1 (a physical curve)",
+};
+const CURVE_OR_POINT: Expect = Expect {
+    dims: &[0, 1],
+    what: "0 or 1 (a physical point or curve)",
+};
+
+impl MshMesh {
+    /// Reads the `.msh` file at `path` (MSH 4.1, ASCII or binary). Errors
+    /// name `path`.
+    pub fn read(path: impl AsRef<Path>) -> Result<MshMesh, MshError> {
+        let path = path.as_ref();
+        let bytes = std::fs::read(path).map_err(|e| MshError {
+            file: path.to_owned(),
+            kind: MshErrorKind::Io(e),
+        })?;
+        MshMesh::from_bytes(&bytes, path)
+    }
+
+    /// Reads the contents of a `.msh` file; `file` is the name errors give.
+    /// Never panics, whatever the bytes.
+    pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<MshMesh, MshError> {
+        let file = file.into();
+        match convert::read(bytes) {
+            Ok(parts) => Ok(MshMesh {
+                file,
+                nodes: parts.nodes,
+                node_tags: parts.node_tags,
+                node_index: parts.node_index,
+                elements: parts.elements,
+                groups: parts.groups,
+            }),
+            Err(kind) => Err(MshError { file, kind }),
+        }
+    }
+
+    /// The file the mesh was read from.
+    pub fn file(&self) -> &Path {
+        &self.file
+    }
+
+    /// Reference coordinates (x, y) of the nodes, by dense index.
+    pub fn nodes(&self) -> &[[f64; 2]] {
+        &self.nodes
+    }
+
+    /// The file's tag of node `index`.
+    pub fn node_tag(&self, index: usize) -> Option<u64> {
+        self.node_tags.get(index).copied()
+    }
+
+    /// The dense index of the node with the file's tag `tag`.
+    pub fn node_index(&self, tag: u64) -> Option<usize> {
+        self.node_index.get(&tag).copied()
+    }
+
+    /// Every element, in file order.
+    pub fn elements(&self) -> &[MshElement] {
+        &self.elements
+    }
+
+    /// The named physical groups, in `$PhysicalNames` order.
+    pub fn groups(&self) -> &[PhysicalGroup] {
+        &self.groups
+    }
+
+    /// The triangles and quadrangles of the physical surface `name`, in
+    /// file order. Errors: no group of that name, not a surface, no such
+    /// elements.
+    pub fn surface_elements(&self, name: &str) -> Result<Vec<&MshElement>, MshError> {
+        let elements = self.elements_of(name, &SURFACE)?;
+        if elements.is_empty() {
+            return Err(self.error(MshErrorKind::EmptyGroup {
+                name: name.to_owned(),
+                what: "triangles or quadrangles",
+            }));
+        }
+        Ok(elements)
+    }
+
+    /// The 2-node line elements of the physical curve `name`, as node
+    /// pairs in file order, each as the file draws it (the orientation of
+    /// the curve, not of any surface). Errors: no group of that name, not a
+    /// curve, no line elements.
+    pub fn curve_segments(&self, name: &str) -> Result<Vec<[usize; 2]>, MshError> {
+        let segments: Vec<[usize; 2]> = self
+            .elements_of(name, &CURVE)?
+            .into_iter()
+            .filter(|e| e.kind == MshElementType::Line)
+            .map(|e| [e.nodes[0], e.nodes[1]])
+            .collect();
+        if segments.is_empty() {
+            return Err(self.error(MshErrorKind::EmptyGroup {
+                name: name.to_owned(),
+                what: "line elements",
+            }));
+        }
+        Ok(segments)
+    }
+
+    /// The nodes (dense indices, ascending, each once) of the elements of
+    /// the physical curve or point `name`; if a curve and a point share the
+    /// name, of both. Errors: no group of that name, not a curve or point,
+    /// no elements.
+    pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
+        let mut nodes: Vec<usize> = self
+            .elements_of(name, &CURVE_OR_POINT)?
+            .into_iter()
+            .flat_map(|e| e.nodes().iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        if nodes.is_empty() {
+            return Err(self.error(MshErrorKind::EmptyGroup {
+                name: name.to_owned(),
+                what: "point or line elements",
+            }));
+        }
+        Ok(nodes)
+    }
+
+    /// The elements of the dimension(s) `expect` allows on the entities of
+    /// the groups named `name`.
+    fn elements_of(&self, name: &str, expect: &Expect) -> Result<Vec<&MshElement>, MshError> {
+        let named: Vec<&PhysicalGroup> = self.groups.iter().filter(|g| g.name == name).collect();
+        if named.is_empty() {
+            let mut known: Vec<String> = self.groups.iter().map(|g| g.name.clone()).collect();
+            known.sort();
+            known.dedup();
+            return Err(self.error(MshErrorKind::UnknownGroup {
+                name: name.to_owned(),
+                known,
+            }));
+        }
+        let entities: Vec<Entity> = named
+            .iter()
+            .filter(|g| expect.dims.contains(&g.dim))
+            .flat_map(|g| g.entities.iter().map(|&tag| Entity { dim: g.dim, tag }))
+            .collect();
+        if !named.iter().any(|g| expect.dims.contains(&g.dim)) {
+            let found: Vec<String> = named.iter().map(|g| g.dim.to_string()).collect();
+            return Err(self.error(MshErrorKind::WrongDimension {
+                name: name.to_owned(),
+                found: found.join(" and "),
+                expected: expect.what,
+            }));
+        }
+        Ok(self
+            .elements
+            .iter()
+            .filter(|e| e.kind.dim() == e.entity.dim && entities.contains(&e.entity))
+            .collect())
+    }
+
+    fn error(&self, kind: MshErrorKind) -> MshError {
+        MshError {
+            file: self.file.clone(),
+            kind,
+        }
+    }
+}
