@@ -1,5 +1,6 @@
-//! gapsim's symbolic engine: contact formulations in, specialised Rust
-//! kernels for the gap and its truncated derivatives out.
+//! gapsim's symbolic engine: contact formulations in, specialised kernels
+//! for the gap and its truncated derivatives out (Rust for contact-kernels,
+//! C99 for everyone else: [`generate_c`]).
 //!
 //! The pipeline runs in one direction:
 //!

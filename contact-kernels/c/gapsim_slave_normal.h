@@ -37,8 +37,7 @@ int gapsim_slave_normal_project(const double q[8], double xi_s, double *gap, dou
 /*
  * `slave-normal`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap,
  * gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1
- * sqrt, 5 neg). grad: n values; hess is not used (no second-order term) and
- * may be NULL.
+ * sqrt, 5 neg). grad: n values; hess is not used and may be NULL.
  */
 int gapsim_slave_normal_type1(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double *hess);
 

@@ -280,9 +280,7 @@ master coordinate of the projection. The Hessians are full symmetric \
         if hessian {
             doc.push_str(" grad: n values; hess: n * n values.");
         } else {
-            doc.push_str(
-                " grad: n values; hess is not used (no second-order term) and may be NULL.",
-            );
+            doc.push_str(" grad: n values; hess is not used and may be NULL.");
         }
         out.push_str(&comment(&doc, ""));
         let _ = writeln!(out, "{};\n", kernel_prototype(set, k, ty, hessian));
