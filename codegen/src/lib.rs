@@ -1,5 +1,6 @@
-//! gapsim's symbolic engine: contact formulations in, specialised Rust
-//! kernels for the gap and its truncated derivatives out.
+//! gapsim's symbolic engine: contact formulations in, specialised kernels
+//! for the gap and its truncated derivatives out (Rust for contact-kernels,
+//! C99 for everyone else: [`generate_c`]).
 //!
 //! The pipeline runs in one direction:
 //!
@@ -11,6 +12,7 @@
 //!   --> lower::Program (relative coordinates, dead-code removal, CSE, instruction list)
 //!   --> plan::KernelPlan (functions: inputs/outputs by name and length, programs, op counts)
 //!   --> emit::Emitter (emit::rust: quote! + prettyplease) --> kernels.rs
+//!                     (emit::c: C99)                        --> gapsim.h, gapsim_{formulation}.h/.c
 //! ```
 //!
 //! ```
@@ -38,7 +40,7 @@ pub mod programs;
 pub mod signature;
 pub mod truncation;
 
-pub use emit::Emitter;
+pub use emit::{EmittedFile, Emitter};
 pub use formulation::Formulation;
 pub use lower::{OpCount, Program};
 pub use plan::KernelPlan;
@@ -105,14 +107,42 @@ pub struct Generated {
 
 /// Generates the Rust kernels source for all `sources`: parse, derive and
 /// lower ([`programs()`]), describe ([`KernelPlan`]), emit
-/// ([`emit::RustEmitter`]).
+/// ([`emit::RustEmitter::source`]).
 pub fn generate(sources: &[Source]) -> Result<Generated, Error> {
     let plan = KernelPlan::build(sources)?;
-    let code = emit::RustEmitter.emit(&plan);
+    let code = emit::RustEmitter.source(&plan);
     Ok(Generated {
         code,
         reports: reports(&plan),
     })
+}
+
+/// Generates the files of `emitter` for all `sources`: parse, derive and
+/// lower ([`programs()`]), describe ([`KernelPlan`]), emit.
+pub fn generate_with(
+    sources: &[Source],
+    emitter: &dyn Emitter,
+) -> Result<Vec<emit::EmittedFile>, Error> {
+    Ok(emitter.emit(&KernelPlan::build(sources)?))
+}
+
+/// Generates the C99 kernels for all compiled `sources` ([`emit::CEmitter`]):
+/// `gapsim.h`, then a header and a source per formulation.
+///
+/// ```
+/// let text = std::fs::read_to_string(concat!(
+///     env!("CARGO_MANIFEST_DIR"),
+///     "/../contact-kernels/formulations/slave-normal.rs"
+/// ))?;
+/// let src = codegen::Source { name: "slave-normal".into(), text, compiled: true };
+/// let files = codegen::generate_c(&[src])?;
+/// let names: Vec<_> = files.iter().map(|f| f.name.as_str()).collect();
+/// assert_eq!(names, ["gapsim.h", "gapsim_slave_normal.h", "gapsim_slave_normal.c"]);
+/// assert!(files[2].contents.contains("int gapsim_slave_normal_type6("));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn generate_c(sources: &[Source]) -> Result<Vec<emit::EmittedFile>, Error> {
+    generate_with(sources, &emit::CEmitter)
 }
 
 /// One report per generated function, in emission order.

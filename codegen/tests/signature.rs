@@ -2,7 +2,7 @@
 //! segment against a master point, six coordinates) and one without
 //! parameters lower, plan and emit with their own counts.
 
-use codegen::emit::{Emitter, RustEmitter};
+use codegen::emit::RustEmitter;
 use codegen::formulation::Arity;
 use codegen::lower::{Instr, Source as Load};
 use codegen::plan::{InputKind, Layout};
@@ -88,7 +88,7 @@ fn the_plan_and_the_rust_emitter_take_the_signature_sizes() {
     );
     assert_eq!(t6.output("grad").unwrap().len, 6);
     assert_eq!(t6.ops, t6.program.op_count());
-    let code = RustEmitter.emit(&plan);
+    let code = RustEmitter.source(&plan);
     assert!(code.contains("let d = &d[..6];"), "{code}");
     assert!(code.contains("let hess = &mut hess[..36];"));
     assert!(code.contains("coords: 6,"));

@@ -1,10 +1,12 @@
-//! Emitters: a [`KernelPlan`] in, source text of one target language out.
+//! Emitters: a [`KernelPlan`] in, the source files of one target language
+//! out.
 //!
 //! An emitter reads only the plan (names, documentation, inputs and outputs
 //! by name and length, instruction lists, op counts); it knows nothing of
-//! formulations or expressions. [`rust::RustEmitter`] writes the module the
-//! contact-kernels crate `include!`s. A new target (e.g. C99 for #9) is a
-//! new file here implementing [`Emitter`].
+//! formulations or expressions. [`rust::RustEmitter`] writes the one module
+//! the contact-kernels crate `include!`s; [`c::CEmitter`] writes C99
+//! headers and sources (checked in under `contact-kernels/c/`). A new
+//! target is a new file here implementing [`Emitter`].
 //!
 //! Emitters must preserve the instruction list exactly: one statement per
 //! instruction, in order, with the same operation and operand order, so
@@ -12,12 +14,24 @@
 
 use crate::plan::KernelPlan;
 
+pub mod c;
 pub mod rust;
 
+pub use c::CEmitter;
 pub use rust::RustEmitter;
 
-/// Writes a [`KernelPlan`] as source text.
+/// One generated file.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EmittedFile {
+    /// Its file name (no directory), e.g. `kernels.rs`.
+    pub name: String,
+    /// Its complete contents.
+    pub contents: String,
+}
+
+/// Writes a [`KernelPlan`] as source files.
 pub trait Emitter {
-    /// The complete generated source for `plan`.
-    fn emit(&self, plan: &KernelPlan) -> String;
+    /// The complete generated files for `plan`, in a fixed order (file
+    /// names are unique).
+    fn emit(&self, plan: &KernelPlan) -> Vec<EmittedFile>;
 }

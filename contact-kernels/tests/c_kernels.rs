@@ -1,0 +1,567 @@
+//! The checked-in C kernels (`contact-kernels/c/`) against the Rust kernels,
+//! bit for bit.
+//!
+//! The test compiles the C files and a driver (`tests/c/driver.c`) with the
+//! system C compiler (`$CC`, else `cc`) as C99 with `-O2 -ffp-contract=off`
+//! and `-Wall -Wextra -pedantic -Werror`, feeds it configurations as the
+//! bits of each double, and compares every output of the projection and of
+//! every type of both formulations (status code, gap, `xi_m`, gradient,
+//! Hessian) with [`Projector::project`] and [`Kernel::eval`]: equal bits, or
+//! the same error code. The configurations are those of the num-dual tests
+//! (`tests/kernels_ad.rs` at the workspace root: the same generators and
+//! seeds) plus degenerate, non-finite and over- or underflowing input; every
+//! configuration is evaluated under both formulations.
+//!
+//! The test is skipped, with a message, only when no C compiler is found.
+//! It also compiles and runs `examples/c/evaluate.c`.
+
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+use contact_kernels::{
+    ApproxType, DEGENERATE_LENGTH, Formulation, GapOut, Kernel, KernelError, OutputKind, Projector,
+    Segment, XI_M_LIMIT,
+};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+// ---------------------------------------------------------------------------
+// The configurations: the generators of tests/kernels_ad.rs, in f64.
+// ---------------------------------------------------------------------------
+
+fn lerp(a: [f64; 2], b: [f64; 2], xi: f64) -> [f64; 2] {
+    let n1 = (1.0 - xi) * 0.5;
+    let n2 = (1.0 + xi) * 0.5;
+    [a[0] * n1 + b[0] * n2, a[1] * n1 + b[1] * n2]
+}
+
+/// A configuration built so that the slave point projects onto master
+/// coordinate `xi_m` with gap `gap` in formulation `f`'s own sense (as in
+/// kernels_ad.rs).
+#[derive(Debug, Clone, Copy)]
+struct Shape {
+    origin: [f64; 2],
+    slave_len: f64,
+    slave_angle: f64,
+    master_angle: f64,
+    master_len: f64,
+    xi_s: f64,
+    xi_m: f64,
+    gap: f64,
+}
+
+impl Shape {
+    fn q(&self, f: Formulation) -> [f64; 8] {
+        let t_s = [
+            self.slave_len * self.slave_angle.cos(),
+            self.slave_len * self.slave_angle.sin(),
+        ];
+        let a_m = self.slave_angle + std::f64::consts::PI + self.master_angle;
+        let t_m = [self.master_len * a_m.cos(), self.master_len * a_m.sin()];
+        let xs1 = self.origin;
+        let xs2 = [xs1[0] + t_s[0], xs1[1] + t_s[1]];
+        let x_s = lerp(xs1, xs2, self.xi_s);
+        let n = match f {
+            Formulation::SlaveNormal => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
+            Formulation::ClosestPoint => [-t_m[1] / self.master_len, t_m[0] / self.master_len],
+        };
+        let p = [x_s[0] + self.gap * n[0], x_s[1] + self.gap * n[1]];
+        let c_m = [
+            p[0] - 0.5 * self.xi_m * t_m[0],
+            p[1] - 0.5 * self.xi_m * t_m[1],
+        ];
+        [
+            xs1[0],
+            xs1[1],
+            xs2[0],
+            xs2[1],
+            c_m[0] - 0.5 * t_m[0],
+            c_m[1] - 0.5 * t_m[1],
+            c_m[0] + 0.5 * t_m[0],
+            c_m[1] + 0.5 * t_m[1],
+        ]
+    }
+
+    fn random(rng: &mut ChaCha8Rng) -> Shape {
+        let slave_len = rng.random_range(0.2..5.0);
+        Shape {
+            origin: [rng.random_range(-10.0..10.0), rng.random_range(-10.0..10.0)],
+            slave_len,
+            slave_angle: rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
+            master_angle: rng.random_range(-1.0..1.0),
+            master_len: rng.random_range(0.2..5.0),
+            xi_s: rng.random_range(-1.0..=1.0),
+            xi_m: rng.random_range(-1.2..1.2),
+            gap: slave_len * rng.random_range(-0.5..0.5),
+        }
+    }
+}
+
+fn unit_shape() -> Shape {
+    Shape {
+        origin: [0.0, 0.0],
+        slave_len: 1.0,
+        slave_angle: 0.3,
+        master_angle: 0.25,
+        master_len: 1.3,
+        xi_s: -0.4,
+        xi_m: 0.35,
+        gap: 0.12,
+    }
+}
+
+const WORKED_Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
+const WORKED_XI_S: f64 = 0.3;
+const BOTH: [Formulation; 2] = [Formulation::SlaveNormal, Formulation::ClosestPoint];
+
+fn seeded(seed: u64) -> ChaCha8Rng {
+    ChaCha8Rng::seed_from_u64(seed)
+}
+
+/// One configuration: its family, `q` and `xi_s`.
+struct Config {
+    family: &'static str,
+    q: [f64; 8],
+    xi_s: f64,
+}
+
+/// Every configuration, family by family (the num-dual tests' generators
+/// and seeds, then degenerate and extreme input).
+fn configurations() -> Vec<Config> {
+    let mut out = Vec::new();
+    let mut push = |family, q, xi_s| out.push(Config { family, q, xi_s });
+    push("worked example", WORKED_Q, WORKED_XI_S);
+    let mut rng = seeded(0x6a95_0001);
+    for f in BOTH {
+        for _ in 0..400 {
+            let s = Shape::random(&mut rng);
+            push("random constructed", s.q(f), s.xi_s);
+        }
+    }
+    // All uniform draws, also those kernels_ad.rs skips as ill-posed.
+    let mut rng = seeded(0x6a95_0002);
+    for _ in BOTH {
+        for _ in 0..400 {
+            let q: [f64; 8] = std::array::from_fn(|_| rng.random_range(-2.0..2.0));
+            let xi_s = rng.random_range(-1.0..=1.0);
+            push("random uniform", q, xi_s);
+        }
+    }
+    let mut rng = seeded(0x6a95_0003);
+    for f in BOTH {
+        for _ in 0..100 {
+            let mut s = Shape::random(&mut rng);
+            s.origin = [
+                1e6 + rng.random_range(-1.0..1.0),
+                -1e6 + rng.random_range(-1.0..1.0),
+            ];
+            push("far from origin", s.q(f), s.xi_s);
+        }
+    }
+    let mut rng = seeded(0x6a95_0004);
+    for f in BOTH {
+        for _ in 0..40 {
+            let mut unit = Shape::random(&mut rng);
+            unit.origin = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
+            let q1 = unit.q(f);
+            push("tiny and huge scales", q1, unit.xi_s);
+            for s in [1e-6, 1e6] {
+                push("tiny and huge scales", q1.map(|v| v * s), unit.xi_s);
+            }
+        }
+    }
+    let mut rng = seeded(0x6a95_0005);
+    for f in BOTH {
+        let q0 = unit_shape().q(f);
+        for _ in 0..60 {
+            let theta: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+            let (s, c) = theta.sin_cos();
+            let q: [f64; 8] = std::array::from_fn(|i| {
+                let (x, y) = (q0[i - i % 2], q0[i - i % 2 + 1]);
+                if i % 2 == 0 {
+                    c * x - s * y
+                } else {
+                    s * x + c * y
+                }
+            });
+            push("large rotations", q, unit_shape().xi_s);
+        }
+    }
+    let mut rng = seeded(0x6a95_0006);
+    for f in BOTH {
+        for _ in 0..100 {
+            let mut s = Shape::random(&mut rng);
+            let deg = rng.random_range(80.0..=89.0_f64);
+            let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+            s.master_angle = sign * deg.to_radians();
+            s.xi_m = rng.random_range(-0.9..0.9);
+            push("steep master", s.q(f), s.xi_s);
+        }
+    }
+    for f in BOTH {
+        let base = unit_shape();
+        for xi_m in [-1.0, 1.0] {
+            push("segment ends", Shape { xi_m, ..base }.q(f), base.xi_s);
+        }
+        for xi_s in [-1.0, 1.0] {
+            push("segment ends", Shape { xi_s, ..base }.q(f), xi_s);
+        }
+        for gap in [-0.3, -1e-3] {
+            push("penetration", Shape { gap, ..base }.q(f), base.xi_s);
+        }
+    }
+    let mut rng = seeded(0x6a95_0007);
+    for f in BOTH {
+        for _ in 0..50 {
+            let s = Shape::random(&mut rng);
+            let q = s.q(f);
+            let t = [
+                rng.random_range(-100.0..100.0),
+                rng.random_range(-100.0..100.0),
+            ];
+            push("translation", q, s.xi_s);
+            push(
+                "translation",
+                std::array::from_fn(|i| q[i] + t[i % 2]),
+                s.xi_s,
+            );
+        }
+    }
+    // Degenerate input: zero-length segments, a perpendicular master.
+    push(
+        "zero-length slave",
+        [1.0, 1.0, 1.0, 1.0, 2.0, 0.0, 0.0, 0.0],
+        0.2,
+    );
+    push(
+        "zero-length master",
+        [0.0, 1.0, 2.0, 1.0, 1.0, 0.5, 1.0, 0.5],
+        0.2,
+    );
+    push(
+        "perpendicular master",
+        [0.0, 1.0, 2.0, 1.0, 1.5, 0.5, 1.5, -0.5],
+        0.1,
+    );
+    push(
+        "perpendicular master",
+        [0.0, 1.0, 2.0, 1.0, 1.5, 0.5, 1.5 + 1e-13, -0.5],
+        0.1,
+    );
+    // Non-finite input at every position.
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        for i in 0..8 {
+            let mut q = WORKED_Q;
+            q[i] = bad;
+            push("non-finite input", q, WORKED_XI_S);
+        }
+        push("non-finite input", WORKED_Q, bad);
+    }
+    // Scales where squares, cubes or their reciprocals underflow or
+    // overflow: every decade from 1e-170 to 1e-90 and from 1e90 to 1e170,
+    // on the worked example and on a steep master.
+    let steep = Shape {
+        master_angle: 1.55,
+        ..unit_shape()
+    };
+    for e in (-170..=-90).chain(90..=170) {
+        let s = 10f64.powi(e);
+        push("extreme scale", WORKED_Q.map(|v| v * s), WORKED_XI_S);
+        push(
+            "extreme scale",
+            steep.q(Formulation::SlaveNormal).map(|v| v * s),
+            steep.xi_s,
+        );
+    }
+    out
+}
+
+// ---------------------------------------------------------------------------
+// The two sides.
+// ---------------------------------------------------------------------------
+
+/// The C status code of a Rust error (gapsim.h's `enum gapsim_status`).
+fn code(e: &KernelError) -> i32 {
+    match e {
+        KernelError::NonFinite { .. } => 1,
+        KernelError::DegenerateSegment {
+            segment: Segment::Slave,
+            ..
+        } => 2,
+        KernelError::DegenerateSegment {
+            segment: Segment::Master,
+            ..
+        } => 3,
+        KernelError::NoProjection { .. } => 4,
+        KernelError::ProjectionOutOfReach { .. } => 5,
+        KernelError::ProjectionDiverged { .. } => 6,
+        KernelError::NonFiniteOutput { output, .. } => match output {
+            OutputKind::Gap => 7,
+            OutputKind::Gradient => 8,
+            OutputKind::Hessian => 9,
+        },
+        other => panic!("{other:?} has no C counterpart"),
+    }
+}
+
+/// One function's result: the status and, on success, the output bits
+/// (gap, xi_m, grad, hess).
+#[derive(Debug, PartialEq)]
+struct Outcome {
+    status: i32,
+    bits: Vec<u64>,
+}
+
+/// The Rust side: per formulation (slave-normal, closest-point), the
+/// projection and types 1..=6, in the driver's order.
+fn rust_outcomes(c: &Config) -> Vec<Outcome> {
+    let mut out = Vec::new();
+    let mut scratch = [0.0; 8];
+    for f in BOTH {
+        out.push(
+            match Projector::new(f)
+                .unwrap()
+                .project(&c.q, c.xi_s, &mut scratch)
+            {
+                Ok(p) => Outcome {
+                    status: 0,
+                    bits: vec![p.gap.to_bits(), p.xi_m.to_bits()],
+                },
+                Err(e) => Outcome {
+                    status: code(&e),
+                    bits: Vec::new(),
+                },
+            },
+        );
+        for ty in ApproxType::ALL {
+            let kernel = Kernel::new(f, ty).unwrap();
+            let mut g = GapOut::new(&kernel);
+            out.push(match kernel.eval(&c.q, c.xi_s, &mut g) {
+                Ok(()) => {
+                    let mut bits = vec![g.gap().to_bits(), g.xi_m().to_bits()];
+                    bits.extend(g.grad().iter().map(|v| v.to_bits()));
+                    if let Some(h) = g.hess() {
+                        bits.extend(h.iter().map(|v| v.to_bits()));
+                    }
+                    Outcome { status: 0, bits }
+                }
+                Err(e) => Outcome {
+                    status: code(&e),
+                    bits: Vec::new(),
+                },
+            });
+        }
+    }
+    out
+}
+
+fn parse_outcome(line: &str) -> Outcome {
+    let mut words = line.split_whitespace();
+    let status = words.next().expect("a status").parse().expect("an integer");
+    let bits = words
+        .map(|w| u64::from_str_radix(w, 16).expect("16 hex digits"))
+        .collect();
+    Outcome { status, bits }
+}
+
+fn manifest() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn compiler() -> String {
+    std::env::var("CC").unwrap_or_else(|_| "cc".into())
+}
+
+/// Whether the C compiler runs at all.
+fn have_compiler() -> bool {
+    match Command::new(compiler()).arg("--version").output() {
+        Ok(_) => true,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => false,
+        Err(e) => panic!("cannot run {}: {e}", compiler()),
+    }
+}
+
+/// Compiles `sources` with the test's flags into `out`.
+fn compile(sources: &[PathBuf], out: &Path) {
+    let c_dir = manifest().join("c");
+    let output = Command::new(compiler())
+        .args([
+            "-std=c99",
+            "-O2",
+            "-ffp-contract=off",
+            "-Wall",
+            "-Wextra",
+            "-pedantic",
+            "-Werror",
+        ])
+        .arg("-I")
+        .arg(&c_dir)
+        .args(sources)
+        .arg("-o")
+        .arg(out)
+        .arg("-lm")
+        .output()
+        .expect("run the C compiler");
+    assert!(
+        output.status.success(),
+        "{} failed on {sources:?}:\n{}",
+        compiler(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+const NAMES: [&str; 14] = [
+    "slave-normal project",
+    "slave-normal type 1",
+    "slave-normal type 2",
+    "slave-normal type 3",
+    "slave-normal type 4",
+    "slave-normal type 5",
+    "slave-normal type 6",
+    "closest-point project",
+    "closest-point type 1",
+    "closest-point type 2",
+    "closest-point type 3",
+    "closest-point type 4",
+    "closest-point type 5",
+    "closest-point type 6",
+];
+
+#[test]
+fn c_kernels_equal_rust_kernels_bit_for_bit() {
+    if !have_compiler() {
+        eprintln!(
+            "SKIPPED: no C compiler (`{}` not found); the C kernels were not compared",
+            compiler()
+        );
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_kernels");
+    std::fs::create_dir_all(&dir).unwrap();
+    let driver = dir.join("driver");
+    let c_dir = manifest().join("c");
+    compile(
+        &[
+            manifest().join("tests/c/driver.c"),
+            c_dir.join("gapsim_slave_normal.c"),
+            c_dir.join("gapsim_closest_point.c"),
+        ],
+        &driver,
+    );
+
+    let configs = configurations();
+    let mut input = String::new();
+    for c in &configs {
+        input.push_str(&format!("{:016x}", c.xi_s.to_bits()));
+        for v in c.q {
+            input.push_str(&format!(" {:016x}", v.to_bits()));
+        }
+        input.push('\n');
+    }
+    let mut child = Command::new(&driver)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("run the driver");
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let output = child.wait_with_output().unwrap();
+    writer.join().unwrap().unwrap();
+    assert!(output.status.success(), "the driver failed");
+    let text = String::from_utf8(output.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines.len(),
+        configs.len() * NAMES.len(),
+        "driver output lines"
+    );
+
+    let (mut values, mut errors, mut differences) = (0usize, 0usize, Vec::new());
+    let mut statuses = [0usize; 10];
+    for (k, c) in configs.iter().enumerate() {
+        let rust = rust_outcomes(c);
+        for (j, r) in rust.into_iter().enumerate() {
+            let cside = parse_outcome(lines[k * NAMES.len() + j]);
+            statuses[r.status as usize] += 1;
+            if r.status == 0 {
+                values += r.bits.len();
+            } else {
+                errors += 1;
+            }
+            if cside != r {
+                differences.push(format!(
+                    "{} #{k} ({}, q = {:?}, xi_s = {}): C {cside:?}, Rust {r:?}",
+                    NAMES[j], c.family, c.q, c.xi_s
+                ));
+            }
+        }
+    }
+    eprintln!(
+        "{} configurations x {} functions: {values} output values compared bit for bit, \
+         {errors} error codes compared; statuses (0..=9) {statuses:?}; {} differences",
+        configs.len(),
+        NAMES.len(),
+        differences.len()
+    );
+    assert!(
+        differences.is_empty(),
+        "{} differences between the C and the Rust kernels, e.g.:\n{}",
+        differences.len(),
+        differences[..differences.len().min(10)].join("\n")
+    );
+    // The hard families must exercise the error paths too.
+    for s in [1, 2, 3, 4, 5, 9] {
+        assert!(statuses[s] > 0, "no configuration gave status {s}");
+    }
+}
+
+/// The limits `gapsim.h` applies are contact-kernels' constants.
+#[test]
+fn c_limits_are_the_rust_constants() {
+    let header = std::fs::read_to_string(manifest().join("c/gapsim.h")).unwrap();
+    let define = |name: &str| -> f64 {
+        let prefix = format!("#define {name} ");
+        let line = header
+            .lines()
+            .find_map(|l| l.strip_prefix(&prefix))
+            .unwrap_or_else(|| panic!("gapsim.h defines {name}"));
+        line.trim().parse().unwrap()
+    };
+    assert_eq!(
+        define("GAPSIM_DEGENERATE_LENGTH").to_bits(),
+        DEGENERATE_LENGTH.to_bits()
+    );
+    assert_eq!(define("GAPSIM_XI_M_LIMIT").to_bits(), XI_M_LIMIT.to_bits());
+}
+
+/// `examples/c/evaluate.c` builds with its documented command and prints
+/// the worked example's gap.
+#[test]
+fn c_example_runs() {
+    if !have_compiler() {
+        eprintln!(
+            "SKIPPED: no C compiler (`{}` not found); examples/c/evaluate.c was not built",
+            compiler()
+        );
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_kernels");
+    std::fs::create_dir_all(&dir).unwrap();
+    let exe = dir.join("evaluate");
+    compile(
+        &[
+            manifest().join("../examples/c/evaluate.c"),
+            manifest().join("c/gapsim_slave_normal.c"),
+        ],
+        &exe,
+    );
+    let out = Command::new(&exe).output().expect("run the example");
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("gap  = 0.129090446096668"), "{text}");
+    assert!(
+        text.contains("zero-length slave: GAPSIM_DEGENERATE_SLAVE"),
+        "{text}"
+    );
+}
