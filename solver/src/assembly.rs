@@ -17,7 +17,7 @@
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
 use crate::contact::{ContactLayout, NodeTie, PointEval, shape2};
-use crate::ids::{DofId, EquationIndex, MultiplierIndex};
+use crate::ids::{DofId, ElementId, EquationIndex, MultiplierIndex, NodeId};
 use crate::model::Model;
 use crate::par;
 use crate::quad::{QuadResponse, quad_response};
@@ -48,7 +48,7 @@ impl DofMap {
         let ndof = 2 * model.mesh.node_count();
         let mut eq = vec![0; ndof];
         for p in &model.prescribed {
-            eq[p.dof] = PRESCRIBED;
+            eq[p.dof.index()] = PRESCRIBED;
         }
         let mut n_free = 0;
         for e in eq.iter_mut() {
@@ -68,7 +68,7 @@ impl DofMap {
 
     /// The equations of the 8 dofs of `nodes` (`x` then `y` of each node, in
     /// node order), `None` for prescribed ones.
-    pub fn node_eqs(&self, nodes: &[usize; 4]) -> [Option<EquationIndex>; 8] {
+    pub fn node_eqs(&self, nodes: &[NodeId; 4]) -> [Option<EquationIndex>; 8] {
         std::array::from_fn(|k| self.eq(DofId::of(nodes[k / 2], k % 2)))
     }
 
@@ -129,10 +129,11 @@ impl System {
 /// displacements `u`.
 pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
     let mesh = &model.mesh;
-    let responses: Vec<QuadResponse> = par::map(mesh.elements.len(), PAR_MIN_LEN, |e| {
-        let material = &mesh.bodies[mesh.element_body[e]].material;
+    let responses: Vec<QuadResponse> = par::map(mesh.element_count(), PAR_MIN_LEN, |e| {
+        let e = ElementId::new(e);
+        let material = &mesh.bodies[mesh.element_body[e.index()]].material;
         quad_response(
-            &mesh.geometry[e],
+            &mesh.geometry[e.index()],
             &mesh.element_displacements(e, u),
             material,
         )
@@ -277,7 +278,7 @@ pub fn assemble_ties(
 pub fn add_external(model: &Model, dofs: &DofMap, load_factor: f64, sys: &mut System) -> f64 {
     let mut f = vec![0.0; 2 * model.mesh.node_count()];
     for l in &model.loads {
-        f[l.dof] += load_factor * l.value;
+        f[l.dof.index()] += load_factor * l.value;
     }
     for (dof, v) in f.iter().enumerate() {
         if let Some(e) = dofs.eq(DofId::new(dof)) {

@@ -6,6 +6,8 @@
 //!
 //! | type | space | slices it indexes |
 //! |---|---|---|
+//! | [`NodeId`] | mesh nodes, body after body | `Mesh::nodes_ref`, `u` by `DofId::of` |
+//! | [`ElementId`] | mesh elements, body after body | `Mesh::elements`, `Mesh::geometry` |
 //! | [`DofId`] | displacement dofs, `2 node + component` | `u`, `Model::prescribed[].dof` |
 //! | [`EquationIndex`] | rows/columns of the Newton system | `System::residual`, `dx` |
 //! | [`MultiplierIndex`] | multiplier dofs, pair by pair | `lambda`, `ContactLayout::multipliers` |
@@ -15,11 +17,12 @@
 //!
 //! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
 //! first (in dof order), then the multipliers, then one equation per node tie
-//! of the complete formulation. Node and element indices (and slave
-//! segments, which only reports name) stay the mesh's plain `usize` (the
-//! mesh and scene own them); reports in
-//! [`crate::solution`] keep plain `usize` fields too, converted where they
-//! are written.
+//! of the complete formulation. The node and element numbering is owned by
+//! [`crate::mesh::Mesh`] (bodies in the order they were appended). Body
+//! indices, body-local node numbers of a generator's connectivity and slave
+//! segments (which only reports name) stay plain `usize`; reports in
+//! [`crate::solution`] and error variants keep plain `usize` fields too,
+//! converted where they are written.
 
 macro_rules! index_type {
     ($(#[$meta:meta])* $name:ident) => {
@@ -50,6 +53,18 @@ macro_rules! index_type {
 }
 
 index_type!(
+    /// A mesh node (index into [`Mesh::nodes_ref`](crate::mesh::Mesh::nodes_ref));
+    /// its dofs are [`DofId::of`]`(node, 0 | 1)`.
+    NodeId
+);
+
+index_type!(
+    /// A mesh element (index into [`Mesh::elements`](crate::mesh::Mesh::elements)
+    /// and [`Mesh::geometry`](crate::mesh::Mesh::geometry)).
+    ElementId
+);
+
+index_type!(
     /// A displacement degree of freedom: `2 node + component` (component 0
     /// is `x`, 1 is `y`).
     DofId
@@ -58,8 +73,20 @@ index_type!(
 impl DofId {
     /// The dof of `component` (0: `x`, 1: `y`) of `node`.
     #[inline]
-    pub const fn of(node: usize, component: usize) -> DofId {
-        DofId(2 * node + component)
+    pub const fn of(node: NodeId, component: usize) -> DofId {
+        DofId(2 * node.0 + component)
+    }
+
+    /// The node this dof belongs to.
+    #[inline]
+    pub const fn node(self) -> NodeId {
+        NodeId(self.0 / 2)
+    }
+
+    /// Its component (0: `x`, 1: `y`).
+    #[inline]
+    pub const fn component(self) -> usize {
+        self.0 % 2
     }
 }
 

@@ -9,13 +9,14 @@
 //! dof and node index is in range, a dof is prescribed at most once (or
 //! twice to the same value), every value is finite, every node with a free
 //! dof belongs to an element, and every contact pair has non-empty slave and
-//! master faces of non-degenerate segments that share no node. Dofs are
-//! plain `usize` here (`2 node + component`, [`crate::ids::DofId`] inside
-//! the solver), since the scene builds the model.
+//! master faces of non-degenerate segments that share no node. Nodes are
+//! [`NodeId`]s and dofs [`DofId`]s (`2 node + component`); the error
+//! variants carry their plain numbers.
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
 
+use crate::ids::{DofId, NodeId};
 use crate::mesh::Mesh;
 
 /// How a contact pair's constraint is enforced.
@@ -49,9 +50,9 @@ pub struct ContactPair {
     /// A name for reports.
     pub name: String,
     /// Slave segments.
-    pub slave: Vec<[usize; 2]>,
+    pub slave: Vec<[NodeId; 2]>,
     /// Master segments.
-    pub master: Vec<[usize; 2]>,
+    pub master: Vec<[NodeId; 2]>,
     /// The gap formulation.
     pub formulation: Formulation,
     /// Persistent or unilateral.
@@ -64,7 +65,7 @@ pub struct ContactPair {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Prescribed {
     /// Global degree of freedom (`2 node + component`).
-    pub dof: usize,
+    pub dof: DofId,
     /// Its value at load factor one (zero for a fixed support).
     pub value: f64,
 }
@@ -73,7 +74,7 @@ pub struct Prescribed {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointLoad {
     /// Global degree of freedom (`2 node + component`).
-    pub dof: usize,
+    pub dof: DofId,
     /// Its value at load factor one.
     pub value: f64,
 }
@@ -153,10 +154,10 @@ impl Model {
         }
         let mut prescribed: Vec<Option<f64>> = vec![None; ndof];
         for p in &self.prescribed {
-            if p.dof >= ndof {
+            if p.dof.index() >= ndof {
                 return Err(ModelError::DofOutOfRange {
                     what: "prescribed",
-                    dof: p.dof,
+                    dof: p.dof.index(),
                     count: ndof,
                 });
             }
@@ -165,23 +166,23 @@ impl Model {
                     what: "a prescribed displacement",
                 });
             }
-            if let Some(a) = prescribed[p.dof]
+            if let Some(a) = prescribed[p.dof.index()]
                 && a != p.value
             {
                 return Err(ModelError::ConflictingPrescribed {
-                    dof: p.dof,
-                    node: p.dof / 2,
+                    dof: p.dof.index(),
+                    node: p.dof.node().index(),
                     a,
                     b: p.value,
                 });
             }
-            prescribed[p.dof] = Some(p.value);
+            prescribed[p.dof.index()] = Some(p.value);
         }
         for l in &self.loads {
-            if l.dof >= ndof {
+            if l.dof.index() >= ndof {
                 return Err(ModelError::DofOutOfRange {
                     what: "load",
-                    dof: l.dof,
+                    dof: l.dof.index(),
                     count: ndof,
                 });
             }
@@ -192,13 +193,15 @@ impl Model {
         let mut in_element = vec![false; self.mesh.node_count()];
         for el in &self.mesh.elements {
             for &n in el {
-                in_element[n] = true;
+                in_element[n.index()] = true;
             }
         }
-        if let Some(node) = (0..self.mesh.node_count()).find(|&n| {
-            !in_element[n] && (prescribed[2 * n].is_none() || prescribed[2 * n + 1].is_none())
+        if let Some(node) = self.mesh.node_ids().find(|&n| {
+            !in_element[n.index()]
+                && (prescribed[DofId::of(n, 0).index()].is_none()
+                    || prescribed[DofId::of(n, 1).index()].is_none())
         }) {
-            return Err(ModelError::OrphanNode { node });
+            return Err(ModelError::OrphanNode { node: node.index() });
         }
         for pair in &self.contacts {
             let err = |message: String| ModelError::Contact {
@@ -217,15 +220,17 @@ impl Model {
                 )));
             }
             for seg in pair.slave.iter().chain(&pair.master) {
-                if seg.iter().any(|&n| n >= self.mesh.node_count()) {
-                    return Err(err(format!("segment {seg:?} refers to a missing node")));
+                // printed as the plain `[a, b]` it always was
+                let raw = seg.map(NodeId::index);
+                if raw.iter().any(|&n| n >= self.mesh.node_count()) {
+                    return Err(err(format!("segment {raw:?} refers to a missing node")));
                 }
-                let (a, b) = (self.mesh.nodes_ref[seg[0]], self.mesh.nodes_ref[seg[1]]);
+                let (a, b) = (self.mesh.node_ref(seg[0]), self.mesh.node_ref(seg[1]));
                 if !((a[0] - b[0]).hypot(a[1] - b[1]) > self.mesh.coordinate_tolerance()) {
-                    return Err(err(format!("segment {seg:?} has zero length")));
+                    return Err(err(format!("segment {raw:?} has zero length")));
                 }
             }
-            let slave_nodes: std::collections::HashSet<usize> =
+            let slave_nodes: std::collections::HashSet<NodeId> =
                 pair.slave.iter().flatten().copied().collect();
             if pair
                 .master

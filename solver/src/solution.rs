@@ -15,6 +15,7 @@ use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
+use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::options::Method;
 use crate::quad::{QuadStress, quad_mean_stress};
@@ -279,16 +280,16 @@ impl Solution {
     }
 
     /// The final displacement of node `node`.
-    pub fn displacement(&self, node: usize) -> [f64; 2] {
-        self.final_state.displacements[node]
+    pub fn displacement(&self, node: NodeId) -> [f64; 2] {
+        self.final_state.displacements[node.index()]
     }
 
     /// The node of body `body` nearest to the reference point `at`.
-    pub fn node_at(&self, body: &str, at: [f64; 2]) -> Option<usize> {
+    pub fn node_at(&self, body: &str, at: [f64; 2]) -> Option<NodeId> {
         let b = self.mesh.bodies.iter().find(|b| b.name == body)?;
-        b.nodes.clone().min_by(|&i, &j| {
-            let d = |n: usize| {
-                let p = self.mesh.nodes_ref[n];
+        b.node_ids().min_by(|&i, &j| {
+            let d = |n: NodeId| {
+                let p = self.mesh.node_ref(n);
                 (p[0] - at[0]).hypot(p[1] - at[1])
             };
             d(i).total_cmp(&d(j))
@@ -331,11 +332,12 @@ impl Solution {
     /// Element stresses (averaged over the Gauss points) in `state`.
     pub fn element_stresses(&self, state: &State) -> Vec<QuadStress> {
         let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
-        (0..self.mesh.elements.len())
+        self.mesh
+            .element_ids()
             .map(|e| {
-                let mat = &self.mesh.bodies[self.mesh.element_body[e]].material;
+                let mat = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
                 quad_mean_stress(
-                    &self.mesh.geometry[e],
+                    &self.mesh.geometry[e.index()],
                     &self.mesh.element_displacements(e, &u),
                     mat,
                 )

@@ -6,7 +6,7 @@ use contact_kernels::ApproxType;
 
 use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_solid};
 use crate::contact::{ContactLayout, PointEval, Taylor};
-use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, PairId};
+use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, NodeId, PairId};
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Block, Mesh};
 use crate::model::{Model, PointLoad, Prescribed};
@@ -96,11 +96,11 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
         .flat_map(|n| {
             [
                 Prescribed {
-                    dof: 2 * n,
+                    dof: DofId::of(n, 0),
                     value: 0.0,
                 },
                 Prescribed {
-                    dof: 2 * n + 1,
+                    dof: DofId::of(n, 1),
                     value: 0.0,
                 },
             ]
@@ -172,7 +172,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
     for n in 0..4 {
         for i in 0..2 {
             prescribed.push(Prescribed {
-                dof: 2 * n + i,
+                dof: DofId::of(NodeId::new(n), i),
                 value: h[i][0] * nodes[n][0] + h[i][1] * nodes[n][1],
             });
         }
@@ -195,7 +195,10 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
     for n in 4..8 {
         for i in 0..2 {
             let exact = h[i][0] * nodes[n][0] + h[i][1] * nodes[n][1];
-            assert!((sol.displacement(n)[i] - exact).abs() < 1e-12, "node {n}");
+            assert!(
+                (sol.displacement(NodeId::new(n))[i] - exact).abs() < 1e-12,
+                "node {n}"
+            );
         }
     }
     let s = sol.element_stresses(&sol.final_state);
@@ -279,7 +282,7 @@ fn large_deflection_cantilever_matches_elastica() {
     let mut model = block_model(400, 2, length, height, mat);
     let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
     model.loads.push(PointLoad {
-        dof: 2 * tip + 1,
+        dof: DofId::of(tip, 1),
         value: -ei / (length * length),
     });
     model.load_factor_end = 5.0;
@@ -296,7 +299,7 @@ fn large_deflection_cantilever_matches_elastica() {
             .iter()
             .find(|s| (s.load_factor - alpha).abs() < 1e-12)
             .unwrap();
-        let d = state.displacements[tip];
+        let d = state.displacements[tip.index()];
         let (u_ref, v_ref) = elastica_tip(alpha);
         let (u, v) = (-d[0] / length, -d[1] / length);
         println!(
@@ -332,7 +335,7 @@ fn cutback_recovers_a_too_large_step() {
     let mut model = block_model(40, 2, length, height, mat);
     let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
     model.loads.push(PointLoad {
-        dof: 2 * tip + 1,
+        dof: DofId::of(tip, 1),
         value: -ei / (length * length),
     });
     model.load_factor_end = 10.0;
@@ -400,7 +403,10 @@ fn unsupported_body_is_singular() {
     };
     let mut model = block_model(2, 1, 2.0, 1.0, mat);
     model.prescribed.clear();
-    model.loads.push(PointLoad { dof: 1, value: 1.0 });
+    model.loads.push(PointLoad {
+        dof: DofId::new(1),
+        value: 1.0,
+    });
     let err = solve_model(
         &model,
         &SolveOptions {
@@ -434,7 +440,7 @@ fn random_state(
         .map(|_| rng.uniform(-amp, amp))
         .collect();
     for p in &model.prescribed {
-        u[p.dof] = 0.0;
+        u[p.dof.index()] = 0.0;
     }
     let l = (0..layout.multipliers.len())
         .map(|_| rng.uniform(-lam, lam))
@@ -460,7 +466,7 @@ fn contact_tangent_matches_finite_differences() {
             .map(|e| {
                 e.map(|at_start| Taylor {
                     u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| {
-                        u0[2 * at_start.nodes[k / 2] + k % 2]
+                        u0[DofId::of(at_start.nodes[k / 2], k % 2).index()]
                     }),
                     at_start,
                 })
@@ -634,7 +640,7 @@ fn unpaired_points_are_inactive_and_reported() {
         let m = sol
             .multiplier_dofs
             .iter()
-            .position(|d| d.node == end)
+            .position(|d| d.node == end.index())
             .unwrap();
         assert_eq!(sol.final_state.multipliers[m], 0.0);
     }
@@ -755,7 +761,9 @@ fn vtu_output_is_consistent() {
     assert_eq!(array("connectivity").len(), 56);
     assert!(array("types").iter().all(|t| t == "9"));
     let tip_node = sol.node_at("slave", [7.0, 1.0]).unwrap();
-    let uy: f64 = array("displacement")[3 * tip_node + 1].parse().unwrap();
+    let uy: f64 = array("displacement")[3 * tip_node.index() + 1]
+        .parse()
+        .unwrap();
     assert_eq!(uy, sol.displacement(tip_node)[1]);
     let dir = std::env::temp_dir().join(format!("gapsim-vtu-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -789,18 +797,18 @@ fn paper_scene_file_is_the_design_scene() {
         model
             .prescribed
             .iter()
-            .all(|p| model.mesh.nodes_ref[p.dof / 2][0] == 0.0 && p.value == 0.0)
+            .all(|p| model.mesh.node_ref(p.dof.node())[0] == 0.0 && p.value == 0.0)
     );
     let tip = model.mesh.select_nodes(Some(1), Some(7.0), Some(1.0))[0];
     assert_eq!(
         model.loads,
         vec![
             PointLoad {
-                dof: 2 * tip,
+                dof: DofId::of(tip, 0),
                 value: 0.0
             },
             PointLoad {
-                dof: 2 * tip + 1,
+                dof: DofId::of(tip, 1),
                 value: -0.08
             }
         ]
@@ -815,7 +823,7 @@ fn paper_scene_file_is_the_design_scene() {
         )
     );
     // slave: bottom of the slave layer left to right; master: top of the master layer right to left
-    let x = |n: usize| model.mesh.nodes_ref[n];
+    let x = |n: NodeId| model.mesh.node_ref(n);
     assert!(
         c.slave
             .iter()
@@ -831,7 +839,7 @@ fn paper_scene_file_is_the_design_scene() {
         c.slave
             .iter()
             .flatten()
-            .all(|&n| model.mesh.bodies[1].nodes.contains(&n))
+            .all(|&n| model.mesh.bodies[1].has_node(n))
     );
     assert_eq!(scene.loading.steps, vec![4, 6, 8, 10, 12, 14, 16, 18, 20]);
     assert_eq!(
@@ -915,7 +923,8 @@ fn refined_paper_scene_converges_across_master_nodes() {
             layout.masters[0][m][1],
         ];
         let q: [f64; 8] = std::array::from_fn(|k| {
-            model.mesh.nodes_ref[nodes[k / 2]][k % 2] + state.displacements[nodes[k / 2]][k % 2]
+            model.mesh.node_ref(nodes[k / 2])[k % 2]
+                + state.displacements[nodes[k / 2].index()][k % 2]
         });
         contact_kernels::project(crate::Formulation::SlaveNormal, &q, pt.xi_s).unwrap()
     };

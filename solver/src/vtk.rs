@@ -160,7 +160,10 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
         "Int64",
         "connectivity",
         1,
-        mesh.elements.iter().flatten().map(|v| v.to_string()),
+        mesh.elements
+            .iter()
+            .flatten()
+            .map(|v| v.index().to_string()),
     );
     array(
         &mut out,

@@ -13,6 +13,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use contact_kernels::Formulation;
+use solver::ids::NodeId;
 use solver::{Method, Scene, SolveOptions};
 
 use super::CommandResult;
@@ -136,8 +137,8 @@ pub fn run(args: &RunArgs) -> CommandResult {
             Some(b) => vec![b.as_str()],
             None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
         };
-        let distance = |n: usize| {
-            let p = sol.mesh.nodes_ref[n];
+        let distance = |n: NodeId| {
+            let p = sol.mesh.node_ref(n);
             (p[0] - load.at[0]).hypot(p[1] - load.at[1])
         };
         let nearest = bodies

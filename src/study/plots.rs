@@ -380,7 +380,7 @@ fn draw_deformed<DB: DrawingBackend>(
     ];
     for (e, conn) in mesh.elements.iter().enumerate() {
         let outline = |p: &[(f64, f64)]| {
-            let mut v: Vec<(f64, f64)> = conn.iter().map(|&n| p[n]).collect();
+            let mut v: Vec<(f64, f64)> = conn.iter().map(|&n| p[n.index()]).collect();
             v.push(v[0]);
             v
         };

@@ -9,7 +9,7 @@
 
 use contact_kernels::Formulation;
 
-use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, PairId};
+use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
 
@@ -28,7 +28,7 @@ pub struct ContactLayout {
     /// The mode of each pair.
     pub modes: Vec<ContactMode>,
     /// Master segments of each pair.
-    pub masters: Vec<Vec<[usize; 2]>>,
+    pub masters: Vec<Vec<[NodeId; 2]>>,
     /// `[previous, next]` master segment along each pair's chain.
     pub(super) adjacency: Vec<Vec<[Option<MasterSegmentIndex>; 2]>>,
     /// Active-set constant `c` per pair (unilateral mode).
@@ -58,7 +58,7 @@ impl ContactLayout {
             let rule = gauss_legendre(pair.gauss_points);
             let mut total_len = 0.0;
             for (s, seg) in pair.slave.iter().enumerate() {
-                let (a, b) = (mesh.nodes_ref[seg[0]], mesh.nodes_ref[seg[1]]);
+                let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
                 let len = (b[0] - a[0]).hypot(b[1] - a[1]);
                 total_len += len;
                 for (g, &(xi, w)) in rule.iter().enumerate() {
@@ -88,7 +88,7 @@ impl ContactLayout {
             let young = mesh
                 .bodies
                 .iter()
-                .find(|b| b.nodes.contains(&pair.slave[0][0]))
+                .find(|b| b.has_node(pair.slave[0][0]))
                 .map_or(1.0, |b| b.material.young);
             complementarity.push(young / (total_len / pair.slave.len() as f64));
         }
@@ -108,8 +108,10 @@ impl ContactLayout {
     }
 
     /// Current coordinates `q` of four nodes.
-    pub(super) fn q(mesh: &Mesh, u: &[f64], nodes: [usize; 4]) -> [f64; 8] {
-        std::array::from_fn(|k| mesh.nodes_ref[nodes[k / 2]][k % 2] + u[2 * nodes[k / 2] + k % 2])
+    pub(super) fn q(mesh: &Mesh, u: &[f64], nodes: [NodeId; 4]) -> [f64; 8] {
+        std::array::from_fn(|k| {
+            mesh.node_ref(nodes[k / 2])[k % 2] + u[DofId::of(nodes[k / 2], k % 2).index()]
+        })
     }
 
     /// The static data of point `i`.
@@ -118,11 +120,11 @@ impl ContactLayout {
     }
 
     /// The master segments of `pair`.
-    pub fn masters_of(&self, pair: PairId) -> &[[usize; 2]] {
+    pub fn masters_of(&self, pair: PairId) -> &[[NodeId; 2]] {
         &self.masters[pair.index()]
     }
 
-    pub(super) fn nodes(&self, point: &ContactPoint, master: MasterSegmentIndex) -> [usize; 4] {
+    pub(super) fn nodes(&self, point: &ContactPoint, master: MasterSegmentIndex) -> [NodeId; 4] {
         let m = self.masters_of(point.pair)[master.index()];
         [point.slave_nodes[0], point.slave_nodes[1], m[0], m[1]]
     }
@@ -134,7 +136,7 @@ impl ContactLayout {
         pair: PairId,
         a: MasterSegmentIndex,
         b: MasterSegmentIndex,
-    ) -> Option<usize> {
+    ) -> Option<NodeId> {
         let masters = self.masters_of(pair);
         let (sa, sb) = (masters[a.index()], masters[b.index()]);
         if a == b {

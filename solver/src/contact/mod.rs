@@ -188,7 +188,7 @@ mod taylor;
 use contact_kernels::{KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 
-use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, PairId};
+use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
 pub use layout::ContactLayout;
 pub use taylor::Taylor;
@@ -264,7 +264,7 @@ pub struct ContactPoint {
     /// `w J0` (reference length weight).
     pub weight_ref: f64,
     /// The slave segment's nodes.
-    pub slave_nodes: [usize; 2],
+    pub slave_nodes: [NodeId; 2],
     /// Global multiplier indices of the slave segment's nodes.
     pub multipliers: [MultiplierIndex; 2],
 }
@@ -275,7 +275,7 @@ pub struct MultiplierDof {
     /// Contact pair.
     pub pair: PairId,
     /// Slave node it lives at.
-    pub node: usize,
+    pub node: NodeId,
 }
 
 /// How many kernel calls were made.
@@ -312,7 +312,7 @@ pub struct PointEval {
     /// Master segment index within the pair.
     pub master: MasterSegmentIndex,
     /// `[slave 1, slave 2, master 1, master 2]` global node indices.
-    pub nodes: [usize; 4],
+    pub nodes: [NodeId; 4],
     /// Gap (exact or Taylor-approximated).
     pub gap: f64,
     /// The projection coordinate (at the evaluation point of the kernel).

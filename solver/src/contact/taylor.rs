@@ -8,6 +8,7 @@
 use nalgebra::SVector;
 
 use super::PointEval;
+use crate::ids::DofId;
 
 /// Frozen Taylor coefficients of one integration point for one load step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -22,7 +23,8 @@ impl Taylor {
     /// The second-order expansion at displacements `u` (global vector).
     pub fn expand(&self, u: &[f64]) -> PointEval {
         let s = &self.at_start;
-        let d = SVector::<f64, 8>::from_fn(|k, _| u[2 * s.nodes[k / 2] + k % 2]) - self.u0;
+        let d = SVector::<f64, 8>::from_fn(|k, _| u[DofId::of(s.nodes[k / 2], k % 2).index()])
+            - self.u0;
         match &s.hess {
             Some(h) => {
                 let hd = h * d;
@@ -53,7 +55,7 @@ mod tests {
         let h = (h + h.transpose()) * 0.5;
         let at_start = PointEval {
             master: MasterSegmentIndex::new(0),
-            nodes: [0, 1, 2, 3],
+            nodes: [0, 1, 2, 3].map(crate::ids::NodeId::new),
             gap: 0.2,
             xi_m: 0.1,
             grad: SVector::<f64, 8>::from_fn(|i, _| i as f64 * 0.1 - 0.3),

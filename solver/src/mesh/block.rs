@@ -16,6 +16,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{Mesh, MeshError};
+use crate::ids::NodeId;
 use crate::material::Material;
 
 /// A structured rectangular block of elements.
@@ -98,11 +99,11 @@ impl Mesh {
 
     /// The segments (global node pairs) of a side of a block body, ordered
     /// counter-clockwise around the body. `None` if the body is not a block.
-    pub fn block_side(&self, body: usize, side: Side) -> Option<Vec<[usize; 2]>> {
+    pub fn block_side(&self, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
         let b = self.bodies.get(body)?;
         let Block { nx, ny, .. } = b.block?;
         let base = b.nodes.start;
-        let id = |i: usize, j: usize| base + j * (nx + 1) + i;
+        let id = |i: usize, j: usize| NodeId::new(base + j * (nx + 1) + i);
         Some(match side {
             Side::Bottom => (0..nx).map(|i| [id(i, 0), id(i + 1, 0)]).collect(),
             Side::Right => (0..ny).map(|j| [id(nx, j), id(nx, j + 1)]).collect(),
@@ -149,15 +150,21 @@ mod tests {
         )
         .unwrap();
         assert_eq!(m.node_count(), 12);
-        assert_eq!(m.elements[2], [6, 7, 10, 9]);
-        let top = m.block_side(0, Side::Top).unwrap();
+        let raw = |segs: Vec<[NodeId; 2]>| segs.iter().map(|s| s.map(NodeId::index)).collect();
+        assert_eq!(m.elements[2].map(NodeId::index), [6, 7, 10, 9]);
+        let top: Vec<[usize; 2]> = raw(m.block_side(0, Side::Top).unwrap());
         assert_eq!(top, vec![[5, 4], [4, 3]]);
-        let bottom = m.block_side(1, Side::Bottom).unwrap();
+        let bottom: Vec<[usize; 2]> = raw(m.block_side(1, Side::Bottom).unwrap());
         assert_eq!(bottom, vec![[6, 7], [7, 8]]);
-        assert_eq!(m.block_side(0, Side::Left).unwrap(), vec![[3, 0]]);
-        assert_eq!(m.block_side(0, Side::Right).unwrap(), vec![[2, 5]]);
+        let left: Vec<[usize; 2]> = raw(m.block_side(0, Side::Left).unwrap());
+        assert_eq!(left, vec![[3, 0]]);
+        let right: Vec<[usize; 2]> = raw(m.block_side(0, Side::Right).unwrap());
+        assert_eq!(right, vec![[2, 5]]);
         // interface nodes exist twice
         assert_eq!(m.select_nodes(None, None, Some(1.0)).len(), 6);
-        assert_eq!(m.select_nodes(Some(1), Some(2.0), Some(2.0)), vec![11]);
+        assert_eq!(
+            m.select_nodes(Some(1), Some(2.0), Some(2.0)),
+            vec![NodeId::new(11)]
+        );
     }
 }

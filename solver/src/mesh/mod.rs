@@ -1,8 +1,10 @@
 //! Meshes of 4-node quadrilaterals made of several bodies that share no
 //! nodes.
 //!
-//! Node `n` has reference coordinates `nodes_ref[n]` and the displacement
-//! degrees of freedom `2n` (x) and `2n + 1` (y). Elements list their four
+//! Node `n` ([`NodeId`]) has reference coordinates `nodes_ref[n]` and the
+//! displacement degrees of freedom `2n` (x) and `2n + 1` (y)
+//! ([`crate::ids::DofId::of`]); element `e` ([`ElementId`]) has the nodes
+//! `elements[e]` and the geometry `geometry[e]`. Elements list their four
 //! nodes counter-clockwise. Each body owns a contiguous range of nodes and of
 //! elements.
 //!
@@ -25,6 +27,7 @@ use std::ops::Range;
 
 use serde::Serialize;
 
+use crate::ids::{DofId, ElementId, NodeId};
 use crate::material::Material;
 use crate::quad::{InvalidElement, QuadGeometry};
 
@@ -40,12 +43,24 @@ pub struct Body {
     pub name: String,
     /// Its material.
     pub material: Material,
-    /// Its nodes (global indices).
+    /// Its nodes (raw [`NodeId`] indices; see [`Body::node_ids`]).
     pub nodes: Range<usize>,
-    /// Its elements (global indices).
+    /// Its elements (raw [`ElementId`] indices).
     pub elements: Range<usize>,
     /// The block it was generated from, if any.
     pub block: Option<Block>,
+}
+
+impl Body {
+    /// Its nodes, in increasing order.
+    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + use<> {
+        self.nodes.clone().map(NodeId::new)
+    }
+
+    /// Whether `node` is one of its nodes.
+    pub fn has_node(&self, node: NodeId) -> bool {
+        self.nodes.contains(&node.index())
+    }
 }
 
 /// Why a mesh could not be built.
@@ -92,15 +107,15 @@ pub enum MeshError {
 /// Nodes, elements and bodies, with the element geometry precomputed.
 #[derive(Debug, Clone, Default)]
 pub struct Mesh {
-    /// Reference coordinates of all nodes.
+    /// Reference coordinates of all nodes (indexed by [`NodeId`]).
     pub nodes_ref: Vec<[f64; 2]>,
-    /// Element connectivity (global node indices, counter-clockwise).
-    pub elements: Vec<[usize; 4]>,
+    /// Element connectivity (counter-clockwise; indexed by [`ElementId`]).
+    pub elements: Vec<[NodeId; 4]>,
     /// The body of each element.
     pub element_body: Vec<usize>,
     /// The bodies.
     pub bodies: Vec<Body>,
-    /// Reference geometry of each element.
+    /// Reference geometry of each element (indexed by [`ElementId`]).
     pub geometry: Vec<QuadGeometry>,
 }
 
@@ -157,7 +172,7 @@ impl Mesh {
                 }
             })?;
             geometry.push(geom);
-            conn.push(el.map(|n| n + node0));
+            conn.push(el.map(|n| NodeId::new(n + node0)));
         }
         self.nodes_ref.extend_from_slice(nodes_ref);
         self.elements.extend(conn);
@@ -177,6 +192,33 @@ impl Mesh {
     /// Number of nodes.
     pub fn node_count(&self) -> usize {
         self.nodes_ref.len()
+    }
+
+    /// All nodes, in increasing order.
+    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + use<> {
+        (0..self.nodes_ref.len()).map(NodeId::new)
+    }
+
+    /// The reference coordinates of `node`.
+    #[inline]
+    pub fn node_ref(&self, node: NodeId) -> [f64; 2] {
+        self.nodes_ref[node.index()]
+    }
+
+    /// Number of elements.
+    pub fn element_count(&self) -> usize {
+        self.elements.len()
+    }
+
+    /// All elements, in increasing order.
+    pub fn element_ids(&self) -> impl Iterator<Item = ElementId> + use<> {
+        (0..self.elements.len()).map(ElementId::new)
+    }
+
+    /// The nodes of element `e` (counter-clockwise).
+    #[inline]
+    pub fn element(&self, e: ElementId) -> &[NodeId; 4] {
+        &self.elements[e.index()]
     }
 
     /// The index of the body called `name`.
@@ -209,7 +251,7 @@ impl Mesh {
 
     /// Nodes (optionally only of `body`) whose reference coordinates match
     /// every given coordinate within [`Mesh::coordinate_tolerance`].
-    pub fn select_nodes(&self, body: Option<usize>, x: Option<f64>, y: Option<f64>) -> Vec<usize> {
+    pub fn select_nodes(&self, body: Option<usize>, x: Option<f64>, y: Option<f64>) -> Vec<NodeId> {
         let tol = self.coordinate_tolerance();
         let range = match body {
             Some(b) => self.bodies[b].nodes.clone(),
@@ -221,14 +263,15 @@ impl Mesh {
                 x.is_none_or(|x| (p[0] - x).abs() <= tol)
                     && y.is_none_or(|y| (p[1] - y).abs() <= tol)
             })
+            .map(NodeId::new)
             .collect()
     }
 
     /// The element displacement vector `[u1x, u1y, ..., u4y]` of element
     /// `e` from the global displacement vector.
-    pub fn element_displacements(&self, e: usize, u: &[f64]) -> [f64; 8] {
-        let el = &self.elements[e];
-        std::array::from_fn(|k| u[2 * el[k / 2] + k % 2])
+    pub fn element_displacements(&self, e: ElementId, u: &[f64]) -> [f64; 8] {
+        let el = self.element(e);
+        std::array::from_fn(|k| u[DofId::of(el[k / 2], k % 2).index()])
     }
 }
 

@@ -110,7 +110,7 @@ impl Run<'_> {
             .map(|e| {
                 e.map(|at_start| Taylor {
                     u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| {
-                        self.u[2 * at_start.nodes[k / 2] + k % 2]
+                        self.u[DofId::of(at_start.nodes[k / 2], k % 2).index()]
                     }),
                     at_start,
                 })

@@ -100,7 +100,7 @@ use std::time::Instant;
 
 use crate::contact::{KernelCounts, NodeTie, Taylor};
 use crate::error::SolverError;
-use crate::ids::MasterSegmentIndex;
+use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::{
@@ -285,9 +285,10 @@ impl<'a> Run<'a> {
                 slave_segment: p.slave_segment,
                 gauss: p.gauss,
                 xi_s: p.xi_s,
-                slave_nodes: p.slave_nodes,
+                slave_nodes: p.slave_nodes.map(NodeId::index),
                 master_segment: proj.map(|(m, _)| m.index()),
-                master_nodes: proj.map(|(m, _)| layout.masters_of(p.pair)[m.index()]),
+                master_nodes: proj
+                    .map(|(m, _)| layout.masters_of(p.pair)[m.index()].map(NodeId::index)),
                 xi_m: proj.map(|(_, pr)| pr.xi_m),
                 gap: proj.map(|(_, pr)| pr.gap),
             })
@@ -315,7 +316,7 @@ impl<'a> Run<'a> {
                 .iter()
                 .map(|m| MultiplierDofInfo {
                     pair: m.pair.index(),
-                    node: m.node,
+                    node: m.node.index(),
                 })
                 .collect(),
             final_state: self.state(),

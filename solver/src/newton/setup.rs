@@ -68,7 +68,7 @@ impl<'a> Setup<'a> {
     /// Sets the prescribed dofs of `u` to their values at load factor `to`.
     pub(super) fn prescribe(&self, u: &mut [f64], to: f64) {
         for p in &self.model.prescribed {
-            u[p.dof] = to * p.value;
+            u[p.dof.index()] = to * p.value;
         }
     }
 

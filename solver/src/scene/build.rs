@@ -15,6 +15,7 @@
 
 use super::source::Sources;
 use super::{Scene, SceneError};
+use crate::ids::DofId;
 use crate::mesh::Mesh;
 use crate::model::{ContactPair, Model, PointLoad, Prescribed};
 
@@ -32,14 +33,14 @@ impl Scene {
             return Err(self.invalid("body", "at least one [[body]] is needed"));
         }
         let mut prescribed: Vec<Prescribed> = Vec::new();
-        let mut add_prescribed = |field: &str, dof: usize, value: f64| -> Result<(), SceneError> {
+        let mut add_prescribed = |field: &str, dof: DofId, value: f64| -> Result<(), SceneError> {
             match prescribed.iter().find(|p| p.dof == dof) {
                 Some(p) if p.value != value => Err(self.invalid(
                     field,
                     format!(
                         "node {} component {} is already prescribed to {}",
-                        dof / 2,
-                        dof % 2,
+                        dof.node(),
+                        dof.component(),
                         p.value
                     ),
                 )),
@@ -54,7 +55,7 @@ impl Scene {
             let f = format!("fix[{i}]");
             for n in self.select(&mesh, &f, &fx.body, fx.x, fx.y, fx.at)? {
                 for &c in fx.dofs.components() {
-                    add_prescribed(&f, 2 * n + c, 0.0)?;
+                    add_prescribed(&f, DofId::of(n, c), 0.0)?;
                 }
             }
         }
@@ -64,7 +65,7 @@ impl Scene {
             for n in self.select(&mesh, &f, &p.body, p.x, p.y, p.at)? {
                 for (c, v) in [(0, p.ux), (1, p.uy)] {
                     if let Some(v) = v {
-                        add_prescribed(&f, 2 * n + c, v)?;
+                        add_prescribed(&f, DofId::of(n, c), v)?;
                     }
                 }
             }
@@ -86,7 +87,7 @@ impl Scene {
             }
             for c in 0..2 {
                 loads.push(PointLoad {
-                    dof: 2 * nodes[0] + c,
+                    dof: DofId::of(nodes[0], c),
                     value: l.force[c],
                 });
             }

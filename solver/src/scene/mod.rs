@@ -154,6 +154,7 @@ impl Scene {
 mod tests {
     use super::*;
     use crate::Method;
+    use crate::ids::{DofId, NodeId};
     use crate::model::Model;
     use contact_kernels::Formulation;
 
@@ -187,13 +188,45 @@ steps = [2]
 
     /// FNV-1a over the model's `Debug` text: node coordinates to the bit
     /// (shortest round-trip), node numbering, element order, body ranges,
-    /// supports, loads and contact segments in order.
+    /// supports, loads and contact segments in order. The typed ids are
+    /// printed as their plain numbers (`NodeId(3)` as `3`), as they were
+    /// before the ids had types, so the prints recorded then still hold.
     fn fingerprint(model: &Model) -> u64 {
-        format!("{model:?}")
+        untyped(&format!("{model:?}"))
             .bytes()
             .fold(0xcbf2_9ce4_8422_2325, |h, b| {
                 (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
             })
+    }
+
+    /// `text` with every `NodeId(n)`, `ElementId(n)` and `DofId(n)` replaced
+    /// by `n`.
+    fn untyped(text: &str) -> String {
+        let mut out = String::with_capacity(text.len());
+        let mut rest = text;
+        'scan: while !rest.is_empty() {
+            for name in ["NodeId(", "ElementId(", "DofId("] {
+                if let Some(tail) = rest.strip_prefix(name)
+                    && let Some(close) = tail.find(')')
+                    && close > 0
+                    && tail[..close].bytes().all(|b| b.is_ascii_digit())
+                {
+                    out.push_str(&tail[..close]);
+                    rest = &tail[close + 1..];
+                    continue 'scan;
+                }
+            }
+            let c = rest.chars().next().unwrap();
+            out.push(c);
+            rest = &rest[c.len_utf8()..];
+        }
+        out
+    }
+
+    #[test]
+    fn untyped_prints_ids_as_numbers() {
+        let text = format!("{:?}", ([NodeId::new(3), NodeId::new(40)], DofId::new(7)));
+        assert_eq!(untyped(&text), "([3, 40], 7)");
     }
 
     #[test]
@@ -204,23 +237,27 @@ steps = [2]
         let m = scene.build_model().unwrap();
         assert_eq!(m.mesh.node_count(), 32);
         assert_eq!(m.mesh.elements.len(), 14);
-        assert_eq!(m.mesh.elements[0], [0, 1, 9, 8]);
-        assert_eq!(m.mesh.elements[6], [6, 7, 15, 14]);
-        assert_eq!(m.mesh.elements[7], [16, 17, 25, 24]);
-        assert_eq!(m.mesh.elements[13], [22, 23, 31, 30]);
+        let element = |e: usize| m.mesh.elements[e].map(NodeId::index);
+        assert_eq!(element(0), [0, 1, 9, 8]);
+        assert_eq!(element(6), [6, 7, 15, 14]);
+        assert_eq!(element(7), [16, 17, 25, 24]);
+        assert_eq!(element(13), [22, 23, 31, 30]);
         assert_eq!(m.mesh.nodes_ref[31], [7.0, 1.0]);
-        let fixed: Vec<usize> = m.prescribed.iter().map(|p| p.dof).collect();
+        let fixed: Vec<usize> = m.prescribed.iter().map(|p| p.dof.index()).collect();
         assert_eq!(fixed, [0, 1, 16, 17, 32, 33, 48, 49]);
         assert!(m.prescribed.iter().all(|p| p.value == 0.0));
-        let loads: Vec<(usize, f64)> = m.loads.iter().map(|l| (l.dof, l.value)).collect();
+        let loads: Vec<(usize, f64)> = m.loads.iter().map(|l| (l.dof.index(), l.value)).collect();
         assert_eq!(loads, [(62, 0.0), (63, -0.08)]);
         assert_eq!(m.contacts.len(), 1);
         let c = &m.contacts[0];
         assert_eq!(c.name, "interface");
         let slave: Vec<[usize; 2]> = (16..23).map(|n| [n, n + 1]).collect();
         let master: Vec<[usize; 2]> = (8..15).rev().map(|n| [n + 1, n]).collect();
-        assert_eq!(c.slave, slave);
-        assert_eq!(c.master, master);
+        let raw = |segs: &[[NodeId; 2]]| -> Vec<[usize; 2]> {
+            segs.iter().map(|s| s.map(NodeId::index)).collect()
+        };
+        assert_eq!(raw(&c.slave), slave);
+        assert_eq!(raw(&c.master), master);
         assert_eq!(
             (c.formulation, c.mode, c.gauss_points),
             (

@@ -9,6 +9,7 @@
 
 use super::source::Sources;
 use super::{FaceSpec, Scene, SceneError};
+use crate::ids::NodeId;
 use crate::mesh::Mesh;
 
 impl Scene {
@@ -43,7 +44,7 @@ impl Scene {
         x: Option<f64>,
         y: Option<f64>,
         at: Option<[f64; 2]>,
-    ) -> Result<Vec<usize>, SceneError> {
+    ) -> Result<Vec<NodeId>, SceneError> {
         let b = self.body_index(mesh, format!("{field}.body"), body)?;
         let (x, y) = match (at, x, y) {
             (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
@@ -74,7 +75,7 @@ impl Scene {
         field: &str,
         which: &str,
         spec: &FaceSpec,
-    ) -> Result<Vec<[usize; 2]>, SceneError> {
+    ) -> Result<Vec<[NodeId; 2]>, SceneError> {
         let b = self
             .body_index(
                 mesh,

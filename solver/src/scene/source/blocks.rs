@@ -4,6 +4,7 @@
 //! the block's sides.
 
 use super::MeshSource;
+use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::{Block, Mesh, Side};
 use crate::scene::{Scene, SceneError};
@@ -58,7 +59,7 @@ impl MeshSource for Blocks<'_> {
             .map_err(|e| self.scene.invalid(f.clone(), e.to_string()))
     }
 
-    fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[usize; 2]>> {
+    fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
         mesh.block_side(body, side)
     }
 }

@@ -26,6 +26,7 @@
 //!   outward normal of a segment with tangent `t` is `(t.y, -t.x)/|t|`.
 
 use super::{Scene, SceneError};
+use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::{Mesh, Side};
 
@@ -51,7 +52,7 @@ pub(super) trait MeshSource {
     /// The segments of `side` of the mesh body `body`, which this source
     /// made, counter-clockwise around the body; `None` if the body has no
     /// such face.
-    fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[usize; 2]>>;
+    fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>>;
 }
 
 /// A scene's mesh sources, and which one made each body of the mesh.
@@ -97,7 +98,7 @@ impl<'s> Sources<'s> {
 
     /// The segments of `side` of the mesh body `body`, from the source that
     /// made it; `None` if it has no such face.
-    pub(super) fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[usize; 2]>> {
+    pub(super) fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
         let s = *self.made_by.get(body)?;
         self.sources.get(s)?.face(mesh, body, side)
     }
