@@ -50,6 +50,7 @@ mod par;
 pub mod quad;
 pub mod scene;
 pub mod solution;
+pub mod tri;
 pub mod vtk;
 
 #[cfg(test)]
