@@ -352,47 +352,48 @@ impl LinearSolver for SparseLdlt {
         }
         let par = faer::get_global_parallelism();
         let ldlt = LdltRef::new(&p.cholesky, &l_values);
-        let mut x = Mat::<f64>::from_fn(n, 1, |i, _| rhs[i]);
-        ldlt.solve_in_place_with_conj(Conj::No, x.as_mut(), par, MemStack::new(&mut p.buffer));
+        let mut x = rhs.to_vec();
+        ldlt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, 1),
+            par,
+            MemStack::new(&mut p.buffer),
+        );
         let a_norm = norm_inf(n, &p.rows, &vals);
         let b_norm = max_abs(rhs);
-        let mut r = Mat::<f64>::zeros(n, 1);
+        let mut r = vec![0.0_f64; n];
         let mut refinements = 0;
         let accepted = loop {
             // r = b - A x with the assembled (possibly unsymmetric) matrix
-            for i in 0..n {
-                r[(i, 0)] = rhs[i];
-            }
-            let mut finite = true;
+            r.copy_from_slice(rhs);
             for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(&vals) {
-                r[(row, 0)] -= v * x[(col, 0)];
+                r[row] -= v * x[col];
             }
-            let mut r_max = 0.0_f64;
-            let mut x_max = 0.0_f64;
-            for i in 0..n {
-                finite &= x[(i, 0)].is_finite();
-                r_max = r_max.max(r[(i, 0)].abs());
-                x_max = x_max.max(x[(i, 0)].abs());
-            }
+            let finite = x.iter().all(|v| v.is_finite());
+            let (r_max, x_max) = (max_abs(&r), max_abs(&x));
             if !finite || !r_max.is_finite() {
                 break false;
             }
-            let scale = a_norm * x_max + b_norm;
-            if r_max <= ACCEPT_BACKWARD_ERROR * scale {
+            if r_max <= ACCEPT_BACKWARD_ERROR * (a_norm * x_max + b_norm) {
                 break true;
             }
             if refinements == MAX_REFINEMENTS {
                 break false;
             }
             refinements += 1;
-            ldlt.solve_in_place_with_conj(Conj::No, r.as_mut(), par, MemStack::new(&mut p.buffer));
-            for i in 0..n {
-                x[(i, 0)] += r[(i, 0)];
+            ldlt.solve_in_place_with_conj(
+                Conj::No,
+                MatMut::from_column_major_slice_mut(&mut r, n, 1),
+                par,
+                MemStack::new(&mut p.buffer),
+            );
+            for (xi, ri) in x.iter_mut().zip(&r) {
+                *xi += ri;
             }
         };
         self.refinements += refinements;
         if accepted {
-            return Ok((0..n).map(|i| x[(i, 0)]).collect());
+            return Ok(x);
         }
         drop(l_values);
         self.factor_lu(&vals)?;
