@@ -83,8 +83,12 @@ struct Pattern {
     symbolic: SymbolicSparseColMat<usize>,
     argsort: Argsort<usize>,
     cholesky: SymbolicCholesky<usize>,
-    /// Workspace of the numeric factorisation and the solves.
+    /// Workspace of the numeric factorisation and the solves, sized for
+    /// `par`.
     buffer: MemBuffer,
+    /// The parallelism of the numeric factorisation and the solves (faer's
+    /// global setting at analysis time).
+    par: Par,
 }
 
 /// A factorisation waiting for its solve.
@@ -275,6 +279,7 @@ impl LinearSolver for SparseLdlt {
                 argsort,
                 cholesky,
                 buffer,
+                par,
             });
             self.symbolic_time += t.elapsed();
         }
@@ -312,7 +317,7 @@ impl LinearSolver for SparseLdlt {
                 a.as_ref(),
                 Side::Lower,
                 LdltRegularization::default(),
-                faer::get_global_parallelism(),
+                p.par,
                 MemStack::new(&mut p.buffer),
                 Default::default(),
             )
@@ -350,7 +355,7 @@ impl LinearSolver for SparseLdlt {
                 rhs.len()
             )));
         }
-        let par = faer::get_global_parallelism();
+        let par = p.par;
         let ldlt = LdltRef::new(&p.cholesky, &l_values);
         let mut x = rhs.to_vec();
         ldlt.solve_in_place_with_conj(
