@@ -5,6 +5,7 @@
 //! ```text
 //! cargo bench --bench solver_scaling
 //! cargo bench --bench solver_scaling -- 'solid_assembly'   # one phase
+//! GAPSIM_LINEAR=ldlt cargo bench --bench solver_scaling     # the LDL^T
 //! ```
 //!
 //! For each refinement `(x, y)` of `scenes/stacked-cantilever.toml` the first
@@ -53,6 +54,9 @@ fn setup(refine: (usize, usize)) -> (Model, SolveOptions, State, f64) {
     let model = scene.build_model().expect("the refined scene builds");
     let opts = SolveOptions {
         method: Method::Complete,
+        linear: std::env::var("GAPSIM_LINEAR")
+            .map(|v| v.parse().expect("GAPSIM_LINEAR is `lu` or `ldlt`"))
+            .unwrap_or_default(),
         ..SolveOptions::from_scene(&scene)
     };
     let step = model.load_factor_end / opts.steps as f64;

@@ -4,6 +4,8 @@
 //! ```text
 //! cargo run --release --example scaling_table            # the default sizes
 //! cargo run --release --example scaling_table -- 8x4 26x13   # refine factors
+//! cargo run --release --example scaling_table -- --linear ldlt       # the LDL^T
+//! cargo run --release --example scaling_table -- --linear lu,ldlt    # both, compared
 //! ```
 //!
 //! For each refinement `(x, y)` of `scenes/stacked-cantilever.toml` (every
@@ -21,13 +23,19 @@
 //! memory (`VmHWM` from `/proc/self/status`, Linux; the sizes run in
 //! increasing order, so it is that of the largest size).
 //!
+//! `--linear` picks the linear solver(s) (default `lu`). With several, each
+//! is probed from the same converged state (the first step is solved with
+//! the first one listed), the table is that of the first, and a second table
+//! compares the solve and symbolic times of each with the first's (ratios
+//! `first / other`, so above 1 is faster), with the LU fallbacks counted.
+//!
 //! The benchmark with criterion is `cargo bench --bench solver_scaling`.
 
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use solver::newton::{IterationProbe, IterationSample};
-use solver::{Method, Scene, SolveOptions, solve_model};
+use solver::{LinearSolverKind, Method, Scene, SolveOptions, solve_model};
 
 /// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
 const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
@@ -48,6 +56,8 @@ struct Row {
     linear: f64,
     total: f64,
     symbolic: f64,
+    /// Linear solves that fell back to LU (of the `REPS` + 1).
+    fallbacks: usize,
 }
 
 fn ms(d: Duration) -> f64 {
@@ -100,11 +110,17 @@ fn parse_size(s: &str) -> Option<(usize, usize)> {
     (x > 0 && y > 0).then_some((x, y))
 }
 
-fn measure(base: &Scene, refine: (usize, usize)) -> Result<Row, Box<dyn std::error::Error>> {
+/// One row per kind in `linear`, probed from the same state.
+fn measure(
+    base: &Scene,
+    refine: (usize, usize),
+    linear: &[LinearSolverKind],
+) -> Result<Vec<Row>, Box<dyn std::error::Error>> {
     let scene = base.refined(refine.0, refine.1);
     let model = scene.build_model()?;
     let opts = SolveOptions {
         method: Method::Complete,
+        linear: linear[0],
         ..SolveOptions::from_scene(&scene)
     };
     let steps = opts.steps;
@@ -128,9 +144,29 @@ fn measure(base: &Scene, refine: (usize, usize)) -> Result<Row, Box<dyn std::err
         t.elapsed().as_secs_f64(),
         solution.newton_iterations
     );
-    // the first iteration of the second step
-    let mut probe = IterationProbe::new(&model, &opts, &solution.final_state, 2.0 * step)?;
+    let state = solution.final_state.clone();
     drop(solution);
+    linear
+        .iter()
+        .map(|&kind| {
+            let opts = SolveOptions {
+                linear: kind,
+                ..opts.clone()
+            };
+            probe_row(&model, &opts, &state, 2.0 * step, refine)
+        })
+        .collect()
+}
+
+/// The first iteration of the second step from `state`, timed.
+fn probe_row(
+    model: &solver::Model,
+    opts: &SolveOptions,
+    state: &solver::State,
+    to: f64,
+    refine: (usize, usize),
+) -> Result<Row, Box<dyn std::error::Error>> {
+    let mut probe = IterationProbe::new(model, opts, state, to)?;
     let warm = probe.iteration()?;
     let symbolic = ms(probe.symbolic_time());
     let reps = if probe.equations() > LARGE {
@@ -141,7 +177,8 @@ fn measure(base: &Scene, refine: (usize, usize)) -> Result<Row, Box<dyn std::err
     let samples: Vec<IterationSample> = (0..reps)
         .map(|_| probe.iteration())
         .collect::<Result<_, _>>()?;
-    if probe.symbolic_factorisations() != 1 {
+    let fallbacks = probe.linear_fallbacks();
+    if probe.symbolic_factorisations() != 1 && fallbacks == 0 {
         return Err(format!(
             "{} symbolic factorisations (expected 1: the pattern must not change)",
             probe.symbolic_factorisations()
@@ -159,9 +196,11 @@ fn measure(base: &Scene, refine: (usize, usize)) -> Result<Row, Box<dyn std::err
         linear: pick(|s| s.linear_solve),
         total: pick(|s| s.total()),
         symbolic,
+        fallbacks,
     };
     eprintln!(
-        "  |r| = {:.3e}; first iteration {:.0} ms (symbolic {:.0} ms), then median {:.1} ms over {reps}",
+        "  {}: |r| = {:.3e}; first iteration {:.0} ms (symbolic {:.0} ms), then median {:.1} ms over {reps}",
+        opts.linear,
         warm.residual_norm,
         ms(warm.total()),
         symbolic,
@@ -172,7 +211,26 @@ fn measure(base: &Scene, refine: (usize, usize)) -> Result<Row, Box<dyn std::err
 
 fn main() -> ExitCode {
     let mut sizes: Vec<(usize, usize)> = Vec::new();
-    for arg in std::env::args().skip(1) {
+    let mut linear = vec![LinearSolverKind::Lu];
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        if arg == "--linear" {
+            let parsed: Result<Vec<LinearSolverKind>, _> = args
+                .next()
+                .unwrap_or_default()
+                .split(',')
+                .map(str::parse)
+                .collect();
+            match parsed {
+                Ok(kinds) if !kinds.is_empty() => linear = kinds,
+                Ok(_) => unreachable!("split yields at least one item"),
+                Err(e) => {
+                    eprintln!("--linear: {e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+            continue;
+        }
         match parse_size(&arg) {
             Some(s) => sizes.push(s),
             None => {
@@ -195,9 +253,14 @@ fn main() -> ExitCode {
         }
     };
     let mut rows = Vec::new();
+    let mut others: Vec<Vec<Row>> = Vec::new();
     for &size in &sizes {
-        match measure(&base, size) {
-            Ok(r) => rows.push(r),
+        match measure(&base, size, &linear) {
+            Ok(mut r) => {
+                let first = r.remove(0);
+                rows.push(first);
+                others.push(r);
+            }
             Err(e) => {
                 eprintln!("refine {}x{}: {e}", size.0, size.1);
                 return ExitCode::FAILURE;
@@ -213,6 +276,9 @@ fn main() -> ExitCode {
         base.default_steps(),
         rayon_threads()
     );
+    if linear.len() > 1 || linear[0] != LinearSolverKind::Lu {
+        println!("Linear solver: {}.\n", linear[0]);
+    }
     println!(
         "| refine (x, y) | equations | contact points | assembly ms | contact ms | solve ms | total ms | symbolic LU ms (once) |"
     );
@@ -245,6 +311,36 @@ fn main() -> ExitCode {
             fit(|r| r.linear),
             fit(|r| r.total)
         );
+        println!();
+    }
+    for (k, &kind) in linear.iter().enumerate().skip(1) {
+        println!(
+            "{} against {} (same state; ratio = {} time / {} time):\n",
+            kind, linear[0], linear[0], kind
+        );
+        println!(
+            "| equations | solve ms ({a}) | solve ms ({b}) | ratio | total ms ({a}) | total ms ({b}) | ratio | symbolic ms ({a}) | symbolic ms ({b}) | ratio | {b} fallbacks |",
+            a = linear[0],
+            b = kind
+        );
+        println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+        for (r, o) in rows.iter().zip(&others) {
+            let o = &o[k - 1];
+            println!(
+                "| {} | {} | {} | {:.2} | {} | {} | {:.2} | {} | {} | {:.2} | {} |",
+                r.equations,
+                fmt_ms(r.linear),
+                fmt_ms(o.linear),
+                r.linear / o.linear,
+                fmt_ms(r.total),
+                fmt_ms(o.total),
+                r.total / o.total,
+                fmt_ms(r.symbolic),
+                fmt_ms(o.symbolic),
+                r.symbolic / o.symbolic,
+                o.fallbacks
+            );
+        }
         println!();
     }
     if let Some(last) = rows.last() {

@@ -109,7 +109,7 @@ impl Default for SolveOptions {
 
 impl SolveOptions {
     /// The scene's defaults: its method, default step count and Newton
-    /// settings.
+    /// settings (including `[newton] linear`).
     pub fn from_scene(scene: &Scene) -> SolveOptions {
         SolveOptions {
             method: scene.loading.method,
@@ -120,7 +120,7 @@ impl SolveOptions {
             max_cutbacks: scene.newton.max_cutbacks,
             tolerance: scene.newton.tolerance,
             regularization: DEFAULT_REGULARIZATION,
-            linear: LinearSolverKind::Lu,
+            linear: scene.newton.linear,
         }
     }
 }

@@ -253,6 +253,10 @@ pub struct Solution {
     pub kernel_counts: KernelCounts,
     /// Symbolic LU factorisations computed (one per sparsity pattern).
     pub symbolic_factorisations: usize,
+    /// Linear solves that fell back to LU because the selected solver was
+    /// not safe for them (see [`crate::linear::LinearSolver::fallbacks`]);
+    /// always 0 with LU.
+    pub linear_fallbacks: usize,
     /// Number of equations (free dofs plus multipliers).
     pub equations: usize,
     /// The mesh (reference coordinates, connectivity, bodies, materials).

@@ -1,7 +1,7 @@
 //! `gapsim run`: solve one scene and print a summary.
 //!
 //! ```text
-//! gapsim run [SCENE.toml] [--type T|complete] [--steps N] [--formulation F] [--out DIR] [--every-step]
+//! gapsim run [SCENE.toml] [--type T|complete] [--steps N] [--formulation F] [--linear lu|ldlt] [--out DIR] [--every-step]
 //! ```
 //!
 //! Without `SCENE` the embedded paper scene is solved. With `--out DIR` the
@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use clap::Args;
 use contact_kernels::Formulation;
 use solver::ids::NodeId;
-use solver::{Method, Scene, SolveOptions};
+use solver::{LinearSolverKind, Method, Scene, SolveOptions};
 
 use super::CommandResult;
 
@@ -36,6 +36,11 @@ pub struct RunArgs {
     /// Override every contact pair's formulation.
     #[arg(long, value_name = "F")]
     pub formulation: Option<Formulation>,
+
+    /// The linear solver of the Newton iterations (default: the scene's
+    /// `[newton] linear`, LU unless set).
+    #[arg(long, value_name = "lu|ldlt")]
+    pub linear: Option<LinearSolverKind>,
 
     /// Write `.vtu` files of the result into this directory.
     #[arg(long, value_name = "DIR")]
@@ -66,6 +71,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     if let Some(n) = args.steps {
         options.steps = n as usize;
+    }
+    if let Some(k) = args.linear {
+        options.linear = k;
     }
     options.formulation = args.formulation;
     options.record_steps = args.every_step;
@@ -161,6 +169,12 @@ pub fn run(args: &RunArgs) -> CommandResult {
         1e3 * t.contact_evaluation.as_secs_f64(),
         1e3 * t.linear_solve.as_secs_f64()
     );
+    if options.linear != LinearSolverKind::Lu {
+        println!(
+            "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
+            options.linear, sol.symbolic_factorisations, sol.linear_fallbacks
+        );
+    }
     println!(
         "kernel calls    {} evaluations, {} projections",
         sol.kernel_counts.evaluate, sol.kernel_counts.project

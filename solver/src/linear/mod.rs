@@ -19,14 +19,20 @@
 //! singular, since a direct factorisation of a numerically singular matrix
 //! may succeed with round-off pivots.
 //!
-//! Implementations: [`lu::SparseLu`] (faer's sparse LU; the default). Selected by [`LinearSolverKind`]; a new solver
-//! (e.g. a symmetric LDL^T of the quasi-definite system) is a new file here,
-//! a new variant there, and nothing in Newton changes.
+//! Implementations: [`lu::SparseLu`] (faer's sparse LU; the default) and
+//! [`ldlt::SparseLdlt`] (faer's sparse symmetric LDL^T of the quasi-definite
+//! system, refined against the assembled matrix, falling back to LU for a
+//! solve it cannot do safely). Selected by [`LinearSolverKind`]; a new solver
+//! is a new file here, a new variant there, and nothing in Newton changes.
 
+pub mod ldlt;
 pub mod lu;
+#[cfg(test)]
+mod scene_tests;
 
 use std::time::Duration;
 
+pub use ldlt::SparseLdlt;
 pub use lu::SparseLu;
 
 /// A solution with `|b|_inf < NEAR_SINGULAR |A|_max |x|_inf` counts as
@@ -69,6 +75,20 @@ pub trait LinearSolver: Send {
     /// Time spent in symbolic analysis so far.
     fn symbolic_time(&self) -> Duration;
 
+    /// How many solves so far fell back to another factorisation because
+    /// this one was not safe for them (0 for a solver without a fallback).
+    fn fallbacks(&self) -> usize {
+        0
+    }
+
+    /// Tells the solver that equations `first..` are constraint rows
+    /// (multipliers and ties, numbered after the free dofs; see
+    /// [`crate::assembly::DofMap`]). A symmetric solver orders them after
+    /// the unknowns they constrain; the default ignores the hint.
+    fn set_constraints_from(&mut self, first: usize) {
+        let _ = first;
+    }
+
     /// Solves `A x = b` for the `n x n` matrix given by the triplets
     /// `(rows[k], cols[k], vals[k])`: [`analyse`](Self::analyse),
     /// [`factor`](Self::factor), [`solve`](Self::solve), then
@@ -94,16 +114,19 @@ pub enum LinearSolverKind {
     /// [`SparseLu`].
     #[default]
     Lu,
+    /// [`SparseLdlt`].
+    Ldlt,
 }
 
 impl LinearSolverKind {
     /// Every kind (the tests run each).
-    pub const ALL: [LinearSolverKind; 1] = [LinearSolverKind::Lu];
+    pub const ALL: [LinearSolverKind; 2] = [LinearSolverKind::Lu, LinearSolverKind::Ldlt];
 
     /// A new solver of this kind with nothing cached.
     pub fn build(self) -> Box<dyn LinearSolver> {
         match self {
             LinearSolverKind::Lu => Box::new(SparseLu::new()),
+            LinearSolverKind::Ldlt => Box::new(SparseLdlt::new()),
         }
     }
 }
@@ -112,21 +135,25 @@ impl std::fmt::Display for LinearSolverKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(match self {
             LinearSolverKind::Lu => "lu",
+            LinearSolverKind::Ldlt => "ldlt",
         })
     }
 }
 
 /// Error parsing a [`LinearSolverKind`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown linear solver `{0}` (expected `lu`)")]
+#[error("unknown linear solver `{0}` (expected `lu` or `ldlt`)")]
 pub struct ParseLinearSolverError(pub String);
 
 impl std::str::FromStr for LinearSolverKind {
     type Err = ParseLinearSolverError;
-    /// `"lu"`.
+    /// `"lu"` or `"ldlt"`.
     fn from_str(s: &str) -> Result<LinearSolverKind, ParseLinearSolverError> {
-        if s.trim().eq_ignore_ascii_case("lu") {
+        let t = s.trim();
+        if t.eq_ignore_ascii_case("lu") {
             Ok(LinearSolverKind::Lu)
+        } else if t.eq_ignore_ascii_case("ldlt") {
+            Ok(LinearSolverKind::Ldlt)
         } else {
             Err(ParseLinearSolverError(s.to_owned()))
         }
@@ -175,6 +202,7 @@ mod tests {
             let x = s
                 .solve_system(3, &rows, &cols, &vals, &[1.0, 2.0, 3.0])
                 .unwrap();
+            let analyses = s.symbolic_factorisations();
             assert!((x[0] - 3.0).abs() < 1e-12);
             assert!((x[1] + 1.0 / 3.0).abs() < 1e-12);
             assert!((2.0 * x[0] + x[1] + x[2] - 1.0).abs() < 1e-12);
@@ -183,7 +211,9 @@ mod tests {
                 .solve_system(3, &rows, &cols, &vals2, &[1.0, 2.0, 3.0])
                 .unwrap();
             assert!((4.0 * y[0] + y[1] + y[2] - 1.0).abs() < 1e-12);
-            assert_eq!(s.symbolic_factorisations(), 1);
+            // the same pattern is not analysed again (an LDL^T falling back
+            // to LU has analysed both on the first solve)
+            assert_eq!(s.symbolic_factorisations(), analyses);
             let singular = [1.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
             assert!(
                 s.solve_system(3, &rows, &cols, &singular, &[1.0, 2.0, 3.0])
@@ -206,6 +236,6 @@ mod tests {
             assert_eq!(s.solve(&[1.0]), Ok(vec![0.5]));
             assert!(s.solve(&[1.0]).is_err());
         }
-        assert!("ldlt".parse::<LinearSolverKind>().is_err());
+        assert!("qr".parse::<LinearSolverKind>().is_err());
     }
 }

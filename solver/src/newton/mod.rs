@@ -309,6 +309,7 @@ impl<'a> Run<'a> {
             timings,
             kernel_counts: self.counts,
             symbolic_factorisations: self.setup.linear.symbolic_factorisations(),
+            linear_fallbacks: self.setup.linear.fallbacks(),
             equations: self.setup.dofs.n_eq(),
             mesh: self.setup.model.mesh.clone(),
             multiplier_dofs: layout

@@ -143,6 +143,12 @@ impl<'a> IterationProbe<'a> {
         self.setup.linear.symbolic_time()
     }
 
+    /// Linear solves so far that fell back to LU (see
+    /// [`crate::linear::LinearSolver::fallbacks`]).
+    pub fn linear_fallbacks(&self) -> usize {
+        self.setup.linear.fallbacks()
+    }
+
     /// Phase 1: re-projection and Type 6 kernel at every integration point,
     /// active set, and the contact scatter into a fresh system.
     pub fn contact(&self) -> Result<ContactPhase, SolverError> {

@@ -56,11 +56,13 @@ impl<'a> Setup<'a> {
         model.check()?;
         let layout = ContactLayout::new(model, options.formulation);
         let dofs = DofMap::new(model, layout.multipliers.len());
+        let mut linear = options.linear.build();
+        linear.set_constraints_from(dofs.n_free);
         Ok(Setup {
             model,
             layout,
             dofs,
-            linear: options.linear.build(),
+            linear,
             length_scale: model.mesh.size(),
         })
     }

@@ -69,6 +69,7 @@
 //! tolerance = 1e-10           # |r| <= tolerance * max(1, |f_ext|)
 //! max_iterations = 30         # per attempt
 //! max_cutbacks = 8            # bisections per scheduled step
+//! linear = "lu"               # linear solver: "lu" (default) or "ldlt"
 //! ```
 //!
 //! Block sides are ordered counter-clockwise around their body (see
@@ -281,6 +282,27 @@ steps = [2]
                 18108556103099798236
             ]
         );
+    }
+
+    /// `[newton] linear` selects the linear solver (default LU, not
+    /// written back when default); an unknown name is an error.
+    #[test]
+    fn newton_linear_key_selects_the_solver() {
+        use crate::linear::LinearSolverKind;
+        let s = Scene::from_toml_str(GOOD, "good.toml").unwrap();
+        assert_eq!(s.newton.linear, LinearSolverKind::Lu);
+        assert!(!s.to_toml_string().contains("linear"));
+        let text = format!("{GOOD}\n[newton]\nlinear = \"ldlt\"\n");
+        let s = Scene::from_toml_str(&text, "ldlt.toml").unwrap();
+        assert_eq!(s.newton.linear, LinearSolverKind::Ldlt);
+        assert_eq!(
+            crate::SolveOptions::from_scene(&s).linear,
+            LinearSolverKind::Ldlt
+        );
+        let again = Scene::from_toml_str(&s.to_toml_string(), "round-trip").unwrap();
+        assert_eq!(again.newton.linear, LinearSolverKind::Ldlt);
+        let bad = format!("{GOOD}\n[newton]\nlinear = \"qr\"\n");
+        assert!(Scene::from_toml_str(&bad, "bad.toml").is_err());
     }
 
     #[test]

@@ -11,6 +11,7 @@ use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::Method;
+use crate::linear::LinearSolverKind;
 use crate::material::Material;
 use crate::mesh::Side;
 use crate::model::ContactMode;
@@ -265,6 +266,15 @@ pub struct NewtonSpec {
     /// `max_cutbacks`: bisections per scheduled step (default 8).
     #[serde(default = "default_max_cutbacks")]
     pub max_cutbacks: usize,
+    /// `linear`: the linear solver, `"lu"` (default) or `"ldlt"` (not
+    /// written when it is the default).
+    #[serde(
+        default,
+        deserialize_with = "de_linear",
+        serialize_with = "ser_linear",
+        skip_serializing_if = "is_default_linear"
+    )]
+    pub linear: LinearSolverKind,
 }
 
 impl Default for NewtonSpec {
@@ -273,6 +283,7 @@ impl Default for NewtonSpec {
             tolerance: default_tolerance(),
             max_iterations: default_max_iterations(),
             max_cutbacks: default_max_cutbacks(),
+            linear: LinearSolverKind::default(),
         }
     }
 }
@@ -306,6 +317,19 @@ fn de_formulation<'de, D: Deserializer<'de>>(d: D) -> Result<Formulation, D::Err
 
 fn ser_formulation<S: Serializer>(f: &Formulation, s: S) -> Result<S::Ok, S::Error> {
     s.serialize_str(f.name())
+}
+
+fn de_linear<'de, D: Deserializer<'de>>(d: D) -> Result<LinearSolverKind, D::Error> {
+    let s = String::deserialize(d)?;
+    s.parse().map_err(serde::de::Error::custom)
+}
+
+fn ser_linear<S: Serializer>(k: &LinearSolverKind, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&k.to_string())
+}
+
+fn is_default_linear(k: &LinearSolverKind) -> bool {
+    *k == LinearSolverKind::default()
 }
 
 fn de_method<'de, D: Deserializer<'de>>(d: D) -> Result<Method, D::Error> {

@@ -1,0 +1,533 @@
+//! faer's sparse symmetric LDL^T of the saddle-point system, with a
+//! fill-reducing (AMD) ordering, iterative refinement and a per-solve
+//! fallback to [`SparseLu`].
+//!
+//! The tangent `[K G^T; G -eps D]` is symmetric quasi-definite when `K` is
+//! positive definite: an LDL^T without pivoting then exists for any
+//! symmetric ordering, with a positive pivot for every row of `K` and a
+//! negative one for every active multiplier. This solver factorises the
+//! **lower triangle** of the assembled matrix (`row >= col`, duplicates
+//! added), mirrored. Equations are numbered displacements first, then
+//! multipliers and ties ([`crate::assembly::DofMap`]), so for an inactive
+//! multiplier the lower triangle holds its decoupled unit diagonal only,
+//! while the assembled matrix `A` also has the column `G^T` in the
+//! displacement rows (`A = S + E`, `S` the mirrored lower triangle, `E` that
+//! column). Every solve is refined against the assembled `A`:
+//!
+//! ```text
+//! x_0 = S^-1 b,   x_{k+1} = x_k + S^-1 (b - A x_k)
+//! ```
+//!
+//! The error obeys `e_{k+1} = -S^-1 E e_k`; `E` maps multipliers into
+//! displacement rows only and `S^-1` keeps inactive multipliers decoupled,
+//! so `(S^-1 E)^2 = 0`: one refinement step gives the solution of the
+//! assembled (unsymmetric) system, i.e. the exact Newton step, and further
+//! steps remove the round-off of the unpivoted factorisation (the tiny
+//! `-eps` pivots of multipliers ordered before their displacement dofs). The
+//! assembly is therefore unchanged, and Newton solves the same system as
+//! with LU.
+//!
+//! Safety checks, each of which makes this solve fall back to LU (counted in
+//! [`LinearSolver::fallbacks`]):
+//!
+//! - the numeric factorisation reports a zero or non-finite pivot;
+//! - a pivot has the wrong sign: expected positive for a row whose assembled
+//!   diagonal is positive (the `K` rows, inactive multipliers) and negative
+//!   otherwise (active multipliers, ties) — `K` indefinite (buckling) or
+//!   singular (a body held only by contact) shows up here;
+//! - the solution is not finite, or its normwise backward error
+//!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
+//!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.
+//!
+//! Invariants (as [`SparseLu`]): the symbolic analysis (ordering, elimination
+//! tree, supernodes) is kept while [`LinearSolver::analyse`] sees the same
+//! index lists; a numeric factorisation lives from
+//! [`LinearSolver::factor`] to the next [`LinearSolver::solve`], which
+//! consumes it. The LU of a fallback is analysed on first use and then kept
+//! with the same rule; its symbolic work counts in this solver's symbolic
+//! statistics.
+
+use std::time::{Duration, Instant};
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::perm::PermRef;
+use faer::prelude::*;
+use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
+use faer::sparse::linalg::cholesky::{
+    CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky,
+};
+use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::{Conj, Side};
+
+use super::{LinearError, LinearSolver, SparseLu};
+
+/// A solve is accepted when its normwise backward error
+/// `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` is at most this.
+pub const ACCEPT_BACKWARD_ERROR: f64 = 1e-12;
+
+/// Refinement steps against the assembled matrix before a solve falls back
+/// to LU (one is needed whenever a multiplier is inactive, module docs).
+pub const MAX_REFINEMENTS: usize = 3;
+
+/// The cached symbolic data of one pattern.
+struct Pattern {
+    n: usize,
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    /// Indices of the triplets in the lower triangle (`row >= col`).
+    lower: Vec<usize>,
+    /// Compressed-column structure of the lower triangle.
+    symbolic: SymbolicSparseColMat<usize>,
+    argsort: Argsort<usize>,
+    cholesky: SymbolicCholesky<usize>,
+    /// Workspace of the numeric factorisation and the solves, sized for
+    /// `par`.
+    buffer: MemBuffer,
+    /// The parallelism of the numeric factorisation and the solves (faer's
+    /// global setting at analysis time).
+    par: Par,
+}
+
+/// A factorisation waiting for its solve.
+enum Factor {
+    /// The LDL^T values, with the assembled values for the refinement.
+    Ldlt { l_values: Vec<f64>, vals: Vec<f64> },
+    /// The LDL^T was unsafe: the fallback LU is factorised.
+    Lu,
+}
+
+/// faer's sparse LDL^T with symbolic reuse, refinement and LU fallback
+/// (module docs).
+#[derive(Default)]
+pub struct SparseLdlt {
+    pattern: Option<Pattern>,
+    numeric: Option<Factor>,
+    lu: SparseLu,
+    symbolic_factorisations: usize,
+    symbolic_time: Duration,
+    fallbacks: usize,
+    refinements: usize,
+    /// First constraint equation (see [`LinearSolver::set_constraints_from`]);
+    /// `None`: no hint, plain AMD.
+    constraints_from: Option<usize>,
+}
+
+impl SparseLdlt {
+    /// A solver with nothing cached.
+    pub fn new() -> SparseLdlt {
+        SparseLdlt::default()
+    }
+
+    /// Refinement steps taken so far (over all solves).
+    pub fn refinements(&self) -> usize {
+        self.refinements
+    }
+
+    /// Factorises with the fallback LU (analysing the pattern if needed).
+    fn factor_lu(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        let p = self
+            .pattern
+            .as_ref()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        self.fallbacks += 1;
+        self.lu.analyse(p.n, &p.rows, &p.cols)?;
+        self.lu.factor(vals)?;
+        self.numeric = Some(Factor::Lu);
+        Ok(())
+    }
+}
+
+/// The fill-reducing ordering (`fwd[new] = old`, `inv[old] = new`) of the
+/// lower-triangle pattern `lower`: AMD, then every constraint equation
+/// (`>= first`) moved to just after the last of its non-constraint
+/// neighbours, so its pivot is the Schur complement `-eps - g^T S^-1 g`
+/// rather than the tiny `-eps` (module docs). Stable otherwise.
+fn constrained_amd(
+    lower: SymbolicSparseColMatRef<'_, usize>,
+    first: usize,
+) -> Result<(Vec<usize>, Vec<usize>), LinearError> {
+    let n = lower.nrows();
+    let nnz = lower.compute_nnz();
+    let mut fwd = vec![0usize; n];
+    let mut inv = vec![0usize; n];
+    let mut buffer = MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(n, nnz))
+        .map_err(|_| LinearError::Singular("AMD workspace: out of memory".into()))?;
+    amd::order_maybe_unsorted(
+        &mut fwd,
+        &mut inv,
+        lower,
+        amd::Control::default(),
+        MemStack::new(&mut buffer),
+    )
+    .map_err(|e| LinearError::Singular(format!("AMD ordering: {e:?}")))?;
+    // key 2 pos for an unknown, 2 pos(last neighbour) + 1 for a constraint
+    let mut key: Vec<usize> = (0..n).map(|i| 2 * inv[i]).collect();
+    let mut moved = vec![false; n];
+    for j in 0..first.min(n) {
+        for &r in lower.row_idx_of_col_raw(j) {
+            if r >= first {
+                let k = 2 * inv[j] + 1;
+                key[r] = if moved[r] { key[r].max(k) } else { k };
+                moved[r] = true;
+            }
+        }
+    }
+    fwd.sort_by_key(|&i| (key[i], i));
+    for (new, &old) in fwd.iter().enumerate() {
+        inv[old] = new;
+    }
+    Ok((fwd, inv))
+}
+
+/// `|A|_inf` (largest absolute row sum) of the triplets.
+fn norm_inf(n: usize, rows: &[usize], vals: &[f64]) -> f64 {
+    let mut sums = vec![0.0_f64; n];
+    for (&r, &v) in rows.iter().zip(vals) {
+        sums[r] += v.abs();
+    }
+    sums.into_iter().fold(0.0, f64::max)
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// Whether every pivot of the factorisation `l_values` is non-zero, finite
+/// and of the expected sign (`expect_positive[i]` for original row `i`).
+fn pivots_have_expected_signs(
+    cholesky: &SymbolicCholesky<usize>,
+    l_values: &[f64],
+    expect_positive: &[bool],
+) -> bool {
+    let fwd: Option<&[usize]> = cholesky.perm().map(|p| p.arrays().0);
+    let original = |j: usize| fwd.map_or(j, |f| f[j]);
+    let ok =
+        |j: usize, d: f64| d.is_finite() && (d > 0.0) == expect_positive[original(j)] && d != 0.0;
+    match cholesky.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            // the diagonal is the first entry of each column of the factor
+            let col_ptr = s.factor().col_ptr();
+            (0..s.nrows()).all(|j| ok(j, l_values[col_ptr[j]]))
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let ldlt = SupernodalLdltRef::new(s, l_values);
+            (0..s.n_supernodes()).all(|k| {
+                let node = ldlt.supernode(k);
+                let val = node.val();
+                (0..val.ncols()).all(|c| ok(node.start() + c, val[(c, c)]))
+            })
+        }
+    }
+}
+
+impl LinearSolver for SparseLdlt {
+    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
+        let same = self
+            .pattern
+            .as_ref()
+            .is_some_and(|p| p.rows == rows && p.cols == cols);
+        if !same {
+            let t = Instant::now();
+            self.pattern = None;
+            if let Some(k) = rows.iter().zip(cols).position(|(&r, &c)| r >= n || c >= n) {
+                return Err(LinearError::Singular(format!(
+                    "pattern: entry {k} outside the {n} x {n} matrix"
+                )));
+            }
+            let lower: Vec<usize> = (0..rows.len()).filter(|&k| rows[k] >= cols[k]).collect();
+            let idx: Vec<Pair<usize, usize>> = lower
+                .iter()
+                .map(|&k| Pair {
+                    row: rows[k],
+                    col: cols[k],
+                })
+                .collect();
+            let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
+                .map_err(|e| LinearError::Singular(format!("pattern: {e:?}")))?;
+            let ordering = match self.constraints_from {
+                Some(first) if first < n => Some(constrained_amd(symbolic.as_ref(), first)?),
+                _ => None,
+            };
+            let cholesky = factorize_symbolic_cholesky(
+                symbolic.as_ref(),
+                Side::Lower,
+                match &ordering {
+                    Some((fwd, inv)) => {
+                        SymmetricOrdering::Custom(PermRef::new_checked(fwd, inv, n))
+                    }
+                    None => SymmetricOrdering::Amd,
+                },
+                CholeskySymbolicParams::default(),
+            )
+            .map_err(|e| LinearError::Singular(format!("symbolic LDL^T: {e:?}")))?;
+            let par = faer::get_global_parallelism();
+            let scratch = cholesky
+                .factorize_numeric_ldlt_scratch::<f64>(par, Default::default())
+                .or(cholesky.solve_in_place_scratch::<f64>(1, par));
+            let buffer = MemBuffer::try_new(scratch)
+                .map_err(|_| LinearError::Singular("LDL^T workspace: out of memory".into()))?;
+            self.symbolic_factorisations += 1;
+            self.pattern = Some(Pattern {
+                n,
+                rows: rows.to_vec(),
+                cols: cols.to_vec(),
+                lower,
+                symbolic,
+                argsort,
+                cholesky,
+                buffer,
+                par,
+            });
+            self.symbolic_time += t.elapsed();
+        }
+        Ok(())
+    }
+
+    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.numeric = None;
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        if vals.len() != p.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "{} values for {} analysed entries",
+                vals.len(),
+                p.rows.len()
+            )));
+        }
+        let lower_vals: Vec<f64> = p.lower.iter().map(|&k| vals[k]).collect();
+        let mut diagonal = vec![0.0_f64; p.n];
+        for &k in &p.lower {
+            if p.rows[k] == p.cols[k] {
+                diagonal[p.rows[k]] += vals[k];
+            }
+        }
+        let expect_positive: Vec<bool> = diagonal.iter().map(|&d| d > 0.0).collect();
+        let a = SparseColMat::new_from_argsort(p.symbolic.clone(), &p.argsort, &lower_vals)
+            .map_err(|e| LinearError::Singular(format!("values: {e:?}")))?;
+        let mut l_values = vec![0.0_f64; p.cholesky.len_val()];
+        let safe = p
+            .cholesky
+            .factorize_numeric_ldlt(
+                &mut l_values,
+                a.as_ref(),
+                Side::Lower,
+                LdltRegularization::default(),
+                p.par,
+                MemStack::new(&mut p.buffer),
+                Default::default(),
+            )
+            .is_ok()
+            && pivots_have_expected_signs(&p.cholesky, &l_values, &expect_positive);
+        if safe {
+            self.numeric = Some(Factor::Ldlt {
+                l_values,
+                vals: vals.to_vec(),
+            });
+            Ok(())
+        } else {
+            drop(l_values);
+            self.factor_lu(vals)
+        }
+    }
+
+    fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
+        let factor = self
+            .numeric
+            .take()
+            .ok_or_else(|| LinearError::Singular("no factorisation".into()))?;
+        let (l_values, vals) = match factor {
+            Factor::Lu => return self.lu.solve(rhs),
+            Factor::Ldlt { l_values, vals } => (l_values, vals),
+        };
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        let n = p.n;
+        if rhs.len() != n {
+            return Err(LinearError::Singular(format!(
+                "right-hand side of size {} for {n} equations",
+                rhs.len()
+            )));
+        }
+        let par = p.par;
+        let ldlt = LdltRef::new(&p.cholesky, &l_values);
+        let mut x = rhs.to_vec();
+        ldlt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, 1),
+            par,
+            MemStack::new(&mut p.buffer),
+        );
+        let a_norm = norm_inf(n, &p.rows, &vals);
+        let b_norm = max_abs(rhs);
+        let mut r = vec![0.0_f64; n];
+        let mut refinements = 0;
+        let accepted = loop {
+            // r = b - A x with the assembled (possibly unsymmetric) matrix
+            r.copy_from_slice(rhs);
+            for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(&vals) {
+                r[row] -= v * x[col];
+            }
+            let finite = x.iter().all(|v| v.is_finite());
+            let (r_max, x_max) = (max_abs(&r), max_abs(&x));
+            if !finite || !r_max.is_finite() {
+                break false;
+            }
+            if r_max <= ACCEPT_BACKWARD_ERROR * (a_norm * x_max + b_norm) {
+                break true;
+            }
+            if refinements == MAX_REFINEMENTS {
+                break false;
+            }
+            refinements += 1;
+            ldlt.solve_in_place_with_conj(
+                Conj::No,
+                MatMut::from_column_major_slice_mut(&mut r, n, 1),
+                par,
+                MemStack::new(&mut p.buffer),
+            );
+            for (xi, ri) in x.iter_mut().zip(&r) {
+                *xi += ri;
+            }
+        };
+        self.refinements += refinements;
+        if accepted {
+            return Ok(x);
+        }
+        drop(l_values);
+        self.factor_lu(&vals)?;
+        self.numeric = None;
+        self.lu.solve(rhs)
+    }
+
+    fn symbolic_factorisations(&self) -> usize {
+        self.symbolic_factorisations + self.lu.symbolic_factorisations()
+    }
+
+    fn symbolic_time(&self) -> Duration {
+        self.symbolic_time + self.lu.symbolic_time()
+    }
+
+    fn fallbacks(&self) -> usize {
+        self.fallbacks
+    }
+
+    fn set_constraints_from(&mut self, first: usize) {
+        if self.constraints_from != Some(first) {
+            self.constraints_from = Some(first);
+            self.pattern = None;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::linear::check_solution;
+
+    /// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
+    /// the LDL^T solver.
+    fn both(n: usize, t: &[(usize, usize, f64)], b: &[f64]) -> (Vec<f64>, Vec<f64>, SparseLdlt) {
+        let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
+        let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+        let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
+        let mut ldlt = SparseLdlt::new();
+        let x = ldlt.solve_system(n, &rows, &cols, &vals, b).unwrap();
+        let y = SparseLu::new()
+            .solve_system(n, &rows, &cols, &vals, b)
+            .unwrap();
+        (x, y, ldlt)
+    }
+
+    fn assert_close(x: &[f64], y: &[f64]) {
+        for (a, b) in x.iter().zip(y) {
+            assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{x:?} vs {y:?}");
+        }
+    }
+
+    /// A quasi-definite saddle-point system (`K` positive definite, an
+    /// active regularised multiplier): LDL^T, no fallback, LU's solution.
+    #[test]
+    fn quasi_definite_without_fallback() {
+        let t = [
+            (0, 0, 4.0),
+            (1, 1, 3.0),
+            (0, 1, 1.0),
+            (1, 0, 1.0),
+            (0, 2, 1.0),
+            (2, 0, 1.0),
+            (1, 2, 2.0),
+            (2, 1, 2.0),
+            (2, 2, -1e-3),
+        ];
+        let (x, y, s) = both(3, &t, &[1.0, -2.0, 0.5]);
+        assert_close(&x, &y);
+        assert_eq!(s.fallbacks(), 0);
+        assert_eq!(s.symbolic_factorisations(), 1);
+    }
+
+    /// An inactive multiplier as the assembly writes it (`G^T` in its
+    /// column, zeros in its row, a unit diagonal): the lower triangle is
+    /// decoupled, and one refinement step recovers the unsymmetric system's
+    /// solution exactly, without fallback.
+    #[test]
+    fn inactive_multiplier_is_refined_to_the_assembled_system() {
+        let t = [
+            (0, 0, 4.0),
+            (1, 1, 3.0),
+            (0, 1, 1.0),
+            (1, 0, 1.0),
+            (0, 2, 1.0),
+            (2, 0, 0.0),
+            (1, 2, 2.0),
+            (2, 1, 0.0),
+            (2, 2, 1.0),
+            (2, 2, 0.0),
+        ];
+        let (x, y, s) = both(3, &t, &[1.0, -2.0, 0.5]);
+        assert_close(&x, &y);
+        assert_eq!(x[2], 0.5);
+        assert_eq!(s.fallbacks(), 0);
+        assert!(s.refinements() >= 1);
+    }
+
+    /// An indefinite `K` (a wrong-signed pivot) falls back to LU and still
+    /// solves; the fallback is counted.
+    #[test]
+    fn indefinite_stiffness_falls_back_to_lu() {
+        let t = [(0, 0, 1.0), (1, 1, 1.0), (0, 1, 2.0), (1, 0, 2.0)];
+        let (x, y, s) = both(2, &t, &[1.0, 0.0]);
+        assert_close(&x, &y);
+        assert_eq!(s.fallbacks(), 1);
+        // a zero pivot (the multiplier eliminated before its dofs) too
+        let t = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 0.0)];
+        let (x, y, _) = both(2, &t, &[1.0, 1.0]);
+        assert_close(&x, &y);
+    }
+
+    /// A singular matrix is an error (after the fallback), never a panic;
+    /// so are mismatched sizes.
+    #[test]
+    fn singular_is_an_error() {
+        let (rows, cols) = ([0, 0, 1, 1], [0, 1, 0, 1]);
+        let vals = [1.0, 1.0, 1.0, 1.0];
+        let mut s = SparseLdlt::new();
+        let r = s
+            .solve(&[1.0, 1.0])
+            .and_then(|x| check_solution(&vals, &[1.0, 1.0], x));
+        assert!(r.is_err());
+        assert!(s.solve_system(2, &rows, &cols, &vals, &[1.0, 2.0]).is_err());
+        assert_eq!(s.fallbacks(), 1);
+        assert!(s.analyse(2, &[0, 2], &[0, 0]).is_err());
+        s.analyse(2, &rows, &cols).unwrap();
+        assert!(s.factor(&[1.0]).is_err());
+        s.factor(&[2.0, 0.0, 0.0, 2.0]).unwrap();
+        assert!(s.solve(&[1.0]).is_err());
+    }
+}
