@@ -102,8 +102,8 @@ mod validate;
 
 pub use error::SceneError;
 pub use spec::{
-    BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, NewtonSpec,
-    PrescribeSpec, RefineSpec, Scene,
+    BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
+    PrescribeSpec, RefineSpec, Scene, TractionSpec,
 };
 
 impl Scene {
