@@ -312,26 +312,4 @@ fn chain(segments: &[[usize; 2]]) -> Vec<[usize; 2]> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn chains_follow_shared_nodes() {
-        // 3 -> 4, 1 -> 2, 2 -> 3, and a separate 7 -> 8
-        let segs = [[3, 4], [7, 8], [1, 2], [2, 3]];
-        assert_eq!(chain(&segs), [[7, 8], [1, 2], [2, 3], [3, 4]]);
-        // a closed loop starts at its first segment in the file
-        let ring = [[2, 3], [3, 1], [1, 2]];
-        assert_eq!(chain(&ring), [[2, 3], [3, 1], [1, 2]]);
-    }
-
-    #[test]
-    fn mesh_files_are_relative_to_the_scene() {
-        assert_eq!(
-            resolve("scenes/hertz.toml", "hertz.msh"),
-            Path::new("scenes/hertz.msh")
-        );
-        assert_eq!(resolve("hertz.toml", "m/x.msh"), Path::new("m/x.msh"));
-        assert_eq!(resolve("a/b.toml", "/abs/x.msh"), Path::new("/abs/x.msh"));
-    }
-}
+mod tests;
