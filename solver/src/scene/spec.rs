@@ -55,7 +55,8 @@ pub struct Scene {
     pub contacts: Vec<ContactSpec>,
     /// `[loading]`: the load schedule (required).
     pub loading: LoadingSpec,
-    /// `[refine]`: mesh refinement factors (default 1 and 1).
+    /// `[refine]`: refinement factors of the block bodies (default 1 and
+    /// 1).
     #[serde(default)]
     pub refine: RefineSpec,
     /// `[newton]`: Newton settings (defaults as in [`NewtonSpec`]).
