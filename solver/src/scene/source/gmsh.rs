@@ -206,77 +206,88 @@ impl MeshSource for Gmsh<'_> {
 
     fn group_face(&self, group: &str) -> Option<Result<GroupFace, String>> {
         let msh = self.msh.as_ref()?;
-        Some((|| {
-            let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
-            let file = msh.file().display();
-            let not_on_boundary = |[a, b]: [usize; 2], why: &str| {
-                format!(
-                    "{file}: physical curve `{group}` is not on the boundary of a body: its segment from node {} to node {} {why}",
-                    Self::tag(msh, a),
-                    Self::tag(msh, b)
-                )
-            };
-            let mut body = None;
-            let mut oriented = Vec::with_capacity(segments.len());
-            for [a, b] in segments {
-                let forward = self.edges.contains_key(&(a, b));
-                let backward = self.edges.contains_key(&(b, a));
-                let seg = match (forward, backward) {
-                    (true, false) => [a, b],
-                    (false, true) => [b, a],
-                    (true, true) => {
-                        return Err(not_on_boundary([a, b], "lies between two elements"));
-                    }
-                    (false, false) => {
-                        return Err(not_on_boundary(
-                            [a, b],
-                            "is no edge of an element of a [[body]]",
-                        ));
-                    }
-                };
-                let owner = self.body_of[a];
-                match body {
-                    None => body = owner,
-                    Some(first) if owner != Some(first) => {
-                        return Err(format!(
-                            "{file}: physical curve `{group}` lies on more than one body; a face is on one body"
-                        ));
-                    }
-                    Some(_) => {}
-                }
-                oriented.push(seg);
-            }
-            let body = body.ok_or_else(|| format!("{file}: physical curve `{group}` is empty"))?;
-            let segments = chain(&oriented)
-                .into_iter()
-                .map(|s| s.map(|n| self.node_of[n].unwrap_or(NodeId::new(0))))
-                .collect();
-            Ok(GroupFace { body, segments })
-        })())
+        Some(self.face_of(msh, group))
     }
 
     fn group_nodes(&self, group: &str) -> Option<Result<Vec<NodeId>, String>> {
         let msh = self.msh.as_ref()?;
-        Some((|| {
-            let nodes = msh.group_nodes(group).map_err(|e| e.to_string())?;
-            let mut nodes = self.mesh_nodes(msh, group, &nodes)?;
-            nodes.sort_unstable();
-            Ok(nodes)
-        })())
+        Some(self.nodes_of(msh, group))
     }
 
     fn group_segments(&self, group: &str) -> Option<Result<Vec<[NodeId; 2]>, String>> {
         let msh = self.msh.as_ref()?;
-        Some((|| {
-            let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
-            segments
-                .iter()
-                .map(|s| {
-                    let n = self.mesh_nodes(msh, group, s)?;
-                    Ok([n[0], n[1]])
-                })
-                .collect()
-        })())
+        Some(self.segments_of(msh, group))
+    }
+}
+
+impl Gmsh<'_> {
+    /// [`MeshSource::group_face`] of the file's mesh `msh`.
+    fn face_of(&self, msh: &MshMesh, group: &str) -> Result<GroupFace, String> {
+        let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
+        let file = msh.file().display();
+        let not_on_boundary = |[a, b]: [usize; 2], why: &str| {
+            format!(
+                "{file}: physical curve `{group}` is not on the boundary of a body: its segment from node {} to node {} {why}",
+                Self::tag(msh, a),
+                Self::tag(msh, b)
+            )
+        };
+        let mut body = None;
+        let mut oriented = Vec::with_capacity(segments.len());
+        for [a, b] in segments {
+            let forward = self.edges.contains_key(&(a, b));
+            let backward = self.edges.contains_key(&(b, a));
+            let seg = match (forward, backward) {
+                (true, false) => [a, b],
+                (false, true) => [b, a],
+                (true, true) => {
+                    return Err(not_on_boundary([a, b], "lies between two elements"));
+                }
+                (false, false) => {
+                    return Err(not_on_boundary(
+                        [a, b],
+                        "is no edge of an element of a [[body]]",
+                    ));
+                }
+            };
+            let owner = self.body_of[a];
+            match body {
+                None => body = owner,
+                Some(first) if owner != Some(first) => {
+                    return Err(format!(
+                        "{file}: physical curve `{group}` lies on more than one body; a face is on one body"
+                    ));
+                }
+                Some(_) => {}
+            }
+            oriented.push(seg);
+        }
+        let body = body.ok_or_else(|| format!("{file}: physical curve `{group}` is empty"))?;
+        let segments = chain(&oriented)
+            .into_iter()
+            .map(|s| s.map(|n| self.node_of[n].unwrap_or(NodeId::new(0))))
+            .collect();
+        Ok(GroupFace { body, segments })
+    }
+
+    /// [`MeshSource::group_nodes`] of the file's mesh `msh`.
+    fn nodes_of(&self, msh: &MshMesh, group: &str) -> Result<Vec<NodeId>, String> {
+        let nodes = msh.group_nodes(group).map_err(|e| e.to_string())?;
+        let mut nodes = self.mesh_nodes(msh, group, &nodes)?;
+        nodes.sort_unstable();
+        Ok(nodes)
+    }
+
+    /// [`MeshSource::group_segments`] of the file's mesh `msh`.
+    fn segments_of(&self, msh: &MshMesh, group: &str) -> Result<Vec<[NodeId; 2]>, String> {
+        let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
+        segments
+            .iter()
+            .map(|s| {
+                let n = self.mesh_nodes(msh, group, s)?;
+                Ok([n[0], n[1]])
+            })
+            .collect()
     }
 }
 
