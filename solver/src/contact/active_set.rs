@@ -7,10 +7,12 @@
 //! positive (the neighbours of the touching node are a little off), the
 //! primal–dual test activates none, and the first tangent is singular (the
 //! body floats). [`ContactLayout::close_touching`] therefore activates, in
-//! the first iteration of an attempt only, the node of a unilateral pair
-//! without pressure and without an active node whose weighted gap is the
-//! smallest, if that gap is at most [`CLOSING_GAP`] times its tributary
-//! length (the node touches). Pairs that start in contact along a face
+//! the first iteration of an attempt only, in a unilateral pair without
+//! pressure and without an active node, the nodes whose weighted gap is at
+//! most [`CLOSING_GAP`] times their tributary length (the nodes that
+//! touch). (Activating only the closest node works too; on the fine Hertz
+//! mesh it took 23 iterations in one step instead of 21, 31 in four instead
+//! of 29.) Pairs that start in contact along a face
 //! (gaps zero: active by the primal–dual test) or pressed (non-zero
 //! multipliers) never meet this rule, so their iterations are unchanged.
 //!
@@ -48,9 +50,9 @@ impl ContactLayout {
     }
 
     /// First iteration of an attempt (module docs): in every unilateral
-    /// pair with all multipliers zero and none `active`, makes the node with
-    /// the smallest weighted gap active if that gap is at most
-    /// [`CLOSING_GAP`] times its tributary length.
+    /// pair with all multipliers zero and none `active`, makes every node
+    /// active whose weighted gap is at most [`CLOSING_GAP`] times its
+    /// tributary length.
     pub fn close_touching(&self, evals: &[Option<PointEval>], lambda: &[f64], active: &mut [bool]) {
         let (weight, weighted_gap) = self.nodal_sums(evals);
         for (pair, &mode) in self.modes.iter().enumerate() {
@@ -63,15 +65,10 @@ impl ContactLayout {
             if of_pair.iter().any(|&m| active[m] || lambda[m] != 0.0) {
                 continue;
             }
-            let closest = of_pair
-                .iter()
-                .filter(|&&m| weight[m] > 0.0)
-                .map(|&m| (m, weighted_gap[m] / weight[m]))
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((m, gap)) = closest
-                && gap <= CLOSING_GAP * weight[m]
-            {
-                active[m] = true;
+            for &m in &of_pair {
+                if weight[m] > 0.0 && weighted_gap[m] / weight[m] <= CLOSING_GAP * weight[m] {
+                    active[m] = true;
+                }
             }
         }
     }
