@@ -625,7 +625,7 @@ fn unpaired_points_are_inactive_and_reported() {
         "size = [6.0, 0.5]\nnx = 6\nny = 1\n\n[[body]]\nname = \"slave\"",
     );
     let scene = Scene::from_toml_str(&text, "overhang.toml").unwrap();
-    assert_eq!(scene.bodies[0].nx, 6);
+    assert_eq!(scene.bodies[0].nx, Some(6));
     for method in [Method::Complete, Method::Approx(ApproxType::Type3)] {
         let sol = run(&scene, method, 4);
         let unpaired = sol.unpaired_points();
@@ -782,7 +782,7 @@ fn paper_scene_file_is_the_design_scene() {
     for (b, y0) in scene.bodies.iter().zip([0.0, 0.5]) {
         assert_eq!(
             (b.nx, b.ny, b.origin, b.size),
-            (7, 1, [0.0, y0], [7.0, 0.5])
+            (Some(7), Some(1), Some([0.0, y0]), Some([7.0, 0.5]))
         );
     }
     let mat = scene.material.unwrap();

@@ -141,23 +141,25 @@ pub fn run(args: &RunArgs) -> CommandResult {
         }
     }
     for load in &scene.loads {
+        // a load on a physical group has no position to report
+        let Some(at) = load.at else { continue };
         let bodies: Vec<&str> = match &load.body {
             Some(b) => vec![b.as_str()],
             None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
         };
         let distance = |n: NodeId| {
             let p = sol.mesh.node_ref(n);
-            (p[0] - load.at[0]).hypot(p[1] - load.at[1])
+            (p[0] - at[0]).hypot(p[1] - at[1])
         };
         let nearest = bodies
             .iter()
-            .filter_map(|b| sol.node_at(b, load.at))
+            .filter_map(|b| sol.node_at(b, at))
             .min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
         if let Some(node) = nearest {
             let [ux, uy] = sol.displacement(node);
             println!(
                 "loaded node     ({}, {}) moves by ({ux:.6}, {uy:.6})",
-                load.at[0], load.at[1]
+                at[0], at[1]
             );
         }
     }

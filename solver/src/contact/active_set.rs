@@ -2,22 +2,37 @@
 //! and modes"): persistent pairs, every multiplier with an active
 //! integration point; unilateral pairs, the primal–dual active set.
 //!
+//! A body held only by contact (the Hertz cylinder) touches its master at a
+//! point at the start: every nodal weighted gap of its unilateral pair is
+//! positive (the neighbours of the touching node are a little off), the
+//! primal–dual test activates none, and the first tangent is singular (the
+//! body floats). [`ContactLayout::close_touching`] therefore activates, in
+//! the first iteration of an attempt only, in a unilateral pair without
+//! pressure and without an active node, the nodes whose weighted gap is at
+//! most [`CLOSING_GAP`] times their tributary length (the nodes that
+//! touch). (Activating only the closest node works too; on the fine Hertz
+//! mesh it took 23 iterations in one step instead of 21, 31 in four instead
+//! of 29.) Pairs that start in contact along a face
+//! (gaps zero: active by the primal–dual test) or pressed (non-zero
+//! multipliers) never meet this rule, so their iterations are unchanged.
+//!
 //! Invariant: the nodal weights and weighted gaps are summed in point order.
 
 use crate::model::ContactMode;
 
 use super::{ContactLayout, PointEval, shape2};
 
+/// A node of a unilateral pair whose weighted gap is at most this times its
+/// tributary length `sum w J0 N_a` counts as touching at the start of an
+/// attempt ([`ContactLayout::close_touching`]). At a smooth convex contact
+/// with segments of length `h` and curvature radius `R` the touching node's
+/// ratio is about `h / (30 R)`.
+pub const CLOSING_GAP: f64 = 1e-2;
+
 impl ContactLayout {
-    /// Which multipliers carry a constraint row (see the module docs):
-    /// persistent pairs: those with an active integration point;
-    /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
-    pub fn active_multipliers(
-        &self,
-        evals: &[Option<PointEval>],
-        lambda: &[f64],
-        length_scale: f64,
-    ) -> Vec<bool> {
+    /// Per multiplier: the tributary length `sum w J0 N_a` and the weighted
+    /// gap `sum w J0 N_a g` over the paired points, in point order.
+    fn nodal_sums(&self, evals: &[Option<PointEval>]) -> (Vec<f64>, Vec<f64>) {
         let n = self.multipliers.len();
         let mut weight = vec![0.0; n];
         let mut weighted_gap = vec![0.0; n];
@@ -31,6 +46,44 @@ impl ContactLayout {
                 }
             }
         }
+        (weight, weighted_gap)
+    }
+
+    /// First iteration of an attempt (module docs): in every unilateral
+    /// pair with all multipliers zero and none `active`, makes every node
+    /// active whose weighted gap is at most [`CLOSING_GAP`] times its
+    /// tributary length.
+    pub fn close_touching(&self, evals: &[Option<PointEval>], lambda: &[f64], active: &mut [bool]) {
+        let (weight, weighted_gap) = self.nodal_sums(evals);
+        for (pair, &mode) in self.modes.iter().enumerate() {
+            if mode != ContactMode::Unilateral {
+                continue;
+            }
+            let of_pair: Vec<usize> = (0..self.multipliers.len())
+                .filter(|&m| self.multipliers[m].pair.index() == pair)
+                .collect();
+            if of_pair.iter().any(|&m| active[m] || lambda[m] != 0.0) {
+                continue;
+            }
+            for &m in &of_pair {
+                if weight[m] > 0.0 && weighted_gap[m] / weight[m] <= CLOSING_GAP * weight[m] {
+                    active[m] = true;
+                }
+            }
+        }
+    }
+
+    /// Which multipliers carry a constraint row (see the module docs):
+    /// persistent pairs: those with an active integration point;
+    /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
+    pub fn active_multipliers(
+        &self,
+        evals: &[Option<PointEval>],
+        lambda: &[f64],
+        length_scale: f64,
+    ) -> Vec<bool> {
+        let n = self.multipliers.len();
+        let (weight, weighted_gap) = self.nodal_sums(evals);
         (0..n)
             .map(|m| {
                 if !(weight[m] > 0.0) {

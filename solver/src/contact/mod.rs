@@ -159,7 +159,10 @@
 //!   row, an inactive one the row `l_a = 0`. The system's sparsity pattern
 //!   is the same for both. Newton converges when the residual of the
 //!   current active set is below tolerance; a step whose active set keeps
-//!   changing runs into the iteration limit and is cut back.
+//!   changing runs into the iteration limit and is cut back. In the first
+//!   iteration of an attempt, a pair without pressure and without an active
+//!   node also activates the nodes that touch (`active_set`,
+//!   `CLOSING_GAP`), so that a body held only by contact does not float.
 //!
 //! # Parts
 //!

@@ -152,9 +152,9 @@ impl Run<'_> {
                     return Ok(AttemptOutcome::cut_back(reason, residuals, it));
                 }
             };
-            let (mut sys, active) = self
-                .setup
-                .contact_system(&evals, &others, &x.lambda, &x.ties);
+            let (mut sys, active) =
+                self.setup
+                    .contact_system(&evals, &others, &x.lambda, &x.ties, it == 0);
             self.timings.contact_evaluation += t.elapsed();
             // solid
             let t = Instant::now();

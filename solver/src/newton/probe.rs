@@ -164,7 +164,7 @@ impl<'a> IterationProbe<'a> {
             .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
         let (system, active) = self
             .setup
-            .contact_system(&evals, &others, &self.lambda, &[]);
+            .contact_system(&evals, &others, &self.lambda, &[], false);
         Ok(ContactPhase { system, active })
     }
 

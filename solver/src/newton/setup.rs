@@ -170,20 +170,26 @@ impl<'a> Setup<'a> {
         Ok((evals, others))
     }
 
-    /// The active multipliers at `(evals, lambda)` and a fresh system (one
-    /// equation per free dof, multiplier and tie) holding the contact
-    /// contributions of `evals` and then those of the `ties` (with `others`,
-    /// their evaluations on the other segment).
+    /// The active multipliers at `(evals, lambda)` (in the `first`
+    /// iteration of an attempt also the touching nodes of unilateral pairs
+    /// without contact, [`ContactLayout::close_touching`]) and a fresh
+    /// system (one equation per free dof, multiplier and tie) holding the
+    /// contact contributions of `evals` and then those of the `ties` (with
+    /// `others`, their evaluations on the other segment).
     pub(super) fn contact_system(
         &self,
         evals: &[Option<PointEval>],
         others: &[PointEval],
         lambda: &[f64],
         ties: &[NodeTie],
+        first: bool,
     ) -> (System, Vec<bool>) {
-        let active = self
+        let mut active = self
             .layout
             .active_multipliers(evals, lambda, self.length_scale);
+        if first {
+            self.layout.close_touching(evals, lambda, &mut active);
+        }
         let n_sys = self.dofs.n_eq() + ties.len();
         let mut sys = System::new(n_sys);
         assemble_contact(&self.layout, evals, lambda, &active, &self.dofs, &mut sys);

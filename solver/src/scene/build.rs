@@ -9,7 +9,10 @@
 //!   `[[prescribe]]`, each item's nodes in increasing index, then its
 //!   components x, y; a degree of freedom appears once (a second item may
 //!   only repeat its value);
-//! * point loads in `[[load]]` order, x then y;
+//! * point loads in `[[load]]` order, x then y; then the tractions in
+//!   `[[traction]]` order, each curve's segments in file order, each
+//!   segment's two nodes in the file's direction, x then y
+//!   (`t L / 2` each, `L` the reference length);
 //! * contact pairs in `[[contact]]` order, each face's segments as its
 //!   source orders them (counter-clockwise around the body).
 
@@ -23,7 +26,7 @@ impl Scene {
     /// Builds the finite-element model.
     pub fn build_model(&self) -> Result<Model, SceneError> {
         self.check_refine()?;
-        let mut sources = Sources::of(self);
+        let mut sources = Sources::of(self)?;
         let mut mesh = Mesh::new();
         for i in 0..self.bodies.len() {
             let material = self.check_body(i)?;
@@ -53,7 +56,7 @@ impl Scene {
         };
         for (i, fx) in self.fixes.iter().enumerate() {
             let f = format!("fix[{i}]");
-            for n in self.select(&mesh, &f, &fx.body, fx.x, fx.y, fx.at)? {
+            for n in self.select_in(&mesh, &sources, &f, &fx.body, &fx.group, fx.x, fx.y, fx.at)? {
                 for &c in fx.dofs.components() {
                     add_prescribed(&f, DofId::of(n, c), 0.0)?;
                 }
@@ -62,7 +65,7 @@ impl Scene {
         for (i, p) in self.prescribes.iter().enumerate() {
             let f = format!("prescribe[{i}]");
             self.check_prescribe(&f, p)?;
-            for n in self.select(&mesh, &f, &p.body, p.x, p.y, p.at)? {
+            for n in self.select_in(&mesh, &sources, &f, &p.body, &p.group, p.x, p.y, p.at)? {
                 for (c, v) in [(0, p.ux), (1, p.uy)] {
                     if let Some(v) = v {
                         add_prescribed(&f, DofId::of(n, c), v)?;
@@ -74,16 +77,28 @@ impl Scene {
         for (i, l) in self.loads.iter().enumerate() {
             let f = format!("load[{i}]");
             self.check_load(&f, l)?;
-            let nodes = self.select(&mesh, &f, &l.body, None, None, Some(l.at))?;
+            if l.at.is_none() && l.group.is_none() {
+                return Err(self.invalid(&f, "give `at` or `group`"));
+            }
+            let nodes = self.select_in(&mesh, &sources, &f, &l.body, &l.group, None, None, l.at)?;
             if nodes.len() > 1 {
-                return Err(self.invalid(
-                    format!("{f}.at"),
-                    format!(
-                        "{} nodes sit at {:?} (bodies share no nodes); name the `body`",
-                        nodes.len(),
-                        l.at
+                return Err(match (&l.group, l.at) {
+                    (Some(g), _) => self.invalid(
+                        format!("{f}.group"),
+                        format!(
+                            "physical group `{g}` has {} nodes; a point load needs one (a [[traction]] loads a curve)",
+                            nodes.len()
+                        ),
                     ),
-                ));
+                    (None, at) => self.invalid(
+                        format!("{f}.at"),
+                        format!(
+                            "{} nodes sit at {:?} (bodies share no nodes); name the `body`",
+                            nodes.len(),
+                            at.unwrap_or_default()
+                        ),
+                    ),
+                });
             }
             for c in 0..2 {
                 loads.push(PointLoad {
@@ -92,11 +107,31 @@ impl Scene {
                 });
             }
         }
+        for (i, t) in self.tractions.iter().enumerate() {
+            let f = format!("traction[{i}]");
+            self.check_traction(&f, t)?;
+            let segments = sources.group_segments(&format!("{f}.group"), &t.group)?;
+            for seg in segments {
+                let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
+                let half = (b[0] - a[0]).hypot(b[1] - a[1]) / 2.0;
+                for n in seg {
+                    for c in 0..2 {
+                        loads.push(PointLoad {
+                            dof: DofId::of(n, c),
+                            value: t.force_per_length[c] * half,
+                        });
+                    }
+                }
+            }
+        }
         let mut contacts = Vec::new();
         for (i, c) in self.contacts.iter().enumerate() {
             let f = format!("contact[{i}]");
-            let slave = self.face(&mesh, &sources, &f, "slave", &c.slave)?;
-            let master = self.face(&mesh, &sources, &f, "master", &c.master)?;
+            let (slave_body, slave) = self.face(&mesh, &sources, &f, "slave", &c.slave)?;
+            let (master_body, master) = self.face(&mesh, &sources, &f, "master", &c.master)?;
+            if slave_body == master_body {
+                return Err(self.invalid(&f, "slave and master must be different bodies"));
+            }
             self.check_contact(&f, c)?;
             contacts.push(ContactPair {
                 name: c.name.clone().unwrap_or_else(|| f.clone()),

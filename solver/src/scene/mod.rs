@@ -1,7 +1,7 @@
 //! Scene files (TOML).
 //!
-//! A scene describes bodies made of structured rectangular blocks of Q4
-//! elements, their materials, supports, proportional loads, prescribed
+//! A scene describes bodies of Q4 elements (structured rectangular blocks,
+//! or physical surfaces of a Gmsh mesh file), their materials, supports, proportional loads, prescribed
 //! displacements, contact pairs and the load schedule. Unknown keys are
 //! errors. The paper scene, `scenes/stacked-cantilever.toml`, reads:
 //!
@@ -72,6 +72,46 @@
 //! linear = "lu"               # linear solver: "lu" (default) or "ldlt"
 //! ```
 //!
+//! Bodies from a mesh file (`scenes/hertz.toml`, the Hertz quarter model):
+//!
+//! ```toml
+//! [mesh]
+//! file = "hertz.msh"          # Gmsh MSH 4.1, ASCII or binary; relative to
+//!                             # this file's directory
+//!
+//! [[body]]                    # no origin/size/nx/ny: a physical surface
+//! name = "cylinder"           # of the file, by name
+//! # group = "surface_name"    # (optional: a surface of another name)
+//!
+//! [[body]]                    # blocks and mesh bodies may be mixed;
+//! name = "block"              # bodies share no nodes (an error otherwise)
+//!
+//! [[fix]]                     # [[fix]], [[prescribe]]: `group` (a physical
+//! group = "symmetry"          # curve or point) instead of x / y / at
+//! dofs = "x"
+//!
+//! [[load]]                    # a point load: `group` (one node) instead of at
+//! group = "tip"
+//! force = [0.0, -1.0]
+//!
+//! [[traction]]                # a dead load per unit reference length on a
+//! group = "load_edge"         # physical curve, times the load factor:
+//! force_per_length = [0.0, -0.4315]   # t L / 2 to both nodes of a segment
+//!
+//! [[contact]]                 # faces: a physical curve on one body's boundary
+//! slave = { group = "cylinder_surface" }      # (optional `body`, checked)
+//! master = { group = "block_top" }
+//! mode = "unilateral"
+//! ```
+//!
+//! A contact face from a curve is oriented by the element that owns each of
+//! its segments (counter-clockwise around the body, outward normal), however
+//! the curve was drawn. Only quadrangles are read into bodies for now (a
+//! triangle is an error naming it); `[refine]` applies to blocks only.
+//! Group errors name the file and the group: an unknown name lists those
+//! that exist, a group of the wrong dimension, a face that is not on a
+//! body's boundary, a node of a group in no body.
+//!
 //! Block sides are ordered counter-clockwise around their body (see
 //! [`crate::mesh::block`]). Coordinates select nodes within `1e-9` times the size
 //! of the mesh. Errors name the file, the field (e.g. `body[1].nx`) and what
@@ -86,7 +126,8 @@
 //!   numbers, materials, names), each naming its field;
 //! * `source/`: mesh sources, which make the bodies and resolve the faces
 //!   that depend on how a body was made (`source/blocks.rs`: the
-//!   structured rectangular blocks of `[[body]]`);
+//!   structured rectangular blocks of `[[body]]`; `source/gmsh.rs`: the
+//!   physical surfaces of the `[mesh]` file and its groups by name);
 //! * `select.rs`: node selection by reference coordinates and face
 //!   resolution by body name;
 //! * `build.rs`: [`Scene::build_model`], from a scene to a
@@ -103,8 +144,8 @@ mod validate;
 
 pub use error::SceneError;
 pub use spec::{
-    BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, NewtonSpec,
-    PrescribeSpec, RefineSpec, Scene,
+    BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
+    PrescribeSpec, RefineSpec, Scene, TractionSpec,
 };
 
 impl Scene {

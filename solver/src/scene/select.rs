@@ -1,11 +1,12 @@
-//! Selections in a scene: nodes by reference coordinates, bodies by name,
-//! faces by body and side.
+//! Selections in a scene: nodes by reference coordinates or physical
+//! group, bodies by name, faces by body and side or by physical curve.
 //!
 //! Selection by coordinates (`x`, `y`, `at`, optionally within a `body`) is
 //! geometric and works on any mesh: it matches every node within
 //! [`Mesh::coordinate_tolerance`]. Which segments a face names depends on
 //! how its body was made, so faces are resolved by the body's mesh source
-//! ([`Sources::face`]).
+//! ([`Sources::face`]); physical groups (`group`) by the source that read
+//! the mesh file ([`Sources::group_nodes`], [`Sources::group_face`]).
 
 use super::source::Sources;
 use super::{FaceSpec, Scene, SceneError};
@@ -31,6 +32,41 @@ impl Scene {
                 )
             }),
         }
+    }
+
+    /// The nodes (optionally of one body) of the physical `group` if one is
+    /// given (then not `x`, `y` or `at`), ascending; otherwise those of
+    /// [`Scene::select`]. At least one node.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn select_in(
+        &self,
+        mesh: &Mesh,
+        sources: &Sources,
+        field: &str,
+        body: &Option<String>,
+        group: &Option<String>,
+        x: Option<f64>,
+        y: Option<f64>,
+        at: Option<[f64; 2]>,
+    ) -> Result<Vec<NodeId>, SceneError> {
+        let Some(group) = group else {
+            return self.select(mesh, field, body, x, y, at);
+        };
+        let b = self.body_index(mesh, format!("{field}.body"), body)?;
+        if x.is_some() || y.is_some() || at.is_some() {
+            return Err(self.invalid(field, "give either `group` or `x`/`y`/`at`, not both"));
+        }
+        let mut nodes = sources.group_nodes(&format!("{field}.group"), group)?;
+        if let Some(b) = b {
+            nodes.retain(|&n| mesh.bodies[b].has_node(n));
+        }
+        if nodes.is_empty() {
+            return Err(self.invalid(
+                format!("{field}.group"),
+                format!("physical group `{group}` has no node{}", in_body(body)),
+            ));
+        }
+        Ok(nodes)
     }
 
     /// The nodes (optionally of one body) at the reference coordinates the
@@ -66,8 +102,9 @@ impl Scene {
         Ok(nodes)
     }
 
-    /// The segments of the face `spec`, the `which` face (`slave` or
-    /// `master`) of the item `field`, counter-clockwise around its body.
+    /// The body and the segments of the face `spec`, the `which` face
+    /// (`slave` or `master`) of the item `field`, counter-clockwise around
+    /// its body: a body's `side`, or a physical curve (`group`).
     pub(super) fn face(
         &self,
         mesh: &Mesh,
@@ -75,17 +112,35 @@ impl Scene {
         field: &str,
         which: &str,
         spec: &FaceSpec,
-    ) -> Result<Vec<[NodeId; 2]>, SceneError> {
-        let b = self
-            .body_index(
-                mesh,
-                format!("{field}.{which}.body"),
-                &Some(spec.body.clone()),
-            )?
-            .ok_or_else(|| self.invalid(format!("{field}.{which}.body"), "missing"))?;
-        sources
-            .face(mesh, b, spec.side)
-            .ok_or_else(|| self.invalid(format!("{field}.{which}"), "not a block body"))
+    ) -> Result<(usize, Vec<[NodeId; 2]>), SceneError> {
+        let f = format!("{field}.{which}");
+        let b = self.body_index(mesh, format!("{f}.body"), &spec.body)?;
+        match (&spec.group, spec.side) {
+            (Some(_), Some(_)) => Err(self.invalid(f, "give either `side` or `group`, not both")),
+            (None, None) => Err(self.invalid(f, "give `body` and `side`, or `group`")),
+            (None, Some(side)) => {
+                let b = b.ok_or_else(|| {
+                    self.invalid(format!("{f}.body"), "a `side` needs its `body`")
+                })?;
+                let segments = sources
+                    .face(mesh, b, side)
+                    .ok_or_else(|| self.invalid(f, "not a block body"))?;
+                Ok((b, segments))
+            }
+            (Some(group), None) => {
+                let face = sources.group_face(&format!("{f}.group"), group)?;
+                if let Some(b) = b.filter(|&b| b != face.body) {
+                    return Err(self.invalid(
+                        format!("{f}.body"),
+                        format!(
+                            "physical curve `{group}` is on body `{}`, not `{}`",
+                            mesh.bodies[face.body].name, mesh.bodies[b].name
+                        ),
+                    ));
+                }
+                Ok((face.body, face.segments))
+            }
+        }
     }
 }
 

@@ -31,6 +31,10 @@ pub struct Scene {
     /// `plane-strain`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<Material>,
+    /// `[mesh]`: a mesh file whose physical surfaces are bodies (default
+    /// none).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<MeshSpec>,
     /// The bodies (`[[body]]`, at least one), in mesh order.
     #[serde(rename = "body")]
     pub bodies: Vec<BodySpec>,
@@ -43,12 +47,17 @@ pub struct Scene {
     /// Prescribed displacements (`[[prescribe]]`, default none).
     #[serde(default, rename = "prescribe")]
     pub prescribes: Vec<PrescribeSpec>,
+    /// Distributed dead loads on physical curves (`[[traction]]`, default
+    /// none).
+    #[serde(default, rename = "traction", skip_serializing_if = "Vec::is_empty")]
+    pub tractions: Vec<TractionSpec>,
     /// Contact pairs (`[[contact]]`, default none).
     #[serde(default, rename = "contact")]
     pub contacts: Vec<ContactSpec>,
     /// `[loading]`: the load schedule (required).
     pub loading: LoadingSpec,
-    /// `[refine]`: mesh refinement factors (default 1 and 1).
+    /// `[refine]`: refinement factors of the block bodies (default 1 and
+    /// 1).
     #[serde(default)]
     pub refine: RefineSpec,
     /// `[newton]`: Newton settings (defaults as in [`NewtonSpec`]).
@@ -60,21 +69,41 @@ pub struct Scene {
     pub origin: String,
 }
 
-/// A body (`[[body]]`): a structured rectangular block of `nx` by `ny`
-/// 4-node quadrilaterals (see [`crate::mesh::block`]).
+/// The mesh file (`[mesh]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// `file`: a Gmsh MSH 4.1 file (ASCII or binary), relative to the
+    /// scene file's directory.
+    pub file: String,
+}
+
+/// A body (`[[body]]`): either a structured rectangular block of `nx` by
+/// `ny` 4-node quadrilaterals (see [`crate::mesh::block`]; `origin`,
+/// `size`, `nx` and `ny` all given), or, without any of those four, the
+/// physical surface `group` (default: `name`) of the `[mesh]` file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
     /// `name`: unique among the bodies; selections and faces refer to it.
     pub name: String,
-    /// `origin`: the lower-left corner `[x, y]` (reference frame, finite).
-    pub origin: [f64; 2],
-    /// `size`: width and height (positive, finite).
-    pub size: [f64; 2],
-    /// `nx`: elements along x (at least 1; times `[refine] x`).
-    pub nx: usize,
-    /// `ny`: elements along y (at least 1; times `[refine] y`).
-    pub ny: usize,
+    /// `origin`: the lower-left corner `[x, y]` of a block (reference
+    /// frame, finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub origin: Option<[f64; 2]>,
+    /// `size`: a block's width and height (positive, finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<[f64; 2]>,
+    /// `nx`: a block's elements along x (at least 1; times `[refine] x`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nx: Option<usize>,
+    /// `ny`: a block's elements along y (at least 1; times `[refine] y`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ny: Option<usize>,
+    /// `group`: the physical surface of the `[mesh]` file that is this
+    /// body (default: `name`; not with the block fields).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// Material (default: the scene's `[material]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub material: Option<Material>,
@@ -107,14 +136,19 @@ impl Dofs {
 }
 
 /// Supports (`[[fix]]`): zero displacement of the selected nodes. Select
-/// with `at`, or with `x` and/or `y` (every node on that line); `body`
-/// restricts the selection to one body. At least one node must match.
+/// with `at`, or with `x` and/or `y` (every node on that line), or with a
+/// physical `group` of the mesh file; `body` restricts the selection to one
+/// body. At least one node must match.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FixSpec {
     /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
+    /// `group`: the nodes of this physical curve or point of the `[mesh]`
+    /// file (instead of `x`/`y`/`at`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// `x`: the nodes with this reference x.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x: Option<f64>,
@@ -130,15 +164,21 @@ pub struct FixSpec {
 }
 
 /// A proportional point force on one node (`[[load]]`): `lambda_L force`.
-/// Exactly one node (of `body`, if given) must sit at `at`.
+/// Exactly one node (of `body`, if given) must sit at `at`, or be the
+/// physical point `group`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct LoadSpec {
     /// `body`: restrict to this body (needed where bodies touch).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// `at`: the node's reference position.
-    pub at: [f64; 2],
+    /// `at`: the node's reference position (or `group`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 2]>,
+    /// `group`: a physical point (or curve) of the `[mesh]` file with
+    /// exactly one node (instead of `at`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// `force`: `[fx, fy]` at load factor one (finite).
     pub force: [f64; 2],
 }
@@ -152,6 +192,10 @@ pub struct PrescribeSpec {
     /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
+    /// `group`: the nodes of this physical curve or point of the `[mesh]`
+    /// file (instead of `x`/`y`/`at`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// `x`: the nodes with this reference x.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub x: Option<f64>,
@@ -169,16 +213,37 @@ pub struct PrescribeSpec {
     pub uy: Option<f64>,
 }
 
-/// A face (`{ body = .., side = .. }`): one side of a block body, as a
-/// chain of segments counter-clockwise around the body (resolved by the
-/// body's mesh source).
+/// A face (`{ body = .., side = .. }` or `{ group = .. }`): one side of a
+/// block body, or a physical curve of the `[mesh]` file on the boundary of
+/// one body, as a chain of segments counter-clockwise around the body
+/// (resolved by the body's mesh source; a curve's segments are oriented by
+/// the element owning each, however the curve was drawn).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FaceSpec {
-    /// `body`: the body's name.
-    pub body: String,
-    /// `side`: `bottom`, `right`, `top` or `left`.
-    pub side: Side,
+    /// `body`: the body's name (with `side`; optional with `group`, where
+    /// it must name the curve's body).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// `side`: `bottom`, `right`, `top` or `left` (a block's side).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<Side>,
+    /// `group`: a physical curve of the `[mesh]` file (instead of `side`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
+}
+
+/// A distributed dead load on a physical curve (`[[traction]]`):
+/// `lambda_L force_per_length` per unit reference length, applied as
+/// consistent nodal forces (`t L / 2` to both nodes of each segment).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    /// `group`: the physical curve of the `[mesh]` file loaded.
+    pub group: String,
+    /// `force_per_length`: `[tx, ty]` per unit reference length at load
+    /// factor one (finite).
+    pub force_per_length: [f64; 2],
 }
 
 /// A contact pair (`[[contact]]`) between faces of two different bodies.

@@ -8,11 +8,11 @@
 //! scene with several faults reports the first in this order: `[refine]`;
 //! each body (its name and material here, then its source's own checks,
 //! such as a block's `nx`, `size` and `origin`); supports; prescribed
-//! displacements; loads; contacts; `[loading]`; `[newton]`. Checks that
+//! displacements; loads; tractions; contacts; `[loading]`; `[newton]`. Checks that
 //! depend on how a body was made belong to its mesh source, and checks that
 //! need the mesh (a selection that finds no node) to `select.rs`.
 
-use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError};
+use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError, TractionSpec};
 use crate::material::Material;
 
 impl Scene {
@@ -86,14 +86,19 @@ impl Scene {
         Ok(())
     }
 
-    /// `contact[i]` (named `f`): two different bodies and 1..=8 Gauss
-    /// points.
+    /// `contact[i]` (named `f`): 1..=8 Gauss points (that its faces are on
+    /// two different bodies is checked where they are resolved).
     pub(super) fn check_contact(&self, f: &str, c: &ContactSpec) -> Result<(), SceneError> {
-        if c.slave.body == c.master.body {
-            return Err(self.invalid(f, "slave and master must be different bodies"));
-        }
         if !(1..=8).contains(&c.gauss_points) {
             return Err(self.invalid(format!("{f}.gauss_points"), "must be in 1..=8"));
+        }
+        Ok(())
+    }
+
+    /// `traction[i]` (named `f`): a finite force per length.
+    pub(super) fn check_traction(&self, f: &str, t: &TractionSpec) -> Result<(), SceneError> {
+        if !t.force_per_length.iter().all(|v| v.is_finite()) {
+            return Err(self.invalid(format!("{f}.force_per_length"), "must be finite"));
         }
         Ok(())
     }

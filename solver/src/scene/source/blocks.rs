@@ -1,5 +1,5 @@
 //! The structured-block source: each `[[body]]` with `origin`, `size`, `nx`
-//! and `ny` becomes a [`Block`] of `nx * refine.x` by `ny * refine.y`
+//! and `ny` (any of them: the others are then missing) becomes a [`Block`] of `nx * refine.x` by `ny * refine.y`
 //! elements ([`crate::mesh::block`] has the numbering), and its faces are
 //! the block's sides.
 
@@ -7,7 +7,7 @@ use super::MeshSource;
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::{Block, Mesh, Side};
-use crate::scene::{Scene, SceneError};
+use crate::scene::{BodySpec, Scene, SceneError};
 
 /// The structured rectangular blocks of a scene.
 pub(in crate::scene) struct Blocks<'s> {
@@ -22,9 +22,9 @@ impl<'s> Blocks<'s> {
 }
 
 impl MeshSource for Blocks<'_> {
-    /// Every `[[body]]` is a block.
-    fn owns(&self, _index: usize) -> bool {
-        true
+    /// A `[[body]]` with any of the block fields is a block.
+    fn owns(&self, index: usize) -> bool {
+        is_block(&self.scene.bodies[index])
     }
 
     fn add_body(
@@ -35,25 +35,41 @@ impl MeshSource for Blocks<'_> {
     ) -> Result<usize, SceneError> {
         let b = &self.scene.bodies[i];
         let f = format!("body[{i}]");
-        for (k, v) in [("nx", b.nx), ("ny", b.ny)] {
+        let missing = |k: &str| {
+            self.scene.invalid(
+                format!("{f}.{k}"),
+                format!("missing field `{k}` (a block body needs `origin`, `size`, `nx` and `ny`)"),
+            )
+        };
+        if b.group.is_some() {
+            return Err(self.scene.invalid(
+                format!("{f}.group"),
+                "a block body (`origin`, `size`, `nx`, `ny`) has no `group`",
+            ));
+        }
+        let origin = b.origin.ok_or_else(|| missing("origin"))?;
+        let size = b.size.ok_or_else(|| missing("size"))?;
+        let nx = b.nx.ok_or_else(|| missing("nx"))?;
+        let ny = b.ny.ok_or_else(|| missing("ny"))?;
+        for (k, v) in [("nx", nx), ("ny", ny)] {
             if v == 0 {
                 return Err(self.scene.invalid(format!("{f}.{k}"), "must be at least 1"));
             }
         }
-        if !(b.size[0] > 0.0 && b.size[1] > 0.0 && b.size.iter().all(|v| v.is_finite())) {
+        if !(size[0] > 0.0 && size[1] > 0.0 && size.iter().all(|v| v.is_finite())) {
             return Err(self.scene.invalid(
                 format!("{f}.size"),
                 "width and height must be positive and finite",
             ));
         }
-        if !b.origin.iter().all(|v| v.is_finite()) {
+        if !origin.iter().all(|v| v.is_finite()) {
             return Err(self.scene.invalid(format!("{f}.origin"), "must be finite"));
         }
         let block = Block {
-            origin: b.origin,
-            size: b.size,
-            nx: b.nx * self.scene.refine.x,
-            ny: b.ny * self.scene.refine.y,
+            origin,
+            size,
+            nx: nx * self.scene.refine.x,
+            ny: ny * self.scene.refine.y,
         };
         mesh.add_block(&b.name, material, block)
             .map_err(|e| self.scene.invalid(f.clone(), e.to_string()))
@@ -62,4 +78,10 @@ impl MeshSource for Blocks<'_> {
     fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
         mesh.block_side(body, side)
     }
+}
+
+/// Whether `body` gives any of the block fields (`origin`, `size`, `nx`,
+/// `ny`).
+pub(super) fn is_block(body: &BodySpec) -> bool {
+    body.origin.is_some() || body.size.is_some() || body.nx.is_some() || body.ny.is_some()
 }

@@ -1,20 +1,20 @@
 //! Mesh sources: where a scene's bodies come from.
 //!
 //! A [`MeshSource`] makes the bodies it owns and answers the selections
-//! whose meaning depends on how a body was made. Today there is one source,
-//! [`Blocks`]: every `[[body]]` is a structured rectangular block
-//! (`origin`, `size`, `nx`, `ny`) and its faces are its four sides.
-//! Selection by reference coordinates does not depend on the source and
-//! stays with the mesh ([`Mesh::select_nodes`]).
+//! whose meaning depends on how a body was made. There are two sources,
+//! asked in this order who owns a body:
 //!
-//! A reader of mesh files (`[mesh] file = ...`, bodies, curves and points
-//! by physical name) is another source in a file next to `blocks.rs`:
-//! [`Sources::of`] lists it after the blocks and it owns the bodies that
-//! are not blocks; it appends each through [`Mesh::add_body`], keeping the
-//! map from the file's node tags to mesh nodes, and answers faces and node
-//! groups by name (a trait method each, with a default of `None` so the
-//! blocks need not change), orienting each edge by the element that owns
-//! it.
+//! * [`Blocks`] (`blocks.rs`): a `[[body]]` with the block fields
+//!   (`origin`, `size`, `nx`, `ny`) is a structured rectangular block and
+//!   its faces are its four sides;
+//! * [`Gmsh`] (`gmsh.rs`): a `[[body]]` without them is a physical surface
+//!   of the `[mesh]` file; its physical curves and points are faces, node
+//!   groups and loaded curves, asked for by name.
+//!
+//! Selection by reference coordinates does not depend on the source and
+//! stays with the mesh ([`Mesh::select_nodes`]). Questions by group name go
+//! to every source in turn; the first that knows groups answers (the
+//! blocks know none: the trait's defaults return `None`).
 //!
 //! Invariants every source keeps:
 //!
@@ -31,8 +31,19 @@ use crate::material::Material;
 use crate::mesh::{Mesh, Side};
 
 mod blocks;
+mod gmsh;
 
 pub(super) use blocks::Blocks;
+pub(super) use gmsh::Gmsh;
+
+/// A physical curve on the boundary of one body: the mesh body's index and
+/// its segments, counter-clockwise around the body.
+pub(super) struct GroupFace {
+    /// The mesh body whose boundary the curve is.
+    pub(super) body: usize,
+    /// The segments, oriented and chained counter-clockwise.
+    pub(super) segments: Vec<[NodeId; 2]>,
+}
 
 /// A way of making some of a scene's bodies.
 pub(super) trait MeshSource {
@@ -53,6 +64,26 @@ pub(super) trait MeshSource {
     /// made, counter-clockwise around the body; `None` if the body has no
     /// such face.
     fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>>;
+
+    /// The physical curve `group` as a face of one body (counter-clockwise
+    /// around it); `None` if this source knows no groups, `Err` (a message)
+    /// if the group is unknown, of the wrong dimension or not on one body's
+    /// boundary.
+    fn group_face(&self, _group: &str) -> Option<Result<GroupFace, String>> {
+        None
+    }
+
+    /// The mesh nodes of the physical curve or point `group`, ascending;
+    /// `None` if this source knows no groups.
+    fn group_nodes(&self, _group: &str) -> Option<Result<Vec<NodeId>, String>> {
+        None
+    }
+
+    /// The segments of the physical curve `group` in the file's order and
+    /// direction; `None` if this source knows no groups.
+    fn group_segments(&self, _group: &str) -> Option<Result<Vec<[NodeId; 2]>, String>> {
+        None
+    }
 }
 
 /// A scene's mesh sources, and which one made each body of the mesh.
@@ -64,13 +95,14 @@ pub(super) struct Sources<'s> {
 }
 
 impl<'s> Sources<'s> {
-    /// The sources of `scene`, in the order they are asked who owns a body.
-    pub(super) fn of(scene: &'s Scene) -> Sources<'s> {
-        Sources {
+    /// The sources of `scene`, in the order they are asked who owns a body
+    /// (this reads the `[mesh]` file, if any; its errors name `mesh.file`).
+    pub(super) fn of(scene: &'s Scene) -> Result<Sources<'s>, SceneError> {
+        Ok(Sources {
             scene,
-            sources: vec![Box::new(Blocks::new(scene))],
+            sources: vec![Box::new(Blocks::new(scene)), Box::new(Gmsh::new(scene)?)],
             made_by: Vec::new(),
-        }
+        })
     }
 
     /// Appends the scene's `body[index]` through the first source that owns
@@ -101,5 +133,43 @@ impl<'s> Sources<'s> {
     pub(super) fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
         let s = *self.made_by.get(body)?;
         self.sources.get(s)?.face(mesh, body, side)
+    }
+}
+
+impl Sources<'_> {
+    /// The first answer of a source that knows groups, or an error for
+    /// `field` if none does.
+    fn by_group<T>(
+        &self,
+        field: &str,
+        ask: impl Fn(&dyn MeshSource) -> Option<Result<T, String>>,
+    ) -> Result<T, SceneError> {
+        self.sources
+            .iter()
+            .find_map(|s| ask(s.as_ref()))
+            .unwrap_or_else(|| Err("physical groups need a `[mesh] file`".to_owned()))
+            .map_err(|m| self.scene.invalid(field, m))
+    }
+
+    /// The physical curve `group` as a face (see [`MeshSource::group_face`]);
+    /// errors name `field`.
+    pub(super) fn group_face(&self, field: &str, group: &str) -> Result<GroupFace, SceneError> {
+        self.by_group(field, |s| s.group_face(group))
+    }
+
+    /// The nodes of the physical curve or point `group`, ascending; errors
+    /// name `field`.
+    pub(super) fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError> {
+        self.by_group(field, |s| s.group_nodes(group))
+    }
+
+    /// The segments of the physical curve `group`, in file order; errors
+    /// name `field`.
+    pub(super) fn group_segments(
+        &self,
+        field: &str,
+        group: &str,
+    ) -> Result<Vec<[NodeId; 2]>, SceneError> {
+        self.by_group(field, |s| s.group_segments(group))
     }
 }
