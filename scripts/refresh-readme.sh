@@ -20,7 +20,7 @@ cargo bench --bench kernels
 cargo run -q --release --example bench_table > target/bench-table.md
 splice bench target/bench-table.md
 
-cargo run -q --release --example scaling_table > target/scaling-table.md
+cargo run -q --release --example scaling_table -- --linear lu,ldlt > target/scaling-table.md
 splice scaling target/scaling-table.md
 
 cargo run -q --release -- study --out docs/study --readme README.md
