@@ -40,6 +40,7 @@ pub mod assembly;
 pub mod contact;
 mod error;
 pub mod ids;
+mod kinematics;
 pub mod linear;
 pub mod material;
 pub mod mesh;

@@ -25,6 +25,7 @@
 //! `K` is the exact derivative of `f_int` (the geometric term is the
 //! derivative of `B^T` at fixed `S`), and `f_int` the exact gradient of `U`.
 
+use crate::kinematics::{PointState, point_state};
 use crate::material::Material;
 
 /// The 2x2 Gauss points on the parent square (weights are all one).
@@ -126,38 +127,6 @@ pub struct QuadResponse {
     pub k: [[f64; 8]; 8],
     /// The strain energy `U`.
     pub energy: f64,
-}
-
-/// Kinematics at one Gauss point.
-struct PointState {
-    f: [[f64; 2]; 2],
-    e_v: [f64; 3],
-    s_v: [f64; 3],
-}
-
-fn point_state(grads: &[[f64; 2]; 4], u: &[f64; 8], d: &[[f64; 3]; 3]) -> PointState {
-    // displacement gradient H = du/dX; F = I + H
-    let mut h = [[0.0; 2]; 2];
-    for a in 0..4 {
-        for i in 0..2 {
-            for j in 0..2 {
-                h[i][j] += u[2 * a + i] * grads[a][j];
-            }
-        }
-    }
-    let f = [[1.0 + h[0][0], h[0][1]], [h[1][0], 1.0 + h[1][1]]];
-    // E = (H + H^T + H^T H)/2, without the cancellation of F^T F - I
-    let hh = |j: usize, k: usize| h[0][j] * h[0][k] + h[1][j] * h[1][k];
-    let e_v = [
-        h[0][0] + hh(0, 0) / 2.0,
-        h[1][1] + hh(1, 1) / 2.0,
-        h[0][1] + h[1][0] + hh(0, 1),
-    ];
-    let mut s_v = [0.0; 3];
-    for r in 0..3 {
-        s_v[r] = d[r][0] * e_v[0] + d[r][1] * e_v[1] + d[r][2] * e_v[2];
-    }
-    PointState { f, e_v, s_v }
 }
 
 /// Evaluates the element at displacements `u` (reference frame).
