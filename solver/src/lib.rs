@@ -38,6 +38,7 @@
 
 pub mod assembly;
 pub mod contact;
+pub mod element;
 mod error;
 pub mod ids;
 mod kinematics;
