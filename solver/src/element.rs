@@ -5,7 +5,7 @@
 //! dispatch through one place instead of branching on the kind everywhere.
 //!
 //! Both elements are total-Lagrangian St Venant–Kirchhoff elements with the
-//! same point kinematics ([`crate::kinematics`]); they differ in their shape
+//! same point kinematics (`kinematics.rs`); they differ in their shape
 //! functions and integration rule only (Q4: bilinear, 2x2 Gauss; T3:
 //! linear, one point, exact). An element with `n` nodes has `2n` dofs,
 //! ordered `[u1x, u1y, u2x, u2y, ...]`; element buffers are sized for the
