@@ -1,7 +1,7 @@
 //! Scene files (TOML).
 //!
-//! A scene describes bodies of Q4 elements (structured rectangular blocks,
-//! or physical surfaces of a Gmsh mesh file), their materials, supports, proportional loads, prescribed
+//! A scene describes bodies of Q4 elements (structured rectangular blocks)
+//! or of Q4 and triangles (physical surfaces of a Gmsh mesh file), their materials, supports, proportional loads, prescribed
 //! displacements, contact pairs and the load schedule. Unknown keys are
 //! errors. The paper scene, `scenes/stacked-cantilever.toml`, reads:
 //!
