@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the mesh of the plane-strain Hertz benchmark (issue #7) as Gmsh MSH 4.1.
 
-    python3 scripts/make-hertz-mesh.py [h] [-o OUT] [--binary]
+    python3 scripts/make-hertz-mesh.py [h] [-o OUT] [--binary] [--triangles]
 
 Geometry (the quarter model, symmetric about x = 0; lengths as in the issue):
 
@@ -12,7 +12,10 @@ Geometry (the quarter model, symmetric about x = 0; lengths as in the issue):
 The two bodies share no nodes (each is its own surface). The element size is
 `h` within 1.5 of the contact point and grows linearly to 2.0 at distance 8.
 Every element is a bilinear quadrilateral (Frontal-Delaunay for quads,
-recombined, then subdivided once, which halves the sizes).
+recombined, then subdivided once, which halves the sizes). With
+`--triangles` every element is a linear triangle (Frontal-Delaunay, not
+recombined) and the size field is halved instead, so that the edges have
+about the lengths of the quadrilateral mesh of the same `h`.
 
 Physical groups (the names the scenes refer to; the same names and geometry
 as the CalculiX peer, so that both can run the same mesh):
@@ -33,6 +36,7 @@ The checked-in meshes are regenerated with
     python3 scripts/make-hertz-mesh.py 0.5 -o scenes/hertz-coarse.msh
     python3 scripts/make-hertz-mesh.py 0.5 --binary \\
         -o solver/src/mesh/gmsh/testdata/hertz-coarse-binary.msh
+    python3 scripts/make-hertz-mesh.py 0.5 --triangles -o scenes/hertz-tri-coarse.msh
 
 Needs the `gmsh` Python package (`pip install gmsh`); the output depends on
 its version (written with 4.15.2).
@@ -87,15 +91,15 @@ def build_geometry():
     }
 
 
-def size_field(touch_points, h):
-    """Size h near the contact point, graded to H_FAR."""
+def size_field(touch_points, h, far=H_FAR):
+    """Size h near the contact point, graded to `far`."""
     field = gmsh.model.mesh.field
     distance = field.add("Distance")
     field.setNumbers(distance, "PointsList", touch_points)
     threshold = field.add("Threshold")
     field.setNumber(threshold, "InField", distance)
     field.setNumber(threshold, "SizeMin", h)
-    field.setNumber(threshold, "SizeMax", H_FAR)
+    field.setNumber(threshold, "SizeMax", far)
     field.setNumber(threshold, "DistMin", REFINED_WITHIN)
     field.setNumber(threshold, "DistMax", GRADED_UNTIL)
     field.setAsBackgroundMesh(threshold)
@@ -123,6 +127,11 @@ def main():
     parser.add_argument(
         "--binary", action="store_true", help="binary MSH 4.1 (default ASCII)"
     )
+    parser.add_argument(
+        "--triangles",
+        action="store_true",
+        help="linear triangles only (default: quadrilaterals only)",
+    )
     args = parser.parse_args()
     if not 0.0 < args.h <= H_FAR:
         parser.error(f"h must be in (0, {H_FAR}]")
@@ -132,10 +141,15 @@ def main():
         gmsh.option.setNumber("General.Terminal", 0)
         gmsh.model.add("hertz")
         entities = build_geometry()
-        size_field(entities["touch"], args.h)
-        gmsh.option.setNumber("Mesh.RecombineAll", 1)
-        gmsh.option.setNumber("Mesh.Algorithm", 8)  # Frontal-Delaunay for quads
-        gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 1)  # all quadrangles
+        if args.triangles:
+            # no subdivision: halve the sizes here instead
+            size_field(entities["touch"], args.h / 2.0, H_FAR / 2.0)
+            gmsh.option.setNumber("Mesh.Algorithm", 6)  # Frontal-Delaunay
+        else:
+            size_field(entities["touch"], args.h)
+            gmsh.option.setNumber("Mesh.RecombineAll", 1)
+            gmsh.option.setNumber("Mesh.Algorithm", 8)  # Frontal-Delaunay for quads
+            gmsh.option.setNumber("Mesh.SubdivisionAlgorithm", 1)  # all quadrangles
         physical_groups(entities)
         gmsh.model.mesh.generate(2)
 
@@ -144,12 +158,13 @@ def main():
         gmsh.write(args.output)
 
         node_tags, _, _ = gmsh.model.mesh.getNodes()
-        quads = sum(
+        elements = sum(
             len(tags)
             for dim, tag in gmsh.model.getEntities(2)
             for tags in gmsh.model.mesh.getElements(dim, tag)[1]
         )
-        print(f"{args.output}: h = {args.h}, {len(node_tags)} nodes, {quads} quadrilaterals")
+        kind = "triangles" if args.triangles else "quadrilaterals"
+        print(f"{args.output}: h = {args.h}, {len(node_tags)} nodes, {elements} {kind}")
     finally:
         gmsh.finalize()
 

@@ -9,7 +9,7 @@
 //! r_la = sum_gp w J0 N_a g        (active multiplier)  or  l_a  (inactive)
 //! ```
 //!
-//! and the tangent its exact derivative (see [`crate::quad`] and
+//! and the tangent its exact derivative (see [`crate::quad`], [`crate::tri`] and
 //! [`crate::contact`]). Element matrices are computed in parallel
 //! (`crate::par`), collected in element order and scattered sequentially
 //! into coordinate triplets, so the result is deterministic. The triplet index order depends
@@ -17,10 +17,10 @@
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
 use crate::contact::{ContactLayout, NodeTie, PointEval, shape2};
+use crate::element::{ElementResponse, MAX_ELEMENT_DOFS};
 use crate::ids::{DofId, ElementId, EquationIndex, MultiplierIndex, NodeId};
 use crate::model::Model;
 use crate::par;
-use crate::quad::{QuadResponse, quad_response};
 
 /// Marks a prescribed dof in [`DofMap::eq`].
 const PRESCRIBED: usize = usize::MAX;
@@ -70,6 +70,13 @@ impl DofMap {
     /// node order), `None` for prescribed ones.
     pub fn node_eqs(&self, nodes: &[NodeId; 4]) -> [Option<EquationIndex>; 8] {
         std::array::from_fn(|k| self.eq(DofId::of(nodes[k / 2], k % 2)))
+    }
+
+    /// The equations of the `2 n` dofs of an element's `n` nodes (`x` then
+    /// `y` of each node, in node order), `None` for prescribed ones, then
+    /// `None` up to [`MAX_ELEMENT_DOFS`].
+    pub fn element_eqs(&self, nodes: &[NodeId]) -> [Option<EquationIndex>; MAX_ELEMENT_DOFS] {
+        std::array::from_fn(|k| nodes.get(k / 2).and_then(|&n| self.eq(DofId::of(n, k % 2))))
     }
 
     /// The equation of multiplier `m`.
@@ -126,33 +133,34 @@ impl System {
 }
 
 /// Adds the solid elements' internal forces, tangents and energies at
-/// displacements `u`.
+/// displacements `u`, element after element, each through the element seam
+/// ([`crate::element::ElementGeometry::response`]): for an element of `n`
+/// nodes, its `2 n` rows in dof order, each row's `2 n` columns in order.
 pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
     let mesh = &model.mesh;
-    let responses: Vec<QuadResponse> = par::map(mesh.element_count(), PAR_MIN_LEN, |e| {
+    let responses: Vec<ElementResponse> = par::map(mesh.element_count(), PAR_MIN_LEN, |e| {
         let e = ElementId::new(e);
         let material = &mesh.bodies[mesh.element_body[e.index()]].material;
-        quad_response(
-            &mesh.geometry[e.index()],
-            &mesh.element_displacements(e, u),
-            material,
-        )
+        mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material)
     });
     sys.rows.reserve(64 * responses.len());
     sys.cols.reserve(64 * responses.len());
     sys.vals.reserve(64 * responses.len());
     for (el, resp) in mesh.elements.iter().zip(&responses) {
-        let eqs = dofs.node_eqs(el);
-        for p in 0..8 {
+        let eqs = dofs.element_eqs(el);
+        let f_int = resp.f_int();
+        let n = f_int.len();
+        for p in 0..n {
             let Some(ep) = eqs[p] else { continue };
-            sys.residual[ep.index()] += resp.f_int[p];
-            for q in 0..8 {
+            sys.residual[ep.index()] += f_int[p];
+            let k = resp.k_row(p);
+            for q in 0..n {
                 if let Some(eq) = eqs[q] {
-                    sys.push(ep, eq, resp.k[p][q]);
+                    sys.push(ep, eq, k[q]);
                 }
             }
         }
-        sys.energy += resp.energy;
+        sys.energy += resp.energy();
     }
 }
 

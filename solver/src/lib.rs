@@ -2,9 +2,10 @@
 //! Lagrange-multiplier, segment-to-segment contact whose gap derivatives come
 //! from the generated kernels of `contact-kernels`.
 //!
-//! * Solid: total-Lagrangian 4-node quadrilaterals, St Venant–Kirchhoff,
-//!   2x2 Gauss, plane stress or plane strain, unit thickness
-//!   ([`quad`], [`material`]).
+//! * Solid: total-Lagrangian 4-node quadrilaterals (2x2 Gauss) and 3-node
+//!   triangles (one point), mixed in one mesh, St Venant–Kirchhoff, plane
+//!   stress or plane strain, unit thickness ([`quad`], [`tri`], [`element`],
+//!   [`material`]).
 //! * Contact: 2-point (or `n`-point) Gauss on the slave segments in the
 //!   reference configuration, multipliers at slave nodes, persistent or
 //!   unilateral ([`contact`]).
@@ -17,7 +18,7 @@
 //!
 //! The modules, bottom up: [`ids`] (typed indices) and [`options`] (what a
 //! solve is asked to do; modules import it from there, not from the crate
-//! root); [`material`], [`quad`], [`mesh`], [`model`] (the discrete problem;
+//! root); [`material`], [`quad`], [`tri`], [`element`], [`mesh`], [`model`] (the discrete problem;
 //! [`scene`] builds it from TOML); [`contact`] and [`assembly`] (one Newton
 //! system); [`linear`] (its solution); [`newton`] (the load schedule and
 //! the iterations), which fills in the report types of [`solution`]
@@ -38,6 +39,7 @@
 
 pub mod assembly;
 pub mod contact;
+pub mod element;
 mod error;
 pub mod ids;
 mod kinematics;

@@ -18,7 +18,7 @@ use contact_kernels::{Formulation, KernelError};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::options::Method;
-use crate::quad::{QuadStress, quad_mean_stress};
+use crate::quad::QuadStress;
 
 /// Identifies one slave integration point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -340,11 +340,8 @@ impl Solution {
             .element_ids()
             .map(|e| {
                 let mat = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
-                quad_mean_stress(
-                    &self.mesh.geometry[e.index()],
-                    &self.mesh.element_displacements(e, &u),
-                    mat,
-                )
+                self.mesh.geometry[e.index()]
+                    .mean_stress(&self.mesh.element_displacements(e, &u), mat)
             })
             .collect()
     }

@@ -3,7 +3,8 @@
 //! One file per state: the points are the **reference** coordinates (z = 0)
 //! and the point field `displacement` (3 components, z = 0) moves them to the
 //! deformed configuration (ParaView: *Warp By Vector*). Cells are the
-//! quadrilaterals (`VTK_QUAD = 9`). Fields:
+//! mesh's elements, quadrilaterals (`VTK_QUAD = 9`) and triangles
+//! (`VTK_TRIANGLE = 5`), in element order. Fields:
 //!
 //! * point data: `displacement`, `multiplier` (the Lagrange multiplier at
 //!   slave nodes, summed over pairs, zero elsewhere) and `contact_pressure`
@@ -19,6 +20,9 @@ use crate::solution::{Solution, State};
 
 /// VTK cell type of a 4-node quadrilateral.
 pub const VTK_QUAD: u8 = 9;
+
+/// VTK cell type of a 3-node triangle.
+pub const VTK_TRIANGLE: u8 = 5;
 
 /// Writes the final state of `solution` to `path`.
 pub fn write_vtu(path: impl AsRef<Path>, solution: &Solution) -> std::io::Result<()> {
@@ -170,14 +174,19 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
         "Int64",
         "offsets",
         1,
-        (1..=m).map(|k| (4 * k).to_string()),
+        mesh.elements.iter().scan(0, |end, el| {
+            *end += el.len();
+            Some(end.to_string())
+        }),
     );
     array(
         &mut out,
         "UInt8",
         "types",
         1,
-        (0..m).map(|_| VTK_QUAD.to_string()),
+        mesh.elements
+            .iter()
+            .map(|el| el.kind().vtk_cell_type().to_string()),
     );
     out.push_str("      </Cells>\n");
     out.push_str("    </Piece>\n");

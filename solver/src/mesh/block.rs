@@ -151,7 +151,10 @@ mod tests {
         .unwrap();
         assert_eq!(m.node_count(), 12);
         let raw = |segs: Vec<[NodeId; 2]>| segs.iter().map(|s| s.map(NodeId::index)).collect();
-        assert_eq!(m.elements[2].map(NodeId::index), [6, 7, 10, 9]);
+        assert_eq!(
+            m.elements[2].map_nodes(NodeId::index),
+            crate::mesh::Element::Quad4([6, 7, 10, 9])
+        );
         let top: Vec<[usize; 2]> = raw(m.block_side(0, Side::Top).unwrap());
         assert_eq!(top, vec![[5, 4], [4, 3]]);
         let bottom: Vec<[usize; 2]> = raw(m.block_side(1, Side::Bottom).unwrap());

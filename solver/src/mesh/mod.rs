@@ -1,18 +1,21 @@
-//! Meshes of 4-node quadrilaterals made of several bodies that share no
-//! nodes.
+//! Meshes of 4-node quadrilaterals and 3-node triangles (mixed freely)
+//! made of several bodies that share no nodes.
 //!
 //! Node `n` ([`NodeId`]) has reference coordinates `nodes_ref[n]` and the
 //! displacement degrees of freedom `2n` (x) and `2n + 1` (y)
-//! ([`crate::ids::DofId::of`]); element `e` ([`ElementId`]) has the nodes
-//! `elements[e]` and the geometry `geometry[e]`. Elements list their four
-//! nodes counter-clockwise. Each body owns a contiguous range of nodes and of
+//! ([`crate::ids::DofId::of`]); element `e` ([`ElementId`]) has the
+//! connectivity `elements[e]` (an [`Element`]: its kind and its nodes,
+//! counter-clockwise) and the geometry `geometry[e]` (an
+//! [`ElementGeometry`]; the element kinds and their dispatch are in
+//! [`crate::element`]). Each body owns a contiguous range of nodes and of
 //! elements.
 //!
 //! The [`Mesh`] owns what every body has, however it was made: nodes,
 //! connectivity, the body ranges, the precomputed element geometry and the
 //! selection of nodes by reference coordinates. Bodies are appended one at a
 //! time, each with fresh nodes ([`Mesh::add_body`] checks the connectivity
-//! and that every element's reference Jacobian is positive), so that
+//! and that every element's reference Jacobian is positive, naming the
+//! element and its kind otherwise), so that
 //!
 //! * bodies share no nodes, and a body's nodes and elements are contiguous;
 //! * node and element numbers are those of the order in which bodies were
@@ -27,9 +30,11 @@ use std::ops::Range;
 
 use serde::Serialize;
 
+use crate::element::MAX_ELEMENT_DOFS;
+pub use crate::element::{Element, ElementGeometry, ElementKind};
 use crate::ids::{DofId, ElementId, NodeId};
 use crate::material::Material;
-use crate::quad::{InvalidElement, QuadGeometry};
+use crate::quad::InvalidElement;
 
 pub mod block;
 pub mod gmsh;
@@ -72,15 +77,18 @@ pub enum MeshError {
         /// The body.
         body: String,
     },
-    /// An element's reference Jacobian is not positive.
+    /// An element's reference Jacobian is not positive (or, for a
+    /// triangle, its area is at the level of rounding).
     #[error(
-        "element {element} of body `{body}` is inverted or degenerate (detJ0 = {det_j0:e}); nodes must run counter-clockwise"
+        "element {element} ({kind}) of body `{body}` is inverted or degenerate (detJ0 = {det_j0:e}); nodes must run counter-clockwise"
     )]
     InvalidElement {
         /// The body.
         body: String,
         /// Global element index.
         element: usize,
+        /// Its kind.
+        kind: ElementKind,
         /// The smallest reference Jacobian determinant.
         det_j0: f64,
     },
@@ -110,13 +118,13 @@ pub struct Mesh {
     /// Reference coordinates of all nodes (indexed by [`NodeId`]).
     pub nodes_ref: Vec<[f64; 2]>,
     /// Element connectivity (counter-clockwise; indexed by [`ElementId`]).
-    pub elements: Vec<[NodeId; 4]>,
+    pub elements: Vec<Element>,
     /// The body of each element.
     pub element_body: Vec<usize>,
     /// The bodies.
     pub bodies: Vec<Body>,
     /// Reference geometry of each element (indexed by [`ElementId`]).
-    pub geometry: Vec<QuadGeometry>,
+    pub geometry: Vec<ElementGeometry>,
 }
 
 impl Mesh {
@@ -125,24 +133,25 @@ impl Mesh {
         Mesh::default()
     }
 
-    /// Appends a body from explicit nodes and body-local connectivity.
-    /// Returns the body's index.
-    pub fn add_body(
+    /// Appends a body from explicit nodes and body-local connectivity:
+    /// quadrilaterals (`[usize; 4]`), triangles (`[usize; 3]`) or a mix
+    /// ([`Element<usize>`]), counter-clockwise. Returns the body's index.
+    pub fn add_body<E: Copy + Into<Element<usize>>>(
         &mut self,
         name: &str,
         material: Material,
         nodes_ref: &[[f64; 2]],
-        elements: &[[usize; 4]],
+        elements: &[E],
     ) -> Result<usize, MeshError> {
         self.push_body(name, material, nodes_ref, elements, None)
     }
 
-    fn push_body(
+    fn push_body<E: Copy + Into<Element<usize>>>(
         &mut self,
         name: &str,
         material: Material,
         nodes_ref: &[[f64; 2]],
-        elements: &[[usize; 4]],
+        elements: &[E],
         block: Option<Block>,
     ) -> Result<usize, MeshError> {
         if nodes_ref.iter().flatten().any(|v| !v.is_finite()) {
@@ -155,7 +164,8 @@ impl Mesh {
         let body = self.bodies.len();
         let mut geometry = Vec::with_capacity(elements.len());
         let mut conn = Vec::with_capacity(elements.len());
-        for (e, el) in elements.iter().enumerate() {
+        for (e, &el) in elements.iter().enumerate() {
+            let el: Element<usize> = el.into();
             if let Some(&node) = el.iter().find(|&&n| n >= nodes_ref.len()) {
                 return Err(MeshError::BadConnectivity {
                     body: name.to_owned(),
@@ -163,16 +173,17 @@ impl Mesh {
                     node,
                 });
             }
-            let x = el.map(|n| nodes_ref[n]);
-            let geom = QuadGeometry::new(&x).map_err(|InvalidElement { det_j0 }| {
+            let x = el.map_nodes(|n| nodes_ref[n]);
+            let geom = ElementGeometry::new(&x).map_err(|InvalidElement { det_j0 }| {
                 MeshError::InvalidElement {
                     body: name.to_owned(),
                     element: elem0 + e,
+                    kind: el.kind(),
                     det_j0,
                 }
             })?;
             geometry.push(geom);
-            conn.push(el.map(|n| NodeId::new(n + node0)));
+            conn.push(el.map_nodes(|n| NodeId::new(n + node0)));
         }
         self.nodes_ref.extend_from_slice(nodes_ref);
         self.elements.extend(conn);
@@ -215,9 +226,10 @@ impl Mesh {
         (0..self.elements.len()).map(ElementId::new)
     }
 
-    /// The nodes of element `e` (counter-clockwise).
+    /// The connectivity of element `e` (its kind and its nodes,
+    /// counter-clockwise).
     #[inline]
-    pub fn element(&self, e: ElementId) -> &[NodeId; 4] {
+    pub fn element(&self, e: ElementId) -> &Element {
         &self.elements[e.index()]
     }
 
@@ -267,11 +279,19 @@ impl Mesh {
             .collect()
     }
 
-    /// The element displacement vector `[u1x, u1y, ..., u4y]` of element
-    /// `e` from the global displacement vector.
-    pub fn element_displacements(&self, e: ElementId, u: &[f64]) -> [f64; 8] {
+    /// The element displacement vector `[u1x, u1y, u2x, ...]` of element
+    /// `e` from the global displacement vector: `2 n` values for its `n`
+    /// nodes, then zeros (a triangle fills 6 of the 8 entries).
+    pub fn element_displacements(&self, e: ElementId, u: &[f64]) -> [f64; MAX_ELEMENT_DOFS] {
         let el = self.element(e);
-        std::array::from_fn(|k| u[DofId::of(el[k / 2], k % 2).index()])
+        let n = 2 * el.len();
+        std::array::from_fn(|k| {
+            if k < n {
+                u[DofId::of(el[k / 2], k % 2).index()]
+            } else {
+                0.0
+            }
+        })
     }
 }
 

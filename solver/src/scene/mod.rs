@@ -1,7 +1,7 @@
 //! Scene files (TOML).
 //!
-//! A scene describes bodies of Q4 elements (structured rectangular blocks,
-//! or physical surfaces of a Gmsh mesh file), their materials, supports, proportional loads, prescribed
+//! A scene describes bodies of Q4 elements (structured rectangular blocks)
+//! or of Q4 and triangles (physical surfaces of a Gmsh mesh file), their materials, supports, proportional loads, prescribed
 //! displacements, contact pairs and the load schedule. Unknown keys are
 //! errors. The paper scene, `scenes/stacked-cantilever.toml`, reads:
 //!
@@ -279,7 +279,7 @@ steps = [2]
         let m = scene.build_model().unwrap();
         assert_eq!(m.mesh.node_count(), 32);
         assert_eq!(m.mesh.elements.len(), 14);
-        let element = |e: usize| m.mesh.elements[e].map(NodeId::index);
+        let element = |e: usize| m.mesh.elements[e].map_nodes(NodeId::index).to_vec();
         assert_eq!(element(0), [0, 1, 9, 8]);
         assert_eq!(element(6), [6, 7, 15, 14]);
         assert_eq!(element(7), [16, 17, 25, 24]);

@@ -81,7 +81,9 @@ pub struct MeshSpec {
 /// A body (`[[body]]`): either a structured rectangular block of `nx` by
 /// `ny` 4-node quadrilaterals (see [`crate::mesh::block`]; `origin`,
 /// `size`, `nx` and `ny` all given), or, without any of those four, the
-/// physical surface `group` (default: `name`) of the `[mesh]` file.
+/// physical surface `group` (default: `name`) of the `[mesh]` file: its
+/// 3-node triangles and 4-node quadrangles, mixed freely, as drawn
+/// (counter-clockwise; an inverted element is an error naming it).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {

@@ -169,8 +169,9 @@ fn square_binary_equals_ascii() {
 
 const R: f64 = 10.0;
 
-/// The checks every Hertz mesh passes, whatever its size.
-fn check_hertz(mesh: &MshMesh, nodes: usize, cylinder: usize, block: usize) {
+/// The checks every Hertz mesh passes, whatever its size: elements of
+/// `kind` only, counter-clockwise.
+fn check_hertz(mesh: &MshMesh, kind: MshElementType, nodes: usize, cylinder: usize, block: usize) {
     assert_eq!(mesh.nodes().len(), nodes);
     let mut names: Vec<&str> = mesh.groups().iter().map(|g| g.name.as_str()).collect();
     names.sort();
@@ -190,7 +191,7 @@ fn check_hertz(mesh: &MshMesh, nodes: usize, cylinder: usize, block: usize) {
     let blk = mesh.surface_elements("block").unwrap();
     assert_eq!((cyl.len(), blk.len()), (cylinder, block));
     for e in cyl.iter().chain(&blk) {
-        assert_eq!(e.kind, MshElementType::Quad);
+        assert_eq!(e.kind, kind);
         assert!(signed_area2(mesh, e.nodes()) > 0.0, "element {}", e.tag);
     }
     // The bodies share no nodes.
@@ -237,22 +238,29 @@ fn check_hertz(mesh: &MshMesh, nodes: usize, cylinder: usize, block: usize) {
 #[test]
 fn hertz_mesh_reads() {
     let mesh = MshMesh::read(scene_file("hertz.msh")).unwrap();
-    check_hertz(&mesh, 2886, 1192, 1544);
+    check_hertz(&mesh, MshElementType::Quad, 2886, 1192, 1544);
     assert_eq!(mesh.curve_segments("cylinder_surface").unwrap().len(), 60);
 }
 
 #[test]
 fn hertz_coarse_mesh_reads() {
     let mesh = MshMesh::read(scene_file("hertz-coarse.msh")).unwrap();
-    check_hertz(&mesh, 852, 220, 548);
+    check_hertz(&mesh, MshElementType::Quad, 852, 220, 548);
     assert_eq!(mesh.curve_segments("cylinder_surface").unwrap().len(), 28);
+}
+
+#[test]
+fn hertz_triangle_mesh_reads() {
+    let mesh = MshMesh::read(scene_file("hertz-tri-coarse.msh")).unwrap();
+    check_hertz(&mesh, MshElementType::Triangle, 937, 461, 1250);
+    assert_eq!(mesh.curve_segments("cylinder_surface").unwrap().len(), 26);
 }
 
 #[test]
 fn hertz_coarse_binary_equals_ascii() {
     let ascii = MshMesh::read(scene_file("hertz-coarse.msh")).unwrap();
     let binary = MshMesh::from_bytes(HERTZ_COARSE_BINARY, "hertz-coarse-binary.msh").unwrap();
-    check_hertz(&binary, 852, 220, 548);
+    check_hertz(&binary, MshElementType::Quad, 852, 220, 548);
     assert_same_mesh(&ascii, &binary);
 }
 

@@ -2,8 +2,9 @@
 //! [`crate::mesh::gmsh`]) and the bodies that are its physical surfaces.
 //!
 //! A `[[body]]` without block fields is the physical surface `group`
-//! (default: its `name`). Its quadrangles become the body's elements, in
-//! file order; its nodes are the nodes of those elements, in the file's
+//! (default: its `name`). Its quadrangles and triangles (Gmsh types 3 and
+//! 2, mixed freely) become the body's elements ([`Element::Quad4`],
+//! [`Element::Tri3`]), in file order; its nodes are the nodes of those elements, in the file's
 //! node order, appended fresh through [`Mesh::add_body`]. The source keeps
 //! the map from the file's nodes to mesh nodes and every element edge,
 //! directed as the element runs (counter-clockwise), so that physical
@@ -20,9 +21,12 @@
 //!   ([`MeshSource::group_segments`]): every node must belong to a body.
 //!
 //! Invariants: bodies share no nodes (a node of the file in two bodies'
-//! surfaces is an error naming it); triangles are rejected (element tag in
-//! the message) until the triangle element is wired in; errors name the
-//! file and the group or element, the scene field is added by the caller.
+//! surfaces is an error naming it); an element that is inverted (drawn
+//! clockwise) or degenerate is an error naming its tag and kind, as the
+//! file's elements are used as drawn (Gmsh draws them counter-clockwise
+//! about the surface's normal, +z for a plane surface); other element
+//! types are refused by the reader, naming the type; errors name the file
+//! and the group or element, the scene field is added by the caller.
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -31,7 +35,7 @@ use super::{GroupFace, MeshSource, blocks::is_block};
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::gmsh::{MshElementType, MshMesh};
-use crate::mesh::{Mesh, MeshError, Side};
+use crate::mesh::{Element, Mesh, MeshError, Side};
 use crate::scene::{Scene, SceneError};
 
 /// The bodies of a scene that come from its `[mesh]` file.
@@ -139,15 +143,6 @@ impl MeshSource for Gmsh<'_> {
             .surface_elements(group)
             .map_err(|e| self.scene.invalid(&field, e.to_string()))?;
         let file = msh.file().display();
-        if let Some(t) = elements.iter().find(|e| e.kind == MshElementType::Triangle) {
-            return Err(self.scene.invalid(
-                &field,
-                format!(
-                    "{file}: physical surface `{group}`: triangles are not supported yet (element {}); mesh it with quadrangles",
-                    t.tag
-                ),
-            ));
-        }
         // the body's nodes: those of its elements, in the file's order
         let mut nodes: Vec<usize> = elements.iter().flat_map(|e| e.nodes().to_vec()).collect();
         nodes.sort_unstable();
@@ -164,24 +159,45 @@ impl MeshSource for Gmsh<'_> {
         }
         let local: HashMap<usize, usize> = nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
         let coords: Vec<[f64; 2]> = nodes.iter().map(|&n| msh.nodes()[n]).collect();
-        let conn: Vec<[usize; 4]> = elements
+        let conn: Vec<Element<usize>> = elements
             .iter()
             .map(|e| {
                 let n = e.nodes();
-                [local[&n[0]], local[&n[1]], local[&n[2]], local[&n[3]]]
+                match e.kind {
+                    MshElementType::Triangle => {
+                        Ok(Element::Tri3([local[&n[0]], local[&n[1]], local[&n[2]]]))
+                    }
+                    MshElementType::Quad => Ok(Element::Quad4([
+                        local[&n[0]],
+                        local[&n[1]],
+                        local[&n[2]],
+                        local[&n[3]],
+                    ])),
+                    // `surface_elements` holds 2D elements only
+                    other => Err(self.scene.invalid(
+                        &field,
+                        format!(
+                            "{file}: element {} of physical surface `{group}` is a {other:?}, not a surface element",
+                            e.tag
+                        ),
+                    )),
+                }
             })
-            .collect();
+            .collect::<Result<_, _>>()?;
         let elem0 = mesh.element_count();
         let node0 = mesh.node_count();
         let body = mesh
             .add_body(&b.name, material, &coords, &conn)
             .map_err(|e| match e {
                 MeshError::InvalidElement {
-                    element, det_j0, ..
+                    element,
+                    kind,
+                    det_j0,
+                    ..
                 } => self.scene.invalid(
                     &field,
                     format!(
-                        "{file}: element {} of physical surface `{group}` is inverted or degenerate (detJ0 = {det_j0:e}); its nodes must run counter-clockwise",
+                        "{file}: element {} of physical surface `{group}` is inverted or degenerate ({kind}, detJ0 = {det_j0:e}); its nodes must run counter-clockwise",
                         elements[element - elem0].tag
                     ),
                 ),

@@ -1,7 +1,9 @@
 //! Tests of the Gmsh source: a small hand-written mesh (two bodies, curves
 //! drawn either way, an interior curve, a point, a triangle), the faces'
 //! orientation, groups in every item, tractions, and every bad input named
-//! with its file and item.
+//! with its file and item; a second hand-written mesh that mixes triangles
+//! and quadrilaterals (`mesh/gmsh/testdata/mixed.msh`), read through a
+//! scene and solved.
 
 use std::path::{Path, PathBuf};
 
@@ -377,14 +379,64 @@ fn nodes_outside_every_body_are_named() {
 }
 
 #[test]
-fn triangles_are_not_supported_yet() {
-    let msg = error(
-        "triangles",
-        &SCENE.replace("group = \"b\"", "group = \"t\""),
+fn triangles_make_bodies() {
+    let m = build("triangles", &SCENE.replace("group = \"b\"", "group = \"t\"").replace(
+        "[[contact]]\nslave = { group = \"b_bottom\" }\nmaster = { group = \"a_top\", body = \"a\" }\n",
+        "",
+    ).replace("[[load]]\ngroup = \"b_corner\"\nforce = [1.0, 0.0]\n", ""), |m| m)
+    .unwrap();
+    let upper = &m.mesh.bodies[1];
+    assert_eq!(upper.nodes, 6..9);
+    assert_eq!(upper.elements, 2..3);
+    assert_eq!(
+        m.mesh.elements[2].map_nodes(NodeId::index),
+        crate::mesh::Element::Tri3([6, 7, 8])
     );
-    assert!(msg.contains("body[1].group"), "{msg}");
+    assert_eq!(m.mesh.nodes_ref[8], [5.0, 1.0]);
+    assert!((m.mesh.geometry[2].area_ref() - 0.5).abs() < 1e-15);
+}
+
+#[test]
+fn inverted_triangles_are_named() {
+    let scene = SCENE.replace("group = \"b\"", "group = \"t\"");
+    let result = build("inverted-tri", &scene, |m| {
+        m.replace("11 11 12 13", "11 11 13 12")
+    });
+    let msg = result.unwrap_err().to_string();
     assert!(
-        msg.contains("triangles are not supported yet (element 11)"),
+        msg.contains("body[1].group") && msg.contains("two.msh"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains(
+            "element 11 of physical surface `t` is inverted or degenerate (3-node triangle"
+        ),
+        "{msg}"
+    );
+    // collinear nodes: degenerate
+    let result = build("flat-tri", &scene, |m| {
+        m.replace("5 1 0\n$EndNodes", "7 0 0\n$EndNodes")
+    });
+    let msg = result.unwrap_err().to_string();
+    assert!(
+        msg.contains("element 11 of physical surface `t` is inverted or degenerate"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn second_order_triangles_are_named() {
+    // a 6-node triangle (Gmsh type 9) in place of the 3-node one
+    let result = build("tri6", SCENE, |m| {
+        m.replace("2 3 2 1\n11 11 12 13", "2 3 9 1\n11 11 12 13 1 2 3")
+    });
+    let msg = result.unwrap_err().to_string();
+    assert!(
+        msg.contains("mesh.file") && msg.contains("two.msh"),
+        "{msg}"
+    );
+    assert!(
+        msg.contains("6-node second order triangle (type 9)"),
         "{msg}"
     );
 }
@@ -457,4 +509,103 @@ steps = [1]
         msg.contains("body[0]") && msg.contains("[mesh] file"),
         "{msg}"
     );
+}
+
+/// `mesh/gmsh/testdata/mixed.msh`: body `base` on [0, 2] x [0, 1] (one
+/// quadrangle and two triangles), body `top` on [0, 2] x [1, 2] (four
+/// triangles, its own nodes); `top` rests on `base`, held only by contact
+/// (`top_bottom`, drawn clockwise around `top`, against `base_top`, drawn
+/// clockwise around `base`: both are turned by the triangles and the
+/// quadrangle that own their edges), rollers on `bottom` and `left`, a dead
+/// compression on `top_top`.
+const MIXED: &str = r#"
+[mesh]
+file = "mixed.msh"
+[material]
+young = 100.0
+poisson = 0.3
+model = "plane-strain"
+[[body]]
+name = "base"
+[[body]]
+name = "top"
+[[fix]]
+group = "bottom"
+dofs = "y"
+[[fix]]
+group = "left"
+dofs = "x"
+[[traction]]
+group = "top_top"
+force_per_length = [0.0, -3.0]
+[[contact]]
+slave = { group = "top_bottom" }
+master = { group = "base_top" }
+mode = "unilateral"
+[loading]
+load_factor_end = 1.0
+steps = [2]
+"#;
+
+/// The mixed mesh read through a scene and solved: the exact solution is
+/// homogeneous uniaxial compression of both bodies (with lateral
+/// expansion, the two bodies' equal), which every element reproduces: the
+/// same PK2 stress in all seven elements with `S_xx = 0` and the dead load
+/// carried, `(1 + du_y/dY) S_yy = -3` (tolerances 1e-9 relative: Newton's
+/// convergence); the displacement is linear in the reference coordinates,
+/// and the contact pressure is the uniform traction.
+#[test]
+fn mixed_mesh_is_read_and_solved() {
+    let origin = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mesh/gmsh/testdata/mixed.toml");
+    let scene = Scene::from_toml_str(MIXED, &origin.display().to_string()).unwrap();
+    let model = scene.build_model().unwrap();
+    let mesh = &model.mesh;
+    let kinds: Vec<crate::mesh::ElementKind> = mesh.elements.iter().map(|e| e.kind()).collect();
+    use crate::mesh::ElementKind::{Quad4, Tri3};
+    assert_eq!(kinds, [Quad4, Tri3, Tri3, Tri3, Tri3, Tri3, Tri3]);
+    // faces turned by their elements: outward normals (t.y, -t.x)
+    let c = &model.contacts[0];
+    let normal_y = |s: &[NodeId; 2]| -(mesh.node_ref(s[1])[0] - mesh.node_ref(s[0])[0]);
+    assert_eq!(c.slave.len(), 2);
+    assert!(c.slave.iter().all(|s| normal_y(s) < 0.0), "{:?}", c.slave);
+    assert!(c.master.iter().all(|s| normal_y(s) > 0.0), "{:?}", c.master);
+    let sol = crate::solve(&scene, &crate::SolveOptions::default()).unwrap();
+    let s = sol.element_stresses(&sol.final_state);
+    let syy = s[0].pk2[1];
+    assert!(syy < -1.0, "{s:?}");
+    for (e, st) in s.iter().enumerate() {
+        for k in 0..3 {
+            assert!(
+                (st.pk2[k] - s[0].pk2[k]).abs() < 1e-9 * syy.abs(),
+                "element {e}: {st:?} vs {:?}",
+                s[0]
+            );
+        }
+        assert!(st.pk2[0].abs() < 1e-9 * syy.abs() && st.pk2[2].abs() < 1e-9 * syy.abs());
+    }
+    // u = (a X, b Y) in both bodies
+    let at = |body: &str, x: [f64; 2]| sol.displacement(sol.node_at(body, x).unwrap());
+    let a = at("base", [2.0, 0.0])[0] / 2.0;
+    let b = at("top", [0.0, 2.0])[1] / 2.0;
+    assert!(a > 0.0 && b < 0.0, "{a} {b}");
+    for body in ["base", "top"] {
+        for n in sol.mesh.bodies[sol.mesh.body_index(body).unwrap()].node_ids() {
+            let x = sol.mesh.node_ref(n);
+            let u = sol.displacement(n);
+            assert!((u[0] - a * x[0]).abs() < 1e-9 * b.abs(), "{body} {x:?}");
+            assert!((u[1] - b * x[1]).abs() < 1e-9 * b.abs(), "{body} {x:?}");
+        }
+    }
+    assert!(((1.0 + b) * syy + 3.0).abs() < 1e-9 * 3.0, "{b} {syy}");
+    // the multipliers carry the load: their sum over the interface, with
+    // the tributary lengths, is the total force 3 x 2 (pressure positive)
+    assert!(!sol.final_state.multipliers.is_empty());
+    let pressure: Vec<f64> = sol.final_state.multipliers.iter().map(|l| -l).collect();
+    for p in &pressure {
+        assert!(
+            (p - pressure[0]).abs() < 1e-9 * pressure[0].abs(),
+            "{pressure:?}"
+        );
+    }
+    assert!(pressure[0] > 0.0);
 }
