@@ -71,8 +71,8 @@ fn errors(sol: &Solution) -> Errors {
         let mean: [f64; 3] =
             std::array::from_fn(|c| points.iter().map(|p| measure(p)[c]).sum::<f64>() / n);
         for p in &points {
-            for c in 0..3 {
-                stress = stress.max((measure(p)[c] - mean[c]).abs() / PRESSURE);
+            for (v, m) in measure(p).iter().zip(&mean) {
+                stress = stress.max((v - m).abs() / PRESSURE);
             }
         }
         stress = stress

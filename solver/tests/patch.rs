@@ -14,18 +14,21 @@
 //!   `|S_xx|` and `|S_xy|` of the mean.
 //!
 //! With `integration = "segmented"` both are below `1e-8` for both
-//! formulations, with the complete formulation and Type 6, also with the
-//! faces swapped (the finer block as slave) and in unilateral mode (measured:
-//! below `3e-14`). Plain Gauss integration with the same 2 points per
-//! segment is off by 3.2 % in the pressure and 4.3 % in the stress: the test
-//! checks that it is worse than `1e-3` (so the check can fail). `cargo run --release --example patch_table` tabulates the errors
+//! formulations, with the complete formulation and every Type 1–6 (the
+//! interface does not slide, so the Taylor expansions are exact along the
+//! path), in one and two load steps, also with the faces swapped (the
+//! finer block as slave) and in unilateral mode (measured: below `3e-14`).
+//! Plain Gauss integration with the same 2 points per segment is off by
+//! 3.2 % in the pressure and 4.3 % in the stress: the test checks that it
+//! is worse than `1e-3` (so the check can fail).
+//! `cargo run --release --example patch_table` tabulates the errors
 //! against `gauss_points` = 1..8.
 
 use std::path::PathBuf;
 
 use solver::contact::Integration;
 use solver::quad::{QuadStress, quad_point_stresses};
-use solver::{ApproxType, ContactMode, Formulation, Method, Scene, Solution, SolveOptions, solve};
+use solver::{ContactMode, Formulation, Method, Scene, Solution, SolveOptions, solve};
 
 /// The applied pressure (per unit reference length).
 const PRESSURE: f64 = 10.0;
@@ -95,8 +98,8 @@ fn errors(sol: &Solution) -> Errors {
         let mean: [f64; 3] =
             std::array::from_fn(|c| points.iter().map(|p| measure(p)[c]).sum::<f64>() / n);
         for p in &points {
-            for c in 0..3 {
-                stress = stress.max((measure(p)[c] - mean[c]).abs() / PRESSURE);
+            for (v, m) in measure(p).iter().zip(&mean) {
+                stress = stress.max((v - m).abs() / PRESSURE);
             }
         }
         stress = stress
@@ -118,7 +121,8 @@ fn run(scene: &Scene, method: Method, steps: usize) -> Errors {
     errors(&sol)
 }
 
-const METHODS: [Method; 2] = [Method::Complete, Method::Approx(ApproxType::Type6)];
+/// The complete formulation and Types 1–6.
+const METHODS: [Method; 7] = Method::ALL;
 const FORMULATIONS: [Formulation; 2] = [Formulation::SlaveNormal, Formulation::ClosestPoint];
 
 /// The scene as written passes the patch test.
@@ -131,8 +135,8 @@ fn patch_scene_passes() {
 }
 
 /// Segmented integration: uniform pressure and stress to 1e-8 for both
-/// formulations, the complete formulation and Type 6, one and two load
-/// steps; plain Gauss integration with the same points per segment fails
+/// formulations, the complete formulation and every type, one and two
+/// load steps; plain Gauss integration with the same points per segment fails
 /// the test by orders of magnitude.
 #[test]
 fn segmented_integration_passes_plain_gauss_fails() {
