@@ -54,9 +54,15 @@
 //! patch test (`scenes/patch-test.toml`: both blocks stretch alike, the
 //! interface does not slide). Where the faces slide or rotate relative to
 //! each other, the kinks move away from the splits and segmented
-//! integration loses its exactness: it is then a Gauss rule on
-//! `n_g (1 + splits)` points (still more accurate than `n_g` points, but
-//! without the patch-test guarantee). Recomputing the splits at converged
+//! integration loses its exactness: a master node that has slid by `delta`
+//! (less than the distance from a piece's end to its first Gauss point)
+//! gets the force `p (integral N_m - delta^2 / h)` instead of
+//! `p integral N_m` under a uniform pressure `p` with 2 points per piece
+//! (`h` its segments' length; the test
+//! `reference_split_error_grows_with_the_slip_squared`), a relative error
+//! of about `(delta / h)^2`: `1e-4` for a slip of a hundredth of a master
+//! segment. For large slips the rule is a Gauss rule on
+//! `n_g (1 + splits)` points without the patch-test guarantee. Recomputing the splits at converged
 //! steps would follow the sliding but change the number of points (and
 //! with them the pairings, Taylor coefficients and ties the solver keeps
 //! per point); that is not done.
@@ -305,6 +311,44 @@ mod tests {
                 (q - exact).abs() < 1e-12 * exact.abs(),
                 "n={n}: {q} vs {exact}"
             );
+        }
+    }
+
+    /// The limit of a split fixed in the reference configuration: when the
+    /// master node slides by `delta` from where it projected, the kink of
+    /// its shape function `N_m` (slope jump `2/h`, `h` the master segment
+    /// length) sits `delta` inside a piece, and the 2-point rule misses
+    /// `integral N_m` by exactly `delta^2 / h` (while `delta` is smaller
+    /// than the distance from the piece's end to its first Gauss point):
+    /// relative to the node's share of the pressure, about `(delta / h)^2`.
+    #[test]
+    fn reference_split_error_grows_with_the_slip_squared() {
+        let (node, h) = (0.3, 0.8);
+        let slave = [[0.0, 0.0], [1.0, 0.0]];
+        let masters = [
+            [[node + h, 0.0], [node, 0.0]],
+            [[node, 0.0], [node - h, 0.0]],
+        ];
+        let hat = |x: f64, c: f64| (1.0 - (x - c).abs() / h).max(0.0);
+        // integral over x in [0, 1] of the hat at c (its support covers it)
+        let exact = |c: f64| c - c * c / (2.0 * h) + (1.0 - c) - (1.0 - c).powi(2) / (2.0 * h);
+        for f in FORMULATIONS {
+            let points = segmented_rule(&gauss_legendre(2), &split_coordinates(f, slave, &masters));
+            let quad = |c: f64| -> f64 {
+                points
+                    .iter()
+                    .map(|&(xi, w)| w / 2.0 * hat((1.0 + xi) / 2.0, c))
+                    .sum()
+            };
+            assert!((quad(node) - exact(node)).abs() < 1e-15, "{f:?}");
+            for delta in [-1e-2, -1e-3, 1e-3, 1e-2] {
+                let error = (quad(node + delta) - exact(node + delta)).abs();
+                let expect = delta * delta / h;
+                assert!(
+                    (error - expect).abs() < 1e-12,
+                    "{f:?} {delta}: {error} vs {expect}"
+                );
+            }
         }
     }
 }
