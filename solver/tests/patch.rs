@@ -227,6 +227,33 @@ fn segmented_layout_has_a_rule_per_piece() {
     }
 }
 
+/// Master nodes on slave nodes split nothing: with matching meshes (both
+/// blocks 5 elements wide) the segmented layout is the Gauss layout, point
+/// for point; with the lower block 10 wide every other master node lies on
+/// a slave node and the rest split the slave segments in halves.
+#[test]
+fn master_nodes_on_slave_nodes_make_no_piece() {
+    let layout = |integration: Integration, nx: usize| {
+        let mut s = variant(Formulation::SlaveNormal, integration, 2, false);
+        s.bodies[0].nx = Some(nx);
+        solver::contact::ContactLayout::new(&s.build_model().unwrap(), None).points
+    };
+    assert_eq!(
+        layout(Integration::Segmented, 5),
+        layout(Integration::Gauss, 5)
+    );
+    let halves = layout(Integration::Segmented, 10);
+    assert_eq!(halves.len(), 20);
+    for p in &halves {
+        assert!((p.weight_ref - 0.05).abs() < 1e-15, "{p:?}");
+        let expect = (1.0 / 3f64.sqrt() + 1.0) / 2.0;
+        assert!(
+            (p.xi_s.abs() - expect).abs() < 1e-15 || (p.xi_s.abs() - (1.0 - expect)).abs() < 1e-15,
+            "{p:?}"
+        );
+    }
+}
+
 /// `integration` reads `"gauss"` (the default, not written back) and
 /// `"segmented"`; anything else is an error naming the field.
 #[test]
