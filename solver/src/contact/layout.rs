@@ -78,14 +78,14 @@ impl ContactLayout {
                 let len = (b[0] - a[0]).hypot(b[1] - a[1]);
                 total_len += len;
                 // plain Gauss: the rule itself (bit for bit as before)
-                let pieces = match pair.integration {
+                let segmented = match pair.integration {
                     Integration::Gauss => None,
                     Integration::Segmented => Some(segmented_rule(
                         &rule,
                         &split_coordinates(pair_formulation, [a, b], &masters_ref),
                     )),
                 };
-                for (g, &(xi, w)) in pieces.as_deref().unwrap_or(&rule).iter().enumerate() {
+                for (g, &(xi, w)) in segmented.as_deref().unwrap_or(&rule).iter().enumerate() {
                     points.push(ContactPoint {
                         pair: p,
                         slave_segment: s,

@@ -282,9 +282,10 @@ pub struct ContactSpec {
     /// non-matching meshes transmit a uniform pressure exactly (the contact
     /// patch test, `scenes/patch-test.toml`). The split is computed once,
     /// in the reference configuration: exact while the faces do not slide
-    /// relative to each other; under sliding it is a finer Gauss rule
-    /// without that guarantee (see [`crate::contact`], "Integration
-    /// rule"). Not written when it is the default.
+    /// relative to each other; where they slide, the relative error grows
+    /// like `(slip / master segment length)^2`, and after large slips it is
+    /// a finer Gauss rule without that guarantee (see [`crate::contact`],
+    /// "Integration rule"). Not written when it is the default.
     #[serde(default, skip_serializing_if = "is_default_integration")]
     pub integration: Integration,
 }
