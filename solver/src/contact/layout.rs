@@ -2,6 +2,12 @@
 //! adjacency of all contact pairs of a model, and the node geometry of a
 //! (point, master segment) pairing.
 //!
+//! The integration points of a pair follow its [`Integration`] rule: the
+//! Gauss rule on every slave segment, or (segmented) the Gauss rule on
+//! every piece of a slave segment split in the reference configuration at
+//! the projections of the master nodes, in the pair's formulation after an
+//! override (see `segmented`).
+//!
 //! Invariants: built once per solve from the model and never changed; a
 //! slave node shared by neighbouring slave segments carries one multiplier;
 //! `adjacency[pair][m]` is `[previous, next]` along the master chain (by the
@@ -13,6 +19,7 @@ use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, 
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
 
+use super::segmented::{Integration, segmented_rule, split_coordinates};
 use super::{ContactPoint, MultiplierDof, gauss_legendre};
 
 /// The integration points, multipliers and master-chain adjacency of all
@@ -56,12 +63,29 @@ impl ContactLayout {
                 }
             }
             let rule = gauss_legendre(pair.gauss_points);
+            let masters_ref: Vec<[[f64; 2]; 2]> = match pair.integration {
+                Integration::Gauss => Vec::new(),
+                Integration::Segmented => pair
+                    .master
+                    .iter()
+                    .map(|m| m.map(|n| mesh.node_ref(n)))
+                    .collect(),
+            };
+            let pair_formulation = formulation.unwrap_or(pair.formulation);
             let mut total_len = 0.0;
             for (s, seg) in pair.slave.iter().enumerate() {
                 let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
                 let len = (b[0] - a[0]).hypot(b[1] - a[1]);
                 total_len += len;
-                for (g, &(xi, w)) in rule.iter().enumerate() {
+                // plain Gauss: the rule itself (bit for bit as before)
+                let segmented = match pair.integration {
+                    Integration::Gauss => None,
+                    Integration::Segmented => Some(segmented_rule(
+                        &rule,
+                        &split_coordinates(pair_formulation, [a, b], &masters_ref),
+                    )),
+                };
+                for (g, &(xi, w)) in segmented.as_deref().unwrap_or(&rule).iter().enumerate() {
                     points.push(ContactPoint {
                         pair: p,
                         slave_segment: s,

@@ -24,6 +24,18 @@
 //! With this sign, a compressive contact has `lambda < 0`: the contact
 //! pressure is `p = -lambda`.
 //!
+//! # Integration rule
+//!
+//! With `integration = "gauss"` (the default) the `n_g` points are the
+//! Gauss rule on the whole slave segment. With `integration = "segmented"`
+//! each slave segment is first split at the slave points whose projection
+//! (in the pair's formulation) reaches a master node, and every piece gets
+//! `n_g` Gauss points with weights scaled to the piece, so that the kink
+//! of the integrand where the projection crosses a master node is
+//! integrated exactly (the contact patch test). The split is computed in
+//! the reference configuration when the layout is built; see `segmented`
+//! for the formulas, the tolerance and the limits under sliding.
+//!
 //! # Types 1–6: Taylor coefficients frozen per load step
 //!
 //! At the start of a load step, at the converged displacements `u0`, every
@@ -170,6 +182,8 @@
 //!   [`NodeTie`], [`PointFailure`], ...), the Gauss rule and shape functions;
 //! * `layout`: [`ContactLayout`], the integration points, multipliers and
 //!   master chains of all pairs (built once per solve; never changes);
+//! * `segmented`: the integration rule on a slave segment, plain Gauss or
+//!   segmented at the projections of the master nodes ([`Integration`]);
 //! * `search`: pairing by projection (walk along the master chain, then
 //!   every segment);
 //! * `evaluate`: the kernel evaluations at every point, in parallel;
@@ -186,6 +200,7 @@ mod active_set;
 mod evaluate;
 mod layout;
 mod search;
+mod segmented;
 mod taylor;
 
 use contact_kernels::{KernelError, Projection, Segment};
@@ -194,6 +209,10 @@ use nalgebra::{SMatrix, SVector};
 use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
 pub use layout::ContactLayout;
+pub use segmented::{
+    Integration, SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end,
+    split_coordinates,
+};
 pub use taylor::Taylor;
 
 /// A projection with `|xi_m| <= 1 + XI_INSIDE_TOL` lies inside the master
@@ -260,7 +279,8 @@ pub struct ContactPoint {
     pub pair: PairId,
     /// Slave segment index within the pair.
     pub slave_segment: usize,
-    /// Gauss point index within the segment.
+    /// Integration point index within the segment (with segmented
+    /// integration, counted piece by piece).
     pub gauss: usize,
     /// Parametric coordinate on the slave segment.
     pub xi_s: f64,

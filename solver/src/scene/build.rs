@@ -140,6 +140,7 @@ impl Scene {
                 formulation: c.formulation,
                 mode: c.mode,
                 gauss_points: c.gauss_points,
+                integration: c.integration,
             });
         }
         self.check_loading()?;

@@ -45,6 +45,8 @@
 //! formulation = "slave-normal"   # or "closest-point" (default slave-normal)
 //! mode = "persistent"            # or "unilateral" (default persistent)
 //! gauss_points = 2               # per slave segment, 1..=8 (default 2)
+//! integration = "gauss"          # or "segmented": split at the master nodes'
+//!                                # projections, gauss_points per piece
 //!
 //! [loading]
 //! load_factor_end = 10.0
