@@ -188,6 +188,8 @@ mod layout;
 mod search;
 mod taylor;
 
+pub mod nodal;
+
 use contact_kernels::{KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 

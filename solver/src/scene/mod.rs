@@ -142,6 +142,9 @@ mod source;
 mod spec;
 mod validate;
 
+#[cfg(test)]
+mod proptests;
+
 pub use error::SceneError;
 pub use spec::{
     BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
