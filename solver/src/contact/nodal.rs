@@ -45,9 +45,14 @@
 //! in the angle times the gap, so the gap of a closed node (`g = 0`) is the
 //! same either way.
 //!
+//! Cost: every slave node is projected onto every master segment of its
+//! pair (`n_slave x n_master` projections, once per written state).
+//!
 //! Invariants: rows come pair by pair in model order and, within a pair,
 //! in slave-face order (the multiplier order of
 //! [`super::ContactLayout`]); every value is finite.
+
+use std::collections::HashMap;
 
 use contact_kernels::PAIR_COORDS;
 
@@ -100,6 +105,13 @@ pub fn nodal_contact(solution: &Solution, state: &State) -> Vec<NodalContactRow>
         let (x, d) = (mesh.nodes_ref[n], state.displacements[n]);
         [x[0] + d[0], x[1] + d[1]]
     };
+    // one multiplier per (pair, slave node)
+    let lambdas: HashMap<(usize, usize), f64> = solution
+        .multiplier_dofs
+        .iter()
+        .zip(&state.multipliers)
+        .map(|(m, &l)| ((m.pair, m.node), l))
+        .collect();
     let mut rows = Vec::new();
     for (p, pair) in solution.contact_pairs.iter().enumerate() {
         let formulation = solution.formulations[p];
@@ -134,13 +146,7 @@ pub fn nodal_contact(solution: &Solution, state: &State) -> Vec<NodalContactRow>
                     (b[0] - a[0]).hypot(b[1] - a[1]) / 2.0
                 })
                 .sum();
-            let lambda: f64 = solution
-                .multiplier_dofs
-                .iter()
-                .zip(&state.multipliers)
-                .filter(|(m, _)| m.pair == p && m.node == node)
-                .map(|(_, l)| *l)
-                .sum();
+            let lambda = lambdas.get(&(p, node)).copied().unwrap_or(0.0);
             let slave = pair.slave[slave_segment];
             // (projection, how far it misses the segment) on every master
             // segment the kernel accepts
