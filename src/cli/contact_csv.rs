@@ -16,7 +16,11 @@
 //! and its two global nodes where the node projects into the master face
 //! (all five empty where it does not), `tributary_length` the reference
 //! length the node's pressure acts on (`sum pressure x tributary_length`
-//! over a pair is the pressure's integral over its slave face). Numbers are
+//! over a pair is the pressure's integral over its slave face). The gap is
+//! that of the node itself projected onto the master face; with
+//! `slave-normal`, along the normal of the slave segment that starts at
+//! the node (the last node of an open face: the segment ending there); a
+//! node of two pairs has a row in each. Numbers are
 //! written in Rust's shortest round-trip form (with an exponent below
 //! 1e-4 and from 1e15 on).
 
