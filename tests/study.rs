@@ -107,6 +107,13 @@ fn study_invariants_hold_and_outputs_are_written() {
         assert!(png.len() > 1000, "{file} is empty");
         assert!(dir.join(file.replace(".png", ".svg")).exists());
     }
+    // each plot was drawn at a temporary path and renamed: none is left
+    let temporary: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with('.'))
+        .collect();
+    assert!(temporary.is_empty(), "{temporary:?}");
     let md = report::markdown(&r, "", "test");
     assert!(md.contains("| 6 |") && md.contains("order"));
     std::fs::remove_dir_all(&dir).ok();

@@ -49,6 +49,7 @@ pub mod mesh;
 pub mod model;
 pub mod newton;
 pub mod options;
+pub mod out;
 mod par;
 pub mod quad;
 pub mod scene;

@@ -17,6 +17,7 @@ use contact_kernels::{Formulation, KernelError};
 
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
+use crate::model::{ContactMode, Model};
 use crate::options::Method;
 use crate::quad::QuadStress;
 
@@ -223,6 +224,36 @@ pub struct ContactPointReport {
     pub gap: Option<f64>,
 }
 
+/// One contact pair as solved: its name, faces and mode (the formulation
+/// used is [`Solution::formulations`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactPairInfo {
+    /// The pair's name.
+    pub name: String,
+    /// Slave segments (global nodes), counter-clockwise around their body.
+    pub slave: Vec<[usize; 2]>,
+    /// Master segments (global nodes), counter-clockwise around their body.
+    pub master: Vec<[usize; 2]>,
+    /// Persistent or unilateral.
+    pub mode: ContactMode,
+}
+
+impl ContactPairInfo {
+    /// The contact pairs of `model`, in model order.
+    pub fn of_model(model: &Model) -> Vec<ContactPairInfo> {
+        model
+            .contacts
+            .iter()
+            .map(|c| ContactPairInfo {
+                name: c.name.clone(),
+                slave: c.slave.iter().map(|s| s.map(NodeId::index)).collect(),
+                master: c.master.iter().map(|s| s.map(NodeId::index)).collect(),
+                mode: c.mode,
+            })
+            .collect()
+    }
+}
+
 /// Kernel-call counts.
 pub use crate::contact::KernelCounts;
 
@@ -269,6 +300,8 @@ pub struct Solution {
     pub snapshots: Vec<State>,
     /// Slave integration points at the final state.
     pub contact_points: Vec<ContactPointReport>,
+    /// The contact pairs, in model order (see [`crate::contact::nodal`]).
+    pub contact_pairs: Vec<ContactPairInfo>,
 }
 
 impl Solution {

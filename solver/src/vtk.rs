@@ -7,8 +7,15 @@
 //! (`VTK_TRIANGLE = 5`), in element order. Fields:
 //!
 //! * point data: `displacement`, `multiplier` (the Lagrange multiplier at
-//!   slave nodes, summed over pairs, zero elsewhere) and `contact_pressure`
-//!   (`p = -multiplier`, positive in compression);
+//!   slave nodes, summed over pairs, zero elsewhere), `contact_pressure`
+//!   (`p = -multiplier`, positive in compression), `contact_gap` (the gap
+//!   of the node projected onto the master face,
+//!   [`crate::contact::nodal`]), `contact_slave` (1 at a slave node of any
+//!   pair, 0 elsewhere) and `contact_paired` (1 where the node projects
+//!   into a master segment, 0 elsewhere). `contact_gap` is 0 where
+//!   `contact_paired` is 0. A node that is a slave node of two pairs
+//!   carries the sum of its pressures (as `multiplier`) and the gap of the
+//!   pair where `|g|` is smallest (the first such pair on a tie);
 //! * cell data: `cauchy_stress` and `pk2_stress` (components
 //!   `[xx, yy, xy]`, averaged over the element's Gauss points) and `body`
 //!   (the body index).
@@ -35,7 +42,7 @@ pub fn write_vtu_state(
     solution: &Solution,
     state: &State,
 ) -> std::io::Result<()> {
-    std::fs::write(path, vtu_string(solution, state))
+    crate::out::write_atomic(path, vtu_string(solution, state))
 }
 
 fn array(
@@ -87,6 +94,16 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
     for (dof, value) in solution.multiplier_dofs.iter().zip(&state.multipliers) {
         multiplier[dof.node] += value;
     }
+    let mut slave = vec![0u8; n];
+    let mut gap: Vec<Option<f64>> = vec![None; n];
+    for row in crate::contact::nodal::nodal_contact(solution, state) {
+        slave[row.node] = 1;
+        if let Some(pr) = row.projection
+            && gap[row.node].is_none_or(|g| pr.gap.abs() < g.abs())
+        {
+            gap[row.node] = Some(pr.gap);
+        }
+    }
     let stresses = solution.element_stresses(state);
     let mut out = String::with_capacity(200 * (n + m) + 1024);
     out.push_str("<?xml version=\"1.0\"?>\n");
@@ -122,6 +139,27 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
         "contact_pressure",
         1,
         multiplier.iter().map(|&v| num(-v)),
+    );
+    array(
+        &mut out,
+        "Float64",
+        "contact_gap",
+        1,
+        gap.iter().map(|g| num(g.unwrap_or(0.0))),
+    );
+    array(
+        &mut out,
+        "UInt8",
+        "contact_slave",
+        1,
+        slave.iter().map(|s| s.to_string()),
+    );
+    array(
+        &mut out,
+        "UInt8",
+        "contact_paired",
+        1,
+        gap.iter().map(|g| u8::from(g.is_some()).to_string()),
     );
     out.push_str("      </PointData>\n");
     out.push_str("      <CellData Scalars=\"body\">\n");

@@ -10,6 +10,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+pub mod contact_csv;
 pub mod kernel;
 pub mod run;
 pub mod study;

@@ -7,7 +7,10 @@
 //! Without `SCENE` the embedded paper scene is solved. With `--out DIR` the
 //! final state (and with `--every-step` every converged step) is written as
 //! `.vtu` files that ParaView opens (displacement, stresses, contact
-//! pressure).
+//! pressure and gap), and a scene with contact pairs also gets
+//! `DIR/contact.csv`, the final state's contact pressure and gap at every
+//! slave node (see [`super::contact_csv`]). Every file is written
+//! atomically (`solver::out`): a temporary file in `DIR`, then a rename.
 
 use std::path::PathBuf;
 
@@ -17,6 +20,7 @@ use solver::ids::NodeId;
 use solver::{LinearSolverKind, Method, Scene, SolveOptions};
 
 use super::CommandResult;
+use super::contact_csv::contact_csv;
 
 /// Arguments of `gapsim run`.
 #[derive(Debug, Clone, Args)]
@@ -203,6 +207,12 @@ pub fn run(args: &RunArgs) -> CommandResult {
             written.len(),
             dir.display()
         );
+        if !sol.contact_pairs.is_empty() {
+            let path = dir.join("contact.csv");
+            solver::out::write_atomic(&path, contact_csv(&sol, &sol.final_state))
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            println!("wrote           {}", path.display());
+        }
     }
     Ok(())
 }

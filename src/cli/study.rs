@@ -77,7 +77,8 @@ pub fn run(args: &StudyArgs) -> CommandResult {
 
     let write = |name: &str, text: &str| -> CommandResult {
         let path = args.out.join(name);
-        std::fs::write(&path, text).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        solver::out::write_atomic(&path, text)
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         Ok(())
     };
     for (i, s) in results.formulations.iter().enumerate() {
@@ -119,7 +120,7 @@ pub fn run(args: &StudyArgs) -> CommandResult {
                 report::README_END
             )
         })?;
-        std::fs::write(readme, new)
+        solver::out::write_atomic(readme, new)
             .map_err(|e| format!("cannot write {}: {e}", readme.display()))?;
         println!("updated the results section of {}", readme.display());
     }

@@ -203,6 +203,8 @@ mod search;
 mod segmented;
 mod taylor;
 
+pub mod nodal;
+
 use contact_kernels::{KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 

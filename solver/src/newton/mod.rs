@@ -323,6 +323,7 @@ impl<'a> Run<'a> {
             final_state: self.state(),
             snapshots: self.snapshots.clone(),
             contact_points,
+            contact_pairs: crate::solution::ContactPairInfo::of_model(self.setup.model),
         })
     }
 }

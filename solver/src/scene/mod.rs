@@ -144,6 +144,12 @@ mod source;
 mod spec;
 mod validate;
 
+#[cfg(test)]
+mod proptests;
+
+#[cfg(test)]
+mod bad_input_tests;
+
 pub use error::SceneError;
 pub use spec::{
     BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,

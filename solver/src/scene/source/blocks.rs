@@ -1,13 +1,19 @@
 //! The structured-block source: each `[[body]]` with `origin`, `size`, `nx`
 //! and `ny` (any of them: the others are then missing) becomes a [`Block`] of `nx * refine.x` by `ny * refine.y`
 //! elements ([`crate::mesh::block`] has the numbering), and its faces are
-//! the block's sides.
+//! the block's sides. A block has at most [`MAX_BLOCK_ELEMENTS`] elements
+//! (refinement included), so that no scene value overflows the counts or
+//! asks for more memory than a machine has.
 
 use super::MeshSource;
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::{Block, Mesh, Side};
 use crate::scene::{BodySpec, Scene, SceneError};
+
+/// The most elements one block may have (`nx ny` times the refinement
+/// factors); larger blocks are an error naming the body.
+pub const MAX_BLOCK_ELEMENTS: usize = 10_000_000;
 
 /// The structured rectangular blocks of a scene.
 pub(in crate::scene) struct Blocks<'s> {
@@ -65,11 +71,32 @@ impl MeshSource for Blocks<'_> {
         if !origin.iter().all(|v| v.is_finite()) {
             return Err(self.scene.invalid(format!("{f}.origin"), "must be finite"));
         }
+        if !(0..2).all(|k| (origin[k] + size[k]).is_finite()) {
+            return Err(self.scene.invalid(
+                format!("{f}.size"),
+                "the far corner origin + size is not finite",
+            ));
+        }
+        let (nx, ny) = (
+            nx.checked_mul(self.scene.refine.x),
+            ny.checked_mul(self.scene.refine.y),
+        );
+        let Some((nx, ny)) = nx
+            .zip(ny)
+            .filter(|&(nx, ny)| nx.checked_mul(ny).is_some_and(|n| n <= MAX_BLOCK_ELEMENTS))
+        else {
+            return Err(self.scene.invalid(
+                f.clone(),
+                format!(
+                    "more than {MAX_BLOCK_ELEMENTS} elements (nx x ny times the [refine] factors)"
+                ),
+            ));
+        };
         let block = Block {
             origin,
             size,
-            nx: nx * self.scene.refine.x,
-            ny: ny * self.scene.refine.y,
+            nx,
+            ny,
         };
         mesh.add_block(&b.name, material, block)
             .map_err(|e| self.scene.invalid(f.clone(), e.to_string()))

@@ -1,0 +1,109 @@
+//! `contact.csv`: the nodal contact table of a solved state
+//! ([`solver::contact::nodal`]) as comma-separated values, written by
+//! `gapsim run --out DIR`.
+//!
+//! One row per slave node and contact pair, pair by pair and in slave-face
+//! order, with the header
+//!
+//! ```text
+//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length
+//! ```
+//!
+//! `pair` is the pair's name (quoted when it holds a comma, quote or line
+//! break), `node` the global node, `x`, `y` its current coordinates,
+//! `pressure` the contact pressure `p = -lambda` (positive in compression),
+//! `gap`, `xi_m`, `master_segment` (index within the pair's master face)
+//! and its two global nodes where the node projects into the master face
+//! (all five empty where it does not), `tributary_length` the reference
+//! length the node's pressure acts on (`sum pressure x tributary_length`
+//! over a pair is the pressure's integral over its slave face). The gap is
+//! that of the node itself projected onto the master face; with
+//! `slave-normal`, along the normal of the slave segment that starts at
+//! the node (the last node of an open face: the segment ending there); a
+//! node of two pairs has a row in each. Numbers are
+//! written in Rust's shortest round-trip form (with an exponent below
+//! 1e-4 and from 1e15 on).
+
+use solver::contact::nodal::nodal_contact;
+use solver::{Solution, State};
+
+/// The header line of `contact.csv` (without the line break).
+pub const HEADER: &str =
+    "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length";
+
+/// `field` quoted as RFC 4180 wants where it holds a separator.
+fn quoted(field: &str) -> String {
+    if field.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", field.replace('"', "\"\""))
+    } else {
+        field.to_owned()
+    }
+}
+
+/// `v` in Rust's shortest round-trip form: positional, or with an
+/// exponent where that is shorter (below 1e-4 and from 1e15 on).
+fn num(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e15).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
+/// The `contact.csv` text of `state` (one of `solution`'s states).
+pub fn contact_csv(solution: &Solution, state: &State) -> String {
+    let mut out = format!("{HEADER}\n");
+    for row in nodal_contact(solution, state) {
+        let name = quoted(&solution.contact_pairs[row.pair].name);
+        let projection = match row.projection {
+            Some(p) => format!(
+                "{},{},{},{},{},{}",
+                num(p.gap),
+                num(row.pressure),
+                num(p.xi_m),
+                p.master_segment,
+                p.master_nodes[0],
+                p.master_nodes[1]
+            ),
+            None => format!(",{},,,,", num(row.pressure)),
+        };
+        out.push_str(&format!(
+            "{name},{},{},{},{projection},{}\n",
+            row.node,
+            num(row.position[0]),
+            num(row.position[1]),
+            num(row.tributary_length)
+        ));
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_with_separators_are_quoted() {
+        assert_eq!(quoted("interface"), "interface");
+        assert_eq!(quoted("a,b"), "\"a,b\"");
+        assert_eq!(quoted("say \"x\""), "\"say \"\"x\"\"\"");
+    }
+
+    #[test]
+    fn numbers_round_trip() {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            0.49492293187714653,
+            -5.551115123125783e-17,
+            1e-4,
+            3e15,
+            -1.5e300,
+        ] {
+            assert_eq!(num(v).parse::<f64>().unwrap().to_bits(), v.to_bits(), "{v}");
+        }
+        assert_eq!(num(-5.551115123125783e-17), "-5.551115123125783e-17");
+        assert_eq!(num(0.25), "0.25");
+    }
+}

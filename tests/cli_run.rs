@@ -1,0 +1,138 @@
+//! `gapsim run --out DIR`, tested by running the binary on
+//! `scenes/pressed-blocks.toml` (a block pressed onto a base with a total
+//! load of 1 over a width of 1; see the scene file): `contact.csv` has its
+//! header and one row per slave node, the pressure integrates to the load
+//! and the closed nodes' gaps vanish, `final.vtu` carries the contact point
+//! data, and a second run replaces every file without leaving a temporary
+//! one behind.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const HEADER: &str =
+    "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length";
+
+fn scene() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/pressed-blocks.toml")
+}
+
+/// Runs `gapsim run SCENE --out DIR ARGS` and returns its stdout.
+fn run(dir: &Path, args: &[&str]) -> String {
+    let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .arg("run")
+        .arg(scene())
+        .arg("--out")
+        .arg(dir)
+        .args(args)
+        .output()
+        .expect("run gapsim");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).unwrap()
+}
+
+fn entries(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn contact_csv_balances_the_load() {
+    let dir = std::env::temp_dir().join(format!("gapsim-cli-run-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let stdout = run(&dir, &[]);
+    assert!(stdout.contains("contact.csv"), "{stdout}");
+    let csv = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some(HEADER));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // the block's bottom side: 4 elements, 5 nodes, one pair
+    assert_eq!(rows.len(), 5, "{csv}");
+    let mut integral = 0.0;
+    for row in &rows {
+        assert_eq!(row.len(), 11, "{row:?}");
+        assert_eq!(row[0], "interface");
+        let num = |k: usize| row[k].parse::<f64>().unwrap();
+        // closed: gap 0 up to Newton's tolerance (see the solver's
+        // contact::nodal tests for the bound), pressure 1 = F / width
+        assert!(num(4).abs() < 1e-8, "{row:?}");
+        assert!((num(5) - 1.0).abs() < 1e-8, "{row:?}");
+        assert!(num(6).abs() <= 1.0 + 1e-9, "{row:?}");
+        assert!(num(3) < 0.5, "{row:?}");
+        integral += num(5) * num(10);
+    }
+    // sum of p T over the face = the total load (1), to Newton's
+    // tolerance: sqrt(5) 1e-10 < 1e-9
+    assert!((integral - 1.0).abs() < 1e-9, "{integral}");
+    let vtu = std::fs::read_to_string(dir.join("final.vtu")).unwrap();
+    for name in [
+        "contact_pressure",
+        "contact_gap",
+        "contact_slave",
+        "contact_paired",
+    ] {
+        assert!(vtu.contains(&format!("Name=\"{name}\"")), "{name}");
+    }
+    assert_eq!(entries(&dir), ["contact.csv", "final.vtu"]);
+
+    // a second run replaces the files (atomically: no temporary is left);
+    // the step files are the initial state and the two steps
+    std::fs::write(dir.join("contact.csv"), "stale").unwrap();
+    run(&dir, &["--every-step"]);
+    assert_eq!(
+        std::fs::read_to_string(dir.join("contact.csv")).unwrap(),
+        csv
+    );
+    assert_eq!(
+        entries(&dir),
+        [
+            "contact.csv",
+            "final.vtu",
+            "step-0000.vtu",
+            "step-0001.vtu",
+            "step-0002.vtu"
+        ]
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_scene_without_contact_writes_no_contact_csv() {
+    let dir = std::env::temp_dir().join(format!("gapsim-cli-run-nc-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scene()).unwrap();
+    let start = text.find("[[contact]]").unwrap();
+    let end = text.find("[loading]").unwrap();
+    // no contact: the block on rollers at its own bottom
+    let fix = "[[fix]]\nbody = \"base\"\ny = 0.0\ndofs = \"y\"\n";
+    assert!(text.contains(fix));
+    let text = format!("{}{}", &text[..start], &text[end..]).replace(
+        fix,
+        &format!("{fix}\n[[fix]]\nbody = \"block\"\ny = 0.5\ndofs = \"y\"\n"),
+    );
+    let scene = dir.join("block.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out_dir = dir.join("out");
+    let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out_dir)
+        .output()
+        .expect("run gapsim");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(entries(&out_dir), ["final.vtu"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
