@@ -30,4 +30,5 @@
 pub use contact_kernels;
 pub use solver;
 
+pub mod hertz;
 pub mod study;

@@ -65,7 +65,7 @@ mod testutil;
 pub use contact_kernels::{ApproxType, Formulation, KernelError};
 pub use error::SolverError;
 pub use linear::LinearSolverKind;
-pub use material::{Material, PlaneModel};
+pub use material::{Kinematics, Material, PlaneModel};
 pub use mesh::{Mesh, Side};
 pub use model::{ContactMode, Model};
 pub use options::{DEFAULT_REGULARIZATION, Method, ParseMethodError, SolveOptions};

@@ -12,6 +12,12 @@
 //!
 //! The strain energy density is `W = 1/2 E_v . S_v` (per unit reference
 //! area; the thickness is one).
+//!
+//! [`Kinematics::Small`] replaces the Green–Lagrange strain by the
+//! infinitesimal strain `eps = (H + H^T)/2` and the stress measure by the
+//! Cauchy stress `sigma = D eps` of linear elasticity (no geometric
+//! stiffness): the assumptions of the classical solutions such as Hertz's.
+//! Contact stays in the current configuration either way.
 
 use serde::{Deserialize, Serialize};
 
@@ -26,8 +32,36 @@ pub enum PlaneModel {
     PlaneStrain,
 }
 
+/// How a solid measures strain (in scene files: `kinematics = "finite" |
+/// "small"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Kinematics {
+    /// Total-Lagrangian St Venant–Kirchhoff: Green–Lagrange strain, second
+    /// Piola–Kirchhoff stress, exact for large rotations (the default).
+    #[default]
+    Finite,
+    /// Linear elasticity: infinitesimal strain, no geometric stiffness;
+    /// valid for small strains and rotations only (a rigid rotation
+    /// strains it).
+    Small,
+}
+
+impl Kinematics {
+    /// Whether the tangent has the geometric (initial-stress) term.
+    pub fn geometric_stiffness(self) -> bool {
+        self == Kinematics::Finite
+    }
+
+    /// Whether this is the default (for serialisation).
+    fn is_finite(&self) -> bool {
+        *self == Kinematics::Finite
+    }
+}
+
 /// An isotropic St Venant–Kirchhoff material (in scene files: `young`,
-/// `poisson` and optionally `model = "plane-stress" | "plane-strain"`).
+/// `poisson`, optionally `model = "plane-stress" | "plane-strain"` and
+/// `kinematics = "finite" | "small"`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
@@ -38,6 +72,9 @@ pub struct Material {
     /// Plane stress (the default) or plane strain.
     #[serde(default)]
     pub model: PlaneModel,
+    /// Finite strain (the default) or linear elasticity.
+    #[serde(default, skip_serializing_if = "Kinematics::is_finite")]
+    pub kinematics: Kinematics,
 }
 
 impl Material {
@@ -96,6 +133,7 @@ mod tests {
             young: 1000.0,
             poisson: 0.3,
             model: PlaneModel::PlaneStress,
+            kinematics: crate::material::Kinematics::Finite,
         };
         let d = m.d_matrix();
         let c = 1000.0 / 0.91;
@@ -111,12 +149,14 @@ mod tests {
             young: 1.0,
             poisson: 0.5,
             model: PlaneModel::PlaneStrain,
+            kinematics: crate::material::Kinematics::Finite,
         };
         assert!(m.check().is_err());
         let m = Material {
             young: -1.0,
             poisson: 0.3,
             model: PlaneModel::PlaneStress,
+            kinematics: crate::material::Kinematics::Finite,
         };
         assert!(m.check().is_err());
     }

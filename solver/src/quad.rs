@@ -140,7 +140,7 @@ pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> 
     for gp in 0..4 {
         let g = &geom.grads_ref[gp];
         let w = geom.weight_ref[gp];
-        let PointState { f, e_v, s_v } = point_state(g, u, &d);
+        let PointState { f, e_v, s_v } = point_state(g, u, &d, material.kinematics);
         let mut b = [[0.0; 8]; 3];
         for a in 0..4 {
             for i in 0..2 {
@@ -164,15 +164,17 @@ pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> 
                 out.k[p][q] += w * v;
             }
         }
-        for a in 0..4 {
-            for bn in a..4 {
-                let sg = [
-                    s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
-                    s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
-                ];
-                let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
-                for i in 0..2 {
-                    out.k[2 * a + i][2 * bn + i] += geo;
+        if material.kinematics.geometric_stiffness() {
+            for a in 0..4 {
+                for bn in a..4 {
+                    let sg = [
+                        s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
+                        s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
+                    ];
+                    let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
+                    for i in 0..2 {
+                        out.k[2 * a + i][2 * bn + i] += geo;
+                    }
                 }
             }
         }
@@ -190,7 +192,7 @@ pub fn quad_energy(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> f6
     let d = material.d_matrix();
     (0..4)
         .map(|gp| {
-            let s = point_state(&geom.grads_ref[gp], u, &d);
+            let s = point_state(&geom.grads_ref[gp], u, &d, material.kinematics);
             geom.weight_ref[gp]
                 * 0.5
                 * (s.e_v[0] * s.s_v[0] + s.e_v[1] * s.s_v[1] + s.e_v[2] * s.s_v[2])
@@ -218,7 +220,8 @@ pub fn quad_point_stresses(
 ) -> [QuadStress; 4] {
     let d = material.d_matrix();
     std::array::from_fn(|gp| {
-        let PointState { f, e_v, s_v } = point_state(&geom.grads_ref[gp], u, &d);
+        let PointState { f, e_v, s_v } =
+            point_state(&geom.grads_ref[gp], u, &d, material.kinematics);
         let s = [[s_v[0], s_v[2]], [s_v[2], s_v[1]]];
         let det_f = f[0][0] * f[1][1] - f[0][1] * f[1][0];
         let mut sigma = [[0.0; 2]; 2];
@@ -269,6 +272,7 @@ mod tests {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
 
     fn distorted() -> [[f64; 2]; 4] {

@@ -124,6 +124,7 @@ fn solid_tangent_matches_finite_differences() {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
     let model = block_model(3, 2, 3.0, 1.0, mat);
     let layout = ContactLayout::new(&model, None);
@@ -164,6 +165,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         young: 1.0e6,
         poisson: 0.25,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
     let mut mesh = Mesh::new();
     mesh.add_body("patch", mat, &nodes, &elements).unwrap();
@@ -278,6 +280,7 @@ fn large_deflection_cantilever_matches_elastica() {
         young,
         poisson: 0.0,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
     let mut model = block_model(400, 2, length, height, mat);
     let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
@@ -331,6 +334,7 @@ fn cutback_recovers_a_too_large_step() {
         young,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
     let mut model = block_model(40, 2, length, height, mat);
     let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
@@ -400,6 +404,7 @@ fn unsupported_body_is_singular() {
         young: 1.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
     let mut model = block_model(2, 1, 2.0, 1.0, mat);
     model.prescribed.clear();

@@ -124,7 +124,7 @@ pub fn tri_response(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> Tr
     };
     let g = &geom.grads_ref;
     let w = geom.weight_ref;
-    let PointState { f, e_v, s_v } = point_state(g, u, &d);
+    let PointState { f, e_v, s_v } = point_state(g, u, &d, material.kinematics);
     let mut b = [[0.0; 6]; 3];
     for a in 0..3 {
         for i in 0..2 {
@@ -148,15 +148,17 @@ pub fn tri_response(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> Tr
             out.k[p][q] = w * v;
         }
     }
-    for a in 0..3 {
-        for bn in a..3 {
-            let sg = [
-                s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
-                s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
-            ];
-            let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
-            for i in 0..2 {
-                out.k[2 * a + i][2 * bn + i] += geo;
+    if material.kinematics.geometric_stiffness() {
+        for a in 0..3 {
+            for bn in a..3 {
+                let sg = [
+                    s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
+                    s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
+                ];
+                let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
+                for i in 0..2 {
+                    out.k[2 * a + i][2 * bn + i] += geo;
+                }
             }
         }
     }
@@ -171,7 +173,7 @@ pub fn tri_response(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> Tr
 /// Strain energy only (cheaper than [`tri_response`]).
 pub fn tri_energy(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> f64 {
     let d = material.d_matrix();
-    let s = point_state(&geom.grads_ref, u, &d);
+    let s = point_state(&geom.grads_ref, u, &d, material.kinematics);
     geom.weight_ref * 0.5 * (s.e_v[0] * s.s_v[0] + s.e_v[1] * s.s_v[1] + s.e_v[2] * s.s_v[2])
 }
 
@@ -183,7 +185,7 @@ pub fn tri_point_stresses(
     material: &Material,
 ) -> [QuadStress; 1] {
     let d = material.d_matrix();
-    let PointState { f, e_v, s_v } = point_state(&geom.grads_ref, u, &d);
+    let PointState { f, e_v, s_v } = point_state(&geom.grads_ref, u, &d, material.kinematics);
     let s = [[s_v[0], s_v[2]], [s_v[2], s_v[1]]];
     let det_f = f[0][0] * f[1][1] - f[0][1] * f[1][0];
     let mut sigma = [[0.0; 2]; 2];
@@ -223,6 +225,7 @@ mod tests {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
 
     fn skewed() -> [[f64; 2]; 3] {

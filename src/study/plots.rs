@@ -23,7 +23,7 @@ use super::{FormulationStudy, StudyError, StudyResults};
 static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
 /// Registers the embedded font under "sans-serif" (idempotent).
-fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: std::sync::Once = std::sync::Once::new();
     ONCE.call_once(|| {
         // The embedded file is a valid TrueType font; a failure here would

@@ -122,6 +122,7 @@ mod tests {
         young: 1.0,
         poisson: 0.0,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
 
     #[test]
