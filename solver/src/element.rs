@@ -25,9 +25,11 @@ use crate::ids::NodeId;
 use crate::material::Material;
 use crate::quad::{
     InvalidElement, QuadGeometry, QuadResponse, QuadStress, quad_energy, quad_mean_stress,
-    quad_response,
+    quad_point_stresses, quad_response,
 };
-use crate::tri::{TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_response};
+use crate::tri::{
+    TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_point_stresses, tri_response,
+};
 use crate::vtk::{VTK_QUAD, VTK_TRIANGLE};
 
 /// The largest number of dofs of an element (the quadrilateral's 8).
@@ -210,6 +212,19 @@ impl ElementGeometry {
         match self {
             ElementGeometry::Quad4(g) => quad_energy(g, u, material),
             ElementGeometry::Tri3(g) => tri_energy(g, &tri_dofs(u), material),
+        }
+    }
+
+    /// The stresses at each of its integration points (four for a
+    /// quadrilateral, one for a triangle).
+    pub fn point_stresses(
+        &self,
+        u: &[f64; MAX_ELEMENT_DOFS],
+        material: &Material,
+    ) -> Vec<QuadStress> {
+        match self {
+            ElementGeometry::Quad4(g) => quad_point_stresses(g, u, material).to_vec(),
+            ElementGeometry::Tri3(g) => tri_point_stresses(g, &tri_dofs(u), material).to_vec(),
         }
     }
 

@@ -27,7 +27,7 @@
 use std::path::PathBuf;
 
 use solver::contact::Integration;
-use solver::quad::{QuadStress, quad_point_stresses};
+use solver::quad::QuadStress;
 use solver::{ContactMode, Formulation, Method, Scene, Solution, SolveOptions, solve};
 
 /// The applied pressure (per unit reference length).
@@ -85,11 +85,10 @@ fn errors(sol: &Solution) -> Errors {
     let mut points = Vec::new();
     for e in sol.mesh.element_ids() {
         let material = &sol.mesh.bodies[sol.mesh.element_body[e.index()]].material;
-        points.extend(quad_point_stresses(
-            &sol.mesh.geometry[e.index()],
-            &sol.mesh.element_displacements(e, &u),
-            material,
-        ));
+        points.extend(
+            sol.mesh.geometry[e.index()]
+                .point_stresses(&sol.mesh.element_displacements(e, &u), material),
+        );
     }
     let n = points.len() as f64;
     let mut stress: f64 = 0.0;

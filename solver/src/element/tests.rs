@@ -11,6 +11,7 @@ const MAT: Material = Material {
     young: 50.0,
     poisson: 0.3,
     model: PlaneModel::PlaneStrain,
+    kinematics: crate::material::Kinematics::Finite,
 };
 
 /// Dispatch through the seam gives the element functions' exact bits.
@@ -72,6 +73,7 @@ mod mixed {
         young: 1.0e6,
         poisson: 0.25,
         model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
     };
 
     /// The MacNeal–Harder patch (corners 0..3, interior nodes 4..7).
