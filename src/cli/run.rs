@@ -7,7 +7,8 @@
 //! Without `SCENE` the embedded paper scene is solved. With `--out DIR` the
 //! final state (and with `--every-step` every converged step) is written as
 //! `.vtu` files that ParaView opens (displacement, stresses, contact
-//! pressure).
+//! pressure), and the reaction force of every `[[fix]]` and `[[prescribe]]`
+//! group at every converged step to `reactions.csv`.
 
 use std::path::PathBuf;
 
@@ -198,6 +199,12 @@ pub fn run(args: &RunArgs) -> CommandResult {
         solver::vtk::write_vtu(&path, &sol)
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         written.push(path);
+        if !sol.support_groups.is_empty() {
+            let path = dir.join("reactions.csv");
+            std::fs::write(&path, sol.reactions_csv())
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            println!("wrote           {}", path.display());
+        }
         println!(
             "wrote           {} .vtu file(s) to {}",
             written.len(),
