@@ -329,3 +329,41 @@ fn press_then_slide_on_two_blocks() {
         );
     }
 }
+
+/// A curve on a `[[traction]]` (the Hertz scene's load edge) scales each
+/// of its consistent nodal loads; the point loads and supports of the
+/// scene are as without it.
+#[test]
+fn traction_curve_scales_every_nodal_load() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/hertz-coarse.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let curve = "amplitude = [[0.0, 0.0], [0.5, 2.0], [1.0, 1.0]]";
+    let with = text.replace(
+        "force_per_length = [0.0, -0.4315]",
+        &format!("force_per_length = [0.0, -0.4315]\n{curve}"),
+    );
+    assert_ne!(with, text, "the scene's traction line changed");
+    let plain = Scene::from_toml_str(&text, path)
+        .unwrap()
+        .build_model()
+        .unwrap();
+    let curved = Scene::from_toml_str(&with, path)
+        .unwrap()
+        .build_model()
+        .unwrap();
+    assert_eq!(curved.amplitudes.len(), 1);
+    assert!(plain.amplitudes.is_empty());
+    assert_eq!(plain.loads.len(), curved.loads.len());
+    assert!(!curved.loads.is_empty());
+    for (p, c) in plain.loads.iter().zip(&curved.loads) {
+        assert_eq!((p.dof, p.value, p.amplitude), (c.dof, c.value, None));
+        let a = c.amplitude.expect("every traction load has the curve");
+        assert_eq!(curved.factor(Some(a), 0.5), 2.0);
+        assert_eq!(curved.factor(Some(a), 0.75), 1.5);
+        assert_eq!(curved.factor(c.amplitude, 3.0), 1.0);
+        assert_eq!(plain.factor(p.amplitude, 0.75), 0.75);
+    }
+    assert_eq!(plain.prescribed, curved.prescribed);
+    let names: Vec<&str> = curved.supports.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(names, ["symmetry", "bottom"]);
+}
