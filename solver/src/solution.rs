@@ -182,6 +182,10 @@ pub struct Timings {
     pub symbolic_factorisation: Duration,
     /// The whole solve.
     pub total: Duration,
+    /// The support groups' reactions at the converged states (one full
+    /// residual assembly per converged step; part of `total`, not of the
+    /// phases above).
+    pub reactions: Duration,
 }
 
 /// Displacements and multipliers at one load factor.

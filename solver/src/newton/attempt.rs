@@ -192,9 +192,11 @@ impl Run<'_> {
                     }
                 }
                 let points = self.accept(&mut x, &evals, &active, kept);
+                let t = Instant::now();
                 let reactions = self
                     .setup
                     .reactions(&x.u, &x.lambda, &x.ties, &evals, &others, &active, to);
+                self.timings.reactions += t.elapsed();
                 return Ok(AttemptOutcome::Converged(Converged {
                     state: x,
                     iterations: it,
