@@ -401,3 +401,121 @@ impl Model {
         Ok(())
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Material, PlaneModel};
+    use crate::mesh::Block;
+
+    /// One element, fixed at node 0, a curve on a load.
+    fn model() -> Model {
+        let mut mesh = Mesh::new();
+        let material = Material {
+            young: 100.0,
+            poisson: 0.3,
+            model: PlaneModel::PlaneStress,
+        };
+        let block = Block {
+            origin: [0.0, 0.0],
+            size: [1.0, 1.0],
+            nx: 1,
+            ny: 1,
+        };
+        mesh.add_block("a", material, block).unwrap();
+        let fixed = |c| Prescribed {
+            dof: DofId::of(NodeId::new(0), c),
+            value: 0.0,
+            amplitude: None,
+        };
+        Model {
+            mesh,
+            prescribed: vec![fixed(0), fixed(1)],
+            loads: vec![PointLoad {
+                dof: DofId::new(5),
+                value: 2.0,
+                amplitude: Some(AmplitudeId::new(0)),
+            }],
+            contacts: Vec::new(),
+            load_factor_end: 1.0,
+            amplitudes: vec![Amplitude::new(vec![[0.0, 0.0], [0.5, 1.0]]).unwrap()],
+            supports: vec![SupportGroup {
+                name: "corner".into(),
+                prescribed: 0..2,
+            }],
+        }
+    }
+
+    #[test]
+    fn factor_is_the_load_factor_or_the_curve() {
+        let m = model();
+        assert_eq!(m.factor(None, 0.3), 0.3);
+        assert_eq!(m.factor(Some(AmplitudeId::new(0)), 0.25), 0.5);
+        assert_eq!(m.factor(Some(AmplitudeId::new(0)), 2.0), 1.0);
+    }
+
+    #[test]
+    fn check_rejects_bad_curves_and_groups() {
+        model().check().unwrap();
+        let mut m = model();
+        m.loads[0].amplitude = Some(AmplitudeId::new(1));
+        assert_eq!(
+            m.check(),
+            Err(ModelError::AmplitudeOutOfRange {
+                what: "load",
+                amplitude: 1,
+                count: 1
+            })
+        );
+        let mut m = model();
+        m.supports[0].prescribed = 1..3;
+        assert!(
+            matches!(
+                m.check(),
+                Err(ModelError::SupportOutOfRange {
+                    end: 3,
+                    count: 2,
+                    ..
+                })
+            ),
+            "{:?}",
+            m.check()
+        );
+        // the same dof twice: same value and curve agree; a zero value
+        // agrees whatever the curve; a non-zero one with another curve not
+        let mut m = model();
+        let p = Prescribed {
+            dof: DofId::new(7),
+            value: 0.1,
+            amplitude: Some(AmplitudeId::new(0)),
+        };
+        m.prescribed.extend([p, p]);
+        m.check().unwrap();
+        m.prescribed[3].amplitude = None;
+        assert_eq!(
+            m.check(),
+            Err(ModelError::ConflictingAmplitude { dof: 7, node: 3 })
+        );
+        m.prescribed[0].amplitude = Some(AmplitudeId::new(0));
+        m.prescribed.truncate(2);
+        m.check().unwrap();
+    }
+
+    /// The `Debug` print of a model without curves has no trace of them
+    /// (the scene fingerprints are taken from it).
+    #[test]
+    fn debug_shows_curves_only_when_present() {
+        let m = model();
+        let text = format!("{m:?}");
+        assert!(text.contains("amplitude: AmplitudeId(0)") && text.contains("amplitudes: ["));
+        let mut plain = model();
+        plain.loads[0].amplitude = None;
+        plain.amplitudes.clear();
+        let text = format!("{plain:?}");
+        assert!(
+            !text.contains("amplitude") && !text.contains("supports"),
+            "{text}"
+        );
+        assert!(text.ends_with("load_factor_end: 1.0 }"), "{text}");
+    }
+}
