@@ -332,7 +332,8 @@ fn press_then_slide_on_two_blocks() {
 
 /// A curve on a `[[traction]]` (the Hertz scene's load edge) scales each
 /// of its consistent nodal loads; the point loads and supports of the
-/// scene are as without it.
+/// scene are as without it. The support groups take the physical groups'
+/// names, unless two items share one.
 #[test]
 fn traction_curve_scales_every_nodal_load() {
     let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/hertz-coarse.toml");
@@ -366,4 +367,104 @@ fn traction_curve_scales_every_nodal_load() {
     assert_eq!(plain.prescribed, curved.prescribed);
     let names: Vec<&str> = curved.supports.iter().map(|g| g.name.as_str()).collect();
     assert_eq!(names, ["symmetry", "bottom"]);
+    // a `group` two items share names neither
+    let twice = text.replace(
+        "[[traction]]",
+        "[[fix]]\ngroup = \"bottom\"\ndofs = \"x\"\n[[traction]]",
+    );
+    let model = Scene::from_toml_str(&twice, path)
+        .unwrap()
+        .build_model()
+        .unwrap();
+    let names: Vec<&str> = model.supports.iter().map(|g| g.name.as_str()).collect();
+    assert_eq!(names, ["symmetry", "fix[1]", "fix[2]"]);
+    // its dofs all belong to the first (`dofs = "xy"` there)
+    assert!(model.supports[2].prescribed.is_empty());
+}
+
+/// The value of a reaction, not only its balance: a plane-stress block
+/// (2 x 1, 4 x 2 elements, E = 100, nu = 0.3) held at x = 0 in x (and one
+/// node in y), its right edge pulled by 0.2 along a curve. The deformation
+/// is homogeneous uniaxial stress, which the elements reproduce exactly:
+/// `F11 = 1 + e`, `S11 = E E11 = E ((1 + e)^2 - 1) / 2`, and the reaction
+/// on the right edge is the first Piola-Kirchhoff stress times the height,
+/// `F11 S11 H`, pulling (+x); the left edge's is its opposite.
+#[test]
+fn reaction_of_a_uniaxial_stretch_is_the_stress_times_the_area() {
+    let text = r#"
+[material]
+young = 100.0
+poisson = 0.3
+
+[[body]]
+name = "bar"
+origin = [0.0, 0.0]
+size = [2.0, 1.0]
+nx = 4
+ny = 2
+
+[[fix]]
+name = "left"
+x = 0.0
+dofs = "x"
+
+[[fix]]
+name = "pin"
+at = [0.0, 0.0]
+dofs = "y"
+
+[[prescribe]]
+name = "right"
+x = 2.0
+ux = 0.2
+amplitude = [[0.0, 0.0], [0.5, 0.5], [1.0, 1.0]]
+
+[loading]
+load_factor_end = 1.0
+steps = [3]
+"#;
+    let sol = run(text, "stretch.toml", Method::Complete, 3);
+    assert_eq!(sol.support_groups, ["left", "pin", "right"]);
+    for r in &sol.step_records {
+        let e = 0.2 * r.load_factor / 2.0;
+        let exact = (1.0 + e) * 100.0 * ((1.0 + e).powi(2) - 1.0) / 2.0 * 1.0;
+        let [left, pin, right] = [r.reactions[0], r.reactions[1], r.reactions[2]];
+        assert!(
+            (right[0] - exact).abs() < 1e-9 * exact,
+            "load factor {}: {} against {exact}",
+            r.load_factor,
+            right[0]
+        );
+        assert!((left[0] + exact).abs() < 1e-9 * exact, "{left:?}");
+        assert!(pin[1].abs() < 1e-9 * exact && right[1].abs() < 1e-9 * exact);
+    }
+}
+
+/// A dof prescribed by two items belongs to the first one's group, so the
+/// groups partition the prescribed dofs.
+#[test]
+fn a_shared_dof_belongs_to_the_first_group() {
+    let text = one_element("", 1).replace(
+        "[[fix]]\nx = 0.0\n",
+        "[[fix]]\nx = 0.0\n\n[[fix]]\ny = 0.0\ndofs = \"y\"\n",
+    );
+    let model = Scene::from_toml_str(&text, "shared.toml")
+        .unwrap()
+        .build_model()
+        .unwrap();
+    let groups: Vec<(&str, std::ops::Range<usize>)> = model
+        .supports
+        .iter()
+        .map(|g| (g.name.as_str(), g.prescribed.clone()))
+        .collect();
+    // fix[0]: both nodes at x = 0 in x and y; fix[1]: only the node at
+    // (1, 0) in y (the one at (0, 0) is fix[0]'s); right: two nodes in x
+    assert_eq!(
+        groups,
+        [("fix[0]", 0..4), ("fix[1]", 4..5), ("right", 5..7)]
+    );
+    let sol = run(&text, "shared.toml", Method::Complete, 1);
+    let r = &sol.step_records[0].reactions;
+    let sum_y: f64 = r.iter().map(|g| g[1]).sum::<f64>() - 0.5;
+    assert!(sum_y.abs() < 1e-9, "{r:?}");
 }
