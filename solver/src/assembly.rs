@@ -60,6 +60,17 @@ impl DofMap {
         DofMap { eq, n_free, n_mult }
     }
 
+    /// Every one of `ndof` displacement dofs free (equation = dof), then
+    /// `n_mult` multipliers: assembling into it gives the residual at every
+    /// dof, prescribed or not (for reaction forces).
+    pub fn all_free(ndof: usize, n_mult: usize) -> DofMap {
+        DofMap {
+            eq: (0..ndof).collect(),
+            n_free: ndof,
+            n_mult,
+        }
+    }
+
     /// The equation of displacement dof `dof`, `None` if prescribed.
     pub fn eq(&self, dof: DofId) -> Option<EquationIndex> {
         let e = self.eq[dof.index()];
@@ -282,11 +293,13 @@ pub fn assemble_ties(
     }
 }
 
-/// Subtracts the external force `load_factor f_ref`; returns its norm.
+/// Subtracts the external force at `load_factor` (`load_factor f_ref`, each
+/// load with a curve scaled by it instead, [`Model::factor`]); returns its
+/// norm.
 pub fn add_external(model: &Model, dofs: &DofMap, load_factor: f64, sys: &mut System) -> f64 {
     let mut f = vec![0.0; 2 * model.mesh.node_count()];
     for l in &model.loads {
-        f[l.dof.index()] += load_factor * l.value;
+        f[l.dof.index()] += model.factor(l.amplitude, load_factor) * l.value;
     }
     for (dof, v) in f.iter().enumerate() {
         if let Some(e) = dofs.eq(DofId::new(dof)) {

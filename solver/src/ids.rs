@@ -14,6 +14,7 @@
 //! | [`ContactPointIndex`] | slave integration points | `ContactLayout::points`, pairings, evaluations |
 //! | [`PairId`] | contact pairs | `Model::contacts`, per-pair tables of the layout |
 //! | [`MasterSegmentIndex`] | master segments of one pair, along its chain | `ContactPair::master`, pairings |
+//! | [`AmplitudeId`] | load curves of a model | `Model::amplitudes` |
 //!
 //! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
 //! first (in dof order), then the multipliers, then one equation per node tie
@@ -118,4 +119,10 @@ index_type!(
     /// A master segment of one contact pair (index into its
     /// [`ContactPair::master`](crate::model::ContactPair::master) list).
     MasterSegmentIndex
+);
+
+index_type!(
+    /// A load curve of a model (index into
+    /// [`Model::amplitudes`](crate::Model::amplitudes)).
+    AmplitudeId
 );

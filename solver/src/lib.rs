@@ -37,6 +37,7 @@
 // (`!(x > 0.0)`) deliberately reject NaN as well.
 #![allow(clippy::needless_range_loop, clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod amplitude;
 pub mod assembly;
 pub mod contact;
 pub mod element;

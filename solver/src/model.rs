@@ -3,11 +3,23 @@
 //!
 //! Loads and prescribed displacements are proportional to the load factor
 //! `lambda_L`: the external force is `lambda_L f_ref` and a prescribed degree
-//! of freedom has the value `lambda_L u_ref` (a fixed one has `u_ref = 0`).
+//! of freedom has the value `lambda_L u_ref` (a fixed one has `u_ref = 0`),
+//! unless the item carries a load curve ([`Prescribed::amplitude`],
+//! [`PointLoad::amplitude`], an index into [`Model::amplitudes`]): then its
+//! value is `a(lambda_L) u_ref` (resp. `f_ref`), see [`crate::amplitude`].
+//! [`Model::factor`] gives the factor of either kind; without a curve it is
+//! `lambda_L` itself, so proportional loading computes `lambda_L * value`
+//! exactly as before curves existed.
+//!
+//! [`Model::supports`] names groups of prescribed dofs (contiguous ranges
+//! of [`Model::prescribed`]; a scene makes one per `[[fix]]` and
+//! `[[prescribe]]`) whose reaction forces the solve reports.
 //!
 //! Invariants after [`Model::check`] (which every solve runs first): every
 //! dof and node index is in range, a dof is prescribed at most once (or
-//! twice to the same value), every value is finite, every node with a free
+//! twice to the same value and curve), every value is finite, every
+//! amplitude index is in range, every support group is a range of
+//! `prescribed`, every node with a free
 //! dof belongs to an element, and every contact pair has non-empty slave and
 //! master faces of non-degenerate segments that share no node. Nodes are
 //! [`NodeId`]s and dofs [`DofId`]s (`2 node + component`); the error
@@ -16,8 +28,11 @@
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
 
+use std::ops::Range;
+
+use crate::amplitude::Amplitude;
 use crate::contact::Integration;
-use crate::ids::{DofId, NodeId};
+use crate::ids::{AmplitudeId, DofId, NodeId};
 use crate::mesh::Mesh;
 
 /// How a contact pair's constraint is enforced.
@@ -87,25 +102,49 @@ impl std::fmt::Debug for ContactPair {
 }
 
 /// A prescribed displacement degree of freedom.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Its `Debug` print leaves out `amplitude` when it is `None` (the print
+/// of a model without curves is the one recorded before curves existed).
+#[derive(Clone, Copy, PartialEq)]
 pub struct Prescribed {
     /// Global degree of freedom (`2 node + component`).
     pub dof: DofId,
-    /// Its value at load factor one (zero for a fixed support).
+    /// Its value at load factor one (zero for a fixed support), or the
+    /// value its curve scales.
     pub value: f64,
+    /// Its load curve (`None`: proportional, `lambda_L value`).
+    pub amplitude: Option<AmplitudeId>,
 }
 
-/// A proportional point force component.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// A point force component (proportional, or scaled by a load curve).
+///
+/// `Debug` as for [`Prescribed`].
+#[derive(Clone, Copy, PartialEq)]
 pub struct PointLoad {
     /// Global degree of freedom (`2 node + component`).
     pub dof: DofId,
-    /// Its value at load factor one.
+    /// Its value at load factor one, or the value its curve scales.
     pub value: f64,
+    /// Its load curve (`None`: proportional, `lambda_L value`).
+    pub amplitude: Option<AmplitudeId>,
+}
+
+/// A named group of prescribed dofs whose reaction force is reported.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct SupportGroup {
+    /// Its name in reports (a scene's `group`, or `fix[i]`/`prescribe[i]`).
+    pub name: String,
+    /// Its entries of [`Model::prescribed`].
+    pub prescribed: Range<usize>,
 }
 
 /// Everything the solver needs.
-#[derive(Debug, Clone)]
+///
+/// Its `Debug` print leaves out `amplitudes` when there are none and
+/// `supports` always (report names only), so that the print of a model
+/// without curves, and the fingerprints recorded from it, stay as they
+/// were.
+#[derive(Clone)]
 pub struct Model {
     /// The mesh with materials.
     pub mesh: Mesh,
@@ -117,6 +156,49 @@ pub struct Model {
     pub contacts: Vec<ContactPair>,
     /// The final load factor.
     pub load_factor_end: f64,
+    /// Load curves, referred to by [`Prescribed::amplitude`] and
+    /// [`PointLoad::amplitude`].
+    pub amplitudes: Vec<Amplitude>,
+    /// Groups of prescribed dofs whose reactions are reported, in report
+    /// order (may be empty: no reactions reported).
+    pub supports: Vec<SupportGroup>,
+}
+
+impl std::fmt::Debug for Prescribed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("Prescribed");
+        d.field("dof", &self.dof).field("value", &self.value);
+        if let Some(a) = self.amplitude {
+            d.field("amplitude", &a);
+        }
+        d.finish()
+    }
+}
+
+impl std::fmt::Debug for PointLoad {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("PointLoad");
+        d.field("dof", &self.dof).field("value", &self.value);
+        if let Some(a) = self.amplitude {
+            d.field("amplitude", &a);
+        }
+        d.finish()
+    }
+}
+
+impl std::fmt::Debug for Model {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("Model");
+        d.field("mesh", &self.mesh)
+            .field("prescribed", &self.prescribed)
+            .field("loads", &self.loads)
+            .field("contacts", &self.contacts)
+            .field("load_factor_end", &self.load_factor_end);
+        if !self.amplitudes.is_empty() {
+            d.field("amplitudes", &self.amplitudes);
+        }
+        d.finish()
+    }
 }
 
 /// A model inconsistency found by [`Model::check`].
@@ -160,6 +242,39 @@ pub enum ModelError {
         /// What is wrong.
         message: String,
     },
+    /// The same dof prescribed twice to the same non-zero value but with
+    /// different load curves.
+    #[error(
+        "degree of freedom {dof} (node {node}) is prescribed twice, with different load curves"
+    )]
+    ConflictingAmplitude {
+        /// The dof.
+        dof: usize,
+        /// Its node.
+        node: usize,
+    },
+    /// A load curve index beyond [`Model::amplitudes`].
+    #[error("{what}: load curve {amplitude} does not exist (the model has {count})")]
+    AmplitudeOutOfRange {
+        /// Which list.
+        what: &'static str,
+        /// The index.
+        amplitude: usize,
+        /// Number of curves.
+        count: usize,
+    },
+    /// A support group that is not a range of the prescribed dofs.
+    #[error("support group `{name}`: {start}..{end} is not a range of the {count} prescribed dofs")]
+    SupportOutOfRange {
+        /// The group's name.
+        name: String,
+        /// Range start.
+        start: usize,
+        /// Range end.
+        end: usize,
+        /// Number of prescribed dofs.
+        count: usize,
+    },
     /// A non-finite load, prescribed value or load factor.
     #[error("{what} is not finite")]
     NonFinite {
@@ -169,6 +284,17 @@ pub enum ModelError {
 }
 
 impl Model {
+    /// The factor of an item with load curve `amplitude` at load factor
+    /// `load_factor`: `load_factor` itself without a curve (so the item's
+    /// value is `load_factor * value`, as for proportional loading), else
+    /// the curve's value there.
+    pub fn factor(&self, amplitude: Option<AmplitudeId>, load_factor: f64) -> f64 {
+        match amplitude {
+            None => load_factor,
+            Some(a) => self.amplitudes[a.index()].at(load_factor),
+        }
+    }
+
     /// Checks indices, duplicates and contact pairs.
     pub fn check(&self) -> Result<(), ModelError> {
         let ndof = 2 * self.mesh.node_count();
@@ -177,8 +303,28 @@ impl Model {
                 what: "the final load factor",
             });
         }
+        let curve_in_range = |what: &'static str, a: Option<AmplitudeId>| match a {
+            Some(a) if a.index() >= self.amplitudes.len() => Err(ModelError::AmplitudeOutOfRange {
+                what,
+                amplitude: a.index(),
+                count: self.amplitudes.len(),
+            }),
+            _ => Ok(()),
+        };
+        for g in &self.supports {
+            if g.prescribed.start > g.prescribed.end || g.prescribed.end > self.prescribed.len() {
+                return Err(ModelError::SupportOutOfRange {
+                    name: g.name.clone(),
+                    start: g.prescribed.start,
+                    end: g.prescribed.end,
+                    count: self.prescribed.len(),
+                });
+            }
+        }
+        let mut curves: Vec<Option<AmplitudeId>> = vec![None; ndof];
         let mut prescribed: Vec<Option<f64>> = vec![None; ndof];
         for p in &self.prescribed {
+            curve_in_range("prescribed", p.amplitude)?;
             if p.dof.index() >= ndof {
                 return Err(ModelError::DofOutOfRange {
                     what: "prescribed",
@@ -201,9 +347,20 @@ impl Model {
                     b: p.value,
                 });
             }
+            if prescribed[p.dof.index()].is_some()
+                && p.value != 0.0
+                && curves[p.dof.index()] != p.amplitude
+            {
+                return Err(ModelError::ConflictingAmplitude {
+                    dof: p.dof.index(),
+                    node: p.dof.node().index(),
+                });
+            }
             prescribed[p.dof.index()] = Some(p.value);
+            curves[p.dof.index()] = p.amplitude;
         }
         for l in &self.loads {
+            curve_in_range("load", l.amplitude)?;
             if l.dof.index() >= ndof {
                 return Err(ModelError::DofOutOfRange {
                     what: "load",
@@ -267,5 +424,124 @@ impl Model {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::{Material, PlaneModel};
+    use crate::mesh::Block;
+
+    /// One element, fixed at node 0, a curve on a load.
+    fn model() -> Model {
+        let mut mesh = Mesh::new();
+        let material = Material {
+            young: 100.0,
+            poisson: 0.3,
+            model: PlaneModel::PlaneStress,
+            kinematics: crate::material::Kinematics::Finite,
+        };
+        let block = Block {
+            origin: [0.0, 0.0],
+            size: [1.0, 1.0],
+            nx: 1,
+            ny: 1,
+        };
+        mesh.add_block("a", material, block).unwrap();
+        let fixed = |c| Prescribed {
+            dof: DofId::of(NodeId::new(0), c),
+            value: 0.0,
+            amplitude: None,
+        };
+        Model {
+            mesh,
+            prescribed: vec![fixed(0), fixed(1)],
+            loads: vec![PointLoad {
+                dof: DofId::new(5),
+                value: 2.0,
+                amplitude: Some(AmplitudeId::new(0)),
+            }],
+            contacts: Vec::new(),
+            load_factor_end: 1.0,
+            amplitudes: vec![Amplitude::new(vec![[0.0, 0.0], [0.5, 1.0]]).unwrap()],
+            supports: vec![SupportGroup {
+                name: "corner".into(),
+                prescribed: 0..2,
+            }],
+        }
+    }
+
+    #[test]
+    fn factor_is_the_load_factor_or_the_curve() {
+        let m = model();
+        assert_eq!(m.factor(None, 0.3), 0.3);
+        assert_eq!(m.factor(Some(AmplitudeId::new(0)), 0.25), 0.5);
+        assert_eq!(m.factor(Some(AmplitudeId::new(0)), 2.0), 1.0);
+    }
+
+    #[test]
+    fn check_rejects_bad_curves_and_groups() {
+        model().check().unwrap();
+        let mut m = model();
+        m.loads[0].amplitude = Some(AmplitudeId::new(1));
+        assert_eq!(
+            m.check(),
+            Err(ModelError::AmplitudeOutOfRange {
+                what: "load",
+                amplitude: 1,
+                count: 1
+            })
+        );
+        let mut m = model();
+        m.supports[0].prescribed = 1..3;
+        assert!(
+            matches!(
+                m.check(),
+                Err(ModelError::SupportOutOfRange {
+                    end: 3,
+                    count: 2,
+                    ..
+                })
+            ),
+            "{:?}",
+            m.check()
+        );
+        // the same dof twice: same value and curve agree; a zero value
+        // agrees whatever the curve; a non-zero one with another curve not
+        let mut m = model();
+        let p = Prescribed {
+            dof: DofId::new(7),
+            value: 0.1,
+            amplitude: Some(AmplitudeId::new(0)),
+        };
+        m.prescribed.extend([p, p]);
+        m.check().unwrap();
+        m.prescribed[3].amplitude = None;
+        assert_eq!(
+            m.check(),
+            Err(ModelError::ConflictingAmplitude { dof: 7, node: 3 })
+        );
+        m.prescribed[0].amplitude = Some(AmplitudeId::new(0));
+        m.prescribed.truncate(2);
+        m.check().unwrap();
+    }
+
+    /// The `Debug` print of a model without curves has no trace of them
+    /// (the scene fingerprints are taken from it).
+    #[test]
+    fn debug_shows_curves_only_when_present() {
+        let m = model();
+        let text = format!("{m:?}");
+        assert!(text.contains("amplitude: AmplitudeId(0)") && text.contains("amplitudes: ["));
+        let mut plain = model();
+        plain.loads[0].amplitude = None;
+        plain.amplitudes.clear();
+        let text = format!("{plain:?}");
+        assert!(
+            !text.contains("amplitude") && !text.contains("supports"),
+            "{text}"
+        );
+        assert!(text.ends_with("load_factor_end: 1.0 }"), "{text}");
     }
 }

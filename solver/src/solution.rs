@@ -162,6 +162,11 @@ pub struct StepRecord {
     /// Accepted at the round-off floor (see [`crate::newton`]) rather than
     /// below the tolerance.
     pub roundoff_floor: bool,
+    /// The reaction `[x, y]` of each support group at the converged state,
+    /// in [`Solution::support_groups`] order: the force the supports exert
+    /// on the body, summed over the group's prescribed dofs (internal plus
+    /// contact force, minus loads applied there; see `newton/reactions.rs`).
+    pub reactions: Vec<[f64; 2]>,
 }
 
 /// Wall-clock time spent, split by phase.
@@ -178,6 +183,10 @@ pub struct Timings {
     pub symbolic_factorisation: Duration,
     /// The whole solve.
     pub total: Duration,
+    /// The support groups' reactions at the converged states (one full
+    /// residual assembly per converged step; part of `total`, not of the
+    /// phases above).
+    pub reactions: Duration,
 }
 
 /// Displacements and multipliers at one load factor.
@@ -302,6 +311,10 @@ pub struct Solution {
     pub contact_points: Vec<ContactPointReport>,
     /// The contact pairs, in model order (see [`crate::contact::nodal`]).
     pub contact_pairs: Vec<ContactPairInfo>,
+    /// The support groups whose reactions each [`StepRecord::reactions`]
+    /// holds (a scene's `[[fix]]` and `[[prescribe]]` items: their `group`,
+    /// or `fix[i]` / `prescribe[i]`).
+    pub support_groups: Vec<String>,
 }
 
 impl Solution {
@@ -366,6 +379,28 @@ impl Solution {
             .collect()
     }
 
+    /// The reactions as CSV: a header `step,load_factor,<group>_x,<group>_y,
+    /// ...` (names quoted where CSV needs it), then one row per converged
+    /// (sub)step, values in shortest round-trip form.
+    pub fn reactions_csv(&self) -> String {
+        let mut out = String::from("step,load_factor");
+        for g in &self.support_groups {
+            for c in ["x", "y"] {
+                out.push(',');
+                out.push_str(&csv_field(&format!("{g}_{c}")));
+            }
+        }
+        out.push('\n');
+        for r in &self.step_records {
+            out.push_str(&format!("{},{:?}", r.step, r.load_factor));
+            for v in r.reactions.iter().flatten() {
+                out.push_str(&format!(",{v:?}"));
+            }
+            out.push('\n');
+        }
+        out
+    }
+
     /// Element stresses (averaged over the Gauss points) in `state`.
     pub fn element_stresses(&self, state: &State) -> Vec<QuadStress> {
         let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
@@ -377,5 +412,15 @@ impl Solution {
                     .mean_stress(&self.mesh.element_displacements(e, &u), mat)
             })
             .collect()
+    }
+}
+
+/// `text` as one CSV field: quoted (with doubled quotes) when it holds a
+/// comma, a quote or a line break.
+fn csv_field(text: &str) -> String {
+    if text.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", text.replace('"', "\"\""))
+    } else {
+        text.to_owned()
     }
 }

@@ -98,10 +98,12 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
                 Prescribed {
                     dof: DofId::of(n, 0),
                     value: 0.0,
+                    amplitude: None,
                 },
                 Prescribed {
                     dof: DofId::of(n, 1),
                     value: 0.0,
+                    amplitude: None,
                 },
             ]
         })
@@ -112,6 +114,8 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
         loads: Vec::new(),
         contacts: Vec::new(),
         load_factor_end: 1.0,
+        amplitudes: Vec::new(),
+        supports: Vec::new(),
     }
 }
 
@@ -176,6 +180,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
             prescribed.push(Prescribed {
                 dof: DofId::of(NodeId::new(n), i),
                 value: h[i][0] * nodes[n][0] + h[i][1] * nodes[n][1],
+                amplitude: None,
             });
         }
     }
@@ -185,6 +190,8 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         loads: Vec::new(),
         contacts: Vec::new(),
         load_factor_end: 1.0,
+        amplitudes: Vec::new(),
+        supports: Vec::new(),
     };
     let sol = solve_model(
         &model,
@@ -287,6 +294,7 @@ fn large_deflection_cantilever_matches_elastica() {
     model.loads.push(PointLoad {
         dof: DofId::of(tip, 1),
         value: -ei / (length * length),
+        amplitude: None,
     });
     model.load_factor_end = 5.0;
     let opts = SolveOptions {
@@ -341,6 +349,7 @@ fn cutback_recovers_a_too_large_step() {
     model.loads.push(PointLoad {
         dof: DofId::of(tip, 1),
         value: -ei / (length * length),
+        amplitude: None,
     });
     model.load_factor_end = 10.0;
     let full = solve_model(
@@ -411,6 +420,7 @@ fn unsupported_body_is_singular() {
     model.loads.push(PointLoad {
         dof: DofId::new(1),
         value: 1.0,
+        amplitude: None,
     });
     let err = solve_model(
         &model,
@@ -810,11 +820,13 @@ fn paper_scene_file_is_the_design_scene() {
         vec![
             PointLoad {
                 dof: DofId::of(tip, 0),
-                value: 0.0
+                value: 0.0,
+                amplitude: None
             },
             PointLoad {
                 dof: DofId::of(tip, 1),
-                value: -0.08
+                value: -0.08,
+                amplitude: None
             }
         ]
     );

@@ -9,8 +9,10 @@
 //! `.vtu` files that ParaView opens (displacement, stresses, contact
 //! pressure and gap), and a scene with contact pairs also gets
 //! `DIR/contact.csv`, the final state's contact pressure and gap at every
-//! slave node (see [`super::contact_csv`]). Every file is written
-//! atomically (`solver::out`): a temporary file in `DIR`, then a rename.
+//! slave node (see [`super::contact_csv`]); the reaction force of every
+//! `[[fix]]` and `[[prescribe]]` group at every converged step goes to
+//! `reactions.csv`. Every file is written atomically (`solver::out`): a
+//! temporary file in `DIR`, then a rename.
 
 use std::path::PathBuf;
 
@@ -207,6 +209,12 @@ pub fn run(args: &RunArgs) -> CommandResult {
             written.len(),
             dir.display()
         );
+        if !sol.support_groups.is_empty() {
+            let path = dir.join("reactions.csv");
+            solver::out::write_atomic(&path, sol.reactions_csv())
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            println!("wrote           {}", path.display());
+        }
         if !sol.contact_pairs.is_empty() {
             let path = dir.join("contact.csv");
             solver::out::write_atomic(&path, contact_csv(&sol, &sol.final_state))

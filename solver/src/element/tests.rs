@@ -194,6 +194,7 @@ mod mixed {
             .map(|(n, i)| Prescribed {
                 dof: DofId::of(NodeId::new(n), i),
                 value: 0.0,
+                amplitude: None,
             })
             .to_vec();
         Model {
@@ -201,6 +202,8 @@ mod mixed {
             prescribed,
             loads: Vec::new(),
             contacts: Vec::new(),
+            amplitudes: Vec::new(),
+            supports: Vec::new(),
             load_factor_end: 1.0,
         }
     }
@@ -330,6 +333,7 @@ mod mixed {
                 prescribed.push(Prescribed {
                     dof: DofId::of(NodeId::new(n), i),
                     value: exact(n, i),
+                    amplitude: None,
                 });
             }
         }
@@ -338,6 +342,8 @@ mod mixed {
             prescribed,
             loads: Vec::new(),
             contacts: Vec::new(),
+            amplitudes: Vec::new(),
+            supports: Vec::new(),
             load_factor_end: 1.0,
         };
         let sol = solve_model(
@@ -398,6 +404,7 @@ mod mixed {
                 (0..2).map(move |i| Prescribed {
                     dof: DofId::of(NodeId::new(n), i),
                     value: h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1],
+                    amplitude: None,
                 })
             })
             .collect();
@@ -406,6 +413,8 @@ mod mixed {
             prescribed,
             loads: Vec::new(),
             contacts: Vec::new(),
+            amplitudes: Vec::new(),
+            supports: Vec::new(),
             load_factor_end: 1.0,
         };
         let sol = solve_model(&model, &SolveOptions::default()).unwrap();

@@ -48,6 +48,9 @@ pub(super) struct Converged {
     pub(super) roundoff_floor: bool,
     /// The contact points' state at the converged iterate.
     pub(super) points: PointsReport,
+    /// The support groups' reactions at the converged iterate (see
+    /// `reactions.rs`).
+    pub(super) reactions: Vec<[f64; 2]>,
 }
 
 /// The contact points' state at a converged iterate, for the step record.
@@ -189,6 +192,11 @@ impl Run<'_> {
                     }
                 }
                 let points = self.accept(&mut x, &evals, &active, kept);
+                let t = Instant::now();
+                let reactions = self
+                    .setup
+                    .reactions(&x.u, &x.lambda, &x.ties, &evals, &others, &active, to);
+                self.timings.reactions += t.elapsed();
                 return Ok(AttemptOutcome::Converged(Converged {
                     state: x,
                     iterations: it,
@@ -196,6 +204,7 @@ impl Run<'_> {
                     energy: sys.energy,
                     roundoff_floor: norm > tol_abs,
                     points,
+                    reactions,
                 }));
             }
             if it == self.opts.max_iterations {

@@ -4,7 +4,10 @@
 //! Each step is solved by Newton's method on the free displacements and the
 //! multipliers:
 //!
-//! 1. prescribed dofs are set to `lambda_L u_ref` of the step's target;
+//! 1. prescribed dofs are set to `lambda_L u_ref` of the step's target
+//!    (`a(lambda_L) u_ref` with a load curve, [`crate::amplitude`]; the
+//!    external force likewise), the free dofs start from the converged
+//!    state;
 //! 2. Types 1–6: at the step start (converged state `u0`) every contact
 //!    integration point is re-paired and the type's Taylor coefficients are
 //!    evaluated; they stay frozen during the step. Complete: every iteration
@@ -80,6 +83,8 @@
 //!   factor, ending in an `AttemptOutcome`;
 //! * `pairing`: the pairing guard of the complete formulation (re-pairing
 //!   and node ties at converged iterates);
+//! * `reactions`: the support groups' reaction forces at a converged
+//!   state ([`crate::StepRecord::reactions`]);
 //! * `regularize`: the tangent-only multiplier regularisation;
 //! * `probe`: [`IterationProbe`], one iteration for benchmarks.
 //!
@@ -92,6 +97,7 @@
 mod attempt;
 mod pairing;
 mod probe;
+mod reactions;
 mod regularize;
 mod schedule;
 mod setup;
@@ -265,6 +271,7 @@ impl<'a> Run<'a> {
             kept_outside: c.points.kept_outside,
             active_multipliers: c.points.active_multipliers,
             roundoff_floor: c.roundoff_floor,
+            reactions: c.reactions,
         });
         if self.opts.record_steps {
             self.snapshots.push(self.state());
@@ -324,6 +331,13 @@ impl<'a> Run<'a> {
             snapshots: self.snapshots.clone(),
             contact_points,
             contact_pairs: crate::solution::ContactPairInfo::of_model(self.setup.model),
+            support_groups: self
+                .setup
+                .model
+                .supports
+                .iter()
+                .map(|g| g.name.clone())
+                .collect(),
         })
     }
 }

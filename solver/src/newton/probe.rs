@@ -79,8 +79,8 @@ impl<'a> IterationProbe<'a> {
     /// The iteration from `state` (e.g. a converged
     /// [`Solution::final_state`](crate::Solution::final_state)) towards load factor `load_factor`: the
     /// prescribed dofs are set to `load_factor u_ref` and the external force
-    /// is `load_factor f_ref`, as in the first iteration of a step ending
-    /// there. The points are paired from scratch at `state`. Uses
+    /// is `load_factor f_ref` (each item with a load curve scaled by it
+    /// instead), as in the first iteration of a step ending there. The points are paired from scratch at `state`. Uses
     /// `options.formulation` and `options.regularization`; `options.method`
     /// must be [`Method::Complete`].
     pub fn new(

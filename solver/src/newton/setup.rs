@@ -67,10 +67,15 @@ impl<'a> Setup<'a> {
         })
     }
 
-    /// Sets the prescribed dofs of `u` to their values at load factor `to`.
+    /// Sets the prescribed dofs of `u` to their values at load factor `to`
+    /// (`to u_ref`, or `a(to) u_ref` with a load curve; see
+    /// [`Model::factor`]). The values are absolute, so the step's predictor
+    /// (free dofs at the converged state, prescribed dofs at the target)
+    /// carries the prescribed increment whatever its sign: a curve that
+    /// goes down, or back, moves the dofs back.
     pub(super) fn prescribe(&self, u: &mut [f64], to: f64) {
         for p in &self.model.prescribed {
-            u[p.dof.index()] = to * p.value;
+            u[p.dof.index()] = self.model.factor(p.amplitude, to) * p.value;
         }
     }
 

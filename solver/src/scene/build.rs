@@ -8,7 +8,14 @@
 //! * prescribed degrees of freedom in the order `[[fix]]` then
 //!   `[[prescribe]]`, each item's nodes in increasing index, then its
 //!   components x, y; a degree of freedom appears once (a second item may
-//!   only repeat its value);
+//!   only repeat its value and, unless it is zero, its load curve);
+//! * support groups, one per `[[fix]]` and `[[prescribe]]` in that order,
+//!   named by the item's `name`, else its `group` when no other item has
+//!   the same `group`, else `fix[i]` / `prescribe[i]`; each holds the dofs its item added
+//!   (a dof prescribed twice belongs to the first item, so the groups'
+//!   reactions add up to the total support force);
+//! * load curves, each distinct table once, in the order items first use
+//!   them;
 //! * point loads in `[[load]]` order, x then y; then the tractions in
 //!   `[[traction]]` order, each curve's segments in file order, each
 //!   segment's two nodes in the file's direction, x then y
@@ -18,9 +25,30 @@
 
 use super::source::Sources;
 use super::{Scene, SceneError};
-use crate::ids::DofId;
+use crate::amplitude::Amplitude;
+use crate::ids::{AmplitudeId, DofId};
 use crate::mesh::Mesh;
-use crate::model::{ContactPair, Model, PointLoad, Prescribed};
+use crate::model::{ContactPair, Model, PointLoad, Prescribed, SupportGroup};
+
+/// The load curves of a model, each stored once (equal tables share an
+/// index, so that two entries prescribing a dof with equal curves agree).
+#[derive(Default)]
+struct Curves(Vec<Amplitude>);
+
+impl Curves {
+    /// The index of `curve` (`None` for none), adding it if new.
+    fn intern(&mut self, curve: Option<Amplitude>) -> Option<AmplitudeId> {
+        let curve = curve?;
+        let i = match self.0.iter().position(|c| *c == curve) {
+            Some(i) => i,
+            None => {
+                self.0.push(curve);
+                self.0.len() - 1
+            }
+        };
+        Some(AmplitudeId::new(i))
+    }
+}
 
 impl Scene {
     /// Builds the finite-element model.
@@ -35,8 +63,14 @@ impl Scene {
         if mesh.bodies.is_empty() {
             return Err(self.invalid("body", "at least one [[body]] is needed"));
         }
+        let mut curves = Curves::default();
         let mut prescribed: Vec<Prescribed> = Vec::new();
-        let mut add_prescribed = |field: &str, dof: DofId, value: f64| -> Result<(), SceneError> {
+        let add_prescribed = |prescribed: &mut Vec<Prescribed>,
+                              field: &str,
+                              dof: DofId,
+                              value: f64,
+                              amplitude: Option<AmplitudeId>|
+         -> Result<(), SceneError> {
             match prescribed.iter().find(|p| p.dof == dof) {
                 Some(p) if p.value != value => Err(self.invalid(
                     field,
@@ -47,36 +81,94 @@ impl Scene {
                         p.value
                     ),
                 )),
+                Some(p) if value != 0.0 && p.amplitude != amplitude => Err(self.invalid(
+                    field,
+                    format!(
+                        "node {} component {} is already prescribed with another load curve",
+                        dof.node(),
+                        dof.component(),
+                    ),
+                )),
                 Some(_) => Ok(()),
                 None => {
-                    prescribed.push(Prescribed { dof, value });
+                    prescribed.push(Prescribed {
+                        dof,
+                        value,
+                        amplitude,
+                    });
                     Ok(())
                 }
             }
         };
+        // a support group's name: its `name`, else its `group` unless
+        // another item has it, else its field
+        let group_name = |name: &Option<String>, group: &Option<String>, f: &str| match group {
+            _ if name.is_some() => name.clone().unwrap_or_default(),
+            Some(g)
+                if self
+                    .fixes
+                    .iter()
+                    .map(|x| &x.group)
+                    .chain(self.prescribes.iter().map(|p| &p.group))
+                    .filter(|o| o.as_ref() == Some(g))
+                    .count()
+                    == 1 =>
+            {
+                g.clone()
+            }
+            _ => f.to_owned(),
+        };
+        let mut supports = Vec::new();
         for (i, fx) in self.fixes.iter().enumerate() {
             let f = format!("fix[{i}]");
+            let start = prescribed.len();
             for n in self.select_in(&mesh, &sources, &f, &fx.body, &fx.group, fx.x, fx.y, fx.at)? {
                 for &c in fx.dofs.components() {
-                    add_prescribed(&f, DofId::of(n, c), 0.0)?;
+                    add_prescribed(&mut prescribed, &f, DofId::of(n, c), 0.0, None)?;
                 }
             }
+            supports.push(SupportGroup {
+                name: group_name(&fx.name, &fx.group, &f),
+                prescribed: start..prescribed.len(),
+            });
         }
         for (i, p) in self.prescribes.iter().enumerate() {
             let f = format!("prescribe[{i}]");
             self.check_prescribe(&f, p)?;
+            let amplitude = curves.intern(self.check_amplitude(&f, &p.amplitude)?);
+            let start = prescribed.len();
             for n in self.select_in(&mesh, &sources, &f, &p.body, &p.group, p.x, p.y, p.at)? {
                 for (c, v) in [(0, p.ux), (1, p.uy)] {
                     if let Some(v) = v {
-                        add_prescribed(&f, DofId::of(n, c), v)?;
+                        add_prescribed(&mut prescribed, &f, DofId::of(n, c), v, amplitude)?;
                     }
                 }
+            }
+            supports.push(SupportGroup {
+                name: group_name(&p.name, &p.group, &f),
+                prescribed: start..prescribed.len(),
+            });
+        }
+        for (k, g) in supports.iter().enumerate() {
+            if supports[..k].iter().any(|o| o.name == g.name) {
+                let f = match k.checked_sub(self.fixes.len()) {
+                    None => format!("fix[{k}]"),
+                    Some(i) => format!("prescribe[{i}]"),
+                };
+                return Err(self.invalid(
+                    format!("{f}.name"),
+                    format!(
+                        "support group name `{}` is already used (name each [[fix]] and [[prescribe]] uniquely)",
+                        g.name
+                    ),
+                ));
             }
         }
         let mut loads = Vec::new();
         for (i, l) in self.loads.iter().enumerate() {
             let f = format!("load[{i}]");
             self.check_load(&f, l)?;
+            let amplitude = curves.intern(self.check_amplitude(&f, &l.amplitude)?);
             if l.at.is_none() && l.group.is_none() {
                 return Err(self.invalid(&f, "give `at` or `group`"));
             }
@@ -104,12 +196,14 @@ impl Scene {
                 loads.push(PointLoad {
                     dof: DofId::of(nodes[0], c),
                     value: l.force[c],
+                    amplitude,
                 });
             }
         }
         for (i, t) in self.tractions.iter().enumerate() {
             let f = format!("traction[{i}]");
             self.check_traction(&f, t)?;
+            let amplitude = curves.intern(self.check_amplitude(&f, &t.amplitude)?);
             let segments = sources.group_segments(&format!("{f}.group"), &t.group)?;
             for seg in segments {
                 let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
@@ -119,6 +213,7 @@ impl Scene {
                         loads.push(PointLoad {
                             dof: DofId::of(n, c),
                             value: t.force_per_length[c] * half,
+                            amplitude,
                         });
                     }
                 }
@@ -151,6 +246,8 @@ impl Scene {
             loads,
             contacts,
             load_factor_end: self.loading.load_factor_end,
+            amplitudes: curves.0,
+            supports,
         };
         model
             .check()

@@ -62,6 +62,11 @@
 //! body = "block"              # selection as in [[fix]]: x, y or at
 //! y = 2.0
 //! uy = -0.1                   # ux and/or uy
+//! name = "top"                # optional: its name in reactions.csv
+//! amplitude = [[0.0, 0.0], [0.2, 1.0], [1.0, 1.0]]   # optional load curve
+//!                             # [load_factor, a]: a(load_factor) * (ux, uy),
+//!                             # piecewise linear, end values held outside
+//!                             # (also on [[load]] and [[traction]])
 //!
 //! [refine]                    # multiply every body's nx and ny
 //! x = 4                       # default 1

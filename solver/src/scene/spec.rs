@@ -145,6 +145,11 @@ impl Dofs {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FixSpec {
+    /// `name`: the support group's name in reports (`reactions.csv`;
+    /// default: `group` when no other `[[fix]]`/`[[prescribe]]` has the
+    /// same, else `fix[i]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
@@ -166,7 +171,8 @@ pub struct FixSpec {
     pub dofs: Dofs,
 }
 
-/// A proportional point force on one node (`[[load]]`): `lambda_L force`.
+/// A point force on one node (`[[load]]`): `lambda_L force`, or
+/// `a(lambda_L) force` with a load curve `amplitude`.
 /// Exactly one node (of `body`, if given) must sit at `at`, or be the
 /// physical point `group`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -184,14 +190,34 @@ pub struct LoadSpec {
     pub group: Option<String>,
     /// `force`: `[fx, fy]` at load factor one (finite).
     pub force: [f64; 2],
+    /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
+    /// two points, load factors strictly increasing, all finite): at load
+    /// factor `L` the force is `a(L)` times the value above, `a` piecewise
+    /// linear between the points and held at the end values outside them
+    /// (see [`crate::amplitude`]). Default: proportional, `L` times the
+    /// value.
+    #[serde(
+        default,
+        deserialize_with = "de_amplitude",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub amplitude: Option<Vec<[f64; 2]>>,
 }
 
-/// Proportional prescribed displacements (`[[prescribe]]`):
-/// `lambda_L (ux, uy)` on the nodes selected as in [`FixSpec`]. A component
-/// left out is free; a node's component prescribed twice must agree.
+/// Prescribed displacements (`[[prescribe]]`): `lambda_L (ux, uy)`, or
+/// `a(lambda_L) (ux, uy)` with a load curve `amplitude`, on the nodes
+/// selected as in [`FixSpec`]. A component left out is free; a node's
+/// component prescribed twice must agree (the same value and, unless the
+/// value is zero, the same curve), and its reaction is reported with the
+/// first entry that prescribes it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PrescribeSpec {
+    /// `name`: the support group's name in reports (`reactions.csv`;
+    /// default: `group` when no other `[[fix]]`/`[[prescribe]]` has the
+    /// same, else `prescribe[i]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
     /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
@@ -214,6 +240,18 @@ pub struct PrescribeSpec {
     /// `uy`: the y displacement at load factor one (finite).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uy: Option<f64>,
+    /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
+    /// two points, load factors strictly increasing, all finite): at load
+    /// factor `L` the displacement is `a(L)` times the value above, `a` piecewise
+    /// linear between the points and held at the end values outside them
+    /// (see [`crate::amplitude`]). Default: proportional, `L` times the
+    /// value.
+    #[serde(
+        default,
+        deserialize_with = "de_amplitude",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub amplitude: Option<Vec<[f64; 2]>>,
 }
 
 /// A face (`{ body = .., side = .. }` or `{ group = .. }`): one side of a
@@ -237,7 +275,8 @@ pub struct FaceSpec {
 }
 
 /// A distributed dead load on a physical curve (`[[traction]]`):
-/// `lambda_L force_per_length` per unit reference length, applied as
+/// `lambda_L force_per_length` (or `a(lambda_L) force_per_length` with a
+/// load curve `amplitude`) per unit reference length, applied as
 /// consistent nodal forces (`t L / 2` to both nodes of each segment).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -247,6 +286,18 @@ pub struct TractionSpec {
     /// `force_per_length`: `[tx, ty]` per unit reference length at load
     /// factor one (finite).
     pub force_per_length: [f64; 2],
+    /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
+    /// two points, load factors strictly increasing, all finite): at load
+    /// factor `L` the load is `a(L)` times the value above, `a` piecewise
+    /// linear between the points and held at the end values outside them
+    /// (see [`crate::amplitude`]). Default: proportional, `L` times the
+    /// value.
+    #[serde(
+        default,
+        deserialize_with = "de_amplitude",
+        skip_serializing_if = "Option::is_none"
+    )]
+    pub amplitude: Option<Vec<[f64; 2]>>,
 }
 
 /// A contact pair (`[[contact]]`) between faces of two different bodies.
@@ -395,6 +446,25 @@ fn default_formulation() -> Formulation {
 }
 fn default_method() -> Method {
     Method::Complete
+}
+
+/// A load curve's points, each exactly two numbers (a `[f64; 2]` alone
+/// would take the first two of a longer list silently).
+fn de_amplitude<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vec<[f64; 2]>>, D::Error> {
+    let points = Vec::<Vec<f64>>::deserialize(d)?;
+    points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            <[f64; 2]>::try_from(p.as_slice()).map_err(|_| {
+                serde::de::Error::custom(format!(
+                    "point {i}: needs two numbers [load_factor, value], got {}",
+                    p.len()
+                ))
+            })
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(Some)
 }
 
 fn de_formulation<'de, D: Deserializer<'de>>(d: D) -> Result<Formulation, D::Error> {

@@ -8,11 +8,15 @@
 //! scene with several faults reports the first in this order: `[refine]`;
 //! each body (its name and material here, then its source's own checks,
 //! such as a block's `nx`, `size` and `origin`); supports; prescribed
-//! displacements; loads; tractions; contacts; `[loading]`; `[newton]`. Checks that
+//! displacements; loads; tractions; contacts; `[loading]`; `[newton]`.
+//! A load curve (`amplitude`) is checked with its item, after the item's
+//! values: its first bad point is named (`load[1].amplitude[2]: load
+//! factors must increase`). Checks that
 //! depend on how a body was made belong to its mesh source, and checks that
 //! need the mesh (a selection that finds no node) to `select.rs`.
 
 use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError, TractionSpec};
+use crate::amplitude::Amplitude;
 use crate::material::Material;
 
 impl Scene {
@@ -76,6 +80,33 @@ impl Scene {
             }
         }
         Ok(())
+    }
+
+    /// The load curve `amplitude` of item `f` (`load[1]`, ...), if any:
+    /// at least two points, finite, load factors strictly increasing
+    /// ([`Amplitude::new`]); an error names the point
+    /// (`{f}.amplitude[k]`) or, for too few points, the key.
+    pub(super) fn check_amplitude(
+        &self,
+        f: &str,
+        amplitude: &Option<Vec<[f64; 2]>>,
+    ) -> Result<Option<Amplitude>, SceneError> {
+        let Some(points) = amplitude else {
+            return Ok(None);
+        };
+        Amplitude::new(points.clone()).map(Some).map_err(|e| {
+            let field = match e.point() {
+                Some(k) => format!("{f}.amplitude[{k}]"),
+                None => format!("{f}.amplitude"),
+            };
+            let message = match e {
+                crate::amplitude::AmplitudeError::TooFewPoints { count } => {
+                    format!("{} (got {count})", e.reason())
+                }
+                _ => e.reason().to_owned(),
+            };
+            self.invalid(field, message)
+        })
     }
 
     /// `load[i]` (named `f`): a finite force.

@@ -1,0 +1,74 @@
+//! Reaction forces of the support groups at a converged state.
+//!
+//! The reaction at a prescribed dof is the force the support exerts on the
+//! body there: with the residual of the assembly,
+//!
+//! ```text
+//! R = f_int(u) + sum_gp w J0 lambda g' (+ node ties) - f_ext(lambda_L)
+//! ```
+//!
+//! evaluated at the prescribed dof (the free dofs' entries are the
+//! converged residual, zero to the tolerance). A load applied at a
+//! prescribed dof goes straight into the support. Summed over the dofs of a
+//! group ([`crate::model::SupportGroup`]), per component x and y.
+//!
+//! Equilibrium: the internal force and the contact potential's gradient are
+//! invariant under rigid translation, so their x (and y) entries sum to
+//! zero over all dofs; hence at a converged state the reactions of all
+//! groups plus all applied loads sum to zero (to the Newton tolerance),
+//! bodies in contact included. A dof belongs to one group only (the first
+//! item that prescribes it, see `scene/build.rs`), so nothing is counted
+//! twice.
+//!
+//! The full residual is assembled with [`DofMap::all_free`] by the same
+//! assembly functions as the Newton system (so every element kind and the
+//! contact contributions are included as the solve sees them), once per
+//! converged state of a model with support groups.
+
+use crate::assembly::{
+    DofMap, System, add_external, assemble_contact, assemble_solid, assemble_ties,
+};
+use crate::contact::{NodeTie, PointEval};
+
+use super::setup::Setup;
+
+impl Setup<'_> {
+    /// The reaction `[x, y]` of every support group of the model at the
+    /// converged state `(u, lambda, ties)` of load factor `to`, with the
+    /// contact evaluations `evals` (`others`: the ties' second evaluations)
+    /// and active set `active` it converged with (module docs). Empty when
+    /// the model names no groups.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn reactions(
+        &self,
+        u: &[f64],
+        lambda: &[f64],
+        ties: &[NodeTie],
+        evals: &[Option<PointEval>],
+        others: &[PointEval],
+        active: &[bool],
+        to: f64,
+    ) -> Vec<[f64; 2]> {
+        let model = self.model;
+        if model.supports.is_empty() {
+            return Vec::new();
+        }
+        let all = DofMap::all_free(u.len(), self.dofs.n_mult);
+        let mut sys = System::new(all.n_eq() + ties.len());
+        assemble_contact(&self.layout, evals, lambda, active, &all, &mut sys);
+        assemble_ties(ties, evals, others, &all, &mut sys);
+        assemble_solid(model, &all, u, &mut sys);
+        add_external(model, &all, to, &mut sys);
+        model
+            .supports
+            .iter()
+            .map(|g| {
+                let mut r = [0.0; 2];
+                for p in &model.prescribed[g.prescribed.clone()] {
+                    r[p.dof.component()] += sys.residual[p.dof.index()];
+                }
+                r
+            })
+            .collect()
+    }
+}
