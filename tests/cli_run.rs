@@ -80,7 +80,7 @@ fn contact_csv_balances_the_load() {
     ] {
         assert!(vtu.contains(&format!("Name=\"{name}\"")), "{name}");
     }
-    assert_eq!(entries(&dir), ["contact.csv", "final.vtu"]);
+    assert_eq!(entries(&dir), ["contact.csv", "final.vtu", "reactions.csv"]);
 
     // a second run replaces the files (atomically: no temporary is left);
     // the step files are the initial state and the two steps
@@ -95,6 +95,7 @@ fn contact_csv_balances_the_load() {
         [
             "contact.csv",
             "final.vtu",
+            "reactions.csv",
             "step-0000.vtu",
             "step-0001.vtu",
             "step-0002.vtu"
@@ -133,6 +134,6 @@ fn a_scene_without_contact_writes_no_contact_csv() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    assert_eq!(entries(&out_dir), ["final.vtu"]);
+    assert_eq!(entries(&out_dir), ["final.vtu", "reactions.csv"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
