@@ -1,5 +1,5 @@
 //! The Hertz refinement study (`gapsim::hertz::refinement`): the Hertz
-//! quarter model on four meshes refined at the contact, with small-strain
+//! quarter model on five meshes refined at the contact, with small-strain
 //! and finite-strain solids, against Hertz's solution.
 //!
 //! ```text

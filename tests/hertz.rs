@@ -71,6 +71,20 @@ fn hertz_coarse_finite_strain() {
     assert!(m.profile < 0.15, "{m:?}");
 }
 
+/// The coarsest mesh of the refinement study (segments of 0.36 at the
+/// contact): no slave node meets the touching rule there, the closest one
+/// is activated (`solver::contact` `NEARLY_TOUCHING`), so the first
+/// iteration is not singular; a coarse mesh is still within 4 %.
+#[test]
+fn hertz_coarsest_mesh_is_not_singular() {
+    let mut s = scene("hertz-small-strain.toml");
+    s.mesh.as_mut().unwrap().file = "hertz-refinement/h0.8.msh".to_string();
+    let sol = solve(&s, &SolveOptions::from_scene(&s)).unwrap();
+    let m = measure(&sol, &SCENES);
+    assert!(m.peak_error(&SCENES).abs() < 0.04, "{m:?}");
+    assert!(m.in_contact >= 3, "{m:?}");
+}
+
 /// The finite-strain fine mesh under a quarter, half and the full load:
 /// the peak error against Hertz (a small-strain theory) grows with the
 /// strain `a / (2R)`, so what separates `hertz.toml` from Hertz at the full

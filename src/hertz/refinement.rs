@@ -24,7 +24,8 @@ use super::{HertzMeasured, HertzProblem, SCENES, measure};
 /// The meshes of the study (relative to `scenes/`), coarse to fine: the
 /// `h` argument of `scripts/make-hertz-mesh.py` (the element size at the
 /// contact is half of it: the script subdivides once).
-pub const MESHES: [(f64, &str); 4] = [
+pub const MESHES: [(f64, &str); 5] = [
+    (0.8, "hertz-refinement/h0.8.msh"),
     (0.4, "hertz-refinement/h0.4.msh"),
     (0.2, "hertz-refinement/h0.2.msh"),
     (0.1, "hertz.msh"),
