@@ -305,6 +305,8 @@ fn draw<DB: DrawingBackend>(
     chart
         .configure_mesh()
         .x_desc("element size at the contact")
+        .x_label_formatter(&|v| format!("{v:.2}"))
+        .y_label_formatter(&|v| format!("{v}"))
         .y_desc("|error| (%)")
         .label_style(("sans-serif", 14))
         .draw()?;
