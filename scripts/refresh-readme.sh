@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates every measured table of README.md on this machine:
-# the kernel benchmark, the solver scaling table and the study section
-# (with its CSV and plots in docs/study). Takes about ten minutes.
+# the kernel benchmark, the solver scaling table, the Hertz refinement
+# study (docs/hertz), the contact patch test and the study section (with its
+# CSV and plots in docs/study). Takes about ten minutes.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,5 +23,11 @@ splice bench target/bench-table.md
 
 cargo run -q --release --example scaling_table -- --linear lu,ldlt > target/scaling-table.md
 splice scaling target/scaling-table.md
+
+cargo run -q --release --example hertz_refinement > target/hertz-table.md
+splice hertz target/hertz-table.md
+
+cargo run -q --release --example patch_table > target/patch-table.md
+splice patch target/patch-table.md
 
 cargo run -q --release -- study --out docs/study --readme README.md
