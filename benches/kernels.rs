@@ -13,14 +13,25 @@
 //! (the value API) and `type1-handle`..`type6-handle`, `project-handle`
 //! (the handles): the names `examples/bench_table.rs` reads.
 //!
+//! The group `points64` evaluates 64 configurations near the worked
+//! example per iteration (seeded, the same every run), for the slave-normal
+//! formulation: the sympy-cse peer (`benches/peer/`, as Kratos and IPC
+//! Toolkit generate theirs), gapsim's Types 1, 3 and 6 through `evaluate`,
+//! the handle and `Kernel::eval_batch`, the value-only projection, and
+//! num-dual's `hessian`; `bench_table` divides by 64.
+//!
 //! Warm-up and measurement are 1 s each so the whole run takes about a
-//! minute of measurement (30 benchmarks).
+//! minute of measurement (38 benchmarks).
 
 use std::hint::black_box;
 use std::time::Duration;
 
+#[path = "peer/sympy_kernel.rs"]
+mod sympy_kernel;
+
 use contact_kernels::{
-    ApproxType, Formulation, GapOut, Kernel, Projector, compiled_formulations, evaluate, project,
+    ApproxType, Formulation, GapBatch, GapOut, Kernel, Projector, compiled_formulations, evaluate,
+    project,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::SVector;
@@ -114,6 +125,109 @@ fn kernels(c: &mut Criterion) {
     }
 }
 
+/// Configurations per iteration of the `points64` group.
+const POINTS: usize = 64;
+
+/// 64 configurations near the worked example: every coordinate moved by up
+/// to +-0.05 and `xi_s` spread over (-0.9, 0.9), from a fixed seed.
+fn points64() -> (Vec<[f64; 8]>, Vec<f64>) {
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let qs = (0..POINTS)
+        .map(|_| std::array::from_fn(|i| Q[i] + 0.1 * (uniform() - 0.5)))
+        .collect();
+    let xi_s = (0..POINTS).map(|_| 1.8 * uniform() - 0.9).collect();
+    (qs, xi_s)
+}
+
+fn many_points(c: &mut Criterion) {
+    let f = Formulation::SlaveNormal;
+    if !compiled_formulations().contains(&f) {
+        return;
+    }
+    let (qs, xi_s) = points64();
+    let flat: Vec<f64> = qs.iter().flatten().copied().collect();
+    let mut group = c.benchmark_group("points64");
+    group.bench_function("sympy-cse", |b| {
+        let (mut g, mut xi_m) = (0.0, 0.0);
+        let mut grad = [0.0; 8];
+        let mut hess = [[0.0; 8]; 8];
+        b.iter(|| {
+            for (q, &xi) in qs.iter().zip(&xi_s) {
+                sympy_kernel::gap_hess_sympy(
+                    black_box(q),
+                    black_box(xi),
+                    &mut g,
+                    &mut xi_m,
+                    &mut grad,
+                    &mut hess,
+                );
+                black_box((&g, &xi_m, &grad, &hess));
+            }
+        })
+    });
+    for ty in [ApproxType::Type1, ApproxType::Type3, ApproxType::Type6] {
+        let i = ty.index();
+        group.bench_function(format!("type{i}"), |b| {
+            b.iter(|| {
+                for (q, &xi) in qs.iter().zip(&xi_s) {
+                    black_box(evaluate(f, ty, black_box(q), black_box(xi)).unwrap());
+                }
+            })
+        });
+        let kernel = Kernel::new(f, ty).unwrap();
+        let mut out = GapOut::new(&kernel);
+        group.bench_function(format!("type{i}-handle"), |b| {
+            b.iter(|| {
+                for (q, &xi) in qs.iter().zip(&xi_s) {
+                    kernel.eval(black_box(q), black_box(xi), &mut out).unwrap();
+                    black_box(&out);
+                }
+            })
+        });
+        let mut batch = GapBatch::new(&kernel);
+        group.bench_function(format!("type{i}-batch"), |b| {
+            b.iter(|| {
+                let ok = kernel
+                    .eval_batch(black_box(&flat), black_box(&xi_s), &mut batch)
+                    .unwrap();
+                assert_eq!(ok, POINTS);
+                black_box(&batch);
+            })
+        });
+    }
+    let projector = Projector::new(f).unwrap();
+    let mut scratch = vec![0.0; projector.coords()];
+    group.bench_function("value-only", |b| {
+        b.iter(|| {
+            for (q, &xi) in qs.iter().zip(&xi_s) {
+                black_box(
+                    projector
+                        .project(black_box(q), black_box(xi), &mut scratch)
+                        .unwrap(),
+                );
+            }
+        })
+    });
+    group.bench_function("num-dual-hessian", |b| {
+        b.iter(|| {
+            for (q, &xi) in qs.iter().zip(&xi_s) {
+                let qv = SVector::<f64, 8>::from(*q);
+                black_box(hessian(
+                    |v: SVector<Dual2SVec64<8>, 8>| gap(f, &std::array::from_fn(|i| v[i]), xi),
+                    black_box(&qv),
+                ));
+            }
+        })
+    });
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default()
         .warm_up_time(Duration::from_secs(1))
@@ -124,6 +238,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = kernels
+    targets = kernels, many_points
 }
 criterion_main!(benches);

@@ -112,6 +112,51 @@ fn table(dir: &Path) -> Result<String, String> {
     Ok(out)
 }
 
+/// The `points64` table: 64 configurations per iteration (slave-normal),
+/// every row per point and against the sympy-cse peer and num-dual, all
+/// from the same run.
+fn points_table(dir: &Path) -> Result<String, String> {
+    const GROUP: &str = "points64";
+    const POINTS: f64 = 64.0;
+    let per_point = |id: &str| median_ns(dir, GROUP, id).map(|t| t / POINTS);
+    let peer = per_point("sympy-cse")?;
+    let dual = per_point("num-dual-hessian")?;
+    let mut out = String::from(
+        "| kernel (slave-normal) | ns/point | peer / this | num-dual / this |\n|---|---:|---:|---:|\n",
+    );
+    let mut row = |name: String, t: f64| {
+        out.push_str(&format!(
+            "| {name} | {t:.1} | {:.2}× | {:.1}× |\n",
+            peer / t,
+            dual / t
+        ));
+    };
+    row(
+        "value only (`Projector::project`: g, xi_m)".into(),
+        per_point("value-only")?,
+    );
+    for ty in [1, 3, 6] {
+        row(
+            format!("Type {ty}, `evaluate`"),
+            per_point(&format!("type{ty}"))?,
+        );
+        row(
+            format!("Type {ty}, `Kernel::eval`"),
+            per_point(&format!("type{ty}-handle"))?,
+        );
+        row(
+            format!("Type {ty}, `Kernel::eval_batch` (64 points per call)"),
+            per_point(&format!("type{ty}-batch"))?,
+        );
+    }
+    row(
+        "sympy-cse peer (g, xi_m, gradient, full Hessian)".into(),
+        peer,
+    );
+    row("num-dual `hessian`".into(), dual);
+    Ok(out)
+}
+
 fn main() -> ExitCode {
     let dir = criterion_dir();
     match table(&dir) {
@@ -123,7 +168,21 @@ fn main() -> ExitCode {
                  time relative to the value API in the same run).\n"
             );
             print!("{t}");
-            ExitCode::SUCCESS
+            match points_table(&dir) {
+                Ok(p) => {
+                    println!(
+                        "\nPer point over 64 configurations near the worked example (group `points64`, \
+                         one run): gapsim's kernels, the sympy-cse peer of `benches/peer/` (what Kratos \
+                         and IPC Toolkit generate) and num-dual.\n"
+                    );
+                    print!("{p}");
+                    ExitCode::SUCCESS
+                }
+                Err(e) => {
+                    eprintln!("bench_table: {e}");
+                    ExitCode::FAILURE
+                }
+            }
         }
         Err(e) => {
             eprintln!("bench_table: {e}");

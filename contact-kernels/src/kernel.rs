@@ -26,11 +26,12 @@
 //!   `n` scratch values for the relative coordinates; it fits every kernel
 //!   with `n` coordinates.
 //!
-//! A batched call (#9) fits beside [`Kernel::eval`]: the generated
-//! functions and the validation already work on slices, so
-//! `eval_batch(&self, qs: &[f64], xi_s: &[f64], out: &mut GapBatch)` is the
-//! same steps over `qs.chunks_exact(n)` into structure-of-arrays buffers
-//! (one status per point, as the solver treats failures per point).
+//! [`Kernel::eval_batch`] runs the same steps over many points into a
+//! [`GapBatch`] (structure of arrays: all gaps, then all gradients, then all
+//! Hessians), with one status per point: a point that fails (degenerate
+//! segment, no projection) does not stop the others, as the solver treats
+//! failures per point. A failed point's entries are zero and its accessors
+//! return its error, never stale or NaN values.
 
 use crate::generated::{self, KernelSet, kernel_set};
 use crate::validate::{all_finite, relative_coordinates};
@@ -113,6 +114,115 @@ impl GapOut {
     }
 }
 
+/// Outputs of [`Kernel::eval_batch`] for `len` points, structure of
+/// arrays: point `p`'s gap is `gaps()[p]`, its gradient
+/// `grads()[p n..(p + 1) n]`, its Hessian `hessians()[p n n..(p + 1) n n]`
+/// (row-major, full), `n` the kernel's coordinate count. Reuse one batch
+/// for every call: it grows to the largest batch and never shrinks.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GapBatch {
+    coords: usize,
+    len: usize,
+    has_hessian: bool,
+    gap: Vec<f64>,
+    xi_m: Vec<f64>,
+    grad: Vec<f64>,
+    hess: Vec<f64>,
+    status: Vec<Option<KernelError>>,
+    scratch: Vec<f64>,
+}
+
+impl GapBatch {
+    /// An empty batch for `kernel`'s coordinate count.
+    pub fn new(kernel: &Kernel) -> GapBatch {
+        GapBatch {
+            coords: kernel.coords(),
+            len: 0,
+            has_hessian: false,
+            gap: Vec::new(),
+            xi_m: Vec::new(),
+            grad: Vec::new(),
+            hess: Vec::new(),
+            status: Vec::new(),
+            scratch: vec![0.0; kernel.coords()],
+        }
+    }
+
+    /// Points of the last call.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether the last call had no point.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Coordinates per point.
+    pub fn coords(&self) -> usize {
+        self.coords
+    }
+
+    /// Point `p`'s outcome.
+    pub fn status(&self, p: usize) -> Result<(), &KernelError> {
+        match &self.status[..self.len][p] {
+            None => Ok(()),
+            Some(e) => Err(e),
+        }
+    }
+
+    /// Point `p`'s gap and `xi_m`.
+    pub fn gap(&self, p: usize) -> Result<(f64, f64), &KernelError> {
+        self.status(p).map(|()| (self.gap[p], self.xi_m[p]))
+    }
+
+    /// Point `p`'s gradient.
+    pub fn grad(&self, p: usize) -> Result<&[f64], &KernelError> {
+        let n = self.coords;
+        self.status(p).map(|()| &self.grad[p * n..(p + 1) * n])
+    }
+
+    /// Point `p`'s Hessian (`None` for a gradient-only type).
+    pub fn hess(&self, p: usize) -> Result<Option<&[f64]>, &KernelError> {
+        let nn = self.coords * self.coords;
+        self.status(p)
+            .map(|()| self.has_hessian.then(|| &self.hess[p * nn..(p + 1) * nn]))
+    }
+
+    /// All gaps (zero at failed points).
+    pub fn gaps(&self) -> &[f64] {
+        &self.gap[..self.len]
+    }
+
+    /// All gradients, point after point (zero at failed points).
+    pub fn grads(&self) -> &[f64] {
+        &self.grad[..self.len * self.coords]
+    }
+
+    /// All Hessians, point after point (`None` for a gradient-only type).
+    pub fn hessians(&self) -> Option<&[f64]> {
+        let nn = self.coords * self.coords;
+        self.has_hessian.then(|| &self.hess[..self.len * nn])
+    }
+
+    /// Sizes the buffers for `len` points of a kernel with or without a
+    /// Hessian.
+    fn prepare(&mut self, len: usize, has_hessian: bool) {
+        let n = self.coords;
+        self.len = len;
+        self.has_hessian = has_hessian;
+        if self.gap.len() < len {
+            self.gap.resize(len, 0.0);
+            self.xi_m.resize(len, 0.0);
+            self.grad.resize(len * n, 0.0);
+            self.status.resize(len, None);
+        }
+        if has_hessian && self.hess.len() < len * n * n {
+            self.hess.resize(len * n * n, 0.0);
+        }
+    }
+}
+
 impl Kernel {
     /// The kernel of `(formulation, ty)`, or [`KernelError::NotCompiled`].
     pub fn new(formulation: Formulation, ty: ApproxType) -> Result<Kernel, KernelError> {
@@ -172,6 +282,57 @@ impl Kernel {
     /// The evaluation on raw buffers: `d` (scratch), `grad` of `n` and
     /// `hess` of `n * n` values (untouched without second-order term), sized
     /// by the caller. Returns `(gap, xi_m)`.
+    /// Evaluates the points `p = 0..xi_s.len()`, point `p` with the
+    /// coordinates `qs[p n..(p + 1) n]` and `xi_s[p]`, into `out`; returns
+    /// how many succeeded. Each point gives the bits [`Kernel::eval`]
+    /// gives it. Fails only when the shapes disagree: `qs.len()` is not
+    /// `n * xi_s.len()` ([`KernelError::CoordinateCount`]) or `out` was made
+    /// for another coordinate count ([`KernelError::BufferSize`]).
+    pub fn eval_batch(
+        &self,
+        qs: &[f64],
+        xi_s: &[f64],
+        out: &mut GapBatch,
+    ) -> Result<usize, KernelError> {
+        let n = self.coords();
+        if out.coords != n {
+            return Err(KernelError::BufferSize {
+                expected: n,
+                found: out.coords,
+            });
+        }
+        if qs.len() != n * xi_s.len() {
+            return Err(KernelError::CoordinateCount {
+                expected: n * xi_s.len(),
+                found: qs.len(),
+            });
+        }
+        let has_hessian = self.has_hessian();
+        out.prepare(xi_s.len(), has_hessian);
+        let nn = if has_hessian { n * n } else { 0 };
+        let mut ok = 0;
+        for (p, (q, &xi)) in qs.chunks_exact(n).zip(xi_s).enumerate() {
+            let grad = &mut out.grad[p * n..(p + 1) * n];
+            let hess = &mut out.hess[p * nn..(p + 1) * nn];
+            match self.eval_into(q, xi, &mut out.scratch, grad, hess) {
+                Ok((gap, xi_m)) => {
+                    out.gap[p] = gap;
+                    out.xi_m[p] = xi_m;
+                    out.status[p] = None;
+                    ok += 1;
+                }
+                Err(e) => {
+                    out.gap[p] = 0.0;
+                    out.xi_m[p] = 0.0;
+                    grad.fill(0.0);
+                    hess.fill(0.0);
+                    out.status[p] = Some(e);
+                }
+            }
+        }
+        Ok(ok)
+    }
+
     #[inline]
     pub(crate) fn eval_into(
         &self,

@@ -59,7 +59,7 @@ mod types;
 mod validate;
 
 pub use error::{KernelError, OutputKind, Segment};
-pub use kernel::{GapOut, Kernel};
+pub use kernel::{GapBatch, GapOut, Kernel};
 pub use projection::{Projector, XI_M_LIMIT};
 pub use types::{ApproxType, EntityOrder, Formulation, OpCount, ParseNameError};
 pub use validate::DEGENERATE_LENGTH;

@@ -1,0 +1,38 @@
+//! The sympy-cse peer of the kernel benchmark (`benches/peer/`) computes
+//! what gapsim's Type 6 slave-normal kernel computes (gap, xi_m, gradient,
+//! full Hessian), so `benches/kernels.rs` compares like with like.
+
+#[path = "../benches/peer/sympy_kernel.rs"]
+mod sympy_kernel;
+
+use gapsim::contact_kernels::{ApproxType, Formulation, GapOut, Kernel};
+
+#[test]
+fn the_peer_computes_the_type6_slave_normal_kernel() {
+    let kernel = Kernel::new(Formulation::SlaveNormal, ApproxType::Type6).unwrap();
+    let mut out = GapOut::new(&kernel);
+    let base = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
+    for k in 0..64 {
+        let q: [f64; 8] =
+            std::array::from_fn(|i| base[i] + 0.1 * ((k * 7 + i * 3) % 11) as f64 / 11.0);
+        let xi_s = -0.9 + 1.8 * (k as f64) / 63.0;
+        kernel.eval(&q, xi_s, &mut out).unwrap();
+        let (mut g, mut xi_m) = (0.0, 0.0);
+        let mut grad = [0.0; 8];
+        let mut hess = [[0.0; 8]; 8];
+        sympy_kernel::gap_hess_sympy(&q, xi_s, &mut g, &mut xi_m, &mut grad, &mut hess);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * (1.0 + b.abs());
+        assert!(close(g, out.gap()), "gap {g} vs {}", out.gap());
+        assert!(close(xi_m, out.xi_m()));
+        for j in 0..8 {
+            assert!(close(grad[j], out.grad()[j]), "grad {j}");
+            for l in 0..8 {
+                assert!(
+                    close(hess[j][l], out.hess().unwrap()[8 * j + l]),
+                    "hess {j} {l}"
+                );
+            }
+        }
+    }
+    assert_eq!(sympy_kernel::SYMPY_OPS, 1331);
+}
