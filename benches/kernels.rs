@@ -26,6 +26,8 @@
 use std::hint::black_box;
 use std::time::Duration;
 
+// `SYMPY_OPS` is checked by tests/peer.rs, not used here.
+#[allow(dead_code)]
 #[path = "peer/sympy_kernel.rs"]
 mod sympy_kernel;
 
