@@ -24,13 +24,11 @@ fn the_peer_computes_the_type6_slave_normal_kernel() {
         let close = |a: f64, b: f64| (a - b).abs() <= 1e-10 * (1.0 + b.abs());
         assert!(close(g, out.gap()), "gap {g} vs {}", out.gap());
         assert!(close(xi_m, out.xi_m()));
-        for j in 0..8 {
+        let kernel_hess = out.hess().unwrap();
+        for (j, row) in hess.iter().enumerate() {
             assert!(close(grad[j], out.grad()[j]), "grad {j}");
-            for l in 0..8 {
-                assert!(
-                    close(hess[j][l], out.hess().unwrap()[8 * j + l]),
-                    "hess {j} {l}"
-                );
+            for (l, &h) in row.iter().enumerate() {
+                assert!(close(h, kernel_hess[8 * j + l]), "hess {j} {l}");
             }
         }
     }
