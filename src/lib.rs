@@ -31,4 +31,5 @@ pub use contact_kernels;
 pub use solver;
 
 pub mod hertz;
+pub mod stability;
 pub mod study;
