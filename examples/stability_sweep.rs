@@ -6,12 +6,12 @@
 //! ```
 //!
 //! writes `OUT_DIR` (default `docs/stability`): `stability.csv` and
-//! `stability.md` (also printed).
+//! `stability.md` (also printed), `stability.{png,svg}`.
 
 use std::path::PathBuf;
 
 use gapsim::solver::out::write_atomic;
-use gapsim::stability::{csv, markdown, sweep};
+use gapsim::stability::{csv, markdown, plot, sweep};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let out = std::env::args_os().nth(1).map_or_else(
@@ -23,6 +23,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     write_atomic(out.join("stability.csv"), csv(&rows))?;
     let md = markdown(&rows);
     write_atomic(out.join("stability.md"), &md)?;
+    plot::write(&rows, &out, "stability")?;
     print!("{md}");
     Ok(())
 }

@@ -30,4 +30,7 @@ splice hertz target/hertz-table.md
 cargo run -q --release --example patch_table > target/patch-table.md
 splice patch target/patch-table.md
 
+cargo run -q --release --example stability_sweep > target/stability-table.md
+splice stability target/stability-table.md
+
 cargo run -q --release -- study --out docs/study --readme README.md

@@ -28,6 +28,7 @@ use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, compiled_formulat
 
 pub mod dd;
 pub mod hyper;
+pub mod plot;
 pub mod reference;
 
 use reference::reference;
