@@ -41,7 +41,8 @@ fn draw<DB: DrawingBackend>(
         ("sans-serif", 22),
     )?;
     let panels = root.split_evenly((2, 3));
-    let outputs: [(&str, RGBColor, fn(&SweepRow) -> Option<f64>); 3] = [
+    type Output = fn(&SweepRow) -> Option<f64>;
+    let outputs: [(&str, RGBColor, Output); 3] = [
         ("g", RGBColor(213, 94, 0), |r| r.gap),
         ("g'", RGBColor(0, 114, 178), |r| r.grad),
         ("g''", RGBColor(0, 158, 115), |r| r.hess),
