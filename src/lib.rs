@@ -32,3 +32,4 @@ pub use solver;
 
 pub mod hertz;
 pub mod study;
+pub mod verify;
