@@ -296,12 +296,16 @@ impl fmt::Display for Report {
     }
 }
 
-/// Verifies `kernel` (type 1..=6, absolute `q`, parameters -> output, or
-/// `None` when it refuses the configuration) against the AD reference of
-/// the same formulation on `configs`.
+/// The kernels under test: type (1..=6), absolute coordinates `q` and the
+/// parameters in, the output out (`None` when the kernel refuses the
+/// configuration).
+pub type KernelFn<'a> = dyn Fn(usize, &[f64], &[f64]) -> Option<KernelOutput> + 'a;
+
+/// Verifies `kernel` against the AD reference of the same formulation on
+/// `configs`.
 pub fn verify(
     reference: &AdFormulation,
-    kernel: &dyn Fn(usize, &[f64], &[f64]) -> Option<KernelOutput>,
+    kernel: &KernelFn<'_>,
     configs: &[Config],
     tol: f64,
 ) -> Result<Report, VerifyError> {

@@ -475,8 +475,8 @@ impl AdFormulation {
         let ng = d1.len();
         for a in 0..ng {
             let ga = p.gap.grad[a];
-            for j in 0..n {
-                r.grad[j] += ga * d1[a][j];
+            for (g, e1) in r.grad.iter_mut().zip(&d1[a]) {
+                *g += ga * e1;
             }
             for (h, e2) in r.hess.iter_mut().zip(&d2[a]) {
                 *h += ga * e2;
