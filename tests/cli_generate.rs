@@ -212,6 +212,33 @@ fn verify_passes_on_the_shipped_formulations_and_a_variant() {
     }
 }
 
+/// A residual that is not affine in `xi` (slave-normal's times the
+/// positive `2 + xi^2`: the same root, so the same gap and derivatives):
+/// the kernels take the converged `xi_m` (Newton on the residual program),
+/// the reference solves it in dual arithmetic. Verifies clean.
+#[test]
+fn verify_a_formulation_whose_projection_needs_newton() {
+    let dir = scratch("newton");
+    let file = dir.join("curved-residual.rs");
+    let shipped =
+        std::fs::read_to_string(repo("contact-kernels/formulations/slave-normal.rs")).unwrap();
+    let edited = shipped.replace(
+        "implicit!(xi => dot(lerp(xm1, xm2, xi) - x_s, t_s))",
+        "implicit!(xi => dot(lerp(xm1, xm2, xi) - x_s, t_s) * (2.0 + xi * xi))",
+    );
+    assert_ne!(shipped, edited, "the edit applies");
+    std::fs::write(&file, &edited).unwrap();
+    let f = AdFormulation::parse("curved-residual", &edited).unwrap();
+    assert!(
+        !codegen::programs(f.formulation()).unwrap().affine,
+        "the residual is not affine"
+    );
+    let o = gapsim(&["verify", file.to_str().unwrap()]);
+    let table = text(&o.stdout);
+    assert!(o.status.success(), "{table}{}", text(&o.stderr));
+    assert_eq!(table.matches("| ok |").count(), 6, "{table}");
+}
+
 #[test]
 fn verify_catches_a_kernel_broken_on_purpose() {
     let dir = scratch("flip");
