@@ -388,3 +388,116 @@ pub fn verify_source(
     let report = verify(&reference, &run, &configs, TOL)?;
     Ok((report, flipped))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SLAVE_NORMAL: &str = include_str!("../../contact-kernels/formulations/slave-normal.rs");
+
+    fn out(r: &Reference) -> KernelOutput {
+        KernelOutput {
+            gap: r.gap,
+            xi_m: r.xi_m,
+            grad: r.grad.clone(),
+            hess: Some(r.hess.clone()),
+        }
+    }
+
+    #[test]
+    fn scaled_errors_measure_each_block_against_its_bound() {
+        let mut r = Reference::zeros(2);
+        r.gap = 0.5;
+        r.grad = vec![3.0, 4.0];
+        r.hess = vec![1.0, 0.0, 0.0, 1.0];
+        assert_eq!(scaled_errors(&out(&r), &r, 2.0), Scaled::default());
+        let mut o = out(&r);
+        o.gap = 0.5 + 1e-3; // bound max(|g|, L) = 2
+        o.grad[0] += 5e-3; // bound ‖g'‖ = 5
+        o.hess = None; // missing Hessian counts as zero: ‖g''‖ / ‖g''‖ = 1
+        let e = scaled_errors(&o, &r, 2.0);
+        assert!((e.gap - 5e-4).abs() < 1e-15, "{e:?}");
+        assert!((e.grad - 1e-3).abs() < 1e-15, "{e:?}");
+        assert_eq!(e.hess, 1.0);
+        o.gap = f64::NAN;
+        assert_eq!(scaled_errors(&o, &r, 2.0).max(), f64::INFINITY);
+    }
+
+    #[test]
+    fn a_kernel_that_refuses_fails_and_names_the_configuration() {
+        let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
+        let configs = configurations(&reference).unwrap();
+        let refuse = |_: usize, _: &[f64], _: &[f64]| None;
+        let report = verify(&reference, &refuse, &configs[..3], TOL).unwrap();
+        assert!(!report.passed());
+        assert_eq!(report.failures().len(), 6);
+        assert_eq!(report.rows[0].refused[0], "worked");
+        assert!(
+            report
+                .to_string()
+                .contains("FAIL (3 refused, first: worked)")
+        );
+    }
+
+    #[test]
+    fn the_interpreted_kernels_pass_and_a_flipped_sign_fails() {
+        let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
+        let configs = configurations(&reference).unwrap();
+        let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
+        let report = verify(
+            &reference,
+            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
+            &configs[..50],
+            TOL,
+        )
+        .unwrap();
+        assert!(report.passed(), "{report}");
+        let adds: Vec<usize> = (kernels.program(6).instrs.iter().enumerate())
+            .filter(|(_, i)| matches!(i, codegen::lower::Instr::Add(..)))
+            .map(|(k, _)| k)
+            .collect();
+        let flip = kernels.flip_sign(6, *adds.last().unwrap()).unwrap();
+        assert!(flip.before.starts_with("Add(") && flip.after.starts_with("Sub("));
+        let report = verify(
+            &reference,
+            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
+            &configs[..50],
+            TOL,
+        )
+        .unwrap();
+        let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
+        assert_eq!(failing, [6], "{report}");
+    }
+
+    #[test]
+    fn bad_mutations_and_shapes_are_errors() {
+        let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
+        let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
+        for (ty, i) in [(7, 0), (3, 0), (3, 1_000_000)] {
+            assert!(
+                matches!(kernels.flip_sign(ty, i), Err(VerifyError::Mutation(_))),
+                "{ty}:{i}"
+            );
+        }
+        let three_points = SLAVE_NORMAL
+            .replace(
+                "inputs!(xs1, xs2, xm1, xm2; xi_s);",
+                "inputs!(xs1, xs2, xm1; xi_s);",
+            )
+            .replace("lerp(xm1, xm2, xi)", "lerp(xm1, xs1, xi)")
+            .replace("lerp(xm1, xm2, xi_m)", "lerp(xm1, xs1, xi_m)");
+        let r = AdFormulation::parse("three", &three_points).unwrap();
+        let e = configurations(&r).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                VerifyError::Arity {
+                    points: 3,
+                    params: 1,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+}
