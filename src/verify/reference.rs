@@ -283,8 +283,9 @@ impl AdFormulation {
     }
 
     /// Type 6's reference: the gap, `xi_m`, the exact gradient and Hessian
-    /// (row-major `n x n`). `q` should be relative to the first point (the
-    /// kernels' own coordinates). `None` when the projection fails.
+    /// (row-major `n x n`), from `xi0`, the converged projection
+    /// ([`AdFormulation::project`]). `q` should be relative to the first
+    /// point (the kernels' own coordinates).
     pub fn exact(&self, q: &[f64], params: &[f64], xi0: f64) -> Result<Reference, VerifyError> {
         let n = self.n;
         let mut r = Reference::zeros(n);
