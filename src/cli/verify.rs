@@ -25,7 +25,7 @@ use super::generate::{GenerateError, locate, read_source};
 /// Arguments of `gapsim verify`.
 #[derive(Debug, Clone, Args)]
 #[command(after_help = "Example:\n  gapsim verify my-normal.rs\n  \
-gapsim verify my-normal.rs --flip-sign 3:40   # break one instruction of Type 3: must FAIL\n\n\
+gapsim verify my-normal.rs --flip-sign 3:138  # break one instruction of Type 3: must FAIL\n  (a non-addition index is refused with a list of indices that are additions)\n\n\
 Scaled errors: g: |dg|/max(|g|, L); xi_m: |dxi|/(1+|xi|); g': |dg'|/max(|g'|, 1); \
 g'': |dg''|_F/max(|g''|_F, 1/L), L the configuration's size. Tolerance 1e-10.\n\
 Families: worked example, 400 random, 400 uniform, 100 far (1e6), 80 scaled (1e-6, 1e6), \
