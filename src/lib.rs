@@ -33,3 +33,4 @@ pub use solver;
 pub mod hertz;
 pub mod stability;
 pub mod study;
+pub mod verify;

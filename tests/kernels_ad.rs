@@ -1,19 +1,25 @@
 //! Verification of every generated contact kernel against automatic
 //! differentiation (num-dual hyper-dual numbers).
 //!
-//! The reference is an **independent construction** that never calls into
-//! the generator:
+//! The reference is the verifier of `gapsim verify` ([`gapsim::verify`]),
+//! one library for both: num-dual hyper-dual numbers over the shipped
+//! formulation files' expressions, independent of the generator's
+//! derivative pipeline (no symbolic differentiation, truncation, jets or
+//! lowering):
 //!
-//! * The gap of both formulations of docs/conventions.md is written once,
-//!   generically over num-dual numbers ([`gap`]); the projection uses the
-//!   closed form of straight segments (the kernels solve the implicit
-//!   residual instead).
-//! * Type 6 is compared with num-dual's full gradient and Hessian of that
-//!   function ([`exact_reference`]).
-//! * Types 1–5 are compared with the truncated formula, assembled
-//!   here ([`truncated_reference`]) from num-dual partial derivatives of the
-//!   entities `x_ms(q, xi)` and `n(q, xi)` (taken at a fixed, independent
-//!   `xi`) and of the closed-form `xi_m(q)`.
+//! * `xi_m(q)` by Newton's method on the formulation's residual, continued
+//!   in dual arithmetic (implicit differentiation by AD).
+//! * Type 6 is compared with num-dual's full gradient and Hessian of
+//!   `g(q) = gap(E(q, xi_m(q)))` ([`exact_reference`]).
+//! * Types 1–5 are compared with the truncated formula, assembled from
+//!   num-dual partial derivatives of the entities `x_ms(q, xi)` and
+//!   `n(q, xi)` (taken at a fixed, independent `xi`), of `xi_m(q)` and of
+//!   the gap as a function of the entities ([`truncated_reference`]).
+//! * [`the_verifier_passes_on_the_compiled_kernels`] runs the verifier's own
+//!   loop (`gapsim::verify::verify`, every family) on the compiled kernels.
+//!
+//! The hard-family tests below draw from the verifier's generators
+//! ([`gapsim::verify::families`]).
 //!
 //! ## Tolerances
 //!
@@ -40,108 +46,65 @@ use contact_kernels::{
     ApproxType, EntityOrder, Formulation, GapDerivatives, GapOut, Kernel, KernelError, Projector,
     Segment, evaluate, op_count, project,
 };
+use gapsim::verify::families::{Normal, Shape, WORKED_Q, WORKED_XI_S, seeded};
+use gapsim::verify::reference::TABLE;
+use gapsim::verify::{self, AdFormulation, KernelOutput};
 use nalgebra::{Matrix2, SMatrix, SVector};
-use num_dual::{Dual2SVec64, DualNum, hessian};
 use proptest::prelude::*;
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
+use rand::Rng;
 
 type V8 = SVector<f64, 8>;
 type M8 = SMatrix<f64, 8, 8>;
 
-/// Default relative tolerance (see the module documentation).
-const TOL: f64 = 1e-10;
+/// Default relative tolerance (see the module documentation): the
+/// verifier's.
+const TOL: f64 = verify::TOL;
 
 // ---------------------------------------------------------------------------
-// The gap, written once generically over num-dual numbers.
+// References: the verifier's AD of the shipped formulation files.
 // ---------------------------------------------------------------------------
 
-/// Shape-function interpolation `N1(xi) a + N2(xi) b` on a 2-node segment.
-fn lerp<D: DualNum<Primitive = f64> + Copy>(a: [D; 2], b: [D; 2], xi: D) -> [D; 2] {
-    let n1 = (D::from(1.0) - xi) * 0.5;
-    let n2 = (D::from(1.0) + xi) * 0.5;
-    [a[0] * n1 + b[0] * n2, a[1] * n1 + b[1] * n2]
+/// The verifier's AD formulation of `f`, parsed once per test thread from
+/// its file (a parsed formulation holds syn nodes, which stay on their
+/// thread; the two leaked per thread are small).
+fn ad(f: Formulation) -> &'static AdFormulation {
+    fn parse(name: &str) -> &'static AdFormulation {
+        let path = format!(
+            "{}/contact-kernels/formulations/{name}.rs",
+            env!("CARGO_MANIFEST_DIR")
+        );
+        let text = std::fs::read_to_string(&path).expect("read the formulation file");
+        Box::leak(Box::new(
+            AdFormulation::parse(name, &text).expect("the shipped formulation parses"),
+        ))
+    }
+    thread_local! {
+        static AD: [&'static AdFormulation; 2] = [parse("slave-normal"), parse("closest-point")];
+    }
+    AD.with(|a| match f {
+        Formulation::SlaveNormal => a[0],
+        Formulation::ClosestPoint => a[1],
+    })
 }
 
-fn node<D: Copy>(q: &[D; 8], k: usize) -> [D; 2] {
-    [q[2 * k], q[2 * k + 1]]
-}
-
-fn sub<D: DualNum<Primitive = f64> + Copy>(a: [D; 2], b: [D; 2]) -> [D; 2] {
-    [a[0] - b[0], a[1] - b[1]]
-}
-
-fn dot<D: DualNum<Primitive = f64> + Copy>(a: [D; 2], b: [D; 2]) -> D {
-    a[0] * b[0] + a[1] * b[1]
-}
-
-/// The slave point `x_s(xi_s)`.
-fn slave_point<D: DualNum<Primitive = f64> + Copy>(q: &[D; 8], xi_s: f64) -> [D; 2] {
-    lerp(node(q, 0), node(q, 1), D::from(xi_s))
-}
-
-/// `t_s = xs2 - xs1`.
-fn slave_tangent<D: DualNum<Primitive = f64> + Copy>(q: &[D; 8]) -> [D; 2] {
-    sub(node(q, 1), node(q, 0))
-}
-
-/// `t_m = xm2 - xm1`.
-fn master_tangent<D: DualNum<Primitive = f64> + Copy>(q: &[D; 8]) -> [D; 2] {
-    sub(node(q, 3), node(q, 2))
-}
-
-/// The projection coordinate `xi_m(q)` in closed form (straight segments).
-///
-/// With `x_m(xi) = c_m + xi t_m / 2` (`c_m` the master midpoint) the
-/// projection equation `(x_m(xi) - x_s) . t = 0` is linear in `xi`:
-/// `xi = -2 (c_m - x_s) . t / (t_m . t)`, with `t = t_s` (slave-normal) or
-/// `t = t_m` (closest-point).
-fn xi_closed_form<D: DualNum<Primitive = f64> + Copy>(f: Formulation, q: &[D; 8], xi_s: f64) -> D {
-    let c_m = lerp(node(q, 2), node(q, 3), D::from(0.0));
-    let t_m = master_tangent(q);
-    let t = match f {
-        Formulation::SlaveNormal => slave_tangent(q),
-        Formulation::ClosestPoint => t_m,
-    };
-    -(dot(sub(c_m, slave_point(q, xi_s)), t) * 2.0) / dot(t_m, t)
-}
-
-/// The gap vector `x_ms(q, xi) = x_m(xi) - x_s` at an independent `xi`.
-fn gap_vector<D: DualNum<Primitive = f64> + Copy>(q: &[D; 8], xi_s: f64, xi: D) -> [D; 2] {
-    sub(lerp(node(q, 2), node(q, 3), xi), slave_point(q, xi_s))
-}
-
-/// The unit normal `n(q, xi)`: `(t_s.y, -t_s.x) / |t_s|` (slave-normal) or
-/// `-(t_m.y, -t_m.x) / |t_m|` (closest-point). For straight segments it does
-/// not depend on `xi`; the argument keeps the entity's signature general.
-fn normal<D: DualNum<Primitive = f64> + Copy>(f: Formulation, q: &[D; 8], _xi: D) -> [D; 2] {
+/// The normal a constructed configuration's gap is measured along: the
+/// formulation's own.
+fn normal(f: Formulation) -> Normal {
     match f {
-        Formulation::SlaveNormal => {
-            let t = slave_tangent(q);
-            let len = dot(t, t).sqrt();
-            [t[1] / len, -t[0] / len]
-        }
-        Formulation::ClosestPoint => {
-            let t = master_tangent(q);
-            let len = dot(t, t).sqrt();
-            [-t[1] / len, t[0] / len]
-        }
+        Formulation::SlaveNormal => Normal::Slave,
+        Formulation::ClosestPoint => Normal::Master,
     }
 }
 
-/// The gap `g(q) = n . x_ms` with `xi = xi_m(q)`.
-fn gap<D: DualNum<Primitive = f64> + Copy>(f: Formulation, q: &[D; 8], xi_s: f64) -> D {
-    let xi = xi_closed_form(f, q, xi_s);
-    dot(normal(f, q, xi), gap_vector(q, xi_s, xi))
+/// The reference's projection `xi_m(q)` (Newton on the residual), `None`
+/// beyond `|xi_m| = limit`.
+fn reference_xi(f: Formulation, q: &[f64; 8], xi_s: f64, limit: f64) -> Option<f64> {
+    ad(f).project(q, &[xi_s], limit)
 }
 
 fn to_array<D: Copy, const N: usize>(v: &SVector<D, N>) -> [D; N] {
     std::array::from_fn(|i| v[i])
 }
-
-// ---------------------------------------------------------------------------
-// References.
-// ---------------------------------------------------------------------------
 
 /// A reference value of the gap and its (kept) derivatives.
 #[derive(Debug, Clone)]
@@ -152,141 +115,72 @@ struct Reference {
     hess: M8,
 }
 
-/// Type 6: num-dual's full gradient and Hessian of [`gap`].
+impl From<verify::Reference> for Reference {
+    fn from(r: verify::Reference) -> Reference {
+        Reference {
+            gap: r.gap,
+            xi_m: r.xi_m,
+            grad: V8::from_column_slice(&r.grad),
+            // Row-major and symmetric: the same entries.
+            hess: M8::from_row_slice(&r.hess),
+        }
+    }
+}
+
+impl From<&Reference> for verify::Reference {
+    fn from(r: &Reference) -> verify::Reference {
+        verify::Reference {
+            gap: r.gap,
+            xi_m: r.xi_m,
+            grad: r.grad.as_slice().to_vec(),
+            hess: r.hess.transpose().as_slice().to_vec(),
+        }
+    }
+}
+
+/// What the verifier compares: the kernel's output, Hessian row-major.
+fn kernel_output(out: &GapDerivatives) -> KernelOutput {
+    KernelOutput {
+        gap: out.gap,
+        xi_m: out.xi_m,
+        grad: out.grad.as_slice().to_vec(),
+        hess: out.hess.map(|h| h.transpose().as_slice().to_vec()),
+    }
+}
+
+/// Type 6: num-dual's full gradient and Hessian of the gap.
 fn exact_reference(f: Formulation, q: &[f64; 8], xi_s: f64) -> Reference {
-    let (gap, grad, hess) = hessian(
-        |v: SVector<Dual2SVec64<8>, 8>| gap(f, &to_array(&v), xi_s),
-        &V8::from(*q),
-    );
-    Reference {
-        gap,
-        xi_m: xi_closed_form(f, q, xi_s),
-        grad,
-        hess,
-    }
+    let xi0 = reference_xi(f, q, xi_s, 1e6).expect("the reference projects");
+    ad(f).exact(q, &[xi_s], xi0).expect("reference").into()
 }
 
-/// Partial derivatives of one scalar entity component `E(q, xi)` at fixed
-/// `xi`.
-#[derive(Debug, Clone, Copy)]
-struct Partials {
-    value: f64,
-    e_q: V8,
-    e_xi: f64,
-    e_qq: M8,
-    e_qxi: V8,
-    e_xixi: f64,
-}
-
-/// Partial derivatives of `[x_ms.x, x_ms.y, n.x, n.y]` as functions of the
-/// 9-vector `(q, xi)`, from one num-dual `hessian` call.
-fn entity_partials(f: Formulation, q: &[f64; 8], xi_s: f64, xi: f64) -> [Partials; 4] {
-    let z = SVector::<f64, 9>::from_fn(|i, _| if i < 8 { q[i] } else { xi });
-    let out = hessian(
-        |z: SVector<Dual2SVec64<9>, 9>| {
-            let qd: [Dual2SVec64<9>; 8] = std::array::from_fn(|i| z[i]);
-            let x = gap_vector(&qd, xi_s, z[8]);
-            let n = normal(f, &qd, z[8]);
-            [x[0], x[1], n[0], n[1]]
-        },
-        &z,
-    );
-    out.map(|(value, g, h)| Partials {
-        value,
-        e_q: g.fixed_rows::<8>(0).into_owned(),
-        e_xi: g[8],
-        e_qq: h.fixed_view::<8, 8>(0, 0).into_owned(),
-        e_qxi: h.fixed_view::<8, 1>(0, 8).into_owned(),
-        e_xixi: h[(8, 8)],
-    })
-}
-
-/// the truncation table of docs/conventions.md, written independently of the generator:
-/// the orders kept for `[xi_m, x_ms, n]`.
-fn table_row(ty: ApproxType) -> [EntityOrder; 3] {
-    use EntityOrder::{Constant as C, Linear as L, Quadratic as Q};
-    match ty {
-        ApproxType::Type1 => [C, L, C],
-        ApproxType::Type2 => [L, L, L],
-        ApproxType::Type3 => [L, Q, L],
-        ApproxType::Type4 => [Q, Q, L],
-        ApproxType::Type5 => [L, Q, Q],
-        ApproxType::Type6 => [Q, Q, Q],
-    }
-}
-
-/// The kept total derivatives `(E', E'')` of one entity component:
-///
-/// ```text
-/// E'  = E_q + [xi not constant] E_xi xi'
-/// E'' = E_qq + [xi not constant] (E_qxi xi'^T + xi' E_xiq + E_xixi xi' xi'^T)
-///            + [xi quadratic]     E_xi xi''
-/// ```
-///
-/// then zeroed by the entity's own order.
-fn kept_derivatives(
-    p: &Partials,
-    xi1: &V8,
-    xi2: &M8,
-    xi_order: EntityOrder,
-    own: EntityOrder,
-) -> (V8, M8) {
-    let xi_varies = xi_order != EntityOrder::Constant;
-    let xi_quadratic = xi_order == EntityOrder::Quadratic;
-    let mut d1 = p.e_q;
-    let mut d2 = p.e_qq;
-    if xi_varies {
-        d1 += xi1 * p.e_xi;
-        d2 += p.e_qxi * xi1.transpose()
-            + xi1 * p.e_qxi.transpose()
-            + xi1 * xi1.transpose() * p.e_xixi;
-    }
-    if xi_quadratic {
-        d2 += xi2 * p.e_xi;
-    }
-    match own {
-        EntityOrder::Constant => (V8::zeros(), M8::zeros()),
-        EntityOrder::Linear => (d1, M8::zeros()),
-        EntityOrder::Quadratic => (d1, d2),
-    }
-}
-
-/// the truncated `g`, `g'`, `g''` for one row of the table, assembled
-/// from num-dual partial derivatives of the entities:
-///
-/// ```text
-/// g'  = n'^T x + x'^T n
-/// g'' = sum_i ( x_i n_i'' + n_i' x_i'^T + x_i' n_i'^T + n_i x_i'' )
-/// ```
+/// The truncated `g`, `g'`, `g''` for one row of the table, assembled by
+/// the verifier from num-dual partial derivatives of the entities.
 fn truncated_reference(
     f: Formulation,
-    row: [EntityOrder; 3],
+    row: [codegen::EntityOrder; 3],
     q: &[f64; 8],
     xi_s: f64,
 ) -> Reference {
-    let (xi_m, xi1, xi2) = hessian(
-        |v: SVector<Dual2SVec64<8>, 8>| xi_closed_form(f, &to_array(&v), xi_s),
-        &V8::from(*q),
-    );
-    let [xo, xmo, no] = row;
-    let parts = entity_partials(f, q, xi_s, xi_m);
-    let mut gap = 0.0;
-    let mut grad = V8::zeros();
-    let mut hess = M8::zeros();
-    for i in 0..2 {
-        let (xp, np) = (&parts[i], &parts[2 + i]);
-        let (x1, x2) = kept_derivatives(xp, &xi1, &xi2, xo, xmo);
-        let (n1, n2) = kept_derivatives(np, &xi1, &xi2, xo, no);
-        let (x, n) = (xp.value, np.value);
-        gap += x * n;
-        grad += n1 * x + x1 * n;
-        hess += n2 * x + n1 * x1.transpose() + x1 * n1.transpose() + x2 * n;
-    }
-    Reference {
-        gap,
-        xi_m,
-        grad,
-        hess,
+    let xi0 = reference_xi(f, q, xi_s, 1e6).expect("the reference projects");
+    ad(f)
+        .truncated(q, &[xi_s], xi0, row)
+        .expect("reference")
+        .into()
+}
+
+/// the truncation table of docs/conventions.md as the verifier writes it
+/// (independently of the generator).
+fn table_row(ty: ApproxType) -> [codegen::EntityOrder; 3] {
+    TABLE[ty.index() - 1]
+}
+
+/// The kernels' name for a table entry.
+fn kernel_order(o: codegen::EntityOrder) -> EntityOrder {
+    match o {
+        codegen::EntityOrder::Constant => EntityOrder::Constant,
+        codegen::EntityOrder::Linear => EntityOrder::Linear,
+        codegen::EntityOrder::Quadratic => EntityOrder::Quadratic,
     }
 }
 
@@ -308,9 +202,30 @@ fn relative_to_slave_node_1(q: &[f64; 8]) -> [f64; 8] {
 /// The configuration's size `L`: the largest coordinate difference from
 /// slave node 1 (the kernels' own measure).
 fn size(q: &[f64; 8]) -> f64 {
-    relative_to_slave_node_1(q)
-        .iter()
-        .fold(0.0_f64, |m, v| m.max(v.abs()))
+    verify::size(&relative_to_slave_node_1(q))
+}
+
+fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[0] + a[1] * b[1]
+}
+
+/// `t_s = xs2 - xs1`.
+fn slave_tangent(q: &[f64; 8]) -> [f64; 2] {
+    sub([q[2], q[3]], [q[0], q[1]])
+}
+
+/// `t_m = xm2 - xm1`.
+fn master_tangent(q: &[f64; 8]) -> [f64; 2] {
+    sub([q[6], q[7]], [q[4], q[5]])
+}
+
+/// A unit-size configuration used by the transformation tests.
+fn unit_shape() -> Shape {
+    Shape::unit()
 }
 
 // ---------------------------------------------------------------------------
@@ -342,16 +257,15 @@ impl Errors {
 }
 
 fn errors(out: &GapDerivatives, r: &Reference, ty: ApproxType, l: f64) -> Errors {
+    let e = verify::scaled_errors(&kernel_output(out), &r.into(), l);
     let hess = match (ty.has_hessian(), out.hess) {
-        (true, Some(h)) => (h - r.hess).norm() / r.hess.norm().max(1.0 / l),
-        (false, None) => 0.0,
-        (true, None) => f64::INFINITY,
-        (false, Some(_)) => f64::INFINITY,
+        (true, Some(_)) | (false, None) => e.hess,
+        (true, None) | (false, Some(_)) => f64::INFINITY,
     };
     Errors {
-        gap: (out.gap - r.gap).abs() / r.gap.abs().max(l),
-        xi_m: (out.xi_m - r.xi_m).abs() / (1.0 + r.xi_m.abs()),
-        grad: (out.grad - r.grad).norm() / r.grad.norm().max(1.0),
+        gap: e.gap,
+        xi_m: e.xi_m,
+        grad: e.grad,
         hess,
     }
 }
@@ -413,99 +327,6 @@ fn check_all_types(
         worst = worst.worst(assert_matches(what, f, ty, q, xi_s, &r, tol));
     }
     worst
-}
-
-// ---------------------------------------------------------------------------
-// Configurations.
-// ---------------------------------------------------------------------------
-
-/// A configuration built so that the slave point `x_s(xi_s)` projects onto
-/// master coordinate `xi_m` with gap `gap` (in formulation `f`'s own sense).
-#[derive(Debug, Clone, Copy)]
-struct Shape {
-    /// Slave node 1.
-    origin: [f64; 2],
-    slave_len: f64,
-    /// Direction of the slave tangent.
-    slave_angle: f64,
-    /// Angle between the master tangent and the reversed slave tangent
-    /// (0: parallel, facing segments as in the paper scene).
-    master_angle: f64,
-    master_len: f64,
-    xi_s: f64,
-    xi_m: f64,
-    gap: f64,
-}
-
-impl Shape {
-    fn q(&self, f: Formulation) -> [f64; 8] {
-        let t_s = [
-            self.slave_len * self.slave_angle.cos(),
-            self.slave_len * self.slave_angle.sin(),
-        ];
-        let a_m = self.slave_angle + std::f64::consts::PI + self.master_angle;
-        let t_m = [self.master_len * a_m.cos(), self.master_len * a_m.sin()];
-        let xs1 = self.origin;
-        let xs2 = [xs1[0] + t_s[0], xs1[1] + t_s[1]];
-        let x_s = lerp(xs1, xs2, self.xi_s);
-        // The unit normal of the formulation: the gap vector is g n.
-        let n = match f {
-            Formulation::SlaveNormal => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
-            Formulation::ClosestPoint => [-t_m[1] / self.master_len, t_m[0] / self.master_len],
-        };
-        let p = [x_s[0] + self.gap * n[0], x_s[1] + self.gap * n[1]];
-        // x_m(xi_m) = p: midpoint c_m = p - xi_m t_m / 2.
-        let c_m = [
-            p[0] - 0.5 * self.xi_m * t_m[0],
-            p[1] - 0.5 * self.xi_m * t_m[1],
-        ];
-        [
-            xs1[0],
-            xs1[1],
-            xs2[0],
-            xs2[1],
-            c_m[0] - 0.5 * t_m[0],
-            c_m[1] - 0.5 * t_m[1],
-            c_m[0] + 0.5 * t_m[0],
-            c_m[1] + 0.5 * t_m[1],
-        ]
-    }
-
-    fn random(rng: &mut ChaCha8Rng) -> Shape {
-        let slave_len = rng.random_range(0.2..5.0);
-        Shape {
-            origin: [rng.random_range(-10.0..10.0), rng.random_range(-10.0..10.0)],
-            slave_len,
-            slave_angle: rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
-            master_angle: rng.random_range(-1.0..1.0),
-            master_len: rng.random_range(0.2..5.0),
-            xi_s: rng.random_range(-1.0..=1.0),
-            xi_m: rng.random_range(-1.2..1.2),
-            gap: slave_len * rng.random_range(-0.5..0.5),
-        }
-    }
-}
-
-/// The worked example of docs/conventions.md.
-const WORKED_Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
-const WORKED_XI_S: f64 = 0.3;
-
-/// A unit-size configuration used by the transformation tests.
-fn unit_shape() -> Shape {
-    Shape {
-        origin: [0.0, 0.0],
-        slave_len: 1.0,
-        slave_angle: 0.3,
-        master_angle: 0.25,
-        master_len: 1.3,
-        xi_s: -0.4,
-        xi_m: 0.35,
-        gap: 0.12,
-    }
-}
-
-fn seeded(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
 }
 
 // ---------------------------------------------------------------------------
@@ -640,7 +461,7 @@ fn reference_truncation_with_everything_quadratic_is_exact() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         for _ in 0..50 {
             let s = Shape::random(&mut rng);
-            let q = s.q(f);
+            let q = s.q(normal(f));
             let exact = exact_reference(f, &q, s.xi_s);
             let full = truncated_reference(f, table_row(ApproxType::Type6), &q, s.xi_s);
             let l = size(&q);
@@ -656,11 +477,40 @@ fn reference_truncation_with_everything_quadratic_is_exact() {
     }
 }
 
-/// The generated truncation table is the one of docs/conventions.md.
+/// The generated truncation table (the compiled kernels' and the
+/// generator's) is the verifier's copy of docs/conventions.md's.
 #[test]
 fn truncation_table_matches_design() {
     for ty in ApproxType::ALL {
-        assert_eq!(ty.orders(), table_row(ty), "type {ty}");
+        assert_eq!(ty.orders(), table_row(ty).map(kernel_order), "type {ty}");
+    }
+    assert_eq!(codegen::TYPES, TABLE, "codegen's table");
+}
+
+/// The verifier's own loop (`gapsim verify`'s, every family of
+/// [`gapsim::verify::families`], constructed along the formulation's
+/// normal) on the compiled kernels: every type of both formulations passes
+/// at [`TOL`], and nearly every configuration is compared.
+#[test]
+fn the_verifier_passes_on_the_compiled_kernels() {
+    for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+        let kernel = |ty: usize, q: &[f64], params: &[f64]| {
+            let ty = ApproxType::from_index(ty).expect("1..=6");
+            let q: &[f64; 8] = q.try_into().expect("8 coordinates");
+            evaluate(f, ty, q, params[0])
+                .ok()
+                .map(|o| kernel_output(&o))
+        };
+        let configs = verify::families::all(normal(f));
+        let report = verify::verify(ad(f), &kernel, &configs, TOL).expect("verifier runs");
+        eprintln!("{report}");
+        assert!(report.passed(), "{f}:\n{report}");
+        assert!(
+            report.checked * 10 >= configs.len() * 9,
+            "{f}: only {} of {} configurations compared",
+            report.checked,
+            configs.len()
+        );
     }
 }
 
@@ -717,7 +567,7 @@ fn random_constructed_configurations() {
         let mut worst = Errors::default();
         for k in 0..400 {
             let s = Shape::random(&mut rng);
-            let q = s.q(f);
+            let q = s.q(normal(f));
             worst = worst.worst(check_all_types(
                 &format!("random #{k}"),
                 f,
@@ -751,7 +601,7 @@ fn random_uniform_configurations() {
                 Formulation::SlaveNormal => dot(t_m, t_s).abs() / (ls * lm),
                 Formulation::ClosestPoint => 1.0,
             };
-            if ls < 0.1 || lm < 0.1 || cond < 0.1 || xi_closed_form(f, &q, xi_s).abs() > 5.0 {
+            if ls < 0.1 || lm < 0.1 || cond < 0.1 || reference_xi(f, &q, xi_s, 5.0).is_none() {
                 continue;
             }
             kept += 1;
@@ -786,7 +636,7 @@ fn far_from_origin() {
                 1e6 + rng.random_range(-1.0..1.0),
                 -1e6 + rng.random_range(-1.0..1.0),
             ];
-            let q = s.q(f);
+            let q = s.q(normal(f));
             let q_rel = relative_to_slave_node_1(&q);
             worst = worst.worst(check_all_types(
                 &format!("far #{k}"),
@@ -813,7 +663,7 @@ fn tiny_and_huge_scales() {
         for k in 0..40 {
             let mut unit = Shape::random(&mut rng);
             unit.origin = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
-            let q1 = unit.q(f);
+            let q1 = unit.q(normal(f));
             for s in [1e-6, 1e6] {
                 let q: [f64; 8] = q1.map(|v| v * s);
                 check_all_types(&format!("scale {s:e} #{k}"), f, &q, &q, unit.xi_s, TOL);
@@ -861,7 +711,7 @@ fn block_rotation(theta: f64) -> M8 {
 fn large_rotations() {
     let mut rng = seeded(0x6a95_0005);
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
-        let q0 = unit_shape().q(f);
+        let q0 = unit_shape().q(normal(f));
         let xi_s = unit_shape().xi_s;
         for k in 0..60 {
             let theta = rng.random_range(0.0..std::f64::consts::TAU);
@@ -904,7 +754,7 @@ fn steep_master() {
             let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
             s.master_angle = sign * deg.to_radians();
             s.xi_m = rng.random_range(-0.9..0.9);
-            let q = s.q(f);
+            let q = s.q(normal(f));
             worst = worst.worst(check_all_types(
                 &format!("steep {deg:.1}° #{k}"),
                 f,
@@ -927,7 +777,7 @@ fn segment_ends_and_penetration() {
         let base = unit_shape();
         for xi_m in [-1.0, 1.0] {
             let s = Shape { xi_m, ..base };
-            let q = s.q(f);
+            let q = s.q(normal(f));
             check_all_types(&format!("xi_m = {xi_m}"), f, &q, &q, s.xi_s, TOL);
             let p = project(f, &q, s.xi_s).unwrap();
             assert!(
@@ -938,12 +788,12 @@ fn segment_ends_and_penetration() {
         }
         for xi_s in [-1.0, 1.0] {
             let s = Shape { xi_s, ..base };
-            let q = s.q(f);
+            let q = s.q(normal(f));
             check_all_types(&format!("xi_s = {xi_s}"), f, &q, &q, xi_s, TOL);
         }
         for gap in [-0.3, -1e-3] {
             let s = Shape { gap, ..base };
-            let q = s.q(f);
+            let q = s.q(normal(f));
             check_all_types(&format!("penetration {gap}"), f, &q, &q, s.xi_s, TOL);
             for ty in ApproxType::ALL {
                 let out = evaluate(f, ty, &q, s.xi_s).unwrap();
@@ -1072,7 +922,7 @@ fn translation_invariance() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         for k in 0..50 {
             let s = Shape::random(&mut rng);
-            let q = s.q(f);
+            let q = s.q(normal(f));
             let t = [
                 rng.random_range(-100.0..100.0),
                 rng.random_range(-100.0..100.0),
@@ -1106,7 +956,7 @@ fn project_agrees_with_evaluate() {
     for f in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         for _ in 0..100 {
             let s = Shape::random(&mut rng);
-            let q = s.q(f);
+            let q = s.q(normal(f));
             let p = project(f, &q, s.xi_s).unwrap();
             let l = size(&q);
             for ty in ApproxType::ALL {

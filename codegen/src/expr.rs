@@ -101,6 +101,16 @@ impl Dag {
         self.nodes[id.index()]
     }
 
+    /// The id of arena index `index` (ids are arena indices; children
+    /// precede parents, so `0..len()` is a topological order).
+    ///
+    /// # Panics
+    /// If `index >= len()`.
+    pub fn id(&self, index: usize) -> Id {
+        assert!(index < self.len(), "node index {index} out of range");
+        Id(index as u32)
+    }
+
     /// The constant value of `id`, if it is a constant.
     pub fn as_const(&self, id: Id) -> Option<f64> {
         match self.node(id) {

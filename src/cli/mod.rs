@@ -11,9 +11,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 pub mod contact_csv;
+pub mod generate;
 pub mod kernel;
 pub mod run;
 pub mod study;
+pub mod verify;
 
 /// What a subcommand returns: `Err` carries the message printed on stderr
 /// before exiting with a non-zero status.
@@ -42,6 +44,12 @@ pub enum Command {
     /// formulation for every step count; writes study.csv, plots and
     /// results.md.
     Study(study::StudyArgs),
+    /// Generate the kernels (Rust or C99) of formulation files.
+    Generate(generate::GenerateArgs),
+    /// Verify every type of a formulation file's kernels against num-dual
+    /// automatic differentiation; prints the worst errors, fails on any
+    /// above the tolerance.
+    Verify(verify::VerifyArgs),
 }
 
 impl Cli {
@@ -52,6 +60,8 @@ impl Cli {
             Command::Kernel(args) => kernel::run(&args),
             Command::Run(args) => run::run(&args),
             Command::Study(args) => study::run(&args),
+            Command::Generate(args) => generate::run(&args),
+            Command::Verify(args) => verify::run(&args),
         };
         match result {
             Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,161 @@
+//! The generated kernels of a formulation file, run by codegen's
+//! instruction-list interpreter ([`codegen::Program::run`]) instead of being
+//! compiled: exactly the instructions every emitter writes out, one per
+//! statement, in order.
+//!
+//! [`InterpretedKernels::flip_sign`] is the verifier's mutation hook: it
+//! turns one `+` of a kernel into `-` (or one `-` into `+`), the kind of
+//! slip a hand-edited or mis-generated kernel has, so that tests and the
+//! README can show the verifier catching a broken kernel.
+
+use codegen::lower::Instr;
+use codegen::{Formulation, FormulationPrograms, Program};
+
+use super::{KernelOutput, VerifyError};
+
+/// Newton iterations of the projection when the kernels do not solve it in
+/// closed form (as contact-kernels' projection).
+const ITERATIONS: usize = 20;
+/// A Newton correction below this (relative to `1 + |xi|`) ends the solve.
+const TOLERANCE: f64 = 1e-12;
+
+/// One formulation's programs, ready to run.
+#[derive(Debug, Clone)]
+pub struct InterpretedKernels {
+    programs: FormulationPrograms,
+    n: usize,
+    dim: usize,
+}
+
+/// What [`InterpretedKernels::flip_sign`] changed.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Flip {
+    /// The type (1..=6).
+    pub ty: usize,
+    /// The instruction index in that type's program.
+    pub instr: usize,
+    /// The instruction before, e.g. `Add(r3, r7)`.
+    pub before: String,
+    /// The instruction after.
+    pub after: String,
+}
+
+impl InterpretedKernels {
+    /// Derives and lowers every program of `f` (codegen's pipeline).
+    pub fn new(f: &Formulation) -> Result<InterpretedKernels, codegen::Error> {
+        Ok(InterpretedKernels {
+            programs: codegen::programs(f)?,
+            n: f.signature.coords(),
+            dim: f.signature.dim(),
+        })
+    }
+
+    /// The program of type `ty` (1..=6).
+    pub fn program(&self, ty: usize) -> &Program {
+        &self.programs.kernels[ty - 1].0
+    }
+
+    /// Flips the sign of instruction `instr` of type `ty`'s program: an
+    /// addition becomes a subtraction and a subtraction an addition.
+    pub fn flip_sign(&mut self, ty: usize, instr: usize) -> Result<Flip, VerifyError> {
+        if !(1..=6).contains(&ty) {
+            return Err(VerifyError::Mutation(format!("no type {ty} (1 to 6)")));
+        }
+        let prog = &mut self.programs.kernels[ty - 1].0;
+        let len = prog.instrs.len();
+        let Some(i) = prog.instrs.get_mut(instr) else {
+            return Err(VerifyError::Mutation(format!(
+                "type {ty} has {len} instructions, no instruction {instr}"
+            )));
+        };
+        let before = format!("{i:?}");
+        *i = match *i {
+            Instr::Add(a, b) => Instr::Sub(a, b),
+            Instr::Sub(a, b) => Instr::Add(a, b),
+            _ => {
+                let adds: Vec<usize> = prog
+                    .instrs
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, x)| matches!(x, Instr::Add(..) | Instr::Sub(..)))
+                    .map(|(k, _)| k)
+                    .take(8)
+                    .collect();
+                return Err(VerifyError::Mutation(format!(
+                    "type {ty} instruction {instr} is {before}, not an addition or subtraction \
+                     (some that are: {adds:?})"
+                )));
+            }
+        };
+        Ok(Flip {
+            ty,
+            instr,
+            before,
+            after: format!("{i:?}"),
+        })
+    }
+
+    /// The coordinates relative to the first point, as the kernels receive
+    /// them (`d[i] = q[i] - q[i mod dim]`).
+    pub fn relative(&self, q: &[f64]) -> Vec<f64> {
+        q.iter()
+            .enumerate()
+            .map(|(i, v)| v - q[i % self.dim])
+            .collect()
+    }
+
+    /// Runs type `ty` (1..=6) at relative coordinates `d`. `None` when the
+    /// projection (Newton on the residual program) fails.
+    pub fn eval(&self, ty: usize, d: &[f64], params: &[f64]) -> Option<KernelOutput> {
+        let n = self.n;
+        let xi = if self.programs.affine {
+            0.0
+        } else {
+            self.project(d, params)?
+        };
+        let (prog, has_hessian) = &self.programs.kernels[ty - 1];
+        let out = prog.run(d, params, xi);
+        let xi_m = if self.programs.affine {
+            *out.last()
+                .expect("the closed-form projection is the last output")
+        } else {
+            xi
+        };
+        let grad = out[1..1 + n].to_vec();
+        let hess = has_hessian.then(|| {
+            let mut h = vec![0.0; n * n];
+            let mut at = 1 + n;
+            for j in 0..n {
+                for k in j..n {
+                    h[j * n + k] = out[at];
+                    h[k * n + j] = out[at];
+                    at += 1;
+                }
+            }
+            h
+        });
+        Some(KernelOutput {
+            gap: out[0],
+            xi_m,
+            grad,
+            hess,
+        })
+    }
+
+    /// Newton's method on the residual program from `xi = 0`.
+    fn project(&self, d: &[f64], params: &[f64]) -> Option<f64> {
+        let mut xi = 0.0_f64;
+        for _ in 0..ITERATIONS {
+            let r = self.programs.residual.run(d, params, xi);
+            let step = r[0] / r[1];
+            if !step.is_finite() {
+                return None;
+            }
+            xi -= step;
+            if step.abs() <= TOLERANCE * (1.0 + xi.abs()) {
+                return Some(xi);
+            }
+        }
+        None
+    }
+}

@@ -1,0 +1,503 @@
+//! The kernel verifier: every type of a formulation's generated kernels
+//! against num-dual hyper-dual numbers of the same formulation, on seeded
+//! random configurations and the hard families ([`families`]).
+//!
+//! * The kernels under test are any function from a type and a
+//!   configuration to a [`KernelOutput`]: the compiled contact-kernels
+//!   (tests/kernels_ad.rs) or the generated instruction lists run by
+//!   codegen's interpreter ([`interpreted`], `gapsim verify FILE.rs`).
+//! * The reference ([`reference`]) evaluates the formulation's expression
+//!   DAG over num-dual numbers, independently of the generator's
+//!   derivative pipeline: Type 6 against the exact Hessian, Types 1–5
+//!   against the truncated formula built from num-dual partial derivatives.
+//!   It runs in the kernels' own coordinates (relative to the first point,
+//!   an exact shift for configurations whose coordinates share a binade),
+//!   so a far-away configuration is not blurred by the reference's own
+//!   cancellation.
+//!
+//! ## Tolerance
+//!
+//! Each block's error is divided by a bound at the block's natural scale,
+//! with `L` the size of the configuration (largest relative coordinate):
+//!
+//! | block | scaled error |
+//! |---|---|
+//! | `g`    | `|g - g_ref| / max(|g_ref|, L)` |
+//! | `xi_m` | `|xi - xi_ref| / (1 + |xi_ref|)` |
+//! | `g'`   | `‖g' - g'_ref‖ / max(‖g'_ref‖, 1)` (Euclidean) |
+//! | `g''`  | `‖g'' - g''_ref‖_F / max(‖g''_ref‖_F, 1 / L)` (Frobenius) |
+//!
+//! `g` scales like `L`, `g'` like 1 and `g''` like `1 / L`: the bounds are
+//! scale-free. A type passes when every scaled error is at most [`TOL`] =
+//! 1e-10: both sides are accurate to ~1e-14 on well-conditioned input, which
+//! leaves four orders of magnitude for the projection's conditioning (up to
+//! `1 / cos(89°)^2 ≈ 3300` on the steep family), while a wrong sign, term or
+//! truncation rule gives errors of order 1e-3 to 1.
+//!
+//! A configuration whose projection the reference cannot solve (no root,
+//! or `|xi_m| > 5`) is skipped and counted; a configuration the kernels
+//! refuse while the reference solves it is a failure.
+
+pub mod families;
+pub mod interpreted;
+pub mod reference;
+
+use std::fmt;
+
+pub use families::Config;
+pub use interpreted::{Flip, InterpretedKernels};
+pub use reference::AdFormulation;
+
+/// The default tolerance on every scaled error (see the module
+/// documentation).
+pub const TOL: f64 = 1e-10;
+
+/// `|xi_m|` beyond which the verifier skips a configuration.
+pub const XI_M_SKIP: f64 = 5.0;
+
+/// Errors of the verifier (not verification failures: those are a
+/// [`Report`] that does not pass).
+#[derive(Debug, thiserror::Error)]
+pub enum VerifyError {
+    /// The formulation file is malformed or does not fit the generator.
+    #[error(transparent)]
+    Formulation(#[from] codegen::Error),
+    /// An entity has no column in the truncation table.
+    #[error("{file}: entity `{name}` has no column in the truncation table (known: xi_m, x_ms, n)")]
+    Entity {
+        /// The file.
+        file: String,
+        /// The entity.
+        name: String,
+    },
+    /// The families need a segment pair.
+    #[error(
+        "{file}: the verifier's configurations are segment pairs (4 points, 1 parameter); \
+         the formulation declares {points} points and {params} parameters"
+    )]
+    Arity {
+        /// The file.
+        file: String,
+        /// Declared points.
+        points: usize,
+        /// Declared parameters.
+        params: usize,
+    },
+    /// A mutation request that does not fit the kernels.
+    #[error("cannot mutate the kernel: {0}")]
+    Mutation(String),
+}
+
+/// What a kernel returns for one configuration: the gap, `xi_m`, the
+/// gradient (`n`) and the Hessian (row-major `n x n`; `None` for a type
+/// without second-order term).
+#[derive(Debug, Clone, PartialEq)]
+pub struct KernelOutput {
+    /// The gap.
+    pub gap: f64,
+    /// The projection coordinate.
+    pub xi_m: f64,
+    /// `dg/dq`.
+    pub grad: Vec<f64>,
+    /// `d2g/dq2`, row-major.
+    pub hess: Option<Vec<f64>>,
+}
+
+/// A reference value of the gap and its kept derivatives.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reference {
+    /// The gap.
+    pub gap: f64,
+    /// The projection coordinate.
+    pub xi_m: f64,
+    /// The kept gradient.
+    pub grad: Vec<f64>,
+    /// The kept Hessian, row-major `n x n`.
+    pub hess: Vec<f64>,
+}
+
+impl Reference {
+    /// All zeros for `n` coordinates.
+    pub fn zeros(n: usize) -> Reference {
+        Reference {
+            gap: 0.0,
+            xi_m: 0.0,
+            grad: vec![0.0; n],
+            hess: vec![0.0; n * n],
+        }
+    }
+}
+
+/// The scaled errors of one comparison (see the module documentation).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Scaled {
+    /// `g`.
+    pub gap: f64,
+    /// `xi_m`.
+    pub xi_m: f64,
+    /// `g'`.
+    pub grad: f64,
+    /// `g''`.
+    pub hess: f64,
+}
+
+impl Scaled {
+    /// The largest of the four (NaN counts as infinite).
+    pub fn max(&self) -> f64 {
+        [self.gap, self.xi_m, self.grad, self.hess]
+            .into_iter()
+            .map(|v| if v.is_nan() { f64::INFINITY } else { v })
+            .fold(0.0, f64::max)
+    }
+}
+
+fn norm(v: impl IntoIterator<Item = f64>) -> f64 {
+    v.into_iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// The size `L` of relative coordinates `d`.
+pub fn size(d: &[f64]) -> f64 {
+    d.iter().fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// The scaled errors of `out` against `r` for a configuration of size `l`.
+/// A missing Hessian counts as zero.
+pub fn scaled_errors(out: &KernelOutput, r: &Reference, l: f64) -> Scaled {
+    let zeros = vec![0.0; r.hess.len()];
+    let h = out.hess.as_ref().unwrap_or(&zeros);
+    let nan_inf = |v: f64| if v.is_nan() { f64::INFINITY } else { v };
+    Scaled {
+        gap: nan_inf((out.gap - r.gap).abs() / r.gap.abs().max(l)),
+        xi_m: nan_inf((out.xi_m - r.xi_m).abs() / (1.0 + r.xi_m.abs())),
+        grad: nan_inf(
+            norm(out.grad.iter().zip(&r.grad).map(|(a, b)| a - b))
+                / norm(r.grad.iter().copied()).max(1.0),
+        ),
+        hess: nan_inf(
+            norm(h.iter().zip(&r.hess).map(|(a, b)| a - b))
+                / norm(r.hess.iter().copied()).max(1.0 / l),
+        ),
+    }
+}
+
+/// The worst scaled error of one output over the configurations, and where.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Worst {
+    /// The scaled error.
+    pub error: f64,
+    /// The configuration's label.
+    pub at: String,
+}
+
+impl Worst {
+    fn update(&mut self, e: f64, at: &str) {
+        if e > self.error || self.at.is_empty() {
+            self.error = e;
+            self.at = at.to_owned();
+        }
+    }
+}
+
+/// One type's row of the report.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Row {
+    /// The type (1..=6).
+    pub ty: usize,
+    /// `g`.
+    pub gap: Worst,
+    /// `xi_m`.
+    pub xi_m: Worst,
+    /// `g'`.
+    pub grad: Worst,
+    /// `g''`.
+    pub hess: Worst,
+    /// Configurations the kernel refused although the reference solved them.
+    pub refused: Vec<String>,
+}
+
+impl Row {
+    /// The largest scaled error of the row.
+    pub fn max(&self) -> f64 {
+        [&self.gap, &self.xi_m, &self.grad, &self.hess]
+            .iter()
+            .map(|w| w.error)
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether the row is within `tol` and nothing was refused.
+    pub fn passes(&self, tol: f64) -> bool {
+        self.max() <= tol && self.refused.is_empty()
+    }
+}
+
+/// The outcome of a verification.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Report {
+    /// The formulation's name.
+    pub name: String,
+    /// One row per type, 1 to 6.
+    pub rows: Vec<Row>,
+    /// Configurations compared.
+    pub checked: usize,
+    /// Configurations skipped (no projection, or `|xi_m| > 5`).
+    pub skipped: usize,
+    /// The tolerance.
+    pub tol: f64,
+}
+
+impl Report {
+    /// Whether every type passed (and at least one configuration was
+    /// compared).
+    pub fn passed(&self) -> bool {
+        self.checked > 0 && self.rows.iter().all(|r| r.passes(self.tol))
+    }
+
+    /// The rows that fail.
+    pub fn failures(&self) -> Vec<&Row> {
+        self.rows.iter().filter(|r| !r.passes(self.tol)).collect()
+    }
+}
+
+impl fmt::Display for Report {
+    /// The Markdown table of the worst scaled errors.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "{}: {} configurations checked, {} skipped; tolerance {:e} (scaled errors, \
+             see `gapsim verify --help`)",
+            self.name, self.checked, self.skipped, self.tol
+        )?;
+        writeln!(f)?;
+        writeln!(f, "| type | g | xi_m | g' | g'' | worst at | status |")?;
+        writeln!(f, "|---|---:|---:|---:|---:|---|---|")?;
+        for r in &self.rows {
+            let worst = [&r.gap, &r.xi_m, &r.grad, &r.hess]
+                .into_iter()
+                .max_by(|a, b| a.error.total_cmp(&b.error))
+                .expect("four outputs");
+            let status = if r.passes(self.tol) {
+                "ok".to_owned()
+            } else if !r.refused.is_empty() {
+                format!(
+                    "FAIL ({} refused, first: {})",
+                    r.refused.len(),
+                    r.refused[0]
+                )
+            } else {
+                "FAIL".to_owned()
+            };
+            writeln!(
+                f,
+                "| {} | {:.1e} | {:.1e} | {:.1e} | {:.1e} | {} | {} |",
+                r.ty, r.gap.error, r.xi_m.error, r.grad.error, r.hess.error, worst.at, status
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// The kernels under test: type (1..=6), absolute coordinates `q` and the
+/// parameters in, the output out (`None` when the kernel refuses the
+/// configuration).
+pub type KernelFn<'a> = dyn Fn(usize, &[f64], &[f64]) -> Option<KernelOutput> + 'a;
+
+/// Verifies `kernel` against the AD reference of the same formulation on
+/// `configs`.
+pub fn verify(
+    reference: &AdFormulation,
+    kernel: &KernelFn<'_>,
+    configs: &[Config],
+    tol: f64,
+) -> Result<Report, VerifyError> {
+    let f = reference.formulation();
+    let dim = f.signature.dim();
+    let mut rows: Vec<Row> = (1..=6)
+        .map(|ty| Row {
+            ty,
+            ..Row::default()
+        })
+        .collect();
+    let (mut checked, mut skipped) = (0, 0);
+    for c in configs {
+        let d: Vec<f64> =
+            c.q.iter()
+                .enumerate()
+                .map(|(i, v)| v - c.q[i % dim])
+                .collect();
+        let Some(xi0) = reference.project(&d, &c.params, XI_M_SKIP) else {
+            skipped += 1;
+            continue;
+        };
+        checked += 1;
+        let refs = reference.references(&d, &c.params, xi0)?;
+        let l = size(&d);
+        for (row, r) in rows.iter_mut().zip(&refs) {
+            match kernel(row.ty, &c.q, &c.params) {
+                Some(out) => {
+                    let e = scaled_errors(&out, r, l);
+                    row.gap.update(e.gap, &c.label);
+                    row.xi_m.update(e.xi_m, &c.label);
+                    row.grad.update(e.grad, &c.label);
+                    row.hess.update(e.hess, &c.label);
+                }
+                None => row.refused.push(c.label.clone()),
+            }
+        }
+    }
+    Ok(Report {
+        name: f.name.clone(),
+        rows,
+        checked,
+        skipped,
+        tol,
+    })
+}
+
+/// The configurations for `reference`'s formulation: [`families::all`]
+/// constructed along the slave normal; the signature must be a segment
+/// pair.
+pub fn configurations(reference: &AdFormulation) -> Result<Vec<Config>, VerifyError> {
+    let sig = &reference.formulation().signature;
+    if sig.points().len() != 4 || sig.params().len() != 1 {
+        return Err(VerifyError::Arity {
+            file: format!("{}.rs", reference.formulation().name),
+            points: sig.points().len(),
+            params: sig.params().len(),
+        });
+    }
+    Ok(families::all(families::Normal::Slave))
+}
+
+/// Verifies the generated kernels of one formulation file (its name and
+/// text), run by codegen's interpreter, on every family; `flip` mutates
+/// one instruction first ([`InterpretedKernels::flip_sign`]: type,
+/// instruction).
+pub fn verify_source(
+    name: &str,
+    text: &str,
+    flip: Option<(usize, usize)>,
+) -> Result<(Report, Option<Flip>), VerifyError> {
+    let reference = AdFormulation::parse(name, text)?;
+    let configs = configurations(&reference)?;
+    let mut kernels = InterpretedKernels::new(reference.formulation())?;
+    let flipped = flip.map(|(ty, i)| kernels.flip_sign(ty, i)).transpose()?;
+    let run = |ty: usize, q: &[f64], params: &[f64]| {
+        let d = kernels.relative(q);
+        kernels.eval(ty, &d, params)
+    };
+    let report = verify(&reference, &run, &configs, TOL)?;
+    Ok((report, flipped))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SLAVE_NORMAL: &str = include_str!("../../contact-kernels/formulations/slave-normal.rs");
+
+    fn out(r: &Reference) -> KernelOutput {
+        KernelOutput {
+            gap: r.gap,
+            xi_m: r.xi_m,
+            grad: r.grad.clone(),
+            hess: Some(r.hess.clone()),
+        }
+    }
+
+    #[test]
+    fn scaled_errors_measure_each_block_against_its_bound() {
+        let mut r = Reference::zeros(2);
+        r.gap = 0.5;
+        r.grad = vec![3.0, 4.0];
+        r.hess = vec![1.0, 0.0, 0.0, 1.0];
+        assert_eq!(scaled_errors(&out(&r), &r, 2.0), Scaled::default());
+        let mut o = out(&r);
+        o.gap = 0.5 + 1e-3; // bound max(|g|, L) = 2
+        o.grad[0] += 5e-3; // bound ‖g'‖ = 5
+        o.hess = None; // missing Hessian counts as zero: ‖g''‖ / ‖g''‖ = 1
+        let e = scaled_errors(&o, &r, 2.0);
+        assert!((e.gap - 5e-4).abs() < 1e-15, "{e:?}");
+        assert!((e.grad - 1e-3).abs() < 1e-15, "{e:?}");
+        assert_eq!(e.hess, 1.0);
+        o.gap = f64::NAN;
+        assert_eq!(scaled_errors(&o, &r, 2.0).max(), f64::INFINITY);
+    }
+
+    #[test]
+    fn a_kernel_that_refuses_fails_and_names_the_configuration() {
+        let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
+        let configs = configurations(&reference).unwrap();
+        let refuse = |_: usize, _: &[f64], _: &[f64]| None;
+        let report = verify(&reference, &refuse, &configs[..3], TOL).unwrap();
+        assert!(!report.passed());
+        assert_eq!(report.failures().len(), 6);
+        assert_eq!(report.rows[0].refused[0], "worked");
+        assert!(
+            report
+                .to_string()
+                .contains("FAIL (3 refused, first: worked)")
+        );
+    }
+
+    #[test]
+    fn the_interpreted_kernels_pass_and_a_flipped_sign_fails() {
+        let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
+        let configs = configurations(&reference).unwrap();
+        let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
+        let report = verify(
+            &reference,
+            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
+            &configs[..50],
+            TOL,
+        )
+        .unwrap();
+        assert!(report.passed(), "{report}");
+        let adds: Vec<usize> = (kernels.program(6).instrs.iter().enumerate())
+            .filter(|(_, i)| matches!(i, codegen::lower::Instr::Add(..)))
+            .map(|(k, _)| k)
+            .collect();
+        let flip = kernels.flip_sign(6, *adds.last().unwrap()).unwrap();
+        assert!(flip.before.starts_with("Add(") && flip.after.starts_with("Sub("));
+        let report = verify(
+            &reference,
+            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
+            &configs[..50],
+            TOL,
+        )
+        .unwrap();
+        let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
+        assert_eq!(failing, [6], "{report}");
+    }
+
+    #[test]
+    fn bad_mutations_and_shapes_are_errors() {
+        let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
+        let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
+        for (ty, i) in [(7, 0), (3, 0), (3, 1_000_000)] {
+            assert!(
+                matches!(kernels.flip_sign(ty, i), Err(VerifyError::Mutation(_))),
+                "{ty}:{i}"
+            );
+        }
+        let three_points = SLAVE_NORMAL
+            .replace(
+                "inputs!(xs1, xs2, xm1, xm2; xi_s);",
+                "inputs!(xs1, xs2, xm1; xi_s);",
+            )
+            .replace("lerp(xm1, xm2, xi)", "lerp(xm1, xs1, xi)")
+            .replace("lerp(xm1, xm2, xi_m)", "lerp(xm1, xs1, xi_m)");
+        let r = AdFormulation::parse("three", &three_points).unwrap();
+        let e = configurations(&r).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                VerifyError::Arity {
+                    points: 3,
+                    params: 1,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+    }
+}

@@ -1,0 +1,543 @@
+//! The automatic-differentiation reference of one formulation file,
+//! independent of the generated kernels.
+//!
+//! The formulation is parsed into its expression DAG (codegen's parser:
+//! the formulation's *meaning*), and then evaluated here by a plain
+//! interpreter of that DAG generic over num-dual numbers ([`eval_nodes`]).
+//! Nothing of the generator's derivative pipeline (symbolic
+//! differentiation, truncation, jets, lowering) is used.
+//!
+//! * `xi_m(q)`: Newton's method on the residual `r(q, xi)` in `f64`
+//!   (from `xi = 0`, as the kernels' projection), then three more Newton
+//!   steps in hyper-dual arithmetic with `r_xi` from a nested dual number:
+//!   each step doubles the order of the correct derivative parts, so the
+//!   result carries the exact `xi'` and `xi''` of the implicit function.
+//! * Type 6 ([`AdFormulation::exact`]): `g(q) = gap(E(q, xi_m(q)))`, its
+//!   gradient and full Hessian from one hyper-dual pass per Hessian entry.
+//! * Types 1–5 ([`AdFormulation::truncated`]): the truncated formula of
+//!   docs/conventions.md assembled from num-dual partial derivatives: of
+//!   every entity `E(q, xi)` at a fixed independent `xi` (`E_q`, `E_xi`,
+//!   `E_qq`, `E_qxi`, `E_xixi`), of `xi_m(q)` (`xi'`, `xi''`) and of the gap
+//!   as a function `G` of the entity components (`G_a`, `G_ab`):
+//!
+//! ```text
+//! E'  = E_q + [xi not constant] E_xi xi'
+//! E'' = E_qq + [xi not constant] (E_qxi xi'^T + xi' E_xiq + E_xixi xi' xi'^T)
+//!            + [xi quadratic]     E_xi xi''        (then zeroed by E's own order)
+//! g'  = sum_a G_a E_a'
+//! g'' = sum_a G_a E_a'' + sum_ab G_ab E_a' E_b'^T
+//! ```
+//!
+//! The table of orders is [`TABLE`], written here from docs/conventions.md
+//! (a test checks it equals the generator's `codegen::TYPES`).
+
+use std::collections::HashMap;
+use std::marker::PhantomData;
+
+use codegen::expr::{Id, Node, Sym};
+use codegen::formulation::{Arity, Domain, Value};
+use codegen::{EntityOrder, Formulation};
+use num_dual::{Dual, DualNum, HyperDual64};
+
+use super::{Reference, VerifyError};
+
+/// The truncation table of docs/conventions.md: the orders kept for
+/// `[xi_m, x_ms, n]`, row `t - 1` for type `t`.
+pub const TABLE: [[EntityOrder; 3]; 6] = {
+    use EntityOrder::{Constant as C, Linear as L, Quadratic as Q};
+    [
+        [C, L, C],
+        [L, L, L],
+        [L, Q, L],
+        [Q, Q, L],
+        [L, Q, Q],
+        [Q, Q, Q],
+    ]
+};
+
+/// The entity names the table's columns refer to.
+pub const TABLE_ENTITIES: [&str; 3] = ["xi_m", "x_ms", "n"];
+
+/// Newton iterations of the `f64` projection solve.
+const ITERATIONS: usize = 50;
+/// A Newton correction below this (relative to `1 + |xi|`) ends the solve.
+const NEWTON_TOL: f64 = 1e-14;
+/// Newton steps in dual arithmetic after the `f64` solve.
+const DUAL_STEPS: usize = 3;
+
+/// A parsed formulation ready for AD evaluation.
+#[derive(Debug, Clone)]
+pub struct AdFormulation {
+    f: Formulation,
+    n: usize,
+    params: usize,
+}
+
+/// A scalar the interpreter can evaluate the DAG in.
+pub trait Scalar: DualNum<Primitive = f64> + Copy {}
+impl<D: DualNum<Primitive = f64> + Copy> Scalar for D {}
+
+/// The formulation language's arithmetic over a [`Scalar`] (for the gap
+/// expression, which is interpreted over entity values).
+struct AdDomain<D>(PhantomData<D>);
+
+impl<D: Scalar> Domain for AdDomain<D> {
+    type S = D;
+    fn constant(&mut self, c: f64) -> D {
+        D::from(c)
+    }
+    fn add(&mut self, a: D, b: D) -> D {
+        a + b
+    }
+    fn sub(&mut self, a: D, b: D) -> D {
+        a - b
+    }
+    fn mul(&mut self, a: D, b: D) -> D {
+        a * b
+    }
+    fn div(&mut self, a: D, b: D) -> D {
+        a / b
+    }
+    fn neg(&mut self, a: D) -> D {
+        -a
+    }
+    fn sqrt(&mut self, a: D) -> D {
+        a.sqrt()
+    }
+    fn powi(&mut self, a: D, n: i32) -> D {
+        a.powi(n)
+    }
+}
+
+/// Evaluates the nodes `roots` of `f`'s DAG with the input symbols given by
+/// `input` (a plain interpreter: children precede parents in the arena).
+pub fn eval_nodes<D: Scalar>(f: &Formulation, roots: &[Id], input: &dyn Fn(Sym) -> D) -> Vec<D> {
+    let Some(last) = roots.iter().map(|r| r.index()).max() else {
+        return Vec::new();
+    };
+    let dag = &f.dag;
+    let live = dag.reachable(roots.iter().copied());
+    let mut v: Vec<D> = Vec::with_capacity(last + 1);
+    for (i, live) in live.iter().enumerate().take(last + 1) {
+        let x = if !*live {
+            D::from(0.0)
+        } else {
+            match dag.node(id_of(f, i)) {
+                Node::Const(bits) => D::from(f64::from_bits(bits)),
+                Node::Input(s) => input(s),
+                Node::Add(a, b) => v[a.index()] + v[b.index()],
+                Node::Sub(a, b) => v[a.index()] - v[b.index()],
+                Node::Mul(a, b) => v[a.index()] * v[b.index()],
+                Node::Recip(a) => v[a.index()].recip(),
+                Node::Neg(a) => -v[a.index()],
+                Node::Sqrt(a) => v[a.index()].sqrt(),
+                Node::Powi(a, k) => v[a.index()].powi(k),
+            }
+        };
+        v.push(x);
+    }
+    roots.iter().map(|r| v[r.index()]).collect()
+}
+
+/// The id of arena index `i` (ids are arena indices).
+fn id_of(f: &Formulation, i: usize) -> Id {
+    f.dag.id(i)
+}
+
+/// A hyper-dual number seeded with `eps1` along direction `j` and `eps2`
+/// along `k`.
+fn seeded(value: f64, index: usize, j: usize, k: usize) -> HyperDual64 {
+    HyperDual64::new(
+        value,
+        if index == j { 1.0 } else { 0.0 },
+        if index == k { 1.0 } else { 0.0 },
+        0.0,
+    )
+}
+
+impl AdFormulation {
+    /// Parses a formulation file (any number of points and parameters).
+    /// `name` is used in messages (`name.rs:line:col`).
+    pub fn parse(name: &str, text: &str) -> Result<AdFormulation, codegen::Error> {
+        let f = Formulation::parse_with(name, text, Arity::Any)?;
+        Ok(Self::new(f))
+    }
+
+    /// Wraps a parsed formulation.
+    pub fn new(f: Formulation) -> AdFormulation {
+        let n = f.signature.coords();
+        let params = f.signature.params().len();
+        AdFormulation { f, n, params }
+    }
+
+    /// The parsed formulation.
+    pub fn formulation(&self) -> &Formulation {
+        &self.f
+    }
+
+    /// The coordinate count `n`.
+    pub fn coords(&self) -> usize {
+        self.n
+    }
+
+    /// The table order of entity `name`, or an error naming it.
+    fn order(&self, name: &str, row: [EntityOrder; 3]) -> Result<EntityOrder, VerifyError> {
+        TABLE_ENTITIES
+            .iter()
+            .position(|e| *e == name)
+            .map(|i| row[i])
+            .ok_or_else(|| VerifyError::Entity {
+                file: format!("{}.rs", self.f.name),
+                name: name.to_owned(),
+            })
+    }
+
+    /// The symbol values: `q`, the parameters, the implicit unknown.
+    fn input<'a, D: Scalar>(&self, q: &'a [D], params: &'a [f64], xi: D) -> impl Fn(Sym) -> D + 'a {
+        let (n, m) = (self.n, self.params);
+        move |s: Sym| {
+            let i = s.0 as usize;
+            if i < n {
+                q[i]
+            } else if i < n + m {
+                D::from(params[i - n])
+            } else {
+                xi
+            }
+        }
+    }
+
+    /// `r(q, xi)` and `r_xi(q, xi)` over `D` (nested dual along `xi`).
+    fn residual<D: Scalar>(&self, q: &[D], params: &[f64], xi: D) -> (D, D) {
+        let qd: Vec<Dual<D>> = q.iter().map(|&v| Dual::new(v, D::from(0.0))).collect();
+        let xid = Dual::new(xi, D::from(1.0));
+        let r = eval_nodes(
+            &self.f,
+            &[self.f.implicit.residual],
+            &self.input(&qd, params, xid),
+        )[0];
+        (r.re, r.eps)
+    }
+
+    /// Solves `r(q, xi) = 0` in `f64` by Newton's method from `xi = 0`;
+    /// `None` when it does not converge or the root lies beyond
+    /// `|xi| = limit`.
+    pub fn project(&self, q: &[f64], params: &[f64], limit: f64) -> Option<f64> {
+        let mut xi = 0.0_f64;
+        for _ in 0..ITERATIONS {
+            let (r, r_xi) = self.residual(q, params, xi);
+            let step = r / r_xi;
+            if !step.is_finite() {
+                return None;
+            }
+            xi -= step;
+            if xi.abs() > limit {
+                return None;
+            }
+            if step.abs() <= NEWTON_TOL * (1.0 + xi.abs()) {
+                // One more step to settle the last bit.
+                let (r, r_xi) = self.residual(q, params, xi);
+                let last = r / r_xi;
+                return last.is_finite().then_some(xi - last);
+            }
+        }
+        None
+    }
+
+    /// `xi_m(q)` in dual arithmetic from the converged `xi0`.
+    fn xi_dual<D: Scalar>(&self, q: &[D], params: &[f64], xi0: f64) -> D {
+        let mut xi = D::from(xi0);
+        for _ in 0..DUAL_STEPS {
+            let (r, r_xi) = self.residual(q, params, xi);
+            xi -= r / r_xi;
+        }
+        xi
+    }
+
+    /// The entity values at `(q, xi)`, by name (the implicit one included).
+    fn entities<D: Scalar>(&self, q: &[D], params: &[f64], xi: D) -> HashMap<String, Value<D>> {
+        let roots: Vec<Id> = self
+            .f
+            .entities
+            .iter()
+            .flat_map(|e| e.value.components())
+            .collect();
+        let vals = eval_nodes(&self.f, &roots, &self.input(q, params, xi));
+        let mut at = 0;
+        let mut out = HashMap::new();
+        for e in &self.f.entities {
+            let v = match e.value {
+                Value::Scalar(_) => Value::Scalar(vals[at]),
+                Value::Vec2(_) => Value::Vec2([vals[at], vals[at + 1]]),
+            };
+            at += e.value.components().len();
+            out.insert(e.name.clone(), v);
+        }
+        out.insert(self.f.implicit.name.clone(), Value::Scalar(xi));
+        out
+    }
+
+    /// The gap of the entity values.
+    fn gap<D: Scalar>(&self, entities: &HashMap<String, Value<D>>) -> Result<D, VerifyError> {
+        Ok(self.f.eval_gap(&mut AdDomain::<D>(PhantomData), entities)?)
+    }
+
+    /// Type 6's reference: the gap, `xi_m`, the exact gradient and Hessian
+    /// (row-major `n x n`), from `xi0`, the converged projection
+    /// ([`AdFormulation::project`]). `q` should be relative to the first
+    /// point (the kernels' own coordinates).
+    pub fn exact(&self, q: &[f64], params: &[f64], xi0: f64) -> Result<Reference, VerifyError> {
+        let n = self.n;
+        let mut r = Reference::zeros(n);
+        r.xi_m = xi0;
+        for j in 0..n {
+            for k in j..n {
+                let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
+                let xi = self.xi_dual(&qd, params, xi0);
+                let g = self.gap(&self.entities(&qd, params, xi))?;
+                if j == k {
+                    r.grad[j] = g.eps1;
+                    r.gap = g.re;
+                    r.xi_m = xi.re;
+                }
+                r.hess[j * n + k] = g.eps1eps2;
+                r.hess[k * n + j] = g.eps1eps2;
+            }
+        }
+        Ok(r)
+    }
+
+    /// The references of all six types: Types 1–5 from the truncated
+    /// formula, Type 6 from [`AdFormulation::exact`].
+    pub fn references(
+        &self,
+        q: &[f64],
+        params: &[f64],
+        xi0: f64,
+    ) -> Result<[Reference; 6], VerifyError> {
+        let parts = self.partials(q, params, xi0)?;
+        let mut out: [Reference; 6] = std::array::from_fn(|_| Reference::zeros(self.n));
+        for (t, row) in TABLE.iter().enumerate().take(5) {
+            out[t] = self.assemble(&parts, *row)?;
+        }
+        out[5] = self.exact(q, params, xi0)?;
+        Ok(out)
+    }
+
+    /// The truncated reference of one table row (all six rows for tests of
+    /// the reference itself: with every entity quadratic it is the exact
+    /// Hessian).
+    pub fn truncated(
+        &self,
+        q: &[f64],
+        params: &[f64],
+        xi0: f64,
+        row: [EntityOrder; 3],
+    ) -> Result<Reference, VerifyError> {
+        let parts = self.partials(q, params, xi0)?;
+        self.assemble(&parts, row)
+    }
+
+    /// Every partial derivative the truncated formula needs.
+    fn partials(&self, q: &[f64], params: &[f64], xi0: f64) -> Result<Partials, VerifyError> {
+        let n = self.n;
+        // xi' and xi'' of the implicit function.
+        let mut xi1 = vec![0.0; n];
+        let mut xi2 = vec![0.0; n * n];
+        let mut xi_m = xi0;
+        for j in 0..n {
+            for k in j..n {
+                let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
+                let xi = self.xi_dual(&qd, params, xi0);
+                if j == k {
+                    xi1[j] = xi.eps1;
+                    xi_m = xi.re;
+                }
+                xi2[j * n + k] = xi.eps1eps2;
+                xi2[k * n + j] = xi.eps1eps2;
+            }
+        }
+        // Entity components as functions of z = (q, xi) at fixed xi.
+        let names: Vec<(String, usize)> = self
+            .f
+            .entities
+            .iter()
+            .flat_map(|e| (0..e.value.components().len()).map(move |c| (e.name.clone(), c)))
+            .collect();
+        let m = names.len();
+        let nz = n + 1;
+        let mut ent = vec![Hd::zeros(nz); m];
+        for j in 0..nz {
+            for k in j..nz {
+                let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
+                let xi = seeded(xi_m, n, j, k);
+                let e = self.entities(&qd, params, xi);
+                let comps: Vec<HyperDual64> = self
+                    .f
+                    .entities
+                    .iter()
+                    .flat_map(|x| e[&x.name].components())
+                    .collect();
+                for (c, v) in comps.iter().enumerate() {
+                    ent[c].record(v, j, k);
+                }
+            }
+        }
+        // The gap as a function of [xi, entity components].
+        let values: Vec<f64> = std::iter::once(xi_m)
+            .chain(ent.iter().map(|h| h.value))
+            .collect();
+        let ng = values.len();
+        let mut gap = Hd::zeros(ng);
+        for j in 0..ng {
+            for k in j..ng {
+                let v: Vec<HyperDual64> = (0..ng).map(|i| seeded(values[i], i, j, k)).collect();
+                let mut map = HashMap::new();
+                map.insert(self.f.implicit.name.clone(), Value::Scalar(v[0]));
+                let mut at = 1;
+                for e in &self.f.entities {
+                    let val = match e.value {
+                        Value::Scalar(_) => Value::Scalar(v[at]),
+                        Value::Vec2(_) => Value::Vec2([v[at], v[at + 1]]),
+                    };
+                    at += e.value.components().len();
+                    map.insert(e.name.clone(), val);
+                }
+                gap.record(&self.gap(&map)?, j, k);
+            }
+        }
+        Ok(Partials {
+            n,
+            xi_m,
+            xi1,
+            xi2,
+            names,
+            ent,
+            gap,
+        })
+    }
+
+    /// The truncated `g`, `g'`, `g''` of one table row.
+    fn assemble(&self, p: &Partials, row: [EntityOrder; 3]) -> Result<Reference, VerifyError> {
+        let n = p.n;
+        let xi_order = self.order(&self.f.implicit.name, row)?;
+        let xi_varies = xi_order != EntityOrder::Constant;
+        let xi_quadratic = xi_order == EntityOrder::Quadratic;
+        // Kept (E', E'') of every gap argument: xi first, then components.
+        let mut d1: Vec<Vec<f64>> = Vec::new();
+        let mut d2: Vec<Vec<f64>> = Vec::new();
+        d1.push(if xi_varies {
+            p.xi1.clone()
+        } else {
+            vec![0.0; n]
+        });
+        d2.push(if xi_quadratic {
+            p.xi2.clone()
+        } else {
+            vec![0.0; n * n]
+        });
+        for ((name, _), e) in p.names.iter().zip(&p.ent) {
+            let own = self.order(name, row)?;
+            let nz = n + 1;
+            let mut a = e.grad[..n].to_vec();
+            let mut b: Vec<f64> = (0..n * n).map(|i| e.hess[(i / n) * nz + i % n]).collect();
+            let e_xi = e.grad[n];
+            let e_xixi = e.hess[n * nz + n];
+            if xi_varies {
+                for j in 0..n {
+                    a[j] += e_xi * p.xi1[j];
+                    let e_qxi_j = e.hess[j * nz + n];
+                    for k in 0..n {
+                        let e_qxi_k = e.hess[k * nz + n];
+                        b[j * n + k] +=
+                            e_qxi_j * p.xi1[k] + p.xi1[j] * e_qxi_k + e_xixi * p.xi1[j] * p.xi1[k];
+                    }
+                }
+            }
+            if xi_quadratic {
+                for (bi, x2) in b.iter_mut().zip(&p.xi2) {
+                    *bi += e_xi * x2;
+                }
+            }
+            match own {
+                EntityOrder::Constant => {
+                    a.iter_mut().for_each(|v| *v = 0.0);
+                    b.iter_mut().for_each(|v| *v = 0.0);
+                }
+                EntityOrder::Linear => b.iter_mut().for_each(|v| *v = 0.0),
+                EntityOrder::Quadratic => {}
+            }
+            d1.push(a);
+            d2.push(b);
+        }
+        let mut r = Reference::zeros(n);
+        r.gap = p.gap.value;
+        r.xi_m = p.xi_m;
+        let ng = d1.len();
+        for a in 0..ng {
+            let ga = p.gap.grad[a];
+            for (g, e1) in r.grad.iter_mut().zip(&d1[a]) {
+                *g += ga * e1;
+            }
+            for (h, e2) in r.hess.iter_mut().zip(&d2[a]) {
+                *h += ga * e2;
+            }
+            for b in 0..ng {
+                let gab = p.gap.hess[a * ng + b];
+                if gab == 0.0 {
+                    continue;
+                }
+                for j in 0..n {
+                    for k in 0..n {
+                        r.hess[j * n + k] += gab * d1[a][j] * d1[b][k];
+                    }
+                }
+            }
+        }
+        Ok(r)
+    }
+}
+
+/// Value, gradient and Hessian (row-major) of one scalar, filled pass by
+/// pass from hyper-dual numbers.
+#[derive(Debug, Clone)]
+struct Hd {
+    value: f64,
+    grad: Vec<f64>,
+    hess: Vec<f64>,
+}
+
+impl Hd {
+    fn zeros(n: usize) -> Hd {
+        Hd {
+            value: 0.0,
+            grad: vec![0.0; n],
+            hess: vec![0.0; n * n],
+        }
+    }
+
+    fn record(&mut self, v: &HyperDual64, j: usize, k: usize) {
+        let n = self.grad.len();
+        if j == k {
+            self.value = v.re;
+            self.grad[j] = v.eps1;
+        }
+        self.hess[j * n + k] = v.eps1eps2;
+        self.hess[k * n + j] = v.eps1eps2;
+    }
+}
+
+/// The partial derivatives of one configuration.
+#[derive(Debug, Clone)]
+struct Partials {
+    n: usize,
+    xi_m: f64,
+    xi1: Vec<f64>,
+    xi2: Vec<f64>,
+    /// Entity component names (entity, component).
+    names: Vec<(String, usize)>,
+    /// Per component, over `(q, xi)`.
+    ent: Vec<Hd>,
+    /// The gap over `[xi, components...]`.
+    gap: Hd,
+}
