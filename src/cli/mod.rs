@@ -13,6 +13,7 @@ use clap::{Parser, Subcommand};
 pub mod contact_csv;
 pub mod kernel;
 pub mod run;
+pub mod safety_map;
 pub mod study;
 
 /// What a subcommand returns: `Err` carries the message printed on stderr
@@ -42,6 +43,11 @@ pub enum Command {
     /// formulation for every step count; writes study.csv, plots and
     /// results.md.
     Study(study::StudyArgs),
+    /// Run the benchmark scenes (complete formulation and every type at
+    /// each scene's step counts) and write the safety map: which type is
+    /// safe on which scene, and its cost against complete
+    /// (safety-map.csv, safety-map.md).
+    SafetyMap(safety_map::SafetyMapArgs),
 }
 
 impl Cli {
@@ -52,6 +58,7 @@ impl Cli {
             Command::Kernel(args) => kernel::run(&args),
             Command::Run(args) => run::run(&args),
             Command::Study(args) => study::run(&args),
+            Command::SafetyMap(args) => safety_map::run(&args),
         };
         match result {
             Ok(()) => ExitCode::SUCCESS,
