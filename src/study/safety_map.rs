@@ -521,3 +521,144 @@ pub fn reading(map: &SafetyMap) -> String {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A run with the given energy error (`None`: failed) and reaction
+    /// error.
+    fn run(method: Method, steps: usize, energy: Option<f64>, reaction: Option<f64>) -> Run {
+        let failed = energy.is_none();
+        Run {
+            formulation: Formulation::SlaveNormal,
+            method,
+            steps,
+            strain_energy: (!failed).then_some(1.0),
+            error_percent: energy.filter(|_| method != Method::Complete),
+            newton_iterations: if failed { 0 } else { 10 },
+            cutbacks: 0,
+            wall_seconds: if failed { f64::NAN } else { 2.0 },
+            contact_seconds: if failed { f64::NAN } else { 1.0 },
+            solid_seconds: 0.0,
+            solve_seconds: 0.0,
+            kernel_evaluations: if failed { 0 } else { 100 },
+            projections: 0,
+            max_abs_gap: None,
+            kernel_ops: None,
+            failure: failed.then(|| "no convergence".to_owned()),
+            reaction_error_percent: reaction,
+            max_reaction: Some(1.0),
+        }
+    }
+
+    /// Steps 10, 20, 40; the complete formulation converges everywhere
+    /// except where `complete_fails`; each type's energy errors per step
+    /// count (`None`: its solve failed), reaction error 0.1 %.
+    fn study(complete_fails: &[usize], types: [[Option<f64>; 3]; 6]) -> FormulationStudy {
+        let mut runs = Vec::new();
+        for (i, n) in [10, 20, 40].into_iter().enumerate() {
+            let c = (!complete_fails.contains(&n)).then_some(0.0);
+            runs.push(run(Method::Complete, n, c, None));
+            for (ty, errors) in ApproxType::ALL.into_iter().zip(&types) {
+                runs.push(run(Method::Approx(ty), n, errors[i], Some(0.1)));
+            }
+        }
+        FormulationStudy {
+            formulation: Formulation::SlaveNormal,
+            runs,
+        }
+    }
+
+    #[test]
+    fn verdicts_follow_the_definition() {
+        let s = study(
+            &[],
+            [
+                [Some(0.01), Some(-0.01), Some(0.001)], // safe
+                [Some(3.0), Some(0.04), Some(0.01)],    // safe from 20
+                [Some(0.01), Some(0.01), Some(0.2)],    // unsafe at the largest
+                [Some(0.01), Some(0.01), None],         // fails at the largest
+                [None, Some(0.06), Some(0.0)],          // safe from 40
+                [Some(0.0), Some(0.07), Some(0.0)],     // safe from 40: not at 20
+            ],
+        );
+        let o = MapOptions::default();
+        let verdicts: Vec<Safety> = ApproxType::ALL
+            .into_iter()
+            .map(|ty| classify("s", &s, ty, &o).safety)
+            .collect();
+        assert_eq!(
+            verdicts,
+            [
+                Safety::Safe,
+                Safety::SafeFrom(20),
+                Safety::Unsafe,
+                Safety::Fails,
+                Safety::SafeFrom(40),
+                Safety::SafeFrom(40),
+            ]
+        );
+        let failed = classify("s", &s, ApproxType::Type4, &o);
+        assert_eq!(failed.failure.as_deref(), Some("40 steps: no convergence"));
+        assert_eq!(failed.wall_time_ratio, None);
+        let row = classify("s", &s, ApproxType::Type1, &o);
+        assert_eq!(row.steps, 40);
+        assert_eq!(row.step_counts, [10, 20, 40]);
+        assert_eq!(row.energy_error_percent, Some(0.001));
+        assert_eq!(row.max_abs_energy_error_percent, Some(0.01));
+        assert_eq!(row.wall_time_ratio, Some(1.0));
+        // a reaction error above the bound makes the same type unsafe
+        let strict = MapOptions {
+            reaction_tolerance_percent: 0.05,
+            ..MapOptions::default()
+        };
+        assert_eq!(
+            classify("s", &s, ApproxType::Type1, &strict).safety,
+            Safety::Unsafe
+        );
+    }
+
+    #[test]
+    fn a_failed_reference_is_recorded_not_judged() {
+        let s = study(&[40], [[Some(0.0); 3]; 6]);
+        let row = classify("s", &s, ApproxType::Type6, &MapOptions::default());
+        assert_eq!(row.safety, Safety::NoReference);
+        assert_eq!(
+            row.failure.as_deref(),
+            Some("complete, 40 steps: no convergence")
+        );
+        assert!(!row.safety.is_safe());
+        assert_eq!(row.safety.to_string(), "no reference");
+    }
+
+    #[test]
+    fn csv_rows_have_the_header_s_columns() {
+        let s = study(&[20], [[Some(0.0), None, Some(1.0)]; 6]);
+        let o = MapOptions::default();
+        let map = SafetyMap {
+            options: o.clone(),
+            rows: ApproxType::ALL
+                .into_iter()
+                .map(|ty| classify("a, b", &s, ty, &o))
+                .collect(),
+            studies: vec![("a, b".into(), s)],
+        };
+        let text = csv(&map);
+        let width = MAP_HEADER.split(',').count();
+        assert_eq!(text.lines().count(), 7);
+        assert!(
+            text.lines().all(|l| l.split(',').count() == width),
+            "{text}"
+        );
+        let runs = runs_csv(&map);
+        let width = runs.lines().next().unwrap().split(',').count();
+        assert_eq!(runs.lines().count(), 1 + 3 * 7);
+        assert!(
+            runs.lines().all(|l| l.split(',').count() == width),
+            "{runs}"
+        );
+        let md = markdown(&map, "test");
+        assert!(md.contains("| a, b (10–40) |") && md.contains("Legend"));
+    }
+}
