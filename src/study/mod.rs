@@ -17,6 +17,20 @@
 //! A contact-heavy variant of the scene ([`contact_heavy_variant`]: a finer
 //! interface with more integration points, same physics) measures what each
 //! type saves where contact dominates the cost.
+//! If that variant's complete formulation fails (a scene other than the
+//! paper's may not converge on the refined interface), the study goes on
+//! without it ([`StudyResults::heavy_failure`]).
+//!
+//! The study runs on any scene with contact (the first pair's formulation
+//! first). Besides the energy error, every type's run carries the support
+//! reactions' error against the complete formulation at the same step
+//! count ([`reactions`], [`Run::reaction_error_percent`]), written to
+//! `study-errors.csv` with the cost ratios ([`errors`]); the paper's
+//! `study.csv` keeps its columns. A type whose solve fails is recorded
+//! ([`Run::failure`]), not fatal; the complete formulation failing stops
+//! `gapsim study` ([`StudyError::Reference`]: there is no reference) but is
+//! recorded by the safety map ([`safety_map`]), which runs several scenes
+//! and classifies each type per scene.
 
 pub mod errors;
 pub mod plots;

@@ -3,7 +3,7 @@
 //!
 //! For each scene (its first contact pair's formulation) and each of its
 //! step counts `N`, the complete formulation and Types 1–6 are solved
-//! ([`super::study_formulation`]; a failed solve, the complete one
+//! (`study_formulation` in the parent module; a failed solve, the complete one
 //! included, is recorded, never fatal). Per step count and type:
 //!
 //! * `e_U = 100 (U_type - U_complete) / U_complete`, the final strain
