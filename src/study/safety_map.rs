@@ -489,6 +489,49 @@ pub fn markdown(map: &SafetyMap, command: &str) -> String {
     }
     out.push_str("\nReading:\n\n");
     out.push_str(&reading(map));
+    out.push_str(&by_step_count(map));
+    out
+}
+
+/// Per scene, `e_U` and `e_R` of every type at every step count (a
+/// collapsed `<details>` block: the map reads only the largest).
+fn by_step_count(map: &SafetyMap) -> String {
+    let mut out =
+        String::from("\n<details><summary>Errors at every step count (e_U %, e_R %)</summary>\n\n");
+    for (label, study) in &map.studies {
+        let steps = study.steps();
+        let _ = write!(out, "{label}:\n\n| type |");
+        for n in &steps {
+            let _ = write!(out, " {n} steps |");
+        }
+        out.push_str("\n|---|");
+        for _ in &steps {
+            out.push_str("---:|");
+        }
+        out.push('\n');
+        for method in Method::ALL {
+            let _ = write!(out, "| {method} |");
+            for n in &steps {
+                let text = match study.run(method, *n) {
+                    None => "–".to_owned(),
+                    Some(r) if r.failure.is_some() => "failed".to_owned(),
+                    Some(_) if method == Method::Complete => "reference".to_owned(),
+                    Some(r) => match r.reaction_error_percent {
+                        Some(e) => format!(
+                            "{} · {}",
+                            percent(r.error_percent),
+                            percent(Some(e)).trim_start_matches('+')
+                        ),
+                        None => percent(r.error_percent),
+                    },
+                };
+                let _ = write!(out, " {text} |");
+            }
+            out.push('\n');
+        }
+        out.push('\n');
+    }
+    out.push_str("</details>\n");
     out
 }
 
@@ -660,5 +703,13 @@ mod tests {
         );
         let md = markdown(&map, "test");
         assert!(md.contains("| a, b (10–40) |") && md.contains("Legend"));
+        assert!(
+            md.contains("| 1 | 0 % · 0.100 % | failed | +1.000 % · 0.100 % |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| complete | reference | failed | reference |"),
+            "{md}"
+        );
     }
 }
