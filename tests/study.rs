@@ -1,6 +1,7 @@
 //! The study's invariants on the paper scene (a reduced schedule: 4, 8 and
 //! 16 steps, one repeat, the scene's formulation only, no contact-heavy
-//! variant), and its outputs.
+//! variant), its outputs, its reaction errors, and the study on a
+//! non-paper scene (`gapsim study scenes/pressed-blocks.toml`).
 
 use gapsim::study::{self, StudyOptions, plots, report};
 use solver::{ApproxType, Method, Scene};
@@ -117,4 +118,85 @@ fn study_invariants_hold_and_outputs_are_written() {
     let md = report::markdown(&r, "", "test");
     assert!(md.contains("| 6 |") && md.contains("order"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// `gapsim study` on a scene other than the paper's (pressed-blocks: two
+/// fixed supports, loads, one contact pair) writes the paper's files and
+/// `study-errors.csv` with the energy and reaction errors.
+#[test]
+fn the_study_runs_on_a_non_paper_scene_and_writes_its_files() {
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/pressed-blocks.toml");
+    let dir = std::env::temp_dir().join(format!("gapsim-study-any-{}", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .arg("study")
+        .arg(&scene)
+        .args([
+            "--repeats",
+            "1",
+            "--steps",
+            "1,2",
+            "--only-scene-formulation",
+            "--no-heavy",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for f in [
+        "study.csv",
+        "study-errors.csv",
+        "results.md",
+        "deformed.png",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    let study = std::fs::read_to_string(dir.join("study.csv")).unwrap();
+    assert_eq!(study.lines().next().unwrap(), report::CSV_HEADER);
+    assert_eq!(study.lines().count(), 1 + 2 * 7);
+
+    let errors = std::fs::read_to_string(dir.join("study-errors.csv")).unwrap();
+    let mut lines = errors.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(
+        header,
+        study::errors::ERRORS_HEADER.split(',').collect::<Vec<_>>()
+    );
+    let col = |name: &str| header.iter().position(|c| *c == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 2 * 7);
+    for r in &rows {
+        assert_eq!(r.len(), header.len());
+        let reaction = r[col("reaction_error_percent")];
+        if r[col("type")] == "complete" {
+            assert!(reaction.is_empty());
+            assert!(r[col("max_reaction")].parse::<f64>().unwrap() > 0.0);
+        } else {
+            // the blocks are pressed flat: every type reproduces the
+            // complete formulation's reactions
+            assert!(reaction.parse::<f64>().unwrap() < 1e-6, "{r:?}");
+            assert!(r[col("energy_error_percent")].parse::<f64>().unwrap().abs() < 1e-6);
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The reaction error on the paper scene: under load control the single
+/// support carries the applied load, so every type's reaction error is at
+/// the Newton tolerance; the complete rows define the scale.
+#[test]
+fn reaction_errors_are_defined_on_the_paper_scene() {
+    let r = results();
+    let s = &r.formulations[0];
+    for run in &s.runs {
+        assert!(run.max_reaction.is_some_and(|m| m > 0.0), "{run:?}");
+        match run.method {
+            Method::Complete => assert!(run.reaction_error_percent.is_none()),
+            Method::Approx(_) => assert!(run.reaction_error_percent.unwrap() < 1e-6),
+        }
+    }
 }

@@ -14,6 +14,7 @@ pub mod contact_csv;
 pub mod generate;
 pub mod kernel;
 pub mod run;
+pub mod safety_map;
 pub mod study;
 pub mod verify;
 
@@ -50,6 +51,11 @@ pub enum Command {
     /// automatic differentiation; prints the worst errors, fails on any
     /// above the tolerance.
     Verify(verify::VerifyArgs),
+    /// Run the benchmark scenes (complete formulation and every type at
+    /// each scene's step counts) and write the safety map: which type is
+    /// safe on which scene, and its cost against complete
+    /// (safety-map.csv, safety-map.md).
+    SafetyMap(safety_map::SafetyMapArgs),
 }
 
 impl Cli {
@@ -62,6 +68,7 @@ impl Cli {
             Command::Study(args) => study::run(&args),
             Command::Generate(args) => generate::run(&args),
             Command::Verify(args) => verify::run(&args),
+            Command::SafetyMap(args) => safety_map::run(&args),
         };
         match result {
             Ok(()) => ExitCode::SUCCESS,

@@ -1,6 +1,8 @@
 //! `gapsim study`: the paper's study (error against load steps, speed
 //! against error) for the complete formulation and every approximation
-//! type. See [`gapsim::study`].
+//! type, on any scene with contact. See [`gapsim::study`]. Besides the
+//! paper's files it writes `study-errors.csv` (energy and reaction errors,
+//! cost against complete: [`gapsim::study::errors`]).
 //!
 //! ```text
 //! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--readme README.md]
@@ -9,7 +11,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use gapsim::study::{self, StudyOptions, plots, report};
+use gapsim::study::{self, StudyOptions, errors, plots, report};
 
 use super::CommandResult;
 use super::run::load_scene;
@@ -92,14 +94,21 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     if let Some(h) = &results.heavy {
         write("study-contact-heavy.csv", &report::csv(&h.study))?;
     }
+    // Energy and reaction errors and the cost against complete, every
+    // formulation (a companion of study.csv, whose columns stay as they are).
+    write("study-errors.csv", &errors::csv(&results.formulations))?;
     plots::write_all(&results, &args.out)?;
 
     let command = std::env::args().skip(1).collect::<Vec<_>>().join(" ");
     let command = format!("gapsim {command}");
     write("results.md", &report::markdown(&results, "", &command))?;
     print!("{}", report::terminal_summary(&results));
+    print!("{}", errors::reaction_summary(&results.formulations[0]));
+    if let Some(why) = &results.heavy_failure {
+        println!("\ncontact-heavy variant left out: {why}");
+    }
     println!(
-        "\nwrote study.csv, plots and results.md to {}",
+        "\nwrote study.csv, study-errors.csv, plots and results.md to {}",
         args.out.display()
     );
 

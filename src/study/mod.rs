@@ -17,9 +17,26 @@
 //! A contact-heavy variant of the scene ([`contact_heavy_variant`]: a finer
 //! interface with more integration points, same physics) measures what each
 //! type saves where contact dominates the cost.
+//! If that variant's complete formulation fails (a scene other than the
+//! paper's may not converge on the refined interface), the study goes on
+//! without it ([`StudyResults::heavy_failure`]).
+//!
+//! The study runs on any scene with contact (the first pair's formulation
+//! first). Besides the energy error, every type's run carries the support
+//! reactions' error against the complete formulation at the same step
+//! count ([`reactions`], [`Run::reaction_error_percent`]), written to
+//! `study-errors.csv` with the cost ratios ([`errors`]); the paper's
+//! `study.csv` keeps its columns. A type whose solve fails is recorded
+//! ([`Run::failure`]), not fatal; the complete formulation failing stops
+//! `gapsim study` ([`StudyError::Reference`]: there is no reference) but is
+//! recorded by the safety map ([`safety_map`]), which runs several scenes
+//! and classifies each type per scene.
 
+pub mod errors;
 pub mod plots;
+pub mod reactions;
 pub mod report;
+pub mod safety_map;
 
 use std::time::Duration;
 
@@ -131,6 +148,13 @@ pub struct Run {
     pub kernel_ops: Option<u32>,
     /// The solver's error, if it failed.
     pub failure: Option<String>,
+    /// The reaction error against the complete formulation at the same step
+    /// count, in percent ([`reactions`]); `None` for the complete
+    /// formulation, a failed run or a scene without support groups.
+    pub reaction_error_percent: Option<f64>,
+    /// The largest support reaction `max_{k,g} |R(k,g)|` over the scheduled
+    /// steps ([`reactions::max_reaction`]); `None` without support groups.
+    pub max_reaction: Option<f64>,
 }
 
 /// All runs of one formulation.
@@ -182,6 +206,9 @@ pub struct StudyResults {
     pub formulations: Vec<FormulationStudy>,
     /// The contact-heavy variant, if run.
     pub heavy: Option<HeavyStudy>,
+    /// Why the contact-heavy variant was left out, if it was asked for but
+    /// its complete formulation failed (the study goes on without it).
+    pub heavy_failure: Option<String>,
     /// The complete solution at the scene's default step count (for the
     /// deformed-configuration plot).
     pub deformed: Solution,
@@ -291,16 +318,31 @@ fn measure(
     Ok((first.expect("at least one repeat"), med))
 }
 
-fn study_formulation(
+/// What [`study_formulation`] does when the complete formulation fails at a
+/// step count.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum OnReferenceFailure {
+    /// Stop the study with [`StudyError::Reference`].
+    Abort,
+    /// Record the failed complete run, run the types anyway (their errors
+    /// are then undefined) and go on.
+    Record,
+}
+
+/// Runs the complete formulation and every type at every step count of
+/// `steps` (in that order), with their energy and reaction errors.
+pub(crate) fn study_formulation(
     scene: &Scene,
     formulation: Formulation,
     steps: &[usize],
     repeats: usize,
     progress: &dyn Progress,
+    on_reference_failure: OnReferenceFailure,
 ) -> Result<FormulationStudy, StudyError> {
     let mut runs = Vec::new();
     for &n in steps {
         let mut reference: Option<f64> = None;
+        let mut reference_reactions: Option<Vec<Vec<[f64; 2]>>> = None;
         for method in Method::ALL {
             let label = format!("{formulation}, {n} steps, {method}");
             let result = measure(scene, formulation, method, n, repeats);
@@ -308,11 +350,19 @@ fn study_formulation(
             let run = match result {
                 Ok((sol, [wall, contact, solid, solve])) => {
                     let u = sol.strain_energy;
+                    let history = reactions::scheduled_reactions(&sol);
                     if method == Method::Complete {
                         reference = Some(u);
+                        reference_reactions = Some(history.clone());
                     }
                     let error_percent = match (method, reference) {
                         (Method::Approx(_), Some(r)) => Some(100.0 * (u - r) / r),
+                        _ => None,
+                    };
+                    let reaction_error_percent = match (method, &reference_reactions) {
+                        (Method::Approx(_), Some(r)) => {
+                            reactions::reaction_error_percent(&history, r)
+                        }
                         _ => None,
                     };
                     Run {
@@ -332,9 +382,14 @@ fn study_formulation(
                         max_abs_gap: Some(sol.max_abs_gap()),
                         kernel_ops: kernel_ops(formulation, method),
                         failure: None,
+                        reaction_error_percent,
+                        max_reaction: reactions::max_reaction(&history),
                     }
                 }
-                Err(source) if method == Method::Complete => {
+                Err(source)
+                    if method == Method::Complete
+                        && on_reference_failure == OnReferenceFailure::Abort =>
+                {
                     return Err(StudyError::Reference {
                         formulation,
                         steps: n,
@@ -358,6 +413,8 @@ fn study_formulation(
                     max_abs_gap: None,
                     kernel_ops: kernel_ops(formulation, method),
                     failure: Some(e.to_string()),
+                    reaction_error_percent: None,
+                    max_reaction: None,
                 },
             };
             runs.push(run);
@@ -405,35 +462,46 @@ pub fn run_study(
             &steps,
             options.repeats,
             progress,
+            OnReferenceFailure::Abort,
         )?);
     }
 
-    let heavy = if options.heavy_steps.is_empty() {
-        None
+    let (heavy, heavy_failure) = if options.heavy_steps.is_empty() {
+        (None, None)
     } else {
         let variant =
             contact_heavy_variant(scene, options.heavy_refine, options.heavy_gauss_points);
-        let study = study_formulation(
+        let heavy = study_formulation(
             &variant,
             first,
             &options.heavy_steps,
             options.repeats,
             progress,
-        )?;
-        let model = variant.build_model().map_err(|e| StudyError::Reference {
-            formulation: first,
-            steps: options.heavy_steps[0],
-            source: e.into(),
-        })?;
-        Some(HeavyStudy {
-            solid_elements: model.mesh.elements.len(),
-            contact_points: model
-                .contacts
-                .iter()
-                .map(|c| c.slave.len() * c.gauss_points)
-                .sum(),
-            study,
-        })
+            OnReferenceFailure::Abort,
+        )
+        .and_then(|study| {
+            let model = variant.build_model().map_err(|e| StudyError::Reference {
+                formulation: first,
+                steps: options.heavy_steps[0],
+                source: e.into(),
+            })?;
+            Ok(HeavyStudy {
+                solid_elements: model.mesh.elements.len(),
+                contact_points: model
+                    .contacts
+                    .iter()
+                    .map(|c| c.slave.len() * c.gauss_points)
+                    .sum(),
+                study,
+            })
+        });
+        match heavy {
+            Ok(h) => (Some(h), None),
+            // The variant is an extra of the paper's study: a scene whose
+            // refined variant does not converge is still studied.
+            Err(e @ StudyError::Reference { .. }) => (None, Some(e.to_string())),
+            Err(e) => return Err(e),
+        }
     };
 
     let mut options_def = SolveOptions::from_scene(scene);
@@ -451,6 +519,7 @@ pub fn run_study(
         repeats: options.repeats,
         formulations: studies,
         heavy,
+        heavy_failure,
         deformed,
     })
 }

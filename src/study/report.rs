@@ -696,6 +696,8 @@ mod tests {
                     max_abs_gap: None,
                     kernel_ops: None,
                     failure: None,
+                    reaction_error_percent: None,
+                    max_reaction: None,
                 }
             })
             .collect();
