@@ -99,6 +99,7 @@ mod pairing;
 mod probe;
 mod reactions;
 mod regularize;
+mod repair;
 mod schedule;
 mod setup;
 
@@ -110,7 +111,8 @@ use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::{
-    ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord, Timings,
+    AccuracyHalving, ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord,
+    Timings,
 };
 
 use attempt::{AttemptOutcome, Converged};
@@ -135,6 +137,12 @@ pub const STAGNATION_FACTOR: f64 = 100.0;
 /// the pairing only changes at converged iterates (module docs).
 pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 
+/// Types 1–6: a step is solved again with new expansions at most this many
+/// times for pairing changes at its end (see `repair.rs`); points still
+/// changing then are accepted and listed in
+/// [`crate::StepRecord::unsettled`].
+pub const MAX_REPAIR_REPEATS: usize = 4;
+
 /// The solve in progress.
 pub(crate) struct Run<'a> {
     opts: &'a SolveOptions,
@@ -155,6 +163,9 @@ pub(crate) struct Run<'a> {
     snapshots: Vec<State>,
     iterations: usize,
     failed_iterations: usize,
+    repeated_iterations: usize,
+    step_end_projections: u64,
+    accuracy_halvings: Vec<AccuracyHalving>,
 }
 
 impl<'a> Run<'a> {
@@ -192,6 +203,9 @@ impl<'a> Run<'a> {
             snapshots: Vec::new(),
             iterations: 0,
             failed_iterations: 0,
+            repeated_iterations: 0,
+            step_end_projections: 0,
+            accuracy_halvings: Vec::new(),
         })
     }
 
@@ -225,6 +239,25 @@ impl<'a> Run<'a> {
             while let Some(to) = schedule.next_target(self.load_factor) {
                 match self.attempt(to)? {
                     AttemptOutcome::Converged(c) => self.commit(step, to, c),
+                    AttemptOutcome::TooCoarse(c) => {
+                        if schedule.cut_back(self.opts.max_cutbacks).is_ok() {
+                            self.repeated_iterations += c.iterations;
+                            self.accuracy_halvings.push(AccuracyHalving {
+                                step,
+                                from_load_factor: self.load_factor,
+                                attempted_load_factor: to,
+                                remainder: c
+                                    .step_end
+                                    .as_ref()
+                                    .and_then(|e| e.remainder)
+                                    .unwrap_or(f64::NAN),
+                                iterations: c.iterations,
+                            });
+                        } else {
+                            // cannot be halved further: accept it
+                            self.commit(step, to, c);
+                        }
+                    }
                     AttemptOutcome::CutBack(failed) => {
                         self.failed_iterations += failed.iterations;
                         self.cutbacks.push(Cutback {
@@ -260,6 +293,7 @@ impl<'a> Run<'a> {
         self.energy = c.energy;
         self.iterations += c.iterations;
         self.taylor = None;
+        let step_end = c.step_end.unwrap_or_default();
         self.records.push(StepRecord {
             step,
             load_factor: to,
@@ -272,6 +306,9 @@ impl<'a> Run<'a> {
             active_multipliers: c.points.active_multipliers,
             roundoff_floor: c.roundoff_floor,
             reactions: c.reactions,
+            repeats: step_end.repeats,
+            taylor_remainder: step_end.remainder,
+            unsettled: step_end.unsettled,
         });
         if self.opts.record_steps {
             self.snapshots.push(self.state());
@@ -311,6 +348,10 @@ impl<'a> Run<'a> {
             strain_energy: self.energy,
             newton_iterations: self.iterations,
             failed_iterations: self.failed_iterations,
+            repeats: self.records.iter().map(|r| r.repeats).sum(),
+            repeated_iterations: self.repeated_iterations,
+            step_end_projections: self.step_end_projections,
+            accuracy_halvings: self.accuracy_halvings.clone(),
             step_records: self.records.clone(),
             cutbacks: self.cutbacks.clone(),
             timings,
