@@ -72,8 +72,8 @@ pub use model::{ContactMode, Model};
 pub use options::{DEFAULT_REGULARIZATION, Method, ParseMethodError, SolveOptions};
 pub use scene::{Scene, SceneError};
 pub use solution::{
-    ContactPointId, ContactPointReport, Cutback, CutbackReason, KernelCounts, Solution, State,
-    StepRecord, Timings,
+    AccuracyHalving, ContactPointId, ContactPointReport, Cutback, CutbackReason, KernelCounts,
+    Solution, State, StepRecord, Timings,
 };
 
 /// Scenes shipped with the solver.

@@ -89,6 +89,15 @@ pub struct SolveOptions {
     pub regularization: f64,
     /// The linear solver of the Newton iterations.
     pub linear: LinearSolverKind,
+    /// Types 1–6: re-pair at every converged step end and repeat the step
+    /// with the new pairing's Taylor expansion when a point changed its
+    /// master segment (see [`crate::newton`], "Re-pairing at the step
+    /// end"; `[newton] repair`, default `true`).
+    pub repair: bool,
+    /// Types 1–6: halve a converged step whose largest relative Taylor
+    /// remainder exceeds this (adaptive stepping, `[newton]
+    /// taylor_tolerance`; default `None`).
+    pub taylor_tolerance: Option<f64>,
 }
 
 impl Default for SolveOptions {
@@ -103,6 +112,8 @@ impl Default for SolveOptions {
             tolerance: 1e-10,
             regularization: DEFAULT_REGULARIZATION,
             linear: LinearSolverKind::Lu,
+            repair: true,
+            taylor_tolerance: None,
         }
     }
 }
@@ -121,6 +132,8 @@ impl SolveOptions {
             tolerance: scene.newton.tolerance,
             regularization: DEFAULT_REGULARIZATION,
             linear: scene.newton.linear,
+            repair: scene.newton.repair,
+            taylor_tolerance: scene.newton.taylor_tolerance,
         }
     }
 }

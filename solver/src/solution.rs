@@ -167,6 +167,40 @@ pub struct StepRecord {
     /// on the body, summed over the group's prescribed dofs (internal plus
     /// contact force, minus loads applied there; see `newton/reactions.rs`).
     pub reactions: Vec<[f64; 2]>,
+    /// Types 1–6: times the step was solved again because integration
+    /// points ended on other master segments than their Taylor expansion's
+    /// (see [`crate::newton`], "Re-pairing at the step end"); 0 for the
+    /// complete formulation.
+    pub repeats: usize,
+    /// Types 1–6: the step's largest Taylor remainder, `|g - g~| / L_s`
+    /// at the active points (re-projected gap minus the frozen expansion's
+    /// gap at the converged end state, over the slave segment's reference
+    /// length); `None` for the complete formulation or without active
+    /// points.
+    pub taylor_remainder: Option<f64>,
+    /// Types 1–6: points whose pairing at the accepted end differs from
+    /// their expansion's (`master_segment`: the expansion's): cycling at a
+    /// master node, still changing after
+    /// [`crate::newton::MAX_REPAIR_REPEATS`] repeats, or re-pairing off.
+    pub unsettled: Vec<ContactPointId>,
+}
+
+/// Types 1–6 with `[newton] taylor_tolerance`: a converged attempt
+/// discarded and halved because its Taylor remainder exceeded the
+/// tolerance (adaptive stepping; not a divergence, see [`Cutback`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AccuracyHalving {
+    /// The scheduled step (1-based) being solved.
+    pub step: usize,
+    /// The converged load factor the attempt started from.
+    pub from_load_factor: f64,
+    /// The load factor it reached.
+    pub attempted_load_factor: f64,
+    /// Its largest relative Taylor remainder
+    /// ([`StepRecord::taylor_remainder`]).
+    pub remainder: f64,
+    /// Its Newton iterations (discarded).
+    pub iterations: usize,
 }
 
 /// Wall-clock time spent, split by phase.
@@ -283,6 +317,18 @@ pub struct Solution {
     pub newton_iterations: usize,
     /// Newton iterations of failed attempts (work spent before cut-backs).
     pub failed_iterations: usize,
+    /// Types 1–6: step repeats for pairing changes, over all steps
+    /// ([`StepRecord::repeats`]).
+    pub repeats: usize,
+    /// Types 1–6: Newton iterations of converged attempts discarded, by
+    /// the step repeats and the accuracy halvings.
+    pub repeated_iterations: usize,
+    /// Types 1–6: projection-kernel calls of the step-end checks (the
+    /// re-pairing and the Taylor remainder), counted apart from
+    /// [`Solution::kernel_counts`] (which counts the scheme's own calls).
+    pub step_end_projections: u64,
+    /// Types 1–6 with a `taylor_tolerance`: the steps halved for accuracy.
+    pub accuracy_halvings: Vec<AccuracyHalving>,
     /// Every converged (sub)step.
     pub step_records: Vec<StepRecord>,
     /// Every cut-back, in order.

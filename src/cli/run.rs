@@ -11,7 +11,9 @@
 //! `DIR/contact.csv`, the final state's contact pressure and gap at every
 //! slave node (see [`super::contact_csv`]); the reaction force of every
 //! `[[fix]]` and `[[prescribe]]` group at every converged step goes to
-//! `reactions.csv`. Every file is written atomically (`solver::out`): a
+//! `reactions.csv`. Types 1–6 also report the step-end checks: step repeats
+//! for re-pairing, accuracy halvings and the largest Taylor remainder (with
+//! `--every-step`, every step's). Every file is written atomically (`solver::out`): a
 //! temporary file in `DIR`, then a rename.
 
 use std::path::PathBuf;
@@ -132,6 +134,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
             );
         }
     }
+    if let Method::Approx(_) = sol.method {
+        taylor_summary(&sol, args.every_step);
+    }
     println!("max |gap|       {:.3e}", sol.max_abs_gap());
     if let Some((lo, hi)) = sol.xi_m_range() {
         println!("xi_m range      [{lo:.6}, {hi:.6}]");
@@ -187,6 +192,12 @@ pub fn run(args: &RunArgs) -> CommandResult {
         "kernel calls    {} evaluations, {} projections",
         sol.kernel_counts.evaluate, sol.kernel_counts.project
     );
+    if sol.step_end_projections > 0 {
+        println!(
+            "                (+ {} projections in the step-end checks)",
+            sol.step_end_projections
+        );
+    }
 
     if let Some(dir) = &args.out {
         std::fs::create_dir_all(dir)
@@ -223,4 +234,52 @@ pub fn run(args: &RunArgs) -> CommandResult {
         }
     }
     Ok(())
+}
+
+/// Types 1–6: the step-end checks (see `solver::newton`, "Re-pairing at
+/// the step end"): step repeats, unsettled points, accuracy halvings and
+/// the largest Taylor remainder (every step's with `every_step`).
+fn taylor_summary(sol: &solver::Solution, every_step: bool) {
+    println!(
+        "step repeats    {} (steps solved again with re-paired expansions; {} iterations discarded)",
+        sol.repeats, sol.repeated_iterations
+    );
+    for r in &sol.step_records {
+        for p in &r.unsettled {
+            println!(
+                "unsettled       load factor {}: {p} ends on another master segment",
+                r.load_factor
+            );
+        }
+    }
+    if !sol.accuracy_halvings.is_empty() {
+        println!(
+            "accuracy        {} step(s) halved for the Taylor remainder",
+            sol.accuracy_halvings.len()
+        );
+        for h in &sol.accuracy_halvings {
+            println!(
+                "  step {}: {} -> {} remainder {:.3e}",
+                h.step, h.from_load_factor, h.attempted_load_factor, h.remainder
+            );
+        }
+    }
+    let worst = sol
+        .step_records
+        .iter()
+        .filter_map(|r| r.taylor_remainder.map(|t| (t, r.load_factor)))
+        .max_by(|a, b| a.0.total_cmp(&b.0));
+    if let Some((t, lf)) = worst {
+        println!("Taylor remainder max {t:.3e} x element size (load factor {lf})");
+    }
+    if every_step {
+        for r in &sol.step_records {
+            if let Some(t) = r.taylor_remainder {
+                println!(
+                    "  load factor {}: remainder {t:.3e}, {} repeat(s)",
+                    r.load_factor, r.repeats
+                );
+            }
+        }
+    }
 }

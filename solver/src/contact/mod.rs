@@ -48,7 +48,12 @@
 //! ```
 //!
 //! so the Newton tangent is exact for the approximated problem. There is no
-//! re-projection and no re-pairing until the step has converged.
+//! re-projection and no re-pairing until the step has converged. At the
+//! converged end the points are re-paired and, where a point ended on
+//! another master segment, the step is solved again with the expansion of
+//! that segment's gap (still taken at the step start `u0`, where the point
+//! projects onto the new segment's line outside the segment); see
+//! [`crate::newton`], "Re-pairing at the step end".
 //!
 //! # Complete formulation
 //!

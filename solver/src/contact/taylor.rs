@@ -1,6 +1,11 @@
 //! The frozen Taylor expansion of Types 1–6 (see [`super`], "Types 1–6:
 //! Taylor coefficients frozen per load step").
 //!
+//! The expansion may be taken on a master segment the point does not
+//! project into at `u0` (a step repeated after re-pairing, see
+//! [`crate::newton`]): `at_start` is then the kernel on that segment's line,
+//! outside the segment, which is smooth there.
+//!
 //! Invariant: the expansion is exact for the approximated problem: its
 //! gradient is the derivative of its gap and its Hessian that of its
 //! gradient, so Newton's tangent is exact within a step.

@@ -32,6 +32,7 @@ use crate::options::Method;
 use crate::solution::{ContactPointId, CutbackReason};
 
 use super::pairing::{GuardOutcome, PairingGuard};
+use super::repair::StepEnd;
 use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
 
 /// A converged attempt.
@@ -51,6 +52,11 @@ pub(super) struct Converged {
     /// The support groups' reactions at the converged iterate (see
     /// `reactions.rs`).
     pub(super) reactions: Vec<[f64; 2]>,
+    /// Which multipliers carry a constraint row at the converged iterate.
+    pub(super) active: Vec<bool>,
+    /// Types 1–6: what the step-end check found (`repair.rs`); `None` for
+    /// the complete formulation.
+    pub(super) step_end: Option<StepEnd>,
 }
 
 /// The contact points' state at a converged iterate, for the step record.
@@ -81,10 +87,18 @@ pub(super) enum AttemptOutcome {
     Converged(Converged),
     /// Failed: cut back.
     CutBack(Failed),
+    /// Types 1–6 with a `taylor_tolerance`: converged, but the Taylor
+    /// remainder exceeds the tolerance; halve the increment if the
+    /// schedule allows, else accept it.
+    TooCoarse(Converged),
 }
 
 impl AttemptOutcome {
-    fn cut_back(reason: CutbackReason, residuals: Vec<f64>, iterations: usize) -> AttemptOutcome {
+    pub(super) fn cut_back(
+        reason: CutbackReason,
+        residuals: Vec<f64>,
+        iterations: usize,
+    ) -> AttemptOutcome {
         AttemptOutcome::CutBack(Failed {
             reason,
             residuals,
@@ -125,11 +139,21 @@ impl Run<'_> {
     }
 
     /// One Newton solve from the converged state to load factor `to` (module
-    /// docs).
+    /// docs); for Types 1–6 followed by the step-end check and, while the
+    /// pairing changes, repeated with the new pairing's expansion (see
+    /// `repair.rs`).
     pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
-        if let Method::Approx(ty) = self.opts.method {
-            self.ensure_taylor(ty)?;
-        }
+        let Method::Approx(ty) = self.opts.method else {
+            return self.newton(to);
+        };
+        self.ensure_taylor(ty)?;
+        self.repaired_attempt(ty, to)
+    }
+
+    /// Newton's method from the converged state to load factor `to` with
+    /// the current Taylor coefficients (Types 1–6) or the complete
+    /// formulation.
+    pub(super) fn newton(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
         let mut x = Iterate {
             u: self.u.clone(),
             lambda: self.lambda.clone(),
@@ -205,6 +229,8 @@ impl Run<'_> {
                     roundoff_floor: norm > tol_abs,
                     points,
                     reactions,
+                    active,
+                    step_end: None,
                 }));
             }
             if it == self.opts.max_iterations {

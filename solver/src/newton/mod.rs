@@ -25,6 +25,50 @@
 //!    why (re-pairing at every iteration made Newton cycle on refined
 //!    meshes). Each tie adds one equation after the multipliers.
 //!
+//! 5. Types 1–6: at a converged iterate, every point is re-paired by
+//!    projection; if one ended on another master segment than its
+//!    expansion's, the step is solved again from its start with the
+//!    expansion of the new pairing (next section). Then the step's Taylor
+//!    remainder is measured and, with a `taylor_tolerance`, a step above it
+//!    is halved.
+//!
+//! # Re-pairing at the step end (Types 1–6)
+//!
+//! The frozen expansion belongs to the master segment a point was paired
+//! with at the step start; a point that slides across a master node during
+//! the step ends with a gap error of about (kink angle) x (distance past
+//! the node), and the step converges to the solution of the wrong
+//! constraint (issue #8: on `scenes/sliding.toml`, Type 6 at 20 steps was
+//! 20 % off the complete formulation's energy). At a converged step end
+//! every point is therefore re-paired (the complete formulation's search);
+//! each point whose segment changed (or that became paired or unpaired)
+//! gets the expansion of its **new** segment's gap taken at the step start,
+//! and the step is solved again, until the pairing at the end is the one
+//! the expansions were built on (at most [`MAX_REPAIR_REPEATS`] repeats; a
+//! point never returns to a pairing it has had in the attempt, which is a
+//! point cycling at a node: it keeps its expansion and is listed in
+//! [`crate::StepRecord::unsettled`]). The alternative of switching a
+//! point's pair during the iterations when its predicted `xi_m` leaves
+//! `[-1, 1]` was not taken: it makes the frozen problem change within the
+//! step (a residual discontinuous in `u`, the cycling the complete
+//! formulation's pairing guard was built against), and a frozen expansion
+//! has no exact `xi_m` to predict from; the repeat keeps every Newton solve
+//! smooth and its cost is one more solve per crossing step. `[newton]
+//! repair = false` turns it off ([`crate::SolveOptions::repair`]). The
+//! check only projects when no point changes segment (the paper scene):
+//! the results and kernel counts are then those without it, and its
+//! projection calls are counted apart
+//! ([`crate::Solution::step_end_projections`]). Details in `repair.rs`.
+//!
+//! **Taylor remainder** (error indicator): at the accepted end, over the
+//! active points, the largest `|g - g~| / L_s`: the re-projected gap minus
+//! the frozen expansion's gap, over the slave segment's reference length
+//! ([`crate::StepRecord::taylor_remainder`]). With `[newton]
+//! taylor_tolerance` a converged step above it is discarded and its
+//! increment halved by the same bisection as a divergence cut-back, but
+//! recorded apart ([`crate::Solution::accuracy_halvings`]); a step that
+//! cannot be halved further (`max_cutbacks`) is accepted as it is.
+//!
 //! A step's residual history ([`crate::StepRecord::residuals`]) then holds
 //! one more entry per pairing change (the same iterate, evaluated again);
 //! the iteration count is the number of linear solves.
@@ -83,6 +127,8 @@
 //!   factor, ending in an `AttemptOutcome`;
 //! * `pairing`: the pairing guard of the complete formulation (re-pairing
 //!   and node ties at converged iterates);
+//! * `repair`: Types 1–6 at a converged step end: re-pairing, the repeat
+//!   with the new pairing's expansions, the Taylor remainder;
 //! * `reactions`: the support groups' reaction forces at a converged
 //!   state ([`crate::StepRecord::reactions`]);
 //! * `regularize`: the tangent-only multiplier regularisation;
@@ -92,13 +138,16 @@
 //! `load_factor`) changes only in `Run::commit`, with a converged attempt; a
 //! failed attempt leaves it untouched. Its `pairing` changes there too and,
 //! for Types 1–6, when the Taylor coefficients are built at the converged
-//! state (which re-pairs every point), once per converged state.
+//! state (which re-pairs every point), once per converged state, and when
+//! a step is repeated with re-paired expansions (`repair.rs`; they are
+//! still taken at the converged state).
 
 mod attempt;
 mod pairing;
 mod probe;
 mod reactions;
 mod regularize;
+mod repair;
 mod schedule;
 mod setup;
 
@@ -110,7 +159,8 @@ use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::{
-    ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord, Timings,
+    AccuracyHalving, ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord,
+    Timings,
 };
 
 use attempt::{AttemptOutcome, Converged};
@@ -135,6 +185,12 @@ pub const STAGNATION_FACTOR: f64 = 100.0;
 /// the pairing only changes at converged iterates (module docs).
 pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 
+/// Types 1–6: a step is solved again with new expansions at most this many
+/// times for pairing changes at its end (see `repair.rs`); points still
+/// changing then are accepted and listed in
+/// [`crate::StepRecord::unsettled`].
+pub const MAX_REPAIR_REPEATS: usize = 4;
+
 /// The solve in progress.
 pub(crate) struct Run<'a> {
     opts: &'a SolveOptions,
@@ -155,6 +211,9 @@ pub(crate) struct Run<'a> {
     snapshots: Vec<State>,
     iterations: usize,
     failed_iterations: usize,
+    repeated_iterations: usize,
+    step_end_projections: u64,
+    accuracy_halvings: Vec<AccuracyHalving>,
 }
 
 impl<'a> Run<'a> {
@@ -192,6 +251,9 @@ impl<'a> Run<'a> {
             snapshots: Vec::new(),
             iterations: 0,
             failed_iterations: 0,
+            repeated_iterations: 0,
+            step_end_projections: 0,
+            accuracy_halvings: Vec::new(),
         })
     }
 
@@ -225,6 +287,25 @@ impl<'a> Run<'a> {
             while let Some(to) = schedule.next_target(self.load_factor) {
                 match self.attempt(to)? {
                     AttemptOutcome::Converged(c) => self.commit(step, to, c),
+                    AttemptOutcome::TooCoarse(c) => {
+                        if schedule.cut_back(self.opts.max_cutbacks).is_ok() {
+                            self.repeated_iterations += c.iterations;
+                            self.accuracy_halvings.push(AccuracyHalving {
+                                step,
+                                from_load_factor: self.load_factor,
+                                attempted_load_factor: to,
+                                remainder: c
+                                    .step_end
+                                    .as_ref()
+                                    .and_then(|e| e.remainder)
+                                    .unwrap_or(f64::NAN),
+                                iterations: c.iterations,
+                            });
+                        } else {
+                            // cannot be halved further: accept it
+                            self.commit(step, to, c);
+                        }
+                    }
                     AttemptOutcome::CutBack(failed) => {
                         self.failed_iterations += failed.iterations;
                         self.cutbacks.push(Cutback {
@@ -260,6 +341,7 @@ impl<'a> Run<'a> {
         self.energy = c.energy;
         self.iterations += c.iterations;
         self.taylor = None;
+        let step_end = c.step_end.unwrap_or_default();
         self.records.push(StepRecord {
             step,
             load_factor: to,
@@ -272,6 +354,9 @@ impl<'a> Run<'a> {
             active_multipliers: c.points.active_multipliers,
             roundoff_floor: c.roundoff_floor,
             reactions: c.reactions,
+            repeats: step_end.repeats,
+            taylor_remainder: step_end.remainder,
+            unsettled: step_end.unsettled,
         });
         if self.opts.record_steps {
             self.snapshots.push(self.state());
@@ -311,6 +396,10 @@ impl<'a> Run<'a> {
             strain_energy: self.energy,
             newton_iterations: self.iterations,
             failed_iterations: self.failed_iterations,
+            repeats: self.records.iter().map(|r| r.repeats).sum(),
+            repeated_iterations: self.repeated_iterations,
+            step_end_projections: self.step_end_projections,
+            accuracy_halvings: self.accuracy_halvings.clone(),
             step_records: self.records.clone(),
             cutbacks: self.cutbacks.clone(),
             timings,

@@ -77,6 +77,11 @@
 //! max_iterations = 30         # per attempt
 //! max_cutbacks = 8            # bisections per scheduled step
 //! linear = "lu"               # linear solver: "lu" (default) or "ldlt"
+//! repair = true               # Types 1-6: repeat a step whose points end on
+//!                             # other master segments (default true)
+//! taylor_tolerance = 1e-4     # Types 1-6: halve a step whose Taylor
+//!                             # remainder / element size exceeds this
+//!                             # (default none)
 //! ```
 //!
 //! Bodies from a mesh file (`scenes/hertz.toml`, the Hertz quarter model):

@@ -413,6 +413,25 @@ pub struct NewtonSpec {
         skip_serializing_if = "is_default_linear"
     )]
     pub linear: LinearSolverKind,
+    /// `repair`: Types 1–6 only. At a converged step end every integration
+    /// point is re-paired by projection; when a point's master segment
+    /// changed (or it became paired or unpaired), the step is repeated from
+    /// its start with the Taylor expansion of the new pairing (see
+    /// [`crate::newton`], "Re-pairing at the step end"). Default `true`;
+    /// `false` turns it off (the paper's scheme, for comparisons). Not
+    /// written when it is the default.
+    #[serde(default = "default_true", skip_serializing_if = "is_true")]
+    pub repair: bool,
+    /// `taylor_tolerance`: Types 1–6 only, adaptive stepping. A converged
+    /// (sub)step whose largest Taylor remainder (the re-projected gap minus
+    /// the frozen expansion's gap at an active point, over the slave
+    /// segment's reference length) exceeds this is halved and redone
+    /// (recorded in [`crate::Solution::accuracy_halvings`], apart from the
+    /// divergence cut-backs; the halvings share `max_cutbacks`, and a step
+    /// that cannot be halved further is accepted). Positive; default none
+    /// (no adaptive stepping; not written).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub taylor_tolerance: Option<f64>,
 }
 
 impl Default for NewtonSpec {
@@ -422,12 +441,20 @@ impl Default for NewtonSpec {
             max_iterations: default_max_iterations(),
             max_cutbacks: default_max_cutbacks(),
             linear: LinearSolverKind::default(),
+            repair: true,
+            taylor_tolerance: None,
         }
     }
 }
 
 fn one() -> usize {
     1
+}
+fn default_true() -> bool {
+    true
+}
+fn is_true(b: &bool) -> bool {
+    *b
 }
 fn default_tolerance() -> f64 {
     1e-10

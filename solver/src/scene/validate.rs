@@ -152,7 +152,8 @@ impl Scene {
         Ok(())
     }
 
-    /// `[newton]`: a positive tolerance and at least one iteration.
+    /// `[newton]`: a positive tolerance, at least one iteration and a
+    /// positive `taylor_tolerance` if given.
     pub(super) fn check_newton(&self) -> Result<(), SceneError> {
         let n = &self.newton;
         if !(n.tolerance.is_finite() && n.tolerance > 0.0) {
@@ -160,6 +161,11 @@ impl Scene {
         }
         if n.max_iterations == 0 {
             return Err(self.invalid("newton.max_iterations", "must be at least 1"));
+        }
+        if n.taylor_tolerance
+            .is_some_and(|t| !(t.is_finite() && t > 0.0))
+        {
+            return Err(self.invalid("newton.taylor_tolerance", "must be positive"));
         }
         Ok(())
     }
