@@ -85,8 +85,9 @@ fn one_row_per_scene_and_type_with_the_expected_columns() {
 fn a_failing_type_is_recorded_not_fatal() {
     // The sliding benchmark at 10 steps with at most 20 Newton iterations
     // per step and no cut-back: the complete formulation converges (14
-    // iterations per sliding step); Type 1 has no contact Hessian, needs
-    // more and fails.
+    // iterations per sliding step); some types need more (which ones
+    // depends on how the types handle points crossing master nodes: with
+    // re-pairing, Types 3-6) and fail.
     let text = std::fs::read_to_string(scene_file("sliding"))
         .unwrap()
         .replace(
@@ -104,12 +105,7 @@ fn a_failing_type_is_recorded_not_fatal() {
     let study = &map.studies[0].1;
     assert!(study.run(Method::Complete, 10).unwrap().failure.is_none());
     let failed: Vec<_> = study.runs.iter().filter(|r| r.failure.is_some()).collect();
-    assert!(
-        failed
-            .iter()
-            .any(|r| r.method == Method::Approx(ApproxType::Type1)),
-        "Type 1 was expected to fail: {failed:?}"
-    );
+    assert!(!failed.is_empty(), "a type was expected to fail");
     for r in &failed {
         let Method::Approx(ty) = r.method else {
             unreachable!()
@@ -121,10 +117,13 @@ fn a_failing_type_is_recorded_not_fatal() {
     }
     // the CSV records it
     let csv = safety_map::csv(&map);
-    let line = csv.lines().nth(1).unwrap();
-    assert!(
-        line.contains(",fails,") && line.contains("no convergence"),
-        "{line}"
+    assert_eq!(
+        csv.lines()
+            .skip(1)
+            .filter(|line| line.contains(",fails,") && line.contains("no convergence"))
+            .count(),
+        failed.len(),
+        "{csv}"
     );
 }
 
