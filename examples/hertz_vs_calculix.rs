@@ -40,7 +40,10 @@ struct GapsimRow {
     scene: &'static str,
     solids: &'static str,
     linear: LinearSolverKind,
+    /// Wall time of each run.
     seconds: Vec<f64>,
+    /// CPU time (user plus system, all threads) of each run, when known.
+    cpu: Option<Vec<f64>>,
     measured: HertzMeasured,
     /// Current x of the outermost slave node with positive pressure.
     a_last: f64,
@@ -50,7 +53,9 @@ struct GapsimRow {
     fallbacks: usize,
     equations: usize,
     nodes: usize,
+    /// Median over the runs of `Timings::linear_solve`.
     linear_seconds: f64,
+    /// Median over the runs of `Timings::symbolic_factorisation`.
     symbolic_seconds: f64,
 }
 
@@ -58,6 +63,7 @@ struct GapsimRow {
 struct CalculixRow {
     solver: String,
     seconds: Vec<f64>,
+    cpu: Option<Vec<f64>>,
     threads: u64,
     penalty: f64,
     peak: f64,
@@ -97,6 +103,9 @@ fn read_calculix(path: &Path) -> Result<CalculixRow, Box<dyn Error>> {
     Ok(CalculixRow {
         solver: v["solver"].as_str().unwrap_or("CalculiX").to_string(),
         seconds,
+        cpu: v["cpu_seconds_all"]
+            .as_array()
+            .and_then(|a| a.iter().map(serde_json::Value::as_f64).collect()),
         threads: num("threads")? as u64,
         penalty: num("penalty")?,
         peak: num("peak")?,
@@ -116,18 +125,25 @@ fn run(
     linear: LinearSolverKind,
     repeat: usize,
 ) -> Result<GapsimRow, Box<dyn Error>> {
-    let mut seconds = Vec::new();
+    let (mut seconds, mut cpu, mut lin, mut sym) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let mut last = None;
     for _ in 0..repeat {
+        let cpu_start = process_cpu_seconds();
         let start = Instant::now();
         let s = Scene::from_file(scenes.join(scene))?;
         let mut options = SolveOptions::from_scene(&s);
         options.linear = linear;
         let sol = solve(&s, &options).map_err(|e| format!("{scene} ({linear}): {e}"))?;
         seconds.push(start.elapsed().as_secs_f64());
+        if let (Some(a), Some(b)) = (cpu_start, process_cpu_seconds()) {
+            cpu.push(b - a);
+        }
+        lin.push(sol.timings.linear_solve.as_secs_f64());
+        sym.push(sol.timings.symbolic_factorisation.as_secs_f64());
         eprintln!(
-            "gapsim {scene} --linear {linear}: {:.3} s",
-            seconds.last().copied().unwrap_or_default()
+            "gapsim {scene} --linear {linear}: {:.3} s (cpu {:.2} s)",
+            seconds.last().copied().unwrap_or_default(),
+            cpu.last().copied().unwrap_or(f64::NAN)
         );
         last = Some(sol);
     }
@@ -147,10 +163,27 @@ fn run(
         fallbacks: sol.linear_fallbacks,
         equations: sol.equations,
         nodes: sol.mesh.nodes_ref.len(),
-        linear_seconds: sol.timings.linear_solve.as_secs_f64(),
-        symbolic_seconds: sol.timings.symbolic_factorisation.as_secs_f64(),
+        linear_seconds: median(&lin),
+        symbolic_seconds: median(&sym),
+        cpu: (cpu.len() == seconds.len()).then_some(cpu),
         seconds,
     })
+}
+
+/// CPU time (user plus system) of this process so far, all threads: fields
+/// 14 and 15 of `/proc/self/stat`, in USER_HZ = 100 ticks per second (Linux);
+/// `None` elsewhere.
+fn process_cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // the fields after the command name in parentheses start at field 3
+    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
+    let ticks = |i: usize| fields.get(i - 3)?.parse::<u64>().ok();
+    Some((ticks(14)? + ticks(15)?) as f64 / 100.0)
+}
+
+fn seconds_cell(v: &Option<Vec<f64>>) -> String {
+    v.as_deref()
+        .map_or_else(|| "-".to_string(), |v| format!("{:.2}", median(v)))
 }
 
 fn percent(v: Option<f64>) -> String {
@@ -211,8 +244,13 @@ fn main() -> Result<(), Box<dyn Error>> {
         "Hertz: a = {a:.4}, p0 = {p0:.4} (plane strain, E = 200, nu = 0.3, R = 10, P = 8.63); \
          the quarter model `scenes/hertz.msh` ({} nodes). Time: median of {repeat} runs on this \
          machine ({threads} cores, load average {load_before} before the gapsim runs, \
-         {load_after} after); gapsim: scene and mesh reading plus `solve`, in-process; \
-         CalculiX: the whole `ccx` process.",
+         {load_after} after); gapsim: scene and mesh reading plus `solve`, in-process, \
+         rayon's pool (RAYON_NUM_THREADS, default: one thread per core); CalculiX: the \
+         whole `ccx` process. CPU: user plus system time of all threads (median), less \
+         sensitive than wall time to other work on the machine. Speed-up: CalculiX's \
+         wall time over gapsim's. Errors against Hertz: peak nodal pressure and the \
+         least-squares fit p^2 = A + B x^2 (`gapsim::hertz::measure`) against p0 and a; \
+         last node: the current x of the outermost slave node in contact against a.",
         rows[0].nodes
     )?;
     if let Some(c) = &ccx {
@@ -235,17 +273,18 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
     writeln!(
         md,
-        "\n| solver | solids | linear solver | time (s) | speed-up vs CalculiX | peak p (%) | fit p0 (%) | fit a (%) | last node a (%) | Newton iterations | linear solve (s) | symbolic (s) |"
+        "\n| solver | solids | linear solver | time (s) | CPU (s) | speed-up vs CalculiX | peak p (%) | fit p0 (%) | fit a (%) | last node a (%) | Newton iterations | linear solve (s) | symbolic (s) |"
     )?;
     writeln!(
         md,
-        "|---|---|---|---:|---:|---:|---:|---:|---:|---|---:|---:|"
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|"
     )?;
     if let (Some(c), Some(t)) = (&ccx, ccx_seconds) {
         writeln!(
             md,
-            "| {} | small | SPOOLES | {t:.2} | 1.0 | {} | {} | {} | {} | {} ({} increments) | - | - |",
+            "| {} | small | SPOOLES | {t:.2} | {} | 1.0 | {} | {} | {} | {} | {} ({} increments) | - | - |",
             c.solver,
+            seconds_cell(&c.cpu),
             percent(Some(rel(c.peak, p0))),
             percent(c.p0_fit.map(|v| rel(v, p0))),
             percent(c.a_fit.map(|v| rel(v, a))),
@@ -270,8 +309,9 @@ fn main() -> Result<(), Box<dyn Error>> {
         }
         writeln!(
             md,
-            "| gapsim | {} | {linear} | {t:.2} | {} | {} | {} | {} | {} | {newton} | {:.2} | {:.3} |",
+            "| gapsim | {} | {linear} | {t:.2} | {} | {} | {} | {} | {} | {} | {newton} | {:.2} | {:.3} |",
             r.solids,
+            seconds_cell(&r.cpu),
             ccx_seconds.map_or("-".to_string(), |c| format!("{:.1}", c / t)),
             percent(Some(r.measured.peak_error(&SCENES))),
             percent(r.measured.p0_fit_error(&SCENES)),
@@ -286,12 +326,17 @@ fn main() -> Result<(), Box<dyn Error>> {
             md,
             "\nTarget (issue #10): gapsim at least 10x faster than CalculiX with the peak pressure within 2 % of p0."
         )?;
+        let ccx_cpu = ccx.as_ref().and_then(|c| c.cpu.as_deref()).map(median);
         for r in &rows {
             let speedup = c / median(&r.seconds);
             let err = r.measured.peak_error(&SCENES);
+            let cpu_ratio = match (ccx_cpu, r.cpu.as_deref()) {
+                (Some(c), Some(g)) => format!("; CPU time {:.1}x less", c / median(g)),
+                _ => String::new(),
+            };
             writeln!(
                 md,
-                "- {} solids, {}: {speedup:.1}x ({}), peak {:+.2} % ({})",
+                "- {} solids, {}: wall time {speedup:.1}x ({}{cpu_ratio}), peak {:+.2} % ({})",
                 r.solids,
                 r.linear,
                 if speedup >= 10.0 { "met" } else { "missed" },
@@ -302,14 +347,14 @@ fn main() -> Result<(), Box<dyn Error>> {
     }
 
     let mut csv = String::from(
-        "solver,scene,solids,linear,nodes,equations,seconds_median,seconds_all,speedup_vs_calculix,\
+        "solver,scene,solids,linear,nodes,equations,seconds_median,seconds_all,cpu_seconds_median,speedup_vs_calculix,\
          peak,peak_error,p0_fit,p0_fit_error,a_fit,a_fit_error,a_last,newton_iterations,failed_iterations,\
          cutbacks,increments,lu_fallbacks,linear_solve_seconds,symbolic_seconds\n",
     );
     if let (Some(c), Some(t)) = (&ccx, ccx_seconds) {
         writeln!(
             csv,
-            "{},hertz.msh,small,spooles,{},,{t:.3},{},1,{:.6e},{:.6e},{},{},{},{},{:.6e},{},,,{},,,",
+            "{},hertz.msh,small,spooles,{},,{t:.3},{},{},1,{:.6e},{:.6e},{},{},{},{},{:.6e},{},,,{},,,",
             c.solver,
             c.nodes,
             c.seconds
@@ -317,6 +362,9 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .map(|s| format!("{s:.3}"))
                 .collect::<Vec<_>>()
                 .join(";"),
+            c.cpu
+                .as_deref()
+                .map_or(String::new(), |v| format!("{:.2}", median(v))),
             c.peak,
             rel(c.peak, p0),
             csv_opt(c.p0_fit),
@@ -333,7 +381,7 @@ fn main() -> Result<(), Box<dyn Error>> {
         let m = &r.measured;
         writeln!(
             csv,
-            "gapsim,{},{},{},{},{},{t:.3},{},{},{:.6e},{:.6e},{},{},{},{},{:.6e},{},{},{},,{},{:.3},{:.3}",
+            "gapsim,{},{},{},{},{},{t:.3},{},{},{},{:.6e},{:.6e},{},{},{},{},{:.6e},{},{},{},,{},{:.3},{:.3}",
             r.scene,
             r.solids,
             r.linear,
@@ -344,6 +392,9 @@ fn main() -> Result<(), Box<dyn Error>> {
                 .map(|s| format!("{s:.3}"))
                 .collect::<Vec<_>>()
                 .join(";"),
+            r.cpu
+                .as_deref()
+                .map_or(String::new(), |v| format!("{:.2}", median(v))),
             ccx_seconds.map_or(String::new(), |c| format!("{:.2}", c / t)),
             m.peak,
             m.peak_error(&SCENES),

@@ -22,8 +22,8 @@ CalculiX deck `hertz.inp` with the same problem as scenes/hertz.toml:
   200 increments; contact stresses (CSTR) and displacements (U) to the .frd.
 
 Then runs `ccx -i hertz` REPEAT times with OMP_NUM_THREADS=THREADS, each
-timed as a whole process (wall clock, like `time`), and reads the last run's
-results:
+timed as a whole process (wall clock, like `time`; also its CPU time, user
+plus system, of all threads), and reads the last run's results:
 
 - pressures: CPRESS of the last increment's CONTACT block of the .frd at the
   slave nodes (cylinder_surface), at the current x = x_ref + u_x (U of the
@@ -233,22 +233,26 @@ def main():
         sys.exit(f'calculix-hertz: {e}')
 
     env = dict(os.environ, OMP_NUM_THREADS=str(args.threads))
-    walls = []
+    walls, cpus = [], []
     for i in range(args.repeat):
         for ext in ('frd', 'dat', 'sta', 'cvg'):
             try:
                 os.remove(os.path.join(args.workdir, 'hertz.' + ext))
             except FileNotFoundError:
                 pass
+        cpu_start = os.times()
         start = time.perf_counter()
         r = subprocess.run([args.ccx, '-i', 'hertz'], cwd=args.workdir, env=env,
                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         walls.append(time.perf_counter() - start)
+        cpu_end = os.times()
+        cpus.append(cpu_end.children_user + cpu_end.children_system
+                    - cpu_start.children_user - cpu_start.children_system)
         with open(os.path.join(args.workdir, 'ccx.log'), 'w') as f:
             f.write(r.stdout)
         if r.returncode != 0 or 'Job finished' not in r.stdout:
             sys.exit(f'calculix-hertz: ccx failed (exit {r.returncode}); see {args.workdir}/ccx.log')
-        print(f'calculix-hertz: run {i + 1}/{args.repeat}: {walls[-1]:.2f} s', file=sys.stderr)
+        print(f'calculix-hertz: run {i + 1}/{args.repeat}: {walls[-1]:.2f} s (cpu {cpus[-1]:.2f} s)', file=sys.stderr)
 
     frd = os.path.join(args.workdir, 'hertz.frd')
     contact = read_frd_block(frd, 'CONTACT')     # COPEN CSLIP1 CSLIP2 CPRESS CSHEAR1 CSHEAR2
@@ -286,6 +290,8 @@ def main():
         'repeat': args.repeat,
         'seconds': statistics.median(walls),
         'seconds_all': walls,
+        'cpu_seconds': statistics.median(cpus),
+        'cpu_seconds_all': cpus,
         'peak': peak,
         'peak_error': rel(peak, p0_hertz),
         'p0_fit': fit and fit[0],
@@ -300,7 +306,7 @@ def main():
     if args.format == 'json':
         print(json.dumps(out, indent=1))
     else:
-        keys = [k for k in out if k != 'seconds_all']
+        keys = [k for k in out if not k.endswith('_all')]
         print(','.join(keys))
         print(','.join('' if out[k] is None else str(out[k]) for k in keys))
 
