@@ -250,8 +250,14 @@ fn main() -> Result<(), Box<dyn Error>> {
          sensitive than wall time to other work on the machine. Speed-up: CalculiX's \
          wall time over gapsim's. Errors against Hertz: peak nodal pressure and the \
          least-squares fit p^2 = A + B x^2 (`gapsim::hertz::measure`) against p0 and a; \
-         last node: the current x of the outermost slave node in contact against a.",
-        rows[0].nodes
+         last node: the current x of the outermost slave node in contact against a. \
+         Solids: finite = `scenes/hertz.toml` (St Venant–Kirchhoff, geometrically \
+         nonlinear: its strain scale a / 2R = {:.0} % at the contact is outside Hertz's linear \
+         theory, see hertz-refinement.md), small = `scenes/hertz-small-strain.toml` \
+         (linear elasticity, Hertz's assumptions, as CalculiX here); both one load step \
+         with the complete formulation and Lagrange multipliers, as `gapsim run SCENE`.",
+        rows[0].nodes,
+        100.0 * a / (2.0 * SCENES.radius)
     )?;
     if let Some(c) = &ccx {
         writeln!(
