@@ -182,6 +182,16 @@ pub fn run(args: &RunArgs) -> CommandResult {
         1e3 * t.contact_evaluation.as_secs_f64(),
         1e3 * t.linear_solve.as_secs_f64()
     );
+    println!(
+        "factorisation   {} (symbolic {:.2} ms in {} analyses, numeric + solve {:.2} ms)",
+        options.linear,
+        1e3 * t.symbolic_factorisation.as_secs_f64(),
+        sol.symbolic_factorisations,
+        1e3 * t
+            .linear_solve
+            .saturating_sub(t.symbolic_factorisation)
+            .as_secs_f64()
+    );
     if options.linear != LinearSolverKind::Lu {
         println!(
             "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
