@@ -91,8 +91,8 @@ fn a_failing_type_is_recorded_not_fatal() {
     let text = std::fs::read_to_string(scene_file("sliding"))
         .unwrap()
         .replace(
-            "method = \"complete\"",
-            "method = \"complete\"\n\n[newton]\nmax_iterations = 20\nmax_cutbacks = 0",
+            "repair = true",
+            "repair = true\nmax_iterations = 20\nmax_cutbacks = 0",
         );
     let scene = Scene::from_toml_str(&text, "sliding (capped Newton)").unwrap();
     let scenes = [MapScene {

@@ -417,10 +417,12 @@ pub struct NewtonSpec {
     /// point is re-paired by projection; when a point's master segment
     /// changed (or it became paired or unpaired), the step is repeated from
     /// its start with the Taylor expansion of the new pairing (see
-    /// [`crate::newton`], "Re-pairing at the step end"). Default `true`;
-    /// `false` turns it off (the paper's scheme, for comparisons). Not
-    /// written when it is the default.
-    #[serde(default = "default_true", skip_serializing_if = "is_true")]
+    /// [`crate::newton`], "Re-pairing at the step end"). Default `false`
+    /// (the paper's scheme: each point keeps the expansion of the segment it
+    /// started the step on); a scene that slides over many master segments
+    /// sets `true` (`scenes/sliding.toml`). The Taylor remainder is
+    /// measured and reported either way. Not written when it is the default.
+    #[serde(default, skip_serializing_if = "is_false")]
     pub repair: bool,
     /// `taylor_tolerance`: Types 1–6 only, adaptive stepping. A converged
     /// (sub)step whose largest Taylor remainder (the re-projected gap minus
@@ -441,7 +443,7 @@ impl Default for NewtonSpec {
             max_iterations: default_max_iterations(),
             max_cutbacks: default_max_cutbacks(),
             linear: LinearSolverKind::default(),
-            repair: true,
+            repair: false,
             taylor_tolerance: None,
         }
     }
@@ -450,11 +452,8 @@ impl Default for NewtonSpec {
 fn one() -> usize {
     1
 }
-fn default_true() -> bool {
-    true
-}
-fn is_true(b: &bool) -> bool {
-    *b
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 fn default_tolerance() -> f64 {
     1e-10
