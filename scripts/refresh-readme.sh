@@ -33,4 +33,14 @@ splice patch target/patch-table.md
 cargo run -q --release --example stability_sweep > target/stability-table.md
 splice stability target/stability-table.md
 
+cargo run -q --release --example sliding_curves -- --steps 20 --out docs/sliding
+cargo run -q --release -- safety-map --out docs/safety-map
+splice safety-map docs/safety-map/safety-map.md
+# scripts/hertz-vs-calculix.sh needs CalculiX (calculix-ccx); when it is
+# installed, refresh its table too.
+if command -v ccx >/dev/null 2>&1; then
+  scripts/hertz-vs-calculix.sh
+  splice calculix docs/hertz/hertz-vs-calculix.md
+fi
+
 cargo run -q --release -- study --out docs/study --readme README.md
