@@ -48,21 +48,7 @@ fn errors(sol: &Solution) -> Errors {
         .iter()
         .map(|&lambda| (-lambda - PRESSURE).abs() / PRESSURE)
         .fold(0.0, f64::max);
-    let u: Vec<f64> = sol
-        .final_state
-        .displacements
-        .iter()
-        .flatten()
-        .copied()
-        .collect();
-    let mut points = Vec::new();
-    for e in sol.mesh.element_ids() {
-        let material = &sol.mesh.bodies[sol.mesh.element_body[e.index()]].material;
-        points.extend(
-            sol.mesh.geometry[e.index()]
-                .point_stresses(&sol.mesh.element_displacements(e, &u), material),
-        );
-    }
+    let points = sol.point_stresses();
     let n = points.len() as f64;
     let mut stress: f64 = 0.0;
     let measures: [fn(&QuadStress) -> [f64; 3]; 2] = [|s| s.pk2, |s| s.cauchy];

@@ -364,6 +364,28 @@ pub struct Solution {
 }
 
 impl Solution {
+    /// The stresses at every integration point of every element of the
+    /// final state, element after element (four per quadrilateral, one per
+    /// triangle).
+    pub fn point_stresses(&self) -> Vec<crate::quad::QuadStress> {
+        let u: Vec<f64> = self
+            .final_state
+            .displacements
+            .iter()
+            .flatten()
+            .copied()
+            .collect();
+        let mut points = Vec::new();
+        for e in self.mesh.element_ids() {
+            let material = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
+            points.extend(
+                self.mesh.geometry[e.index()]
+                    .point_stresses(&self.mesh.element_displacements(e, &u), material),
+            );
+        }
+        points
+    }
+
     /// Newton iterations per scheduled step (sub-steps added up).
     pub fn iterations_per_step(&self) -> Vec<usize> {
         let mut out = vec![0; self.steps];
