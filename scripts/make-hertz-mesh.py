@@ -36,6 +36,9 @@ The checked-in meshes are regenerated with
     python3 scripts/make-hertz-mesh.py 0.5 -o scenes/hertz-coarse.msh
     python3 scripts/make-hertz-mesh.py 0.5 --binary \\
         -o solver/src/mesh/gmsh/testdata/hertz-coarse-binary.msh
+    for h in 0.8 0.4 0.2 0.05; do    # the refinement study's meshes
+        python3 scripts/make-hertz-mesh.py $h -o scenes/hertz-refinement/h$h.msh
+    done
     python3 scripts/make-hertz-mesh.py 0.5 --triangles -o scenes/hertz-tri-coarse.msh
 
 Needs the `gmsh` Python package (`pip install gmsh`); the output depends on
