@@ -161,7 +161,7 @@ fn run() -> Result<(), String> {
     let csv = args
         .out
         .join(format!("sliding-reactions-{}.csv", args.steps));
-    std::fs::write(&csv, to_csv(&curves))
+    gapsim::solver::out::write_atomic(&csv, to_csv(&curves))
         .map_err(|e| format!("cannot write {}: {e}", csv.display()))?;
     let png = args
         .out
