@@ -388,6 +388,25 @@ steps = [2]
     }
 
     #[test]
+    fn coordinate_pairs_take_exactly_two_numbers() {
+        for (from, to, field) in [
+            ("origin = [0.0, 0.0]", "origin = [0.0, 0.0, 5.0]", "body[0].origin"),
+            ("size = [2.0, 1.0]", "size = [2.0]", "body[0].size"),
+            ("at = [2.0, 1.0]", "at = [2.0, 1.0, 0.0]", "load[0].at"),
+            ("force = [0.0, -1.0]", "force = [0.0, -1.0, 3.0]", "load[0].force"),
+        ] {
+            let e = err(&GOOD.replace(from, to));
+            assert!(
+                matches!(&e, SceneError::Syntax { field: f, message, .. }
+                    if f == field && message.starts_with("needs exactly two numbers [x, y], got ")),
+                "{to}: {e:?}"
+            );
+        }
+        // exactly two still parse
+        Scene::from_toml_str(GOOD, "good.toml").unwrap();
+    }
+
+    #[test]
     fn unknown_and_missing_fields_are_named() {
         let msg = err(&GOOD.replace("ny = 1", "ny = 1\nnxx = 3")).to_string();
         assert!(msg.contains("nxx") && msg.contains("body[0]"), "{msg}");

@@ -92,10 +92,18 @@ pub struct BodySpec {
     pub name: String,
     /// `origin`: the lower-left corner `[x, y]` of a block (reference
     /// frame, finite).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_pair"
+    )]
     pub origin: Option<[f64; 2]>,
     /// `size`: a block's width and height (positive, finite).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_pair"
+    )]
     pub size: Option<[f64; 2]>,
     /// `nx`: a block's elements along x (at least 1; times `[refine] x`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -164,7 +172,11 @@ pub struct FixSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y: Option<f64>,
     /// `at`: the node(s) at this reference point (not with `x`/`y`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_pair"
+    )]
     pub at: Option<[f64; 2]>,
     /// `dofs`: the components fixed (default `"xy"`).
     #[serde(default)]
@@ -182,13 +194,18 @@ pub struct LoadSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// `at`: the node's reference position (or `group`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_pair"
+    )]
     pub at: Option<[f64; 2]>,
     /// `group`: a physical point (or curve) of the `[mesh]` file with
     /// exactly one node (instead of `at`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
     /// `force`: `[fx, fy]` at load factor one (finite).
+    #[serde(deserialize_with = "de_pair")]
     pub force: [f64; 2],
     /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
     /// two points, load factors strictly increasing, all finite): at load
@@ -232,7 +249,11 @@ pub struct PrescribeSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y: Option<f64>,
     /// `at`: the node(s) at this reference point (not with `x`/`y`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_pair"
+    )]
     pub at: Option<[f64; 2]>,
     /// `ux`: the x displacement at load factor one (finite).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -285,6 +306,7 @@ pub struct TractionSpec {
     pub group: String,
     /// `force_per_length`: `[tx, ty]` per unit reference length at load
     /// factor one (finite).
+    #[serde(deserialize_with = "de_pair")]
     pub force_per_length: [f64; 2],
     /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
     /// two points, load factors strictly increasing, all finite): at load
@@ -472,6 +494,21 @@ fn default_formulation() -> Formulation {
 }
 fn default_method() -> Method {
     Method::Complete
+}
+
+/// Exactly two numbers: a plain `[f64; 2]` would take the first two of a
+/// longer list silently.
+fn pair_from<E: serde::de::Error>(v: &[f64]) -> Result<[f64; 2], E> {
+    <[f64; 2]>::try_from(v)
+        .map_err(|_| E::custom(format!("needs exactly two numbers [x, y], got {}", v.len())))
+}
+
+fn de_pair<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+    pair_from(&Vec::<f64>::deserialize(d)?)
+}
+
+fn de_opt_pair<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 2]>, D::Error> {
+    pair_from(&Vec::<f64>::deserialize(d)?).map(Some)
 }
 
 /// A load curve's points, each exactly two numbers (a `[f64; 2]` alone
