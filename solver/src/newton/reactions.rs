@@ -20,15 +20,20 @@
 //! item that prescribes it, see `scene/build.rs`), so nothing is counted
 //! twice.
 //!
-//! The full residual is assembled with [`DofMap::all_free`] by the same
+//! The residual is assembled with [`DofMap::all_free`] by the same
 //! assembly functions as the Newton system (so every element kind and the
 //! contact contributions are included as the solve sees them), once per
-//! converged state of a model with support groups.
+//! converged state of a model with support groups. Of the solid elements
+//! only those with a prescribed dof are assembled, and only their forces
+//! (no tangent): the other elements add nothing to the entries read, and
+//! the kept ones add in the same order as in the full assembly, so the
+//! reactions are the full residual's entries to the bit.
 
-use crate::assembly::{
-    DofMap, System, add_external, assemble_contact, assemble_solid, assemble_ties,
-};
+use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_ties};
 use crate::contact::{NodeTie, PointEval};
+use crate::ids::ElementId;
+use crate::model::Model;
+use crate::par;
 
 use super::setup::Setup;
 
@@ -57,7 +62,7 @@ impl Setup<'_> {
         let mut sys = System::new(all.n_eq() + ties.len());
         assemble_contact(&self.layout, evals, lambda, active, &all, &mut sys);
         assemble_ties(ties, evals, others, &all, &mut sys);
-        assemble_solid(model, &all, u, &mut sys);
+        add_supported_element_forces(model, &all, u, &mut sys.residual);
         add_external(model, &all, to, &mut sys);
         model
             .supports
@@ -70,5 +75,37 @@ impl Setup<'_> {
                 r
             })
             .collect()
+    }
+}
+
+/// Adds the internal forces of the elements with a prescribed dof to
+/// `residual`, in element order (module docs: the prescribed entries equal
+/// the full solid assembly's).
+fn add_supported_element_forces(model: &Model, all: &DofMap, u: &[f64], residual: &mut [f64]) {
+    let mesh = &model.mesh;
+    let mut prescribed = vec![false; u.len()];
+    for p in &model.prescribed {
+        prescribed[p.dof.index()] = true;
+    }
+    let supported: Vec<usize> = (0..mesh.element_count())
+        .filter(|&e| {
+            let eqs = all.element_eqs(&mesh.elements[e]);
+            eqs.iter().flatten().any(|eq| prescribed[eq.index()])
+        })
+        .collect();
+    let forces: Vec<Vec<f64>> = par::map(supported.len(), 64, |i| {
+        let e = ElementId::new(supported[i]);
+        let material = &mesh.bodies[mesh.element_body[e.index()]].material;
+        let response =
+            mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material);
+        response.f_int().to_vec()
+    });
+    for (&e, f_int) in supported.iter().zip(&forces) {
+        let eqs = all.element_eqs(&mesh.elements[e]);
+        for (eq, f) in eqs.iter().zip(f_int) {
+            if let Some(eq) = eq {
+                residual[eq.index()] += f;
+            }
+        }
     }
 }

@@ -390,10 +390,18 @@ steps = [2]
     #[test]
     fn coordinate_pairs_take_exactly_two_numbers() {
         for (from, to, field) in [
-            ("origin = [0.0, 0.0]", "origin = [0.0, 0.0, 5.0]", "body[0].origin"),
+            (
+                "origin = [0.0, 0.0]",
+                "origin = [0.0, 0.0, 5.0]",
+                "body[0].origin",
+            ),
             ("size = [2.0, 1.0]", "size = [2.0]", "body[0].size"),
             ("at = [2.0, 1.0]", "at = [2.0, 1.0, 0.0]", "load[0].at"),
-            ("force = [0.0, -1.0]", "force = [0.0, -1.0, 3.0]", "load[0].force"),
+            (
+                "force = [0.0, -1.0]",
+                "force = [0.0, -1.0, 3.0]",
+                "load[0].force",
+            ),
         ] {
             let e = err(&GOOD.replace(from, to));
             assert!(
