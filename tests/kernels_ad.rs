@@ -79,11 +79,16 @@ fn ad(f: Formulation) -> &'static AdFormulation {
         ))
     }
     thread_local! {
-        static AD: [&'static AdFormulation; 2] = [parse("slave-normal"), parse("closest-point")];
+        static AD: [&'static AdFormulation; 3] = [
+            parse("slave-normal"),
+            parse("closest-point"),
+            parse("quadratic-slave-normal"),
+        ];
     }
     AD.with(|a| match f {
         Formulation::SlaveNormal => a[0],
         Formulation::ClosestPoint => a[1],
+        Formulation::QuadraticSlaveNormal => a[2],
     })
 }
 
@@ -91,7 +96,7 @@ fn ad(f: Formulation) -> &'static AdFormulation {
 /// formulation's own.
 fn normal(f: Formulation) -> Normal {
     match f {
-        Formulation::SlaveNormal => Normal::Slave,
+        Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => Normal::Slave,
         Formulation::ClosestPoint => Normal::Master,
     }
 }
@@ -391,6 +396,9 @@ fn published(f: Formulation) -> Published {
                 0.158599129064,
             ],
         },
+        Formulation::QuadraticSlaveNormal => {
+            panic!("the worked example is published for the two-node formulations")
+        }
     }
 }
 
@@ -598,7 +606,9 @@ fn random_uniform_configurations() {
             let t_m = master_tangent(&q);
             let (ls, lm) = (dot(t_s, t_s).sqrt(), dot(t_m, t_m).sqrt());
             let cond = match f {
-                Formulation::SlaveNormal => dot(t_m, t_s).abs() / (ls * lm),
+                Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => {
+                    dot(t_m, t_s).abs() / (ls * lm)
+                }
                 Formulation::ClosestPoint => 1.0,
             };
             if ls < 0.1 || lm < 0.1 || cond < 0.1 || reference_xi(f, &q, xi_s, 5.0).is_none() {
@@ -1139,7 +1149,7 @@ fn types_are_distinguishable() {
         let hess_of = |k: usize| outs[k].hess.unwrap_or_else(M8::zeros);
         let grad1_error = (outs[0].grad - outs[5].grad).norm() / outs[5].grad.norm();
         match f {
-            Formulation::SlaveNormal => {
+            Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => {
                 assert!(grad1_error > 1e-3, "{f}: Type 1 gradient is exact?")
             }
             Formulation::ClosestPoint => assert!(

@@ -17,7 +17,8 @@
 //!
 //! * `inputs!(p1, p2, p3, p4; s)` declares the nodal points (2-vectors, in
 //!   kernel order: slave 1, slave 2, master 1, master 2 — the coordinates
-//!   `q`) and the slave parameter `s` (`xi_s`); they become the kernels'
+//!   `q`; or six points for 3-node segments: the slave's end, end, mid
+//!   nodes, then the master's) and the slave parameter `s` (`xi_s`); they become the kernels'
 //!   [`Signature`]. [`Formulation::parse`] accepts the shape the
 //!   contact-kernels run-time serves ([`Arity::SegmentPair`]);
 //!   [`Formulation::parse_with`] any number of points and parameters.
@@ -162,8 +163,10 @@ pub struct Formulation {
 /// Which `inputs!` declarations a parse accepts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Arity {
-    /// Exactly what the contact-kernels run-time serves today: four points
-    /// (a slave and a master two-node segment) and one parameter (`xi_s`).
+    /// What the contact-kernels run-time serves: a slave and a master
+    /// segment with equally many nodes — four points (two-node straight
+    /// segments) or six (three-node quadratic segments, Gmsh line3 order:
+    /// end, end, mid) — and one parameter (`xi_s`).
     SegmentPair,
     /// Any number of points (at least one) and of parameters: for
     /// generators and tests that do not feed the contact-kernels run-time.
@@ -391,13 +394,14 @@ impl Builder {
             .filter(|s| !s.is_empty())
             .collect();
         let fits = match self.arity {
-            Arity::SegmentPair => points.len() == 4 && params.len() == 1,
+            Arity::SegmentPair => matches!(points.len(), 4 | 6) && params.len() == 1,
             Arity::Any => !points.is_empty() && points.iter().all(|p| !p.is_empty()),
         };
         if !fits {
             let expected = match self.arity {
                 Arity::SegmentPair => {
-                    "four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)`"
+                    "four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)` \
+                     (or six for 3-node segments: `inputs!(xs1, xs2, xs3, xm1, xm2, xm3; xi_s)`)"
                 }
                 Arity::Any => "at least one point: `inputs!(p1, ...; s1, ...)`",
             };

@@ -63,8 +63,8 @@ impl Shape {
         let xs2 = [xs1[0] + t_s[0], xs1[1] + t_s[1]];
         let x_s = lerp(xs1, xs2, self.xi_s);
         let n = match f {
-            Formulation::SlaveNormal => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
             Formulation::ClosestPoint => [-t_m[1] / self.master_len, t_m[0] / self.master_len],
+            _ => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
         };
         let p = [x_s[0] + self.gap * n[0], x_s[1] + self.gap * n[1]];
         let c_m = [
