@@ -522,6 +522,41 @@ fn the_verifier_passes_on_the_compiled_kernels() {
     }
 }
 
+/// The same verifier loop on the compiled 3-node kernels
+/// (`quadratic-slave-normal`, 12 coordinates, through [`Kernel::eval`]) and
+/// the verifier's 3-node families ([`verify::configurations`]: curved,
+/// near-straight, strongly curved, uniform, far, scales, rotations, steep,
+/// ends), every type within [`TOL`].
+#[test]
+fn the_verifier_passes_on_the_compiled_quadratic_kernels() {
+    let f = Formulation::QuadraticSlaveNormal;
+    let handles: Vec<Kernel> = ApproxType::ALL
+        .iter()
+        .map(|&ty| Kernel::new(f, ty).expect("the workspace tests compile it in"))
+        .collect();
+    let kernel = |ty: usize, q: &[f64], params: &[f64]| {
+        let k = &handles[ty - 1];
+        let mut out = GapOut::new(k);
+        k.eval(q, params[0], &mut out).ok().map(|()| KernelOutput {
+            gap: out.gap(),
+            xi_m: out.xi_m(),
+            grad: out.grad().to_vec(),
+            hess: out.hess().map(<[f64]>::to_vec),
+        })
+    };
+    let configs = verify::configurations(ad(f)).expect("3-node families");
+    assert!(configs.iter().all(|c| c.q.len() == 12));
+    let report = verify::verify(ad(f), &kernel, &configs, TOL).expect("verifier runs");
+    eprintln!("{report}");
+    assert!(report.passed(), "{f}:\n{report}");
+    assert!(
+        report.checked * 10 >= configs.len() * 8,
+        "{f}: only {} of {} configurations compared",
+        report.checked,
+        configs.len()
+    );
+}
+
 // ---------------------------------------------------------------------------
 // Kernels against the references.
 // ---------------------------------------------------------------------------

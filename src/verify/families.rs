@@ -26,7 +26,10 @@
 //! on [`quadratic`]: the same families built from a [`QuadShape`] (each
 //! segment curved by its mid node's offset across the chord, `bow`, and
 //! along it, `shift`, in chord lengths; `|shift| < 1/4` keeps it unfolded),
-//! constructed along the slave normal at `x_s(xi_s)`:
+//! constructed along the slave normal at `x_s(xi_s)`, each redrawn until the
+//! master tangent at `xi_m` is at most 89° from the slave tangent at `xi_s`
+//! (the two-node `steep` family's limit: the projection's conditioning
+//! `1 / cos` of that angle amplifies the Hessian's errors by its square):
 //!
 //! | family | configurations |
 //! |---|---|
@@ -365,6 +368,25 @@ impl QuadShape {
         q
     }
 
+    /// `|cos|` of the angle between the slave tangent at `xi_s` and the
+    /// master tangent at `xi_m`: the projection's conditioning (its
+    /// derivatives grow like `1 / cos`, their errors like `1 / cos^2`).
+    pub fn tangent_cos(&self) -> f64 {
+        let q = self.q();
+        let node = |i: usize| [q[2 * i], q[2 * i + 1]];
+        let t_s = combine([node(0), node(1), node(2)], shape3_xi(self.xi_s));
+        let t_m = combine([node(3), node(4), node(5)], shape3_xi(self.xi_m));
+        let norm = |t: [f64; 2]| (t[0] * t[0] + t[1] * t[1]).sqrt();
+        (t_s[0] * t_m[0] + t_s[1] * t_m[1]).abs() / (norm(t_s) * norm(t_m))
+    }
+
+    /// Whether the tangents at the constructed point are at most 89° apart
+    /// (the two-node `steep` family's limit), so that the tolerance holds
+    /// with room to spare.
+    pub fn well_conditioned(&self) -> bool {
+        self.tangent_cos() >= 89.0_f64.to_radians().cos()
+    }
+
     /// A random constructed shape (the `random` family's distribution).
     pub fn random(rng: &mut ChaCha8Rng) -> QuadShape {
         let slave_len = rng.random_range(0.2..5.0);
@@ -412,6 +434,21 @@ pub const QUADRATIC_WORKED_Q: [f64; 12] = [
 /// Its `xi_s`.
 pub const QUADRATIC_WORKED_XI_S: f64 = 0.5;
 
+/// The first draw of [`QuadShape::random`], modified by `modify`, that is
+/// [`QuadShape::well_conditioned`].
+fn conditioned(
+    rng: &mut ChaCha8Rng,
+    modify: impl Fn(&mut ChaCha8Rng, QuadShape) -> QuadShape,
+) -> QuadShape {
+    loop {
+        let s = QuadShape::random(rng);
+        let s = modify(rng, s);
+        if s.well_conditioned() {
+            return s;
+        }
+    }
+}
+
 fn config12(label: String, q: [f64; 12], xi_s: f64) -> Config {
     Config {
         label,
@@ -431,32 +468,36 @@ pub fn quadratic() -> Vec<Config> {
     out.push(config12("worked curved".into(), unit.q(), unit.xi_s));
     let mut rng = seeded(0x6a95_1001);
     for k in 0..400 {
-        let s = QuadShape::random(&mut rng);
+        let s = conditioned(&mut rng, |_, s| s);
         out.push(config12(format!("random #{k}"), s.q(), s.xi_s));
     }
     let mut rng = seeded(0x6a95_1002);
     for k in 0..100 {
-        let mut s = QuadShape::random(&mut rng);
-        let tiny = |rng: &mut ChaCha8Rng| {
-            let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
-            sign * 10f64.powf(rng.random_range(-9.0..-4.0))
-        };
-        s.slave_bow = tiny(&mut rng);
-        s.slave_shift = tiny(&mut rng);
-        s.master_bow = tiny(&mut rng);
-        s.master_shift = tiny(&mut rng);
+        let s = conditioned(&mut rng, |rng, mut s| {
+            let mut tiny = || {
+                let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                sign * 10f64.powf(rng.random_range(-9.0..-4.0))
+            };
+            s.slave_bow = tiny();
+            s.slave_shift = tiny();
+            s.master_bow = tiny();
+            s.master_shift = tiny();
+            s
+        });
         out.push(config12(format!("near-straight #{k}"), s.q(), s.xi_s));
     }
     let mut rng = seeded(0x6a95_1003);
     for k in 0..100 {
-        let mut s = QuadShape::random(&mut rng);
-        let strong = |rng: &mut ChaCha8Rng| {
-            let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
-            sign * rng.random_range(0.3..0.6)
-        };
-        s.slave_bow = strong(&mut rng);
-        s.master_bow = strong(&mut rng);
-        s.gap = s.slave_len * rng.random_range(-0.1..0.1);
+        let s = conditioned(&mut rng, |rng, mut s| {
+            let mut strong = || {
+                let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+                sign * rng.random_range(0.3..0.6)
+            };
+            s.slave_bow = strong();
+            s.master_bow = strong();
+            s.gap = s.slave_len * rng.random_range(-0.1..0.1);
+            s
+        });
         out.push(config12(format!("curved #{k}"), s.q(), s.xi_s));
     }
     let mut rng = seeded(0x6a95_1004);
@@ -473,17 +514,21 @@ pub fn quadratic() -> Vec<Config> {
     }
     let mut rng = seeded(0x6a95_1005);
     for k in 0..100 {
-        let mut s = QuadShape::random(&mut rng);
-        s.origin = [
-            1e6 + rng.random_range(-1.0..1.0),
-            -1e6 + rng.random_range(-1.0..1.0),
-        ];
+        let s = conditioned(&mut rng, |rng, mut s| {
+            s.origin = [
+                1e6 + rng.random_range(-1.0..1.0),
+                -1e6 + rng.random_range(-1.0..1.0),
+            ];
+            s
+        });
         out.push(config12(format!("far #{k}"), s.q(), s.xi_s));
     }
     let mut rng = seeded(0x6a95_1006);
     for k in 0..40 {
-        let mut s = QuadShape::random(&mut rng);
-        s.origin = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
+        let s = conditioned(&mut rng, |rng, mut s| {
+            s.origin = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
+            s
+        });
         let q1 = s.q();
         for scale in [1e-6, 1e6] {
             let q = q1.map(|v| v * scale);
@@ -507,12 +552,14 @@ pub fn quadratic() -> Vec<Config> {
     }
     let mut rng = seeded(0x6a95_1008);
     for k in 0..100 {
-        let mut s = QuadShape::random(&mut rng);
-        let deg = rng.random_range(80.0..=89.0_f64);
-        let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
-        s.master_angle = sign * deg.to_radians();
-        s.master_bow *= 0.2;
-        s.xi_m = rng.random_range(-0.9..0.9);
+        let s = conditioned(&mut rng, |rng, mut s| {
+            let deg = rng.random_range(80.0..=89.0_f64);
+            let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
+            s.master_angle = sign * deg.to_radians();
+            s.master_bow *= 0.2;
+            s.xi_m = rng.random_range(-0.9..0.9);
+            s
+        });
         out.push(config12(format!("steep #{k}"), s.q(), s.xi_s));
     }
     for xi_m in [-1.0, 1.0] {
