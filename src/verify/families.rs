@@ -301,7 +301,8 @@ pub fn folded(p: [[f64; 2]; 3]) -> bool {
     let along: f64 = (0..2)
         .map(|k| (p[0][k] + p[1][k] - 2.0 * p[2][k]) * c[k])
         .sum();
-    !(along.abs() < 0.499 * chord2)
+    // (A NaN counts as folded.)
+    along.abs() >= 0.499 * chord2 || along.is_nan()
 }
 
 /// A configuration of two 3-node segments built so that the slave point
