@@ -722,6 +722,29 @@ mod tests {
         f.dag.check_invariants();
     }
 
+    /// The run-time's segment pairs: two-node (4 points) or 3-node (6
+    /// points) segments and one parameter; other counts are refused.
+    #[test]
+    fn segment_pairs_have_four_or_six_points() {
+        let six = SN
+            .replace(
+                "inputs!(xs1, xs2, xm1, xm2; xi_s);",
+                "inputs!(xs1, xs2, xs3, xm1, xm2, xm3; xi_s);",
+            )
+            .replace("lerp(xs1, xs2, xi_s)", "lerp(xs1, xs3, xi_s)")
+            .replace("lerp(xm1, xm2,", "lerp(xm1, xm3,");
+        let f = Formulation::parse("six", &six).unwrap();
+        assert_eq!(f.signature.coords(), 12);
+        for points in [
+            "xs1, xs2, xs3, xm1, xm2",
+            "xs1, xs2, xs3, xm1, xm2, xm3, xm4",
+        ] {
+            let bad = six.replace("xs1, xs2, xs3, xm1, xm2, xm3;", &format!("{points};"));
+            let e = Formulation::parse("bad", &bad).unwrap_err().to_string();
+            assert!(e.contains("four points") && e.contains("six"), "{e}");
+        }
+    }
+
     #[test]
     fn errors_name_line_and_problem() {
         let bad = SN.replace("norm(t_s)", "nrm(t_s)");

@@ -116,7 +116,9 @@ pub fn project(
 
 /// Evaluates the gap and its derivatives as approximation type `ty` keeps
 /// them (Type 6: the exact gradient and Hessian). (The [`Kernel`] handle,
-/// on stack buffers, returned as nalgebra values.)
+/// on stack buffers, returned as nalgebra values.) For the formulations of
+/// two-node pairs ([`pair_formulations`]); any other gives
+/// [`KernelError::CoordinateCount`] (use [`Kernel`]).
 pub fn evaluate(
     formulation: Formulation,
     ty: ApproxType,
