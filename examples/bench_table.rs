@@ -16,7 +16,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use contact_kernels::{ApproxType, OpCount, compiled_formulations, op_count};
+use contact_kernels::{ApproxType, OpCount, op_count, pair_formulations};
 
 /// Where criterion wrote its results.
 fn criterion_dir() -> PathBuf {
@@ -83,7 +83,7 @@ fn table(dir: &Path) -> Result<String, String> {
         "| formulation | type | ns/eval | speed-up vs num-dual hessian | handle ns/eval | handle / value | add | mul | div | sqrt | neg | total ops |\n",
     );
     out.push_str("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for f in compiled_formulations() {
+    for f in pair_formulations() {
         let name = f.name();
         let reference = median_ns(dir, name, "num-dual-hessian")?;
         for ty in ApproxType::ALL {

@@ -79,11 +79,16 @@ fn ad(f: Formulation) -> &'static AdFormulation {
         ))
     }
     thread_local! {
-        static AD: [&'static AdFormulation; 2] = [parse("slave-normal"), parse("closest-point")];
+        static AD: [&'static AdFormulation; 3] = [
+            parse("slave-normal"),
+            parse("closest-point"),
+            parse("quadratic-slave-normal"),
+        ];
     }
     AD.with(|a| match f {
         Formulation::SlaveNormal => a[0],
         Formulation::ClosestPoint => a[1],
+        Formulation::QuadraticSlaveNormal => a[2],
     })
 }
 
@@ -91,7 +96,7 @@ fn ad(f: Formulation) -> &'static AdFormulation {
 /// formulation's own.
 fn normal(f: Formulation) -> Normal {
     match f {
-        Formulation::SlaveNormal => Normal::Slave,
+        Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => Normal::Slave,
         Formulation::ClosestPoint => Normal::Master,
     }
 }
@@ -391,6 +396,9 @@ fn published(f: Formulation) -> Published {
                 0.158599129064,
             ],
         },
+        Formulation::QuadraticSlaveNormal => {
+            panic!("the worked example is published for the two-node formulations")
+        }
     }
 }
 
@@ -514,6 +522,41 @@ fn the_verifier_passes_on_the_compiled_kernels() {
     }
 }
 
+/// The same verifier loop on the compiled 3-node kernels
+/// (`quadratic-slave-normal`, 12 coordinates, through [`Kernel::eval`]) and
+/// the verifier's 3-node families ([`verify::configurations`]: curved,
+/// near-straight, strongly curved, uniform, far, scales, rotations, steep,
+/// ends), every type within [`TOL`].
+#[test]
+fn the_verifier_passes_on_the_compiled_quadratic_kernels() {
+    let f = Formulation::QuadraticSlaveNormal;
+    let handles: Vec<Kernel> = ApproxType::ALL
+        .iter()
+        .map(|&ty| Kernel::new(f, ty).expect("the workspace tests compile it in"))
+        .collect();
+    let kernel = |ty: usize, q: &[f64], params: &[f64]| {
+        let k = &handles[ty - 1];
+        let mut out = GapOut::new(k);
+        k.eval(q, params[0], &mut out).ok().map(|()| KernelOutput {
+            gap: out.gap(),
+            xi_m: out.xi_m(),
+            grad: out.grad().to_vec(),
+            hess: out.hess().map(<[f64]>::to_vec),
+        })
+    };
+    let configs = verify::configurations(ad(f)).expect("3-node families");
+    assert!(configs.iter().all(|c| c.q.len() == 12));
+    let report = verify::verify(ad(f), &kernel, &configs, TOL).expect("verifier runs");
+    eprintln!("{report}");
+    assert!(report.passed(), "{f}:\n{report}");
+    assert!(
+        report.checked * 10 >= configs.len() * 8,
+        "{f}: only {} of {} configurations compared",
+        report.checked,
+        configs.len()
+    );
+}
+
 // ---------------------------------------------------------------------------
 // Kernels against the references.
 // ---------------------------------------------------------------------------
@@ -598,7 +641,9 @@ fn random_uniform_configurations() {
             let t_m = master_tangent(&q);
             let (ls, lm) = (dot(t_s, t_s).sqrt(), dot(t_m, t_m).sqrt());
             let cond = match f {
-                Formulation::SlaveNormal => dot(t_m, t_s).abs() / (ls * lm),
+                Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => {
+                    dot(t_m, t_s).abs() / (ls * lm)
+                }
                 Formulation::ClosestPoint => 1.0,
             };
             if ls < 0.1 || lm < 0.1 || cond < 0.1 || reference_xi(f, &q, xi_s, 5.0).is_none() {
@@ -1139,7 +1184,7 @@ fn types_are_distinguishable() {
         let hess_of = |k: usize| outs[k].hess.unwrap_or_else(M8::zeros);
         let grad1_error = (outs[0].grad - outs[5].grad).norm() / outs[5].grad.norm();
         match f {
-            Formulation::SlaveNormal => {
+            Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => {
                 assert!(grad1_error > 1e-3, "{f}: Type 1 gradient is exact?")
             }
             Formulation::ClosestPoint => assert!(

@@ -17,7 +17,8 @@
 //!
 //! * `inputs!(p1, p2, p3, p4; s)` declares the nodal points (2-vectors, in
 //!   kernel order: slave 1, slave 2, master 1, master 2 — the coordinates
-//!   `q`) and the slave parameter `s` (`xi_s`); they become the kernels'
+//!   `q`; or six points for 3-node segments: the slave's end, end, mid
+//!   nodes, then the master's) and the slave parameter `s` (`xi_s`); they become the kernels'
 //!   [`Signature`]. [`Formulation::parse`] accepts the shape the
 //!   contact-kernels run-time serves ([`Arity::SegmentPair`]);
 //!   [`Formulation::parse_with`] any number of points and parameters.
@@ -162,8 +163,10 @@ pub struct Formulation {
 /// Which `inputs!` declarations a parse accepts.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Arity {
-    /// Exactly what the contact-kernels run-time serves today: four points
-    /// (a slave and a master two-node segment) and one parameter (`xi_s`).
+    /// What the contact-kernels run-time serves: a slave and a master
+    /// segment with equally many nodes — four points (two-node straight
+    /// segments) or six (three-node quadratic segments, Gmsh line3 order:
+    /// end, end, mid) — and one parameter (`xi_s`).
     SegmentPair,
     /// Any number of points (at least one) and of parameters: for
     /// generators and tests that do not feed the contact-kernels run-time.
@@ -391,13 +394,14 @@ impl Builder {
             .filter(|s| !s.is_empty())
             .collect();
         let fits = match self.arity {
-            Arity::SegmentPair => points.len() == 4 && params.len() == 1,
+            Arity::SegmentPair => matches!(points.len(), 4 | 6) && params.len() == 1,
             Arity::Any => !points.is_empty() && points.iter().all(|p| !p.is_empty()),
         };
         if !fits {
             let expected = match self.arity {
                 Arity::SegmentPair => {
-                    "four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)`"
+                    "four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)` \
+                     (or six for 3-node segments: `inputs!(xs1, xs2, xs3, xm1, xm2, xm3; xi_s)`)"
                 }
                 Arity::Any => "at least one point: `inputs!(p1, ...; s1, ...)`",
             };
@@ -716,6 +720,29 @@ mod tests {
         assert_eq!(f.doc, "test");
         assert_eq!(f.entities.len(), 2);
         f.dag.check_invariants();
+    }
+
+    /// The run-time's segment pairs: two-node (4 points) or 3-node (6
+    /// points) segments and one parameter; other counts are refused.
+    #[test]
+    fn segment_pairs_have_four_or_six_points() {
+        let six = SN
+            .replace(
+                "inputs!(xs1, xs2, xm1, xm2; xi_s);",
+                "inputs!(xs1, xs2, xs3, xm1, xm2, xm3; xi_s);",
+            )
+            .replace("lerp(xs1, xs2, xi_s)", "lerp(xs1, xs3, xi_s)")
+            .replace("lerp(xm1, xm2,", "lerp(xm1, xm3,");
+        let f = Formulation::parse("six", &six).unwrap();
+        assert_eq!(f.signature.coords(), 12);
+        for points in [
+            "xs1, xs2, xs3, xm1, xm2",
+            "xs1, xs2, xs3, xm1, xm2, xm3, xm4",
+        ] {
+            let bad = six.replace("xs1, xs2, xs3, xm1, xm2, xm3;", &format!("{points};"));
+            let e = Formulation::parse("bad", &bad).unwrap_err().to_string();
+            assert!(e.contains("four points") && e.contains("six"), "{e}");
+        }
     }
 
     #[test]

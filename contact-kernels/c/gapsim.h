@@ -40,7 +40,14 @@ enum gapsim_status {
     /* The same for the gradient. */
     GAPSIM_NON_FINITE_GRADIENT = 8,
     /* The same for the Hessian. */
-    GAPSIM_NON_FINITE_HESSIAN = 9
+    GAPSIM_NON_FINITE_HESSIAN = 9,
+    /* A 3-node slave segment is folded: its mid node's offset along the
+     * chord from the chord's midpoint reaches a quarter of the chord, where
+     * its tangent vanishes (KernelError::FoldedSegment). Checked after the
+     * degenerate-segment codes. */
+    GAPSIM_FOLDED_SLAVE = 10,
+    /* The same for the master segment. */
+    GAPSIM_FOLDED_MASTER = 11
 };
 
 /* A segment shorter than this times the configuration's size (its largest
@@ -67,6 +74,8 @@ static inline const char *gapsim_status_name(int status)
     case GAPSIM_NON_FINITE_GAP: return "GAPSIM_NON_FINITE_GAP";
     case GAPSIM_NON_FINITE_GRADIENT: return "GAPSIM_NON_FINITE_GRADIENT";
     case GAPSIM_NON_FINITE_HESSIAN: return "GAPSIM_NON_FINITE_HESSIAN";
+    case GAPSIM_FOLDED_SLAVE: return "GAPSIM_FOLDED_SLAVE";
+    case GAPSIM_FOLDED_MASTER: return "GAPSIM_FOLDED_MASTER";
     default: return "unknown";
     }
 }

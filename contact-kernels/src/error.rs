@@ -15,8 +15,8 @@ pub enum KernelError {
     /// A coordinate or `xi_s` is NaN or infinite.
     #[error("non-finite input: coordinate {index} is {value}")]
     NonFinite {
-        /// Index into `q` (`0..n`), or `n` (`q.len()`, 8 for segment pairs)
-        /// for `xi_s`.
+        /// Index into `q` (`0..n`), or `n` (`q.len()`: 8 for two-node and 12
+        /// for three-node segment pairs) for `xi_s`.
         index: usize,
         /// The offending value.
         value: f64,
@@ -30,6 +30,19 @@ pub enum KernelError {
         length: f64,
         /// The smallest accepted length (relative to the configuration's size).
         threshold: f64,
+    },
+    /// A 3-node segment's mid node folds it: its offset along the chord
+    /// from the chord's midpoint reaches a quarter of the chord, where the
+    /// segment's tangent vanishes (see the crate's `validate` module docs).
+    #[error(
+        "folded {segment} segment: its mid node lies {mid_offset} chord lengths from the chord's midpoint along the chord (accepted: strictly within 1/4)"
+    )]
+    FoldedSegment {
+        /// Which segment.
+        segment: Segment,
+        /// The mid node's offset along the chord from the chord's midpoint,
+        /// in chord lengths (`|mid_offset| < 1/4` is accepted).
+        mid_offset: f64,
     },
     /// The projection equation has no (finite) solution, e.g. for the
     /// slave-normal formulation when the master segment is perpendicular to
@@ -98,9 +111,9 @@ pub enum KernelError {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Segment {
     /// The slave segment (the first half of the points: `q[0..4]` for
-    /// two-node segments).
+    /// two-node segments, `q[0..6]` for three-node segments).
     Slave,
-    /// The master segment (the second half: `q[4..8]`).
+    /// The master segment (the second half: `q[4..8]`, or `q[6..12]`).
     Master,
 }
 

@@ -8,6 +8,12 @@
 //! q = [xs1, ys1, xs2, ys2, xm1, ym1, xm2, ym2]
 //! ```
 //!
+//! (two-node straight segments; the `quadratic-slave-normal` formulation,
+//! behind the crate feature of that name, takes 3-node quadratic segments,
+//! `q = [xs1, ys1, xs2, ys2, xs3, ys3, xm1, ym1, xm2, ym2, xm3, ym3]`, end
+//! nodes first and the mid node last as Gmsh's line3: the coordinate count
+//! is the formulation's, [`Kernel::coords`])
+//!
 //! and the slave integration point's parametric coordinate `xi_s` in
 //! `[-1, 1]`, projects the slave point onto the master segment (the
 //! projection coordinate `xi_m` is an implicit function `r(q, xi) = 0` of
@@ -110,7 +116,9 @@ pub fn project(
 
 /// Evaluates the gap and its derivatives as approximation type `ty` keeps
 /// them (Type 6: the exact gradient and Hessian). (The [`Kernel`] handle,
-/// on stack buffers, returned as nalgebra values.)
+/// on stack buffers, returned as nalgebra values.) For the formulations of
+/// two-node pairs ([`pair_formulations`]); any other gives
+/// [`KernelError::CoordinateCount`] (use [`Kernel`]).
 pub fn evaluate(
     formulation: Formulation,
     ty: ApproxType,
@@ -150,6 +158,17 @@ pub fn compiled_formulations() -> Vec<Formulation> {
     Formulation::ALL
         .into_iter()
         .filter(|f| generated::kernel_set(*f).is_some())
+        .collect()
+}
+
+/// The compiled formulations of two-node segment pairs ([`PAIR_COORDS`]
+/// coordinates): those [`evaluate`], [`project`] and a solver meshing
+/// straight segments can use. (The others, e.g. `quadratic-slave-normal`
+/// with 12 coordinates, serve [`Kernel`] and [`Projector`] only.)
+pub fn pair_formulations() -> Vec<Formulation> {
+    compiled_formulations()
+        .into_iter()
+        .filter(|f| f.coords() == Some(PAIR_COORDS))
         .collect()
 }
 

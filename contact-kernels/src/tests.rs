@@ -23,7 +23,7 @@ fn configurations() -> Vec<([f64; 8], f64)> {
 
 #[test]
 fn a_reused_gap_out_gives_the_bits_of_evaluate() {
-    for f in compiled_formulations() {
+    for f in pair_formulations() {
         for ty in ApproxType::ALL {
             let kernel = Kernel::new(f, ty).unwrap();
             assert_eq!(kernel.has_hessian(), ty.has_hessian());
@@ -54,7 +54,7 @@ fn a_reused_gap_out_gives_the_bits_of_evaluate() {
 
 #[test]
 fn the_projector_gives_the_bits_of_project() {
-    for f in compiled_formulations() {
+    for f in pair_formulations() {
         let p = Projector::new(f).unwrap();
         let mut scratch = vec![0.0; p.coords()];
         for (q, xi_s) in configurations() {

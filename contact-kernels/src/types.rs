@@ -123,6 +123,15 @@ impl std::str::FromStr for Formulation {
     }
 }
 
+impl Formulation {
+    /// The coordinate count `n` of the formulation's kernels (8 for
+    /// two-node segment pairs, 12 for three-node ones); `None` when it was
+    /// not compiled in.
+    pub fn coords(self) -> Option<usize> {
+        crate::generated::kernel_set(self).map(|s| s.coords)
+    }
+}
+
 impl std::fmt::Display for Formulation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name())

@@ -11,10 +11,22 @@
 //! ## Segment layout
 //!
 //! The points are a slave segment's nodes followed by a master segment's
-//! nodes, equally many each (two and two for straight segments). A segment
-//! is degenerate when the chord between its end nodes (its first and last
-//! node) is shorter than [`DEGENERATE_LENGTH`] times the configuration's
-//! size (the largest relative coordinate).
+//! nodes, equally many each: two and two for straight segments, three and
+//! three for quadratic segments (Gmsh line3 order: the end nodes, then the
+//! mid node). A segment is degenerate when the chord between its end nodes
+//! (its first and second node) is shorter than [`DEGENERATE_LENGTH`] times
+//! the configuration's size (the largest relative coordinate).
+//!
+//! A 3-node segment `x(xi) = N1 a + N2 b + N3 m` (ends `a`, `b`, mid node
+//! `m`) has the tangent `t(xi) = (b - a) / 2 + xi (a + b - 2 m)`. It is
+//! **folded** when `t . (b - a)` is not positive on all of `[-1, 1]`: the
+//! mid node's offset along the chord from the chord's midpoint,
+//! `s = (m - (a + b) / 2) . (b - a) / |b - a|^2`, reaches a quarter of the
+//! chord (`|s| >= 1/4`: at the quarter point the tangent vanishes at an end,
+//! beyond it the segment runs backwards). [`KernelError::FoldedSegment`]
+//! rejects `1 - 4 |s| <= `[`DEGENERATE_LENGTH`] (the smallest end tangent's
+//! chord component relative to the midpoint's), so an accepted 3-node
+//! segment has a tangent that never vanishes.
 
 use crate::generated::KernelSet;
 use crate::{KernelError, Segment};
@@ -64,10 +76,9 @@ pub(crate) fn relative_coordinates(
     let threshold = DEGENERATE_LENGTH * size;
     let points = q.len() / DIM;
     let half = points / 2;
-    for (segment, first, last) in [
-        (Segment::Slave, 0, half - 1),
-        (Segment::Master, half, points - 1),
-    ] {
+    // The end nodes: the first two of each segment (for two-node segments
+    // the first and last).
+    for (segment, first, last) in [(Segment::Slave, 0, 1), (Segment::Master, half, half + 1)] {
         // Squared lengths: no hypot in the hot path. (Configurations with
         // coordinates below ~1e-150 underflow here and are reported as
         // degenerate.)
@@ -88,6 +99,38 @@ pub(crate) fn relative_coordinates(
             });
         }
     }
+    if half == 3 {
+        for (segment, first) in [(Segment::Slave, 0), (Segment::Master, half)] {
+            check_fold(segment, &d[first * DIM..(first + 3) * DIM])?;
+        }
+    }
+    Ok(())
+}
+
+/// Rejects a folded 3-node segment (module docs): `p` holds its end nodes
+/// and its mid node, relative coordinates, after the chord check (the chord
+/// is not zero).
+#[inline]
+fn check_fold(segment: Segment, p: &[f64]) -> Result<(), KernelError> {
+    let mut chord2 = 0.0;
+    let mut along = 0.0;
+    for k in 0..DIM {
+        let c = p[DIM + k] - p[k];
+        chord2 += c * c;
+        // a + b - 2 m: the tangent's rate of change along the segment.
+        along += (p[k] + p[DIM + k] - 2.0 * p[2 * DIM + k]) * c;
+    }
+    // t(+-1) . (b - a) = chord2 / 2 +- along must stay positive, with
+    // margin: chord2 / 2 - |along| > DEGENERATE_LENGTH * chord2 / 2.
+    let half_chord2 = 0.5 * chord2;
+    // Written so that a NaN is also rejected.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    if !(half_chord2 - along.abs() > DEGENERATE_LENGTH * half_chord2) {
+        return Err(KernelError::FoldedSegment {
+            segment,
+            mid_offset: -along / (2.0 * chord2),
+        });
+    }
     Ok(())
 }
 
@@ -102,4 +145,36 @@ pub(crate) fn all_finite(v: &[f64]) -> bool {
         acc | ((x.to_bits() & EXPONENT) + EXPONENT_ONE)
     }) >> 63
         == 0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 3-node segment from (0, 0) to (2, 0) with its mid node at
+    /// `(1 + 2 s, bow)`: offset `s` chord lengths along the chord.
+    fn segment(s: f64, bow: f64) -> [f64; 6] {
+        [0.0, 0.0, 2.0, 0.0, 1.0 + 2.0 * s, bow]
+    }
+
+    #[test]
+    fn the_fold_limit_is_the_quarter_point() {
+        for s in [0.0, 0.1, -0.2, 0.25 * (1.0 - 1e-8), -0.25 * (1.0 - 1e-8)] {
+            for bow in [0.0, 0.7, -3.0] {
+                assert_eq!(check_fold(Segment::Slave, &segment(s, bow)), Ok(()), "{s}");
+            }
+        }
+        for s in [0.25, -0.25, 0.25 * (1.0 - 1e-11), 0.3, -2.0] {
+            match check_fold(Segment::Master, &segment(s, 0.4)) {
+                Err(KernelError::FoldedSegment {
+                    segment: Segment::Master,
+                    mid_offset,
+                }) => assert!((mid_offset - s).abs() < 1e-15, "{mid_offset} vs {s}"),
+                other => panic!("offset {s}: {other:?}"),
+            }
+        }
+        let mut nan = segment(0.0, 0.0);
+        nan[4] = f64::NAN;
+        assert!(check_fold(Segment::Slave, &nan).is_err());
+    }
 }

@@ -2,7 +2,7 @@
 //! reports failures per point without disturbing the others, and rejects
 //! mismatched shapes.
 
-use contact_kernels::{ApproxType, GapBatch, GapOut, Kernel, KernelError, compiled_formulations};
+use contact_kernels::{ApproxType, GapBatch, GapOut, Kernel, KernelError, pair_formulations};
 
 /// A small deterministic generator (no dependency).
 struct Lcg(u64);
@@ -39,7 +39,7 @@ fn configurations(count: usize, rng: &mut Lcg) -> (Vec<f64>, Vec<f64>) {
 fn batch_equals_single_evaluations_bit_for_bit() {
     let mut rng = Lcg(42);
     let (qs, xi_s) = configurations(40, &mut rng);
-    for f in compiled_formulations() {
+    for f in pair_formulations() {
         for ty in ApproxType::ALL {
             let kernel = Kernel::new(f, ty).unwrap();
             let mut batch = GapBatch::new(&kernel);
@@ -79,7 +79,7 @@ fn batch_equals_single_evaluations_bit_for_bit() {
 
 #[test]
 fn mismatched_shapes_are_errors() {
-    let f = compiled_formulations()[0];
+    let f = pair_formulations()[0];
     let kernel = Kernel::new(f, ApproxType::Type6).unwrap();
     let mut batch = GapBatch::new(&kernel);
     assert_eq!(

@@ -12,6 +12,12 @@
 //! seeds) plus degenerate, non-finite and over- or underflowing input; every
 //! configuration is evaluated under both formulations.
 //!
+//! With the crate feature `quadratic-slave-normal` (on in `cargo test
+//! --workspace`), the 3-node formulation's C files are compared the same
+//! way (`tests/c/driver_quadratic.c`, 12 coordinates) on curved, straight,
+//! uniform, far, scaled, degenerate (zero chord, folded segments, vanishing
+//! slave tangent, no root) and non-finite 3-node configurations.
+//!
 //! The test is skipped, with a message, only when no C compiler is found.
 //! It also compiles and runs `examples/c/evaluate.c`.
 
@@ -63,8 +69,8 @@ impl Shape {
         let xs2 = [xs1[0] + t_s[0], xs1[1] + t_s[1]];
         let x_s = lerp(xs1, xs2, self.xi_s);
         let n = match f {
-            Formulation::SlaveNormal => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
             Formulation::ClosestPoint => [-t_m[1] / self.master_len, t_m[0] / self.master_len],
+            _ => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
         };
         let p = [x_s[0] + self.gap * n[0], x_s[1] + self.gap * n[1]];
         let c_m = [
@@ -301,6 +307,14 @@ fn code(e: &KernelError) -> i32 {
             OutputKind::Gradient => 8,
             OutputKind::Hessian => 9,
         },
+        KernelError::FoldedSegment {
+            segment: Segment::Slave,
+            ..
+        } => 10,
+        KernelError::FoldedSegment {
+            segment: Segment::Master,
+            ..
+        } => 11,
         other => panic!("{other:?} has no C counterpart"),
     }
 }
@@ -564,4 +578,220 @@ fn c_example_runs() {
         text.contains("zero-length slave: GAPSIM_DEGENERATE_SLAVE"),
         "{text}"
     );
+}
+
+// ---------------------------------------------------------------------------
+// The 3-node formulation (12 coordinates).
+// ---------------------------------------------------------------------------
+
+/// 3-node configurations (`q`, `xi_s`) for the C comparison: statuses of
+/// every kind, values of curved segments.
+#[cfg(feature = "quadratic-slave-normal")]
+fn quadratic_configurations() -> Vec<(&'static str, [f64; 12], f64)> {
+    let mut out = Vec::new();
+    let mut rng = seeded(0x6a95_2001);
+    // A slave with its mid node bowed and shifted, and a master facing it
+    // across a gap (reversed, offset along the slave's chord normal,
+    // perturbed): mostly projecting, some not.
+    let curved = |rng: &mut ChaCha8Rng, spread: f64| -> ([f64; 12], f64) {
+        let a = [rng.random_range(-5.0..5.0), rng.random_range(-5.0..5.0)];
+        let len = rng.random_range(0.2..5.0);
+        let th: f64 = rng.random_range(-3.1..3.1);
+        let (s, c) = th.sin_cos();
+        let b = [a[0] + len * c, a[1] + len * s];
+        let normal = [s, -c];
+        let node = |p: [f64; 2], bow: f64, shift: f64| {
+            [
+                p[0] + len * (shift * c - bow * s),
+                p[1] + len * (shift * s + bow * c),
+            ]
+        };
+        let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        let m = node(
+            mid,
+            spread * rng.random_range(-0.3..0.3),
+            spread * rng.random_range(-0.2..0.2),
+        );
+        let gap = len * rng.random_range(-0.3..0.3);
+        let off = |p: [f64; 2], rng: &mut ChaCha8Rng| {
+            [
+                p[0] + gap * normal[0] + len * spread * rng.random_range(-0.2..0.2),
+                p[1] + gap * normal[1] + len * spread * rng.random_range(-0.2..0.2),
+            ]
+        };
+        let (ma, mb) = (off(b, rng), off(a, rng));
+        let mm = off(mid, rng);
+        let q = [
+            a[0], a[1], b[0], b[1], m[0], m[1], ma[0], ma[1], mb[0], mb[1], mm[0], mm[1],
+        ];
+        (q, rng.random_range(-1.0..=1.0))
+    };
+    for _ in 0..400 {
+        let (q, xi_s) = curved(&mut rng, 1.0);
+        out.push(("curved", q, xi_s));
+    }
+    for _ in 0..100 {
+        let (q, xi_s) = curved(&mut rng, 1e-6);
+        out.push(("near-straight", q, xi_s));
+    }
+    for _ in 0..400 {
+        let q: [f64; 12] = std::array::from_fn(|_| rng.random_range(-2.0..2.0));
+        out.push(("uniform", q, rng.random_range(-1.5..=1.5)));
+    }
+    for _ in 0..100 {
+        let (q, xi_s) = curved(&mut rng, 1.0);
+        let shift = [1e6 + rng.random_range(-1.0..1.0), -1e6];
+        out.push(("far", std::array::from_fn(|i| q[i] + shift[i % 2]), xi_s));
+    }
+    for _ in 0..40 {
+        let (q, xi_s) = curved(&mut rng, 1.0);
+        for scale in [1e-6, 1e6] {
+            out.push(("scales", q.map(|v| v * scale), xi_s));
+        }
+    }
+    // Straight along +x, master curved towards it (tests/quadratic.rs).
+    const CURVED: [f64; 12] = [
+        0.0, 0.0, 2.0, 0.0, 1.0, 0.0, 2.0, -1.0, 0.0, -1.0, 1.0, -0.8,
+    ];
+    out.push(("hand-computed", CURVED, 0.5));
+    let with = |changes: &[(usize, f64)]| {
+        let mut q = CURVED;
+        for &(i, v) in changes {
+            q[i] = v;
+        }
+        q
+    };
+    out.push(("zero-length slave", with(&[(2, 0.0), (3, 0.0)]), 0.5));
+    out.push(("zero-length master", with(&[(8, 2.0), (9, -1.0)]), 0.5));
+    for mid_x in [1.5, 0.5, 3.0, 1.0 + 0.5 * (1.0 - 1e-6)] {
+        out.push(("folded slave", with(&[(4, mid_x)]), 0.5));
+    }
+    out.push(("folded master", with(&[(10, 0.5)]), 0.5));
+    out.push(("zero slave tangent", with(&[(4, 1.25)]), 2.0));
+    let no_root = [0.0, 0.0, 2.0, 0.0, 1.0, 0.0, 4.0, 1.0, 4.0, -1.0, 3.0, 0.0];
+    for xi_s in [0.0, 0.3] {
+        out.push(("no root", no_root, xi_s));
+    }
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        for i in 0..12 {
+            out.push(("non-finite input", with(&[(i, bad)]), 0.5));
+        }
+        out.push(("non-finite input", CURVED, bad));
+    }
+    for e in (-170..=-90).chain(90..=170).step_by(5) {
+        let s = 10f64.powi(e);
+        out.push(("extreme scale", CURVED.map(|v| v * s), 0.5));
+    }
+    out
+}
+
+/// The Rust side for one 3-node configuration: the projection and types
+/// 1..=6, in the driver's order.
+#[cfg(feature = "quadratic-slave-normal")]
+fn rust_quadratic_outcomes(q: &[f64; 12], xi_s: f64) -> Vec<Outcome> {
+    let f = Formulation::QuadraticSlaveNormal;
+    let mut out = vec![
+        match Projector::new(f).unwrap().project(q, xi_s, &mut [0.0; 12]) {
+            Ok(p) => Outcome {
+                status: 0,
+                bits: vec![p.gap.to_bits(), p.xi_m.to_bits()],
+            },
+            Err(e) => Outcome {
+                status: code(&e),
+                bits: Vec::new(),
+            },
+        },
+    ];
+    for ty in ApproxType::ALL {
+        let kernel = Kernel::new(f, ty).unwrap();
+        let mut g = GapOut::new(&kernel);
+        out.push(match kernel.eval(q, xi_s, &mut g) {
+            Ok(()) => {
+                let mut bits = vec![g.gap().to_bits(), g.xi_m().to_bits()];
+                bits.extend(g.grad().iter().map(|v| v.to_bits()));
+                if let Some(h) = g.hess() {
+                    bits.extend(h.iter().map(|v| v.to_bits()));
+                }
+                Outcome { status: 0, bits }
+            }
+            Err(e) => Outcome {
+                status: code(&e),
+                bits: Vec::new(),
+            },
+        });
+    }
+    out
+}
+
+#[cfg(feature = "quadratic-slave-normal")]
+#[test]
+fn c_quadratic_kernels_equal_rust_kernels_bit_for_bit() {
+    if !have_compiler() {
+        eprintln!(
+            "SKIPPED: no C compiler (`{}` not found); the C kernels were not compared",
+            compiler()
+        );
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_kernels");
+    std::fs::create_dir_all(&dir).unwrap();
+    let driver = dir.join("driver_quadratic");
+    compile(
+        &[
+            manifest().join("tests/c/driver_quadratic.c"),
+            manifest().join("c/gapsim_quadratic_slave_normal.c"),
+        ],
+        &driver,
+    );
+    let configs = quadratic_configurations();
+    let mut input = String::new();
+    for (_, q, xi_s) in &configs {
+        input.push_str(&format!("{:016x}", xi_s.to_bits()));
+        for v in q {
+            input.push_str(&format!(" {:016x}", v.to_bits()));
+        }
+        input.push('\n');
+    }
+    let mut child = Command::new(&driver)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("run the driver");
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let output = child.wait_with_output().unwrap();
+    writer.join().unwrap().unwrap();
+    assert!(output.status.success(), "the driver failed");
+    let text = String::from_utf8(output.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), configs.len() * 7, "driver output lines");
+    let (mut values, mut differences) = (0usize, Vec::new());
+    let mut statuses = [0usize; 12];
+    for (k, (family, q, xi_s)) in configs.iter().enumerate() {
+        for (j, r) in rust_quadratic_outcomes(q, *xi_s).into_iter().enumerate() {
+            let cside = parse_outcome(lines[k * 7 + j]);
+            statuses[r.status as usize] += 1;
+            values += r.bits.len();
+            if cside != r {
+                differences.push(format!(
+                    "function {j} #{k} ({family}, q = {q:?}, xi_s = {xi_s}): C {cside:?}, Rust {r:?}"
+                ));
+            }
+        }
+    }
+    eprintln!(
+        "quadratic-slave-normal: {} configurations x 7 functions: {values} output values \
+         compared bit for bit; statuses (0..=11) {statuses:?}; {} differences",
+        configs.len(),
+        differences.len()
+    );
+    assert!(
+        differences.is_empty(),
+        "{} differences between the C and the Rust kernels, e.g.:\n{}",
+        differences.len(),
+        differences[..differences.len().min(10)].join("\n")
+    );
+    for s in [0, 1, 2, 3, 4, 10, 11] {
+        assert!(statuses[s] > 0, "no configuration gave status {s}");
+    }
 }

@@ -24,7 +24,7 @@
 
 use std::fmt::Write as _;
 
-use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, compiled_formulations};
+use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, pair_formulations};
 
 pub mod dd;
 pub mod hyper;
@@ -202,7 +202,7 @@ pub fn sweep() -> Vec<SweepRow> {
     let mut rows = Vec::new();
     for family in Family::ALL {
         for &value in family.values() {
-            for formulation in compiled_formulations() {
+            for formulation in pair_formulations() {
                 rows.push(sweep_one(family, value, formulation));
             }
         }
@@ -282,7 +282,7 @@ pub fn csv(rows: &[SweepRow]) -> String {
 /// The sweep as a Markdown table (one row per family value, both
 /// formulations side by side).
 pub fn markdown(rows: &[SweepRow]) -> String {
-    let formulations = compiled_formulations();
+    let formulations = pair_formulations();
     let mut out = String::from("| family | parameter |");
     for f in &formulations {
         let _ = write!(out, " {f}: g | g' | g'' | refused |");
@@ -331,7 +331,7 @@ mod tests {
     /// function; and the families are seeded (the same numbers every run).
     #[test]
     fn benign_configurations_agree_to_roundoff() {
-        for f in compiled_formulations() {
+        for f in pair_formulations() {
             let row = sweep_one(Family::Offset, 1.0, f);
             assert_eq!(row.refused, 0);
             assert!(row.gap.unwrap() < 1e-12, "{row:?}");
@@ -346,7 +346,7 @@ mod tests {
     /// input rounding loses (the sweep's first finding).
     #[test]
     fn offset_keeps_the_derivatives() {
-        for f in compiled_formulations() {
+        for f in pair_formulations() {
             let row = sweep_one(Family::Offset, 1e8, f);
             assert_eq!(row.refused, 0);
             assert!(row.hess.unwrap() < 1e-8, "{row:?}");

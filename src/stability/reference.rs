@@ -54,7 +54,9 @@ fn gap(f: Formulation, q: &[Hd; 8], xi_s: f64) -> (Hd, Hd) {
     let (t_s, t_m) = (sub(xs2, xs1), sub(xm2, xm1));
     let c_m = lerp(xm1, xm2, Hd::constant(0.0));
     let (t, n) = match f {
-        Formulation::SlaveNormal => {
+        // (A 3-node formulation is not swept; on straight segments,
+        // quadratic-slave-normal is slave-normal.)
+        Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => {
             let len = dot(t_s, t_s).sqrt();
             (t_s, [t_s[1] / len, -t_s[0] / len])
         }

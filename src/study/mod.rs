@@ -445,7 +445,7 @@ pub fn run_study(
     let mut formulations = vec![first];
     if options.all_formulations {
         formulations.extend(
-            contact_kernels::compiled_formulations()
+            contact_kernels::pair_formulations()
                 .into_iter()
                 .filter(|f| *f != first),
         );

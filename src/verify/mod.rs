@@ -72,8 +72,9 @@ pub enum VerifyError {
     },
     /// The families need a segment pair.
     #[error(
-        "{file}: the verifier's configurations are segment pairs (4 points, 1 parameter); \
-         the formulation declares {points} points and {params} parameters"
+        "{file}: the verifier's configurations are segment pairs (4 points for two-node \
+         segments or 6 for 3-node segments, 1 parameter); the formulation declares \
+         {points} points and {params} parameters"
     )]
     Arity {
         /// The file.
@@ -353,19 +354,21 @@ pub fn verify(
     })
 }
 
-/// The configurations for `reference`'s formulation: [`families::all`]
-/// constructed along the slave normal; the signature must be a segment
-/// pair.
+/// The configurations for `reference`'s formulation: for two-node segment
+/// pairs (4 points) [`families::all`] constructed along the slave normal,
+/// for 3-node segment pairs (6 points) [`families::quadratic`]; one
+/// parameter (`xi_s`) either way.
 pub fn configurations(reference: &AdFormulation) -> Result<Vec<Config>, VerifyError> {
     let sig = &reference.formulation().signature;
-    if sig.points().len() != 4 || sig.params().len() != 1 {
-        return Err(VerifyError::Arity {
+    match (sig.points().len(), sig.params().len()) {
+        (4, 1) => Ok(families::all(families::Normal::Slave)),
+        (6, 1) => Ok(families::quadratic()),
+        (points, params) => Err(VerifyError::Arity {
             file: format!("{}.rs", reference.formulation().name),
-            points: sig.points().len(),
-            params: sig.params().len(),
-        });
+            points,
+            params,
+        }),
     }
-    Ok(families::all(families::Normal::Slave))
 }
 
 /// Verifies the generated kernels of one formulation file (its name and
@@ -467,6 +470,45 @@ mod tests {
         .unwrap();
         let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
         assert_eq!(failing, [6], "{report}");
+    }
+
+    /// The 3-node formulation: its families are 3-node configurations, the
+    /// interpreted kernels pass on them, and a flipped sign fails.
+    #[test]
+    fn the_quadratic_formulation_verifies_and_a_flipped_sign_fails() {
+        const QUADRATIC: &str =
+            include_str!("../../contact-kernels/formulations/quadratic-slave-normal.rs");
+        let (report, flip) = verify_source("quadratic-slave-normal", QUADRATIC, None).unwrap();
+        assert!(flip.is_none());
+        assert!(report.passed(), "{report}");
+        let configs = families::quadratic();
+        assert!(
+            configs
+                .iter()
+                .all(|c| c.q.len() == 12 && c.params.len() == 1)
+        );
+        assert!(
+            report.checked * 10 >= configs.len() * 9,
+            "only {} of {} configurations compared",
+            report.checked,
+            configs.len()
+        );
+        let reference = AdFormulation::parse("quadratic-slave-normal", QUADRATIC).unwrap();
+        let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
+        let adds: Vec<usize> = (kernels.program(3).instrs.iter().enumerate())
+            .filter(|(_, i)| matches!(i, codegen::lower::Instr::Add(..)))
+            .map(|(k, _)| k)
+            .collect();
+        kernels.flip_sign(3, adds[adds.len() / 2]).unwrap();
+        let report = verify(
+            &reference,
+            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
+            &configs[..60],
+            TOL,
+        )
+        .unwrap();
+        let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
+        assert_eq!(failing, [3], "{report}");
     }
 
     #[test]

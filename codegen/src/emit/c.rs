@@ -94,7 +94,14 @@ enum gapsim_status {
     /* The same for the gradient. */
     GAPSIM_NON_FINITE_GRADIENT = 8,
     /* The same for the Hessian. */
-    GAPSIM_NON_FINITE_HESSIAN = 9
+    GAPSIM_NON_FINITE_HESSIAN = 9,
+    /* A 3-node slave segment is folded: its mid node's offset along the
+     * chord from the chord's midpoint reaches a quarter of the chord, where
+     * its tangent vanishes (KernelError::FoldedSegment). Checked after the
+     * degenerate-segment codes. */
+    GAPSIM_FOLDED_SLAVE = 10,
+    /* The same for the master segment. */
+    GAPSIM_FOLDED_MASTER = 11
 };
 
 /* A segment shorter than this times the configuration's size (its largest
@@ -121,6 +128,8 @@ static inline const char *gapsim_status_name(int status)
     case GAPSIM_NON_FINITE_GAP: return "GAPSIM_NON_FINITE_GAP";
     case GAPSIM_NON_FINITE_GRADIENT: return "GAPSIM_NON_FINITE_GRADIENT";
     case GAPSIM_NON_FINITE_HESSIAN: return "GAPSIM_NON_FINITE_HESSIAN";
+    case GAPSIM_FOLDED_SLAVE: return "GAPSIM_FOLDED_SLAVE";
+    case GAPSIM_FOLDED_MASTER: return "GAPSIM_FOLDED_MASTER";
     default: return "unknown";
     }
 }
@@ -531,6 +540,32 @@ pub fn float_literal(c: f64) -> String {
     }
 }
 
+/// The fold checks of 3-node segments (contact-kernels' `validate::check_fold`,
+/// same operations in the same order): `t(+-1) . (b - a)` must stay positive
+/// with margin, `a`, `b` the end nodes and `m` the mid node of each segment.
+fn fold_checks(out: &mut String, dim: usize) {
+    for (code, first) in [("GAPSIM_FOLDED_SLAVE", 0), ("GAPSIM_FOLDED_MASTER", 3)] {
+        let (a, b, m) = (first * dim, (first + 1) * dim, (first + 2) * dim);
+        let _ = writeln!(
+            out,
+            "    {{\n        /* 3-node segment: its mid node must not fold it. */\n        double chord2 = 0.0;\n        double along = 0.0;\n        double half_chord2;"
+        );
+        for k in 0..dim {
+            let _ = writeln!(
+                out,
+                "        {{\n            const double c = d[{bk}] - d[{ak}];\n            chord2 += c * c;\n            along += (d[{ak}] + d[{bk}] - 2.0 * d[{mk}]) * c;\n        }}",
+                ak = a + k,
+                bk = b + k,
+                mk = m + k
+            );
+        }
+        let _ = writeln!(
+            out,
+            "        half_chord2 = 0.5 * chord2;\n        /* Written so that a NaN is also rejected. */\n        if (!(half_chord2 - fabs(along) > GAPSIM_DEGENERATE_LENGTH * half_chord2)) {{\n            return {code};\n        }}\n    }}"
+        );
+    }
+}
+
 /// The wrapper logic and the public functions of one formulation: what
 /// contact-kernels' `validate.rs`, `projection.rs` and `Kernel::eval` do,
 /// in the same order.
@@ -570,8 +605,8 @@ static int {id}_all_finite(const double *v, int len)
  * Validates q and the parameters and writes the coordinates relative to the
  * first point into d (contact-kernels' validate.rs): every value finite,
  * then neither segment (slave: points 1..{half}, master: {m1}..{points}; the chord
- * between a segment's first and last point) shorter than
- * GAPSIM_DEGENERATE_LENGTH times the largest |d[i]|.
+ * between a segment's first and {ends} point) shorter than
+ * GAPSIM_DEGENERATE_LENGTH times the largest |d[i]|.{folds}
  */
 static int {id}_validate(const double *q{param_decl}, double *d)
 {{
@@ -592,10 +627,18 @@ static int {id}_validate(const double *q{param_decl}, double *d)
     threshold = GAPSIM_DEGENERATE_LENGTH * size;
 ",
         m1 = half + 1,
+        ends = if half == 2 { "last" } else { "second" },
+        folds = if half == 3 {
+            "\n * Then neither 3-node segment folded (GAPSIM_FOLDED_SLAVE, _MASTER): its\n * tangent's component along the chord must stay positive at both ends,\n * chord^2 / 2 - |(a + b - 2 m) . (b - a)| > GAPSIM_DEGENERATE_LENGTH *\n * chord^2 / 2 (a, b the end nodes, m the mid node)."
+        } else {
+            ""
+        },
     );
+    // The end nodes: the first two of each segment (for two-node segments
+    // the first and last).
     for (code, first, last) in [
-        ("GAPSIM_DEGENERATE_SLAVE", 0, half - 1),
-        ("GAPSIM_DEGENERATE_MASTER", half, points - 1),
+        ("GAPSIM_DEGENERATE_SLAVE", 0, 1),
+        ("GAPSIM_DEGENERATE_MASTER", half, half + 1),
     ] {
         let (a, b) = (first * dim, last * dim);
         let _ = writeln!(out, "    {{\n        double length2 = 0.0;");
@@ -611,6 +654,9 @@ static int {id}_validate(const double *q{param_decl}, double *d)
             out,
             "        /* Written so that a NaN length is also rejected. */\n        if (!(length2 > threshold * threshold)) {{\n            return {code};\n        }}\n    }}"
         );
+    }
+    if half == 3 {
+        fold_checks(&mut out, dim);
     }
     out.push_str("    return GAPSIM_OK;\n}\n\n");
 

@@ -386,13 +386,20 @@ impl NodeTie {
 }
 
 /// Errors that concern the slave segment or the input itself; no other
-/// master segment avoids them.
+/// master segment avoids them. (`CoordinateCount`: a formulation of 3-node
+/// segments given the solver's two-node ones, e.g. `--formulation
+/// quadratic-slave-normal`, fails loudly instead of finding no contact.)
 fn slave_side(e: &KernelError) -> bool {
     matches!(
         e,
         KernelError::NonFinite { .. }
             | KernelError::NotCompiled(_)
+            | KernelError::CoordinateCount { .. }
             | KernelError::DegenerateSegment {
+                segment: Segment::Slave,
+                ..
+            }
+            | KernelError::FoldedSegment {
                 segment: Segment::Slave,
                 ..
             }

@@ -134,7 +134,9 @@ pub fn slave_coordinate_of_master_end(
     let e = master[end];
     let ea = [e[0] - a[0], e[1] - a[1]];
     let dir = match formulation {
-        Formulation::SlaveNormal => t_s,
+        // quadratic-slave-normal on a straight segment (the scene refuses
+        // it; its mid nodes would sit at the chord midpoints) is slave-normal.
+        Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => t_s,
         Formulation::ClosestPoint => [master[1][0] - master[0][0], master[1][1] - master[0][1]],
     };
     let frac = (ea[0] * dir[0] + ea[1] * dir[1]) / (t_s[0] * dir[0] + t_s[1] * dir[1]);

@@ -232,6 +232,17 @@ impl<'a> Run<'a> {
                 opts.tolerance
             )));
         }
+        // The contact faces are two-node segments: a formulation of 3-node
+        // segments (quadratic-slave-normal) cannot evaluate them.
+        if let Some(f) = opts.formulation
+            && f.coords()
+                .is_some_and(|n| n != contact_kernels::PAIR_COORDS)
+        {
+            return Err(SolverError::Options(format!(
+                "formulation `{f}` is for 3-node segments; the solver's contact faces are \
+                 two-node segments (use slave-normal or closest-point)"
+            )));
+        }
         let setup = Setup::new(model, opts)?;
         let n_points = setup.layout.points.len();
         Ok(Run {

@@ -335,7 +335,8 @@ pub struct ContactSpec {
     /// `master`: the master face.
     pub master: FaceSpec,
     /// `formulation`: the gap formulation, `slave-normal` (default) or
-    /// `closest-point`.
+    /// `closest-point`. (`quadratic-slave-normal`, for 3-node segments, is
+    /// refused: the solver's contact faces are two-node segments.)
     #[serde(
         default = "default_formulation",
         deserialize_with = "de_formulation",
@@ -532,7 +533,16 @@ fn de_amplitude<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Vec<[f64; 2]>>
 
 fn de_formulation<'de, D: Deserializer<'de>>(d: D) -> Result<Formulation, D::Error> {
     let s = String::deserialize(d)?;
-    s.parse().map_err(serde::de::Error::custom)
+    let f: Formulation = s.parse().map_err(serde::de::Error::custom)?;
+    // Only formulations of two-node segment pairs fit the solver's faces.
+    match f.coords() {
+        Some(n) if n != contact_kernels::PAIR_COORDS => Err(serde::de::Error::custom(format!(
+            "formulation `{f}` is for {}-node segments; the solver's contact faces are \
+             two-node segments (use slave-normal or closest-point)",
+            n / 4
+        ))),
+        _ => Ok(f),
+    }
 }
 
 fn ser_formulation<S: Serializer>(f: &Formulation, s: S) -> Result<S::Ok, S::Error> {
