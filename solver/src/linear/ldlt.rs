@@ -182,6 +182,66 @@ fn constrained_amd(
     Ok((fwd, inv))
 }
 
+/// Nonzeros of the lower triangle of `L`, diagonal included, for the
+/// lower-triangle pattern `lower` eliminated in the order `inv` (`inv[old] =
+/// new`; `None`: the identity): the exact structural count, by row subtrees
+/// of the elimination tree. Row `k` of `L` has an entry in column `i < k`
+/// exactly when `i` lies on the tree path from some `j` with `a_kj != 0`,
+/// `j < k`, up to `k`; walking those paths, stopping at nodes already
+/// visited for row `k`, also builds the tree (the parent of `i` is the first
+/// row that reaches it). `O(nnz(L))` time, `O(nnz(A))` memory. A supernodal
+/// factor computes more entries than this (the zeros admitted by supernode
+/// relaxation and the strict upper triangles of its dense diagonal blocks).
+fn exact_factor_nonzeros(
+    lower: SymbolicSparseColMatRef<'_, usize>,
+    inv: Option<&[usize]>,
+) -> usize {
+    const NONE: usize = usize::MAX;
+    let n = lower.nrows();
+    let new = |i: usize| inv.map_or(i, |p| p[i]);
+    // the permuted strictly upper triangle, by column: row_idx[ptr[k]..ptr[k + 1]]
+    let mut ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        for &r in lower.row_idx_of_col_raw(j) {
+            if r != j {
+                ptr[new(r).max(new(j)) + 1] += 1;
+            }
+        }
+    }
+    for k in 0..n {
+        ptr[k + 1] += ptr[k];
+    }
+    let mut next = ptr.clone();
+    let mut row_idx = vec![0usize; ptr[n]];
+    for j in 0..n {
+        for &r in lower.row_idx_of_col_raw(j) {
+            if r != j {
+                let (lo, hi) = (new(r).min(new(j)), new(r).max(new(j)));
+                row_idx[next[hi]] = lo;
+                next[hi] += 1;
+            }
+        }
+    }
+    let mut parent = vec![NONE; n];
+    let mut visited = vec![NONE; n];
+    let mut nonzeros = n;
+    for k in 0..n {
+        visited[k] = k;
+        for &j in &row_idx[ptr[k]..ptr[k + 1]] {
+            let mut i = j;
+            while visited[i] != k {
+                visited[i] = k;
+                nonzeros += 1;
+                if parent[i] == NONE {
+                    parent[i] = k;
+                }
+                i = parent[i];
+            }
+        }
+    }
+    nonzeros
+}
+
 /// `|A|_inf` (largest absolute row sum) of the triplets.
 fn norm_inf(n: usize, rows: &[usize], vals: &[f64]) -> f64 {
     let mut sums = vec![0.0_f64; n];
@@ -418,6 +478,17 @@ impl LinearSolver for SparseLdlt {
         self.fallbacks
     }
 
+    /// Computed on each call (`O(nnz(L))`, no numeric work; see
+    /// [`exact_factor_nonzeros`]), so the analysis does not pay for it.
+    fn factor_nonzeros(&self) -> Option<usize> {
+        self.pattern.as_ref().map(|p| {
+            exact_factor_nonzeros(
+                p.symbolic.as_ref(),
+                p.cholesky.perm().map(|perm| perm.arrays().1),
+            )
+        })
+    }
+
     fn set_constraints_from(&mut self, first: usize) {
         if self.constraints_from != Some(first) {
             self.constraints_from = Some(first);
@@ -430,6 +501,7 @@ impl LinearSolver for SparseLdlt {
 mod tests {
     use super::*;
     use crate::linear::check_solution;
+    use faer::sparse::linalg::SupernodalThreshold;
 
     /// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
     /// the LDL^T solver.
@@ -509,6 +581,92 @@ mod tests {
         let t = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 0.0)];
         let (x, y, _) = both(2, &t, &[1.0, 1.0]);
         assert_close(&x, &y);
+    }
+
+    /// The fill: a tridiagonal matrix factorises without fill (`2n - 1`
+    /// entries of `L`), a dense one fills its whole lower triangle, and a
+    /// 2D grid Laplacian's count is the exact elimination fill of its AMD
+    /// ordering (counted here by eliminating the graph), which is what a
+    /// simplicial factor stores and less than a supernodal one stores.
+    #[test]
+    fn factor_nonzeros_counts_the_lower_triangle_of_l() {
+        let analysed = |n: usize, t: &[(usize, usize)]| {
+            let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
+            let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+            let mut s = SparseLdlt::new();
+            assert_eq!(s.factor_nonzeros(), None);
+            s.analyse(n, &rows, &cols).unwrap();
+            s
+        };
+        let n = 50;
+        let tri: Vec<(usize, usize)> = (0..n)
+            .flat_map(|i: usize| [(i, i), (i, i.saturating_sub(1)), (i.saturating_sub(1), i)])
+            .collect();
+        assert_eq!(analysed(n, &tri).factor_nonzeros(), Some(2 * n - 1));
+        let dense: Vec<(usize, usize)> = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).collect();
+        assert_eq!(analysed(n, &dense).factor_nonzeros(), Some(n * (n + 1) / 2));
+        // 5-point Laplacian on a 40 x 40 grid, analysed both ways
+        let m = 40;
+        let id = |i: usize, j: usize| i * m + j;
+        let mut grid = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                grid.push(Pair {
+                    row: id(i, j),
+                    col: id(i, j),
+                });
+                if i + 1 < m {
+                    grid.push(Pair {
+                        row: id(i + 1, j),
+                        col: id(i, j),
+                    });
+                }
+                if j + 1 < m {
+                    grid.push(Pair {
+                        row: id(i, j + 1),
+                        col: id(i, j),
+                    });
+                }
+            }
+        }
+        let (lower, _) = SymbolicSparseColMat::try_new_from_indices(m * m, m * m, &grid).unwrap();
+        for threshold in [
+            SupernodalThreshold::FORCE_SIMPLICIAL,
+            SupernodalThreshold::FORCE_SUPERNODAL,
+        ] {
+            let cholesky = factorize_symbolic_cholesky(
+                lower.as_ref(),
+                Side::Lower,
+                SymmetricOrdering::Amd,
+                CholeskySymbolicParams {
+                    supernodal_flop_ratio_threshold: threshold,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let inv = cholesky.perm().unwrap().arrays().1.to_vec();
+            // exact fill: eliminate the graph in the factorisation's order
+            let mut adj = vec![std::collections::BTreeSet::<usize>::new(); m * m];
+            for e in grid.iter().filter(|e| e.row != e.col) {
+                adj[inv[e.row]].insert(inv[e.col]);
+                adj[inv[e.col]].insert(inv[e.row]);
+            }
+            let mut exact = 0;
+            for k in 0..m * m {
+                let later: Vec<usize> = adj[k].range(k + 1..).copied().collect();
+                exact += 1 + later.len();
+                for &a in &later {
+                    adj[a].extend(later.iter().filter(|&&b| b != a));
+                }
+            }
+            assert_eq!(exact_factor_nonzeros(lower.as_ref(), Some(&inv)), exact);
+            match cholesky.raw() {
+                // a simplicial factor stores exactly these entries
+                SymbolicCholeskyRaw::Simplicial(_) => assert_eq!(cholesky.len_val(), exact),
+                // a supernodal one more (relaxation, dense diagonal blocks)
+                SymbolicCholeskyRaw::Supernodal(_) => assert!(cholesky.len_val() > exact),
+            }
+        }
     }
 
     /// A singular matrix is an error (after the fallback), never a panic;
