@@ -45,7 +45,13 @@
 //! [`LinearSolver::factor`] to the next [`LinearSolver::solve`], which
 //! consumes it. The LU of a fallback is analysed on first use and then kept
 //! with the same rule; its symbolic work counts in this solver's symbolic
-//! statistics.
+//! statistics. Only the *memory* of the last factor's values is kept for the
+//! next factorisation (which overwrites every entry), so that a Newton
+//! iteration does not page in a fresh factor; it is released before an LU
+//! fallback factorises, so at most one factor is held at a time. Inside
+//! [`LinearSolver::solve_system`] the assembled values are borrowed by the
+//! refinement, not copied; `|A|_inf` is accumulated in the first residual
+//! pass.
 
 use std::time::{Duration, Instant};
 
@@ -59,10 +65,10 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Side};
 
-use super::{LinearError, LinearSolver, SparseLu};
+use super::{LinearError, LinearSolver, SparseLu, check_solution};
 
 /// A solve is accepted when its normwise backward error
 /// `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` is at most this.
@@ -81,7 +87,9 @@ struct Pattern {
     lower: Vec<usize>,
     /// Compressed-column structure of the lower triangle.
     symbolic: SymbolicSparseColMat<usize>,
-    argsort: Argsort<usize>,
+    /// For each triplet of `lower`, its slot in the values of `symbolic`
+    /// (duplicates share a slot and are added in triplet order).
+    slot: Vec<usize>,
     cholesky: SymbolicCholesky<usize>,
     /// Workspace of the numeric factorisation and the solves, sized for
     /// `par`.
@@ -93,8 +101,12 @@ struct Pattern {
 
 /// A factorisation waiting for its solve.
 enum Factor {
-    /// The LDL^T values, with the assembled values for the refinement.
-    Ldlt { l_values: Vec<f64>, vals: Vec<f64> },
+    /// The LDL^T values, with the assembled values for the refinement
+    /// (`None` inside [`LinearSolver::solve_system`], which lends them).
+    Ldlt {
+        l_values: Vec<f64>,
+        vals: Option<Vec<f64>>,
+    },
     /// The LDL^T was unsafe: the fallback LU is factorised.
     Lu,
 }
@@ -113,6 +125,10 @@ pub struct SparseLdlt {
     /// First constraint equation (see [`LinearSolver::set_constraints_from`]);
     /// `None`: no hint, plain AMD.
     constraints_from: Option<usize>,
+    /// The memory of the last LDL^T values, reused by the next
+    /// factorisation (its values are never read: the numeric factorisation
+    /// overwrites every entry); released when a solve falls back to LU.
+    spare: Vec<f64>,
 }
 
 impl SparseLdlt {
@@ -126,8 +142,10 @@ impl SparseLdlt {
         self.refinements
     }
 
-    /// Factorises with the fallback LU (analysing the pattern if needed).
+    /// Factorises with the fallback LU (analysing the pattern if needed),
+    /// releasing the spare LDL^T values first.
     fn factor_lu(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.spare = Vec::new();
         let p = self
             .pattern
             .as_ref()
@@ -137,6 +155,153 @@ impl SparseLdlt {
         self.lu.factor(vals)?;
         self.numeric = Some(Factor::Lu);
         Ok(())
+    }
+
+    /// [`LinearSolver::factor`] without keeping a copy of `vals`: the LDL^T
+    /// of the lower triangle when it is safe (module docs), else the LU.
+    fn factor_values(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.numeric = None;
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        if vals.len() != p.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "{} values for {} analysed entries",
+                vals.len(),
+                p.rows.len()
+            )));
+        }
+        // the lower triangle's values in compressed-column order, and the
+        // assembled diagonal (duplicates added in triplet order)
+        let mut lower_vals = vec![0.0_f64; p.symbolic.compute_nnz()];
+        let mut diagonal = vec![0.0_f64; p.n];
+        for (&k, &slot) in p.lower.iter().zip(&p.slot) {
+            lower_vals[slot] += vals[k];
+            if p.rows[k] == p.cols[k] {
+                diagonal[p.rows[k]] += vals[k];
+            }
+        }
+        let expect_positive: Vec<bool> = diagonal.iter().map(|&d| d > 0.0).collect();
+        drop(diagonal);
+        let a = SparseColMatRef::new(p.symbolic.as_ref(), &lower_vals);
+        let mut l_values = std::mem::take(&mut self.spare);
+        l_values.resize(p.cholesky.len_val(), 0.0);
+        if matches!(p.cholesky.raw(), SymbolicCholeskyRaw::Simplicial(_)) {
+            // the supernodal factorisation clears its values itself
+            l_values.fill(0.0);
+        }
+        let safe = p
+            .cholesky
+            .factorize_numeric_ldlt(
+                &mut l_values,
+                a,
+                Side::Lower,
+                LdltRegularization::default(),
+                p.par,
+                MemStack::new(&mut p.buffer),
+                Default::default(),
+            )
+            .is_ok()
+            && pivots_have_expected_signs(&p.cholesky, &l_values, &expect_positive);
+        if safe {
+            self.numeric = Some(Factor::Ldlt {
+                l_values,
+                vals: None,
+            });
+            Ok(())
+        } else {
+            drop(l_values);
+            self.factor_lu(vals)
+        }
+    }
+
+    /// Solves with the LDL^T values `l_values`, refines against the
+    /// assembled values `vals` and checks the backward error (module docs);
+    /// falls back to LU when the check fails. Keeps `l_values` as the spare.
+    fn solve_ldlt(
+        &mut self,
+        l_values: Vec<f64>,
+        vals: &[f64],
+        rhs: &[f64],
+    ) -> Result<Vec<f64>, LinearError> {
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        let n = p.n;
+        if rhs.len() != n {
+            return Err(LinearError::Singular(format!(
+                "right-hand side of size {} for {n} equations",
+                rhs.len()
+            )));
+        }
+        let par = p.par;
+        let ldlt = LdltRef::new(&p.cholesky, &l_values);
+        let mut x = rhs.to_vec();
+        ldlt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, 1),
+            par,
+            MemStack::new(&mut p.buffer),
+        );
+        let b_norm = max_abs(rhs);
+        let mut r = vec![0.0_f64; n];
+        // |A|_inf: the absolute row sums, accumulated in the first
+        // residual pass (in triplet order)
+        let mut row_sums = vec![0.0_f64; n];
+        let mut a_norm = None;
+        let mut refinements = 0;
+        let accepted = loop {
+            // r = b - A x with the assembled (possibly unsymmetric) matrix
+            r.copy_from_slice(rhs);
+            let a_inf = match a_norm {
+                Some(a) => {
+                    for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(vals) {
+                        r[row] -= v * x[col];
+                    }
+                    a
+                }
+                None => {
+                    for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(vals) {
+                        r[row] -= v * x[col];
+                        row_sums[row] += v.abs();
+                    }
+                    let a = row_sums.iter().copied().fold(0.0, f64::max);
+                    *a_norm.insert(a)
+                }
+            };
+            let finite = x.iter().all(|v| v.is_finite());
+            let (r_max, x_max) = (max_abs(&r), max_abs(&x));
+            if !finite || !r_max.is_finite() {
+                break false;
+            }
+            if r_max <= ACCEPT_BACKWARD_ERROR * (a_inf * x_max + b_norm) {
+                break true;
+            }
+            if refinements == MAX_REFINEMENTS {
+                break false;
+            }
+            refinements += 1;
+            ldlt.solve_in_place_with_conj(
+                Conj::No,
+                MatMut::from_column_major_slice_mut(&mut r, n, 1),
+                par,
+                MemStack::new(&mut p.buffer),
+            );
+            for (xi, ri) in x.iter_mut().zip(&r) {
+                *xi += ri;
+            }
+        };
+        self.refinements += refinements;
+        if accepted {
+            self.spare = l_values;
+            return Ok(x);
+        }
+        drop(l_values);
+        self.factor_lu(vals)?;
+        self.numeric = None;
+        self.lu.solve(rhs)
     }
 }
 
@@ -242,15 +407,6 @@ fn exact_factor_nonzeros(
     nonzeros
 }
 
-/// `|A|_inf` (largest absolute row sum) of the triplets.
-fn norm_inf(n: usize, rows: &[usize], vals: &[f64]) -> f64 {
-    let mut sums = vec![0.0_f64; n];
-    for (&r, &v) in rows.iter().zip(vals) {
-        sums[r] += v.abs();
-    }
-    sums.into_iter().fold(0.0, f64::max)
-}
-
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
@@ -305,8 +461,22 @@ impl LinearSolver for SparseLdlt {
                     col: cols[k],
                 })
                 .collect();
-            let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
+            let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
                 .map_err(|e| LinearError::Singular(format!("pattern: {e:?}")))?;
+            // the slot of each lower triplet: its row among the sorted,
+            // deduplicated rows of its column
+            let slot: Vec<usize> = idx
+                .iter()
+                .map(|e| {
+                    let start = symbolic.col_ptr()[e.col];
+                    let rows_of_col = symbolic.row_idx_of_col_raw(e.col);
+                    rows_of_col
+                        .binary_search(&e.row)
+                        .map(|i| start + i)
+                        .map_err(|_| LinearError::Singular("pattern: lost entry".into()))
+                })
+                .collect::<Result<_, _>>()?;
+            drop(idx);
             let ordering = match self.constraints_from {
                 Some(first) if first < n => Some(constrained_amd(symbolic.as_ref(), first)?),
                 _ => None,
@@ -336,7 +506,7 @@ impl LinearSolver for SparseLdlt {
                 cols: cols.to_vec(),
                 lower,
                 symbolic,
-                argsort,
+                slot,
                 cholesky,
                 buffer,
                 par,
@@ -347,123 +517,42 @@ impl LinearSolver for SparseLdlt {
     }
 
     fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
-        self.numeric = None;
-        let p = self
-            .pattern
-            .as_mut()
-            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        if vals.len() != p.rows.len() {
-            return Err(LinearError::Singular(format!(
-                "{} values for {} analysed entries",
-                vals.len(),
-                p.rows.len()
-            )));
+        self.factor_values(vals)?;
+        if let Some(Factor::Ldlt { vals: kept, .. }) = &mut self.numeric {
+            *kept = Some(vals.to_vec());
         }
-        let lower_vals: Vec<f64> = p.lower.iter().map(|&k| vals[k]).collect();
-        let mut diagonal = vec![0.0_f64; p.n];
-        for &k in &p.lower {
-            if p.rows[k] == p.cols[k] {
-                diagonal[p.rows[k]] += vals[k];
-            }
-        }
-        let expect_positive: Vec<bool> = diagonal.iter().map(|&d| d > 0.0).collect();
-        let a = SparseColMat::new_from_argsort(p.symbolic.clone(), &p.argsort, &lower_vals)
-            .map_err(|e| LinearError::Singular(format!("values: {e:?}")))?;
-        let mut l_values = vec![0.0_f64; p.cholesky.len_val()];
-        let safe = p
-            .cholesky
-            .factorize_numeric_ldlt(
-                &mut l_values,
-                a.as_ref(),
-                Side::Lower,
-                LdltRegularization::default(),
-                p.par,
-                MemStack::new(&mut p.buffer),
-                Default::default(),
-            )
-            .is_ok()
-            && pivots_have_expected_signs(&p.cholesky, &l_values, &expect_positive);
-        if safe {
-            self.numeric = Some(Factor::Ldlt {
-                l_values,
-                vals: vals.to_vec(),
-            });
-            Ok(())
-        } else {
-            drop(l_values);
-            self.factor_lu(vals)
-        }
+        Ok(())
     }
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
-        let factor = self
-            .numeric
-            .take()
-            .ok_or_else(|| LinearError::Singular("no factorisation".into()))?;
-        let (l_values, vals) = match factor {
-            Factor::Lu => return self.lu.solve(rhs),
-            Factor::Ldlt { l_values, vals } => (l_values, vals),
-        };
-        let p = self
-            .pattern
-            .as_mut()
-            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        let n = p.n;
-        if rhs.len() != n {
-            return Err(LinearError::Singular(format!(
-                "right-hand side of size {} for {n} equations",
-                rhs.len()
-            )));
+        match self.numeric.take() {
+            Some(Factor::Ldlt {
+                l_values,
+                vals: Some(vals),
+            }) => self.solve_ldlt(l_values, &vals, rhs),
+            Some(Factor::Lu) => self.lu.solve(rhs),
+            _ => Err(LinearError::Singular("no factorisation".into())),
         }
-        let par = p.par;
-        let ldlt = LdltRef::new(&p.cholesky, &l_values);
-        let mut x = rhs.to_vec();
-        ldlt.solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut x, n, 1),
-            par,
-            MemStack::new(&mut p.buffer),
-        );
-        let a_norm = norm_inf(n, &p.rows, &vals);
-        let b_norm = max_abs(rhs);
-        let mut r = vec![0.0_f64; n];
-        let mut refinements = 0;
-        let accepted = loop {
-            // r = b - A x with the assembled (possibly unsymmetric) matrix
-            r.copy_from_slice(rhs);
-            for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(&vals) {
-                r[row] -= v * x[col];
-            }
-            let finite = x.iter().all(|v| v.is_finite());
-            let (r_max, x_max) = (max_abs(&r), max_abs(&x));
-            if !finite || !r_max.is_finite() {
-                break false;
-            }
-            if r_max <= ACCEPT_BACKWARD_ERROR * (a_norm * x_max + b_norm) {
-                break true;
-            }
-            if refinements == MAX_REFINEMENTS {
-                break false;
-            }
-            refinements += 1;
-            ldlt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(&mut r, n, 1),
-                par,
-                MemStack::new(&mut p.buffer),
-            );
-            for (xi, ri) in x.iter_mut().zip(&r) {
-                *xi += ri;
-            }
+    }
+
+    /// As the trait's: the phases and [`check_solution`], with the
+    /// assembled values lent to the refinement rather than copied.
+    fn solve_system(
+        &mut self,
+        n: usize,
+        rows: &[usize],
+        cols: &[usize],
+        vals: &[f64],
+        b: &[f64],
+    ) -> Result<Vec<f64>, LinearError> {
+        self.analyse(n, rows, cols)?;
+        self.factor_values(vals)?;
+        let x = match self.numeric.take() {
+            Some(Factor::Ldlt { l_values, .. }) => self.solve_ldlt(l_values, vals, b)?,
+            Some(Factor::Lu) => self.lu.solve(b)?,
+            None => return Err(LinearError::Singular("no factorisation".into())),
         };
-        self.refinements += refinements;
-        if accepted {
-            return Ok(x);
-        }
-        drop(l_values);
-        self.factor_lu(&vals)?;
-        self.numeric = None;
-        self.lu.solve(rhs)
+        check_solution(vals, b, x)
     }
 
     fn symbolic_factorisations(&self) -> usize {
@@ -500,7 +589,6 @@ impl LinearSolver for SparseLdlt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linear::check_solution;
     use faer::sparse::linalg::SupernodalThreshold;
 
     /// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
