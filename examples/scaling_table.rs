@@ -6,6 +6,8 @@
 //! cargo run --release --example scaling_table -- 8x4 26x13   # refine factors
 //! cargo run --release --example scaling_table -- --linear ldlt       # the LDL^T
 //! cargo run --release --example scaling_table -- --linear lu,ldlt    # both, compared
+//! cargo run --release --example scaling_table -- --linear ldlt,lu \
+//!     --max-equations 1100000 --lu-max-equations 110000  # up to 10^6, LU to 10^5
 //! ```
 //!
 //! For each refinement `(x, y)` of `scenes/stacked-cantilever.toml` (every
@@ -21,7 +23,20 @@
 //! symbolic analysis. Below the table: the least-squares exponent `p` of
 //! `time ∝ equations^p` on a log-log scale per phase, and the peak resident
 //! memory (`VmHWM` from `/proc/self/status`, Linux; the sizes run in
-//! increasing order, so it is that of the largest size).
+//! increasing order, so it is that of the largest size). Each row also gives
+//! the peak resident memory of its probed iterations alone: `VmHWM` is reset
+//! (`5` written to `/proc/self/clear_refs`) before a solver's probe and read
+//! after it, so the figure holds the model, the converged state and the
+//! iterations' assembly and factorisation (`n/a` where the kernel refuses
+//! the reset).
+//!
+//! `--max-equations N` adds the larger refinements [`EXTRA_SIZES`] (about
+//! 3e5 and 1e6 equations) whose nominal size is at most `N`; they use
+//! [`REPS_HUGE`] timed iterations. `--lu-max-equations N` (default
+//! [`LU_MAX_EQUATIONS`]) skips the LU above `N` equations (its time and
+//! memory grow faster than the LDL^T's, and the machine's memory is shared);
+//! the comparison table then says so. The first load step is solved with the first solver listed, so above
+//! that limit LU must not come first (`--linear ldlt,lu`).
 //!
 //! `--linear` picks the linear solver(s) (default `lu`). With several, each
 //! is probed from the same converged state (the first step is solved with
@@ -39,6 +54,18 @@ use solver::{LinearSolverKind, Method, Scene, SolveOptions, solve_model};
 
 /// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
 const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
+
+/// Larger refine factors for `--max-equations`, with their nominal numbers
+/// of equations (measured: about 28.8 equations per unit of `x y`).
+const EXTRA_SIZES: [((usize, usize), usize); 2] = [((144, 72), 299_000), ((263, 132), 1_000_000)];
+
+/// Default of `--lu-max-equations`: the LU is measured up to about 1e5
+/// equations (826 MiB peak there).
+const LU_MAX_EQUATIONS: usize = 200_000;
+
+/// Timed iterations above [`HUGE`] equations.
+const REPS_HUGE: usize = 3;
+const HUGE: usize = 500_000;
 
 /// Timed iterations per size (after the one building the symbolic LU);
 /// fewer for sizes above [`LARGE`] equations.
@@ -58,6 +85,10 @@ struct Row {
     symbolic: f64,
     /// Linear solves that fell back to LU (of the `REPS` + 1).
     fallbacks: usize,
+    /// Nonzeros of the factor, when the solver reports them.
+    fill: Option<usize>,
+    /// Peak resident memory of the probed iterations, MiB.
+    peak_mib: Option<f64>,
 }
 
 fn ms(d: Duration) -> f64 {
@@ -96,12 +127,26 @@ fn exponent(x: &[f64], y: &[f64]) -> f64 {
     sxy / sxx
 }
 
-/// `VmHWM` (peak resident set) from `/proc/self/status`.
-fn peak_memory() -> Option<String> {
+/// `VmHWM` (peak resident set) from `/proc/self/status`, MiB.
+fn peak_mib() -> Option<f64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(format!("{:.0} MiB", kib / 1024.0))
+    Some(kib / 1024.0)
+}
+
+/// Resets `VmHWM` to the current resident set (Linux `clear_refs` code 5);
+/// whether it worked.
+fn reset_peak() -> bool {
+    std::fs::write("/proc/self/clear_refs", "5").is_ok()
+}
+
+fn fmt_mib(v: Option<f64>) -> String {
+    v.map_or_else(|| "n/a".into(), |m| format!("{m:.0}"))
+}
+
+fn fmt_fill(v: Option<usize>) -> String {
+    v.map_or_else(|| "n/a".into(), |n| format!("{n:.3e}"))
 }
 
 fn parse_size(s: &str) -> Option<(usize, usize)> {
@@ -110,14 +155,24 @@ fn parse_size(s: &str) -> Option<(usize, usize)> {
     (x > 0 && y > 0).then_some((x, y))
 }
 
-/// One row per kind in `linear`, probed from the same state.
+/// One row per kind in `linear`, probed from the same state (`None`: an LU
+/// above `lu_max` equations, not run).
 fn measure(
     base: &Scene,
     refine: (usize, usize),
     linear: &[LinearSolverKind],
-) -> Result<Vec<Row>, Box<dyn std::error::Error>> {
+    lu_max: usize,
+) -> Result<Vec<Option<Row>>, Box<dyn std::error::Error>> {
     let scene = base.refined(refine.0, refine.1);
     let model = scene.build_model()?;
+    let free_dofs = model.mesh.node_count() * 2;
+    if linear[0] == LinearSolverKind::Lu && free_dofs > lu_max {
+        return Err(format!(
+            "about {free_dofs} equations: above --lu-max-equations {lu_max}, LU must not solve \
+             the first step (list another solver first, e.g. --linear ldlt,lu)"
+        )
+        .into());
+    }
     let opts = SolveOptions {
         method: Method::Complete,
         linear: linear[0],
@@ -145,15 +200,20 @@ fn measure(
         solution.newton_iterations
     );
     let state = solution.final_state.clone();
+    let equations = solution.equations;
     drop(solution);
     linear
         .iter()
         .map(|&kind| {
+            if kind == LinearSolverKind::Lu && equations > lu_max {
+                eprintln!("  lu: not run ({equations} equations > --lu-max-equations {lu_max})");
+                return Ok(None);
+            }
             let opts = SolveOptions {
                 linear: kind,
                 ..opts.clone()
             };
-            probe_row(&model, &opts, &state, 2.0 * step, refine)
+            probe_row(&model, &opts, &state, 2.0 * step, refine).map(Some)
         })
         .collect()
 }
@@ -166,10 +226,13 @@ fn probe_row(
     to: f64,
     refine: (usize, usize),
 ) -> Result<Row, Box<dyn std::error::Error>> {
+    let reset = reset_peak();
     let mut probe = IterationProbe::new(model, opts, state, to)?;
     let warm = probe.iteration()?;
     let symbolic = ms(probe.symbolic_time());
-    let reps = if probe.equations() > LARGE {
+    let reps = if probe.equations() > HUGE {
+        REPS_HUGE
+    } else if probe.equations() > LARGE {
         REPS_LARGE
     } else {
         REPS
@@ -197,14 +260,17 @@ fn probe_row(
         total: pick(|s| s.total()),
         symbolic,
         fallbacks,
+        fill: probe.factor_nonzeros(),
+        peak_mib: peak_mib().filter(|_| reset),
     };
     eprintln!(
-        "  {}: |r| = {:.3e}; first iteration {:.0} ms (symbolic {:.0} ms), then median {:.1} ms over {reps}",
+        "  {}: |r| = {:.3e}; first iteration {:.0} ms (symbolic {:.0} ms), then median {:.1} ms over {reps}; peak {} MiB",
         opts.linear,
         warm.residual_norm,
         ms(warm.total()),
         symbolic,
-        row.total
+        row.total,
+        fmt_mib(row.peak_mib)
     );
     Ok(row)
 }
@@ -212,6 +278,8 @@ fn probe_row(
 fn main() -> ExitCode {
     let mut sizes: Vec<(usize, usize)> = Vec::new();
     let mut linear = vec![LinearSolverKind::Lu];
+    let mut max_equations: Option<usize> = None;
+    let mut lu_max = LU_MAX_EQUATIONS;
     let mut args = std::env::args().skip(1);
     while let Some(arg) = args.next() {
         if arg == "--linear" {
@@ -231,6 +299,19 @@ fn main() -> ExitCode {
             }
             continue;
         }
+        if arg == "--max-equations" || arg == "--lu-max-equations" {
+            let value = args.next().unwrap_or_default();
+            let Ok(n) = value.trim().replace('_', "").parse::<usize>() else {
+                eprintln!("{arg}: expected a number of equations, got `{value}`");
+                return ExitCode::FAILURE;
+            };
+            if arg == "--max-equations" {
+                max_equations = Some(n);
+            } else {
+                lu_max = n;
+            }
+            continue;
+        }
         match parse_size(&arg) {
             Some(s) => sizes.push(s),
             None => {
@@ -241,6 +322,14 @@ fn main() -> ExitCode {
     }
     if sizes.is_empty() {
         sizes = SIZES.to_vec();
+    }
+    if let Some(max) = max_equations {
+        sizes.extend(
+            EXTRA_SIZES
+                .iter()
+                .filter(|&&(_, n)| n <= max)
+                .map(|&(size, _)| size),
+        );
     }
     let base = match Scene::from_toml_str(
         solver::scenes::STACKED_CANTILEVER,
@@ -253,26 +342,28 @@ fn main() -> ExitCode {
         }
     };
     let mut rows = Vec::new();
-    let mut others: Vec<Vec<Row>> = Vec::new();
+    let mut others: Vec<Vec<Option<Row>>> = Vec::new();
     for &size in &sizes {
-        match measure(&base, size, &linear) {
-            Ok(mut r) => {
-                let first = r.remove(0);
-                rows.push(first);
-                others.push(r);
-            }
+        match measure(&base, size, &linear, lu_max) {
+            Ok(mut r) => match r.remove(0) {
+                Some(first) => {
+                    rows.push(first);
+                    others.push(r);
+                }
+                None => unreachable!("the first solver always runs"),
+            },
             Err(e) => {
                 eprintln!("refine {}x{}: {e}", size.0, size.1);
                 return ExitCode::FAILURE;
             }
         }
     }
-    let peak = peak_memory().unwrap_or_else(|| "n/a".into());
+    let peak = peak_mib();
 
     println!(
         "One Newton iteration, complete formulation, paper scene refined \
-         (first iteration of load step 2 of {}; median of {REPS} runs, {REPS_LARGE} above {LARGE} equations; \
-         {} rayon threads):\n",
+         (first iteration of load step 2 of {}; median of {REPS} runs, {REPS_LARGE} above {LARGE} equations, \
+         {REPS_HUGE} above {HUGE}; {} rayon threads):\n",
         base.default_steps(),
         rayon_threads()
     );
@@ -280,12 +371,12 @@ fn main() -> ExitCode {
         println!("Linear solver: {}.\n", linear[0]);
     }
     println!(
-        "| refine (x, y) | equations | contact points | assembly ms | contact ms | solve ms | total ms | symbolic LU ms (once) |"
+        "| refine (x, y) | equations | contact points | assembly ms | contact ms | solve ms | total ms | symbolic ms (once) | factor nonzeros | peak MiB |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for r in &rows {
         println!(
-            "| {} x {} | {} | {} | {} | {} | {} | {} | {} |",
+            "| {} x {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
             r.refine.0,
             r.refine.1,
             r.equations,
@@ -294,7 +385,9 @@ fn main() -> ExitCode {
             fmt_ms(r.contact),
             fmt_ms(r.linear),
             fmt_ms(r.total),
-            fmt_ms(r.symbolic)
+            fmt_ms(r.symbolic),
+            fmt_fill(r.fill),
+            fmt_mib(r.peak_mib)
         );
     }
     println!();
@@ -303,31 +396,44 @@ fn main() -> ExitCode {
         let cp: Vec<f64> = rows.iter().map(|r| r.contact_points as f64).collect();
         let fit = |f: fn(&Row) -> f64| exponent(&n, &rows.iter().map(f).collect::<Vec<_>>());
         println!(
-            "Growth, time ∝ equations^p (least squares on log-log): assembly p = {:.2}, \
+            "Growth from {} to {} equations, time ∝ equations^p (least squares on log-log): assembly p = {:.2}, \
              contact p = {:.2} (contact points ∝ equations^{:.2}), solve p = {:.2}, total p = {:.2}.",
+            rows[0].equations,
+            rows[rows.len() - 1].equations,
             fit(|r| r.solid),
             fit(|r| r.contact),
             exponent(&n, &cp),
             fit(|r| r.linear),
             fit(|r| r.total)
         );
+        if rows.iter().all(|r| r.fill.is_some()) {
+            let fill: Vec<f64> = rows.iter().map(|r| r.fill.unwrap_or(0) as f64).collect();
+            println!("Factor nonzeros ∝ equations^{:.2}.", exponent(&n, &fill));
+        }
         println!();
     }
     for (k, &kind) in linear.iter().enumerate().skip(1) {
+        // LU in the first columns, so a ratio above 1 is the other's gain
+        let swap = kind == LinearSolverKind::Lu;
+        let (a, b) = if swap {
+            (kind, linear[0])
+        } else {
+            (linear[0], kind)
+        };
+        println!("{b} against {a} (same state; ratio = {a} time / {b} time):\n");
         println!(
-            "{} against {} (same state; ratio = {} time / {} time):\n",
-            kind, linear[0], linear[0], kind
+            "| equations | solve ms ({a}) | solve ms ({b}) | ratio | total ms ({a}) | total ms ({b}) | ratio | symbolic ms ({a}) | symbolic ms ({b}) | ratio | peak MiB ({a}) | peak MiB ({b}) | {b} fallbacks |"
         );
-        println!(
-            "| equations | solve ms ({a}) | solve ms ({b}) | ratio | total ms ({a}) | total ms ({b}) | ratio | symbolic ms ({a}) | symbolic ms ({b}) | ratio | {b} fallbacks |",
-            a = linear[0],
-            b = kind
-        );
-        println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-        for (r, o) in rows.iter().zip(&others) {
-            let o = &o[k - 1];
+        println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+        let mut skipped = Vec::new();
+        for (first, o) in rows.iter().zip(&others) {
+            let Some(other) = &o[k - 1] else {
+                skipped.push(first.equations);
+                continue;
+            };
+            let (r, o) = if swap { (other, first) } else { (first, other) };
             println!(
-                "| {} | {} | {} | {:.2} | {} | {} | {:.2} | {} | {} | {:.2} | {} |",
+                "| {} | {} | {} | {:.2} | {} | {} | {:.2} | {} | {} | {:.2} | {} | {} | {} |",
                 r.equations,
                 fmt_ms(r.linear),
                 fmt_ms(o.linear),
@@ -338,15 +444,25 @@ fn main() -> ExitCode {
                 fmt_ms(r.symbolic),
                 fmt_ms(o.symbolic),
                 r.symbolic / o.symbolic,
+                fmt_mib(r.peak_mib),
+                fmt_mib(o.peak_mib),
                 o.fallbacks
             );
         }
         println!();
+        if !skipped.is_empty() {
+            let list: Vec<String> = skipped.iter().map(usize::to_string).collect();
+            println!(
+                "LU not run at {} equations (above --lu-max-equations {lu_max}).\n",
+                list.join(", ")
+            );
+        }
     }
     if let Some(last) = rows.last() {
         println!(
-            "Peak memory (VmHWM) after the largest size ({} equations): {peak}.",
-            last.equations
+            "Peak memory (VmHWM) of the whole run, after the largest size ({} equations): {} MiB.",
+            last.equations,
+            fmt_mib(peak)
         );
     }
     ExitCode::SUCCESS

@@ -343,6 +343,11 @@ pub struct Solution {
     /// not safe for them (see [`crate::linear::LinearSolver::fallbacks`]);
     /// always 0 with LU.
     pub linear_fallbacks: usize,
+    /// Nonzeros of the factor of the last sparsity pattern (the fill; see
+    /// [`crate::linear::LinearSolver::factor_nonzeros`]): the lower triangle
+    /// of `L`, diagonal included, with LDL^T; `None` with LU, whose factors
+    /// faer does not expose.
+    pub factor_nonzeros: Option<usize>,
     /// Number of equations (free dofs plus multipliers).
     pub equations: usize,
     /// The mesh (reference coordinates, connectivity, bodies, materials).

@@ -192,6 +192,17 @@ pub fn run(args: &RunArgs) -> CommandResult {
             .saturating_sub(t.symbolic_factorisation)
             .as_secs_f64()
     );
+    match sol.factor_nonzeros {
+        Some(nnz) => println!(
+            "fill            {nnz} nonzeros in L ({:.1} per equation, {} equations)",
+            nnz as f64 / sol.equations.max(1) as f64,
+            sol.equations
+        ),
+        None => println!(
+            "fill            not reported for {} (faer's sparse LU does not expose its factors)",
+            options.linear
+        ),
+    }
     if options.linear != LinearSolverKind::Lu {
         println!(
             "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",

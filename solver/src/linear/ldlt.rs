@@ -45,7 +45,13 @@
 //! [`LinearSolver::factor`] to the next [`LinearSolver::solve`], which
 //! consumes it. The LU of a fallback is analysed on first use and then kept
 //! with the same rule; its symbolic work counts in this solver's symbolic
-//! statistics.
+//! statistics. Only the *memory* of the last factor's values is kept for the
+//! next factorisation (which overwrites every entry), so that a Newton
+//! iteration does not page in a fresh factor; it is released before an LU
+//! fallback factorises, so at most one factor is held at a time. Inside
+//! [`LinearSolver::solve_system`] the assembled values are borrowed by the
+//! refinement, not copied; `|A|_inf` is accumulated in the first residual
+//! pass.
 
 use std::time::{Duration, Instant};
 
@@ -59,10 +65,10 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Side};
 
-use super::{LinearError, LinearSolver, SparseLu};
+use super::{LinearError, LinearSolver, SparseLu, check_solution};
 
 /// A solve is accepted when its normwise backward error
 /// `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` is at most this.
@@ -81,7 +87,9 @@ struct Pattern {
     lower: Vec<usize>,
     /// Compressed-column structure of the lower triangle.
     symbolic: SymbolicSparseColMat<usize>,
-    argsort: Argsort<usize>,
+    /// For each triplet of `lower`, its slot in the values of `symbolic`
+    /// (duplicates share a slot and are added in triplet order).
+    slot: Vec<usize>,
     cholesky: SymbolicCholesky<usize>,
     /// Workspace of the numeric factorisation and the solves, sized for
     /// `par`.
@@ -93,8 +101,12 @@ struct Pattern {
 
 /// A factorisation waiting for its solve.
 enum Factor {
-    /// The LDL^T values, with the assembled values for the refinement.
-    Ldlt { l_values: Vec<f64>, vals: Vec<f64> },
+    /// The LDL^T values, with the assembled values for the refinement
+    /// (`None` inside [`LinearSolver::solve_system`], which lends them).
+    Ldlt {
+        l_values: Vec<f64>,
+        vals: Option<Vec<f64>>,
+    },
     /// The LDL^T was unsafe: the fallback LU is factorised.
     Lu,
 }
@@ -113,6 +125,10 @@ pub struct SparseLdlt {
     /// First constraint equation (see [`LinearSolver::set_constraints_from`]);
     /// `None`: no hint, plain AMD.
     constraints_from: Option<usize>,
+    /// The memory of the last LDL^T values, reused by the next
+    /// factorisation (its values are never read: the numeric factorisation
+    /// overwrites every entry); released when a solve falls back to LU.
+    spare: Vec<f64>,
 }
 
 impl SparseLdlt {
@@ -126,8 +142,10 @@ impl SparseLdlt {
         self.refinements
     }
 
-    /// Factorises with the fallback LU (analysing the pattern if needed).
+    /// Factorises with the fallback LU (analysing the pattern if needed),
+    /// releasing the spare LDL^T values first.
     fn factor_lu(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.spare = Vec::new();
         let p = self
             .pattern
             .as_ref()
@@ -137,6 +155,153 @@ impl SparseLdlt {
         self.lu.factor(vals)?;
         self.numeric = Some(Factor::Lu);
         Ok(())
+    }
+
+    /// [`LinearSolver::factor`] without keeping a copy of `vals`: the LDL^T
+    /// of the lower triangle when it is safe (module docs), else the LU.
+    fn factor_values(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.numeric = None;
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        if vals.len() != p.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "{} values for {} analysed entries",
+                vals.len(),
+                p.rows.len()
+            )));
+        }
+        // the lower triangle's values in compressed-column order, and the
+        // assembled diagonal (duplicates added in triplet order)
+        let mut lower_vals = vec![0.0_f64; p.symbolic.compute_nnz()];
+        let mut diagonal = vec![0.0_f64; p.n];
+        for (&k, &slot) in p.lower.iter().zip(&p.slot) {
+            lower_vals[slot] += vals[k];
+            if p.rows[k] == p.cols[k] {
+                diagonal[p.rows[k]] += vals[k];
+            }
+        }
+        let expect_positive: Vec<bool> = diagonal.iter().map(|&d| d > 0.0).collect();
+        drop(diagonal);
+        let a = SparseColMatRef::new(p.symbolic.as_ref(), &lower_vals);
+        let mut l_values = std::mem::take(&mut self.spare);
+        l_values.resize(p.cholesky.len_val(), 0.0);
+        if matches!(p.cholesky.raw(), SymbolicCholeskyRaw::Simplicial(_)) {
+            // the supernodal factorisation clears its values itself
+            l_values.fill(0.0);
+        }
+        let safe = p
+            .cholesky
+            .factorize_numeric_ldlt(
+                &mut l_values,
+                a,
+                Side::Lower,
+                LdltRegularization::default(),
+                p.par,
+                MemStack::new(&mut p.buffer),
+                Default::default(),
+            )
+            .is_ok()
+            && pivots_have_expected_signs(&p.cholesky, &l_values, &expect_positive);
+        if safe {
+            self.numeric = Some(Factor::Ldlt {
+                l_values,
+                vals: None,
+            });
+            Ok(())
+        } else {
+            drop(l_values);
+            self.factor_lu(vals)
+        }
+    }
+
+    /// Solves with the LDL^T values `l_values`, refines against the
+    /// assembled values `vals` and checks the backward error (module docs);
+    /// falls back to LU when the check fails. Keeps `l_values` as the spare.
+    fn solve_ldlt(
+        &mut self,
+        l_values: Vec<f64>,
+        vals: &[f64],
+        rhs: &[f64],
+    ) -> Result<Vec<f64>, LinearError> {
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        let n = p.n;
+        if rhs.len() != n {
+            return Err(LinearError::Singular(format!(
+                "right-hand side of size {} for {n} equations",
+                rhs.len()
+            )));
+        }
+        let par = p.par;
+        let ldlt = LdltRef::new(&p.cholesky, &l_values);
+        let mut x = rhs.to_vec();
+        ldlt.solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(&mut x, n, 1),
+            par,
+            MemStack::new(&mut p.buffer),
+        );
+        let b_norm = max_abs(rhs);
+        let mut r = vec![0.0_f64; n];
+        // |A|_inf: the absolute row sums, accumulated in the first
+        // residual pass (in triplet order)
+        let mut row_sums = vec![0.0_f64; n];
+        let mut a_norm = None;
+        let mut refinements = 0;
+        let accepted = loop {
+            // r = b - A x with the assembled (possibly unsymmetric) matrix
+            r.copy_from_slice(rhs);
+            let a_inf = match a_norm {
+                Some(a) => {
+                    for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(vals) {
+                        r[row] -= v * x[col];
+                    }
+                    a
+                }
+                None => {
+                    for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(vals) {
+                        r[row] -= v * x[col];
+                        row_sums[row] += v.abs();
+                    }
+                    let a = row_sums.iter().copied().fold(0.0, f64::max);
+                    *a_norm.insert(a)
+                }
+            };
+            let finite = x.iter().all(|v| v.is_finite());
+            let (r_max, x_max) = (max_abs(&r), max_abs(&x));
+            if !finite || !r_max.is_finite() {
+                break false;
+            }
+            if r_max <= ACCEPT_BACKWARD_ERROR * (a_inf * x_max + b_norm) {
+                break true;
+            }
+            if refinements == MAX_REFINEMENTS {
+                break false;
+            }
+            refinements += 1;
+            ldlt.solve_in_place_with_conj(
+                Conj::No,
+                MatMut::from_column_major_slice_mut(&mut r, n, 1),
+                par,
+                MemStack::new(&mut p.buffer),
+            );
+            for (xi, ri) in x.iter_mut().zip(&r) {
+                *xi += ri;
+            }
+        };
+        self.refinements += refinements;
+        if accepted {
+            self.spare = l_values;
+            return Ok(x);
+        }
+        drop(l_values);
+        self.factor_lu(vals)?;
+        self.numeric = None;
+        self.lu.solve(rhs)
     }
 }
 
@@ -182,13 +347,64 @@ fn constrained_amd(
     Ok((fwd, inv))
 }
 
-/// `|A|_inf` (largest absolute row sum) of the triplets.
-fn norm_inf(n: usize, rows: &[usize], vals: &[f64]) -> f64 {
-    let mut sums = vec![0.0_f64; n];
-    for (&r, &v) in rows.iter().zip(vals) {
-        sums[r] += v.abs();
+/// Nonzeros of the lower triangle of `L`, diagonal included, for the
+/// lower-triangle pattern `lower` eliminated in the order `inv` (`inv[old] =
+/// new`; `None`: the identity): the exact structural count, by row subtrees
+/// of the elimination tree. Row `k` of `L` has an entry in column `i < k`
+/// exactly when `i` lies on the tree path from some `j` with `a_kj != 0`,
+/// `j < k`, up to `k`; walking those paths, stopping at nodes already
+/// visited for row `k`, also builds the tree (the parent of `i` is the first
+/// row that reaches it). `O(nnz(L))` time, `O(nnz(A))` memory. A supernodal
+/// factor computes more entries than this (the zeros admitted by supernode
+/// relaxation and the strict upper triangles of its dense diagonal blocks).
+fn exact_factor_nonzeros(
+    lower: SymbolicSparseColMatRef<'_, usize>,
+    inv: Option<&[usize]>,
+) -> usize {
+    const NONE: usize = usize::MAX;
+    let n = lower.nrows();
+    let new = |i: usize| inv.map_or(i, |p| p[i]);
+    // the permuted strictly upper triangle, by column: row_idx[ptr[k]..ptr[k + 1]]
+    let mut ptr = vec![0usize; n + 1];
+    for j in 0..n {
+        for &r in lower.row_idx_of_col_raw(j) {
+            if r != j {
+                ptr[new(r).max(new(j)) + 1] += 1;
+            }
+        }
     }
-    sums.into_iter().fold(0.0, f64::max)
+    for k in 0..n {
+        ptr[k + 1] += ptr[k];
+    }
+    let mut next = ptr.clone();
+    let mut row_idx = vec![0usize; ptr[n]];
+    for j in 0..n {
+        for &r in lower.row_idx_of_col_raw(j) {
+            if r != j {
+                let (lo, hi) = (new(r).min(new(j)), new(r).max(new(j)));
+                row_idx[next[hi]] = lo;
+                next[hi] += 1;
+            }
+        }
+    }
+    let mut parent = vec![NONE; n];
+    let mut visited = vec![NONE; n];
+    let mut nonzeros = n;
+    for k in 0..n {
+        visited[k] = k;
+        for &j in &row_idx[ptr[k]..ptr[k + 1]] {
+            let mut i = j;
+            while visited[i] != k {
+                visited[i] = k;
+                nonzeros += 1;
+                if parent[i] == NONE {
+                    parent[i] = k;
+                }
+                i = parent[i];
+            }
+        }
+    }
+    nonzeros
 }
 
 fn max_abs(v: &[f64]) -> f64 {
@@ -245,8 +461,22 @@ impl LinearSolver for SparseLdlt {
                     col: cols[k],
                 })
                 .collect();
-            let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
+            let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
                 .map_err(|e| LinearError::Singular(format!("pattern: {e:?}")))?;
+            // the slot of each lower triplet: its row among the sorted,
+            // deduplicated rows of its column
+            let slot: Vec<usize> = idx
+                .iter()
+                .map(|e| {
+                    let start = symbolic.col_ptr()[e.col];
+                    let rows_of_col = symbolic.row_idx_of_col_raw(e.col);
+                    rows_of_col
+                        .binary_search(&e.row)
+                        .map(|i| start + i)
+                        .map_err(|_| LinearError::Singular("pattern: lost entry".into()))
+                })
+                .collect::<Result<_, _>>()?;
+            drop(idx);
             let ordering = match self.constraints_from {
                 Some(first) if first < n => Some(constrained_amd(symbolic.as_ref(), first)?),
                 _ => None,
@@ -276,7 +506,7 @@ impl LinearSolver for SparseLdlt {
                 cols: cols.to_vec(),
                 lower,
                 symbolic,
-                argsort,
+                slot,
                 cholesky,
                 buffer,
                 par,
@@ -287,123 +517,42 @@ impl LinearSolver for SparseLdlt {
     }
 
     fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
-        self.numeric = None;
-        let p = self
-            .pattern
-            .as_mut()
-            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        if vals.len() != p.rows.len() {
-            return Err(LinearError::Singular(format!(
-                "{} values for {} analysed entries",
-                vals.len(),
-                p.rows.len()
-            )));
+        self.factor_values(vals)?;
+        if let Some(Factor::Ldlt { vals: kept, .. }) = &mut self.numeric {
+            *kept = Some(vals.to_vec());
         }
-        let lower_vals: Vec<f64> = p.lower.iter().map(|&k| vals[k]).collect();
-        let mut diagonal = vec![0.0_f64; p.n];
-        for &k in &p.lower {
-            if p.rows[k] == p.cols[k] {
-                diagonal[p.rows[k]] += vals[k];
-            }
-        }
-        let expect_positive: Vec<bool> = diagonal.iter().map(|&d| d > 0.0).collect();
-        let a = SparseColMat::new_from_argsort(p.symbolic.clone(), &p.argsort, &lower_vals)
-            .map_err(|e| LinearError::Singular(format!("values: {e:?}")))?;
-        let mut l_values = vec![0.0_f64; p.cholesky.len_val()];
-        let safe = p
-            .cholesky
-            .factorize_numeric_ldlt(
-                &mut l_values,
-                a.as_ref(),
-                Side::Lower,
-                LdltRegularization::default(),
-                p.par,
-                MemStack::new(&mut p.buffer),
-                Default::default(),
-            )
-            .is_ok()
-            && pivots_have_expected_signs(&p.cholesky, &l_values, &expect_positive);
-        if safe {
-            self.numeric = Some(Factor::Ldlt {
-                l_values,
-                vals: vals.to_vec(),
-            });
-            Ok(())
-        } else {
-            drop(l_values);
-            self.factor_lu(vals)
-        }
+        Ok(())
     }
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
-        let factor = self
-            .numeric
-            .take()
-            .ok_or_else(|| LinearError::Singular("no factorisation".into()))?;
-        let (l_values, vals) = match factor {
-            Factor::Lu => return self.lu.solve(rhs),
-            Factor::Ldlt { l_values, vals } => (l_values, vals),
-        };
-        let p = self
-            .pattern
-            .as_mut()
-            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        let n = p.n;
-        if rhs.len() != n {
-            return Err(LinearError::Singular(format!(
-                "right-hand side of size {} for {n} equations",
-                rhs.len()
-            )));
+        match self.numeric.take() {
+            Some(Factor::Ldlt {
+                l_values,
+                vals: Some(vals),
+            }) => self.solve_ldlt(l_values, &vals, rhs),
+            Some(Factor::Lu) => self.lu.solve(rhs),
+            _ => Err(LinearError::Singular("no factorisation".into())),
         }
-        let par = p.par;
-        let ldlt = LdltRef::new(&p.cholesky, &l_values);
-        let mut x = rhs.to_vec();
-        ldlt.solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(&mut x, n, 1),
-            par,
-            MemStack::new(&mut p.buffer),
-        );
-        let a_norm = norm_inf(n, &p.rows, &vals);
-        let b_norm = max_abs(rhs);
-        let mut r = vec![0.0_f64; n];
-        let mut refinements = 0;
-        let accepted = loop {
-            // r = b - A x with the assembled (possibly unsymmetric) matrix
-            r.copy_from_slice(rhs);
-            for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(&vals) {
-                r[row] -= v * x[col];
-            }
-            let finite = x.iter().all(|v| v.is_finite());
-            let (r_max, x_max) = (max_abs(&r), max_abs(&x));
-            if !finite || !r_max.is_finite() {
-                break false;
-            }
-            if r_max <= ACCEPT_BACKWARD_ERROR * (a_norm * x_max + b_norm) {
-                break true;
-            }
-            if refinements == MAX_REFINEMENTS {
-                break false;
-            }
-            refinements += 1;
-            ldlt.solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(&mut r, n, 1),
-                par,
-                MemStack::new(&mut p.buffer),
-            );
-            for (xi, ri) in x.iter_mut().zip(&r) {
-                *xi += ri;
-            }
+    }
+
+    /// As the trait's: the phases and [`check_solution`], with the
+    /// assembled values lent to the refinement rather than copied.
+    fn solve_system(
+        &mut self,
+        n: usize,
+        rows: &[usize],
+        cols: &[usize],
+        vals: &[f64],
+        b: &[f64],
+    ) -> Result<Vec<f64>, LinearError> {
+        self.analyse(n, rows, cols)?;
+        self.factor_values(vals)?;
+        let x = match self.numeric.take() {
+            Some(Factor::Ldlt { l_values, .. }) => self.solve_ldlt(l_values, vals, b)?,
+            Some(Factor::Lu) => self.lu.solve(b)?,
+            None => return Err(LinearError::Singular("no factorisation".into())),
         };
-        self.refinements += refinements;
-        if accepted {
-            return Ok(x);
-        }
-        drop(l_values);
-        self.factor_lu(&vals)?;
-        self.numeric = None;
-        self.lu.solve(rhs)
+        check_solution(vals, b, x)
     }
 
     fn symbolic_factorisations(&self) -> usize {
@@ -418,6 +567,17 @@ impl LinearSolver for SparseLdlt {
         self.fallbacks
     }
 
+    /// Computed on each call (`O(nnz(L))`, no numeric work; see
+    /// [`exact_factor_nonzeros`]), so the analysis does not pay for it.
+    fn factor_nonzeros(&self) -> Option<usize> {
+        self.pattern.as_ref().map(|p| {
+            exact_factor_nonzeros(
+                p.symbolic.as_ref(),
+                p.cholesky.perm().map(|perm| perm.arrays().1),
+            )
+        })
+    }
+
     fn set_constraints_from(&mut self, first: usize) {
         if self.constraints_from != Some(first) {
             self.constraints_from = Some(first);
@@ -429,7 +589,7 @@ impl LinearSolver for SparseLdlt {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::linear::check_solution;
+    use faer::sparse::linalg::SupernodalThreshold;
 
     /// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
     /// the LDL^T solver.
@@ -509,6 +669,92 @@ mod tests {
         let t = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 0.0)];
         let (x, y, _) = both(2, &t, &[1.0, 1.0]);
         assert_close(&x, &y);
+    }
+
+    /// The fill: a tridiagonal matrix factorises without fill (`2n - 1`
+    /// entries of `L`), a dense one fills its whole lower triangle, and a
+    /// 2D grid Laplacian's count is the exact elimination fill of its AMD
+    /// ordering (counted here by eliminating the graph), which is what a
+    /// simplicial factor stores and less than a supernodal one stores.
+    #[test]
+    fn factor_nonzeros_counts_the_lower_triangle_of_l() {
+        let analysed = |n: usize, t: &[(usize, usize)]| {
+            let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
+            let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+            let mut s = SparseLdlt::new();
+            assert_eq!(s.factor_nonzeros(), None);
+            s.analyse(n, &rows, &cols).unwrap();
+            s
+        };
+        let n = 50;
+        let tri: Vec<(usize, usize)> = (0..n)
+            .flat_map(|i: usize| [(i, i), (i, i.saturating_sub(1)), (i.saturating_sub(1), i)])
+            .collect();
+        assert_eq!(analysed(n, &tri).factor_nonzeros(), Some(2 * n - 1));
+        let dense: Vec<(usize, usize)> = (0..n).flat_map(|i| (0..n).map(move |j| (i, j))).collect();
+        assert_eq!(analysed(n, &dense).factor_nonzeros(), Some(n * (n + 1) / 2));
+        // 5-point Laplacian on a 40 x 40 grid, analysed both ways
+        let m = 40;
+        let id = |i: usize, j: usize| i * m + j;
+        let mut grid = Vec::new();
+        for i in 0..m {
+            for j in 0..m {
+                grid.push(Pair {
+                    row: id(i, j),
+                    col: id(i, j),
+                });
+                if i + 1 < m {
+                    grid.push(Pair {
+                        row: id(i + 1, j),
+                        col: id(i, j),
+                    });
+                }
+                if j + 1 < m {
+                    grid.push(Pair {
+                        row: id(i, j + 1),
+                        col: id(i, j),
+                    });
+                }
+            }
+        }
+        let (lower, _) = SymbolicSparseColMat::try_new_from_indices(m * m, m * m, &grid).unwrap();
+        for threshold in [
+            SupernodalThreshold::FORCE_SIMPLICIAL,
+            SupernodalThreshold::FORCE_SUPERNODAL,
+        ] {
+            let cholesky = factorize_symbolic_cholesky(
+                lower.as_ref(),
+                Side::Lower,
+                SymmetricOrdering::Amd,
+                CholeskySymbolicParams {
+                    supernodal_flop_ratio_threshold: threshold,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let inv = cholesky.perm().unwrap().arrays().1.to_vec();
+            // exact fill: eliminate the graph in the factorisation's order
+            let mut adj = vec![std::collections::BTreeSet::<usize>::new(); m * m];
+            for e in grid.iter().filter(|e| e.row != e.col) {
+                adj[inv[e.row]].insert(inv[e.col]);
+                adj[inv[e.col]].insert(inv[e.row]);
+            }
+            let mut exact = 0;
+            for k in 0..m * m {
+                let later: Vec<usize> = adj[k].range(k + 1..).copied().collect();
+                exact += 1 + later.len();
+                for &a in &later {
+                    adj[a].extend(later.iter().filter(|&&b| b != a));
+                }
+            }
+            assert_eq!(exact_factor_nonzeros(lower.as_ref(), Some(&inv)), exact);
+            match cholesky.raw() {
+                // a simplicial factor stores exactly these entries
+                SymbolicCholeskyRaw::Simplicial(_) => assert_eq!(cholesky.len_val(), exact),
+                // a supernodal one more (relaxation, dense diagonal blocks)
+                SymbolicCholeskyRaw::Supernodal(_) => assert!(cholesky.len_val() > exact),
+            }
+        }
     }
 
     /// A singular matrix is an error (after the fallback), never a panic;

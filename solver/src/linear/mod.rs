@@ -81,6 +81,15 @@ pub trait LinearSolver: Send {
         0
     }
 
+    /// Nonzeros of the factor of the last analysed pattern (the fill): the
+    /// lower triangle of `L`, diagonal included, for [`SparseLdlt`]. `None`
+    /// when nothing is analysed yet or the factorisation does not expose its
+    /// size (faer 0.24's sparse LU keeps `L` and `U` private, and their
+    /// structure depends on the row pivots chosen in the numeric phase).
+    fn factor_nonzeros(&self) -> Option<usize> {
+        None
+    }
+
     /// Tells the solver that equations `first..` are constraint rows
     /// (multipliers and ties, numbered after the free dofs; see
     /// [`crate::assembly::DofMap`]). A symmetric solver orders them after

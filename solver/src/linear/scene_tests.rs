@@ -65,6 +65,12 @@ fn ldlt_solves_the_paper_scene_with_every_method() {
         assert_same_solve(&lu, &ldlt, 1, &format!("method {method}"));
         assert_eq!(ldlt.linear_fallbacks, 0, "method {method}");
         assert_eq!(lu.linear_fallbacks, 0);
+        // the fill: L has at least its diagonal and at most the dense lower
+        // triangle; faer's LU does not report one
+        let fill = ldlt.factor_nonzeros.expect("the LDL^T reports its fill");
+        let n = ldlt.equations;
+        assert!(n < fill && fill < n * (n + 1) / 2, "{fill} for {n}");
+        assert_eq!(lu.factor_nonzeros, None);
     }
 }
 

@@ -417,6 +417,7 @@ impl<'a> Run<'a> {
             kernel_counts: self.counts,
             symbolic_factorisations: self.setup.linear.symbolic_factorisations(),
             linear_fallbacks: self.setup.linear.fallbacks(),
+            factor_nonzeros: self.setup.linear.factor_nonzeros(),
             equations: self.setup.dofs.n_eq(),
             mesh: self.setup.model.mesh.clone(),
             multiplier_dofs: layout

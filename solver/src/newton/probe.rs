@@ -149,6 +149,13 @@ impl<'a> IterationProbe<'a> {
         self.setup.linear.fallbacks()
     }
 
+    /// Nonzeros of the factor (see
+    /// [`crate::linear::LinearSolver::factor_nonzeros`]); `None` before the
+    /// first [`linear_solve`](Self::linear_solve) or with LU.
+    pub fn factor_nonzeros(&self) -> Option<usize> {
+        self.setup.linear.factor_nonzeros()
+    }
+
     /// Phase 1: re-projection and Type 6 kernel at every integration point,
     /// active set, and the contact scatter into a fresh system.
     pub fn contact(&self) -> Result<ContactPhase, SolverError> {
