@@ -401,6 +401,7 @@ impl Model {
                     pair.gauss_points
                 )));
             }
+            let tolerance = self.mesh.coordinate_tolerance();
             for seg in pair.slave.iter().chain(&pair.master) {
                 // printed as the plain `[a, b]` it always was
                 let raw = seg.map(NodeId::index);
@@ -408,7 +409,7 @@ impl Model {
                     return Err(err(format!("segment {raw:?} refers to a missing node")));
                 }
                 let (a, b) = (self.mesh.node_ref(seg[0]), self.mesh.node_ref(seg[1]));
-                if !((a[0] - b[0]).hypot(a[1] - b[1]) > self.mesh.coordinate_tolerance()) {
+                if !((a[0] - b[0]).hypot(a[1] - b[1]) > tolerance) {
                     return Err(err(format!("segment {raw:?} has zero length")));
                 }
             }
