@@ -30,7 +30,7 @@
 //! a hair beyond the master's last node, or a node in the shadow of a
 //! convex master corner. A master segment the kernel rejects for a reason
 //! of its own (degenerate or folded master, no projection, projection out
-//! of reach or diverged: what pairing, [`super::search`], also treats as
+//! of reach or diverged: what pairing, `contact/search.rs`, also treats as
 //! "not this segment") is skipped; a node with no projection has no gap,
 //! `xi_m` or master segment (`None`; empty fields in `contact.csv`), never
 //! NaN. A failure no master segment can cure (contact's `slave_side`
