@@ -137,6 +137,13 @@ pub enum KernelCommandError {
         /// Why it was rejected.
         reason: String,
     },
+    /// The formulation's kernels are not in this build (the binary was
+    /// built without the root feature of the formulation's name).
+    #[error(
+        "the {0} kernels are not compiled into this build of gapsim (build it with the \
+         default features, or with `--features {0}`)"
+    )]
+    NotCompiled(Formulation),
     /// The kernel rejected the configuration.
     #[error("cannot evaluate the {formulation} Type {ty} kernel for this configuration: {reason}")]
     Kernel {
@@ -163,7 +170,10 @@ pub fn run(args: &KernelArgs) -> CommandResult {
         ty: args.ty,
         reason,
     };
-    let kernel = Kernel::new(args.formulation, args.ty).map_err(kernel_error)?;
+    let kernel = Kernel::new(args.formulation, args.ty).map_err(|e| match e {
+        KernelError::NotCompiled(f) => KernelCommandError::NotCompiled(f),
+        e => kernel_error(e),
+    })?;
     let q = parse_nodes(&args.nodes, args.formulation, kernel.coords())?;
     let mut out = GapOut::new(&kernel);
     kernel.eval(&q, args.xi_s, &mut out).map_err(kernel_error)?;
@@ -258,6 +268,16 @@ mod tests {
         assert_eq!(parse_nodes(quadratic, sn, 12).unwrap().len(), 12);
         assert!(err(quadratic, 8).contains("got 12"));
         assert!(err("0,1,2,3,4,5,6,7,8,9,10,x", 12).contains("coordinate 12 (ym3)"));
+    }
+
+    #[test]
+    fn a_formulation_not_compiled_in_says_how_to_get_it() {
+        let msg = KernelCommandError::NotCompiled(Formulation::QuadraticSlaveNormal).to_string();
+        assert!(
+            msg.contains("quadratic-slave-normal kernels are not compiled")
+                && msg.contains("--features quadratic-slave-normal"),
+            "{msg}"
+        );
     }
 
     #[test]
