@@ -1,17 +1,20 @@
 //! The `gapsim kernel` contract (docs/conventions.md), tested by running the binary.
 //!
-//! * Output: one JSON object `{"gap":..,"xi_m":..,"grad":[8],"hess":[[8]x8]}`
-//!   on stdout, whose numbers round-trip **exactly** to the library's
+//! * Output: one JSON object `{"gap":..,"xi_m":..,"grad":[n],"hess":[[n]xn]}`
+//!   on stdout (`n` the formulation's coordinate count: 8 for two-node
+//!   segments, 12 for `quadratic-slave-normal`), whose numbers round-trip **exactly** to the library's
 //!   `f64` results (checked bit for bit, parsing the printed digits with
 //!   Rust's correctly rounded `str::parse`), `hess` all zeros for Type 1.
 //! * `--formulation` defaults to `slave-normal`; values starting with a
 //!   minus are accepted both as `--nodes=-0.1,...` and `--nodes -0.1,...`.
+//! * `--nodes` takes the formulation's coordinate count; a wrong count names
+//!   the formulation, the count and the coordinates it expects.
 //! * Bad input: a message on stderr, nothing on stdout, a non-zero exit
 //!   status, never a panic.
 
 use std::process::{Command, Output};
 
-use contact_kernels::{ApproxType, Formulation, evaluate};
+use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, evaluate};
 use serde_json::Value;
 
 const WORKED_NODES: &str = "0,1,2,1.1,2.1,0.9,-0.1,1.0";
@@ -49,9 +52,15 @@ fn numbers_in(json: &str) -> Vec<f64> {
     out
 }
 
-/// A successful run's JSON: checks the exact shape of the contract and
-/// returns the 2 + 8 + 64 numbers in order (gap, xi_m, grad, hess rows).
+/// A successful run's JSON for 8 coordinates (see [`parse_success_n`]).
 fn parse_success(out: &Output) -> Vec<f64> {
+    parse_success_n(out, 8)
+}
+
+/// A successful run's JSON: checks the exact shape of the contract for `n`
+/// coordinates and returns the 2 + n + n^2 numbers in order (gap, xi_m,
+/// grad, hess rows).
+fn parse_success_n(out: &Output, n: usize) -> Vec<f64> {
     let stdout = String::from_utf8(out.stdout.clone()).expect("utf-8 stdout");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "gapsim failed: {stderr}");
@@ -64,13 +73,13 @@ fn parse_success(out: &Output) -> Vec<f64> {
     assert_eq!(sorted, ["gap", "grad", "hess", "xi_m"], "keys of {stdout}");
     assert!(obj["gap"].is_f64() && obj["xi_m"].is_f64());
     let grad = obj["grad"].as_array().expect("grad is an array");
-    assert_eq!(grad.len(), 8);
+    assert_eq!(grad.len(), n);
     assert!(grad.iter().all(Value::is_number));
     let hess = obj["hess"].as_array().expect("hess is an array");
-    assert_eq!(hess.len(), 8);
+    assert_eq!(hess.len(), n);
     for row in hess {
         let row = row.as_array().expect("hess rows are arrays");
-        assert_eq!(row.len(), 8);
+        assert_eq!(row.len(), n);
         assert!(row.iter().all(Value::is_number));
     }
     // The contract's field order, then the digits themselves.
@@ -80,7 +89,7 @@ fn parse_success(out: &Output) -> Vec<f64> {
         "{stdout}"
     );
     let nums = numbers_in(&stdout);
-    assert_eq!(nums.len(), 74, "{stdout}");
+    assert_eq!(nums.len(), 2 + n + n * n, "{stdout}");
     nums
 }
 
@@ -336,7 +345,13 @@ fn bad_input_is_reported() {
     // Wrong number of coordinates.
     assert_fails(
         &k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1"),
-        &["--nodes", "expected 8", "got 7"],
+        &[
+            "--nodes",
+            "slave-normal",
+            "expects 8",
+            "xs1,ys1,xs2,ys2,xm1,ym1,xm2,ym2",
+            "got 7",
+        ],
     );
     assert_fails(
         &k("6", "0.3", "0,1,2,1.1,2.1,0.9,-0.1,1,5"),
@@ -346,7 +361,7 @@ fn bad_input_is_reported() {
     // Unparsable or non-finite numbers.
     assert_fails(
         &k("6", "0.3", "0,1,2,abc,2.1,0.9,-0.1,1"),
-        &["--nodes", "coordinate 4", "abc"],
+        &["--nodes", "coordinate 4 (ys2)", "abc"],
     );
     assert_fails(
         &k("6", "0.3", "0,1,2,1.1,NaN,0.9,-0.1,1"),
@@ -393,4 +408,102 @@ fn bad_input_is_reported() {
         &["degenerate master segment"],
     );
     assert_fails(&k("6", "0.3", "0,1,2,1,1.5,0.5,1.5,-0.5"), &["projection"]);
+}
+
+/// The 3-node example of `gapsim kernel --help` (contact-kernels'
+/// tests/quadratic.rs hand-computes it: `g = 0.85`, `xi_m = -0.5`).
+const QUADRATIC_NODES: &str = "0,0,2,0,1,0,2,-1,0,-1,1,-0.8";
+const QUADRATIC_Q: [f64; 12] = [
+    0.0, 0.0, 2.0, 0.0, 1.0, 0.0, 2.0, -1.0, 0.0, -1.0, 1.0, -0.8,
+];
+
+/// `quadratic-slave-normal` takes 12 coordinates and prints a gradient of
+/// 12 and a 12 x 12 Hessian, every type exactly [`Kernel::eval`]'s values.
+#[test]
+fn quadratic_kernel_takes_twelve_coordinates() {
+    let f = Formulation::QuadraticSlaveNormal;
+    assert_eq!(f.coords(), Some(12));
+    for ty in ApproxType::ALL {
+        let t = ty.index().to_string();
+        let nums = parse_success_n(
+            &gapsim(&[
+                "kernel",
+                "--formulation",
+                "quadratic-slave-normal",
+                "--type",
+                &t,
+                "--xi-s",
+                "0.5",
+                "--nodes",
+                QUADRATIC_NODES,
+            ]),
+            12,
+        );
+        let kernel = Kernel::new(f, ty).unwrap();
+        let mut out = GapOut::new(&kernel);
+        kernel.eval(&QUADRATIC_Q, 0.5, &mut out).unwrap();
+        let mut expected = vec![out.gap(), out.xi_m()];
+        expected.extend(out.grad());
+        match out.hess() {
+            Some(h) => expected.extend(h),
+            None => expected.extend([0.0; 144]),
+        }
+        assert_eq!(nums.len(), expected.len());
+        for (k, (a, b)) in nums.iter().zip(&expected).enumerate() {
+            assert_eq!(
+                a.to_bits(),
+                b.to_bits(),
+                "type {ty}: number {k}: {a:e} vs {b:e}"
+            );
+        }
+        assert!((nums[0] - 0.85).abs() < 1e-12, "gap {}", nums[0]);
+        assert!((nums[1] + 0.5).abs() < 1e-12, "xi_m {}", nums[1]);
+        assert_eq!(
+            nums[14..].iter().all(|&v| v == 0.0),
+            ty == ApproxType::Type1
+        );
+    }
+}
+
+/// A coordinate count that is not the formulation's names what it expects.
+#[test]
+fn wrong_coordinate_count_names_the_expected_one() {
+    let run = |f: &'static str, nodes: &'static str| {
+        [
+            "kernel",
+            "--formulation",
+            f,
+            "--type",
+            "6",
+            "--xi-s",
+            "0.5",
+            "--nodes",
+            nodes,
+        ]
+    };
+    assert_fails(
+        &run("quadratic-slave-normal", WORKED_NODES),
+        &[
+            "--nodes",
+            "quadratic-slave-normal",
+            "expects 12",
+            "xs1,ys1,xs2,ys2,xs3,ys3,xm1,ym1,xm2,ym2,xm3,ym3",
+            "got 8",
+        ],
+    );
+    assert_fails(
+        &run("closest-point", QUADRATIC_NODES),
+        &["--nodes", "closest-point", "expects 8", "got 12"],
+    );
+    // The names follow the formulation's count.
+    assert_fails(
+        &run("quadratic-slave-normal", "0,0,2,0,1,0,2,-1,0,-1,1,nan"),
+        &["--nodes", "coordinate 12 (ym3)", "finite"],
+    );
+    // The 3-node kernels' own refusals: a folded slave segment (its mid
+    // node a quarter chord from the chord's midpoint, along it).
+    assert_fails(
+        &run("quadratic-slave-normal", "0,0,2,0,1.5,0,2,-1,0,-1,1,-0.8"),
+        &["quadratic-slave-normal", "folded slave segment"],
+    );
 }

@@ -7,16 +7,19 @@
 //! bits of each double, and compares every output of the projection and of
 //! every type of both formulations (status code, gap, `xi_m`, gradient,
 //! Hessian) with [`Projector::project`] and [`Kernel::eval`]: equal bits, or
-//! the same error code. The configurations are those of the num-dual tests
-//! (`tests/kernels_ad.rs` at the workspace root: the same generators and
-//! seeds) plus degenerate, non-finite and over- or underflowing input; every
-//! configuration is evaluated under both formulations.
+//! the same error code. The configurations are the verifier's (the
+//! workspace crate `gapsim-families`, the one generator that `gapsim verify`
+//! and `tests/kernels_ad.rs` at the workspace root draw from: same
+//! families, seeds and order), constructed along both normals, each also
+//! translated, plus degenerate, non-finite and over- or underflowing input;
+//! every configuration is evaluated under both formulations.
 //!
 //! With the crate feature `quadratic-slave-normal` (on in `cargo test
 //! --workspace`), the 3-node formulation's C files are compared the same
 //! way (`tests/c/driver_quadratic.c`, 12 coordinates) on curved, straight,
 //! uniform, far, scaled, degenerate (zero chord, folded segments, vanishing
-//! slave tangent, no root) and non-finite 3-node configurations.
+//! slave tangent, no root) and non-finite 3-node configurations and on the
+//! verifier's 3-node families (`gapsim_families::quadratic`).
 //!
 //! The test is skipped, with a message, only when no C compiler is found.
 //! It also compiles and runs `examples/c/evaluate.c`.
@@ -29,211 +32,82 @@ use contact_kernels::{
     ApproxType, DEGENERATE_LENGTH, Formulation, GapOut, Kernel, KernelError, OutputKind, Projector,
     Segment, XI_M_LIMIT,
 };
-use rand::{Rng, SeedableRng};
+use gapsim_families::{Normal, Shape, WORKED_Q, WORKED_XI_S, seeded};
+use rand::Rng;
+#[cfg(feature = "quadratic-slave-normal")]
 use rand_chacha::ChaCha8Rng;
 
 // ---------------------------------------------------------------------------
-// The configurations: the generators of tests/kernels_ad.rs, in f64.
+// The configurations: the verifier's families (gapsim-families), and the
+// degenerate and extreme input only this test needs.
 // ---------------------------------------------------------------------------
 
-fn lerp(a: [f64; 2], b: [f64; 2], xi: f64) -> [f64; 2] {
-    let n1 = (1.0 - xi) * 0.5;
-    let n2 = (1.0 + xi) * 0.5;
-    [a[0] * n1 + b[0] * n2, a[1] * n1 + b[1] * n2]
-}
-
-/// A configuration built so that the slave point projects onto master
-/// coordinate `xi_m` with gap `gap` in formulation `f`'s own sense (as in
-/// kernels_ad.rs).
-#[derive(Debug, Clone, Copy)]
-struct Shape {
-    origin: [f64; 2],
-    slave_len: f64,
-    slave_angle: f64,
-    master_angle: f64,
-    master_len: f64,
-    xi_s: f64,
-    xi_m: f64,
-    gap: f64,
-}
-
-impl Shape {
-    fn q(&self, f: Formulation) -> [f64; 8] {
-        let t_s = [
-            self.slave_len * self.slave_angle.cos(),
-            self.slave_len * self.slave_angle.sin(),
-        ];
-        let a_m = self.slave_angle + std::f64::consts::PI + self.master_angle;
-        let t_m = [self.master_len * a_m.cos(), self.master_len * a_m.sin()];
-        let xs1 = self.origin;
-        let xs2 = [xs1[0] + t_s[0], xs1[1] + t_s[1]];
-        let x_s = lerp(xs1, xs2, self.xi_s);
-        let n = match f {
-            Formulation::ClosestPoint => [-t_m[1] / self.master_len, t_m[0] / self.master_len],
-            _ => [t_s[1] / self.slave_len, -t_s[0] / self.slave_len],
-        };
-        let p = [x_s[0] + self.gap * n[0], x_s[1] + self.gap * n[1]];
-        let c_m = [
-            p[0] - 0.5 * self.xi_m * t_m[0],
-            p[1] - 0.5 * self.xi_m * t_m[1],
-        ];
-        [
-            xs1[0],
-            xs1[1],
-            xs2[0],
-            xs2[1],
-            c_m[0] - 0.5 * t_m[0],
-            c_m[1] - 0.5 * t_m[1],
-            c_m[0] + 0.5 * t_m[0],
-            c_m[1] + 0.5 * t_m[1],
-        ]
-    }
-
-    fn random(rng: &mut ChaCha8Rng) -> Shape {
-        let slave_len = rng.random_range(0.2..5.0);
-        Shape {
-            origin: [rng.random_range(-10.0..10.0), rng.random_range(-10.0..10.0)],
-            slave_len,
-            slave_angle: rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
-            master_angle: rng.random_range(-1.0..1.0),
-            master_len: rng.random_range(0.2..5.0),
-            xi_s: rng.random_range(-1.0..=1.0),
-            xi_m: rng.random_range(-1.2..1.2),
-            gap: slave_len * rng.random_range(-0.5..0.5),
-        }
-    }
-}
-
-fn unit_shape() -> Shape {
-    Shape {
-        origin: [0.0, 0.0],
-        slave_len: 1.0,
-        slave_angle: 0.3,
-        master_angle: 0.25,
-        master_len: 1.3,
-        xi_s: -0.4,
-        xi_m: 0.35,
-        gap: 0.12,
-    }
-}
-
-const WORKED_Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
-const WORKED_XI_S: f64 = 0.3;
 const BOTH: [Formulation; 2] = [Formulation::SlaveNormal, Formulation::ClosestPoint];
 
-fn seeded(seed: u64) -> ChaCha8Rng {
-    ChaCha8Rng::seed_from_u64(seed)
-}
-
-/// One configuration: its family, `q` and `xi_s`.
+/// One configuration: its label (family and index), `q` and `xi_s`.
 struct Config {
-    family: &'static str,
+    label: String,
     q: [f64; 8],
     xi_s: f64,
 }
 
-/// Every configuration, family by family (the num-dual tests' generators
-/// and seeds, then degenerate and extreme input).
+/// Every configuration, family by family: the verifier's families
+/// (`gapsim_families::all`, the generators and seeds of `gapsim verify` and
+/// `tests/kernels_ad.rs`) constructed along the slave normal and along the
+/// master normal (each formulation's own projection; the worked example
+/// and the uniform draws do not depend on the normal and are taken once),
+/// each also translated by a seeded offset, then degenerate, non-finite
+/// and over- or underflowing input. Every configuration is evaluated under
+/// both formulations.
 fn configurations() -> Vec<Config> {
-    let mut out = Vec::new();
-    let mut push = |family, q, xi_s| out.push(Config { family, q, xi_s });
-    push("worked example", WORKED_Q, WORKED_XI_S);
-    let mut rng = seeded(0x6a95_0001);
-    for f in BOTH {
-        for _ in 0..400 {
-            let s = Shape::random(&mut rng);
-            push("random constructed", s.q(f), s.xi_s);
-        }
-    }
-    // All uniform draws, also those kernels_ad.rs skips as ill-posed.
-    let mut rng = seeded(0x6a95_0002);
-    for _ in BOTH {
-        for _ in 0..400 {
-            let q: [f64; 8] = std::array::from_fn(|_| rng.random_range(-2.0..2.0));
-            let xi_s = rng.random_range(-1.0..=1.0);
-            push("random uniform", q, xi_s);
-        }
-    }
-    let mut rng = seeded(0x6a95_0003);
-    for f in BOTH {
-        for _ in 0..100 {
-            let mut s = Shape::random(&mut rng);
-            s.origin = [
-                1e6 + rng.random_range(-1.0..1.0),
-                -1e6 + rng.random_range(-1.0..1.0),
-            ];
-            push("far from origin", s.q(f), s.xi_s);
-        }
-    }
-    let mut rng = seeded(0x6a95_0004);
-    for f in BOTH {
-        for _ in 0..40 {
-            let mut unit = Shape::random(&mut rng);
-            unit.origin = [rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)];
-            let q1 = unit.q(f);
-            push("tiny and huge scales", q1, unit.xi_s);
-            for s in [1e-6, 1e6] {
-                push("tiny and huge scales", q1.map(|v| v * s), unit.xi_s);
+    let mut families = Vec::new();
+    for (normal, tag) in [(Normal::Slave, "slave"), (Normal::Master, "master")] {
+        for c in gapsim_families::all(normal) {
+            let shared = c.label == "worked" || c.label.starts_with("uniform");
+            if shared && normal == Normal::Master {
+                continue;
             }
-        }
-    }
-    let mut rng = seeded(0x6a95_0005);
-    for f in BOTH {
-        let q0 = unit_shape().q(f);
-        for _ in 0..60 {
-            let theta: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-            let (s, c) = theta.sin_cos();
-            let q: [f64; 8] = std::array::from_fn(|i| {
-                let (x, y) = (q0[i - i % 2], q0[i - i % 2 + 1]);
-                if i % 2 == 0 {
-                    c * x - s * y
-                } else {
-                    s * x + c * y
-                }
+            let label = if shared {
+                c.label
+            } else {
+                format!("{} ({tag} normal)", c.label)
+            };
+            let q: [f64; 8] =
+                c.q.try_into()
+                    .expect("two-node families have 8 coordinates");
+            families.push(Config {
+                label,
+                q,
+                xi_s: c.params[0],
             });
-            push("large rotations", q, unit_shape().xi_s);
         }
     }
-    let mut rng = seeded(0x6a95_0006);
-    for f in BOTH {
-        for _ in 0..100 {
-            let mut s = Shape::random(&mut rng);
-            let deg = rng.random_range(80.0..=89.0_f64);
-            let sign = if rng.random_bool(0.5) { 1.0 } else { -1.0 };
-            s.master_angle = sign * deg.to_radians();
-            s.xi_m = rng.random_range(-0.9..0.9);
-            push("steep master", s.q(f), s.xi_s);
-        }
-    }
-    for f in BOTH {
-        let base = unit_shape();
-        for xi_m in [-1.0, 1.0] {
-            push("segment ends", Shape { xi_m, ..base }.q(f), base.xi_s);
-        }
-        for xi_s in [-1.0, 1.0] {
-            push("segment ends", Shape { xi_s, ..base }.q(f), xi_s);
-        }
-        for gap in [-0.3, -1e-3] {
-            push("penetration", Shape { gap, ..base }.q(f), base.xi_s);
-        }
-    }
+    // The kernels work in coordinates relative to slave node 1: the same
+    // configurations moved by up to 100 in each direction.
     let mut rng = seeded(0x6a95_0007);
-    for f in BOTH {
-        for _ in 0..50 {
-            let s = Shape::random(&mut rng);
-            let q = s.q(f);
+    let translated: Vec<Config> = families
+        .iter()
+        .map(|c| {
             let t = [
                 rng.random_range(-100.0..100.0),
                 rng.random_range(-100.0..100.0),
             ];
-            push("translation", q, s.xi_s);
-            push(
-                "translation",
-                std::array::from_fn(|i| q[i] + t[i % 2]),
-                s.xi_s,
-            );
-        }
-    }
+            Config {
+                label: format!("{} translated", c.label),
+                q: std::array::from_fn(|i| c.q[i] + t[i % 2]),
+                xi_s: c.xi_s,
+            }
+        })
+        .collect();
+    let mut out = families;
+    out.extend(translated);
+    let mut push = |family: &str, q, xi_s| {
+        out.push(Config {
+            label: family.to_owned(),
+            q,
+            xi_s,
+        })
+    };
     // Degenerate input: zero-length segments, a perpendicular master.
     push(
         "zero-length slave",
@@ -269,14 +143,14 @@ fn configurations() -> Vec<Config> {
     // on the worked example and on a steep master.
     let steep = Shape {
         master_angle: 1.55,
-        ..unit_shape()
+        ..Shape::unit()
     };
     for e in (-170..=-90).chain(90..=170) {
         let s = 10f64.powi(e);
         push("extreme scale", WORKED_Q.map(|v| v * s), WORKED_XI_S);
         push(
             "extreme scale",
-            steep.q(Formulation::SlaveNormal).map(|v| v * s),
+            steep.q(Normal::Slave).map(|v| v * s),
             steep.xi_s,
         );
     }
@@ -506,7 +380,7 @@ fn c_kernels_equal_rust_kernels_bit_for_bit() {
             if cside != r {
                 differences.push(format!(
                     "{} #{k} ({}, q = {:?}, xi_s = {}): C {cside:?}, Rust {r:?}",
-                    NAMES[j], c.family, c.q, c.xi_s
+                    NAMES[j], c.label, c.q, c.xi_s
                 ));
             }
         }
@@ -584,11 +458,12 @@ fn c_example_runs() {
 // The 3-node formulation (12 coordinates).
 // ---------------------------------------------------------------------------
 
-/// 3-node configurations (`q`, `xi_s`) for the C comparison: statuses of
-/// every kind, values of curved segments.
+/// 3-node configurations (label, `q`, `xi_s`) for the C comparison:
+/// statuses of every kind, values of curved segments, then the verifier's
+/// 3-node families (`gapsim_families::quadratic`).
 #[cfg(feature = "quadratic-slave-normal")]
-fn quadratic_configurations() -> Vec<(&'static str, [f64; 12], f64)> {
-    let mut out = Vec::new();
+fn quadratic_configurations() -> Vec<(String, [f64; 12], f64)> {
+    let mut out: Vec<(&'static str, [f64; 12], f64)> = Vec::new();
     let mut rng = seeded(0x6a95_2001);
     // A slave with its mid node bowed and shifted, and a master facing it
     // across a gap (reversed, offset along the slave's chord normal,
@@ -681,6 +556,14 @@ fn quadratic_configurations() -> Vec<(&'static str, [f64; 12], f64)> {
     for e in (-170..=-90).chain(90..=170).step_by(5) {
         let s = 10f64.powi(e);
         out.push(("extreme scale", CURVED.map(|v| v * s), 0.5));
+    }
+    let mut out: Vec<(String, [f64; 12], f64)> = out
+        .into_iter()
+        .map(|(family, q, xi_s)| (family.to_owned(), q, xi_s))
+        .collect();
+    for c in gapsim_families::quadratic() {
+        let q: [f64; 12] = c.q.try_into().expect("3-node families have 12 coordinates");
+        out.push((format!("verifier {}", c.label), q, c.params[0]));
     }
     out
 }

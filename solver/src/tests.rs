@@ -757,7 +757,7 @@ fn vtu_output_is_consistent() {
     )
     .unwrap();
     assert_eq!(sol.snapshots.len(), 5);
-    let text = crate::vtk::vtu_string(&sol, &sol.final_state);
+    let text = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap();
     assert!(text.starts_with("<?xml") && text.trim_end().ends_with("</VTKFile>"));
     assert!(text.contains("NumberOfPoints=\"32\" NumberOfCells=\"14\""));
     let array = |name: &str| -> Vec<String> {

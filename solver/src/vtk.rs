@@ -19,6 +19,12 @@
 //! * cell data: `cauchy_stress` and `pk2_stress` (components
 //!   `[xx, yy, xy]`, averaged over the element's Gauss points) and `body`
 //!   (the body index).
+//!
+//! A state whose nodal contact table does not exist (a
+//! [`crate::contact::nodal::NodalContactError`]: e.g. a collapsed slave
+//! segment) has no `.vtu` document: [`vtu_string`] returns the error and
+//! [`write_vtu_state`] reports it as an `InvalidData` I/O error, writing
+//! nothing.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -42,7 +48,9 @@ pub fn write_vtu_state(
     solution: &Solution,
     state: &State,
 ) -> std::io::Result<()> {
-    crate::out::write_atomic(path, vtu_string(solution, state))
+    let text = vtu_string(solution, state)
+        .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))?;
+    crate::out::write_atomic(path, text)
 }
 
 fn array(
@@ -85,8 +93,12 @@ fn num(v: f64) -> String {
     }
 }
 
-/// The `.vtu` document of `state`.
-pub fn vtu_string(solution: &Solution, state: &State) -> String {
+/// The `.vtu` document of `state`; an error when its nodal contact table
+/// cannot be computed (see the module docs).
+pub fn vtu_string(
+    solution: &Solution,
+    state: &State,
+) -> Result<String, crate::contact::nodal::NodalContactError> {
     let mesh = &solution.mesh;
     let n = mesh.node_count();
     let m = mesh.elements.len();
@@ -96,7 +108,7 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
     }
     let mut slave = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
-    for row in crate::contact::nodal::nodal_contact(solution, state) {
+    for row in crate::contact::nodal::nodal_contact(solution, state)? {
         slave[row.node] = 1;
         if let Some(pr) = row.projection
             && gap[row.node].is_none_or(|g| pr.gap.abs() < g.abs())
@@ -230,5 +242,5 @@ pub fn vtu_string(solution: &Solution, state: &State) -> String {
     out.push_str("    </Piece>\n");
     out.push_str("  </UnstructuredGrid>\n");
     out.push_str("</VTKFile>\n");
-    out
+    Ok(out)
 }

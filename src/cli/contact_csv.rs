@@ -22,9 +22,12 @@
 //! the node (the last node of an open face: the segment ending there); a
 //! node of two pairs has a row in each. Numbers are
 //! written in Rust's shortest round-trip form (with an exponent below
-//! 1e-4 and from 1e15 on).
+//! 1e-4 and from 1e15 on). A state with a slave node the kernels cannot
+//! project for a slave-side reason (a collapsed or folded slave segment,
+//! see [`solver::contact::nodal`]) has no table: the error is returned,
+//! never a row without a gap.
 
-use solver::contact::nodal::nodal_contact;
+use solver::contact::nodal::{NodalContactError, nodal_contact};
 use solver::{Solution, State};
 
 /// The header line of `contact.csv` (without the line break).
@@ -50,10 +53,11 @@ fn num(v: f64) -> String {
     }
 }
 
-/// The `contact.csv` text of `state` (one of `solution`'s states).
-pub fn contact_csv(solution: &Solution, state: &State) -> String {
+/// The `contact.csv` text of `state` (one of `solution`'s states), or why
+/// its nodal contact table does not exist.
+pub fn contact_csv(solution: &Solution, state: &State) -> Result<String, NodalContactError> {
     let mut out = format!("{HEADER}\n");
-    for row in nodal_contact(solution, state) {
+    for row in nodal_contact(solution, state)? {
         let name = quoted(&solution.contact_pairs[row.pair].name);
         let projection = match row.projection {
             Some(p) => format!(
@@ -75,7 +79,7 @@ pub fn contact_csv(solution: &Solution, state: &State) -> String {
             num(row.tributary_length)
         ));
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -105,5 +109,27 @@ mod tests {
         }
         assert_eq!(num(-5.551115123125783e-17), "-5.551115123125783e-17");
         assert_eq!(num(0.25), "0.25");
+    }
+
+    /// A solved state with a collapsed slave segment has no table: the
+    /// error names the pair and the slave segment's failure.
+    #[test]
+    fn a_collapsed_slave_segment_is_reported() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/pressed-blocks.toml");
+        let scene = solver::Scene::from_file(path).unwrap();
+        let mut sol = solver::solve(&scene, &solver::SolveOptions::from_scene(&scene)).unwrap();
+        let text = contact_csv(&sol, &sol.final_state).unwrap();
+        assert_eq!(text.lines().count(), 6, "{text}");
+        let [a, b] = sol.contact_pairs[0].slave[0];
+        let x = &sol.mesh.nodes_ref;
+        let d = &mut sol.final_state.displacements;
+        d[a] = [x[b][0] + d[b][0] - x[a][0], x[b][1] + d[b][1] - x[a][1]];
+        let msg = contact_csv(&sol, &sol.final_state).unwrap_err().to_string();
+        assert!(
+            msg.contains("contact pair `interface`")
+                && msg.contains(&format!("slave node {a} "))
+                && msg.contains("degenerate slave segment"),
+            "{msg}"
+        );
     }
 }

@@ -2,36 +2,58 @@
 //! result as JSON.
 //!
 //! ```text
-//! gapsim kernel --formulation F --type T --xi-s XI --nodes a,b,c,d,e,f,g,h
+//! gapsim kernel --formulation F --type T --xi-s XI --nodes q1,q2,...,qn
 //! ```
 //!
 //! prints one line, a JSON object
-//! `{"gap":..,"xi_m":..,"grad":[8 numbers],"hess":[8 rows of 8]}` whose
+//! `{"gap":..,"xi_m":..,"grad":[n numbers],"hess":[n rows of n]}` whose
 //! numbers round-trip to the kernel's exact `f64` values; `hess` is all zeros
 //! for Type 1, which has no second-order term.
+//!
+//! The coordinate count `n` is the formulation's ([`Formulation::coords`]):
+//! 8 for the two-node formulations (`slave-normal`, `closest-point`: slave
+//! node 1, slave node 2, master node 1, master node 2), 12 for
+//! `quadratic-slave-normal` (two 3-node segments, six points: each segment's
+//! end nodes, then its mid node, as Gmsh's line3). `--nodes` is read once the
+//! formulation is known, so a wrong count is reported with the count and the
+//! coordinate names that formulation expects.
 
 use std::io::Write;
 
 use clap::Args;
-use contact_kernels::{ApproxType, Formulation, GapDerivatives, KernelError};
+use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, KernelError};
 use serde::Serialize;
 
 use super::CommandResult;
 
-/// Names of the eight node coordinates, in kernel order.
-const COORDINATE_NAMES: [&str; 8] = ["xs1", "ys1", "xs2", "ys2", "xm1", "ym1", "xm2", "ym2"];
+/// Names of the `n` coordinates of a segment-pair kernel, in kernel order:
+/// the slave segment's points `xs1, ys1, xs2, ys2, ...`, then the master
+/// segment's `xm1, ym1, ...` (`n / 4` points per segment).
+pub fn coordinate_names(n: usize) -> Vec<String> {
+    let per_segment = n / 4;
+    ["s", "m"]
+        .into_iter()
+        .flat_map(|side| {
+            (1..=per_segment).flat_map(move |k| [format!("x{side}{k}"), format!("y{side}{k}")])
+        })
+        .collect()
+}
 
 /// Arguments of `gapsim kernel`.
 #[derive(Debug, Clone, Args)]
 #[command(
-    after_help = "Example:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n\n\
-Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[8],\"hess\":[[8]x8]} \
-(derivatives with respect to the 8 coordinates; hess is all zeros for Type 1)."
+    after_help = "Examples:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n  \
+gapsim kernel --formulation quadratic-slave-normal --type 6 --xi-s 0.5 \\\n      \
+--nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n\n\
+Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[n],\"hess\":[[n]xn]} \
+(derivatives with respect to the n coordinates: 8 for slave-normal and closest-point, \
+12 for quadratic-slave-normal; hess is all zeros for Type 1)."
 )]
 pub struct KernelArgs {
     /// Contact formulation: `slave-normal` (projection along the slave
-    /// normal, the paper's) or `closest-point` (orthogonal projection onto
-    /// the master segment).
+    /// normal, the paper's), `closest-point` (orthogonal projection onto
+    /// the master segment), or `quadratic-slave-normal` (slave-normal
+    /// projection between 3-node quadratic segments; 12 coordinates).
     #[arg(long, value_name = "F", default_value = "slave-normal")]
     pub formulation: Formulation,
 
@@ -45,15 +67,14 @@ pub struct KernelArgs {
     #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_finite)]
     pub xi_s: f64,
 
-    /// Current coordinates of slave node 1, slave node 2, master node 1 and
-    /// master node 2, comma-separated: xs1,ys1,xs2,ys2,xm1,ym1,xm2,ym2.
-    #[arg(
-        long,
-        value_name = "XS1,YS1,XS2,YS2,XM1,YM1,XM2,YM2",
-        allow_hyphen_values = true,
-        value_parser = parse_nodes
-    )]
-    pub nodes: [f64; 8],
+    /// Current coordinates of the slave segment's nodes, then the master
+    /// segment's, comma-separated, as many as the formulation takes.
+    /// Two-node formulations (slave-normal, closest-point), 8:
+    /// xs1,ys1,xs2,ys2,xm1,ym1,xm2,ym2. quadratic-slave-normal (3-node
+    /// segments, 6 points), 12: xs1,ys1,xs2,ys2,xs3,ys3,xm1,ym1,xm2,ym2,xm3,ym3
+    /// (each segment's end nodes 1 and 2, then its mid node 3).
+    #[arg(long, value_name = "Q1,Q2,...", allow_hyphen_values = true)]
+    pub nodes: String,
 }
 
 /// The JSON printed by `gapsim kernel` (field order as in the contract).
@@ -63,21 +84,25 @@ pub struct KernelOutput {
     pub gap: f64,
     /// The master parametric coordinate of the projection.
     pub xi_m: f64,
-    /// `dg/dq`.
-    pub grad: [f64; 8],
-    /// `d2g/dq2`, row by row (all zeros for Type 1).
-    pub hess: [[f64; 8]; 8],
+    /// `dg/dq` (`n` entries).
+    pub grad: Vec<f64>,
+    /// `d2g/dq2`, row by row (`n` rows of `n`; all zeros for Type 1).
+    pub hess: Vec<Vec<f64>>,
 }
 
-impl From<&GapDerivatives> for KernelOutput {
-    fn from(d: &GapDerivatives) -> Self {
+impl From<&GapOut> for KernelOutput {
+    fn from(out: &GapOut) -> Self {
+        let n = out.coords();
         KernelOutput {
-            gap: d.gap,
-            xi_m: d.xi_m,
-            grad: std::array::from_fn(|i| d.grad[i]),
-            hess: std::array::from_fn(|i| {
-                std::array::from_fn(|j| d.hess.map_or(0.0, |h| h[(i, j)]))
-            }),
+            gap: out.gap(),
+            xi_m: out.xi_m(),
+            grad: out.grad().to_vec(),
+            hess: (0..n)
+                .map(|i| match out.hess() {
+                    Some(h) => h[i * n..(i + 1) * n].to_vec(),
+                    None => vec![0.0; n],
+                })
+                .collect(),
         }
     }
 }
@@ -87,6 +112,38 @@ impl From<&GapDerivatives> for KernelOutput {
 /// separate `source`).
 #[derive(Debug, thiserror::Error)]
 pub enum KernelCommandError {
+    /// `--nodes` does not hold the formulation's coordinate count.
+    #[error(
+        "--nodes: the {formulation} formulation expects {expected} comma-separated coordinates \
+         ({names}), got {found}"
+    )]
+    CoordinateCount {
+        /// The formulation asked for.
+        formulation: Formulation,
+        /// Its coordinate count.
+        expected: usize,
+        /// Its coordinate names, comma-separated.
+        names: String,
+        /// The number of comma-separated fields given.
+        found: usize,
+    },
+    /// A coordinate of `--nodes` is not a finite number.
+    #[error("--nodes: coordinate {index} ({name}): {reason}")]
+    Coordinate {
+        /// 1-based position in `--nodes`.
+        index: usize,
+        /// Its name (e.g. `ys2`).
+        name: String,
+        /// Why it was rejected.
+        reason: String,
+    },
+    /// The formulation's kernels are not in this build (the binary was
+    /// built without the root feature of the formulation's name).
+    #[error(
+        "the {0} kernels are not compiled into this build of gapsim (build it with the \
+         default features, or with `--features {0}`)"
+    )]
+    NotCompiled(Formulation),
     /// The kernel rejected the configuration.
     #[error("cannot evaluate the {formulation} Type {ty} kernel for this configuration: {reason}")]
     Kernel {
@@ -108,12 +165,18 @@ pub enum KernelCommandError {
 /// Runs `gapsim kernel`: evaluates the kernel and prints one JSON line on
 /// stdout.
 pub fn run(args: &KernelArgs) -> CommandResult {
-    let out = contact_kernels::evaluate(args.formulation, args.ty, &args.nodes, args.xi_s)
-        .map_err(|reason| KernelCommandError::Kernel {
-            formulation: args.formulation,
-            ty: args.ty,
-            reason,
-        })?;
+    let kernel_error = |reason| KernelCommandError::Kernel {
+        formulation: args.formulation,
+        ty: args.ty,
+        reason,
+    };
+    let kernel = Kernel::new(args.formulation, args.ty).map_err(|e| match e {
+        KernelError::NotCompiled(f) => KernelCommandError::NotCompiled(f),
+        e => kernel_error(e),
+    })?;
+    let q = parse_nodes(&args.nodes, args.formulation, kernel.coords())?;
+    let mut out = GapOut::new(&kernel);
+    kernel.eval(&q, args.xi_s, &mut out).map_err(kernel_error)?;
     let mut stdout = std::io::stdout().lock();
     serde_json::to_writer(&mut stdout, &KernelOutput::from(&out))
         .map_err(KernelCommandError::Json)?;
@@ -135,22 +198,35 @@ fn parse_finite(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Parses exactly eight comma-separated finite coordinates.
-fn parse_nodes(s: &str) -> Result<[f64; 8], String> {
+/// Parses `--nodes`: exactly `n` comma-separated finite coordinates, the
+/// coordinate count of `formulation`'s kernels.
+fn parse_nodes(
+    s: &str,
+    formulation: Formulation,
+    n: usize,
+) -> Result<Vec<f64>, KernelCommandError> {
+    let names = coordinate_names(n);
     let parts: Vec<&str> = s.split(',').collect();
-    if parts.len() != 8 {
-        return Err(format!(
-            "expected 8 comma-separated coordinates ({}), got {}",
-            COORDINATE_NAMES.join(","),
-            parts.len()
-        ));
+    if parts.len() != n {
+        return Err(KernelCommandError::CoordinateCount {
+            formulation,
+            expected: n,
+            names: names.join(","),
+            found: parts.len(),
+        });
     }
-    let mut q = [0.0; 8];
-    for (i, part) in parts.iter().enumerate() {
-        q[i] = parse_finite(part)
-            .map_err(|e| format!("coordinate {} ({}): {e}", i + 1, COORDINATE_NAMES[i]))?;
-    }
-    Ok(q)
+    parts
+        .iter()
+        .zip(names)
+        .enumerate()
+        .map(|(i, (part, name))| {
+            parse_finite(part).map_err(|reason| KernelCommandError::Coordinate {
+                index: i + 1,
+                name,
+                reason,
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -158,46 +234,67 @@ mod tests {
     use super::*;
 
     #[test]
-    fn parses_nodes() {
+    fn coordinate_names_follow_the_count() {
         assert_eq!(
-            parse_nodes("0,1,2,3,4,5,6,-7.5").unwrap(),
+            coordinate_names(8).join(","),
+            "xs1,ys1,xs2,ys2,xm1,ym1,xm2,ym2"
+        );
+        assert_eq!(
+            coordinate_names(12).join(","),
+            "xs1,ys1,xs2,ys2,xs3,ys3,xm1,ym1,xm2,ym2,xm3,ym3"
+        );
+    }
+
+    #[test]
+    fn parses_nodes() {
+        let sn = Formulation::SlaveNormal;
+        assert_eq!(
+            parse_nodes("0,1,2,3,4,5,6,-7.5", sn, 8).unwrap(),
             [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, -7.5]
         );
         assert_eq!(
-            parse_nodes(" -0.1, 1e-3 ,2,3,4,5,6,7").unwrap()[..2],
+            parse_nodes(" -0.1, 1e-3 ,2,3,4,5,6,7", sn, 8).unwrap()[..2],
             [-0.1, 1e-3]
         );
-        assert!(parse_nodes("1,2,3,4,5,6,7").unwrap_err().contains("got 7"));
+        let err = |s: &str, n: usize| parse_nodes(s, sn, n).unwrap_err().to_string();
+        let e = err("1,2,3,4,5,6,7", 8);
+        assert!(e.contains("expects 8") && e.contains("got 7"), "{e}");
+        assert!(e.contains("(xs1,ys1,xs2,ys2,xm1,ym1,xm2,ym2)"), "{e}");
+        assert!(err("1,2,3,4,5,6,7,8,", 8).contains("got 9"));
+        assert!(err("1,2,3,x,5,6,7,8", 8).contains("coordinate 4 (ys2)"));
+        assert!(err("1,2,3,4,NaN,6,7,8", 8).contains("not a finite number"));
+        assert!(parse_nodes("1,2,3,4,5,6,7,inf", sn, 8).is_err());
+        let quadratic = "0,0,2,0,1,0,2,-1,0,-1,1,-0.8";
+        assert_eq!(parse_nodes(quadratic, sn, 12).unwrap().len(), 12);
+        assert!(err(quadratic, 8).contains("got 12"));
+        assert!(err("0,1,2,3,4,5,6,7,8,9,10,x", 12).contains("coordinate 12 (ym3)"));
+    }
+
+    #[test]
+    fn a_formulation_not_compiled_in_says_how_to_get_it() {
+        let msg = KernelCommandError::NotCompiled(Formulation::QuadraticSlaveNormal).to_string();
         assert!(
-            parse_nodes("1,2,3,4,5,6,7,8,")
-                .unwrap_err()
-                .contains("got 9")
+            msg.contains("quadratic-slave-normal kernels are not compiled")
+                && msg.contains("--features quadratic-slave-normal"),
+            "{msg}"
         );
-        assert!(
-            parse_nodes("1,2,3,x,5,6,7,8")
-                .unwrap_err()
-                .contains("coordinate 4 (ys2)")
-        );
-        assert!(
-            parse_nodes("1,2,3,4,NaN,6,7,8")
-                .unwrap_err()
-                .contains("not a finite number")
-        );
-        assert!(parse_nodes("1,2,3,4,5,6,7,inf").is_err());
     }
 
     #[test]
     fn type_1_prints_a_zero_hessian() {
-        let d = GapDerivatives {
-            gap: 0.5,
-            xi_m: -0.25,
-            grad: nalgebra::SVector::from([1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0]),
-            hess: None,
-        };
-        let json = serde_json::to_string(&KernelOutput::from(&d)).unwrap();
-        assert!(json.starts_with(
-            r#"{"gap":0.5,"xi_m":-0.25,"grad":[1.0,2.0,3.0,4.0,5.0,6.0,7.0,8.0],"hess":[[0.0,"#
-        ));
-        assert_eq!(json.matches("0.0").count(), 64);
+        let kernel = Kernel::new(Formulation::SlaveNormal, ApproxType::Type1).unwrap();
+        let mut out = GapOut::new(&kernel);
+        let q = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
+        kernel.eval(&q, 0.3, &mut out).unwrap();
+        let printed = KernelOutput::from(&out);
+        assert_eq!(printed.grad, out.grad());
+        assert!(printed.grad.iter().any(|&g| g != 0.0));
+        assert_eq!(printed.hess, vec![vec![0.0; 8]; 8]);
+        let json = serde_json::to_string(&printed).unwrap();
+        assert!(json.starts_with(r#"{"gap":"#), "{json}");
+        assert!(json.ends_with(&format!(
+            "\"hess\":[{}]}}",
+            ["[0.0,0.0,0.0,0.0,0.0,0.0,0.0,0.0]"; 8].join(",")
+        )));
     }
 }

@@ -249,7 +249,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
         }
         if !sol.contact_pairs.is_empty() {
             let path = dir.join("contact.csv");
-            solver::out::write_atomic(&path, contact_csv(&sol, &sol.final_state))
+            let text = contact_csv(&sol, &sol.final_state)
+                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+            solver::out::write_atomic(&path, text)
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             println!("wrote           {}", path.display());
         }

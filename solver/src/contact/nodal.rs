@@ -28,10 +28,15 @@
 //! band): a node at the very end of the master face, such as a node on a
 //! symmetry line where both faces end, whose slave-normal projection lands
 //! a hair beyond the master's last node, or a node in the shadow of a
-//! convex master corner. A master segment the kernel rejects (degenerate,
-//! or no projection) is skipped; a node with no projection has no gap,
+//! convex master corner. A master segment the kernel rejects for a reason
+//! of its own (degenerate or folded master, no projection, projection out
+//! of reach or diverged: what pairing, `contact/search.rs`, also treats as
+//! "not this segment") is skipped; a node with no projection has no gap,
 //! `xi_m` or master segment (`None`; empty fields in `contact.csv`), never
-//! NaN.
+//! NaN. A failure no master segment can cure (contact's `slave_side`
+//! errors: a degenerate or folded slave segment, non-finite coordinates, a
+//! formulation whose coordinate count is not the two-node pair's, one not
+//! compiled in) is a [`NodalContactError`], never a missing projection.
 //!
 //! The kernels take a slave **segment** and `xi_s`. A slave node belongs to
 //! one or two slave segments of the pair; its gap is evaluated on the
@@ -54,11 +59,35 @@
 
 use std::collections::HashMap;
 
-use contact_kernels::PAIR_COORDS;
+use contact_kernels::{KernelError, PAIR_COORDS};
 
 use crate::solution::{Solution, State};
 
-use super::{XI_INSIDE_TOL, XI_STUCK_BAND};
+use super::{XI_INSIDE_TOL, XI_STUCK_BAND, slave_side};
+
+/// A slave node the kernels cannot project for a reason no master segment
+/// avoids (see the module docs): the nodal table of that state does not
+/// exist.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "contact pair `{pair}`: slave node {node} (on slave segment {slave_segment}, xi_s = {xi_s}) \
+     cannot be projected onto master segment {master_segment}: {error}"
+)]
+pub struct NodalContactError {
+    /// The contact pair's name.
+    pub pair: String,
+    /// The global node.
+    pub node: usize,
+    /// The slave segment the node was evaluated on (index within the
+    /// pair's slave face).
+    pub slave_segment: usize,
+    /// The node's parametric coordinate on it (`-1` or `1`).
+    pub xi_s: f64,
+    /// The master segment tried (index within the pair's master face).
+    pub master_segment: usize,
+    /// The kernel's error.
+    pub error: KernelError,
+}
 
 /// Where a slave node projects on the master face.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -98,8 +127,12 @@ pub struct NodalContactRow {
 }
 
 /// The nodal contact table of `state` (one of `solution`'s states): one
-/// row per slave node and pair (see the module docs).
-pub fn nodal_contact(solution: &Solution, state: &State) -> Vec<NodalContactRow> {
+/// row per slave node and pair (see the module docs); an error for the
+/// first node the kernels cannot project onto any master segment.
+pub fn nodal_contact(
+    solution: &Solution,
+    state: &State,
+) -> Result<Vec<NodalContactRow>, NodalContactError> {
     let mesh = &solution.mesh;
     let current = |n: usize| {
         let (x, d) = (mesh.nodes_ref[n], state.displacements[n]);
@@ -150,24 +183,33 @@ pub fn nodal_contact(solution: &Solution, state: &State) -> Vec<NodalContactRow>
             let slave = pair.slave[slave_segment];
             // (projection, how far it misses the segment) on every master
             // segment the kernel accepts
-            let candidates: Vec<(NodalProjection, f64)> = pair
-                .master
-                .iter()
-                .enumerate()
-                .filter_map(|(m, master)| {
-                    let nodes = [slave[0], slave[1], master[0], master[1]];
-                    let q: [f64; PAIR_COORDS] =
-                        std::array::from_fn(|k| current(nodes[k / 2])[k % 2]);
-                    let pr = contact_kernels::project(formulation, &q, xi_s).ok()?;
-                    let projection = NodalProjection {
-                        gap: pr.gap,
-                        xi_m: pr.xi_m,
-                        master_segment: m,
-                        master_nodes: *master,
-                    };
-                    Some((projection, pr.xi_m.abs() - 1.0))
-                })
-                .collect();
+            let mut candidates: Vec<(NodalProjection, f64)> = Vec::new();
+            for (m, master) in pair.master.iter().enumerate() {
+                let nodes = [slave[0], slave[1], master[0], master[1]];
+                let q: [f64; PAIR_COORDS] = std::array::from_fn(|k| current(nodes[k / 2])[k % 2]);
+                let pr = match contact_kernels::project(formulation, &q, xi_s) {
+                    Ok(pr) => pr,
+                    Err(error) if slave_side(&error) => {
+                        return Err(NodalContactError {
+                            pair: pair.name.clone(),
+                            node,
+                            slave_segment,
+                            xi_s,
+                            master_segment: m,
+                            error,
+                        });
+                    }
+                    // this master segment's own problem: not a candidate
+                    Err(_) => continue,
+                };
+                let projection = NodalProjection {
+                    gap: pr.gap,
+                    xi_m: pr.xi_m,
+                    master_segment: m,
+                    master_nodes: *master,
+                };
+                candidates.push((projection, pr.xi_m.abs() - 1.0));
+            }
             let mut best: Option<NodalProjection> = None;
             for (pr, _) in candidates.iter().filter(|(_, miss)| *miss <= XI_INSIDE_TOL) {
                 if best.is_none_or(|b| pr.gap.abs() < b.gap.abs()) {
@@ -195,7 +237,7 @@ pub fn nodal_contact(solution: &Solution, state: &State) -> Vec<NodalContactRow>
             });
         }
     }
-    rows
+    Ok(rows)
 }
 
 #[cfg(test)]
@@ -235,7 +277,7 @@ mod tests {
     fn pressure_balances_the_load_and_closed_gaps_vanish() {
         for formulation in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
             let sol = pressed_blocks(formulation);
-            let rows = nodal_contact(&sol, &sol.final_state);
+            let rows = nodal_contact(&sol, &sol.final_state).unwrap();
             assert_eq!(rows.len(), 5);
             assert_eq!(sol.contact_pairs[0].name, "interface");
             let total: f64 = rows.iter().map(|r| r.pressure * r.tributary_length).sum();
@@ -273,12 +315,65 @@ mod tests {
         }
     }
 
+    /// Moves `node` of `sol`'s final state onto `onto`'s current position.
+    fn collapse(sol: &mut Solution, node: usize, onto: usize) {
+        let (x, d) = (&sol.mesh.nodes_ref, &mut sol.final_state.displacements);
+        let target = [x[onto][0] + d[onto][0], x[onto][1] + d[onto][1]];
+        d[node] = [target[0] - x[node][0], target[1] - x[node][1]];
+    }
+
+    /// A slave segment collapsed to a point: no master segment can cure
+    /// it, so the table is an error naming the pair, node and segments
+    /// (before, the node silently had no projection).
+    #[test]
+    fn a_collapsed_slave_segment_is_an_error() {
+        let mut sol = pressed_blocks(Formulation::SlaveNormal);
+        let [a, b] = sol.contact_pairs[0].slave[1];
+        collapse(&mut sol, a, b);
+        let e = nodal_contact(&sol, &sol.final_state).unwrap_err();
+        assert_eq!(
+            (e.pair.as_str(), e.node, e.slave_segment, e.master_segment),
+            ("interface", a, 1, 0)
+        );
+        assert!(matches!(
+            e.error,
+            contact_kernels::KernelError::DegenerateSegment {
+                segment: contact_kernels::Segment::Slave,
+                ..
+            }
+        ));
+        let msg = e.to_string();
+        assert!(
+            msg.contains("contact pair `interface`") && msg.contains("degenerate slave segment"),
+            "{msg}"
+        );
+        let vtu = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap_err();
+        assert_eq!(vtu, e);
+    }
+
+    /// A master segment collapsed to a point is that segment's problem
+    /// only: the table exists, and no node projects onto it.
+    #[test]
+    fn a_collapsed_master_segment_is_skipped() {
+        let mut sol = pressed_blocks(Formulation::SlaveNormal);
+        let [a, b] = sol.contact_pairs[0].master[0];
+        collapse(&mut sol, a, b);
+        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
+        assert_eq!(rows.len(), 5);
+        assert!(
+            rows.iter()
+                .filter_map(|r| r.projection)
+                .all(|p| p.master_segment == 1)
+        );
+        assert!(rows.iter().any(|r| r.projection.is_some()));
+    }
+
     #[test]
     fn a_node_beyond_the_master_face_has_no_projection() {
         let mut sol = pressed_blocks(Formulation::SlaveNormal);
         // keep the base's right half only (its first top segment)
         sol.contact_pairs[0].master.truncate(1);
-        let rows = nodal_contact(&sol, &sol.final_state);
+        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
         let paired: Vec<bool> = rows.iter().map(|r| r.projection.is_some()).collect();
         assert_eq!(paired, [false, false, true, true, true]);
         // the pressure is the solution's, whatever the projection
@@ -305,7 +400,7 @@ mod tests {
             .sum::<f64>();
         assert!((load - 4.315).abs() < 1e-9, "{load}");
         let sol = solve(&scene, &SolveOptions::from_scene(&scene)).unwrap();
-        let rows = nodal_contact(&sol, &sol.final_state);
+        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
         let total: f64 = rows.iter().map(|r| r.pressure * r.tributary_length).sum();
         let mut cos_min: f64 = 1.0;
         for r in rows.iter().filter(|r| r.pressure > 0.0) {
@@ -337,7 +432,7 @@ mod tests {
     #[test]
     fn the_vtu_file_carries_the_table() {
         let sol = pressed_blocks(Formulation::SlaveNormal);
-        let vtu = crate::vtk::vtu_string(&sol, &sol.final_state);
+        let vtu = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap();
         let field = |name: &str| -> Vec<f64> {
             let start = vtu
                 .find(&format!("Name=\"{name}\""))
@@ -356,7 +451,7 @@ mod tests {
             field("contact_pressure"),
         );
         assert_eq!([slave.len(), paired.len(), gap.len()], [n, n, n]);
-        let rows = nodal_contact(&sol, &sol.final_state);
+        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
         for node in 0..n {
             let row = rows.iter().find(|r| r.node == node);
             assert_eq!(slave[node], f64::from(u8::from(row.is_some())));
