@@ -42,8 +42,10 @@
 //! 20 % off the complete formulation's energy). At a converged step end
 //! every point is therefore re-paired (the complete formulation's search);
 //! each point whose segment changed (or that became paired or unpaired)
-//! gets the expansion of its **new** segment's gap taken at the step start,
-//! and the step is solved again, until the pairing at the end is the one
+//! gets the expansion of its **new** segment's gap taken at that attempt's
+//! converged end (re-taken at each following end until it reproduces the
+//! point's gap there, `repair.rs`, "Anchor iteration"), and the step is
+//! solved again, until the pairing at the end is the one
 //! the expansions were built on (at most [`MAX_REPAIR_REPEATS`] repeats; a
 //! point never returns to a pairing it has had in the attempt, which is a
 //! point cycling at a node: it keeps its expansion and is listed in
