@@ -114,6 +114,9 @@ impl Run<'_> {
         if self.taylor.is_some() {
             return Ok(());
         }
+        // a tie of Types 1-6 lasts one step (`repair.rs`)
+        self.ties.clear();
+        self.tie_taylor.clear();
         let t = Instant::now();
         let (evals, counts) = self
             .setup
@@ -287,7 +290,8 @@ impl Run<'_> {
                 let taylor = self.taylor.as_deref().unwrap_or(&[]);
                 let evals: Vec<Option<PointEval>> =
                     taylor.iter().map(|t| t.map(|t| t.expand(&x.u))).collect();
-                Ok((evals, Vec::new()))
+                let others = self.tie_taylor.iter().map(|t| t.expand(&x.u)).collect();
+                Ok((evals, others))
             }
             Method::Complete => {
                 match self.setup.evaluate_complete(

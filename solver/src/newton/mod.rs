@@ -207,6 +207,9 @@ pub(crate) struct Run<'a> {
     load_factor: f64,
     energy: f64,
     taylor: Option<Vec<Option<Taylor>>>,
+    /// Types 1–6: the expansion on the other segment of each tie in
+    /// `ties` (`repair.rs`).
+    tie_taylor: Vec<Taylor>,
     // history
     records: Vec<StepRecord>,
     cutbacks: Vec<Cutback>,
@@ -248,6 +251,7 @@ impl<'a> Run<'a> {
             load_factor: 0.0,
             energy: 0.0,
             taylor: None,
+            tie_taylor: Vec::new(),
             records: Vec::new(),
             cutbacks: Vec::new(),
             snapshots: Vec::new(),
