@@ -136,10 +136,13 @@ fn run() -> Result<(), String> {
         match solve(&scene, &options) {
             Ok(solution) => {
                 println!(
-                    "{:>9}: strain energy {:.8}, {} Newton iterations, {} cut-backs",
+                    "{:>9}: strain energy {:.8}, {} Newton iterations (+{} in repeated \
+                     steps, {} repeats), {} cut-backs",
                     label(method),
                     solution.strain_energy,
                     solution.newton_iterations,
+                    solution.repeated_iterations,
+                    solution.repeats,
                     solution.cutbacks.len()
                 );
                 let slide = solution

@@ -18,27 +18,30 @@
 //!   balance at every converged step (equilibrium holds whatever the gap
 //!   approximation);
 //! * with the step-end re-pairing (issue #8 §2, `solver::newton`,
-//!   "Re-pairing at the step end"; on by default) Types 3–6 follow the
-//!   complete formulation: measured energy errors at 20 / 40 steps, Type 3
-//!   +0.060 % / +0.0059 %, Type 4 -0.50 % / -0.085 %, Type 5 +0.061 % /
-//!   +0.0070 %, Type 6 -0.50 % / -0.084 %; reactions within 0.77 % (20
-//!   steps) and 0.37 % (40) of the complete formulation's at every step,
-//!   relative to its largest reaction magnitude (the press's normal
-//!   reaction). Without it (`repair = false`) Type 6 at 20 steps is -20 %
-//!   off. The issue's energy target (0.05 % at 20 steps) is not reached:
-//!   what is left is the Taylor remainder of the expansion on the new
-//!   segment, taken at the step start one or two segments away while the
-//!   moving indentation tilts that segment (relative remainder about
-//!   1e-2 for Types 4/6, 2e-3 for Types 3/5 per step at 20 steps);
-//!   adaptive stepping (`taylor_tolerance`) bounds it;
+//!   "Re-pairing at the step end", with the anchor iteration: a point that
+//!   crossed a node gets its new segment's expansion at the attempt's end,
+//!   re-taken until it reproduces the gap there) Types 3–6 follow the
+//!   complete formulation: energy errors at 20 steps below 1e-8 relative
+//!   (every point crosses a node in every sliding step, so every point is
+//!   re-anchored), at 40 steps -1.0e-5 to -1.3e-5; reactions within 3e-6
+//!   (20 steps) and 0.36 % (40) of the complete formulation's largest
+//!   reaction. The issue's target (0.05 % at 20 steps) holds at 20 and 40.
+//!   What is left at 40 steps is at the points that cycle at a concave
+//!   master node (listed as unsettled), where the complete formulation
+//!   ties the point to the node. Without re-pairing (`repair = false`)
+//!   Type 6 at 20 steps is -20 % off;
 //! * held out: the closest-point formulation on the same scene (Types 3
-//!   and 6, 20 steps: reactions within 0.57 %, energy within 0.2 %);
+//!   and 6, 20 steps: reactions within 3e-6, energy within 1e-9);
 //! * held out too: `scenes/sliding-held-out.toml` (another block, mesh,
-//!   material, slide direction): Types 3 / 6 energy errors -0.20 % / -0.30 %
-//!   at 20 steps, -0.052 % / -0.018 % at 40, reactions within 0.44 %;
-//! * adaptive stepping with `taylor_tolerance = 1e-3` from 10 steps: Type
-//!   6 energy error -0.50 % -> -0.084 % (11 halvings), Type 3 stays at
-//!   +0.0059 % (8 halvings); every accepted step within the tolerance.
+//!   material, slide direction): Types 3 / 6 energy errors 2.9e-9 / 4.3e-10
+//!   at 20 steps, -2.4e-4 / -1.7e-4 at 40, -1.5e-5 / -2.3e-5 at 80
+//!   (falling from 40 steps on, where some points stay on their segment in
+//!   a step and keep the type's step-start expansion), reactions within
+//!   0.03 %;
+//! * adaptive stepping with `taylor_tolerance = 1e-4` on the held-out
+//!   scene from 40 steps: Types 3 / 6 energy error -2.4e-4 / -1.7e-4 ->
+//!   -1.7e-5 / -2.2e-5 (10 halvings each); every accepted step within the
+//!   tolerance.
 
 use contact_kernels::ApproxType;
 use solver::{Formulation, Method, Scene, Solution, SolveOptions, solve};
@@ -47,6 +50,15 @@ const SLIDING: &str = include_str!("../../scenes/sliding.toml");
 
 fn scene() -> Scene {
     Scene::from_toml_str(SLIDING, "sliding.toml").unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// `scenes/sliding-held-out.toml`.
+fn held_out() -> Scene {
+    Scene::from_toml_str(
+        include_str!("../../scenes/sliding-held-out.toml"),
+        "sliding-held-out.toml",
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn run(scene: &Scene, method: Method, steps: usize) -> Solution {
@@ -206,10 +218,11 @@ fn energy_error(sol: &Solution, complete: &Solution) -> f64 {
 
 /// Re-pairing at the step end (issue #8 §2): Types 3–6 follow the complete
 /// formulation across master nodes. At 20 steps every point crosses one
-/// or two master nodes per sliding step and every step is repeated once;
-/// the reactions stay within 1 % of the complete formulation's at every
-/// step, the energy error is far below the scheme's without re-pairing
-/// and falls from 20 to 40 steps.
+/// or two master nodes per sliding step and every sliding step is
+/// repeated (once for the new segments, once for the anchor iteration);
+/// at 20 and 40 steps the reactions stay within 1 % of the complete
+/// formulation's at every step and the energy within 0.05 % (issue #8's
+/// target).
 #[test]
 fn repairing_types_follow_the_complete_formulation() {
     let scene = scene();
@@ -238,8 +251,11 @@ fn repairing_types_follow_the_complete_formulation() {
             assert!(sol.repeats > 0, "type {method}");
             errors.push(e.abs());
         }
-        assert!(errors[0] < 6e-3, "type {method}, 20 steps: {:e}", errors[0]);
-        assert!(errors[1] < errors[0], "type {method}: {errors:?}");
+        // issue #8's target: within 0.05 % of the complete strain energy
+        assert!(
+            errors.iter().all(|&e| e < 5e-4),
+            "type {method}: {errors:?}"
+        );
     }
 }
 
@@ -304,27 +320,28 @@ fn repairing_holds_with_the_closest_point_formulation() {
     }
 }
 
-/// Adaptive stepping (`[newton] taylor_tolerance`): with 10 scheduled
-/// steps, Types 3 and 6 halve the steps whose Taylor remainder exceeds
-/// the tolerance, end within the tolerance at every accepted step and
-/// reach a given accuracy; the cost against the complete formulation is
-/// printed.
+/// Adaptive stepping (`[newton] taylor_tolerance`) on the held-out scene
+/// with 40 scheduled steps (where some points keep their step-start
+/// expansion: remainders up to 2.6e-4): Types 3 and 6 halve the steps
+/// whose Taylor remainder exceeds the tolerance, end within the tolerance
+/// at every accepted step and reach a given accuracy; the cost against the
+/// complete formulation is printed.
 #[test]
 fn adaptive_stepping_meets_the_taylor_tolerance() {
-    let scene = scene();
-    let complete = run(&scene, Method::Complete, 10);
-    let tolerance = 1e-3;
+    let scene = held_out();
+    let complete = run(&scene, Method::Complete, 40);
+    let tolerance = 1e-4;
     for ty in [ApproxType::Type3, ApproxType::Type6] {
         let sol = run_with(
             &scene,
             &SolveOptions {
                 method: Method::Approx(ty),
-                steps: 10,
+                steps: 40,
                 taylor_tolerance: Some(tolerance),
                 ..SolveOptions::from_scene(&scene)
             },
         );
-        let plain = run(&scene, Method::Approx(ty), 10);
+        let plain = run(&scene, Method::Approx(ty), 40);
         let (e, r) = (
             energy_error(&sol, &complete),
             reaction_error(&sol, &complete),
@@ -336,7 +353,7 @@ fn adaptive_stepping_meets_the_taylor_tolerance() {
             )
         };
         println!(
-            "type {ty}, 10 steps, tolerance {tolerance:e}: energy error {e:+.3e} (without: {:+.3e}), \
+            "type {ty}, 40 steps, tolerance {tolerance:e}: energy error {e:+.3e} (without: {:+.3e}), \
              reaction error {r:.3e}, {} halvings, {} steps; cost (iterations, kernel calls) {:?} \
              against complete {:?}",
             energy_error(&plain, &complete),
@@ -355,7 +372,7 @@ fn adaptive_stepping_meets_the_taylor_tolerance() {
             let t = rec.taylor_remainder.unwrap_or(0.0);
             assert!(t <= tolerance, "type {ty} at {}: {t:e}", rec.load_factor);
         }
-        assert!(e.abs() < 2e-3, "type {ty}: {e:e}");
+        assert!(e.abs() < 5e-4, "type {ty}: {e:e}");
         assert!(r < 1e-2, "type {ty}: {r:e}");
     }
 }
@@ -366,11 +383,7 @@ fn adaptive_stepping_meets_the_taylor_tolerance() {
 /// re-paired, and the energy error falling with the step count.
 #[test]
 fn repairing_holds_on_the_held_out_scene() {
-    let scene = Scene::from_toml_str(
-        include_str!("../../scenes/sliding-held-out.toml"),
-        "sliding-held-out.toml",
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
+    let scene = held_out();
     let complete: Vec<Solution> = [20, 40]
         .iter()
         .map(|&n| run(&scene, Method::Complete, n))
@@ -389,7 +402,78 @@ fn repairing_holds_on_the_held_out_scene() {
             assert!(sol.repeats > 0);
             errors.push(e.abs());
         }
-        assert!(errors[0] < 1e-2, "type {ty}: {errors:?}");
-        assert!(errors[1] < errors[0], "type {ty}: {errors:?}");
+        assert!(errors.iter().all(|&e| e < 5e-4), "type {ty}: {errors:?}");
+    }
+}
+
+/// Held out, from 40 steps on (where some points no longer cross a node
+/// in a step and keep their step-start expansion): the energy error of
+/// Types 3 and 6 falls as steps are added.
+#[test]
+fn held_out_error_falls_from_40_steps() {
+    let scene = held_out();
+    let complete = run(&scene, Method::Complete, 40);
+    for ty in [ApproxType::Type3, ApproxType::Type6] {
+        let errors: Vec<f64> = [40, 80]
+            .iter()
+            .map(|&n| energy_error(&run(&scene, Method::Approx(ty), n), &complete).abs())
+            .collect();
+        println!("held out, type {ty}: energy errors at 40 / 80 steps {errors:?}");
+        assert!(errors[1] < 0.5 * errors[0], "type {ty}: {errors:?}");
+    }
+}
+
+/// Points that cycle at a concave master node (converged on one segment
+/// they project into the other, and back): at 40 steps the complete
+/// formulation ties 4 points to a node; Types 3 and 6 tie them too
+/// (`repair.rs`, "Points cycling at a node") instead of leaving them on
+/// one segment's line (before: 9–10 unsettled points, reactions 0.35 %
+/// off; 1.5 % at 160 steps). Measured: reactions within 0.036 %, no point
+/// unsettled.
+#[test]
+fn points_cycling_at_a_node_are_tied() {
+    let scene = scene();
+    let complete = run(&scene, Method::Complete, 40);
+    for ty in [ApproxType::Type3, ApproxType::Type6] {
+        let sol = run(&scene, Method::Approx(ty), 40);
+        let ties: usize = sol.step_records.iter().map(|r| r.node_ties.len()).sum();
+        let unsettled: usize = sol.step_records.iter().map(|r| r.unsettled.len()).sum();
+        let r = reaction_error(&sol, &complete);
+        println!(
+            "type {ty}, 40 steps: {ties} tied points over the steps, {unsettled} unsettled, reaction error {r:.3e}"
+        );
+        assert!(ties > 0, "type {ty}");
+        assert_eq!(unsettled, 0, "type {ty}");
+        assert!(r < 1e-3, "type {ty}: {r:e}");
+    }
+}
+
+/// Issue #8's targets at every step count of the safety map (10, 20, 40,
+/// 80, 160) on both sliding scenes, Types 3–6: the final strain energy
+/// within 0.05 % of the complete formulation's and the reactions within
+/// 1 % at every step. Measured: energy errors at most 2.4e-2 % (held out,
+/// 40 steps), reactions at most 0.043 %. About a minute in the dev
+/// profile; run it with `cargo test --release -p gapsim-solver --test
+/// sliding -- --ignored`.
+#[test]
+#[ignore = "the full step-count sweep; run in release"]
+fn targets_hold_at_every_step_count() {
+    for scene in [scene(), held_out()] {
+        for steps in [10, 20, 40, 80, 160] {
+            let complete = run(&scene, Method::Complete, steps);
+            for method in TYPES_3_TO_6 {
+                let sol = run(&scene, method, steps);
+                let (e, r) = (
+                    energy_error(&sol, &complete),
+                    reaction_error(&sol, &complete),
+                );
+                println!(
+                    "{}, type {method}, {steps} steps: energy error {e:+.3e}, reaction error {r:.3e}",
+                    scene.name.as_deref().unwrap_or("?")
+                );
+                assert!(e.abs() < 5e-4, "type {method}, {steps} steps: {e:e}");
+                assert!(r < 1e-2, "type {method}, {steps} steps: {r:e}");
+            }
+        }
     }
 }

@@ -1,10 +1,10 @@
 //! The frozen Taylor expansion of Types 1–6 (see [`super`], "Types 1–6:
 //! Taylor coefficients frozen per load step").
 //!
-//! The expansion may be taken on a master segment the point does not
-//! project into at `u0` (a step repeated after re-pairing, see
-//! [`crate::newton`]): `at_start` is then the kernel on that segment's line,
-//! outside the segment, which is smooth there.
+//! The expansion point `u0` is the step start, except for a point that
+//! crossed a master node in the step: in the repeated step (see
+//! [`crate::newton`], "Re-pairing at the step end") its expansion is that
+//! of its new segment taken at an earlier attempt's converged end.
 //!
 //! Invariant: the expansion is exact for the approximated problem: its
 //! gradient is the derivative of its gap and its Hessian that of its
@@ -18,9 +18,11 @@ use crate::ids::DofId;
 /// Frozen Taylor coefficients of one integration point for one load step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Taylor {
-    /// The kernel output at the step start.
+    /// The kernel output at the expansion point (the step start, or for a
+    /// re-paired point an earlier attempt's end).
     pub at_start: PointEval,
-    /// The nodal displacements `u0` of `at_start.nodes` at the step start.
+    /// The nodal displacements `u0` of `at_start.nodes` at the expansion
+    /// point.
     pub u0: SVector<f64, 8>,
 }
 

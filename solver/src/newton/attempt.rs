@@ -114,6 +114,9 @@ impl Run<'_> {
         if self.taylor.is_some() {
             return Ok(());
         }
+        // a tie of Types 1-6 lasts one step (`repair.rs`)
+        self.ties.clear();
+        self.tie_taylor.clear();
         let t = Instant::now();
         let (evals, counts) = self
             .setup
@@ -154,9 +157,22 @@ impl Run<'_> {
     /// the current Taylor coefficients (Types 1–6) or the complete
     /// formulation.
     pub(super) fn newton(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
+        self.newton_from(to, None)
+    }
+
+    /// [`Run::newton`] starting from the displacements and multipliers
+    /// `warm` (an earlier attempt's converged end at the same `to`)
+    /// instead of the converged state; the pairing and ties are the
+    /// run's.
+    pub(super) fn newton_from(
+        &mut self,
+        to: f64,
+        warm: Option<(Vec<f64>, Vec<f64>)>,
+    ) -> Result<AttemptOutcome, SolverError> {
+        let (u, lambda) = warm.unwrap_or_else(|| (self.u.clone(), self.lambda.clone()));
         let mut x = Iterate {
-            u: self.u.clone(),
-            lambda: self.lambda.clone(),
+            u,
+            lambda,
             pairing: self.pairing.clone(),
             ties: self.ties.clone(),
         };
@@ -287,7 +303,8 @@ impl Run<'_> {
                 let taylor = self.taylor.as_deref().unwrap_or(&[]);
                 let evals: Vec<Option<PointEval>> =
                     taylor.iter().map(|t| t.map(|t| t.expand(&x.u))).collect();
-                Ok((evals, Vec::new()))
+                let others = self.tie_taylor.iter().map(|t| t.expand(&x.u)).collect();
+                Ok((evals, others))
             }
             Method::Complete => {
                 match self.setup.evaluate_complete(

@@ -27,8 +27,8 @@
 //!
 //! 5. Types 1–6: at a converged iterate, every point is re-paired by
 //!    projection; if one ended on another master segment than its
-//!    expansion's, the step is solved again from its start with the
-//!    expansion of the new pairing (next section). Then the step's Taylor
+//!    expansion's, the step is solved again with the expansion of the new
+//!    pairing (next section). Then the step's Taylor
 //!    remainder is measured and, with a `taylor_tolerance`, a step above it
 //!    is halved.
 //!
@@ -42,11 +42,15 @@
 //! 20 % off the complete formulation's energy). At a converged step end
 //! every point is therefore re-paired (the complete formulation's search);
 //! each point whose segment changed (or that became paired or unpaired)
-//! gets the expansion of its **new** segment's gap taken at the step start,
-//! and the step is solved again, until the pairing at the end is the one
+//! gets the expansion of its **new** segment's gap taken at that attempt's
+//! converged end (re-taken at each following end until it reproduces the
+//! point's gap there, `repair.rs`, "Anchor iteration"), and the step is
+//! solved again (Newton warm-started from the discarded attempt's end),
+//! until the pairing at the end is the one
 //! the expansions were built on (at most [`MAX_REPAIR_REPEATS`] repeats; a
-//! point never returns to a pairing it has had in the attempt, which is a
-//! point cycling at a node: it keeps its expansion and is listed in
+//! point that returns to a pairing it has had in the attempt cycles at a
+//! concave master node and is tied to it as in the complete formulation,
+//! where no tie is possible it keeps its expansion and is listed in
 //! [`crate::StepRecord::unsettled`]). The alternative of switching a
 //! point's pair during the iterations when its predicted `xi_m` leaves
 //! `[-1, 1]` was not taken: it makes the frozen problem change within the
@@ -205,6 +209,9 @@ pub(crate) struct Run<'a> {
     load_factor: f64,
     energy: f64,
     taylor: Option<Vec<Option<Taylor>>>,
+    /// Types 1–6: the expansion on the other segment of each tie in
+    /// `ties` (`repair.rs`).
+    tie_taylor: Vec<Taylor>,
     // history
     records: Vec<StepRecord>,
     cutbacks: Vec<Cutback>,
@@ -257,6 +264,7 @@ impl<'a> Run<'a> {
             load_factor: 0.0,
             energy: 0.0,
             taylor: None,
+            tie_taylor: Vec::new(),
             records: Vec::new(),
             cutbacks: Vec::new(),
             snapshots: Vec::new(),
