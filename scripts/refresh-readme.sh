@@ -40,6 +40,7 @@ cargo run -q --release --example stability_sweep > target/stability-table.md
 splice stability target/stability-table.md
 
 cargo run -q --release --example sliding_curves -- --steps 20 --out docs/sliding
+cargo run -q --release --example adaptive_cost -- --out docs/adaptive
 cargo run -q --release -- safety-map --out docs/safety-map
 splice safety-map docs/safety-map/safety-map.md
 # scripts/hertz-vs-calculix.sh needs CalculiX (calculix-ccx); when it is
