@@ -130,6 +130,19 @@ impl System {
         }
     }
 
+    /// Empties `self` into a system of `n` equations with zero residual and
+    /// energy and no triplets, keeping its buffers' capacity: the same
+    /// system as [`System::new`], without allocating (and touching fresh
+    /// pages for) the triplets again every Newton iteration.
+    pub fn reset(&mut self, n: usize) {
+        self.residual.clear();
+        self.residual.resize(n, 0.0);
+        self.rows.clear();
+        self.cols.clear();
+        self.vals.clear();
+        self.energy = 0.0;
+    }
+
     /// Appends the triplet `(r, c, v)`.
     pub fn push(&mut self, r: EquationIndex, c: EquationIndex, v: f64) {
         self.rows.push(r.index());

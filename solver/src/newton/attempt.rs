@@ -272,6 +272,7 @@ impl Run<'_> {
                 .setup
                 .solve(&mut sys, &active, self.opts.regularization);
             self.timings.linear_solve += t.elapsed();
+            self.setup.recycle(sys);
             let dx = match solved {
                 Ok(dx) => dx,
                 Err(e) => {

@@ -186,9 +186,9 @@ impl<'a> IterationProbe<'a> {
     /// correction `dx` with `K dx = r`.
     pub fn linear_solve(&mut self, assembled: ContactPhase) -> Result<Vec<f64>, SolverError> {
         let ContactPhase { mut system, active } = assembled;
-        self.setup
-            .solve(&mut system, &active, self.regularization)
-            .map_err(|e| SolverError::Singular {
+        let solved = self.setup.solve(&mut system, &active, self.regularization);
+        self.setup.recycle(system);
+        solved.map_err(|e| SolverError::Singular {
                 load_factor: self.load_factor,
                 attempted: self.load_factor,
                 cutbacks: 0,

@@ -20,6 +20,8 @@
 //! the probe alike; it fixes the triplet order and so every floating-point
 //! sum of the assembly.
 
+use std::sync::Mutex;
+
 use contact_kernels::ApproxType;
 
 use crate::assembly::{
@@ -47,6 +49,12 @@ pub(super) struct Setup<'a> {
     pub(super) linear: Box<dyn LinearSolver>,
     /// The mesh size (scales the active-set threshold).
     pub(super) length_scale: f64,
+    /// The buffers of the last solved system, handed back by
+    /// [`Setup::recycle`] and reused by the next [`Setup::contact_system`]
+    /// (the triplet count barely changes between iterations; at 10^6
+    /// equations the fresh pages of a new system cost more than its
+    /// assembly's arithmetic).
+    spare: Mutex<Option<System>>,
 }
 
 impl<'a> Setup<'a> {
@@ -64,6 +72,7 @@ impl<'a> Setup<'a> {
             dofs,
             linear,
             length_scale: model.mesh.size(),
+            spare: Mutex::new(None),
         })
     }
 
@@ -178,7 +187,8 @@ impl<'a> Setup<'a> {
     /// The active multipliers at `(evals, lambda)` (in the `first`
     /// iteration of an attempt also the touching nodes of unilateral pairs
     /// without contact, [`ContactLayout::close_touching`]) and a fresh
-    /// system (one equation per free dof, multiplier and tie) holding the
+    /// system (one equation per free dof, multiplier and tie; in the buffers
+    /// [`Setup::recycle`] kept, if any) holding the
     /// contact contributions of `evals` and then those of the `ties` (with
     /// `others`, their evaluations on the other segment).
     pub(super) fn contact_system(
@@ -196,7 +206,14 @@ impl<'a> Setup<'a> {
             self.layout.close_touching(evals, lambda, &mut active);
         }
         let n_sys = self.dofs.n_eq() + ties.len();
-        let mut sys = System::new(n_sys);
+        let spare = self.spare.lock().map(|mut s| s.take()).unwrap_or(None);
+        let mut sys = match spare {
+            Some(mut sys) => {
+                sys.reset(n_sys);
+                sys
+            }
+            None => System::new(n_sys),
+        };
         assemble_contact(&self.layout, evals, lambda, &active, &self.dofs, &mut sys);
         assemble_ties(ties, evals, others, &self.dofs, &mut sys);
         (sys, active)
@@ -207,6 +224,13 @@ impl<'a> Setup<'a> {
     pub(super) fn add_solid(&self, u: &[f64], to: f64, sys: &mut System) -> f64 {
         assemble_solid(self.model, &self.dofs, u, sys);
         add_external(self.model, &self.dofs, to, sys)
+    }
+
+    /// Keeps `sys`'s buffers for the next [`Setup::contact_system`].
+    pub(super) fn recycle(&self, sys: System) {
+        if let Ok(mut spare) = self.spare.lock() {
+            *spare = Some(sys);
+        }
     }
 
     /// Adds the multiplier regularisation `delta` (see
