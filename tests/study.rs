@@ -200,3 +200,35 @@ fn reaction_errors_are_defined_on_the_paper_scene() {
         }
     }
 }
+
+/// `gapsim study --linear ldlt` (the scene's `[newton] linear`): the same
+/// energies as with the LU to 1e-10 relative, every method, and the report
+/// names the solver.
+#[test]
+fn the_study_with_the_ldlt_gives_the_lu_energies() {
+    let lu = results();
+    let mut scene = Scene::from_toml_str(
+        solver::scenes::STACKED_CANTILEVER,
+        "stacked-cantilever.toml",
+    )
+    .unwrap();
+    scene.newton.linear = solver::LinearSolverKind::Ldlt;
+    let options = StudyOptions {
+        repeats: 1,
+        steps: Some(vec![4, 8, 16]),
+        all_formulations: false,
+        heavy_steps: Vec::new(),
+        ..StudyOptions::default()
+    };
+    let ldlt = study::run_study(&scene, &options, &study::Silent).unwrap();
+    assert_eq!(ldlt.linear, solver::LinearSolverKind::Ldlt);
+    assert_eq!(lu.linear, solver::LinearSolverKind::Lu);
+    let (a, b) = (&lu.formulations[0], &ldlt.formulations[0]);
+    assert_eq!(a.runs.len(), b.runs.len());
+    for (x, y) in a.runs.iter().zip(&b.runs) {
+        let (ux, uy) = (x.strain_energy.unwrap(), y.strain_energy.unwrap());
+        assert!((ux - uy).abs() <= 1e-10 * ux, "{ux} vs {uy}");
+    }
+    let md = report::markdown(&ldlt, "", "gapsim study --linear ldlt");
+    assert!(md.contains("linear solver: ldlt"), "{md}");
+}

@@ -5,7 +5,7 @@
 //! cost against complete: [`gapsim::study::errors`]).
 //!
 //! ```text
-//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--readme README.md]
+//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt] [--readme README.md]
 //! ```
 
 use std::path::PathBuf;
@@ -42,6 +42,12 @@ pub struct StudyArgs {
     #[arg(long)]
     pub no_heavy: bool,
 
+    /// The linear solver of every solve, the contact-heavy variant's too
+    /// (default: the scene's `[newton] linear`, LU unless set). With the
+    /// LDLᵀ the linear solve hides less of what the types save.
+    #[arg(long, value_name = "lu|ldlt")]
+    pub linear: Option<solver::LinearSolverKind>,
+
     /// Replace the section between `<!-- study:begin -->` and
     /// `<!-- study:end -->` of this Markdown file with the results.
     #[arg(long, value_name = "FILE")]
@@ -50,7 +56,10 @@ pub struct StudyArgs {
 
 /// Runs `gapsim study`.
 pub fn run(args: &StudyArgs) -> CommandResult {
-    let scene = load_scene(args.scene.as_ref())?;
+    let mut scene = load_scene(args.scene.as_ref())?;
+    if let Some(kind) = args.linear {
+        scene.newton.linear = kind;
+    }
     if args.steps.contains(&0) {
         return Err("--steps: step counts must be at least 1".into());
     }

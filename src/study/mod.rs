@@ -202,6 +202,8 @@ pub struct StudyResults {
     pub scene_name: String,
     /// Solves per configuration.
     pub repeats: usize,
+    /// The linear solver of every solve (the scene's `[newton] linear`).
+    pub linear: solver::LinearSolverKind,
     /// One study per formulation, the scene's first.
     pub formulations: Vec<FormulationStudy>,
     /// The contact-heavy variant, if run.
@@ -517,6 +519,7 @@ pub fn run_study(
     Ok(StudyResults {
         scene_name: name,
         repeats: options.repeats,
+        linear: scene.newton.linear,
         formulations: studies,
         heavy,
         heavy_failure,

@@ -405,9 +405,10 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
     );
     let _ = writeln!(
         out,
-        "Scene: {}. Times are medians of {} repeated solves (release build); errors are \
-         `100 (U_type - U_complete) / U_complete` at load factor 10 with the same number of steps.\n",
-        results.scene_name, results.repeats
+        "Scene: {}. Times are medians of {} repeated solves (release build, linear solver: {}); \
+         errors are `100 (U_type - U_complete) / U_complete` at load factor 10 with the same \
+         number of steps.\n",
+        results.scene_name, results.repeats, results.linear
     );
 
     // Error table at the coarsest and finest step counts.
