@@ -189,11 +189,11 @@ impl<'a> IterationProbe<'a> {
         let solved = self.setup.solve(&mut system, &active, self.regularization);
         self.setup.recycle(system);
         solved.map_err(|e| SolverError::Singular {
-                load_factor: self.load_factor,
-                attempted: self.load_factor,
-                cutbacks: 0,
-                message: e.to_string(),
-            })
+            load_factor: self.load_factor,
+            attempted: self.load_factor,
+            cutbacks: 0,
+            message: e.to_string(),
+        })
     }
 
     /// The three phases in order, timed.
