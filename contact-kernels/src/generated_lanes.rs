@@ -2,7 +2,7 @@
 //! `codegen::emit::LanesEmitter` from the same instruction lists as the
 //! scalar kernels) and the run-time types they are written against.
 //!
-//! Every lane kernel evaluates [`LANES`] points at once: `d` holds the
+//! Every lane kernel evaluates `LANES` (4) points at once: `d` holds the
 //! relative coordinates as `n` [`Lanes`] values (coordinate `i` of every
 //! point), `xi_s` and `xi_m` one value per point; it stores the gradient
 //! into `grad` (`n` values) and, with a second-order term, the full
@@ -15,9 +15,6 @@
 
 use crate::generated::Formulation;
 use crate::lanes::Lanes;
-
-#[cfg(doc)]
-use crate::lanes::LANES;
 
 /// `(d, xi_s, xi_m, grad) -> g` over lanes.
 ///

@@ -130,7 +130,7 @@ fn eval_group<const AVX2: bool>(
     let n = k.coords();
     let mut xi_s_l = Lanes::ZERO;
     xi_s_l.0[..count].copy_from_slice(&xi_s[first..first + count]);
-    gather(&qs[first * n..(first + count) * n], &mut out.lanes.d);
+    gather::<AVX2>(&qs[first * n..(first + count) * n], &mut out.lanes.d);
     let mut valid = relative_coordinates_lanes(&mut out.lanes.d, xi_s_l);
     valid[count..].fill(false);
     let mut xi_m_l = Lanes::ZERO;
@@ -241,9 +241,18 @@ fn accepted(sum: Lanes, xi_m: Lanes, l: usize) -> bool {
 
 /// `qs` (up to `LANES` points of `d.len()` coordinates each, point-major)
 /// into lanes: `d[i].0[l] = qs[l n + i]`; lanes past the points are zero.
+/// With `AVX2` (which the caller must have enabled), a full group goes
+/// through 4 x 4 transposes in registers.
 #[inline(always)]
-fn gather(qs: &[f64], d: &mut [Lanes]) {
+fn gather<const AVX2: bool>(qs: &[f64], d: &mut [Lanes]) {
     let n = d.len();
+    #[cfg(target_arch = "x86_64")]
+    if AVX2 && qs.len() == LANES * n {
+        // SAFETY: `AVX2` is true only in `eval_all_avx2`, which runs on a
+        // CPU with AVX2.
+        unsafe { gather_avx2(qs, d) };
+        return;
+    }
     if qs.len() == LANES * n {
         let (q0, rest) = qs.split_at(n);
         let (q1, rest) = rest.split_at(n);
@@ -291,6 +300,61 @@ fn scatter<const AVX2: bool>(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lan
     src.iter().fold(sum, |s, v| s + *v)
 }
 
+/// The 4 x 4 transpose of the rows `a`, `e`, `c`, `d`: the columns.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn transpose4(
+    a: std::arch::x86_64::__m256d,
+    e: std::arch::x86_64::__m256d,
+    c: std::arch::x86_64::__m256d,
+    d: std::arch::x86_64::__m256d,
+) -> [std::arch::x86_64::__m256d; 4] {
+    use std::arch::x86_64::{_mm256_permute2f128_pd, _mm256_unpackhi_pd, _mm256_unpacklo_pd};
+    let ae_even = _mm256_unpacklo_pd(a, e); // a0 e0 a2 e2
+    let ae_odd = _mm256_unpackhi_pd(a, e); // a1 e1 a3 e3
+    let cd_even = _mm256_unpacklo_pd(c, d); // c0 d0 c2 d2
+    let cd_odd = _mm256_unpackhi_pd(c, d); // c1 d1 c3 d3
+    [
+        _mm256_permute2f128_pd(ae_even, cd_even, 0x20),
+        _mm256_permute2f128_pd(ae_odd, cd_odd, 0x20),
+        _mm256_permute2f128_pd(ae_even, cd_even, 0x31),
+        _mm256_permute2f128_pd(ae_odd, cd_odd, 0x31),
+    ]
+}
+
+/// [`gather`] of a full group with AVX2 shuffles.
+///
+/// # Safety
+/// The CPU must support AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[inline]
+unsafe fn gather_avx2(qs: &[f64], d: &mut [Lanes]) {
+    use std::arch::x86_64::{_mm256_loadu_pd, _mm256_store_pd};
+    let n = d.len();
+    assert_eq!(qs.len(), LANES * n, "LANES points of d.len() coordinates");
+    let blocks = n / 4 * 4;
+    for b in (0..blocks).step_by(4) {
+        // SAFETY: the loads read qs[l n + b..l n + b + 4] for l < 4, inside
+        // `qs` (asserted); `Lanes` is 32-byte aligned.
+        unsafe {
+            let base = qs.as_ptr().add(b);
+            let rows = [0, 1, 2, 3].map(|l| _mm256_loadu_pd(base.add(l * n)));
+            let columns = transpose4(rows[0], rows[1], rows[2], rows[3]);
+            for (k, column) in columns.into_iter().enumerate() {
+                _mm256_store_pd(d[b + k].0.as_mut_ptr(), column);
+            }
+        }
+    }
+    for (i, dl) in d.iter_mut().enumerate().skip(blocks) {
+        *dl = Lanes([qs[i], qs[n + i], qs[2 * n + i], qs[3 * n + i]]);
+    }
+}
+
 /// [`scatter`] with AVX2 shuffles.
 ///
 /// # Safety
@@ -299,10 +363,7 @@ fn scatter<const AVX2: bool>(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lan
 #[target_feature(enable = "avx2")]
 #[inline]
 unsafe fn scatter_avx2(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
-    use std::arch::x86_64::{
-        _mm256_add_pd, _mm256_load_pd, _mm256_permute2f128_pd, _mm256_store_pd, _mm256_storeu_pd,
-        _mm256_unpackhi_pd, _mm256_unpacklo_pd,
-    };
+    use std::arch::x86_64::{_mm256_add_pd, _mm256_load_pd, _mm256_store_pd, _mm256_storeu_pd};
     let len = src.len();
     assert_eq!(rows.len(), LANES * len, "LANES rows of src.len() values");
     let blocks = len / 4 * 4;
@@ -313,31 +374,18 @@ unsafe fn scatter_avx2(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
         // SAFETY: `Lanes` is 32-byte aligned; the stores write
         // rows[l len + b..l len + b + 4] for l < 4, inside `rows` (asserted).
         unsafe {
-            let a = _mm256_load_pd(src[b].0.as_ptr());
-            let e = _mm256_load_pd(src[b + 1].0.as_ptr());
-            let c = _mm256_load_pd(src[b + 2].0.as_ptr());
-            let d = _mm256_load_pd(src[b + 3].0.as_ptr());
-            for (s, v) in sums.iter_mut().zip([a, e, c, d]) {
+            let columns = [0, 1, 2, 3].map(|k| _mm256_load_pd(src[b + k].0.as_ptr()));
+            for (s, v) in sums.iter_mut().zip(columns) {
                 _mm256_store_pd(
                     s.0.as_mut_ptr(),
                     _mm256_add_pd(_mm256_load_pd(s.0.as_ptr()), v),
                 );
             }
-            let ae_even = _mm256_unpacklo_pd(a, e); // a0 e0 a2 e2
-            let ae_odd = _mm256_unpackhi_pd(a, e); // a1 e1 a3 e3
-            let cd_even = _mm256_unpacklo_pd(c, d); // c0 d0 c2 d2
-            let cd_odd = _mm256_unpackhi_pd(c, d); // c1 d1 c3 d3
+            let transposed = transpose4(columns[0], columns[1], columns[2], columns[3]);
             let base = rows.as_mut_ptr().add(b);
-            _mm256_storeu_pd(base, _mm256_permute2f128_pd(ae_even, cd_even, 0x20));
-            _mm256_storeu_pd(base.add(len), _mm256_permute2f128_pd(ae_odd, cd_odd, 0x20));
-            _mm256_storeu_pd(
-                base.add(2 * len),
-                _mm256_permute2f128_pd(ae_even, cd_even, 0x31),
-            );
-            _mm256_storeu_pd(
-                base.add(3 * len),
-                _mm256_permute2f128_pd(ae_odd, cd_odd, 0x31),
-            );
+            for (l, row) in transposed.into_iter().enumerate() {
+                _mm256_storeu_pd(base.add(l * len), row);
+            }
         }
     }
     for i in blocks..len {
