@@ -317,9 +317,10 @@ impl Kernel {
     /// coordinates `qs[p n..(p + 1) n]` and `xi_s[p]`, into `out`; returns
     /// how many succeeded. Each point gives the bits [`Kernel::eval`]
     /// gives it (and its error), though 4 points are evaluated per call of
-    /// the lane kernel ([`Kernel::lane_isa`]). Fails only when the shapes disagree: `qs.len()` is not
-    /// `n * xi_s.len()` ([`KernelError::CoordinateCount`]) or `out` was made
-    /// for another coordinate count ([`KernelError::BufferSize`]).
+    /// the lane kernel ([`Kernel::lane_isa`]). Fails only when the shapes
+    /// disagree: `qs.len()` is not `n * xi_s.len()`
+    /// ([`KernelError::CoordinateCount`]) or `out` was made for another
+    /// coordinate count ([`KernelError::BufferSize`]).
     pub fn eval_batch(
         &self,
         qs: &[f64],
