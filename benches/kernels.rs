@@ -17,8 +17,11 @@
 //! example per iteration (seeded, the same every run), for the slave-normal
 //! formulation: the sympy-cse peer (`benches/peer/`, as Kratos and IPC
 //! Toolkit generate theirs), gapsim's Types 1, 3 and 6 through `evaluate`,
-//! the handle and `Kernel::eval_batch`, the value-only projection, and
-//! num-dual's `hessian`; `bench_table` divides by 64.
+//! the handle and `Kernel::eval_batch` (the SIMD lane kernels, 4 points per
+//! call; AVX2 where the CPU has it, and Type 6 also with the portable lane
+//! build: `type6-batch-portable`), the value-only projection, and
+//! num-dual's `hessian`; `bench_table` divides by 64. Run only this group
+//! with `cargo bench --bench kernels -- points64`.
 //!
 //! Warm-up and measurement are 1 s each so the whole run takes about a
 //! minute of measurement (38 benchmarks).
@@ -32,8 +35,8 @@ use std::time::Duration;
 mod sympy_kernel;
 
 use contact_kernels::{
-    ApproxType, Formulation, GapBatch, GapOut, Kernel, Projector, evaluate, pair_formulations,
-    project,
+    ApproxType, Formulation, GapBatch, GapOut, Kernel, LaneIsa, Projector, evaluate,
+    pair_formulations, project,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::SVector;
@@ -195,15 +198,22 @@ fn many_points(c: &mut Criterion) {
             })
         });
         let mut batch = GapBatch::new(&kernel);
-        group.bench_function(format!("type{i}-batch"), |b| {
-            b.iter(|| {
-                let ok = kernel
-                    .eval_batch(black_box(&flat), black_box(&xi_s), &mut batch)
-                    .unwrap();
-                assert_eq!(ok, POINTS);
-                black_box(&batch);
-            })
-        });
+        let mut isas = vec![(format!("type{i}-batch"), kernel)];
+        if ty == ApproxType::Type6 {
+            let portable = kernel.with_lane_isa(LaneIsa::Portable);
+            isas.push((format!("type{i}-batch-portable"), portable));
+        }
+        for (id, kernel) in isas {
+            group.bench_function(id, |b| {
+                b.iter(|| {
+                    let ok = kernel
+                        .eval_batch(black_box(&flat), black_box(&xi_s), &mut batch)
+                        .unwrap();
+                    assert_eq!(ok, POINTS);
+                    black_box(&batch);
+                })
+            });
+        }
     }
     let projector = Projector::new(f).unwrap();
     let mut scratch = vec![0.0; projector.coords()];

@@ -1,5 +1,6 @@
 //! Generates the contact kernels from `formulations/*.rs` with
-//! `gapsim-codegen` into `OUT_DIR/kernels.rs` (rewritten only when its
+//! `gapsim-codegen` into `OUT_DIR/kernels.rs`, and the same kernels over
+//! SIMD lanes into `OUT_DIR/kernels_lanes.rs` (each rewritten only when its
 //! content changes).
 //!
 //! A formulation `foo-bar.rs` is compiled in when the crate feature
@@ -47,6 +48,18 @@ fn main() {
     let out =
         PathBuf::from(std::env::var_os("OUT_DIR").expect("cargo sets OUT_DIR")).join("kernels.rs");
     write_if_changed(&out, &generated.code);
+    // The same kernels over SIMD lanes (`kernels_lanes.rs`), for the batch.
+    match codegen::generate_with(&sources, &codegen::emit::LanesEmitter) {
+        Ok(files) => {
+            for file in files {
+                write_if_changed(&out.with_file_name(&file.name), &file.contents);
+            }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::exit(1);
+        }
+    }
 }
 
 fn write_if_changed(path: &Path, content: &str) {

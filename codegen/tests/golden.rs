@@ -1,7 +1,8 @@
 //! Golden files for the generated kernels.
 //!
 //! The generated source for the shipped formulations is compared with
-//! `tests/golden/kernels.rs`. On a mismatch the test prints a unified diff
+//! `tests/golden/kernels.rs`, the lane kernels with
+//! `tests/golden/kernels_lanes.rs`. On a mismatch the test prints a unified diff
 //! and fails; it re-blesses the file only when `GAPSIM_BLESS=1` is set, so
 //! nothing is overwritten silently.
 
@@ -31,18 +32,37 @@ fn sources() -> Vec<codegen::Source> {
 #[test]
 fn generated_kernels_match_golden_file() {
     let generated = codegen::generate(&sources()).expect("the shipped formulations generate");
-    let golden_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/kernels.rs");
+    check_golden("kernels.rs", &generated.code);
+}
+
+#[test]
+fn generated_lane_kernels_match_golden_file() {
+    let files = codegen::generate_with(&sources(), &codegen::emit::LanesEmitter)
+        .expect("the shipped formulations generate");
+    let [file] = files.as_slice() else {
+        panic!("the lane emitter writes one file")
+    };
+    assert_eq!(file.name, codegen::emit::lanes::LANES_FILE);
+    check_golden(&file.name, &file.contents);
+}
+
+/// Compares `generated` with `tests/golden/{name}`; re-blesses it with
+/// `GAPSIM_BLESS=1`, otherwise fails with a unified diff.
+fn check_golden(name: &str, generated: &str) {
+    let golden_path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/golden")
+        .join(name);
     let bless = std::env::var("GAPSIM_BLESS").is_ok_and(|v| v == "1");
     let golden = std::fs::read_to_string(&golden_path).unwrap_or_default();
-    if golden == generated.code {
+    if golden == generated {
         return;
     }
     if bless {
-        std::fs::write(&golden_path, &generated.code).expect("write golden file");
+        std::fs::write(&golden_path, generated).expect("write golden file");
         eprintln!("re-blessed {}", golden_path.display());
         return;
     }
-    let diff = similar::TextDiff::from_lines(&golden, &generated.code);
+    let diff = similar::TextDiff::from_lines(&golden, generated);
     let shown: String = diff
         .unified_diff()
         .context_radius(3)

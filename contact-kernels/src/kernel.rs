@@ -31,9 +31,12 @@
 //! Hessians), with one status per point: a point that fails (degenerate
 //! segment, no projection) does not stop the others, as the solver treats
 //! failures per point. A failed point's entries are zero and its accessors
-//! return its error, never stale or NaN values.
+//! return its error, never stale or NaN values. It evaluates 4 points per
+//! call of the lane kernels (`batch.rs`; AVX2 when the CPU has it), with
+//! the same results and errors as [`Kernel::eval`] point by point.
 
 use crate::generated::{self, KernelSet, kernel_set};
+use crate::generated_lanes::{self, LaneIsa, LaneKernel, LaneSet, lane_set};
 use crate::validate::{all_finite, relative_coordinates};
 use crate::{ApproxType, Formulation, KernelError, OpCount, OutputKind, projection};
 
@@ -44,7 +47,12 @@ pub struct Kernel {
     ty: ApproxType,
     set: &'static KernelSet,
     kernel: generated::Kernel,
+    lane_set: &'static LaneSet,
+    lanes: LaneKernel,
+    lane_isa: LaneIsa,
 }
+
+mod batch;
 
 impl std::fmt::Debug for Kernel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -130,6 +138,7 @@ pub struct GapBatch {
     hess: Vec<f64>,
     status: Vec<Option<KernelError>>,
     scratch: Vec<f64>,
+    lanes: batch::LaneBuffers,
 }
 
 impl GapBatch {
@@ -145,6 +154,7 @@ impl GapBatch {
             hess: Vec::new(),
             status: Vec::new(),
             scratch: vec![0.0; kernel.coords()],
+            lanes: batch::LaneBuffers::new(kernel.coords()),
         }
     }
 
@@ -227,12 +237,36 @@ impl Kernel {
     /// The kernel of `(formulation, ty)`, or [`KernelError::NotCompiled`].
     pub fn new(formulation: Formulation, ty: ApproxType) -> Result<Kernel, KernelError> {
         let set = kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
+        let lane_set = lane_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
+        let (lanes, lane_isa) = generated_lanes::select(lane_set, ty.index(), LaneIsa::Avx2);
         Ok(Kernel {
             formulation,
             ty,
             set,
             kernel: set.kernels[ty.index() - 1],
+            lane_set,
+            lanes,
+            lane_isa,
         })
+    }
+
+    /// The instruction set of the lane kernel [`Kernel::eval_batch`] runs:
+    /// AVX2 when the CPU has it, unless [`Kernel::with_lane_isa`] chose
+    /// the portable one.
+    pub fn lane_isa(&self) -> LaneIsa {
+        self.lane_isa
+    }
+
+    /// This kernel with [`Kernel::eval_batch`] running the lane kernel
+    /// compiled for `isa` (the portable one when `isa` is AVX2 and the CPU
+    /// lacks it). Results do not depend on the choice.
+    pub fn with_lane_isa(self, isa: LaneIsa) -> Kernel {
+        let (lanes, lane_isa) = generated_lanes::select(self.lane_set, self.ty.index(), isa);
+        Kernel {
+            lanes,
+            lane_isa,
+            ..self
+        }
     }
 
     /// The formulation.
@@ -279,15 +313,14 @@ impl Kernel {
         Ok(())
     }
 
-    /// The evaluation on raw buffers: `d` (scratch), `grad` of `n` and
-    /// `hess` of `n * n` values (untouched without second-order term), sized
-    /// by the caller. Returns `(gap, xi_m)`.
     /// Evaluates the points `p = 0..xi_s.len()`, point `p` with the
     /// coordinates `qs[p n..(p + 1) n]` and `xi_s[p]`, into `out`; returns
     /// how many succeeded. Each point gives the bits [`Kernel::eval`]
-    /// gives it. Fails only when the shapes disagree: `qs.len()` is not
-    /// `n * xi_s.len()` ([`KernelError::CoordinateCount`]) or `out` was made
-    /// for another coordinate count ([`KernelError::BufferSize`]).
+    /// gives it (and its error), though 4 points are evaluated per call of
+    /// the lane kernel ([`Kernel::lane_isa`]). Fails only when the shapes
+    /// disagree: `qs.len()` is not `n * xi_s.len()`
+    /// ([`KernelError::CoordinateCount`]) or `out` was made for another
+    /// coordinate count ([`KernelError::BufferSize`]).
     pub fn eval_batch(
         &self,
         qs: &[f64],
@@ -307,32 +340,13 @@ impl Kernel {
                 found: qs.len(),
             });
         }
-        let has_hessian = self.has_hessian();
-        out.prepare(xi_s.len(), has_hessian);
-        let nn = if has_hessian { n * n } else { 0 };
-        let mut ok = 0;
-        for (p, (q, &xi)) in qs.chunks_exact(n).zip(xi_s).enumerate() {
-            let grad = &mut out.grad[p * n..(p + 1) * n];
-            let hess = &mut out.hess[p * nn..(p + 1) * nn];
-            match self.eval_into(q, xi, &mut out.scratch, grad, hess) {
-                Ok((gap, xi_m)) => {
-                    out.gap[p] = gap;
-                    out.xi_m[p] = xi_m;
-                    out.status[p] = None;
-                    ok += 1;
-                }
-                Err(e) => {
-                    out.gap[p] = 0.0;
-                    out.xi_m[p] = 0.0;
-                    grad.fill(0.0);
-                    hess.fill(0.0);
-                    out.status[p] = Some(e);
-                }
-            }
-        }
-        Ok(ok)
+        out.prepare(xi_s.len(), self.has_hessian());
+        Ok(self.eval_lanes(qs, xi_s, out))
     }
 
+    /// The evaluation on raw buffers: `d` (scratch), `grad` of `n` and
+    /// `hess` of `n * n` values (untouched without second-order term), sized
+    /// by the caller. Returns `(gap, xi_m)`.
     #[inline]
     pub(crate) fn eval_into(
         &self,

@@ -40,8 +40,10 @@
 //!
 //! Modules: `validate` (the one validation point), `projection` (the
 //! projection solve and [`Projector`]), `kernel` ([`Kernel`], [`GapOut`]),
-//! `error` ([`KernelError`]), `types` (formulations, types, op counts) and
-//! `generated` (the build script's output).
+//! `error` ([`KernelError`]), `types` (formulations, types, op counts),
+//! `generated` (the build script's output), `lanes` (the SIMD value type)
+//! and `generated_lanes` (the same kernels over 4 points at a time, for
+//! [`Kernel::eval_batch`]).
 //!
 //! ```
 //! use contact_kernels::{evaluate, ApproxType, Formulation};
@@ -59,12 +61,16 @@
 mod error;
 #[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
 mod generated;
+#[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
+mod generated_lanes;
 mod kernel;
+mod lanes;
 mod projection;
 mod types;
 mod validate;
 
 pub use error::{KernelError, OutputKind, Segment};
+pub use generated_lanes::LaneIsa;
 pub use kernel::{GapBatch, GapOut, Kernel};
 pub use projection::{Projector, XI_M_LIMIT};
 pub use types::{ApproxType, EntityOrder, Formulation, OpCount, ParseNameError};

@@ -29,6 +29,7 @@
 //! segment has a tangent that never vanishes.
 
 use crate::generated::KernelSet;
+use crate::lanes::{LANES, Lanes};
 use crate::{KernelError, Segment};
 
 /// A segment shorter than this times the configuration's size is degenerate.
@@ -132,6 +133,51 @@ fn check_fold(segment: Segment, p: &[f64]) -> Result<(), KernelError> {
         });
     }
     Ok(())
+}
+
+/// [`relative_coordinates`]' checks and arithmetic for [`LANES`] points at
+/// once (the batch): `d` holds on entry coordinate `i` of every point in
+/// `d[i]` (`n` values; the coordinate count is the caller's) and receives
+/// the relative coordinates, bit for bit the scalar ones; `xi_s` holds the
+/// points' slave parameters. Returns, per lane, whether the point passed
+/// every check.
+///
+/// A point that did not pass is to be validated again by
+/// [`relative_coordinates`], which decides and names its error: this test
+/// may reject a valid point (its finiteness test is that the sum of the
+/// inputs is finite, which overflows for inputs near `f64::MAX`) but never
+/// accepts one the scalar checks reject (a NaN or infinite input makes the
+/// sum non-finite; the segment tests are the scalar comparisons).
+#[inline(always)]
+pub(crate) fn relative_coordinates_lanes(d: &mut [Lanes], xi_s: Lanes) -> [bool; LANES] {
+    let sum = d.iter().fold(xi_s, |s, v| s + *v);
+    let origin: [Lanes; DIM] = std::array::from_fn(|k| d[k]);
+    for dp in d.chunks_exact_mut(DIM) {
+        for k in 0..DIM {
+            dp[k] = dp[k] - origin[k];
+        }
+    }
+    // The scalar fold of `max(|v|)`: the same value for finite input (the
+    // only input that can pass).
+    let size = d.iter().fold(Lanes::ZERO, |m, v| m.max_finite(v.abs()));
+    let threshold = Lanes::splat(DEGENERATE_LENGTH) * size;
+    let threshold2 = threshold * threshold;
+    let points = d.len() / DIM;
+    let half = points / 2;
+    let mut pass = sum.0.map(f64::is_finite);
+    for (first, last) in [(0, half - 1), (half, points - 1)] {
+        let (a, b) = (first * DIM, last * DIM);
+        let mut length2 = Lanes::ZERO;
+        for k in 0..DIM {
+            let c = d[b + k] - d[a + k];
+            length2 = length2 + c * c;
+        }
+        for ((pass, length2), threshold2) in pass.iter_mut().zip(length2.0).zip(threshold2.0) {
+            // As in the scalar check: a NaN length fails too.
+            *pass &= length2 > threshold2;
+        }
+    }
+    pass
 }
 
 /// Whether every value is finite, with integer operations that vectorise:

@@ -5,7 +5,9 @@
 //! by name and length, instruction lists, op counts); it knows nothing of
 //! formulations or expressions. [`rust::RustEmitter`] writes the one module
 //! the contact-kernels crate `include!`s; [`c::CEmitter`] writes C99
-//! headers and sources (checked in under `contact-kernels/c/`). A new
+//! headers and sources (checked in under `contact-kernels/c/`);
+//! [`lanes::LanesEmitter`] writes the same kernels over 4 points at a time
+//! (SIMD lanes) for the batched evaluation. A new
 //! target is a new file here implementing [`Emitter`].
 //!
 //! Emitters must preserve the instruction list exactly: one statement per
@@ -15,9 +17,11 @@
 use crate::plan::KernelPlan;
 
 pub mod c;
+pub mod lanes;
 pub mod rust;
 
 pub use c::CEmitter;
+pub use lanes::LanesEmitter;
 pub use rust::RustEmitter;
 
 /// One generated file.

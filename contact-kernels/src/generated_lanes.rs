@@ -1,0 +1,68 @@
+//! The lane kernels written by `build.rs` (`OUT_DIR/kernels_lanes.rs`, by
+//! `codegen::emit::LanesEmitter` from the same instruction lists as the
+//! scalar kernels) and the run-time types they are written against.
+//!
+//! Every lane kernel evaluates `LANES` (4) points at once: `d` holds the
+//! relative coordinates as `n` [`Lanes`] values (coordinate `i` of every
+//! point), `xi_s` and `xi_m` one value per point; it stores the gradient
+//! into `grad` (`n` values) and, with a second-order term, the full
+//! symmetric Hessian into `hess` (`n * n` values, row-major). Lane `l` of
+//! every output is bit for bit what the scalar kernel gives point `l`.
+//!
+//! Each kernel exists twice: portable, and on x86-64 compiled for AVX2
+//! (no FMA). [`select`] picks the AVX2 copy when the CPU has it
+//! (`is_x86_feature_detected!`), once, when a `Kernel` is made.
+
+use crate::generated::Formulation;
+use crate::lanes::Lanes;
+
+/// `(d, xi_s, xi_m, grad) -> g` over lanes.
+///
+/// `unsafe`: the AVX2 copies may only run on a CPU with AVX2 ([`select`]
+/// guarantees it); the portable ones are safe to call.
+pub(crate) type LaneGradientFn = unsafe fn(&[Lanes], Lanes, &mut Lanes, &mut [Lanes]) -> Lanes;
+/// `(d, xi_s, xi_m, grad, hess) -> g` over lanes (`hess` full); safety as
+/// for [`LaneGradientFn`].
+pub(crate) type LaneHessianFn =
+    unsafe fn(&[Lanes], Lanes, &mut Lanes, &mut [Lanes], &mut [Lanes]) -> Lanes;
+
+/// One approximation type's lane kernel.
+#[derive(Clone, Copy)]
+pub(crate) enum LaneKernel {
+    /// First-order only (Type 1).
+    Gradient(LaneGradientFn),
+    /// With the second-order term.
+    Hessian(LaneHessianFn),
+}
+
+/// The instruction set a lane kernel was compiled for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum LaneIsa {
+    /// The target's baseline (on x86-64: SSE2, two lanes per instruction).
+    Portable,
+    /// AVX2 (x86-64): four lanes per instruction, no FMA.
+    Avx2,
+}
+
+/// The lane kernels of one formulation, types 1..=6.
+pub(crate) struct LaneSet {
+    pub(crate) portable: [LaneKernel; 6],
+    #[cfg(target_arch = "x86_64")]
+    pub(crate) avx2: [LaneKernel; 6],
+}
+
+/// The lane kernel of type `ty` (1..=6) for the best instruction set this
+/// CPU has, or the one asked for when it is [`LaneIsa::Portable`].
+///
+/// Invariant: an [`LaneIsa::Avx2`] kernel is returned only when the CPU
+/// supports AVX2, so calling it is sound.
+pub(crate) fn select(set: &LaneSet, ty: usize, isa: LaneIsa) -> (LaneKernel, LaneIsa) {
+    #[cfg(target_arch = "x86_64")]
+    if isa == LaneIsa::Avx2 && std::is_x86_feature_detected!("avx2") {
+        return (set.avx2[ty - 1], LaneIsa::Avx2);
+    }
+    let _ = isa;
+    (set.portable[ty - 1], LaneIsa::Portable)
+}
+
+include!(concat!(env!("OUT_DIR"), "/kernels_lanes.rs"));
