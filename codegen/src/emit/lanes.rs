@@ -33,9 +33,9 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
-use super::rust::{float_literal, format_file};
+use super::rust::{Spelling, body_in, float_literal, format_file, operand_in};
 use super::{EmittedFile, Emitter};
-use crate::lower::{Instr, Operand, Program, Source};
+use crate::lower::{Operand, Program};
 use crate::plan::{
     Delivery, FunctionPlan, InputKind, KernelPlan, KernelSetPlan, Layout, Output, Role,
 };
@@ -269,24 +269,20 @@ fn idx(i: usize) -> proc_macro2::Literal {
     proc_macro2::Literal::usize_unsuffixed(i)
 }
 
-fn reg(r: u32) -> Ident {
-    format_ident!("v{}", r)
-}
-
 /// A constant broadcast to every lane (written so that it round-trips).
 fn constant(c: f64) -> TokenStream {
     let lit = float_literal(c);
     quote!(Lanes::splat(#lit))
 }
 
+/// Lanes: constants broadcast with `Lanes::splat`, `a.recip()`.
+const LANES: Spelling = Spelling {
+    constant,
+    recip: |a| quote!(#a.recip()),
+};
+
 fn operand(o: Operand) -> TokenStream {
-    match o {
-        Operand::Reg(r) => {
-            let r = reg(r);
-            quote!(#r)
-        }
-        Operand::Const(c) => constant(c),
-    }
+    operand_in(o, &LANES)
 }
 
 /// An output expression: the operand, or zero for a structural zero.
@@ -296,56 +292,9 @@ fn output(o: Option<Operand>) -> TokenStream {
 
 /// The `let` bindings of a program's instructions over lanes, one per
 /// instruction, in order, with the scalar emitter's operation and operand
-/// order.
+/// order (the scalar emitter's [`body_in`] in the lanes' spelling).
 fn body(p: &Program, coords: &Ident, params: &[Ident], implicit: &Ident) -> TokenStream {
-    let stmts = p.instrs.iter().enumerate().map(|(i, instr)| {
-        let dst = reg(i as u32);
-        let rhs = match *instr {
-            Instr::Load(Source::Coord(k)) => {
-                let k = idx(k);
-                quote!(#coords[#k])
-            }
-            Instr::Load(Source::Param(i)) => {
-                let param = &params[i];
-                quote!(#param)
-            }
-            Instr::Load(Source::Implicit) => quote!(#implicit),
-            Instr::Add(a, b) => {
-                let (a, b) = (operand(a), operand(b));
-                quote!(#a + #b)
-            }
-            Instr::Sub(a, b) => {
-                let (a, b) = (operand(a), operand(b));
-                quote!(#a - #b)
-            }
-            Instr::Mul(a, b) => {
-                let (a, b) = (operand(a), operand(b));
-                quote!(#a * #b)
-            }
-            Instr::Square(a) => {
-                let a = operand(a);
-                quote!(#a * #a)
-            }
-            Instr::Powi(a, n) => {
-                let a = operand(a);
-                quote!(#a.powi(#n))
-            }
-            Instr::Recip(a) => {
-                let a = operand(a);
-                quote!(#a.recip())
-            }
-            Instr::Neg(a) => {
-                let a = operand(a);
-                quote!(-#a)
-            }
-            Instr::Sqrt(a) => {
-                let a = operand(a);
-                quote!(#a.sqrt())
-            }
-        };
-        quote!(let #dst = #rhs;)
-    });
-    quote!(#(#stmts)*)
+    body_in(p, coords, params, implicit, &LANES)
 }
 
 #[cfg(test)]

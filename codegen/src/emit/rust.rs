@@ -309,13 +309,34 @@ pub fn float_literal(c: f64) -> TokenStream {
     }
 }
 
+/// What an emitter of Rust code spells differently for its value type:
+/// scalar `f64` ([`SCALAR`]) or the lane type of `lanes.rs`. Everything
+/// else of an instruction's statement is the same.
+pub struct Spelling {
+    /// A constant operand.
+    pub constant: fn(f64) -> TokenStream,
+    /// The reciprocal of an operand.
+    pub recip: fn(TokenStream) -> TokenStream,
+}
+
+/// Scalar `f64`: constants as round-tripping literals, `1.0 / a`.
+pub const SCALAR: Spelling = Spelling {
+    constant: float_literal,
+    recip: |a| quote!(1.0 / #a),
+};
+
 fn operand(o: Operand) -> TokenStream {
+    operand_in(o, &SCALAR)
+}
+
+/// An operand: its register, or its constant as `spelling` writes it.
+pub fn operand_in(o: Operand, spelling: &Spelling) -> TokenStream {
     match o {
         Operand::Reg(r) => {
             let r = reg(r);
             quote!(#r)
         }
-        Operand::Const(c) => float_literal(c),
+        Operand::Const(c) => (spelling.constant)(c),
     }
 }
 
@@ -323,6 +344,18 @@ fn operand(o: Operand) -> TokenStream {
 /// coordinate array, `params[i]` parameter `i`, `implicit` the implicit
 /// unknown's value.
 pub fn body(p: &Program, coords: &Ident, params: &[Ident], implicit: &Ident) -> TokenStream {
+    body_in(p, coords, params, implicit, &SCALAR)
+}
+
+/// [`body`] for the value type `spelling` describes.
+pub fn body_in(
+    p: &Program,
+    coords: &Ident,
+    params: &[Ident],
+    implicit: &Ident,
+    spelling: &Spelling,
+) -> TokenStream {
+    let operand = |o| operand_in(o, spelling);
     let stmts = p.instrs.iter().enumerate().map(|(i, instr)| {
         let dst = reg(i as u32);
         let rhs = match *instr {
@@ -357,7 +390,7 @@ pub fn body(p: &Program, coords: &Ident, params: &[Ident], implicit: &Ident) -> 
             }
             Instr::Recip(a) => {
                 let a = operand(a);
-                quote!(1.0 / #a)
+                (spelling.recip)(a)
             }
             Instr::Neg(a) => {
                 let a = operand(a);
