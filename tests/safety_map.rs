@@ -187,3 +187,25 @@ fn the_command_writes_the_map_and_is_listed_in_help() {
     assert!(String::from_utf8_lossy(&bad.stderr).contains("step counts"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// On the sliding benchmark with re-pairing, steps are repeated: the Newton
+/// ratio counts the iterations spent, the discarded attempts included.
+#[test]
+fn the_newton_ratio_counts_repeated_steps() {
+    let scenes = [map_scene("sliding", &[10])];
+    let map = safety_map::run_map(&scenes, &MapOptions::default(), &study::Silent).unwrap();
+    let study = &map.studies[0].1;
+    let complete = study.run(Method::Complete, 10).unwrap();
+    let t6 = study.run(Method::Approx(ApproxType::Type6), 10).unwrap();
+    assert!(t6.repeated_iterations > 0, "{t6:?}");
+    assert_eq!(complete.repeated_iterations, 0);
+    let row = map.rows.iter().find(|r| r.ty == ApproxType::Type6).unwrap();
+    let spent = (t6.newton_iterations + t6.repeated_iterations) as f64;
+    assert_eq!(
+        row.newton_ratio,
+        Some(spent / complete.newton_iterations as f64)
+    );
+    assert!(
+        row.newton_ratio.unwrap() > t6.newton_iterations as f64 / complete.newton_iterations as f64
+    );
+}

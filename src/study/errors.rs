@@ -12,9 +12,11 @@
 //!   empty when undefined: no support groups, a failed run);
 //! * `max_reaction`: the run's largest support reaction (the error's scale
 //!   for the complete row);
-//! * the cost against complete at the same step count: `newton_ratio`
-//!   (Newton iterations) and `kernel_ratio` (kernel evaluations with
-//!   derivatives), deterministic; the times are the `*_seconds` columns
+//! * the cost against complete at the same step count: `newton_iterations`
+//!   and `newton_ratio` (Newton iterations spent: with the attempts a step
+//!   repeat discarded, [`super::Run::iterations_spent`]; `study.csv` keeps
+//!   the converged attempts' count) and `kernel_ratio` (kernel evaluations
+//!   with derivatives), deterministic; the times are the `*_seconds` columns
 //!   (medians over repeats; their ratios are left to the reader so that
 //!   every other column compares value for value between runs, as
 //!   `scripts/compare-study.sh` does);
@@ -64,9 +66,9 @@ pub fn csv<'a>(studies: impl IntoIterator<Item = &'a FormulationStudy>) -> Strin
                 .run(Method::Complete, r.steps)
                 .filter(|c| c.failure.is_none());
             let ok = r.failure.is_none();
-            let newton = ok.then_some(r.newton_iterations as f64);
+            let newton = ok.then_some(r.iterations_spent() as f64);
             let kernels = ok.then_some(r.kernel_evaluations as f64);
-            let c_newton = complete.map(|c| c.newton_iterations as f64);
+            let c_newton = complete.map(|c| c.iterations_spent() as f64);
             let c_kernels = complete.map(|c| c.kernel_evaluations as f64);
             let row = [
                 r.formulation.to_string(),

@@ -126,6 +126,9 @@ pub struct Run {
     pub error_percent: Option<f64>,
     /// Newton iterations (converged attempts).
     pub newton_iterations: usize,
+    /// Types 1–6: Newton iterations of converged attempts a step repeat or
+    /// an accuracy halving discarded ([`Solution::repeated_iterations`]).
+    pub repeated_iterations: usize,
     /// Cut-backs performed.
     pub cutbacks: usize,
     /// Median wall time of the whole solve.
@@ -155,6 +158,15 @@ pub struct Run {
     /// The largest support reaction `max_{k,g} |R(k,g)|` over the scheduled
     /// steps ([`reactions::max_reaction`]); `None` without support groups.
     pub max_reaction: Option<f64>,
+}
+
+impl Run {
+    /// Newton iterations spent: those of the converged attempts and those
+    /// a step repeat or an accuracy halving discarded (the cost the
+    /// study's ratios compare).
+    pub fn iterations_spent(&self) -> usize {
+        self.newton_iterations + self.repeated_iterations
+    }
 }
 
 /// All runs of one formulation.
@@ -374,6 +386,7 @@ pub(crate) fn study_formulation(
                         strain_energy: Some(u),
                         error_percent,
                         newton_iterations: sol.newton_iterations,
+                        repeated_iterations: sol.repeated_iterations,
                         cutbacks: sol.cutbacks.len(),
                         wall_seconds: wall,
                         contact_seconds: contact,
@@ -405,6 +418,7 @@ pub(crate) fn study_formulation(
                     strain_energy: None,
                     error_percent: None,
                     newton_iterations: 0,
+                    repeated_iterations: 0,
                     cutbacks: 0,
                     wall_seconds: f64::NAN,
                     contact_seconds: f64::NAN,

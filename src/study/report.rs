@@ -687,6 +687,7 @@ mod tests {
                     strain_energy: Some(1.0),
                     error_percent: Some(errors(n as f64)),
                     newton_iterations: 1,
+                    repeated_iterations: 0,
                     cutbacks: 0,
                     wall_seconds: 1.0,
                     contact_seconds: 1.0,

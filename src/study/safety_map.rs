@@ -28,7 +28,8 @@
 //! * `no reference`: the complete formulation failed at `N_max`.
 //!
 //! The cost columns are ratios type / complete at `N_max`: Newton
-//! iterations and kernel evaluations (deterministic), wall time and contact
+//! iterations spent (with the attempts a step repeat discarded) and kernel
+//! evaluations (deterministic), wall time and contact
 //! time (medians over the repeats; machine dependent).
 //!
 //! Outputs: `safety-map.csv` (one row per scene and type),
@@ -153,7 +154,8 @@ pub struct MapRow {
     pub max_reaction_error_percent: Option<f64>,
     /// The verdict.
     pub safety: Safety,
-    /// Newton iterations, type / complete, at `steps`.
+    /// Newton iterations spent (repeated steps' discarded attempts
+    /// included), type / complete, at `steps`.
     pub newton_ratio: Option<f64>,
     /// Kernel evaluations with derivatives, type / complete, at `steps`.
     pub kernel_ratio: Option<f64>,
@@ -261,7 +263,7 @@ pub fn classify(
             .filter_map(|r| r.reaction_error_percent)
             .reduce(f64::max),
         safety,
-        newton_ratio: pair(|r| r.newton_iterations as f64),
+        newton_ratio: pair(|r| r.iterations_spent() as f64),
         kernel_ratio: pair(|r| r.kernel_evaluations as f64),
         wall_time_ratio: pair(|r| r.wall_seconds),
         contact_time_ratio: pair(|r| r.contact_seconds),
@@ -580,6 +582,7 @@ mod tests {
             strain_energy: (!failed).then_some(1.0),
             error_percent: energy.filter(|_| method != Method::Complete),
             newton_iterations: if failed { 0 } else { 10 },
+            repeated_iterations: 0,
             cutbacks: 0,
             wall_seconds: if failed { f64::NAN } else { 2.0 },
             contact_seconds: if failed { f64::NAN } else { 1.0 },
