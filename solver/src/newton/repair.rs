@@ -196,7 +196,14 @@ impl Run<'_> {
                 }
             }
             if !switch.is_empty() || !tie.is_empty() || changed {
-                for (i, _) in &switch {
+                // tied points too: released later in the attempt, they keep
+                // an end-taken expansion and must be re-anchored like a
+                // switched point
+                for i in switch
+                    .iter()
+                    .map(|(i, _)| i)
+                    .chain(tie.iter().map(|(i, ..)| i))
+                {
                     moved[i.index()] = true;
                 }
                 self.switch_expansions(ty, &switch, &mut tried, &c.state.u)?;
