@@ -26,7 +26,7 @@ use crate::par;
 const PRESCRIBED: usize = usize::MAX;
 
 /// Elements per rayon task.
-const PAR_MIN_LEN: usize = 64;
+pub(crate) const PAR_MIN_LEN: usize = 64;
 
 /// Equation numbers of the dofs, multipliers and node ties.
 ///

@@ -25,11 +25,12 @@
 //! contact contributions are included as the solve sees them), once per
 //! converged state of a model with support groups. Of the solid elements
 //! only those with a prescribed dof are assembled, and only their forces
-//! (no tangent): the other elements add nothing to the entries read, and
+//! are scattered (their tangents are computed by the element but not
+//! kept): the other elements add nothing to the entries read, and
 //! the kept ones add in the same order as in the full assembly, so the
 //! reactions are the full residual's entries to the bit.
 
-use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_ties};
+use crate::assembly::{DofMap, PAR_MIN_LEN, System, add_external, assemble_contact, assemble_ties};
 use crate::contact::{NodeTie, PointEval};
 use crate::ids::ElementId;
 use crate::model::Model;
@@ -93,7 +94,7 @@ fn add_supported_element_forces(model: &Model, all: &DofMap, u: &[f64], residual
             eqs.iter().flatten().any(|eq| prescribed[eq.index()])
         })
         .collect();
-    let forces: Vec<Vec<f64>> = par::map(supported.len(), 64, |i| {
+    let forces: Vec<Vec<f64>> = par::map(supported.len(), PAR_MIN_LEN, |i| {
         let e = ElementId::new(supported[i]);
         let material = &mesh.bodies[mesh.element_body[e.index()]].material;
         let response =

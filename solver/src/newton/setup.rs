@@ -20,7 +20,7 @@
 //! the probe alike; it fixes the triplet order and so every floating-point
 //! sum of the assembly.
 
-use std::sync::Mutex;
+use std::cell::Cell;
 
 use contact_kernels::ApproxType;
 
@@ -54,7 +54,7 @@ pub(super) struct Setup<'a> {
     /// (the triplet count barely changes between iterations; at 10^6
     /// equations the fresh pages of a new system cost more than its
     /// assembly's arithmetic).
-    spare: Mutex<Option<System>>,
+    spare: Cell<Option<System>>,
 }
 
 impl<'a> Setup<'a> {
@@ -72,7 +72,7 @@ impl<'a> Setup<'a> {
             dofs,
             linear,
             length_scale: model.mesh.size(),
-            spare: Mutex::new(None),
+            spare: Cell::new(None),
         })
     }
 
@@ -206,8 +206,7 @@ impl<'a> Setup<'a> {
             self.layout.close_touching(evals, lambda, &mut active);
         }
         let n_sys = self.dofs.n_eq() + ties.len();
-        let spare = self.spare.lock().map(|mut s| s.take()).unwrap_or(None);
-        let mut sys = match spare {
+        let mut sys = match self.spare.take() {
             Some(mut sys) => {
                 sys.reset(n_sys);
                 sys
@@ -228,9 +227,7 @@ impl<'a> Setup<'a> {
 
     /// Keeps `sys`'s buffers for the next [`Setup::contact_system`].
     pub(super) fn recycle(&self, sys: System) {
-        if let Ok(mut spare) = self.spare.lock() {
-            *spare = Some(sys);
-        }
+        self.spare.set(Some(sys));
     }
 
     /// Adds the multiplier regularisation `delta` (see
