@@ -478,14 +478,7 @@ fn contact_tangent_matches_finite_differences() {
         let (evals0, _) = layout.evaluate_all(&model.mesh, &u0, &none, ty).unwrap();
         let taylor: Vec<Option<Taylor>> = evals0
             .iter()
-            .map(|e| {
-                e.map(|at_start| Taylor {
-                    u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| {
-                        u0[DofId::of(at_start.nodes[k / 2], k % 2).index()]
-                    }),
-                    at_start,
-                })
-            })
+            .map(|e| e.map(|at_start| Taylor::at(at_start, &u0)))
             .collect();
         assert!(taylor.iter().all(|t| t.is_some()));
         let (d, lam) = random_state(&model, &layout, &mut rng, 0.02, 50.0);

@@ -27,6 +27,15 @@ pub struct Taylor {
 }
 
 impl Taylor {
+    /// The expansion of `at`, the kernel output at the displacements `u`
+    /// (global vector): `u0` is `u` at `at`'s nodes.
+    pub fn at(at: PointEval, u: &[f64]) -> Taylor {
+        Taylor {
+            u0: SVector::<f64, 8>::from_fn(|k, _| u[DofId::of(at.nodes[k / 2], k % 2).index()]),
+            at_start: at,
+        }
+    }
+
     /// The second-order expansion at displacements `u` (global vector).
     pub fn expand(&self, u: &[f64]) -> PointEval {
         let s = &self.at_start;

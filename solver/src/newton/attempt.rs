@@ -127,14 +127,7 @@ impl Run<'_> {
         self.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
         let taylor = evals
             .into_iter()
-            .map(|e| {
-                e.map(|at_start| Taylor {
-                    u0: nalgebra::SVector::<f64, 8>::from_fn(|k, _| {
-                        self.u[DofId::of(at_start.nodes[k / 2], k % 2).index()]
-                    }),
-                    at_start,
-                })
-            })
+            .map(|e| e.map(|at_start| Taylor::at(at_start, &self.u)))
             .collect();
         self.taylor = Some(taylor);
         self.timings.contact_evaluation += t.elapsed();

@@ -83,9 +83,8 @@
 //! counted apart ([`crate::Solution::step_end_projections`]).
 
 use contact_kernels::ApproxType;
-use nalgebra::SVector;
 
-use crate::contact::{NodeTie, Paired, PointEval, Taylor};
+use crate::contact::{NodeTie, Paired, Taylor};
 use crate::error::SolverError;
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex};
 use crate::solution::{ContactPointId, CutbackReason};
@@ -299,7 +298,7 @@ impl Run<'_> {
                 continue;
             };
             if let Some(taylor) = self.taylor.as_mut() {
-                taylor[i.index()] = Some(taylor_at(on_p, anchor));
+                taylor[i.index()] = Some(Taylor::at(on_p, anchor));
             }
             self.pairing[i.index()] = Some(p);
             self.ties.push(NodeTie {
@@ -308,7 +307,7 @@ impl Run<'_> {
                 other: o,
                 mu: 0.0,
             });
-            self.tie_taylor.push(taylor_at(on_o, anchor));
+            self.tie_taylor.push(Taylor::at(on_o, anchor));
         }
         Ok(())
     }
@@ -339,9 +338,9 @@ impl Run<'_> {
             };
             if off(&on_p_taylor, on_p.gap) || off(&self.tie_taylor[k], on_o.gap) {
                 if let Some(taylor) = self.taylor.as_mut() {
-                    taylor[i.index()] = Some(taylor_at(on_p, u));
+                    taylor[i.index()] = Some(Taylor::at(on_p, u));
                 }
-                self.tie_taylor[k] = taylor_at(on_o, u);
+                self.tie_taylor[k] = Taylor::at(on_o, u);
                 changed = true;
             }
         }
@@ -446,7 +445,7 @@ impl Run<'_> {
                         .layout
                         .evaluate_on(mesh, u0, i, m, ty, &mut self.counts)
                     {
-                        Ok(at_start) => Some(taylor_at(at_start, u0)),
+                        Ok(at_start) => Some(Taylor::at(at_start, u0)),
                         Err(_) => continue,
                     }
                 }
@@ -473,13 +472,5 @@ impl Run<'_> {
             }
         }
         worst
-    }
-}
-
-/// The expansion of `at`, the kernel output at the displacements `u`.
-fn taylor_at(at: PointEval, u: &[f64]) -> Taylor {
-    Taylor {
-        u0: SVector::<f64, 8>::from_fn(|k, _| u[DofId::of(at.nodes[k / 2], k % 2).index()]),
-        at_start: at,
     }
 }
