@@ -3,9 +3,11 @@
 //!
 //! These types are the file format and nothing else: they hold what was
 //! written, unvalidated (see `validate.rs` and `build.rs` for what makes
-//! sense, and the [module docs](super) for an annotated example). Unknown
-//! keys are errors (`deny_unknown_fields` everywhere); every default is
-//! written next to its field.
+//! sense, and the [module docs](super) for an annotated example;
+//! `docs/scenes.md` is the reference for users, checked against these
+//! types by `solver/tests/scene_docs.rs`). Unknown keys are errors
+//! (`deny_unknown_fields` everywhere); every default is written next to
+//! its field.
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -48,8 +50,8 @@ pub struct Scene {
     /// Prescribed displacements (`[[prescribe]]`, default none).
     #[serde(default, rename = "prescribe")]
     pub prescribes: Vec<PrescribeSpec>,
-    /// Distributed dead loads on physical curves (`[[traction]]`, default
-    /// none).
+    /// Distributed dead loads on block sides or physical curves
+    /// (`[[traction]]`, default none).
     #[serde(default, rename = "traction", skip_serializing_if = "Vec::is_empty")]
     pub tractions: Vec<TractionSpec>,
     /// Contact pairs (`[[contact]]`, default none).
