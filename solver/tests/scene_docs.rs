@@ -1,9 +1,11 @@
-//! `docs/scenes.md`, the scene format's reference, is kept true by two
+//! `docs/scenes.md`, the scene format's reference, is kept true by these
 //! tests: every TOML example in it is read, built, written back and solved;
 //! and every key of the format (every field of every table the parser
 //! knows, found by asking the parser itself) has a row in the table of its
 //! section, every row names a real key, and every value a string key takes
-//! is named in its section.
+//! is named in its section. A third test reads a scene that leaves out
+//! every optional key and holds the page's default column to what the
+//! parser filled in.
 //!
 //! The keys are found through the scene parser's own errors: every table
 //! of the schema refuses unknown keys, and serde's refusal lists the keys
@@ -323,4 +325,112 @@ fn every_key_of_the_format_is_documented() {
         "docs/scenes.md:\n{}",
         missing.join("\n")
     );
+}
+
+/// A string value as the page writes it, `` `"name"` ``, from its
+/// serialised form (the name a scene file gives it).
+fn quoted<T: serde::Serialize>(value: &T) -> String {
+    match toml::Value::try_from(value) {
+        Ok(toml::Value::String(s)) => format!("`\"{s}\"`"),
+        other => panic!("not a string: {other:?}"),
+    }
+}
+
+/// The default cell of the row for `key` in the section named `needle`.
+fn default_cell(text: &str, needle: &str, key: &str) -> String {
+    let sec = section(text, needle).unwrap_or_else(|| panic!("no section {needle}"));
+    let row = sec
+        .lines()
+        .find(|l| l.starts_with(&format!("| `{key}` |")))
+        .unwrap_or_else(|| panic!("{needle}: no row for `{key}`"));
+    row.split('|').nth(3).unwrap_or_default().trim().to_owned()
+}
+
+/// The page's defaults are the parser's: a scene that leaves out every key
+/// with a default is read, and each value it gets is what the row's
+/// default column says.
+#[test]
+fn the_documented_defaults_are_the_parsers() {
+    let (text, _) = page();
+    let scene = Scene::from_toml_str(
+        r#"
+[material]
+young = 1.0
+poisson = 0.0
+[[body]]
+name = "a"
+origin = [0.0, 0.0]
+size = [1.0, 1.0]
+nx = 1
+ny = 1
+[[body]]
+name = "b"
+origin = [0.0, 1.0]
+size = [1.0, 1.0]
+nx = 1
+ny = 1
+[[fix]]
+y = 0.0
+[[contact]]
+slave = { body = "b", side = "bottom" }
+master = { body = "a", side = "top" }
+[loading]
+load_factor_end = 1.0
+steps = [3, 5]
+"#,
+        "defaults.toml",
+    )
+    .unwrap();
+    let material = scene.material.unwrap();
+    let contact = &scene.contacts[0];
+    let n = &scene.newton;
+    let cases: Vec<(&str, &str, String)> = vec![
+        ("`[material]`", "model", quoted(&material.model)),
+        ("`[material]`", "kinematics", quoted(&material.kinematics)),
+        ("`[[fix]]`", "dofs", quoted(&scene.fixes[0].dofs)),
+        (
+            "`[[contact]]`",
+            "formulation",
+            format!("`\"{}\"`", contact.formulation),
+        ),
+        ("`[[contact]]`", "mode", quoted(&contact.mode)),
+        ("`[[contact]]`", "integration", quoted(&contact.integration)),
+        (
+            "`[[contact]]`",
+            "gauss_points",
+            contact.gauss_points.to_string(),
+        ),
+        (
+            "`[loading]`",
+            "method",
+            format!("`\"{}\"`", scene.loading.method),
+        ),
+        ("`[refine]`", "x", scene.refine.x.to_string()),
+        ("`[refine]`", "y", scene.refine.y.to_string()),
+        ("`[newton]`", "tolerance", format!("`{:e}`", n.tolerance)),
+        ("`[newton]`", "max_iterations", n.max_iterations.to_string()),
+        ("`[newton]`", "max_cutbacks", n.max_cutbacks.to_string()),
+        ("`[newton]`", "linear", format!("`\"{}\"`", n.linear)),
+    ];
+    let mut wrong = Vec::new();
+    for (needle, key, value) in cases {
+        let cell = default_cell(&text, needle, key);
+        if cell != value {
+            wrong.push(format!(
+                "{needle} `{key}`: the page says {cell}, the parser gives {value}"
+            ));
+        }
+    }
+    // `default_steps` is the first of `steps`, `taylor_tolerance` none
+    assert_eq!(scene.default_steps(), 3);
+    assert_eq!(
+        default_cell(&text, "`[loading]`", "default_steps"),
+        "the first of `steps`"
+    );
+    assert_eq!(n.taylor_tolerance, None);
+    assert_eq!(
+        default_cell(&text, "`[newton]`", "taylor_tolerance"),
+        "none"
+    );
+    assert!(wrong.is_empty(), "docs/scenes.md:\n{}", wrong.join("\n"));
 }
