@@ -157,10 +157,10 @@ steps = [1]
         } else {
             h
         };
-        for c in 0..2 {
+        for (c, tc) in t.iter().enumerate() {
             let total: f64 = f.iter().skip(c).step_by(2).sum();
             assert!(
-                (total - t[c] * side_length).abs() <= 1e-14 * (t[c] * side_length).abs(),
+                (total - tc * side_length).abs() <= 1e-14 * (tc * side_length).abs(),
                 "{side}: total {total}"
             );
         }
