@@ -17,9 +17,10 @@
 //! * load curves, each distinct table once, in the order items first use
 //!   them;
 //! * point loads in `[[load]]` order, x then y; then the tractions in
-//!   `[[traction]]` order, each curve's segments in file order, each
-//!   segment's two nodes in the file's direction, x then y
-//!   (`t L / 2` each, `L` the reference length);
+//!   `[[traction]]` order: a block side's segments counter-clockwise
+//!   around the body (as a contact face), a curve's segments in file order
+//!   with each segment's two nodes in the file's direction; each segment's
+//!   nodes x then y (`t L / 2` each, `L` the reference length);
 //! * contact pairs in `[[contact]]` order, each face's segments as its
 //!   source orders them (counter-clockwise around the body).
 
@@ -204,7 +205,7 @@ impl Scene {
             let f = format!("traction[{i}]");
             self.check_traction(&f, t)?;
             let amplitude = curves.intern(self.check_amplitude(&f, &t.amplitude)?);
-            let segments = sources.group_segments(&format!("{f}.group"), &t.group)?;
+            let segments = self.traction_segments(&mesh, &sources, &f, t)?;
             for seg in segments {
                 let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
                 let half = (b[0] - a[0]).hypot(b[1] - a[1]) / 2.0;

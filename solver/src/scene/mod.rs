@@ -1,9 +1,14 @@
 //! Scene files (TOML).
 //!
 //! A scene describes bodies of Q4 elements (structured rectangular blocks)
-//! or of Q4 and triangles (physical surfaces of a Gmsh mesh file), their materials, supports, proportional loads, prescribed
-//! displacements, contact pairs and the load schedule. Unknown keys are
-//! errors. The paper scene, `scenes/stacked-cantilever.toml`, reads:
+//! or of Q4 and triangles (physical surfaces of a Gmsh mesh file), their
+//! materials, supports, loads and tractions, prescribed displacements (each
+//! proportional to the load factor or following a load curve), contact
+//! pairs and the load schedule. Unknown keys are errors. The reference of
+//! the format, every key with its type, default, unit and constraints, is
+//! `docs/scenes.md` (its examples are solved, and its key tables checked
+//! against this schema, by `solver/tests/scene_docs.rs`). The paper scene,
+//! `scenes/stacked-cantilever.toml`, reads:
 //!
 //! ```toml
 //! name = "stacked-cantilever"
@@ -109,6 +114,7 @@
 //! [[traction]]                # a dead load per unit reference length on a
 //! group = "load_edge"         # physical curve, times the load factor:
 //! force_per_length = [0.0, -0.4315]   # t L / 2 to both nodes of a segment
+//!                             # (or on a block's side: body = .., side = ..)
 //!
 //! [[contact]]                 # faces: a physical curve on one body's boundary
 //! slave = { group = "cylinder_surface" }      # (optional `body`, checked)
@@ -118,8 +124,9 @@
 //!
 //! A contact face from a curve is oriented by the element that owns each of
 //! its segments (counter-clockwise around the body, outward normal), however
-//! the curve was drawn. Only quadrangles are read into bodies for now (a
-//! triangle is an error naming it); `[refine]` applies to blocks only.
+//! the curve was drawn. A mesh body takes the surface's 3-node triangles and
+//! 4-node quadrangles, mixed freely, as drawn (an inverted element is an
+//! error naming it); `[refine]` applies to blocks only.
 //! Group errors name the file and the group: an unknown name lists those
 //! that exist, a group of the wrong dimension, a face that is not on a
 //! body's boundary, a node of a group in no body.

@@ -6,10 +6,11 @@
 //! [`Mesh::coordinate_tolerance`]. Which segments a face names depends on
 //! how its body was made, so faces are resolved by the body's mesh source
 //! ([`Sources::face`]); physical groups (`group`) by the source that read
-//! the mesh file ([`Sources::group_nodes`], [`Sources::group_face`]).
+//! the mesh file ([`Sources::group_nodes`], [`Sources::group_face`],
+//! [`Sources::group_segments`]). A traction loads a face of either kind.
 
 use super::source::Sources;
-use super::{FaceSpec, Scene, SceneError};
+use super::{FaceSpec, Scene, SceneError, TractionSpec};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
 
@@ -139,6 +140,61 @@ impl Scene {
                     ));
                 }
                 Ok((face.body, face.segments))
+            }
+        }
+    }
+
+    /// The segments that the traction `spec`, item `field`, loads: a block
+    /// body's `side`, counter-clockwise around the body as in a contact
+    /// face, or the physical curve `group` in the file's order and direction
+    /// (every node of it in `body`, if one is named).
+    pub(super) fn traction_segments(
+        &self,
+        mesh: &Mesh,
+        sources: &Sources,
+        field: &str,
+        spec: &TractionSpec,
+    ) -> Result<Vec<[NodeId; 2]>, SceneError> {
+        let b = self.body_index(mesh, format!("{field}.body"), &spec.body)?;
+        match (&spec.group, spec.side) {
+            (Some(_), Some(_)) => {
+                Err(self.invalid(field, "give either `side` or `group`, not both"))
+            }
+            (None, None) => Err(self.invalid(field, "give `body` and `side`, or `group`")),
+            (None, Some(side)) => {
+                let b = b.ok_or_else(|| {
+                    self.invalid(format!("{field}.body"), "a `side` needs its `body`")
+                })?;
+                sources.face(mesh, b, side).ok_or_else(|| {
+                    self.invalid(
+                        format!("{field}.side"),
+                        format!(
+                            "body `{}` is not a block body (load a physical curve with `group`)",
+                            mesh.bodies[b].name
+                        ),
+                    )
+                })
+            }
+            (Some(group), None) => {
+                let segments = sources.group_segments(&format!("{field}.group"), group)?;
+                if let Some(b) = b {
+                    let body = &mesh.bodies[b];
+                    if let Some(&n) = segments.iter().flatten().find(|&&n| !body.has_node(n)) {
+                        let owner = mesh
+                            .bodies
+                            .iter()
+                            .find(|o| o.has_node(n))
+                            .map_or("no body", |o| o.name.as_str());
+                        return Err(self.invalid(
+                            format!("{field}.body"),
+                            format!(
+                                "physical curve `{group}` has a node of `{owner}`, not of `{}`",
+                                body.name
+                            ),
+                        ));
+                    }
+                }
+                Ok(segments)
             }
         }
     }

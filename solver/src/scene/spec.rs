@@ -3,9 +3,11 @@
 //!
 //! These types are the file format and nothing else: they hold what was
 //! written, unvalidated (see `validate.rs` and `build.rs` for what makes
-//! sense, and the [module docs](super) for an annotated example). Unknown
-//! keys are errors (`deny_unknown_fields` everywhere); every default is
-//! written next to its field.
+//! sense, and the [module docs](super) for an annotated example;
+//! `docs/scenes.md` is the reference for users, checked against these
+//! types by `solver/tests/scene_docs.rs`). Unknown keys are errors
+//! (`deny_unknown_fields` everywhere); every default is written next to
+//! its field.
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
@@ -48,8 +50,8 @@ pub struct Scene {
     /// Prescribed displacements (`[[prescribe]]`, default none).
     #[serde(default, rename = "prescribe")]
     pub prescribes: Vec<PrescribeSpec>,
-    /// Distributed dead loads on physical curves (`[[traction]]`, default
-    /// none).
+    /// Distributed dead loads on block sides or physical curves
+    /// (`[[traction]]`, default none).
     #[serde(default, rename = "traction", skip_serializing_if = "Vec::is_empty")]
     pub tractions: Vec<TractionSpec>,
     /// Contact pairs (`[[contact]]`, default none).
@@ -295,15 +297,29 @@ pub struct FaceSpec {
     pub group: Option<String>,
 }
 
-/// A distributed dead load on a physical curve (`[[traction]]`):
+/// A distributed dead load (`[[traction]]`) on a side of a block body
+/// (`body` and `side`, as a [`FaceSpec`] names it) or on a physical curve
+/// of the `[mesh]` file (`group`, optionally with its `body`):
 /// `lambda_L force_per_length` (or `a(lambda_L) force_per_length` with a
 /// load curve `amplitude`) per unit reference length, applied as
-/// consistent nodal forces (`t L / 2` to both nodes of each segment).
+/// consistent nodal forces (`t L / 2` to both nodes of each segment, `L`
+/// its reference length).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSpec {
-    /// `group`: the physical curve of the `[mesh]` file loaded.
-    pub group: String,
+    /// `body`: the block body whose `side` is loaded (with `side`), or the
+    /// body every node of the curve `group` must belong to (optional with
+    /// `group`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// `side`: `bottom`, `right`, `top` or `left` of the block `body`
+    /// (instead of `group`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub side: Option<Side>,
+    /// `group`: the physical curve of the `[mesh]` file loaded (instead of
+    /// `side`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub group: Option<String>,
     /// `force_per_length`: `[tx, ty]` per unit reference length at load
     /// factor one (finite).
     #[serde(deserialize_with = "de_pair")]
