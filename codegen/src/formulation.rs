@@ -90,6 +90,11 @@ pub trait Domain {
     fn sqrt(&mut self, a: Self::S) -> Self::S;
     /// `a^n`.
     fn powi(&mut self, a: Self::S, n: i32) -> Self::S;
+    /// The first non-finite constant a fold produced, if the domain folds
+    /// constants (the DAG does: [`Dag::non_finite`]).
+    fn non_finite(&self) -> Option<f64> {
+        None
+    }
 }
 
 impl Domain for Dag {
@@ -117,6 +122,9 @@ impl Domain for Dag {
     }
     fn powi(&mut self, a: Id, n: i32) -> Id {
         Dag::powi(self, a, n)
+    }
+    fn non_finite(&self) -> Option<f64> {
+        Dag::non_finite(self)
     }
 }
 
@@ -300,6 +308,7 @@ impl Formulation {
                     };
                     b.env.insert(name, value);
                 }
+                syn::Stmt::Macro(m) => return Err(misplaced_macro(&m.mac, &origin)),
                 other => {
                     return Err(err(
                         other.span(),
@@ -452,10 +461,18 @@ impl Builder {
         let previous = self.env.insert(var.clone(), Value::Scalar(x));
         let r = self.eval(&closure.residual);
         match previous {
-            Some(p) => self.env.insert(var, p),
+            Some(p) => self.env.insert(var.clone(), p),
             None => self.env.remove(&var),
         };
         match r? {
+            Value::Scalar(r) if !self.dag.reachable([r])[x.index()] => Err(err(
+                closure.residual.span(),
+                &self.origin,
+                format!(
+                    "the projection residual does not depend on `{var}`: `{var} => r` needs an \
+                     r that changes with `{var}` (its zero is the projection)"
+                ),
+            )),
             Value::Scalar(r) => Ok(r),
             Value::Vec2(_) => Err(err(
                 span,
@@ -485,8 +502,45 @@ impl syn::parse::Parse for ImplicitDef {
     }
 }
 
-/// Interprets `e` over `domain` with the names in `env`.
+/// Interprets `e` over `domain` with the names in `env`; an expression
+/// whose constant folds to infinity or NaN (`1.0 / 0.0`, `sqrt(-1.0)`, an
+/// overflow) is an error at its position.
 fn eval_expr<D: Domain>(
+    d: &mut D,
+    env: &HashMap<String, Value<D::S>>,
+    e: &syn::Expr,
+    origin: &str,
+    unknown: &str,
+) -> Result<Value<D::S>, Error> {
+    let v = eval_expr_inner(d, env, e, origin, unknown)?;
+    match d.non_finite() {
+        None => Ok(v),
+        Some(c) => Err(err(
+            e.span(),
+            origin,
+            format!(
+                "`{}` is the non-finite constant {c} (a division by zero, the square root of \
+                 a negative number or an overflow)",
+                quote::quote!(#e)
+            ),
+        )),
+    }
+}
+
+/// A macro where none is expected, or an unknown one.
+fn misplaced_macro(m: &syn::Macro, origin: &str) -> Error {
+    let path = &m.path;
+    let name = quote::quote!(#path).to_string().replace(' ', "");
+    let msg = match name.as_str() {
+        "implicit" | "entity" => format!("`{name}!` must be the whole value of a `let`"),
+        "inputs" | "gap" => format!("`{name}!(..);` is a statement of its own"),
+        _ => format!("unknown macro `{name}!` (known: inputs!, implicit!, entity!, gap!)"),
+    };
+    err(m.span(), origin, msg)
+}
+
+/// [`eval_expr`] without the non-finite check.
+fn eval_expr_inner<D: Domain>(
     d: &mut D,
     env: &HashMap<String, Value<D::S>>,
     e: &syn::Expr,
@@ -694,6 +748,7 @@ fn eval_expr<D: Domain>(
                 )),
             }
         }
+        syn::Expr::Macro(m) => Err(misplaced_macro(&m.mac, origin)),
         other => Err(err(other.span(), origin, "unsupported expression")),
     }
 }

@@ -64,7 +64,7 @@ pub struct KernelArgs {
 
     /// Parametric coordinate of the slave integration point on the slave
     /// segment (-1: slave node 1, 1: slave node 2).
-    #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_finite)]
+    #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_xi_s)]
     pub xi_s: f64,
 
     /// Current coordinates of the slave segment's nodes, then the master
@@ -183,6 +183,20 @@ pub fn run(args: &KernelArgs) -> CommandResult {
     writeln!(stdout).map_err(KernelCommandError::Output)?;
     stdout.flush().map_err(KernelCommandError::Output)?;
     Ok(())
+}
+
+/// Parses `--xi-s`: a finite number in [-1, 1] (a slave point on its
+/// segment).
+fn parse_xi_s(s: &str) -> Result<f64, String> {
+    let v = parse_finite(s)?;
+    if (-1.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!(
+            "`{s}` is outside [-1, 1]: the slave point must lie on its segment \
+             (-1: slave node 1, 1: slave node 2)"
+        ))
+    }
 }
 
 /// Parses a finite number (rejects `nan`, `inf`).

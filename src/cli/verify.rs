@@ -119,10 +119,23 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
             .into_iter()
             .max_by(|a, b| a.1.error.total_cmp(&b.1.error))
             .expect("four outputs");
-            format!(
-                "type {}: {} off by {:.1e} (> {:e}) at {}",
-                r.ty, worst.0, worst.1.error, report.tol, worst.1.at
-            )
+            let mut what = Vec::new();
+            if !(worst.1.error <= report.tol) {
+                what.push(format!(
+                    "{} off by {:.1e} (> {:e}) at {}",
+                    worst.0, worst.1.error, report.tol, worst.1.at
+                ));
+            }
+            if let Some(first) = r.refused.first() {
+                what.push(format!(
+                    "the kernels' projection (Newton from xi = 0, at most 20 steps) failed on \
+                     {} of the {} configurations the reference projects (first: {first}); a \
+                     residual whose root is double (dr/dxi = 0 there) converges too slowly",
+                    r.refused.len(),
+                    report.checked
+                ));
+            }
+            format!("type {}: {}", r.ty, what.join("; "))
         })
         .collect();
     let why = if report.checked == 0 {
