@@ -519,9 +519,11 @@ fn eval_expr<D: Domain>(
             e.span(),
             origin,
             format!(
-                "`{}` is the non-finite constant {c} (a division by zero, the square root of \
-                 a negative number or an overflow)",
-                quote::quote!(#e)
+                "`{}` gives the non-finite constant {c} (a division by zero, the square root \
+                 of a negative number or an overflow)",
+                e.span()
+                    .source_text()
+                    .unwrap_or_else(|| quote::quote!(#e).to_string())
             ),
         )),
     }

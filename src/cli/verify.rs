@@ -106,7 +106,7 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
     if report.passed() {
         return Ok(());
     }
-    let why: Vec<String> = report
+    let why: Vec<(usize, String)> = report
         .failures()
         .iter()
         .map(|r| {
@@ -135,7 +135,23 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
                     report.checked
                 ));
             }
-            format!("type {}: {}", r.ty, what.join("; "))
+            (r.ty, what.join("; "))
+        })
+        .collect();
+    // Types failing for the same reason are named together.
+    let mut grouped: Vec<(Vec<usize>, String)> = Vec::new();
+    for (ty, what) in why {
+        match grouped.iter_mut().find(|(_, w)| *w == what) {
+            Some((types, _)) => types.push(ty),
+            None => grouped.push((vec![ty], what)),
+        }
+    }
+    let why: Vec<String> = grouped
+        .into_iter()
+        .map(|(types, what)| {
+            let names: Vec<String> = types.iter().map(usize::to_string).collect();
+            let label = if types.len() == 1 { "type" } else { "types" };
+            format!("{label} {}: {what}", names.join(", "))
         })
         .collect();
     let why = if report.checked == 0 {
