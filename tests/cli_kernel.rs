@@ -507,3 +507,49 @@ fn wrong_coordinate_count_names_the_expected_one() {
         &["quadratic-slave-normal", "folded slave segment"],
     );
 }
+
+/// Messages that say what is wrong: a slave point outside its segment is
+/// refused; coordinates whose squared differences overflow or underflow
+/// are reported as out of range (not "length inf is below 2e290" or
+/// "length 0e0 is below 0e0").
+#[test]
+fn out_of_range_input_is_said_as_such() {
+    let k = |xi: &'static str, nodes: &'static str| {
+        ["kernel", "--type", "6", "--xi-s", xi, "--nodes", nodes]
+    };
+    for xi in ["2", "-1.5", "1.0000001"] {
+        assert_fails(&k(xi, WORKED_NODES), &["--xi-s", "outside [-1, 1]"]);
+    }
+    for xi in ["1", "-1", "1.0", "-0"] {
+        assert!(gapsim(&k(xi, WORKED_NODES)).status.success(), "{xi}");
+    }
+    let huge = "0,1e300,2e300,1.1e300,2.1e300,0.9e300,-0.1e300,1e300";
+    assert_fails(
+        &k("0.3", huge),
+        &[
+            "slave segment out of range",
+            "overflows",
+            "scale the coordinates",
+        ],
+    );
+    let tiny = "0,1e-310,2e-310,1.1e-310,2.1e-310,0.9e-310,-0.1e-310,1e-310";
+    assert_fails(
+        &k("0.3", tiny),
+        &["slave segment out of range", "spans only"],
+    );
+    let zero = "0,0,0,0,0,0,0,0";
+    assert_fails(&k("0.3", zero), &["every point coincides"]);
+    let small = "0,1e-200,2e-200,1.1e-200,2.1e-200,0.9e-200,-0.1e-200,1e-200";
+    assert_fails(
+        &k("0.3", small),
+        &[
+            "slave segment out of range",
+            "spans only",
+            "scale the coordinates",
+        ],
+    );
+    for out in [gapsim(&k("0.3", huge)), gapsim(&k("0.3", tiny))] {
+        let e = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(!e.contains("is below"), "{e}");
+    }
+}
