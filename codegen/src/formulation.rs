@@ -1,4 +1,5 @@
-//! Formulation files: a small Rust-syntax language for contact kinematics.
+//! Formulation files: a small Rust-syntax language for contact kinematics
+//! (the user's reference: `docs/formulations.md`).
 //!
 //! A formulation file is a sequence of Rust statements, parsed with `syn`
 //! and interpreted into the expression DAG. Example (the paper's
