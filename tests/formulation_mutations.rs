@@ -94,7 +94,7 @@ fn mutate(text: &str, edits: &[(usize, usize)]) -> String {
         })
         .collect();
     // Apply from the end, one edit per token.
-    chosen.sort_by(|x, y| y.0.cmp(&x.0));
+    chosen.sort_by_key(|x| std::cmp::Reverse(x.0));
     chosen.dedup_by_key(|x| x.0);
     let mut s = text.to_owned();
     for (a, b, with) in chosen {

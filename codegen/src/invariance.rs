@@ -219,8 +219,8 @@ impl<'a> Prover<'a> {
     /// the memo in index order needs no recursion.
     fn poly(&mut self, id: Id) -> Result<Poly, Unproven> {
         let live = self.dag.reachable([id]);
-        for i in 0..=id.index() {
-            if !live[i] || self.memo.contains_key(&(i as u32)) {
+        for (i, &live) in live.iter().enumerate().take(id.index() + 1) {
+            if !live || self.memo.contains_key(&(i as u32)) {
                 continue;
             }
             let p = self.node_poly(self.dag.id(i));

@@ -120,7 +120,7 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
             .max_by(|a, b| a.1.error.total_cmp(&b.1.error))
             .expect("four outputs");
             let mut what = Vec::new();
-            if !(worst.1.error <= report.tol) {
+            if worst.1.error > report.tol {
                 what.push(format!(
                     "{} off by {:.1e} (> {:e}) at {}",
                     worst.0, worst.1.error, report.tol, worst.1.at
