@@ -34,7 +34,7 @@ pub enum Lang {
 #[command(
     after_help = "Example:\n  gapsim generate my-normal.rs --lang c --out generated/\n\n\
 A formulation file is Rust syntax: inputs!(xs1, xs2, xm1, xm2; xi_s); let ... = implicit!(xi => ...); \
-entity!(...); gap!(...) (see contact-kernels/formulations/slave-normal.rs)."
+entity!(...); gap!(...) (reference: docs/formulations.md; example: contact-kernels/formulations/slave-normal.rs)."
 )]
 pub struct GenerateArgs {
     /// Formulation files (`NAME.rs`; the stem names the formulation).

@@ -84,7 +84,8 @@ pub fn coordinate_names(n: usize) -> Vec<String> {
 #[command(
     after_help = "Examples:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n  \
 gapsim kernel --formulation quadratic-slave-normal --type 6 --xi-s 0.5 \\\n      \
---nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n\n\
+--nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n  \
+gapsim kernel --formulation my-normal.rs --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n\n\
 Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[n],\"hess\":[[n]xn]} \
 (derivatives with respect to the n coordinates: 8 for slave-normal and closest-point, \
 12 for quadratic-slave-normal; hess is all zeros for Type 1)."
