@@ -106,7 +106,7 @@ pub struct KernelArgs {
     pub ty: ApproxType,
 
     /// Parametric coordinate of the slave integration point on the slave
-    /// segment (-1: slave node 1, 1: slave node 2).
+    /// segment, in [-1, 1] (-1: slave node 1, 1: slave node 2).
     #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_xi_s)]
     pub xi_s: f64,
 
