@@ -35,7 +35,7 @@ use num_traits::{One, Zero};
 
 use crate::Error;
 use crate::expr::{Dag, Id, Node, Sym};
-use crate::formulation::{Formulation, Value};
+use crate::formulation::Formulation;
 
 /// More terms than this in one polynomial: the proof gives up (and the
 /// formulation is refused).
@@ -268,11 +268,7 @@ pub fn check(f: &Formulation) -> Result<(), Error> {
     let mut targets: Vec<(String, Id)> =
         vec![("the projection residual".to_owned(), f.implicit.residual)];
     for e in &f.entities {
-        let ids = match e.value {
-            Value::Scalar(s) => vec![s],
-            Value::Vec2(v) => v.to_vec(),
-        };
-        for id in ids {
+        for id in e.value.components() {
             targets.push((format!("entity `{}`", e.name), id));
         }
     }
