@@ -124,7 +124,7 @@ fn an_unknown_macro_is_named_at_its_position() {
 }
 
 /// The kernels take coordinates relative to the first point: a file that
-/// depends on an absolute position is refused, naming the file.
+/// depends on an absolute position is refused, at the statement.
 #[test]
 fn a_formulation_that_is_not_translation_invariant_is_refused() {
     let dir = scratch("moved");
@@ -134,10 +134,12 @@ fn a_formulation_that_is_not_translation_invariant_is_refused() {
         "let t_s = xs2 - xs1;",
         "let t_s = xs2 - xs1 + xs1;",
     );
+    // At the `let` of the residual's variable, `xi_m`.
+    let line = line_of(&file, "let xi_m = implicit!");
     refused(
         &file,
-        &format!("{}: cannot prove", file.display()),
-        "translation invariant",
+        &format!("{}:{line}:5: cannot prove", file.display()),
+        "the projection residual is translation invariant",
     );
 }
 

@@ -167,6 +167,9 @@ pub struct Formulation {
     pub entities: Vec<Entity>,
     /// The gap expression (entities only).
     pub gap: syn::Expr,
+    /// Where each `let` name is defined: `(name, line, column)`, 1-based,
+    /// in file order (for errors found after parsing).
+    pub lets: Vec<(String, usize, usize)>,
 }
 
 /// Which `inputs!` declarations a parse accepts.
@@ -236,6 +239,7 @@ impl Formulation {
         let mut implicit: Option<Implicit> = None;
         let mut entities: Vec<Entity> = Vec::new();
         let mut gap: Option<syn::Expr> = None;
+        let mut lets: Vec<(String, usize, usize)> = Vec::new();
 
         for stmt in &stmts {
             match stmt {
@@ -262,6 +266,8 @@ impl Formulation {
                         return Err(err(local.pat.span(), &origin, "expected `let name = ...`"));
                     };
                     let name = pat.ident.to_string();
+                    let at = pat.ident.span().start();
+                    lets.push((name.clone(), at.line, at.column + 1));
                     let Some(init) = &local.init else {
                         return Err(err(
                             local.span(),
@@ -345,6 +351,7 @@ impl Formulation {
             implicit,
             entities,
             gap,
+            lets,
         })
     }
 

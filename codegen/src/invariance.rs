@@ -30,6 +30,8 @@
 use std::collections::BTreeMap;
 use std::collections::HashMap;
 
+use syn::spanned::Spanned;
+
 use num_rational::BigRational;
 use num_traits::{One, Zero};
 
@@ -260,21 +262,35 @@ impl<'a> Prover<'a> {
 }
 
 /// Proves that `f`'s projection residual, every entity and the gap are
-/// translation invariant (module documentation), or says which is not
-/// (the file name alone: the statement is named).
+/// translation invariant (module documentation), or says which is not, at
+/// the `let` that defines it (the `gap!` for the gap).
 pub fn check(f: &Formulation) -> Result<(), Error> {
     let mut dag = f.dag.clone();
     let gap = crate::truncation::gap_value(f, &mut dag)?;
-    let mut targets: Vec<(String, Id)> =
-        vec![("the projection residual".to_owned(), f.implicit.residual)];
+    let at = |name: &str| {
+        f.lets
+            .iter()
+            .find(|(n, ..)| n == name)
+            .map(|&(_, line, column)| (line, column))
+    };
+    let start = f.gap.span().start();
+    let mut targets: Vec<(String, Id, Option<(usize, usize)>)> = vec![(
+        "the projection residual".to_owned(),
+        f.implicit.residual,
+        at(&f.implicit.name),
+    )];
     for e in &f.entities {
         for id in e.value.components() {
-            targets.push((format!("entity `{}`", e.name), id));
+            targets.push((format!("entity `{}`", e.name), id, at(&e.name)));
         }
     }
-    targets.push(("the gap".to_owned(), gap));
+    targets.push((
+        "the gap".to_owned(),
+        gap,
+        Some((start.line, start.column + 1)),
+    ));
     let mut prover = Prover::new(&dag, f);
-    for (what, id) in targets {
+    for (what, id, position) in targets {
         let why = match prover.poly(id) {
             Ok(p) if prover.invariant(&p) => continue,
             Ok(_) => "moving every point by the same vector changes it",
@@ -285,13 +301,20 @@ pub fn check(f: &Formulation) -> Result<(), Error> {
             Err(Unproven::TooLarge) => "its expansion exceeds the prover's size limit",
             Err(Unproven::NonFinite) => "it holds a non-finite constant",
         };
-        return Err(Error::Truncation {
-            file: format!("{}.rs", f.name),
-            message: format!(
-                "cannot prove that {what} is translation invariant ({why}); the kernels take \
-                 coordinates relative to the first point, so a formulation must depend on \
-                 coordinate differences only (e.g. `xs2 - xs1`, `lerp(xm1, xm2, xi) - x_s`)"
-            ),
+        let file = format!("{}.rs", f.name);
+        let message = format!(
+            "cannot prove that {what} is translation invariant ({why}); the kernels take \
+             coordinates relative to the first point, so a formulation must depend on \
+             coordinate differences only (e.g. `xs2 - xs1`, `lerp(xm1, xm2, xi) - x_s`)"
+        );
+        return Err(match position {
+            Some((line, column)) => Error::Formulation {
+                file,
+                line,
+                column,
+                message,
+            },
+            None => Error::Truncation { file, message },
         });
     }
     Ok(())
@@ -339,7 +362,7 @@ mod tests {
             let f = Formulation::parse("bad", &SN.replace(from, to)).unwrap();
             let e = check(&f).unwrap_err().to_string();
             assert!(
-                e.starts_with("bad.rs: cannot prove that") && e.contains(what),
+                e.starts_with("bad.rs:") && e.contains(": cannot prove that") && e.contains(what),
                 "{e}"
             );
         }

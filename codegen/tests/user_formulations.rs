@@ -95,15 +95,24 @@ fn an_unknown_macro_is_named() {
 /// relative-coordinate kernels would evaluate as `xs2 - xs1`.
 #[test]
 fn a_formulation_that_is_not_translation_invariant_is_refused() {
-    let e = error(
-        "moved",
-        "let t_s = xs2 - xs1;",
-        "let t_s = xs2 - xs1 + xs1;",
-    );
+    let (from, to) = ("let t_s = xs2 - xs1;", "let t_s = xs2 - xs1 + xs1;");
+    let e = error("moved", from, to);
+    let line = line_of(from, to, "let xi_m = implicit!");
     assert!(
-        e.starts_with(
-            "moved.rs: cannot prove that the projection residual is translation invariant"
-        ),
+        e.starts_with(&format!(
+            "moved.rs:{line}:5: cannot prove that the projection residual is translation invariant"
+        )),
+        "{e}"
+    );
+    // An entity at its `let`.
+    let (from, to) = (
+        "let n = entity!(perp(t_s) / norm(t_s));",
+        "let n = entity!(perp(xs2) / norm(t_s));",
+    );
+    let e = error("normal", from, to);
+    let line = line_of(from, to, to);
+    assert!(
+        e.starts_with(&format!("normal.rs:{line}:5: cannot prove that entity `n`")),
         "{e}"
     );
 }

@@ -11,8 +11,8 @@
 //! formulation (C99). Each written path is printed on stdout; the Rust
 //! file's header names the files it came from. A malformed file is
 //! reported as `FILE:LINE:COLUMN: message` (or `FILE: message` where no
-//! line applies: translation invariance, a name two files share) with a
-//! non-zero exit, and nothing is written.
+//! line applies, e.g. a name two files share) with a non-zero exit, and
+//! nothing is written.
 
 use std::path::{Path, PathBuf};
 
