@@ -261,6 +261,9 @@ impl<'a> Prover<'a> {
     }
 }
 
+/// A 1-based `(line, column)`.
+type Position = (usize, usize);
+
 /// Proves that `f`'s projection residual, every entity and the gap are
 /// translation invariant (module documentation), or says which is not, at
 /// the `let` that defines it (the `gap!` for the gap).
@@ -274,7 +277,7 @@ pub fn check(f: &Formulation) -> Result<(), Error> {
             .map(|&(_, line, column)| (line, column))
     };
     let start = f.gap.span().start();
-    let mut targets: Vec<(String, Id, Option<(usize, usize)>)> = vec![(
+    let mut targets: Vec<(String, Id, Option<Position>)> = vec![(
         "the projection residual".to_owned(),
         f.implicit.residual,
         at(&f.implicit.name),
