@@ -507,3 +507,189 @@ fn wrong_coordinate_count_names_the_expected_one() {
         &["quadratic-slave-normal", "folded slave segment"],
     );
 }
+
+/// Messages that say what is wrong: a slave point outside its segment is
+/// refused; coordinates whose squared differences overflow or underflow
+/// are reported as out of range (not "length inf is below 2e290" or
+/// "length 0e0 is below 0e0").
+#[test]
+fn out_of_range_input_is_said_as_such() {
+    let k = |xi: &'static str, nodes: &'static str| {
+        ["kernel", "--type", "6", "--xi-s", xi, "--nodes", nodes]
+    };
+    for xi in ["2", "-1.5", "1.0000001"] {
+        assert_fails(&k(xi, WORKED_NODES), &["--xi-s", "outside [-1, 1]"]);
+    }
+    for xi in ["1", "-1", "1.0", "-0"] {
+        assert!(gapsim(&k(xi, WORKED_NODES)).status.success(), "{xi}");
+    }
+    let huge = "0,1e300,2e300,1.1e300,2.1e300,0.9e300,-0.1e300,1e300";
+    assert_fails(
+        &k("0.3", huge),
+        &[
+            "slave segment out of range",
+            "overflows",
+            "scale the coordinates",
+        ],
+    );
+    let tiny = "0,1e-310,2e-310,1.1e-310,2.1e-310,0.9e-310,-0.1e-310,1e-310";
+    assert_fails(
+        &k("0.3", tiny),
+        &["slave segment out of range", "spans only"],
+    );
+    let zero = "0,0,0,0,0,0,0,0";
+    assert_fails(&k("0.3", zero), &["every point coincides"]);
+    let small = "0,1e-200,2e-200,1.1e-200,2.1e-200,0.9e-200,-0.1e-200,1e-200";
+    assert_fails(
+        &k("0.3", small),
+        &[
+            "slave segment out of range",
+            "spans only",
+            "scale the coordinates",
+        ],
+    );
+    for out in [gapsim(&k("0.3", huge)), gapsim(&k("0.3", tiny))] {
+        let e = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(!e.contains("is below"), "{e}");
+    }
+}
+
+/// `--formulation FILE.rs`: a formulation file evaluated from the command
+/// line. The shipped files, given as files, print exactly what their
+/// compiled kernels print (every type; values, projections and errors),
+/// and a file of the user's is evaluated the same way.
+#[test]
+fn a_formulation_file_evaluates_as_the_compiled_kernels() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let cases: [(&str, &[(&str, &str)]); 3] = [
+        (
+            "slave-normal",
+            &[
+                ("0.3", WORKED_NODES),
+                ("-0.77", "0,0,1,0,1.2,-0.01,-0.3,0.02"),
+                (
+                    "1.0",
+                    "1e6,1e6,1000001,1e6,1000001.3,999999.9,999999.8,1000000.2",
+                ),
+                ("0.1", "0,0,1,0,0.5,1,0.5,-1"),
+                ("0.2", "0,0,0,0,1,1,0,1"),
+                ("0.3", "1,2,3"),
+            ],
+        ),
+        (
+            "closest-point",
+            &[("0.3", WORKED_NODES), ("-1", "0,0,3,4,5,1,-2,2")],
+        ),
+        (
+            "quadratic-slave-normal",
+            &[
+                ("0.5", QUADRATIC_NODES),
+                ("0.2", "0,0,2,0,1.7,0,2,-1,0,-1,1,-0.8"),
+            ],
+        ),
+    ];
+    for (name, configs) in cases {
+        let file = format!("{root}/contact-kernels/formulations/{name}.rs");
+        for ty in ["1", "2", "3", "4", "5", "6"] {
+            for (xi, nodes) in configs {
+                let run = |f: &str| {
+                    gapsim(&[
+                        "kernel",
+                        "--formulation",
+                        f,
+                        "--type",
+                        ty,
+                        "--xi-s",
+                        xi,
+                        "--nodes",
+                        nodes,
+                    ])
+                };
+                let (compiled, interpreted) = (run(name), run(&file));
+                let what = format!("{name} type {ty} at {nodes}");
+                assert_eq!(compiled.status.code(), interpreted.status.code(), "{what}");
+                assert_eq!(
+                    String::from_utf8_lossy(&compiled.stdout),
+                    String::from_utf8_lossy(&interpreted.stdout),
+                    "{what}"
+                );
+                assert_eq!(
+                    String::from_utf8_lossy(&compiled.stderr),
+                    String::from_utf8_lossy(&interpreted.stderr).replace(&file, name),
+                    "{what}"
+                );
+            }
+        }
+    }
+    // Both kinds of outcome were compared.
+    let ok = gapsim(&[
+        "kernel",
+        "--formulation",
+        &format!("{root}/contact-kernels/formulations/slave-normal.rs"),
+        "--type",
+        "6",
+        "--xi-s",
+        "0.3",
+        "--nodes",
+        WORKED_NODES,
+    ]);
+    assert_equals_library(
+        &parse_success(&ok),
+        Formulation::SlaveNormal,
+        ApproxType::Type6,
+        &WORKED_Q,
+        0.3,
+    );
+}
+
+/// A user's own file: evaluated (its own kernels), and a broken one
+/// reported at its position.
+#[test]
+fn a_users_formulation_file_is_evaluated_or_its_error_located() {
+    let dir = std::env::temp_dir().join(format!("gapsim-kernel-file-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let shipped = include_str!("../contact-kernels/formulations/slave-normal.rs");
+    let mine = dir.join("averaged.rs");
+    std::fs::write(
+        &mine,
+        shipped.replace(
+            "let t_s = xs2 - xs1;",
+            "let t_s = (xs2 - xs1) * 0.5 + (xm1 - xm2) * 0.5;",
+        ),
+    )
+    .unwrap();
+    let args = |f: &str| {
+        [
+            "kernel",
+            "--formulation",
+            f,
+            "--type",
+            "6",
+            "--xi-s",
+            "0.3",
+            "--nodes",
+            WORKED_NODES,
+        ]
+        .map(str::to_owned)
+    };
+    let run = |f: &str| {
+        let a = args(f);
+        gapsim(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    let nums = parse_success(&run(mine.to_str().unwrap()));
+    let shipped_nums = parse_success(&run("slave-normal"));
+    assert_eq!(nums.len(), shipped_nums.len());
+    assert_ne!(nums[0], shipped_nums[0], "another formulation, another gap");
+    let broken = dir.join("broken.rs");
+    std::fs::write(&broken, shipped.replace("norm(t_s)", "norm(t_s) / 0.0")).unwrap();
+    let a = args(broken.to_str().unwrap());
+    assert_fails(
+        &a.iter().map(String::as_str).collect::<Vec<_>>(),
+        &[&format!("{}:", broken.display()), "non-finite constant"],
+    );
+    let a = args(dir.join("absent.rs").to_str().unwrap());
+    assert_fails(
+        &a.iter().map(String::as_str).collect::<Vec<_>>(),
+        &["cannot read"],
+    );
+}

@@ -75,6 +75,9 @@ impl Node {
 pub struct Dag {
     nodes: Vec<Node>,
     memo: HashMap<Node, Id>,
+    /// The first non-finite value a constant fold produced (see
+    /// [`Dag::non_finite`]).
+    non_finite: Option<f64>,
 }
 
 impl Dag {
@@ -135,19 +138,29 @@ impl Dag {
         id
     }
 
-    /// A constant.
-    ///
-    /// # Panics
-    /// If `value` is not finite (formulations only contain finite literals,
-    /// and folding that overflows is a generator bug).
+    /// A constant. A non-finite `value` (a fold such as `1 / 0`,
+    /// `sqrt(-1)` or an overflow) is stored as it is and recorded: the DAG
+    /// is then poisoned ([`Dag::non_finite`]) and its expressions must not
+    /// be emitted.
     pub fn constant(&mut self, value: f64) -> Id {
-        assert!(
-            value.is_finite(),
-            "non-finite constant {value} in an expression"
-        );
-        // One zero: -0.0 and 0.0 are the same constant.
-        let value = if value == 0.0 { 0.0 } else { value };
+        // One zero: -0.0 and 0.0 are the same constant; one NaN.
+        let value = if value == 0.0 {
+            0.0
+        } else if value.is_nan() {
+            f64::NAN
+        } else {
+            value
+        };
+        if !value.is_finite() && self.non_finite.is_none() {
+            self.non_finite = Some(value);
+        }
         self.intern(Node::Const(value.to_bits()))
+    }
+
+    /// The first non-finite value a constant fold produced in this DAG
+    /// (`None` for a DAG whose constants are all finite).
+    pub fn non_finite(&self) -> Option<f64> {
+        self.non_finite
     }
 
     /// An input symbol.
@@ -492,7 +505,7 @@ impl Dag {
 
     /// Checks the structural invariants: children precede parents, the memo
     /// maps every node to its own id, commutative operands are canonical and
-    /// constants are finite.
+    /// constants are finite (unless recorded by [`Dag::non_finite`]).
     ///
     /// # Panics
     /// On the first violated invariant, with a description.
@@ -516,9 +529,10 @@ impl Dag {
                 "memo does not map node {i} to itself"
             );
             match *node {
-                Node::Const(bits) => {
-                    assert!(f64::from_bits(bits).is_finite(), "non-finite constant")
-                }
+                Node::Const(bits) => assert!(
+                    self.non_finite.is_some() || f64::from_bits(bits).is_finite(),
+                    "non-finite constant not recorded"
+                ),
                 Node::Add(a, b) | Node::Mul(a, b) => {
                     assert_eq!(
                         self.order(a, b),

@@ -1,4 +1,5 @@
-//! Formulation files: a small Rust-syntax language for contact kinematics.
+//! Formulation files: a small Rust-syntax language for contact kinematics
+//! (the user's reference: `docs/formulations.md`).
 //!
 //! A formulation file is a sequence of Rust statements, parsed with `syn`
 //! and interpreted into the expression DAG. Example (the paper's
@@ -90,6 +91,11 @@ pub trait Domain {
     fn sqrt(&mut self, a: Self::S) -> Self::S;
     /// `a^n`.
     fn powi(&mut self, a: Self::S, n: i32) -> Self::S;
+    /// The first non-finite constant a fold produced, if the domain folds
+    /// constants (the DAG does: [`Dag::non_finite`]).
+    fn non_finite(&self) -> Option<f64> {
+        None
+    }
 }
 
 impl Domain for Dag {
@@ -117,6 +123,9 @@ impl Domain for Dag {
     }
     fn powi(&mut self, a: Id, n: i32) -> Id {
         Dag::powi(self, a, n)
+    }
+    fn non_finite(&self) -> Option<f64> {
+        Dag::non_finite(self)
     }
 }
 
@@ -158,6 +167,9 @@ pub struct Formulation {
     pub entities: Vec<Entity>,
     /// The gap expression (entities only).
     pub gap: syn::Expr,
+    /// Where each `let` name is defined: `(name, line, column)`, 1-based,
+    /// in file order (for errors found after parsing).
+    pub lets: Vec<(String, usize, usize)>,
 }
 
 /// Which `inputs!` declarations a parse accepts.
@@ -227,6 +239,7 @@ impl Formulation {
         let mut implicit: Option<Implicit> = None;
         let mut entities: Vec<Entity> = Vec::new();
         let mut gap: Option<syn::Expr> = None;
+        let mut lets: Vec<(String, usize, usize)> = Vec::new();
 
         for stmt in &stmts {
             match stmt {
@@ -253,6 +266,8 @@ impl Formulation {
                         return Err(err(local.pat.span(), &origin, "expected `let name = ...`"));
                     };
                     let name = pat.ident.to_string();
+                    let at = pat.ident.span().start();
+                    lets.push((name.clone(), at.line, at.column + 1));
                     let Some(init) = &local.init else {
                         return Err(err(
                             local.span(),
@@ -300,6 +315,7 @@ impl Formulation {
                     };
                     b.env.insert(name, value);
                 }
+                syn::Stmt::Macro(m) => return Err(misplaced_macro(&m.mac, &origin)),
                 other => {
                     return Err(err(
                         other.span(),
@@ -335,6 +351,7 @@ impl Formulation {
             implicit,
             entities,
             gap,
+            lets,
         })
     }
 
@@ -452,10 +469,18 @@ impl Builder {
         let previous = self.env.insert(var.clone(), Value::Scalar(x));
         let r = self.eval(&closure.residual);
         match previous {
-            Some(p) => self.env.insert(var, p),
+            Some(p) => self.env.insert(var.clone(), p),
             None => self.env.remove(&var),
         };
         match r? {
+            Value::Scalar(r) if !self.dag.reachable([r])[x.index()] => Err(err(
+                closure.residual.span(),
+                &self.origin,
+                format!(
+                    "the projection residual does not depend on `{var}`: `{var} => r` needs an \
+                     r that changes with `{var}` (its zero is the projection)"
+                ),
+            )),
             Value::Scalar(r) => Ok(r),
             Value::Vec2(_) => Err(err(
                 span,
@@ -485,8 +510,47 @@ impl syn::parse::Parse for ImplicitDef {
     }
 }
 
-/// Interprets `e` over `domain` with the names in `env`.
+/// Interprets `e` over `domain` with the names in `env`; an expression
+/// whose constant folds to infinity or NaN (`1.0 / 0.0`, `sqrt(-1.0)`, an
+/// overflow) is an error at its position.
 fn eval_expr<D: Domain>(
+    d: &mut D,
+    env: &HashMap<String, Value<D::S>>,
+    e: &syn::Expr,
+    origin: &str,
+    unknown: &str,
+) -> Result<Value<D::S>, Error> {
+    let v = eval_expr_inner(d, env, e, origin, unknown)?;
+    match d.non_finite() {
+        None => Ok(v),
+        Some(c) => Err(err(
+            e.span(),
+            origin,
+            format!(
+                "`{}` gives the non-finite constant {c} (a division by zero, the square root \
+                 of a negative number or an overflow)",
+                e.span()
+                    .source_text()
+                    .unwrap_or_else(|| quote::quote!(#e).to_string())
+            ),
+        )),
+    }
+}
+
+/// A macro where none is expected, or an unknown one.
+fn misplaced_macro(m: &syn::Macro, origin: &str) -> Error {
+    let path = &m.path;
+    let name = quote::quote!(#path).to_string().replace(' ', "");
+    let msg = match name.as_str() {
+        "implicit" | "entity" => format!("`{name}!` must be the whole value of a `let`"),
+        "inputs" | "gap" => format!("`{name}!(..);` is a statement of its own"),
+        _ => format!("unknown macro `{name}!` (known: inputs!, implicit!, entity!, gap!)"),
+    };
+    err(m.span(), origin, msg)
+}
+
+/// [`eval_expr`] without the non-finite check.
+fn eval_expr_inner<D: Domain>(
     d: &mut D,
     env: &HashMap<String, Value<D::S>>,
     e: &syn::Expr,
@@ -694,6 +758,7 @@ fn eval_expr<D: Domain>(
                 )),
             }
         }
+        syn::Expr::Macro(m) => Err(misplaced_macro(&m.mac, origin)),
         other => Err(err(other.span(), origin, "unsupported expression")),
     }
 }

@@ -33,6 +33,7 @@ pub mod diff;
 pub mod emit;
 pub mod expr;
 pub mod formulation;
+pub mod invariance;
 pub mod jet;
 pub mod lower;
 pub mod plan;
@@ -63,7 +64,9 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
-    /// The formulation does not fit the truncation table.
+    /// The formulation does not fit the generator (the truncation table,
+    /// translation invariance, its name), or its kernels would hold a
+    /// non-finite constant.
     #[error("{file}: {message}")]
     Truncation {
         /// The file.

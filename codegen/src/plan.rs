@@ -35,7 +35,14 @@ pub struct KernelPlan {
     pub formulations: Vec<FormulationPlan>,
     /// The truncation table: `[xi_m, x_ms, n]` orders of types 1..=6.
     pub truncation: Vec<[EntityOrder; 3]>,
+    /// Where the formulations were read from, as the generated files'
+    /// headers name it ([`SHIPPED_ORIGIN`] unless
+    /// [`KernelPlan::with_origin`] says otherwise).
+    pub origin: String,
 }
+
+/// The origin of the shipped formulations (contact-kernels' build).
+pub const SHIPPED_ORIGIN: &str = "contact-kernels/formulations/*.rs";
 
 /// One formulation: its enum variant and, if compiled in, its kernels.
 #[derive(Debug, Clone)]
@@ -186,6 +193,7 @@ impl KernelPlan {
     /// [`KernelPlan::build`] for formulations whose `inputs!` satisfy
     /// `arity`.
     pub fn build_with(sources: &[Source], arity: Arity) -> Result<KernelPlan, Error> {
+        check_names(sources)?;
         let mut formulations = Vec::new();
         for src in sources {
             let f = Formulation::parse_with(&src.name, &src.text, arity)?;
@@ -196,7 +204,7 @@ impl KernelPlan {
             };
             formulations.push(FormulationPlan {
                 name: src.name.clone(),
-                variant: camel(&src.name),
+                variant: variant(&src.name),
                 doc: f.doc.clone(),
                 kernels,
             });
@@ -204,8 +212,64 @@ impl KernelPlan {
         Ok(KernelPlan {
             formulations,
             truncation: TYPES.to_vec(),
+            origin: SHIPPED_ORIGIN.to_owned(),
         })
     }
+
+    /// The plan with the generated files' headers naming `origin` (e.g.
+    /// the user's file paths) as their source.
+    pub fn with_origin(mut self, origin: impl Into<String>) -> KernelPlan {
+        self.origin = origin.into();
+        self
+    }
+}
+
+/// Refuses a source name that is not `letters, digits, '-', '_'` starting
+/// with a letter, and two names that give one generated identifier
+/// (`a_b` and `a-b`: `a_b_type1`, `AB`, `A_B`).
+fn check_names(sources: &[Source]) -> Result<(), Error> {
+    let mut seen: Vec<(&str, [String; 3])> = Vec::new();
+    for src in sources {
+        let name = src.name.as_str();
+        let file = format!("{name}.rs");
+        let valid = name.chars().next().is_some_and(|c| c.is_ascii_alphabetic())
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+        if !valid {
+            return Err(Error::Truncation {
+                file,
+                message: format!(
+                    "`{name}` is not a formulation name: letters, digits, `-` and `_`, \
+                     starting with a letter"
+                ),
+            });
+        }
+        let ident = name.replace('-', "_");
+        let keys = [ident.clone(), variant(name), ident.to_uppercase()];
+        if let Some((other, _)) = seen
+            .iter()
+            .find(|(_, k)| k.iter().zip(&keys).any(|(a, b)| a == b))
+        {
+            return Err(Error::Truncation {
+                file,
+                message: format!(
+                    "formulations `{other}` and `{name}` would generate the same identifiers \
+                     (`{ident}_type1`, `{}`): rename one",
+                    variant(name)
+                ),
+            });
+        }
+        seen.push((name, keys));
+    }
+    Ok(())
+}
+
+/// The enum variant of a formulation name: [`camel`], with `_` appended
+/// to the keyword `Self` (a file named `self.rs`).
+fn variant(name: &str) -> String {
+    let v = camel(name);
+    if v == "Self" { v + "_" } else { v }
 }
 
 impl KernelSetPlan {

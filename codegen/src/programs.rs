@@ -28,10 +28,14 @@ pub struct FormulationPrograms {
     pub kernels: Vec<(Program, bool)>,
 }
 
-/// Derives and lowers every program of a formulation.
+/// Derives and lowers every program of a formulation, once its translation
+/// invariance is proven ([`crate::invariance::check`]: the lowering takes
+/// coordinates relative to the first point).
 pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
-    let lower =
-        |dag: &expr::Dag, outs: &[Option<expr::Id>]| Program::lower(dag, outs, &f.signature);
+    crate::invariance::check(f)?;
+    let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
+        finite(f, Program::lower(dag, outs, &f.signature))
+    };
     let xi = f.implicit.sym;
     // Closed-form projection when r is affine in xi: xi_m = -r(q, 0) / r_xi(q).
     let closed_form = |dag: &mut expr::Dag| -> Option<expr::Id> {
@@ -59,10 +63,10 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
     let mut dag = f.dag.clone();
     let affine = closed_form(&mut dag).is_some();
     let [r, r_xi] = truncation::residual(f, &mut dag);
-    let residual = lower(&dag, &[Some(r), Some(r_xi)]);
+    let residual = lower(&dag, &[Some(r), Some(r_xi)])?;
     let g = truncation::gap_value(f, &mut dag)?;
     let outs = finish(&mut dag, vec![Some(g)]);
-    let gap = lower(&dag, &outs);
+    let gap = lower(&dag, &outs)?;
     let mut kernels = Vec::new();
     for row in TYPES {
         // A fresh DAG per type: nothing of another type's chains leaks in.
@@ -73,7 +77,7 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
         outs.extend(k.grad);
         outs.extend(k.hess);
         let outs = finish(&mut dag, outs);
-        kernels.push((lower(&dag, &outs), has_hessian));
+        kernels.push((lower(&dag, &outs)?, has_hessian));
     }
     Ok(FormulationPrograms {
         affine,
@@ -81,4 +85,35 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
         gap,
         kernels,
     })
+}
+
+/// `program`, or an error if a constant of it is not finite (a fold such as
+/// `1 / 0` that only appears once the first point's coordinates are zero,
+/// or in a closed-form projection whose `dr/dxi` is zero).
+fn finite(f: &Formulation, program: Program) -> Result<Program, Error> {
+    use crate::lower::{Instr, Operand};
+    let operands = program.instrs.iter().flat_map(|i| match *i {
+        Instr::Load(_) => vec![],
+        Instr::Add(a, b) | Instr::Sub(a, b) | Instr::Mul(a, b) => vec![a, b],
+        Instr::Square(a) | Instr::Powi(a, _) | Instr::Recip(a) | Instr::Neg(a) | Instr::Sqrt(a) => {
+            vec![a]
+        }
+    });
+    let bad = operands
+        .chain(program.outputs.iter().flatten().copied())
+        .find_map(|o| match o {
+            Operand::Const(c) if !c.is_finite() => Some(c),
+            _ => None,
+        });
+    match bad {
+        None => Ok(program),
+        Some(c) => Err(Error::Truncation {
+            file: format!("{}.rs", f.name),
+            message: format!(
+                "the generated kernels would hold the non-finite constant {c} (a division by an \
+                 expression that is zero, e.g. a projection residual whose derivative in its \
+                 variable is zero)"
+            ),
+        }),
+    }
 }

@@ -6,6 +6,36 @@
 
 use crate::Formulation;
 
+/// The message of [`KernelError::DegenerateSegment`]: a segment shorter
+/// than the threshold, or a configuration outside the range where the
+/// squared lengths of the check are representable (they overflow beyond
+/// coordinate differences of about 1e154 and underflow below about
+/// 1e-154), said as such.
+fn degenerate_message(segment: Segment, length: f64, threshold: f64) -> String {
+    let size = threshold / crate::DEGENERATE_LENGTH;
+    if !length.is_finite() {
+        format!(
+            "{segment} segment out of range: the square of its length overflows (the \
+             configuration spans {size:e}; the kernels need coordinate differences below about \
+             1e150: scale the coordinates)"
+        )
+    } else if threshold == 0.0 {
+        format!(
+            "degenerate {segment} segment: length {length:e}, and the whole configuration spans \
+             zero or a subnormal distance (every point coincides, or coordinate differences \
+             are below about 1e-300)"
+        )
+    } else if size < 1e-150 {
+        format!(
+            "{segment} segment out of range: the configuration spans only {size:e} (the \
+             kernels need coordinate differences above about 1e-150, where their squares do \
+             not underflow: scale the coordinates)"
+        )
+    } else {
+        format!("degenerate {segment} segment: length {length:e} is below {threshold:e}")
+    }
+}
+
 /// Why a kernel could not evaluate a configuration.
 ///
 /// Every data-dependent failure of the kernels is one of these; a kernel
@@ -22,7 +52,7 @@ pub enum KernelError {
         value: f64,
     },
     /// A segment has (numerically) zero length.
-    #[error("degenerate {segment} segment: length {length:e} is below {threshold:e}")]
+    #[error("{}", degenerate_message(*segment, *length, *threshold))]
     DegenerateSegment {
         /// Which segment.
         segment: Segment,

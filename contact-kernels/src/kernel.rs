@@ -68,12 +68,12 @@ impl std::fmt::Debug for Kernel {
 /// The outputs of [`Kernel::eval`], in buffers sized once and reused.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GapOut {
-    gap: f64,
-    xi_m: f64,
-    has_hessian: bool,
-    grad: Vec<f64>,
-    hess: Vec<f64>,
-    scratch: Vec<f64>,
+    pub(crate) gap: f64,
+    pub(crate) xi_m: f64,
+    pub(crate) has_hessian: bool,
+    pub(crate) grad: Vec<f64>,
+    pub(crate) hess: Vec<f64>,
+    pub(crate) scratch: Vec<f64>,
 }
 
 impl GapOut {

@@ -40,6 +40,8 @@
 //!
 //! Modules: `validate` (the one validation point), `projection` (the
 //! projection solve and [`Projector`]), `kernel` ([`Kernel`], [`GapOut`]),
+//! `runtime` ([`eval_runtime`]: kernels given at run time, e.g. a user's
+//! formulation file interpreted, through the same checks),
 //! `error` ([`KernelError`]), `types` (formulations, types, op counts),
 //! `generated` (the build script's output), `lanes` (the SIMD value type)
 //! and `generated_lanes` (the same kernels over 4 points at a time, for
@@ -66,6 +68,7 @@ mod generated_lanes;
 mod kernel;
 mod lanes;
 mod projection;
+mod runtime;
 mod types;
 mod validate;
 
@@ -73,6 +76,7 @@ pub use error::{KernelError, OutputKind, Segment};
 pub use generated_lanes::LaneIsa;
 pub use kernel::{GapBatch, GapOut, Kernel};
 pub use projection::{Projector, XI_M_LIMIT};
+pub use runtime::{RuntimeKernels, eval_runtime};
 pub use types::{ApproxType, EntityOrder, Formulation, OpCount, ParseNameError};
 pub use validate::DEGENERATE_LENGTH;
 

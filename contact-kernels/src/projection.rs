@@ -7,7 +7,7 @@
 //! otherwise [`start`] runs Newton's method on the generated residual.
 //! Either way [`check`] validates the `xi_m` a kernel used.
 
-use crate::generated::{KernelSet, ResidualFn, kernel_set};
+use crate::generated::{KernelSet, kernel_set};
 use crate::validate::relative_coordinates;
 use crate::{Formulation, KernelError, OutputKind, Projection};
 
@@ -24,7 +24,11 @@ const PROJECTION_TOLERANCE: f64 = 1e-12;
 /// Solves the formulation's projection equation `r(q, xi) = 0` by Newton's
 /// method from `xi = 0` (one step for straight segments, where `r` is linear
 /// in `xi`; a second step confirms convergence). `d`: relative coordinates.
-pub(crate) fn solve(residual: ResidualFn, d: &[f64], xi_s: f64) -> Result<f64, KernelError> {
+pub(crate) fn solve(
+    residual: impl Fn(&[f64], f64, f64) -> [f64; 2],
+    d: &[f64],
+    xi_s: f64,
+) -> Result<f64, KernelError> {
     let mut xi = 0.0_f64;
     let mut last_step = f64::INFINITY;
     for _ in 0..PROJECTION_ITERATIONS {
@@ -61,8 +65,18 @@ pub(crate) fn start(set: &KernelSet, d: &[f64], xi_s: f64) -> Result<f64, Kernel
 /// Rejects a projection the kernel could not find (non-finite: the
 /// residual's `dr/dxi` vanished) or that lies out of reach.
 pub(crate) fn check(set: &KernelSet, d: &[f64], xi_s: f64, xi_m: f64) -> Result<(), KernelError> {
+    check_with(set.residual, d, xi_s, xi_m)
+}
+
+/// [`check`] with the residual given as a function.
+pub(crate) fn check_with(
+    residual: impl Fn(&[f64], f64, f64) -> [f64; 2],
+    d: &[f64],
+    xi_s: f64,
+    xi_m: f64,
+) -> Result<(), KernelError> {
     if !xi_m.is_finite() {
-        let [_, r_xi] = (set.residual)(d, xi_s, 0.0);
+        let [_, r_xi] = residual(d, xi_s, 0.0);
         return Err(KernelError::NoProjection { r_xi });
     }
     if xi_m.abs() > XI_M_LIMIT {

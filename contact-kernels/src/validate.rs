@@ -49,14 +49,27 @@ pub(crate) fn relative_coordinates(
     xi_s: f64,
     d: &mut [f64],
 ) -> Result<(), KernelError> {
-    if q.len() != set.coords {
+    debug_assert_eq!(set.dim, DIM);
+    relative_coordinates_n(set.coords, q, xi_s, d)
+}
+
+/// [`relative_coordinates`] for kernels of `coords` coordinates (segment
+/// pairs of two-dimensional points) given at run time
+/// ([`crate::runtime`]).
+#[inline]
+pub(crate) fn relative_coordinates_n(
+    coords: usize,
+    q: &[f64],
+    xi_s: f64,
+    d: &mut [f64],
+) -> Result<(), KernelError> {
+    if q.len() != coords {
         return Err(KernelError::CoordinateCount {
-            expected: set.coords,
+            expected: coords,
             found: q.len(),
         });
     }
     debug_assert_eq!(d.len(), q.len());
-    debug_assert_eq!(set.dim, DIM);
     if !(all_finite(q) && xi_s.is_finite()) {
         // Cold path: name the first offending input.
         let (index, value) = q

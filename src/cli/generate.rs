@@ -8,8 +8,11 @@
 //! gives `my_normal_type1`..`_type6`), derives every approximation type and
 //! writes the generated files into `DIR`: `kernels.rs` (Rust, the module
 //! contact-kernels `include!`s) or `gapsim.h` plus `gapsim_{name}.h/.c` per
-//! formulation (C99). Each written path is printed on stdout. A malformed
-//! file is reported as `FILE:LINE:COLUMN: message` with a non-zero exit.
+//! formulation (C99). Each written path is printed on stdout; the Rust
+//! file's header names the files it came from. A malformed file is
+//! reported as `FILE:LINE:COLUMN: message` (or `FILE: message` where no
+//! line applies, e.g. a name two files share) with a non-zero exit, and
+//! nothing is written.
 
 use std::path::{Path, PathBuf};
 
@@ -31,7 +34,7 @@ pub enum Lang {
 #[command(
     after_help = "Example:\n  gapsim generate my-normal.rs --lang c --out generated/\n\n\
 A formulation file is Rust syntax: inputs!(xs1, xs2, xm1, xm2; xi_s); let ... = implicit!(xi => ...); \
-entity!(...); gap!(...) (see contact-kernels/formulations/slave-normal.rs)."
+entity!(...); gap!(...) (reference: docs/formulations.md; example: contact-kernels/formulations/slave-normal.rs)."
 )]
 pub struct GenerateArgs {
     /// Formulation files (`NAME.rs`; the stem names the formulation).
@@ -186,11 +189,14 @@ pub fn run(args: &GenerateArgs) -> CommandResult {
         files.push(f);
     }
     let sources: Vec<codegen::Source> = files.iter().map(|f| f.source.clone()).collect();
+    let origin: Vec<String> = files.iter().map(|f| f.path.display().to_string()).collect();
+    let plan = codegen::KernelPlan::build(&sources)
+        .map_err(|e| locate(e, &files))?
+        .with_origin(origin.join(", "));
     let emitted = match args.lang {
-        Lang::Rust => codegen::generate_with(&sources, &codegen::emit::RustEmitter),
-        Lang::C => codegen::generate_with(&sources, &codegen::emit::CEmitter),
-    }
-    .map_err(|e| locate(e, &files))?;
+        Lang::Rust => codegen::Emitter::emit(&codegen::emit::RustEmitter, &plan),
+        Lang::C => codegen::Emitter::emit(&codegen::emit::CEmitter, &plan),
+    };
     std::fs::create_dir_all(&args.out).map_err(|reason| GenerateError::Write {
         path: args.out.clone(),
         reason,

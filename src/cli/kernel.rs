@@ -17,14 +17,54 @@
 //! end nodes, then its mid node, as Gmsh's line3). `--nodes` is read once the
 //! formulation is known, so a wrong count is reported with the count and the
 //! coordinate names that formulation expects.
+//!
+//! `--formulation FILE.rs` evaluates a formulation file of the user's: its
+//! kernels are generated and run by codegen's interpreter
+//! ([`gapsim::verify::InterpretedKernels`]) through contact-kernels' own
+//! validation, projection and output checks
+//! ([`contact_kernels::eval_runtime`]), so the output (and every error) is
+//! what the compiled kernels of the same file give.
 
 use std::io::Write;
+use std::path::PathBuf;
 
 use clap::Args;
 use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, KernelError};
+use gapsim::verify::InterpretedKernels;
 use serde::Serialize;
 
 use super::CommandResult;
+use super::generate::{GenerateError, locate, read_source};
+
+/// What `--formulation` names: a formulation compiled into gapsim, or a
+/// formulation file (`NAME.rs`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum FormulationArg {
+    /// A compiled-in formulation (`slave-normal`, ...).
+    Compiled(Formulation),
+    /// A formulation file.
+    File(PathBuf),
+}
+
+impl std::fmt::Display for FormulationArg {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FormulationArg::Compiled(c) => write!(f, "{c}"),
+            FormulationArg::File(p) => write!(f, "{}", p.display()),
+        }
+    }
+}
+
+/// Parses `--formulation`: a path ending in `.rs` is a file, anything else
+/// a compiled-in formulation's name.
+fn parse_formulation(s: &str) -> Result<FormulationArg, String> {
+    if s.ends_with(".rs") {
+        return Ok(FormulationArg::File(PathBuf::from(s)));
+    }
+    s.parse::<Formulation>()
+        .map(FormulationArg::Compiled)
+        .map_err(|e| format!("{e}; or a formulation file NAME.rs"))
+}
 
 /// Names of the `n` coordinates of a segment-pair kernel, in kernel order:
 /// the slave segment's points `xs1, ys1, xs2, ys2, ...`, then the master
@@ -44,7 +84,8 @@ pub fn coordinate_names(n: usize) -> Vec<String> {
 #[command(
     after_help = "Examples:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n  \
 gapsim kernel --formulation quadratic-slave-normal --type 6 --xi-s 0.5 \\\n      \
---nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n\n\
+--nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n  \
+gapsim kernel --formulation my-normal.rs --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n\n\
 Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[n],\"hess\":[[n]xn]} \
 (derivatives with respect to the n coordinates: 8 for slave-normal and closest-point, \
 12 for quadratic-slave-normal; hess is all zeros for Type 1)."
@@ -54,8 +95,10 @@ pub struct KernelArgs {
     /// normal, the paper's), `closest-point` (orthogonal projection onto
     /// the master segment), or `quadratic-slave-normal` (slave-normal
     /// projection between 3-node quadratic segments; 12 coordinates).
-    #[arg(long, value_name = "F", default_value = "slave-normal")]
-    pub formulation: Formulation,
+    /// Or a formulation file of your own, `NAME.rs` (docs/formulations.md):
+    /// its kernels are generated and interpreted, with the same checks.
+    #[arg(long, value_name = "F", default_value = "slave-normal", value_parser = parse_formulation)]
+    pub formulation: FormulationArg,
 
     /// Approximation type, 1 to 6 (6: exact gradient and Hessian; 1: no
     /// Hessian).
@@ -63,8 +106,8 @@ pub struct KernelArgs {
     pub ty: ApproxType,
 
     /// Parametric coordinate of the slave integration point on the slave
-    /// segment (-1: slave node 1, 1: slave node 2).
-    #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_finite)]
+    /// segment, in [-1, 1] (-1: slave node 1, 1: slave node 2).
+    #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_xi_s)]
     pub xi_s: f64,
 
     /// Current coordinates of the slave segment's nodes, then the master
@@ -118,8 +161,8 @@ pub enum KernelCommandError {
          ({names}), got {found}"
     )]
     CoordinateCount {
-        /// The formulation asked for.
-        formulation: Formulation,
+        /// The formulation asked for (a name or a file).
+        formulation: String,
         /// Its coordinate count.
         expected: usize,
         /// Its coordinate names, comma-separated.
@@ -147,13 +190,16 @@ pub enum KernelCommandError {
     /// The kernel rejected the configuration.
     #[error("cannot evaluate the {formulation} Type {ty} kernel for this configuration: {reason}")]
     Kernel {
-        /// The formulation asked for.
-        formulation: Formulation,
+        /// The formulation asked for (a name or a file).
+        formulation: String,
         /// The approximation type asked for.
         ty: ApproxType,
         /// The kernel's typed error.
         reason: KernelError,
     },
+    /// The formulation file could not be read or generated.
+    #[error(transparent)]
+    File(#[from] GenerateError),
     /// Writing the result failed (e.g. a closed pipe).
     #[error("cannot write the result: {0}")]
     Output(std::io::Error),
@@ -165,24 +211,62 @@ pub enum KernelCommandError {
 /// Runs `gapsim kernel`: evaluates the kernel and prints one JSON line on
 /// stdout.
 pub fn run(args: &KernelArgs) -> CommandResult {
+    let name = args.formulation.to_string();
     let kernel_error = |reason| KernelCommandError::Kernel {
-        formulation: args.formulation,
+        formulation: name.clone(),
         ty: args.ty,
         reason,
     };
-    let kernel = Kernel::new(args.formulation, args.ty).map_err(|e| match e {
-        KernelError::NotCompiled(f) => KernelCommandError::NotCompiled(f),
-        e => kernel_error(e),
-    })?;
-    let q = parse_nodes(&args.nodes, args.formulation, kernel.coords())?;
-    let mut out = GapOut::new(&kernel);
-    kernel.eval(&q, args.xi_s, &mut out).map_err(kernel_error)?;
+    let out = match &args.formulation {
+        FormulationArg::Compiled(f) => {
+            let kernel = Kernel::new(*f, args.ty).map_err(|e| match e {
+                KernelError::NotCompiled(f) => KernelCommandError::NotCompiled(f),
+                e => kernel_error(e),
+            })?;
+            let q = parse_nodes(&args.nodes, &name, kernel.coords())?;
+            let mut out = GapOut::new(&kernel);
+            kernel.eval(&q, args.xi_s, &mut out).map_err(kernel_error)?;
+            out
+        }
+        FormulationArg::File(path) => {
+            let kernels = interpreted(path)?;
+            let n = contact_kernels::RuntimeKernels::coords(&kernels);
+            let q = parse_nodes(&args.nodes, &name, n)?;
+            let mut out = GapOut::with_coords(n);
+            contact_kernels::eval_runtime(&kernels, args.ty, &q, args.xi_s, &mut out)
+                .map_err(kernel_error)?;
+            out
+        }
+    };
     let mut stdout = std::io::stdout().lock();
     serde_json::to_writer(&mut stdout, &KernelOutput::from(&out))
         .map_err(KernelCommandError::Json)?;
     writeln!(stdout).map_err(KernelCommandError::Output)?;
     stdout.flush().map_err(KernelCommandError::Output)?;
     Ok(())
+}
+
+/// Parses `--xi-s`: a finite number in [-1, 1] (a slave point on its
+/// segment).
+fn parse_xi_s(s: &str) -> Result<f64, String> {
+    let v = parse_finite(s)?;
+    if (-1.0..=1.0).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!(
+            "`{s}` is outside [-1, 1]: the slave point must lie on its segment \
+             (-1: slave node 1, 1: slave node 2)"
+        ))
+    }
+}
+
+/// The generated kernels of a formulation file (a segment pair: 4 or 6
+/// points and `xi_s`), ready to interpret.
+fn interpreted(path: &std::path::Path) -> Result<InterpretedKernels, GenerateError> {
+    let file = read_source(path)?;
+    let located = |e| locate(e, std::slice::from_ref(&file));
+    let f = codegen::Formulation::parse(&file.source.name, &file.source.text).map_err(located)?;
+    InterpretedKernels::new(&f).map_err(located)
 }
 
 /// Parses a finite number (rejects `nan`, `inf`).
@@ -200,16 +284,12 @@ fn parse_finite(s: &str) -> Result<f64, String> {
 
 /// Parses `--nodes`: exactly `n` comma-separated finite coordinates, the
 /// coordinate count of `formulation`'s kernels.
-fn parse_nodes(
-    s: &str,
-    formulation: Formulation,
-    n: usize,
-) -> Result<Vec<f64>, KernelCommandError> {
+fn parse_nodes(s: &str, formulation: &str, n: usize) -> Result<Vec<f64>, KernelCommandError> {
     let names = coordinate_names(n);
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != n {
         return Err(KernelCommandError::CoordinateCount {
-            formulation,
+            formulation: formulation.to_owned(),
             expected: n,
             names: names.join(","),
             found: parts.len(),
@@ -247,7 +327,7 @@ mod tests {
 
     #[test]
     fn parses_nodes() {
-        let sn = Formulation::SlaveNormal;
+        let sn = "slave-normal";
         assert_eq!(
             parse_nodes("0,1,2,3,4,5,6,-7.5", sn, 8).unwrap(),
             [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, -7.5]

@@ -106,7 +106,7 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
     if report.passed() {
         return Ok(());
     }
-    let why: Vec<String> = report
+    let why: Vec<(usize, String)> = report
         .failures()
         .iter()
         .map(|r| {
@@ -119,10 +119,39 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
             .into_iter()
             .max_by(|a, b| a.1.error.total_cmp(&b.1.error))
             .expect("four outputs");
-            format!(
-                "type {}: {} off by {:.1e} (> {:e}) at {}",
-                r.ty, worst.0, worst.1.error, report.tol, worst.1.at
-            )
+            let mut what = Vec::new();
+            if worst.1.error > report.tol {
+                what.push(format!(
+                    "{} off by {:.1e} (> {:e}) at {}",
+                    worst.0, worst.1.error, report.tol, worst.1.at
+                ));
+            }
+            if let Some(first) = r.refused.first() {
+                what.push(format!(
+                    "the kernels' projection (Newton from xi = 0, at most 20 steps) failed on \
+                     {} of the {} configurations the reference projects (first: {first}); a \
+                     residual whose root is double (dr/dxi = 0 there) converges too slowly",
+                    r.refused.len(),
+                    report.checked
+                ));
+            }
+            (r.ty, what.join("; "))
+        })
+        .collect();
+    // Types failing for the same reason are named together.
+    let mut grouped: Vec<(Vec<usize>, String)> = Vec::new();
+    for (ty, what) in why {
+        match grouped.iter_mut().find(|(_, w)| *w == what) {
+            Some((types, _)) => types.push(ty),
+            None => grouped.push((vec![ty], what)),
+        }
+    }
+    let why: Vec<String> = grouped
+        .into_iter()
+        .map(|(types, what)| {
+            let names: Vec<String> = types.iter().map(usize::to_string).collect();
+            let label = if types.len() == 1 { "type" } else { "types" };
+            format!("{label} {}: {what}", names.join(", "))
         })
         .collect();
     let why = if report.checked == 0 {

@@ -159,3 +159,56 @@ impl InterpretedKernels {
         None
     }
 }
+
+/// The interpreted kernels behind contact-kernels' run-time seam, so that
+/// a formulation file is evaluated with the compiled kernels' validation,
+/// projection and output checks (`gapsim kernel --formulation FILE.rs`).
+impl contact_kernels::RuntimeKernels for InterpretedKernels {
+    fn coords(&self) -> usize {
+        self.n
+    }
+
+    fn closed_form_projection(&self) -> bool {
+        self.programs.affine
+    }
+
+    fn residual(&self, d: &[f64], xi_s: f64, xi: f64) -> [f64; 2] {
+        let r = self.programs.residual.run(d, &[xi_s], xi);
+        [r[0], r[1]]
+    }
+
+    fn has_hessian(&self, ty: contact_kernels::ApproxType) -> bool {
+        self.programs.kernels[ty.index() - 1].1
+    }
+
+    fn eval(
+        &self,
+        ty: contact_kernels::ApproxType,
+        d: &[f64],
+        xi_s: f64,
+        xi_m: &mut f64,
+        grad: &mut [f64],
+        hess: &mut [f64],
+    ) -> f64 {
+        let n = self.n;
+        let (prog, has_hessian) = &self.programs.kernels[ty.index() - 1];
+        let out = prog.run(d, &[xi_s], *xi_m);
+        if self.programs.affine {
+            *xi_m = *out
+                .last()
+                .expect("the closed-form projection is the last output");
+        }
+        grad.copy_from_slice(&out[1..1 + n]);
+        if *has_hessian {
+            let mut at = 1 + n;
+            for j in 0..n {
+                for k in j..n {
+                    hess[j * n + k] = out[at];
+                    hess[k * n + j] = out[at];
+                    at += 1;
+                }
+            }
+        }
+        out[0]
+    }
+}

@@ -10,10 +10,13 @@
 //!   DAG over num-dual numbers, independently of the generator's
 //!   derivative pipeline: Type 6 against the exact Hessian, Types 1–5
 //!   against the truncated formula built from num-dual partial derivatives.
-//!   It runs in the kernels' own coordinates (relative to the first point,
-//!   an exact shift for configurations whose coordinates share a binade),
-//!   so a far-away configuration is not blurred by the reference's own
-//!   cancellation.
+//!   It runs on absolute coordinates, each configuration moved by an offset
+//!   of its own size ([`offset`]): the kernels take coordinates relative to
+//!   the first point, so a formulation that is not translation invariant
+//!   fails here. Only far-away configurations (coordinates more than
+//!   [`FAR`] times their size from the origin) are compared in the
+//!   kernels' relative coordinates, so that they are not blurred by the
+//!   reference's own cancellation.
 //!
 //! ## Tolerance
 //!
@@ -51,6 +54,23 @@ pub use reference::AdFormulation;
 /// The default tolerance on every scaled error (see the module
 /// documentation).
 pub const TOL: f64 = 1e-10;
+
+/// A configuration whose coordinates lie more than this times its size
+/// from the origin is far: the reference takes it relative to its first
+/// point.
+pub const FAR: f64 = 4.0;
+
+/// The configuration `q` (dimension `dim`) moved by `(0.625 L, -0.375 L,
+/// ...)`, `L` its size: the absolute coordinates the verifier feeds both
+/// sides (module documentation).
+pub fn offset(q: &[f64], dim: usize) -> Vec<f64> {
+    let d: Vec<f64> = q.iter().enumerate().map(|(i, v)| v - q[i % dim]).collect();
+    let l = size(&d);
+    q.iter()
+        .enumerate()
+        .map(|(i, v)| v + l * if i % dim == 0 { 0.625 } else { -0.375 })
+        .collect()
+}
 
 /// `|xi_m|` beyond which the verifier skips a configuration.
 pub const XI_M_SKIP: f64 = 5.0;
@@ -325,15 +345,20 @@ pub fn verify(
                 .enumerate()
                 .map(|(i, v)| v - c.q[i % dim])
                 .collect();
-        let Some(xi0) = reference.project(&d, &c.params, XI_M_SKIP) else {
+        let l = size(&d);
+        // Absolute coordinates, moved by an offset; far ones as they are,
+        // and the reference relative to their first point.
+        let far = size(&c.q) > FAR * l;
+        let q = if far { c.q.clone() } else { offset(&c.q, dim) };
+        let at = if far { &d } else { &q };
+        let Some(xi0) = reference.project(at, &c.params, XI_M_SKIP) else {
             skipped += 1;
             continue;
         };
         checked += 1;
-        let refs = reference.references(&d, &c.params, xi0)?;
-        let l = size(&d);
+        let refs = reference.references(at, &c.params, xi0)?;
         for (row, r) in rows.iter_mut().zip(&refs) {
-            match kernel(row.ty, &c.q, &c.params) {
+            match kernel(row.ty, &q, &c.params) {
                 Some(out) => {
                     let e = scaled_errors(&out, r, l);
                     row.gap.update(e.gap, &c.label);
@@ -509,6 +534,32 @@ mod tests {
         .unwrap();
         let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
         assert_eq!(failing, [3], "{report}");
+    }
+
+    /// Kernels that take coordinates relative to the first point (the
+    /// lowering's shortcut) of a formulation that is not translation
+    /// invariant fail: the verifier compares on absolute coordinates with
+    /// an offset. The same kernels of the invariant formulation pass.
+    #[test]
+    fn relative_kernels_of_a_translation_dependent_formulation_fail() {
+        let relative_kernels = |reference: &AdFormulation| {
+            let reference = reference.clone();
+            move |ty: usize, q: &[f64], p: &[f64]| {
+                let d: Vec<f64> = q.iter().enumerate().map(|(i, v)| v - q[i % 2]).collect();
+                let xi = reference.project(&d, p, XI_M_SKIP)?;
+                let r = reference.references(&d, p, xi).ok()?;
+                Some(out(&r[ty - 1]))
+            }
+        };
+        let bad = SLAVE_NORMAL.replace("let t_s = xs2 - xs1;", "let t_s = xs2 - xs1 + xs1;");
+        assert_ne!(bad, SLAVE_NORMAL);
+        for (text, passes) in [(SLAVE_NORMAL, true), (bad.as_str(), false)] {
+            let reference = AdFormulation::parse("f", text).unwrap();
+            let configs = configurations(&reference).unwrap();
+            let kernel = relative_kernels(&reference);
+            let report = verify(&reference, &kernel, &configs[..40], TOL).unwrap();
+            assert_eq!(report.passed(), passes, "{report}");
+        }
     }
 
     #[test]
