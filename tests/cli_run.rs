@@ -9,8 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const HEADER: &str =
-    "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length";
+const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
 
 fn scene() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/pressed-blocks.toml")
@@ -57,8 +56,10 @@ fn contact_csv_balances_the_load() {
     assert_eq!(rows.len(), 5, "{csv}");
     let mut integral = 0.0;
     for row in &rows {
-        assert_eq!(row.len(), 11, "{row:?}");
+        assert_eq!(row.len(), 13, "{row:?}");
         assert_eq!(row[0], "interface");
+        // block bodies: internal node numbers
+        assert_eq!((row[11], row[12]), ("internal", "internal"), "{row:?}");
         let num = |k: usize| row[k].parse::<f64>().unwrap();
         // closed: gap 0 up to Newton's tolerance (see the solver's
         // contact::nodal tests for the bound), pressure 1 = F / width

@@ -16,6 +16,11 @@
 //!   `contact_paired` is 0. A node that is a slave node of two pairs
 //!   carries the sum of its pressures (as `multiplier`) and the gap of the
 //!   pair where `|g|` is smallest (the first such pair on a tie);
+//!   `node_number` (the node's tag in the mesh file its body was read
+//!   from, the `[mesh] file` of a scene; the internal 0-based index for a
+//!   node of a block body, which is the VTK point index) and
+//!   `node_number_from_mesh_file` (1 where `node_number` is a mesh file's
+//!   tag, 0 where it is the internal index); see [`crate::Mesh::node_number`];
 //! * cell data: `cauchy_stress` and `pk2_stress` (components
 //!   `[xx, yy, xy]`, averaged over the element's Gauss points) and `body`
 //!   (the body index).
@@ -29,6 +34,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::mesh::NodeNumbering;
 use crate::solution::{Solution, State};
 
 /// VTK cell type of a 4-node quadrilateral.
@@ -172,6 +178,23 @@ pub fn vtu_string(
         "contact_paired",
         1,
         gap.iter().map(|g| u8::from(g.is_some()).to_string()),
+    );
+    let numbers: Vec<(u64, NodeNumbering)> = (0..n).map(|k| mesh.node_number(k)).collect();
+    array(
+        &mut out,
+        "UInt64",
+        "node_number",
+        1,
+        numbers.iter().map(|(t, _)| t.to_string()),
+    );
+    array(
+        &mut out,
+        "UInt8",
+        "node_number_from_mesh_file",
+        1,
+        numbers
+            .iter()
+            .map(|(_, k)| u8::from(*k == NodeNumbering::MeshFile).to_string()),
     );
     out.push_str("      </PointData>\n");
     out.push_str("      <CellData Scalars=\"body\">\n");

@@ -6,17 +6,23 @@
 //! order, with the header
 //!
 //! ```text
-//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length
+//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering
 //! ```
 //!
 //! `pair` is the pair's name (quoted when it holds a comma, quote or line
-//! break), `node` the global node, `x`, `y` its current coordinates,
+//! break), `node` the slave node, `x`, `y` its current coordinates,
 //! `pressure` the contact pressure `p = -lambda` (positive in compression),
 //! `gap`, `xi_m`, `master_segment` (index within the pair's master face)
 //! and its two global nodes where the node projects into the master face
 //! (all five empty where it does not), `tributary_length` the reference
 //! length the node's pressure acts on (`sum pressure x tributary_length`
-//! over a pair is the pressure's integral over its slave face). The gap is
+//! over a pair is the pressure's integral over its slave face). Node
+//! numbers (`node`, `master_node_1`, `master_node_2`) are those of the
+//! node's body ([`solver::Mesh::node_number`]): the mesh file's node tag for
+//! a body read from the scene's `[mesh] file`, the internal 0-based index
+//! for a block body; `node_numbering` says which `node` is (`msh` or
+//! `internal`), `master_numbering` which the two master nodes are (empty
+//! with them; the master face is one body). The gap is
 //! that of the node itself projected onto the master face; with
 //! `slave-normal`, along the normal of the slave segment that starts at
 //! the node (the last node of an open face: the segment ending there); a
@@ -31,8 +37,7 @@ use solver::contact::nodal::{NodalContactError, nodal_contact};
 use solver::{Solution, State};
 
 /// The header line of `contact.csv` (without the line break).
-pub const HEADER: &str =
-    "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length";
+pub const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
 
 /// `field` quoted as RFC 4180 wants where it holds a separator.
 fn quoted(field: &str) -> String {
@@ -57,26 +62,34 @@ fn num(v: f64) -> String {
 /// its nodal contact table does not exist.
 pub fn contact_csv(solution: &Solution, state: &State) -> Result<String, NodalContactError> {
     let mut out = format!("{HEADER}\n");
+    let number = |n: usize| solution.mesh.node_number(n);
     for row in nodal_contact(solution, state)? {
         let name = quoted(&solution.contact_pairs[row.pair].name);
-        let projection = match row.projection {
-            Some(p) => format!(
-                "{},{},{},{},{},{}",
-                num(p.gap),
-                num(row.pressure),
-                num(p.xi_m),
-                p.master_segment,
-                p.master_nodes[0],
-                p.master_nodes[1]
-            ),
-            None => format!(",{},,,,", num(row.pressure)),
+        let (projection, master_numbering) = match row.projection {
+            Some(p) => {
+                let (m1, numbering) = number(p.master_nodes[0]);
+                (
+                    format!(
+                        "{},{},{},{},{},{}",
+                        num(p.gap),
+                        num(row.pressure),
+                        num(p.xi_m),
+                        p.master_segment,
+                        m1,
+                        number(p.master_nodes[1]).0
+                    ),
+                    numbering.as_str(),
+                )
+            }
+            None => (format!(",{},,,,", num(row.pressure)), ""),
         };
+        let (node, numbering) = number(row.node);
         out.push_str(&format!(
-            "{name},{},{},{},{projection},{}\n",
-            row.node,
+            "{name},{node},{},{},{projection},{},{},{master_numbering}\n",
             num(row.position[0]),
             num(row.position[1]),
-            num(row.tributary_length)
+            num(row.tributary_length),
+            numbering.as_str(),
         ));
     }
     Ok(out)
@@ -109,6 +122,69 @@ mod tests {
         }
         assert_eq!(num(-5.551115123125783e-17), "-5.551115123125783e-17");
         assert_eq!(num(0.25), "0.25");
+    }
+
+    /// A Gmsh scene's rows number the nodes by the mesh file's tags: each
+    /// row's `node` is the tag of the file node at that slave node's
+    /// reference position (`msh`), and so are the master nodes; a block
+    /// scene keeps the internal indices (`internal`).
+    #[test]
+    fn gmsh_nodes_are_numbered_by_their_file_tags() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes");
+        let scene = solver::Scene::from_file(format!("{dir}/hertz-coarse.toml")).unwrap();
+        let sol = solver::solve(&scene, &solver::SolveOptions::from_scene(&scene)).unwrap();
+        let msh = solver::mesh::gmsh::MshMesh::read(format!("{dir}/hertz-coarse.msh")).unwrap();
+        let text = contact_csv(&sol, &sol.final_state).unwrap();
+        let table = nodal_contact(&sol, &sol.final_state).unwrap();
+        let at_tag = |field: &str| msh.nodes()[msh.node_index(field.parse().unwrap()).unwrap()];
+        let mut differs = 0;
+        assert_eq!(text.lines().count(), table.len() + 1);
+        for (line, row) in text.lines().skip(1).zip(&table) {
+            let f: Vec<&str> = line.split(',').collect();
+            assert_eq!(f.len(), 13, "{line}");
+            assert_eq!(f[11], "msh", "{line}");
+            assert_eq!(at_tag(f[1]), sol.mesh.nodes_ref[row.node], "{line}");
+            differs += usize::from(f[1] != row.node.to_string());
+            if let Some(p) = row.projection {
+                assert_eq!(f[12], "msh", "{line}");
+                for (k, n) in p.master_nodes.iter().enumerate() {
+                    assert_eq!(at_tag(f[8 + k]), sol.mesh.nodes_ref[*n], "{line}");
+                }
+            }
+        }
+        // the internal numbers are not the tags (the test can fail)
+        assert!(differs > 0, "{text}");
+        // the `.vtu`'s node_number is the tag of every node
+        let vtu = solver::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+        let values = |name: &str| -> Vec<u64> {
+            let at = vtu.find(&format!("Name=\"{name}\"")).unwrap();
+            let body = &vtu[at..];
+            let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+            body.split_whitespace()
+                .map(|v| v.parse().unwrap())
+                .collect()
+        };
+        let numbers = values("node_number");
+        assert_eq!(numbers.len(), sol.mesh.node_count());
+        for (n, tag) in numbers.iter().enumerate() {
+            assert_eq!(at_tag(&tag.to_string()), sol.mesh.nodes_ref[n]);
+        }
+        assert!(values("node_number_from_mesh_file").iter().all(|&v| v == 1));
+        let scene = solver::Scene::from_file(format!("{dir}/pressed-blocks.toml")).unwrap();
+        let sol = solver::solve(&scene, &solver::SolveOptions::from_scene(&scene)).unwrap();
+        let text = contact_csv(&sol, &sol.final_state).unwrap();
+        let table = nodal_contact(&sol, &sol.final_state).unwrap();
+        for (line, row) in text.lines().skip(1).zip(&table) {
+            let f: Vec<&str> = line.split(',').collect();
+            assert_eq!(
+                (f[1], f[11], f[12]),
+                (row.node.to_string().as_str(), "internal", "internal")
+            );
+        }
+        // the `.vtu` carries the same numbers
+        let vtu = solver::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+        assert!(vtu.contains("Name=\"node_number\""), "{vtu}");
+        assert!(vtu.contains("Name=\"node_number_from_mesh_file\""), "{vtu}");
     }
 
     /// A solved state with a collapsed slave segment has no table: the

@@ -42,7 +42,11 @@ pub mod gmsh;
 pub use block::{Block, Side};
 
 /// One body of the mesh.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+///
+/// `Debug` leaves out `node_tags` when it is `None` (the print of a mesh
+/// of blocks, and the scene fingerprints taken from it, are what they were
+/// before the tags existed).
+#[derive(Clone, PartialEq, Serialize)]
 pub struct Body {
     /// The body's name (unique in the mesh).
     pub name: String,
@@ -54,6 +58,45 @@ pub struct Body {
     pub elements: Range<usize>,
     /// The block it was generated from, if any.
     pub block: Option<Block>,
+    /// The mesh file's node tag of each of its nodes (in body order), for
+    /// a body read from a mesh file; `None` for a generated body, whose
+    /// nodes have only their internal numbers (see [`Mesh::node_number`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub node_tags: Option<Vec<u64>>,
+}
+
+impl std::fmt::Debug for Body {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("Body");
+        d.field("name", &self.name)
+            .field("material", &self.material)
+            .field("nodes", &self.nodes)
+            .field("elements", &self.elements)
+            .field("block", &self.block);
+        if let Some(tags) = &self.node_tags {
+            d.field("node_tags", tags);
+        }
+        d.finish()
+    }
+}
+
+/// How a node is numbered in the output ([`Mesh::node_number`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NodeNumbering {
+    /// The node tag of the mesh file the node's body was read from.
+    MeshFile,
+    /// The internal 0-based index (a generated body, e.g. a block).
+    Internal,
+}
+
+impl NodeNumbering {
+    /// `msh` or `internal`, as `contact.csv` writes it.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            NodeNumbering::MeshFile => "msh",
+            NodeNumbering::Internal => "internal",
+        }
+    }
 }
 
 impl Body {
@@ -196,8 +239,26 @@ impl Mesh {
             nodes: node0..node0 + nodes_ref.len(),
             elements: elem0..elem0 + elements.len(),
             block,
+            node_tags: None,
         });
         Ok(body)
+    }
+
+    /// The number the output gives node `node`: its mesh file's tag when
+    /// its body was read from a file ([`Body::node_tags`]), else its
+    /// internal 0-based index; and which of the two it is.
+    pub fn node_number(&self, node: usize) -> (u64, NodeNumbering) {
+        let tag = self.bodies.iter().find_map(|b| {
+            let tags = b.node_tags.as_ref()?;
+            b.nodes
+                .contains(&node)
+                .then(|| tags.get(node - b.nodes.start).copied())
+                .flatten()
+        });
+        match tag {
+            Some(t) => (t, NodeNumbering::MeshFile),
+            None => (node as u64, NodeNumbering::Internal),
+        }
     }
 
     /// Number of nodes.

@@ -22,8 +22,11 @@
 //!   with each segment's two nodes in the file's direction; each segment's
 //!   nodes x then y (`t L / 2` each, `L` the reference length);
 //! * contact pairs in `[[contact]]` order, each face's segments as its
-//!   source orders them (counter-clockwise around the body).
+//!   source orders them (counter-clockwise around the body); each pair's
+//!   reference geometry checked (`initial_contact`: faces that face each
+//!   other, no initial penetration, unless the `[[contact]]` allows it).
 
+use super::initial_contact::check_initial_contact;
 use super::source::Sources;
 use super::{Scene, SceneError};
 use crate::amplitude::Amplitude;
@@ -229,7 +232,7 @@ impl Scene {
                 return Err(self.invalid(&f, "slave and master must be different bodies"));
             }
             self.check_contact(&f, c)?;
-            contacts.push(ContactPair {
+            let pair = ContactPair {
                 name: c.name.clone().unwrap_or_else(|| f.clone()),
                 slave,
                 master,
@@ -237,7 +240,15 @@ impl Scene {
                 mode: c.mode,
                 gauss_points: c.gauss_points,
                 integration: c.integration,
-            });
+            };
+            check_initial_contact(
+                &mesh,
+                &pair,
+                c.allow_not_facing,
+                c.allow_initial_penetration,
+            )
+            .map_err(|m| self.invalid(&f, m))?;
+            contacts.push(pair);
         }
         self.check_loading()?;
         self.check_newton()?;

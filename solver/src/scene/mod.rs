@@ -156,6 +156,7 @@ use std::path::Path;
 
 mod build;
 mod error;
+mod initial_contact;
 mod select;
 mod source;
 mod spec;
@@ -168,6 +169,7 @@ mod proptests;
 mod bad_input_tests;
 
 pub use error::SceneError;
+pub use initial_contact::{FACING_TOL, PENETRATION_FRACTION};
 pub use spec::{
     BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
     PrescribeSpec, RefineSpec, Scene, TractionSpec,

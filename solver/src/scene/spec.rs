@@ -380,6 +380,29 @@ pub struct ContactSpec {
     /// "Integration rule"). Not written when it is the default.
     #[serde(default, skip_serializing_if = "is_default_integration")]
     pub integration: Integration,
+    /// `allow_not_facing`: accept slave and master faces that do not face
+    /// each other (default `false`). Every slave node is projected onto
+    /// the master face in the reference configuration with the pair's
+    /// formulation; where it pairs, the outward normals of its slave
+    /// segment and of the master segment must be opposed (`n_s . n_m <=`
+    /// [`crate::scene::FACING_TOL`]: at most 90 degrees from opposed).
+    /// A slave face that looks away from its master (`side = "top"` on a
+    /// block resting on a base) is an error naming the pair and the node
+    /// with the worst angle, unless this key is `true`. Not written when
+    /// `false`.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub allow_not_facing: bool,
+    /// `allow_initial_penetration`: accept slave nodes that start inside
+    /// the master body (default `false`). Where a slave node pairs in the
+    /// reference configuration (as for `allow_not_facing`), its gap must be
+    /// at least `-`[`crate::scene::PENETRATION_FRACTION`] (1 %) times the
+    /// length of its slave segment; a deeper initial penetration is an
+    /// error naming the pair and the node with the largest penetration
+    /// relative to that length, unless this key is `true` (the solver then
+    /// pushes the faces apart in the first step). Not written when
+    /// `false`.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub allow_initial_penetration: bool,
 }
 
 fn is_default_integration(i: &Integration) -> bool {

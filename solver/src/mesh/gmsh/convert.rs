@@ -103,6 +103,15 @@ fn nodes(
         .flat_map(|b| &b.nodes)
         .fold(1.0_f64, |m, n| m.max(n.x.abs()).max(n.y.abs()));
     let tolerance = PLANAR_TOLERANCE * extent;
+    let found: usize = section.node_blocks.iter().map(|b| b.nodes.len()).sum();
+    if section.num_nodes != found as u64 {
+        return Err(MshErrorKind::WrongCount {
+            section: "$Nodes",
+            items: "nodes",
+            declared: section.num_nodes,
+            found: found as u64,
+        });
+    }
     let mut coordinates = Vec::new();
     let mut node_tags = Vec::new();
     let mut node_index = HashMap::new();
@@ -144,6 +153,20 @@ fn elements(
     let Some(section) = &msh.data.elements else {
         return Ok(Vec::new());
     };
+    let found: usize = section
+        .element_blocks
+        .iter()
+        .map(|b| b.elements.len())
+        .sum();
+    if section.num_elements != found as u64 {
+        return Err(MshErrorKind::WrongCount {
+            section: "$Elements",
+            items: "elements",
+            declared: section.num_elements,
+            found: found as u64,
+        });
+    }
+    let mut seen = std::collections::HashSet::new();
     let mut elements = Vec::new();
     for block in &section.element_blocks {
         let kind = match block.element_type {
@@ -174,6 +197,9 @@ fn elements(
             tag: block.entity_tag,
         };
         for element in &block.elements {
+            if !seen.insert(element.element_tag) {
+                return Err(MshErrorKind::DuplicateElement(element.element_tag));
+            }
             let mut nodes = [usize::MAX; 4];
             for (slot, &tag) in nodes.iter_mut().zip(&element.nodes) {
                 *slot = *node_index.get(&tag).ok_or(MshErrorKind::UnknownNode {

@@ -103,6 +103,24 @@ pub enum MshErrorKind {
     /// Two nodes share a tag.
     #[error("node tag {0} appears twice")]
     DuplicateNode(u64),
+    /// Two elements share a tag.
+    #[error("element tag {0} appears twice")]
+    DuplicateElement(u64),
+    /// A section's header declares another number of items than its
+    /// blocks hold.
+    #[error(
+        "the `{section}` section's header declares {declared} {items}, but its blocks hold {found}"
+    )]
+    WrongCount {
+        /// `$Nodes` or `$Elements`.
+        section: &'static str,
+        /// `nodes` or `elements`.
+        items: &'static str,
+        /// The header's number.
+        declared: u64,
+        /// The number the blocks hold.
+        found: u64,
+    },
     /// A node coordinate is NaN or infinite.
     #[error("node {node} has a non-finite coordinate ({x}, {y}, {z})")]
     NonFiniteNode {

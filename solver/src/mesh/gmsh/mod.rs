@@ -19,8 +19,11 @@
 //!
 //! Invariants of an [`MshMesh`]:
 //!
+//! * the `$Nodes` and `$Elements` headers' counts are the numbers of nodes
+//!   and elements their blocks hold;
 //! * nodes are numbered densely from 0 in file order; `node_tag(i)` is the
-//!   file's tag of node `i` and `node_index` inverts it;
+//!   file's tag of node `i` and `node_index` inverts it; no two nodes, and
+//!   no two elements, share a tag;
 //! * every node is finite and lies in the plane z = 0 (within
 //!   `1e-9 max(1, max |x|, |y|)`); only x and y are kept;
 //! * every element is one of [`MshElementType`], lies on an entity of its

@@ -371,6 +371,64 @@ fn duplicate_node_tags_are_rejected() {
 }
 
 #[test]
+fn duplicate_element_tags_are_rejected() {
+    // the line element 2 takes the quadrangle's tag 3
+    let e = kind(tiny(|s| s.replace("2 1 2\n", "3 1 2\n")));
+    assert!(matches!(e, MshErrorKind::DuplicateElement(3)), "{e}");
+    assert_eq!(e.to_string(), "element tag 3 appears twice");
+}
+
+#[test]
+fn a_wrong_node_count_is_rejected() {
+    // the `$Nodes` header declares 5 nodes; the block holds 4
+    let e = kind(tiny(|s| {
+        s.replace("$Nodes\n1 4 1 4\n", "$Nodes\n1 5 1 4\n")
+    }));
+    assert!(
+        matches!(
+            e,
+            MshErrorKind::WrongCount {
+                section: "$Nodes",
+                declared: 5,
+                found: 4,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert_eq!(
+        e.to_string(),
+        "the `$Nodes` section's header declares 5 nodes, but its blocks hold 4"
+    );
+    let e = kind(tiny(|s| {
+        s.replace("$Nodes\n1 4 1 4\n", "$Nodes\n1 3 1 4\n")
+    }));
+    assert!(
+        matches!(e, MshErrorKind::WrongCount { declared: 3, .. }),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_wrong_element_count_is_rejected() {
+    let e = kind(tiny(|s| {
+        s.replace("$Elements\n3 3 1 3\n", "$Elements\n3 4 1 3\n")
+    }));
+    assert!(
+        matches!(
+            e,
+            MshErrorKind::WrongCount {
+                section: "$Elements",
+                declared: 4,
+                found: 3,
+                ..
+            }
+        ),
+        "{e}"
+    );
+}
+
+#[test]
 fn dense_tags_out_of_order_are_kept() {
     // mshio drops dense tags; the reader reads them itself.
     let mesh = tiny(|s| s.replace("1\n2\n3\n4\n", "4\n3\n2\n1\n")).unwrap();

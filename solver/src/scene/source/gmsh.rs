@@ -207,6 +207,7 @@ impl MeshSource for Gmsh<'_> {
             self.node_of[n] = Some(NodeId::new(node0 + k));
             self.body_of[n] = Some(body);
         }
+        mesh.bodies[body].node_tags = Some(nodes.iter().map(|&n| Self::tag(msh, n)).collect());
         for e in &elements {
             let n = e.nodes();
             for k in 0..n.len() {
