@@ -173,3 +173,33 @@ fn relative_prefix(base: &std::path::Path, out: &std::path::Path) -> String {
         Err(_) => format!("{}/", o.display()),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every file of the committed study output is one of the study's
+    /// own (so a new study into that directory replaces each), and files
+    /// of other names are not.
+    #[test]
+    fn the_committed_study_files_are_the_study_result_set() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/study");
+        let names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(names.len() > 10, "{names:?}");
+        for name in &names {
+            assert!(is_result_file(name), "{name}");
+        }
+        for name in [
+            "README.md",
+            "notes.txt",
+            "study.txt",
+            "deformed.pdf",
+            "plot.png",
+        ] {
+            assert!(!is_result_file(name), "{name}");
+        }
+    }
+}
