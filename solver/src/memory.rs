@@ -76,18 +76,22 @@ fn mem_available(meminfo: &str) -> Option<u64> {
 }
 
 /// The equations of a scene's block bodies: twice their nodes
-/// (`(nx rx + 1)(ny ry + 1)` per block, `[refine]` factors included;
-/// saturating). Bodies that are not complete blocks count nothing here.
+/// (`(nx rx + 1)(ny ry + 1)` per block, `[refine]` factors included).
+/// Bodies that are not complete blocks count nothing here, nor do blocks
+/// above the block limit ([`crate::scene::MAX_BLOCK_ELEMENTS`] elements):
+/// building the model refuses those with an error naming the body.
 pub fn scene_equations(scene: &Scene) -> u64 {
     let (rx, ry) = (scene.refine.x as u64, scene.refine.y as u64);
+    let limit = crate::scene::MAX_BLOCK_ELEMENTS as u64;
     scene
         .bodies
         .iter()
-        .filter_map(|b| Some((b.nx? as u64, b.ny? as u64)))
-        .map(|(nx, ny)| {
-            let x = nx.saturating_mul(rx).saturating_add(1);
-            let y = ny.saturating_mul(ry).saturating_add(1);
-            x.saturating_mul(y).saturating_mul(2)
+        .filter_map(|b| {
+            let nx = (b.nx? as u64).checked_mul(rx)?;
+            let ny = (b.ny? as u64).checked_mul(ry)?;
+            nx.checked_mul(ny).filter(|&n| n <= limit)?;
+            // nx ny <= limit, so (nx + 1)(ny + 1) <= 2 limit + 2: no overflow
+            Some(2 * (nx + 1) * (ny + 1))
         })
         .fold(0, u64::saturating_add)
 }

@@ -152,6 +152,8 @@ mod error;
 mod select;
 mod source;
 mod spec;
+
+pub(crate) use source::MAX_BLOCK_ELEMENTS;
 mod validate;
 
 #[cfg(test)]
