@@ -232,3 +232,50 @@ fn the_study_with_the_ldlt_gives_the_lu_energies() {
     let md = report::markdown(&ldlt, "", "gapsim study --linear ldlt");
     assert!(md.contains("linear solver: ldlt"), "{md}");
 }
+
+/// A study of one step count has no convergence trend to estimate: it
+/// says so, and calls nothing failed (every solve converged).
+#[test]
+fn a_study_with_one_step_count_reports_no_failure() {
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/pressed-blocks.toml");
+    let dir = std::env::temp_dir().join(format!("gapsim-study-one-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .arg("study")
+        .arg(&scene)
+        .args([
+            "--repeats",
+            "1",
+            "--steps",
+            "2",
+            "--only-scene-formulation",
+            "--no-heavy",
+            "--out",
+        ])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let results = std::fs::read_to_string(dir.join("results.md")).unwrap();
+    let study = std::fs::read_to_string(dir.join("study.csv")).unwrap();
+    // every solve converged: the failure column is empty
+    assert_eq!(study.lines().count(), 1 + 7);
+    assert!(study.lines().skip(1).all(|l| l.ends_with(',')), "{study}");
+    for text in [&stdout, &results] {
+        assert!(!text.contains("failed"), "{text}");
+        for ty in 1..=6 {
+            assert!(
+                text.contains(&format!(
+                    "Type {ty}: one step count: no convergence estimate"
+                )),
+                "{text}"
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

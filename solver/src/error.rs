@@ -7,6 +7,7 @@
 
 use contact_kernels::KernelError;
 
+use crate::memory::MemoryError;
 use crate::model::ModelError;
 use crate::scene::SceneError;
 use crate::solution::{ContactPointId, CutbackReason};
@@ -64,5 +65,16 @@ pub enum SolverError {
         load_factor: f64,
         /// The kernel's error.
         error: KernelError,
+    },
+    /// The model and its first factorisation would need more memory than
+    /// is available ([`crate::memory`]: the estimate is a lower bound).
+    #[error(transparent)]
+    Memory(#[from] MemoryError),
+    /// The [`crate::monitor::Monitor`] asked the solve to stop (Ctrl-C in
+    /// `gapsim run`); there is no solution.
+    #[error("interrupted at load factor {load_factor} (the last converged state)")]
+    Interrupted {
+        /// The last converged load factor.
+        load_factor: f64,
     },
 }

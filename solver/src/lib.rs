@@ -46,8 +46,10 @@ pub mod ids;
 mod kinematics;
 pub mod linear;
 pub mod material;
+pub mod memory;
 pub mod mesh;
 pub mod model;
+pub mod monitor;
 pub mod newton;
 pub mod options;
 pub mod out;
@@ -85,11 +87,32 @@ pub mod scenes {
 
 /// Solves a scene.
 pub fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution, SolverError> {
-    let model = scene.build_model()?;
-    solve_model(&model, options)
+    solve_monitored(scene, options, &monitor::Silent)
 }
 
 /// Solves a model (e.g. one built by hand from a [`Mesh`]).
 pub fn solve_model(model: &Model, options: &SolveOptions) -> Result<Solution, SolverError> {
-    newton::Run::new(model, options)?.execute()
+    solve_model_monitored(model, options, &monitor::Silent)
+}
+
+/// [`solve`], reporting to `monitor` and stopping when it asks
+/// ([`monitor`]). A model and first factorisation that cannot fit in the
+/// available memory are refused before they are allocated ([`memory`]).
+pub fn solve_monitored(
+    scene: &Scene,
+    options: &SolveOptions,
+    monitor: &dyn monitor::Monitor,
+) -> Result<Solution, SolverError> {
+    let model = scene.build_model()?;
+    solve_model_monitored(&model, options, monitor)
+}
+
+/// [`solve_model`] with a [`monitor::Monitor`] (see [`solve_monitored`]).
+pub fn solve_model_monitored(
+    model: &Model,
+    options: &SolveOptions,
+    monitor: &dyn monitor::Monitor,
+) -> Result<Solution, SolverError> {
+    memory::check_model(model, options.linear)?;
+    newton::Run::new(model, options, monitor)?.execute()
 }

@@ -12,7 +12,9 @@ use clap::{Parser, Subcommand};
 
 pub mod contact_csv;
 pub mod generate;
+pub mod interrupt;
 pub mod kernel;
+pub mod out_dir;
 pub mod run;
 pub mod safety_map;
 pub mod study;

@@ -13,8 +13,15 @@
 //! `[[fix]]` and `[[prescribe]]` group at every converged step goes to
 //! `reactions.csv`. Types 1–6 also report the step-end checks: step repeats
 //! for re-pairing, accuracy halvings and the largest Taylor remainder (with
-//! `--every-step`, every step's). Every file is written atomically (`solver::out`): a
-//! temporary file in `DIR`, then a rename.
+//! `--every-step`, every step's). `DIR` is checked before the solve, and
+//! holds either the whole new result set or the old one, never a mix
+//! ([`super::out_dir`]); files of other names in it are left alone.
+//!
+//! Every converged load step prints a progress line on stderr (`step 2/4:
+//! load factor 0.5, 6 iterations, 0 cut-backs, 1.2 s`), every cut-back
+//! one more. Ctrl-C (or SIGTERM) stops the solve before its next Newton
+//! iteration: the command then exits with an error, writes nothing and
+//! leaves `DIR` as it was.
 
 use std::path::PathBuf;
 
@@ -23,8 +30,54 @@ use contact_kernels::Formulation;
 use solver::ids::NodeId;
 use solver::{LinearSolverKind, Method, Scene, SolveOptions};
 
+use solver::monitor::{Monitor, StepProgress};
+use solver::{Cutback, SolverError};
+
 use super::CommandResult;
 use super::contact_csv::contact_csv;
+use super::interrupt::Interrupt;
+use super::out_dir::OutDir;
+
+/// Whether `name` is a file of `gapsim run`'s result set: `final.vtu`,
+/// `contact.csv`, `reactions.csv`, `step-NNNN.vtu`.
+pub fn is_result_file(name: &str) -> bool {
+    matches!(name, "final.vtu" | "contact.csv" | "reactions.csv")
+        || name
+            .strip_prefix("step-")
+            .and_then(|n| n.strip_suffix(".vtu"))
+            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// The solve's progress lines on stderr, and Ctrl-C.
+struct Progress<'a> {
+    interrupt: &'a Interrupt,
+    steps: usize,
+}
+
+impl Monitor for Progress<'_> {
+    fn step_done(&self, p: &StepProgress) {
+        eprintln!(
+            "step {}/{}: load factor {}, {} iterations, {} cut-backs, {:.1} s",
+            p.step,
+            p.steps,
+            p.load_factor,
+            p.iterations,
+            p.cutbacks,
+            p.elapsed.as_secs_f64()
+        );
+    }
+
+    fn cut_back(&self, c: &Cutback) {
+        eprintln!(
+            "step {}/{}: cut back, {} -> {} failed: {}",
+            c.step, self.steps, c.from_load_factor, c.attempted_load_factor, c.reason
+        );
+    }
+
+    fn stop_requested(&self) -> bool {
+        self.interrupt.requested()
+    }
+}
 
 /// Arguments of `gapsim run`.
 #[derive(Debug, Clone, Args)]
@@ -85,7 +138,29 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     options.formulation = args.formulation;
     options.record_steps = args.every_step;
-    let sol = solver::solve(&scene, &options)?;
+    let out = match &args.out {
+        Some(dir) => Some(OutDir::check(dir, is_result_file)?),
+        None => None,
+    };
+    let interrupt = Interrupt::install().map_err(|e| format!("cannot catch Ctrl-C: {e}"))?;
+    let progress = Progress {
+        interrupt: &interrupt,
+        steps: options.steps,
+    };
+    let sol = match solver::solve_monitored(&scene, &options, &progress) {
+        Err(SolverError::Interrupted { load_factor }) => {
+            let kept = match &args.out {
+                Some(dir) => format!(", {} left as it was", dir.display()),
+                None => String::new(),
+            };
+            return Err(format!(
+                "interrupted at load factor {load_factor} (the last converged state): \
+                 no solution, nothing written{kept}"
+            )
+            .into());
+        }
+        result => result?,
+    };
 
     let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
     let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
@@ -137,7 +212,18 @@ pub fn run(args: &RunArgs) -> CommandResult {
     if let Method::Approx(_) = sol.method {
         taylor_summary(&sol, args.every_step);
     }
-    println!("max |gap|       {:.3e}", sol.max_abs_gap());
+    match active_penetration(&sol) {
+        Some(a) => println!(
+            "max penetration {:.3e} (largest -gap over the {} integration points in contact: \
+             paired, on a slave segment with pressure; {} open or unpaired points left out)",
+            a.penetration, a.active, a.others
+        ),
+        None if !sol.contact_points.is_empty() => println!(
+            "max penetration none (no integration point in contact: \
+             no slave segment carries pressure)"
+        ),
+        None => {}
+    }
     if let Some((lo, hi)) = sol.xi_m_range() {
         println!("xi_m range      [{lo:.6}, {hi:.6}]");
     }
@@ -220,43 +306,93 @@ pub fn run(args: &RunArgs) -> CommandResult {
         );
     }
 
-    if let Some(dir) = &args.out {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        let mut written = Vec::new();
+    if let Some(out) = &out {
+        let dir = out.path();
+        let staging = out.stage()?;
+        let at = |name: &str| (staging.path().join(name), dir.join(name));
+        let mut vtu_files = 0;
         if args.every_step {
             for (i, state) in sol.snapshots.iter().enumerate() {
-                let path = dir.join(format!("step-{i:04}.vtu"));
+                let (path, shown) = at(&format!("step-{i:04}.vtu"));
                 solver::vtk::write_vtu_state(&path, &sol, state)
-                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-                written.push(path);
+                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+                vtu_files += 1;
             }
         }
-        let path = dir.join("final.vtu");
+        let (path, shown) = at("final.vtu");
         solver::vtk::write_vtu(&path, &sol)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        written.push(path);
-        println!(
-            "wrote           {} .vtu file(s) to {}",
-            written.len(),
+            .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+        vtu_files += 1;
+        let mut wrote = vec![format!(
+            "wrote           {vtu_files} .vtu file(s) to {}",
             dir.display()
-        );
+        )];
         if !sol.support_groups.is_empty() {
-            let path = dir.join("reactions.csv");
+            let (path, shown) = at("reactions.csv");
             solver::out::write_atomic(&path, sol.reactions_csv())
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            println!("wrote           {}", path.display());
+                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+            wrote.push(format!("wrote           {}", shown.display()));
         }
         if !sol.contact_pairs.is_empty() {
-            let path = dir.join("contact.csv");
+            let (path, shown) = at("contact.csv");
             let text = contact_csv(&sol, &sol.final_state)
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
             solver::out::write_atomic(&path, text)
-                .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-            println!("wrote           {}", path.display());
+                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+            wrote.push(format!("wrote           {}", shown.display()));
+        }
+        staging.commit(Some(&interrupt))?;
+        for line in wrote {
+            println!("{line}");
         }
     }
     Ok(())
+}
+
+/// The worst penetration of the contact set at the end of a solve.
+struct ActivePenetration {
+    /// `max(0, max -gap)` over the active points.
+    penetration: f64,
+    /// The active points: paired, of a persistent pair or on a slave
+    /// segment with a non-zero multiplier at either node.
+    active: usize,
+    /// The other integration points (open or unpaired).
+    others: usize,
+}
+
+/// The largest penetration `-gap` (0 when none penetrates) over the
+/// integration points in contact at the final state: paired points of a
+/// persistent pair, and paired points of a unilateral pair whose slave
+/// segment has a node with a non-zero multiplier (pressure); `None` when
+/// no point is in contact. Open points (positive gaps far from the
+/// contact zone) do not count: their gaps say nothing of the constraint.
+fn active_penetration(sol: &solver::Solution) -> Option<ActivePenetration> {
+    use std::collections::HashMap;
+    let multiplier: HashMap<(usize, usize), f64> = sol
+        .multiplier_dofs
+        .iter()
+        .zip(&sol.final_state.multipliers)
+        .map(|(d, &l)| ((d.pair, d.node), l))
+        .collect();
+    let mut active = 0;
+    let mut penetration = 0.0_f64;
+    for p in &sol.contact_points {
+        let Some(gap) = p.gap else { continue };
+        let persistent = sol.contact_pairs[p.pair].mode == solver::ContactMode::Persistent;
+        let pressed = p
+            .slave_nodes
+            .iter()
+            .any(|&n| multiplier.get(&(p.pair, n)).is_some_and(|&l| l != 0.0));
+        if persistent || pressed {
+            active += 1;
+            penetration = penetration.max(-gap);
+        }
+    }
+    (active > 0).then_some(ActivePenetration {
+        penetration,
+        active,
+        others: sol.contact_points.len() - active,
+    })
 }
 
 /// Types 1–6: the step-end checks (see `solver::newton`, "Re-pairing at

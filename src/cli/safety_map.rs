@@ -21,6 +21,16 @@ use gapsim::study::{
 use solver::Scene;
 
 use super::CommandResult;
+use super::interrupt::Interrupt;
+use super::out_dir::OutDir;
+
+/// Whether `name` is a file of the safety map's result set.
+pub fn is_result_file(name: &str) -> bool {
+    matches!(
+        name,
+        "safety-map.csv" | "safety-map-runs.csv" | "safety-map.md"
+    )
+}
 
 /// The benchmark scenes of the default map (files under `scenes/`), each at
 /// its own `loading.steps`. The fine Hertz meshes are left out
@@ -129,8 +139,7 @@ pub fn run(args: &SafetyMapArgs) -> CommandResult {
         energy_tolerance_percent: args.energy_tolerance,
         reaction_tolerance_percent: args.reaction_tolerance,
     };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let out = OutDir::check(&args.out, is_result_file)?;
 
     let bar = indicatif::ProgressBar::new(0);
     bar.set_style(
@@ -145,15 +154,19 @@ pub fn run(args: &SafetyMapArgs) -> CommandResult {
         "gapsim {}",
         std::env::args().skip(1).collect::<Vec<_>>().join(" ")
     );
+    // From here on Ctrl-C lets the result set be written or not at all
+    // (before, it ends the process with nothing written).
+    let interrupt = Interrupt::install().map_err(|e| format!("cannot catch Ctrl-C: {e}"))?;
+    let staging = out.stage()?;
     for (name, text) in [
         ("safety-map.csv", safety_map::csv(&map)),
         ("safety-map-runs.csv", safety_map::runs_csv(&map)),
         ("safety-map.md", safety_map::markdown(&map, &command)),
     ] {
-        let path = args.out.join(name);
-        solver::out::write_atomic(&path, text)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        solver::out::write_atomic(staging.path().join(name), text)
+            .map_err(|e| format!("cannot write {}: {e}", args.out.join(name).display()))?;
     }
+    staging.commit(Some(&interrupt))?;
     print!("{}", safety_map::reading(&map));
     println!(
         "\nwrote safety-map.csv, safety-map-runs.csv and safety-map.md to {}",

@@ -14,7 +14,21 @@ use clap::Args;
 use gapsim::study::{self, StudyOptions, errors, plots, report};
 
 use super::CommandResult;
+use super::interrupt::Interrupt;
+use super::out_dir::OutDir;
 use super::run::load_scene;
+
+/// Whether `name` is a file of the study's result set: `study.csv`,
+/// `study-*.csv`, `results.md` and the plots (`deformed.*`,
+/// `error-vs-*.*`, PNG and SVG).
+pub fn is_result_file(name: &str) -> bool {
+    let csv = name == "study.csv" || (name.starts_with("study-") && name.ends_with(".csv"));
+    let plot = name
+        .strip_suffix(".png")
+        .or_else(|| name.strip_suffix(".svg"))
+        .is_some_and(|stem| stem == "deformed" || stem.starts_with("error-vs-"));
+    csv || plot || name == "results.md"
+}
 
 /// Arguments of `gapsim study`.
 #[derive(Debug, Clone, Args)]
@@ -74,8 +88,7 @@ pub fn run(args: &StudyArgs) -> CommandResult {
         },
         ..StudyOptions::default()
     };
-    std::fs::create_dir_all(&args.out)
-        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let out = OutDir::check(&args.out, is_result_file)?;
 
     let bar = indicatif::ProgressBar::new(0);
     bar.set_style(
@@ -86,10 +99,13 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     let results = study::run_study(&scene, &options, &bar)?;
     bar.finish_and_clear();
 
+    // From here on Ctrl-C lets the result set be written or not at all
+    // (before, it ends the process with nothing written).
+    let interrupt = Interrupt::install().map_err(|e| format!("cannot catch Ctrl-C: {e}"))?;
+    let staging = out.stage()?;
     let write = |name: &str, text: &str| -> CommandResult {
-        let path = args.out.join(name);
-        solver::out::write_atomic(&path, text)
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        solver::out::write_atomic(staging.path().join(name), text)
+            .map_err(|e| format!("cannot write {}: {e}", args.out.join(name).display()))?;
         Ok(())
     };
     for (i, s) in results.formulations.iter().enumerate() {
@@ -106,11 +122,12 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     // Energy and reaction errors and the cost against complete, every
     // formulation (a companion of study.csv, whose columns stay as they are).
     write("study-errors.csv", &errors::csv(&results.formulations))?;
-    plots::write_all(&results, &args.out)?;
+    plots::write_all(&results, staging.path())?;
 
     let command = std::env::args().skip(1).collect::<Vec<_>>().join(" ");
     let command = format!("gapsim {command}");
     write("results.md", &report::markdown(&results, "", &command))?;
+    staging.commit(Some(&interrupt))?;
     print!("{}", report::terminal_summary(&results));
     print!("{}", errors::reaction_summary(&results.formulations[0]));
     if let Some(why) = &results.heavy_failure {
@@ -154,5 +171,35 @@ fn relative_prefix(base: &std::path::Path, out: &std::path::Path) -> String {
         Ok(rel) if rel.as_os_str().is_empty() => String::new(),
         Ok(rel) => format!("{}/", rel.display()),
         Err(_) => format!("{}/", o.display()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every file of the committed study output is one of the study's
+    /// own (so a new study into that directory replaces each), and files
+    /// of other names are not.
+    #[test]
+    fn the_committed_study_files_are_the_study_result_set() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/docs/study");
+        let names: Vec<String> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(names.len() > 10, "{names:?}");
+        for name in &names {
+            assert!(is_result_file(name), "{name}");
+        }
+        for name in [
+            "README.md",
+            "notes.txt",
+            "study.txt",
+            "deformed.pdf",
+            "plot.png",
+        ] {
+            assert!(!is_result_file(name), "{name}");
+        }
     }
 }

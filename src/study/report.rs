@@ -96,6 +96,8 @@ pub enum Verdict {
     },
     /// Some solves failed.
     Failed,
+    /// The study has one step count: no trend to estimate.
+    OneStepCount,
 }
 
 /// The convergence estimate of one type.
@@ -176,7 +178,13 @@ pub fn convergence(study: &FormulationStudy, ty: ApproxType) -> Convergence {
         limit,
         sign_changes,
     };
-    if errors.len() < runs.len() || errors.len() < 2 {
+    if errors.len() < runs.len() {
+        return mk(Verdict::Failed, f64::NAN);
+    }
+    if runs.len() == 1 {
+        return mk(Verdict::OneStepCount, f64::NAN);
+    }
+    if errors.len() < 2 {
         return mk(Verdict::Failed, f64::NAN);
     }
     let mut sorted = errors.clone();
@@ -256,6 +264,7 @@ impl std::fmt::Display for Convergence {
                 )
             }
             Verdict::Failed => write!(f, "some solves failed"),
+            Verdict::OneStepCount => write!(f, "one step count: no convergence estimate"),
         }?;
         if self.sign_changes && !matches!(self.verdict, Verdict::PreAsymptotic) {
             write!(f, " (the sign changes at coarse step counts)")?;
@@ -278,6 +287,7 @@ fn short_order(c: &Convergence) -> String {
         Verdict::DoesNotVanish { limit } => format!("→ {limit:+.1e}"),
         Verdict::PreAsymptotic | Verdict::NotAsymptotic { .. } => "pre-asymptotic".into(),
         Verdict::Failed => "failed".into(),
+        Verdict::OneStepCount => "–".into(),
     }
 }
 

@@ -176,6 +176,7 @@ impl Run<'_> {
         let mut phase_start = 0;
         let mut it = 0;
         loop {
+            self.check_stop()?;
             // contact
             let t = Instant::now();
             // complete formulation: re-pair at once in the first iterates,

@@ -161,6 +161,7 @@ use crate::contact::{KernelCounts, NodeTie, Taylor};
 use crate::error::SolverError;
 use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
+use crate::monitor::{Monitor, StepProgress};
 use crate::options::SolveOptions;
 use crate::solution::{
     AccuracyHalving, ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord,
@@ -198,6 +199,9 @@ pub const MAX_REPAIR_REPEATS: usize = 4;
 /// The solve in progress.
 pub(crate) struct Run<'a> {
     opts: &'a SolveOptions,
+    /// Told of every finished step and cut-back; asked before every
+    /// attempt and iteration whether to stop.
+    monitor: &'a dyn Monitor,
     setup: Setup<'a>,
     timings: Timings,
     counts: KernelCounts,
@@ -224,7 +228,11 @@ pub(crate) struct Run<'a> {
 }
 
 impl<'a> Run<'a> {
-    pub(crate) fn new(model: &'a Model, opts: &'a SolveOptions) -> Result<Run<'a>, SolverError> {
+    pub(crate) fn new(
+        model: &'a Model,
+        opts: &'a SolveOptions,
+        monitor: &'a dyn Monitor,
+    ) -> Result<Run<'a>, SolverError> {
         if opts.steps == 0 {
             return Err(SolverError::Options("steps must be at least 1".into()));
         }
@@ -254,6 +262,7 @@ impl<'a> Run<'a> {
         let n_points = setup.layout.points.len();
         Ok(Run {
             opts,
+            monitor,
             timings: Timings::default(),
             counts: KernelCounts::default(),
             u: vec![0.0; 2 * model.mesh.node_count()],
@@ -303,7 +312,9 @@ impl<'a> Run<'a> {
         let steps = self.opts.steps;
         for step in 1..=steps {
             let mut schedule = ScheduledStep::new(step, steps, end, self.load_factor);
+            let (iterations_before, cutbacks_before) = (self.iterations, self.cutbacks.len());
             while let Some(to) = schedule.next_target(self.load_factor) {
+                self.check_stop()?;
                 match self.attempt(to)? {
                     AttemptOutcome::Converged(c) => self.commit(step, to, c),
                     AttemptOutcome::TooCoarse(c) => {
@@ -327,13 +338,15 @@ impl<'a> Run<'a> {
                     }
                     AttemptOutcome::CutBack(failed) => {
                         self.failed_iterations += failed.iterations;
-                        self.cutbacks.push(Cutback {
+                        let cutback = Cutback {
                             step,
                             from_load_factor: self.load_factor,
                             attempted_load_factor: to,
                             reason: failed.reason.clone(),
                             residuals: failed.residuals,
-                        });
+                        };
+                        self.monitor.cut_back(&cutback);
+                        self.cutbacks.push(cutback);
                         if let Err(cutbacks) = schedule.cut_back(self.opts.max_cutbacks) {
                             return Err(give_up(
                                 step,
@@ -346,8 +359,26 @@ impl<'a> Run<'a> {
                     }
                 }
             }
+            self.monitor.step_done(&StepProgress {
+                step,
+                steps,
+                load_factor: self.load_factor,
+                iterations: self.iterations - iterations_before,
+                cutbacks: self.cutbacks.len() - cutbacks_before,
+                elapsed: start.elapsed(),
+            });
         }
         self.finish(start)
+    }
+
+    /// `Err(Interrupted)` once the monitor asks the solve to stop.
+    fn check_stop(&self) -> Result<(), SolverError> {
+        if self.monitor.stop_requested() {
+            return Err(SolverError::Interrupted {
+                load_factor: self.load_factor,
+            });
+        }
+        Ok(())
     }
 
     /// Makes a converged attempt towards `to` the converged state.

@@ -160,6 +160,8 @@ mod initial_contact;
 mod select;
 mod source;
 mod spec;
+
+pub(crate) use source::MAX_BLOCK_ELEMENTS;
 mod validate;
 
 #[cfg(test)]

@@ -34,6 +34,7 @@ mod blocks;
 mod gmsh;
 
 pub(super) use blocks::Blocks;
+pub(crate) use blocks::MAX_BLOCK_ELEMENTS;
 pub(super) use gmsh::Gmsh;
 
 /// A physical curve on the boundary of one body: the mesh body's index and
