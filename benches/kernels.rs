@@ -82,6 +82,17 @@ fn gap<D: DualNum<Primitive = f64> + Copy>(f: Formulation, q: &[D; 8], xi_s: f64
             let len = dot(t_m, t_m).sqrt();
             (t_m, [-t_m[1] / len, t_m[0] / len])
         }
+        // The segment benches run `pair_formulations()` (8 coordinates).
+        Formulation::Tri3SlaveNormal
+        | Formulation::Tri3ClosestPoint
+        | Formulation::Quad4SlaveNormal
+        | Formulation::Quad4ClosestPoint
+        | Formulation::Tri3Quad4SlaveNormal
+        | Formulation::Tri3Quad4ClosestPoint
+        | Formulation::Quad4Tri3SlaveNormal
+        | Formulation::Quad4Tri3ClosestPoint => {
+            unreachable!("faces are not segment pairs")
+        }
     };
     let xi = -(dot(sub(c_m, x_s), t) * 2.0) / dot(t_m, t);
     dot(n, sub(lerp(xm1, xm2, xi), x_s))

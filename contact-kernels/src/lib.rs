@@ -38,7 +38,13 @@
 //!   `[f64; 8]` and return values ([`GapDerivatives`] with nalgebra
 //!   vectors), built on the handles with bit-identical results.
 //!
-//! Modules: `validate` (the one validation point), `projection` (the
+//! Parametric coordinates: the handles take `xi_s` as any [`XiArg`] of
+//! [`Kernel::param_dim`] values (`0.3` for a segment, `[0.2, -0.1]` for a
+//! face) and report `xi_m` as a slice of as many ([`GapOut::xi_m_all`]);
+//! see [`param`].
+//!
+//! Modules: `validate` (the one validation point), `param` (parametric
+//! coordinates, [`XiArg`]), `projection` (the
 //! projection solve and [`Projector`]), `kernel` ([`Kernel`], [`GapOut`]),
 //! `error` ([`KernelError`]), `types` (formulations, types, op counts),
 //! `generated` (the build script's output), `lanes` (the SIMD value type)
@@ -59,12 +65,14 @@
 #![warn(missing_docs)]
 
 mod error;
+mod faces;
 #[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
 mod generated;
 #[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
 mod generated_lanes;
 mod kernel;
 mod lanes;
+pub mod param;
 mod projection;
 mod types;
 mod validate;
@@ -72,6 +80,7 @@ mod validate;
 pub use error::{KernelError, OutputKind, Segment};
 pub use generated_lanes::LaneIsa;
 pub use kernel::{GapBatch, GapOut, Kernel};
+pub use param::{MAX_PARAM_DIM, XiArg};
 pub use projection::{Projector, XI_M_LIMIT};
 pub use types::{ApproxType, EntityOrder, Formulation, OpCount, ParseNameError};
 pub use validate::DEGENERATE_LENGTH;
@@ -88,8 +97,18 @@ pub struct Projection {
     /// The gap `g = n . x_ms` (negative when penetrating).
     pub gap: f64,
     /// The master parametric coordinate of the projection (inside the
-    /// segment when in `[-1, 1]`).
+    /// segment when in `[-1, 1]`); for a face its first component `u`
+    /// (all of it: [`Projection::xi_m_all`]).
     pub xi_m: f64,
+    xi: param::Xi,
+}
+
+impl Projection {
+    /// The master parametric coordinates of the projection (one for a
+    /// segment, `[u, v]` for a face).
+    pub fn xi_m_all(&self) -> &[f64] {
+        self.xi.as_slice()
+    }
 }
 
 /// The gap and its derivatives with respect to `q` as one approximation
@@ -152,10 +171,16 @@ pub fn evaluate(
 /// projection kernel's (one residual evaluation plus the gap) when `ty` is
 /// `None`. `None` when the formulation was not compiled in.
 pub fn op_count(formulation: Formulation, ty: Option<ApproxType>) -> Option<OpCount> {
-    let set = generated::kernel_set(formulation)?;
+    let (ops, projection_ops) = match generated::face_kernel_set(formulation) {
+        Some(f) => (&f.ops, f.projection_ops),
+        None => {
+            let set = generated::kernel_set(formulation)?;
+            (&set.ops, set.projection_ops)
+        }
+    };
     Some(match ty {
-        Some(t) => set.ops[t.index() - 1],
-        None => set.projection_ops,
+        Some(t) => ops[t.index() - 1],
+        None => projection_ops,
     })
 }
 
@@ -163,7 +188,7 @@ pub fn op_count(formulation: Formulation, ty: Option<ApproxType>) -> Option<OpCo
 pub fn compiled_formulations() -> Vec<Formulation> {
     Formulation::ALL
         .into_iter()
-        .filter(|f| generated::kernel_set(*f).is_some())
+        .filter(|f| f.coords().is_some())
         .collect()
 }
 
