@@ -382,6 +382,13 @@ pub fn verify(
 /// parameter (`xi_s`) either way.
 pub fn configurations(reference: &AdFormulation) -> Result<Vec<Config>, VerifyError> {
     let sig = &reference.formulation().signature;
+    if sig.dim() == 3 && sig.param_count() == 2 {
+        let slave = families::faces::FaceKind::of_nodes(sig.slave_points());
+        let master = families::faces::FaceKind::of_nodes(sig.points().len() - sig.slave_points());
+        if let (Some(s), Some(m)) = (slave, master) {
+            return Ok(families::faces::faces(s, m));
+        }
+    }
     match (sig.points().len(), sig.params().len()) {
         (4, 1) => Ok(families::all(families::Normal::Slave)),
         (6, 1) => Ok(families::quadratic()),
