@@ -121,3 +121,210 @@ fn the_worked_examples_to_every_printed_digit() {
         assert_eq!(pr.xi_m, pr.xi_m_all()[0]);
     }
 }
+
+fn kernel(name: &str) -> Kernel {
+    Kernel::new(name.parse().unwrap(), ApproxType::Type6).unwrap()
+}
+
+fn eval(k: &Kernel, q: &[f64], xi_s: [f64; 2]) -> Result<f64, KernelError> {
+    let mut out = GapOut::new(k);
+    k.eval(q, xi_s, &mut out).map(|()| out.gap())
+}
+
+#[test]
+fn bad_faces_and_points_are_typed_errors() {
+    let k = kernel("quad4-slave-normal");
+    let xi = [0.2, -0.1];
+    // Degenerate slave: node 2 on node 1 (the normal vanishes at corner 0
+    // and 1).
+    let mut q = QUAD.to_vec();
+    q[3..6].copy_from_slice(&[0.0, 0.0, 1.0]);
+    assert!(matches!(
+        eval(&k, &q, xi),
+        Err(KernelError::DegenerateFace {
+            face: Segment::Slave,
+            corner: 0,
+            ..
+        })
+    ));
+    // A degenerate master tri3: its three nodes on a line (relative
+    // threshold: scaled by 1e-9, still degenerate).
+    let t = kernel("tri3-slave-normal");
+    let mut q = TRI.to_vec();
+    q[15..18].copy_from_slice(&[0.55, -0.05, 0.825]);
+    for s in [1.0, 1e-9] {
+        let qs: Vec<f64> = q.iter().map(|v| v * s).collect();
+        assert!(
+            matches!(
+                eval(&t, &qs, [0.3, 0.25]),
+                Err(KernelError::DegenerateFace {
+                    face: Segment::Master,
+                    ..
+                })
+            ),
+            "scale {s}: {:?}",
+            eval(&t, &qs, [0.3, 0.25])
+        );
+    }
+    // A folded master quad4: nodes 3 and 4 swapped (a bow tie).
+    let mut q = QUAD.to_vec();
+    let (a, b) = (q[18..21].to_vec(), q[21..24].to_vec());
+    q[18..21].copy_from_slice(&b);
+    q[21..24].copy_from_slice(&a);
+    assert!(matches!(
+        eval(&k, &q, xi),
+        Err(KernelError::FoldedFace {
+            face: Segment::Master,
+            ..
+        })
+    ));
+    // Non-finite input: coordinates by index, xi_s after them.
+    let mut q = QUAD.to_vec();
+    q[7] = f64::NAN;
+    assert_eq!(
+        eval(&k, &q, xi).unwrap_err().to_string(),
+        "non-finite input: coordinate 7 is NaN"
+    );
+    assert_eq!(
+        eval(&k, QUAD, [0.2, f64::INFINITY]).unwrap_err().to_string(),
+        "non-finite input: coordinate 25 is inf"
+    );
+    // Outside the face: quad4 [-1, 1]^2 (edges accepted), tri3 the unit
+    // triangle.
+    assert!(eval(&k, QUAD, [1.0, -1.0]).is_ok());
+    assert_eq!(
+        eval(&k, QUAD, [1.0 + 1e-12, 0.0]),
+        Err(KernelError::SlavePointOutside {
+            u: 1.0 + 1e-12,
+            v: 0.0
+        })
+    );
+    assert!(eval(&t, TRI, [0.5, 0.5]).is_ok());
+    assert!(matches!(
+        eval(&t, TRI, [0.6, 0.5]),
+        Err(KernelError::SlavePointOutside { .. })
+    ));
+    assert!(matches!(
+        eval(&t, TRI, [-0.1, 0.5]),
+        Err(KernelError::SlavePointOutside { .. })
+    ));
+    // Wrong lengths.
+    let mut out = GapOut::new(&k);
+    assert_eq!(
+        k.eval(QUAD, 0.3, &mut out),
+        Err(KernelError::ParamCount {
+            expected: 2,
+            found: 1
+        })
+    );
+    assert_eq!(
+        k.eval(&QUAD[..21], xi, &mut out),
+        Err(KernelError::CoordinateCount {
+            expected: 24,
+            found: 21
+        })
+    );
+}
+
+/// Faces of two kinds in one pair: a tri3 slave on a quad4 master and a
+/// quad4 slave on a tri3 master, each validated by its own kind.
+#[test]
+fn mixed_pairs_take_each_face_by_its_kind() {
+    let tri_on_quad: Vec<f64> = TRI[..9].iter().chain(&QUAD[12..]).copied().collect();
+    let quad_on_tri: Vec<f64> = QUAD[..12].iter().chain(&TRI[9..]).copied().collect();
+    for reading in ["slave-normal", "closest-point"] {
+        let k = kernel(&format!("tri3-quad4-{reading}"));
+        assert_eq!(k.coords(), 21);
+        let g = eval(&k, &tri_on_quad, [0.3, 0.25]).unwrap();
+        assert!(g > 0.0 && g < 0.3, "{g}");
+        // (0.6, 0.6) is on a quad4 but outside the tri3 slave.
+        assert!(matches!(
+            eval(&k, &tri_on_quad, [0.6, 0.6]),
+            Err(KernelError::SlavePointOutside { .. })
+        ));
+        let k = kernel(&format!("quad4-tri3-{reading}"));
+        assert_eq!(k.coords(), 21);
+        assert!(eval(&k, &quad_on_tri, [-0.6, 0.6]).is_ok());
+        // The master tri3 folded cannot be; its nodes on a line are
+        // degenerate.
+        let mut q = quad_on_tri.clone();
+        q[18..21].copy_from_slice(&[0.55, -0.05, 0.825]);
+        assert!(matches!(
+            eval(&k, &q, [0.0, 0.0]),
+            Err(KernelError::DegenerateFace {
+                face: Segment::Master,
+                ..
+            })
+        ));
+    }
+}
+
+/// A master perpendicular to the slave: the slave-normal projection has no
+/// solution (det A = 0) on a tri3 master (closed form) and a quad4 master
+/// (Newton).
+#[test]
+fn no_projection_is_reported_not_returned() {
+    // Master faces in the plane x = 2, perpendicular to the slave (z = 1).
+    let tri = [
+        0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, // slave
+        2.0, 0.0, 0.0, 2.0, 1.0, 0.0, 2.0, 0.0, 2.0, // master
+    ];
+    match eval(&kernel("tri3-slave-normal"), &tri, [0.3, 0.3]) {
+        Err(KernelError::NoProjection { .. }) => {}
+        other => panic!("{other:?}"),
+    }
+    let quad = [
+        0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 1.0, 1.0, // slave
+        2.0, 0.0, 0.0, 2.0, 1.0, 0.0, 2.0, 1.0, 2.0, 2.0, 0.0, 2.0, // master
+    ];
+    match eval(&kernel("quad4-slave-normal"), &quad, [0.0, 0.0]) {
+        Err(KernelError::NoProjection { .. } | KernelError::ProjectionOutOfReach { .. }) => {}
+        other => panic!("{other:?}"),
+    }
+}
+
+/// The batch of a face kernel: each point the bits and the error of
+/// `Kernel::eval`; `xi_s` two values per point.
+#[test]
+fn the_face_batch_is_eval_point_by_point() {
+    let k = kernel("quad4-closest-point");
+    assert_eq!(k.param_dim(), 2);
+    let mut qs = Vec::new();
+    let mut xs = Vec::new();
+    for p in 0..7 {
+        let mut q = QUAD.to_vec();
+        q[13] += 0.01 * p as f64;
+        if p == 3 {
+            q[0] = f64::NAN;
+        }
+        qs.extend(q);
+        xs.extend([0.1 * p as f64 - 0.3, 0.05 * p as f64]);
+    }
+    let mut batch = GapBatch::new(&k);
+    let ok = k.eval_batch(&qs, &xs, &mut batch).unwrap();
+    assert_eq!((ok, batch.len()), (6, 7));
+    let mut out = GapOut::new(&k);
+    for p in 0..7 {
+        let single = k.eval(&qs[24 * p..24 * (p + 1)], &xs[2 * p..2 * p + 2], &mut out);
+        match single {
+            Ok(()) => {
+                assert_eq!(batch.gap(p).unwrap().0.to_bits(), out.gap().to_bits());
+                assert_eq!(batch.xi_m(p).unwrap(), out.xi_m_all());
+                assert_eq!(batch.grad(p).unwrap(), out.grad());
+                assert_eq!(batch.hess(p).unwrap(), out.hess());
+            }
+            Err(e) => {
+                // (NaN fields: compare the messages.)
+                assert_eq!(batch.status(p).unwrap_err().to_string(), e.to_string());
+                assert_eq!(&batch.xi_ms()[2 * p..2 * p + 2], [0.0, 0.0]);
+            }
+        }
+    }
+    assert_eq!(
+        k.eval_batch(&qs, &xs[..13], &mut batch),
+        Err(KernelError::ParamCount {
+            expected: 2,
+            found: 13
+        })
+    );
+}
