@@ -134,6 +134,12 @@ impl Formulation {
         }
     }
 
+    /// The node counts `(slave, master)` of a formulation of 3D faces (3:
+    /// tri3, 4: quad4); `None` for segments or when not compiled in.
+    pub fn face_nodes(self) -> Option<(usize, usize)> {
+        crate::generated::face_kernel_set(self).map(|f| (f.slave_nodes, f.master_nodes))
+    }
+
     /// The parametric dimension of the formulation's faces (1 for
     /// segments, 2 for tri3 and quad4 faces): the length of `xi_s` and
     /// `xi_m`; `None` when it was not compiled in.

@@ -186,7 +186,9 @@ fn bad_faces_and_points_are_typed_errors() {
         "non-finite input: coordinate 7 is NaN"
     );
     assert_eq!(
-        eval(&k, QUAD, [0.2, f64::INFINITY]).unwrap_err().to_string(),
+        eval(&k, QUAD, [0.2, f64::INFINITY])
+            .unwrap_err()
+            .to_string(),
         "non-finite input: coordinate 25 is inf"
     );
     // Outside the face: quad4 [-1, 1]^2 (edges accepted), tri3 the unit

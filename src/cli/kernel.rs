@@ -14,9 +14,16 @@
 //! 8 for the two-node formulations (`slave-normal`, `closest-point`: slave
 //! node 1, slave node 2, master node 1, master node 2), 12 for
 //! `quadratic-slave-normal` (two 3-node segments, six points: each segment's
-//! end nodes, then its mid node, as Gmsh's line3). `--nodes` is read once the
-//! formulation is known, so a wrong count is reported with the count and the
-//! coordinate names that formulation expects.
+//! end nodes, then its mid node, as Gmsh's line3), 18 to 24 for the 3D face
+//! formulations (`tri3-slave-normal`, `quad4-closest-point`,
+//! `tri3-quad4-slave-normal`, ...: the slave face's nodes, then the master
+//! face's, each `x, y, z`). `--nodes` is read once the formulation is known,
+//! so a wrong count is reported with the count and the coordinate names that
+//! formulation expects.
+//!
+//! `--xi-s` is one number for segments and two, comma-separated, for faces
+//! (`--xi-s 0.2,-0.1`: `(u, v)`); a face's `xi_m` is printed as `[u, v]`:
+//! `{"gap":..,"xi_m":[u,v],"grad":[..],"hess":[[..]..]}`.
 
 use std::io::Write;
 
@@ -39,15 +46,36 @@ pub fn coordinate_names(n: usize) -> Vec<String> {
         .collect()
 }
 
+/// Names of the coordinates of a face-pair kernel: the slave face's
+/// `slave` nodes `xs1, ys1, zs1, ...`, then the master face's `master`
+/// nodes `xm1, ym1, zm1, ...`.
+pub fn face_coordinate_names(slave: usize, master: usize) -> Vec<String> {
+    [("s", slave), ("m", master)]
+        .into_iter()
+        .flat_map(|(side, nodes)| {
+            (1..=nodes).flat_map(move |k| {
+                [
+                    format!("x{side}{k}"),
+                    format!("y{side}{k}"),
+                    format!("z{side}{k}"),
+                ]
+            })
+        })
+        .collect()
+}
+
 /// Arguments of `gapsim kernel`.
 #[derive(Debug, Clone, Args)]
 #[command(
     after_help = "Examples:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n  \
 gapsim kernel --formulation quadratic-slave-normal --type 6 --xi-s 0.5 \\\n      \
---nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n\n\
+--nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n  \
+gapsim kernel --formulation quad4-slave-normal --type 6 --xi-s 0.2,-0.1 \\\n      \
+--nodes 0,0,1,0,1,1.1,1,1,1,1,0,0.9,-0.2,-0.1,0.8,1.2,0,0.85,1.1,1.3,0.75,-0.1,1.2,0.8\n\n\
 Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[n],\"hess\":[[n]xn]} \
 (derivatives with respect to the n coordinates: 8 for slave-normal and closest-point, \
-12 for quadratic-slave-normal; hess is all zeros for Type 1)."
+12 for quadratic-slave-normal, 3 per node of both faces for the face formulations, whose \
+xi_m is [u,v]; hess is all zeros for Type 1)."
 )]
 pub struct KernelArgs {
     /// Contact formulation: `slave-normal` (projection along the slave
@@ -63,9 +91,10 @@ pub struct KernelArgs {
     pub ty: ApproxType,
 
     /// Parametric coordinate of the slave integration point on the slave
-    /// segment (-1: slave node 1, 1: slave node 2).
-    #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_finite)]
-    pub xi_s: f64,
+    /// segment (-1: slave node 1, 1: slave node 2); for a face, `u,v`
+    /// (tri3: u, v >= 0, u + v <= 1; quad4: [-1, 1]^2).
+    #[arg(long = "xi-s", value_name = "XI", allow_hyphen_values = true, value_parser = parse_xi)]
+    pub xi_s: Xi,
 
     /// Current coordinates of the slave segment's nodes, then the master
     /// segment's, comma-separated, as many as the formulation takes.
@@ -77,13 +106,28 @@ pub struct KernelArgs {
     pub nodes: String,
 }
 
+/// `--xi-s`: one finite number (a segment's) or several, comma-separated
+/// (a face's `u,v`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Xi(pub Vec<f64>);
+
+/// The projection as printed: a number for a segment, `[u, v]` for a face.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum XiM {
+    /// A segment's `xi_m`.
+    One(f64),
+    /// A face's `(u, v)`.
+    Many(Vec<f64>),
+}
+
 /// The JSON printed by `gapsim kernel` (field order as in the contract).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct KernelOutput {
     /// The gap `g` (negative when penetrating).
     pub gap: f64,
-    /// The master parametric coordinate of the projection.
-    pub xi_m: f64,
+    /// The master parametric coordinate(s) of the projection.
+    pub xi_m: XiM,
     /// `dg/dq` (`n` entries).
     pub grad: Vec<f64>,
     /// `d2g/dq2`, row by row (`n` rows of `n`; all zeros for Type 1).
@@ -95,7 +139,10 @@ impl From<&GapOut> for KernelOutput {
         let n = out.coords();
         KernelOutput {
             gap: out.gap(),
-            xi_m: out.xi_m(),
+            xi_m: match out.xi_m_all() {
+                [x] => XiM::One(*x),
+                all => XiM::Many(all.to_vec()),
+            },
             grad: out.grad().to_vec(),
             hess: (0..n)
                 .map(|i| match out.hess() {
@@ -125,6 +172,21 @@ pub enum KernelCommandError {
         /// Its coordinate names, comma-separated.
         names: String,
         /// The number of comma-separated fields given.
+        found: usize,
+    },
+    /// `--xi-s` does not hold the formulation's parametric dimension.
+    #[error(
+        "--xi-s: the {formulation} formulation expects {expected} comma-separated value(s) \
+         ({names}), got {found}"
+    )]
+    ParamCount {
+        /// The formulation asked for.
+        formulation: Formulation,
+        /// Its parametric dimension.
+        expected: usize,
+        /// The values' names.
+        names: &'static str,
+        /// The number given.
         found: usize,
     },
     /// A coordinate of `--nodes` is not a finite number.
@@ -175,14 +237,37 @@ pub fn run(args: &KernelArgs) -> CommandResult {
         e => kernel_error(e),
     })?;
     let q = parse_nodes(&args.nodes, args.formulation, kernel.coords())?;
+    let xi_s = &args.xi_s.0;
+    if xi_s.len() != kernel.param_dim() {
+        return Err(KernelCommandError::ParamCount {
+            formulation: args.formulation,
+            expected: kernel.param_dim(),
+            names: if kernel.param_dim() == 2 {
+                "u,v"
+            } else {
+                "xi_s"
+            },
+            found: xi_s.len(),
+        }
+        .into());
+    }
     let mut out = GapOut::new(&kernel);
-    kernel.eval(&q, args.xi_s, &mut out).map_err(kernel_error)?;
+    kernel.eval(&q, &xi_s[..], &mut out).map_err(kernel_error)?;
     let mut stdout = std::io::stdout().lock();
     serde_json::to_writer(&mut stdout, &KernelOutput::from(&out))
         .map_err(KernelCommandError::Json)?;
     writeln!(stdout).map_err(KernelCommandError::Output)?;
     stdout.flush().map_err(KernelCommandError::Output)?;
     Ok(())
+}
+
+/// Parses `--xi-s`: comma-separated finite numbers (one for a segment, as
+/// before faces: the same messages).
+fn parse_xi(s: &str) -> Result<Xi, String> {
+    s.split(',')
+        .map(parse_finite)
+        .collect::<Result<_, _>>()
+        .map(Xi)
 }
 
 /// Parses a finite number (rejects `nan`, `inf`).
@@ -205,7 +290,10 @@ fn parse_nodes(
     formulation: Formulation,
     n: usize,
 ) -> Result<Vec<f64>, KernelCommandError> {
-    let names = coordinate_names(n);
+    let names = match formulation.face_nodes() {
+        Some((slave, master)) => face_coordinate_names(slave, master),
+        None => coordinate_names(n),
+    };
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != n {
         return Err(KernelCommandError::CoordinateCount {
