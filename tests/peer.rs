@@ -53,7 +53,10 @@ fn the_3d_peer_computes_the_type6_tri3_slave_normal_kernel() {
     for k in 0..64 {
         let q: [f64; 18] =
             std::array::from_fn(|i| base[i] + 0.1 * ((k * 7 + i * 3) % 11) as f64 / 11.0);
-        let (u, v) = (0.3 * ((k % 5) as f64) / 4.0, 0.2 + 0.4 * ((k % 7) as f64) / 6.0);
+        let (u, v) = (
+            0.3 * ((k % 5) as f64) / 4.0,
+            0.2 + 0.4 * ((k % 7) as f64) / 6.0,
+        );
         kernel.eval(&q, [u, v], &mut out).unwrap();
         let (mut g, mut xi_m) = (0.0, [0.0; 2]);
         let mut grad = [0.0; 18];

@@ -53,8 +53,9 @@ pub enum KernelError {
     DegenerateFace {
         /// Which face.
         face: Segment,
-        /// The corner (node index within the face; 0 for a tri3).
-        corner: usize,
+        /// The corner (node index within the face; 0 for a tri3). (A `u8`
+        /// keeps `KernelError` at its 2D size.)
+        corner: u8,
         /// `|t_1 x t_2|` there.
         area: f64,
         /// The smallest accepted value (relative to the face's size).
@@ -69,7 +70,7 @@ pub enum KernelError {
         /// Which face.
         face: Segment,
         /// The corner (node index within the face).
-        corner: usize,
+        corner: u8,
     },
     /// The slave point lies outside its face (tri3: `u, v >= 0`, `u + v <=
     /// 1`; quad4: `[-1, 1]^2`).

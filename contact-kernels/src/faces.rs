@@ -140,7 +140,7 @@ fn check_face(face: Segment, p: &[f64]) -> Result<(), KernelError> {
         if !(area2 > threshold * threshold) {
             return Err(KernelError::DegenerateFace {
                 face,
-                corner,
+                corner: corner as u8,
                 area: area2.sqrt(),
                 threshold,
             });
@@ -151,7 +151,10 @@ fn check_face(face: Segment, p: &[f64]) -> Result<(), KernelError> {
         for (corner, c) in corners.iter().enumerate() {
             #[allow(clippy::neg_cmp_op_on_partial_ord)]
             if !(dot(*c, mean) > 0.0) {
-                return Err(KernelError::FoldedFace { face, corner });
+                return Err(KernelError::FoldedFace {
+                    face,
+                    corner: corner as u8,
+                });
             }
         }
     }

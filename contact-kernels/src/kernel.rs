@@ -451,7 +451,7 @@ impl Kernel {
                 found: out.coords,
             });
         }
-        if xi_s.len() % self.param_dim() != 0 {
+        if !xi_s.len().is_multiple_of(self.param_dim()) {
             return Err(KernelError::ParamCount {
                 expected: self.param_dim(),
                 found: xi_s.len(),

@@ -111,6 +111,8 @@ fn wrong_sizes_are_typed_errors() {
 /// `xi_s` as `f64`, `[f64; 1]`, `&[f64]` or `Vec<f64>`: one call, the same
 /// bits; `xi_m_all` is `[xi_m]`; another length is a typed error.
 #[test]
+// The borrowed forms are the point: `&[f64; 1]` is one of them.
+#[allow(clippy::needless_borrows_for_generic_args)]
 fn every_xi_argument_form_is_the_scalar_call() {
     for f in pair_formulations() {
         let kernel = Kernel::new(f, ApproxType::Type6).unwrap();
