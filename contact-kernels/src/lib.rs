@@ -38,6 +38,30 @@
 //!   `[f64; 8]` and return values ([`GapDerivatives`] with nalgebra
 //!   vectors), built on the handles with bit-identical results.
 //!
+//! ## 3D faces
+//!
+//! The face formulations (`tri3-slave-normal`, `quad4-closest-point`,
+//! `tri3-quad4-slave-normal`, ...: tri3 and quad4 faces, every pair of kinds,
+//! both readings; the crate feature `faces`, on by default) take the slave
+//! face's nodes then the master face's, `(x, y, z)` each, and the slave point
+//! `xi_s = (u, v)`; they report `xi_m = (u, v)` (docs/conventions.md, "3D
+//! faces"):
+//!
+//! ```
+//! use contact_kernels::{ApproxType, Formulation, GapOut, Kernel};
+//!
+//! let k = Kernel::new(Formulation::Tri3SlaveNormal, ApproxType::Type6)?;
+//! let q = [
+//!     0.0, 0.0, 1.0, 0.1, 1.0, 1.05, 1.0, 0.1, 0.95, // slave tri3
+//!     -0.3, -0.2, 0.8, 1.4, 0.1, 0.85, 0.2, 1.5, 0.75, // master tri3
+//! ];
+//! let mut out = GapOut::new(&k);
+//! k.eval(&q, [0.3, 0.25], &mut out)?;
+//! assert!((out.gap() - 0.203900706766229).abs() < 1e-14);
+//! assert!((out.xi_m_all()[1] - 0.270469354510283).abs() < 1e-14);
+//! # Ok::<(), contact_kernels::KernelError>(())
+//! ```
+//!
 //! Parametric coordinates: the handles take `xi_s` as any [`XiArg`] of
 //! [`Kernel::param_dim`] values (`0.3` for a segment, `[0.2, -0.1]` for a
 //! face) and report `xi_m` as a slice of as many ([`GapOut::xi_m_all`]);
