@@ -23,8 +23,16 @@
 //! num-dual's `hessian`; `bench_table` divides by 64. Run only this group
 //! with `cargo bench --bench kernels -- points64`.
 //!
+//! The group `faces-tri3-slave-normal` does the same for 3D faces: 64
+//! tri3-on-tri3 configurations near the worked example of
+//! docs/conventions.md ("3D faces"), the sympy-cse 3D peer
+//! (`benches/peer/sympy_kernel_3d.rs`), gapsim's `tri3-slave-normal` Types 1
+//! and 6 through the handle and `Kernel::eval_batch` (point by point for
+//! faces), and num-dual's `hessian` of the same gap (18 coordinates). Run it
+//! alone with `cargo bench --bench kernels -- faces`.
+//!
 //! Warm-up and measurement are 1 s each so the whole run takes about a
-//! minute of measurement (38 benchmarks).
+//! minute of measurement (44 benchmarks).
 
 use std::hint::black_box;
 use std::time::Duration;
@@ -33,6 +41,11 @@ use std::time::Duration;
 #[allow(dead_code)]
 #[path = "peer/sympy_kernel.rs"]
 mod sympy_kernel;
+
+// `SYMPY_OPS_3D` likewise.
+#[allow(dead_code)]
+#[path = "peer/sympy_kernel_3d.rs"]
+mod sympy_kernel_3d;
 
 use contact_kernels::{
     ApproxType, Formulation, GapBatch, GapOut, Kernel, LaneIsa, Projector, evaluate,
@@ -81,6 +94,17 @@ fn gap<D: DualNum<Primitive = f64> + Copy>(f: Formulation, q: &[D; 8], xi_s: f64
         Formulation::ClosestPoint => {
             let len = dot(t_m, t_m).sqrt();
             (t_m, [-t_m[1] / len, t_m[0] / len])
+        }
+        // The segment benches run `pair_formulations()` (8 coordinates).
+        Formulation::Tri3SlaveNormal
+        | Formulation::Tri3ClosestPoint
+        | Formulation::Quad4SlaveNormal
+        | Formulation::Quad4ClosestPoint
+        | Formulation::Tri3Quad4SlaveNormal
+        | Formulation::Tri3Quad4ClosestPoint
+        | Formulation::Quad4Tri3SlaveNormal
+        | Formulation::Quad4Tri3ClosestPoint => {
+            unreachable!("faces are not segment pairs")
         }
     };
     let xi = -(dot(sub(c_m, x_s), t) * 2.0) / dot(t_m, t);
@@ -242,6 +266,126 @@ fn many_points(c: &mut Criterion) {
     group.finish();
 }
 
+/// The tri3-on-tri3 worked example of docs/conventions.md ("3D faces").
+const TRI: [f64; 18] = [
+    0.0, 0.0, 1.0, 0.1, 1.0, 1.05, 1.0, 0.1, 0.95, -0.3, -0.2, 0.8, 1.4, 0.1, 0.85, 0.2, 1.5, 0.75,
+];
+
+fn sub3<D: DualNum<Primitive = f64> + Copy>(a: [D; 3], b: [D; 3]) -> [D; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot3<D: DualNum<Primitive = f64> + Copy>(a: [D; 3], b: [D; 3]) -> D {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The tri3-slave-normal gap over num-dual numbers: `x_s = N(u, v) . s`,
+/// `n = t1 x t2 / |t1 x t2|` (`t1 = s2 - s1`, `t2 = s3 - s1`), the master
+/// point solving `(x_m(xi) - x_s) . t_a = 0` in closed form (2 x 2, Cramer).
+fn gap_tri3<D: DualNum<Primitive = f64> + Copy>(q: &[D; 18], u: f64, v: f64) -> D {
+    let p = |k: usize| [q[3 * k], q[3 * k + 1], q[3 * k + 2]];
+    let (s1, s2, s3, m1, m2, m3) = (p(0), p(1), p(2), p(3), p(4), p(5));
+    let (t1, t2) = (sub3(s2, s1), sub3(s3, s1));
+    let x_s: [D; 3] = std::array::from_fn(|k| s1[k] + t1[k] * u + t2[k] * v);
+    let c = [
+        t1[1] * t2[2] - t1[2] * t2[1],
+        t1[2] * t2[0] - t1[0] * t2[2],
+        t1[0] * t2[1] - t1[1] * t2[0],
+    ];
+    let len = dot3(c, c).sqrt();
+    let n = c.map(|x| x / len);
+    let (e1, e2, r) = (sub3(m2, m1), sub3(m3, m1), sub3(m1, x_s));
+    let (a00, a01, a10, a11) = (dot3(e1, t1), dot3(e2, t1), dot3(e1, t2), dot3(e2, t2));
+    let (r0, r1) = (dot3(r, t1), dot3(r, t2));
+    let det = a00 * a11 - a01 * a10;
+    let xu = -(a11 * r0 - a01 * r1) / det;
+    let xv = -(a00 * r1 - a10 * r0) / det;
+    let x_ms: [D; 3] = std::array::from_fn(|k| r[k] + e1[k] * xu + e2[k] * xv);
+    dot3(n, x_ms)
+}
+
+fn faces(c: &mut Criterion) {
+    let f = Formulation::Tri3SlaveNormal;
+    if f.coords() != Some(18) {
+        return;
+    }
+    let mut state: u64 = 0x3d3d_79b9_7f4a_7c15;
+    let mut uniform = move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let qs: Vec<[f64; 18]> = (0..POINTS)
+        .map(|_| std::array::from_fn(|i| TRI[i] + 0.1 * (uniform() - 0.5)))
+        .collect();
+    let uv: Vec<[f64; 2]> = (0..POINTS)
+        .map(|_| {
+            let u = 0.6 * uniform() + 0.05;
+            [u, (0.9 - u) * uniform() + 0.05]
+        })
+        .collect();
+    let flat: Vec<f64> = qs.iter().flatten().copied().collect();
+    let flat_uv: Vec<f64> = uv.iter().flatten().copied().collect();
+    let mut group = c.benchmark_group("faces-tri3-slave-normal");
+    group.bench_function("sympy-cse", |b| {
+        let (mut g, mut xi_m) = (0.0, [0.0; 2]);
+        let mut grad = [0.0; 18];
+        let mut hess = [[0.0; 18]; 18];
+        b.iter(|| {
+            for (q, &[u, v]) in qs.iter().zip(&uv) {
+                sympy_kernel_3d::gap_hess_sympy_3d(
+                    black_box(q),
+                    black_box(u),
+                    black_box(v),
+                    &mut g,
+                    &mut xi_m,
+                    &mut grad,
+                    &mut hess,
+                );
+                black_box((&g, &xi_m, &grad, &hess));
+            }
+        })
+    });
+    for ty in [ApproxType::Type1, ApproxType::Type6] {
+        let i = ty.index();
+        let kernel = Kernel::new(f, ty).unwrap();
+        let mut out = GapOut::new(&kernel);
+        group.bench_function(format!("type{i}-handle"), |b| {
+            b.iter(|| {
+                for (q, xi) in qs.iter().zip(&uv) {
+                    kernel.eval(black_box(q), black_box(xi), &mut out).unwrap();
+                    black_box(&out);
+                }
+            })
+        });
+        let mut batch = GapBatch::new(&kernel);
+        group.bench_function(format!("type{i}-batch"), |b| {
+            b.iter(|| {
+                let ok = kernel
+                    .eval_batch(black_box(&flat), black_box(&flat_uv), &mut batch)
+                    .unwrap();
+                assert_eq!(ok, POINTS);
+                black_box(&batch);
+            })
+        });
+    }
+    group.bench_function("num-dual-hessian", |b| {
+        b.iter(|| {
+            for (q, &[u, v]) in qs.iter().zip(&uv) {
+                let qv = SVector::<f64, 18>::from(*q);
+                black_box(hessian(
+                    |x: SVector<Dual2SVec64<18>, 18>| {
+                        gap_tri3(&std::array::from_fn(|i| x[i]), u, v)
+                    },
+                    black_box(&qv),
+                ));
+            }
+        })
+    });
+    group.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default()
         .warm_up_time(Duration::from_secs(1))
@@ -252,6 +396,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = kernels, many_points
+    targets = kernels, many_points, faces
 }
 criterion_main!(benches);

@@ -278,3 +278,50 @@ fn verify_catches_a_kernel_broken_on_purpose() {
         text(&o.stderr)
     );
 }
+
+/// A 3D face formulation outside the repository: `gapsim verify` checks
+/// every type on the face families, `gapsim generate --lang rust` writes
+/// its face kernels, `--lang c` refuses it (the C emitter writes segments).
+#[test]
+fn generate_and_verify_take_face_formulations() {
+    let dir = scratch("faces");
+    let file = dir.join("my-face.rs");
+    let shipped = std::fs::read_to_string(repo(
+        "contact-kernels/formulations/tri3-quad4-slave-normal.rs",
+    ))
+    .unwrap();
+    std::fs::write(&file, shipped).unwrap();
+    let path = file.to_str().unwrap();
+    let out = gapsim(&["verify", path]);
+    let stdout = text(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", text(&out.stderr));
+    assert!(stdout.contains("my-face: 1"), "{stdout}");
+    assert_eq!(stdout.matches("| ok |").count(), 6, "{stdout}");
+    let gen_dir = dir.join("out");
+    let out = gapsim(&[
+        "generate",
+        path,
+        "--lang",
+        "rust",
+        "--out",
+        gen_dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let code = std::fs::read_to_string(gen_dir.join("kernels.rs")).unwrap();
+    assert!(code.contains("static MY_FACE: FaceKernelSet"));
+    assert!(code.contains("fn my_face_type6(") && code.contains("xi_s: &[f64]"));
+    let out = gapsim(&[
+        "generate",
+        path,
+        "--lang",
+        "c",
+        "--out",
+        gen_dir.to_str().unwrap(),
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = text(&out.stderr);
+    assert!(
+        stderr.contains("my-face.rs") && stderr.contains("3D faces"),
+        "{stderr}"
+    );
+}

@@ -693,3 +693,90 @@ fn a_users_formulation_file_is_evaluated_or_its_error_located() {
         &["cannot read"],
     );
 }
+
+/// The worked quad4 pair of docs/conventions.md ("3D faces").
+const QUAD_NODES: &str =
+    "0,0,1,0,1,1.1,1,1,1,1,0,0.9,-0.2,-0.1,0.8,1.2,0,0.85,1.1,1.3,0.75,-0.1,1.2,0.8";
+
+/// A face kernel: `--xi-s u,v` (negative values parse), `xi_m` printed as
+/// `[u, v]`, 3 (ns + nm) gradient entries and Hessian rows, the library's
+/// bits; a wrong `--xi-s` length names what the formulation expects.
+#[test]
+fn a_face_kernel_prints_xi_m_as_a_pair() {
+    let q: Vec<f64> = QUAD_NODES.split(',').map(|v| v.parse().unwrap()).collect();
+    for f in ["quad4-slave-normal", "quad4-closest-point"] {
+        for ty in ["1", "6"] {
+            let out = gapsim(&[
+                "kernel",
+                "--formulation",
+                f,
+                "--type",
+                ty,
+                "--xi-s",
+                "0.2,-0.1",
+                "--nodes",
+                QUAD_NODES,
+            ]);
+            let stdout = String::from_utf8(out.stdout.clone()).unwrap();
+            assert!(
+                out.status.success(),
+                "{}",
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let v: Value = serde_json::from_str(&stdout).unwrap();
+            let obj = v.as_object().unwrap();
+            let keys: Vec<&str> = obj.keys().map(String::as_str).collect();
+            assert_eq!(keys.len(), 4);
+            let xi_m = obj["xi_m"].as_array().expect("xi_m is [u, v]");
+            assert_eq!(xi_m.len(), 2);
+            let nums = numbers_in(&stdout);
+            assert_eq!(nums.len(), 3 + 24 + 24 * 24, "{stdout}");
+            let kernel = Kernel::new(f.parse().unwrap(), ty.parse().unwrap()).unwrap();
+            let mut lib = GapOut::new(&kernel);
+            kernel.eval(&q, [0.2, -0.1], &mut lib).unwrap();
+            let mut expected = vec![lib.gap()];
+            expected.extend(lib.xi_m_all());
+            expected.extend(lib.grad());
+            match lib.hess() {
+                Some(h) => expected.extend(h),
+                None => expected.extend(vec![0.0; 24 * 24]),
+            }
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&nums), bits(&expected), "{f} type {ty}");
+        }
+    }
+    let out = gapsim(&[
+        "kernel",
+        "--formulation",
+        "quad4-slave-normal",
+        "--type",
+        "6",
+        "--xi-s",
+        "0.2",
+        "--nodes",
+        QUAD_NODES,
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--xi-s") && stderr.contains("expects 2") && stderr.contains("(u,v)"),
+        "{stderr}"
+    );
+    let out = gapsim(&[
+        "kernel",
+        "--formulation",
+        "tri3-closest-point",
+        "--type",
+        "2",
+        "--xi-s",
+        "0.2,0.1",
+        "--nodes",
+        QUAD_NODES,
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("expects 18") && stderr.contains("zm3") && stderr.contains("got 24"),
+        "{stderr}"
+    );
+}

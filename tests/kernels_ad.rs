@@ -89,6 +89,7 @@ fn ad(f: Formulation) -> &'static AdFormulation {
         Formulation::SlaveNormal => a[0],
         Formulation::ClosestPoint => a[1],
         Formulation::QuadraticSlaveNormal => a[2],
+        _ => unreachable!("this file verifies the segment formulations"),
     })
 }
 
@@ -98,13 +99,24 @@ fn normal(f: Formulation) -> Normal {
     match f {
         Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => Normal::Slave,
         Formulation::ClosestPoint => Normal::Master,
+        // Faces have their own families (families::faces).
+        Formulation::Tri3SlaveNormal
+        | Formulation::Tri3ClosestPoint
+        | Formulation::Quad4SlaveNormal
+        | Formulation::Quad4ClosestPoint
+        | Formulation::Tri3Quad4SlaveNormal
+        | Formulation::Tri3Quad4ClosestPoint
+        | Formulation::Quad4Tri3SlaveNormal
+        | Formulation::Quad4Tri3ClosestPoint => {
+            unreachable!("the segment families take segment formulations")
+        }
     }
 }
 
 /// The reference's projection `xi_m(q)` (Newton on the residual), `None`
 /// beyond `|xi_m| = limit`.
 fn reference_xi(f: Formulation, q: &[f64; 8], xi_s: f64, limit: f64) -> Option<f64> {
-    ad(f).project(q, &[xi_s], limit)
+    ad(f).project(q, &[xi_s], limit).map(|xi| xi[0])
 }
 
 fn to_array<D: Copy, const N: usize>(v: &SVector<D, N>) -> [D; N] {
@@ -137,6 +149,7 @@ impl From<&Reference> for verify::Reference {
         verify::Reference {
             gap: r.gap,
             xi_m: r.xi_m,
+            xi_rest: Vec::new(),
             grad: r.grad.as_slice().to_vec(),
             hess: r.hess.transpose().as_slice().to_vec(),
         }
@@ -148,6 +161,7 @@ fn kernel_output(out: &GapDerivatives) -> KernelOutput {
     KernelOutput {
         gap: out.gap,
         xi_m: out.xi_m,
+        xi_rest: Vec::new(),
         grad: out.grad.as_slice().to_vec(),
         hess: out.hess.map(|h| h.transpose().as_slice().to_vec()),
     }
@@ -156,7 +170,7 @@ fn kernel_output(out: &GapDerivatives) -> KernelOutput {
 /// Type 6: num-dual's full gradient and Hessian of the gap.
 fn exact_reference(f: Formulation, q: &[f64; 8], xi_s: f64) -> Reference {
     let xi0 = reference_xi(f, q, xi_s, 1e6).expect("the reference projects");
-    ad(f).exact(q, &[xi_s], xi0).expect("reference").into()
+    ad(f).exact(q, &[xi_s], &[xi0]).expect("reference").into()
 }
 
 /// The truncated `g`, `g'`, `g''` for one row of the table, assembled by
@@ -169,7 +183,7 @@ fn truncated_reference(
 ) -> Reference {
     let xi0 = reference_xi(f, q, xi_s, 1e6).expect("the reference projects");
     ad(f)
-        .truncated(q, &[xi_s], xi0, row)
+        .truncated(q, &[xi_s], &[xi0], row)
         .expect("reference")
         .into()
 }
@@ -396,9 +410,7 @@ fn published(f: Formulation) -> Published {
                 0.158599129064,
             ],
         },
-        Formulation::QuadraticSlaveNormal => {
-            panic!("the worked example is published for the two-node formulations")
-        }
+        _ => panic!("the worked example is published for the two-node formulations"),
     }
 }
 
@@ -540,6 +552,7 @@ fn the_verifier_passes_on_the_compiled_quadratic_kernels() {
         k.eval(q, params[0], &mut out).ok().map(|()| KernelOutput {
             gap: out.gap(),
             xi_m: out.xi_m(),
+            xi_rest: Vec::new(),
             grad: out.grad().to_vec(),
             hess: out.hess().map(<[f64]>::to_vec),
         })
@@ -645,6 +658,7 @@ fn random_uniform_configurations() {
                     dot(t_m, t_s).abs() / (ls * lm)
                 }
                 Formulation::ClosestPoint => 1.0,
+                _ => unreachable!("segment pairs only"),
             };
             if ls < 0.1 || lm < 0.1 || cond < 0.1 || reference_xi(f, &q, xi_s, 5.0).is_none() {
                 continue;
@@ -1191,6 +1205,7 @@ fn types_are_distinguishable() {
                 grad1_error <= TOL,
                 "{f}: Type 1 gradient {grad1_error:e} off"
             ),
+            _ => unreachable!("segment pairs only"),
         }
         for a in 0..6 {
             for b in a + 1..6 {

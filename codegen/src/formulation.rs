@@ -23,6 +23,15 @@
 //!   [`Signature`]. [`Formulation::parse`] accepts the shape the
 //!   contact-kernels run-time serves ([`Arity::SegmentPair`]);
 //!   [`Formulation::parse_with`] any number of points and parameters.
+//! * `inputs!(dim 3; xs1, xs2, xs3; xm1, xm2, xm3, xm4; xi_s: 2)` declares
+//!   3D faces: the slave face's points (3: tri3, 4: quad4), then the
+//!   master face's, each a 3-vector, and the slave point `xi_s = (u, v)`, a
+//!   2-vector parameter (`name: 2`).
+//! * `implicit!(xi: 2 => [r1, r2])` defines a 2-vector `xi = (u, v)` as the
+//!   root of two residuals (a face's projection; `xi.x`, `xi.y` are `u`,
+//!   `v`); its derivatives come from implicit differentiation with the 2 x 2
+//!   Jacobian (`crate::truncation`), closed form when both residuals are
+//!   affine in `xi`.
 //! * `implicit!(xi => r)` defines a scalar as the root of `r(q, xi) = 0`;
 //!   the generator never solves it in closed form: its derivatives come from
 //!   implicit differentiation and its value from a Newton solve at run time.
@@ -30,7 +39,13 @@
 //!   types truncate (see [`crate::truncation`]). The implicit variable is an
 //!   entity too.
 //! * `gap!(e)` gives the gap as an expression of entities only.
-//! * Values are scalars or 2-vectors. Operators: `+ - * /` (vector ± vector,
+//! * Faces: `vec3(x, y, z)`, `cross(a, b)`, `v.z`; `dot` and `norm` take
+//!   3-vectors too; `tri3_point(x1, x2, x3, xi)` (`N = (1 - u - v, u, v)`),
+//!   `tri3_du(x1, x2, x3)`, `tri3_dv(x1, x2, x3)` (its tangents `dx/du`,
+//!   `dx/dv`), `quad4_point(x1, x2, x3, x4, xi)` (bilinear on [-1, 1]^2,
+//!   `N_a = (1 + u u_a)(1 + v v_a) / 4`, nodes at (-1,-1), (1,-1), (1,1),
+//!   (-1,1)), `quad4_du(.., xi)`, `quad4_dv(.., xi)`; `xi` is a 2-vector.
+//! * Values are scalars, 2-vectors or 3-vectors. Operators: `+ - * /` (vector ± vector,
 //!   vector * scalar, scalar * vector, vector / scalar), unary `-`, numeric
 //!   literals, `v.x`, `v.y`. Functions: `lerp(a, b, xi)` (linear shape
 //!   functions `(1-xi)/2 a + (1+xi)/2 b`), `dot(a, b)`, `perp(t)` =
@@ -58,14 +73,37 @@ pub enum Value<S> {
     Scalar(S),
     /// A 2-vector.
     Vec2([S; 2]),
+    /// A 3-vector (points and vectors of 3D faces).
+    Vec3([S; 3]),
 }
 
 impl<S: Copy> Value<S> {
-    /// The scalar components (one or two).
+    /// The scalar components (one, two or three).
     pub fn components(&self) -> Vec<S> {
         match *self {
             Value::Scalar(s) => vec![s],
             Value::Vec2([a, b]) => vec![a, b],
+            Value::Vec3([a, b, c]) => vec![a, b, c],
+        }
+    }
+
+    /// The value of the same kind as `self` with components `c` (as many
+    /// as `self` has).
+    pub fn like<T: Copy>(&self, c: &[T]) -> Value<T> {
+        match self {
+            Value::Scalar(_) => Value::Scalar(c[0]),
+            Value::Vec2(_) => Value::Vec2([c[0], c[1]]),
+            Value::Vec3(_) => Value::Vec3([c[0], c[1], c[2]]),
+        }
+    }
+
+    /// The vector of components `c` (one: a scalar).
+    pub fn from_components(c: &[S]) -> Value<S> {
+        match *c {
+            [a] => Value::Scalar(a),
+            [a, b] => Value::Vec2([a, b]),
+            [a, b, c] => Value::Vec3([a, b, c]),
+            _ => panic!("values have one to three components, not {}", c.len()),
         }
     }
 }
@@ -134,10 +172,33 @@ impl Domain for Dag {
 pub struct Implicit {
     /// Its name in the file (an entity name, `xi_m`).
     pub name: String,
-    /// The symbol standing for its value.
+    /// The symbol standing for its value (a vector unknown: its first
+    /// component).
     pub sym: Sym,
-    /// The residual `r(q, xi)`.
+    /// The residual `r(q, xi)` (a vector unknown: the first residual).
     pub residual: Id,
+    /// Every component's symbol and residual `(xi_c, r_c)`: one for a
+    /// scalar unknown (`(sym, residual)`), two for `implicit!(xi: 2 => ..)`.
+    pub components: Vec<(Sym, Id)>,
+}
+
+impl Implicit {
+    /// The unknown's component count (1 or 2).
+    pub fn dim(&self) -> usize {
+        self.components.len()
+    }
+
+    /// Whether the unknown is a vector (`implicit!(xi: 2 => ..)`).
+    pub fn is_vector(&self) -> bool {
+        self.components.len() > 1
+    }
+
+    /// The unknown as a value of the language (a scalar or a 2-vector of
+    /// its symbols' inputs in `dag`).
+    pub fn value(&self, dag: &mut Dag) -> Value<Id> {
+        let c: Vec<Id> = self.components.iter().map(|(s, _)| dag.input(*s)).collect();
+        Value::from_components(&c)
+    }
 }
 
 /// A named entity (other than the implicit variable).
@@ -291,15 +352,19 @@ impl Formulation {
                                     "only one `implicit!` variable is supported",
                                 ));
                             }
-                            let residual = b.implicit(&m.mac.tokens, m.span())?;
-                            let sym = b.implicit_sym();
-                            implicit = Some(Implicit {
+                            let residuals = b.implicit(&m.mac.tokens, m.span())?;
+                            let syms = b.implicit_syms();
+                            let components: Vec<(Sym, Id)> =
+                                syms.into_iter().zip(residuals).collect();
+                            let imp = Implicit {
                                 name: name.clone(),
-                                sym,
-                                residual,
-                            });
-                            let x = b.dag.input(sym);
-                            Value::Scalar(x)
+                                sym: components[0].0,
+                                residual: components[0].1,
+                                components,
+                            };
+                            let v = imp.value(&mut b.dag);
+                            implicit = Some(imp);
+                            v
                         }
                         syn::Expr::Macro(m) if m.mac.path.is_ident("entity") => {
                             let e: syn::Expr = syn::parse2(m.mac.tokens.clone())
@@ -371,7 +436,9 @@ impl Formulation {
             "the gap may only use entities",
         )? {
             Value::Scalar(s) => Ok(s),
-            Value::Vec2(_) => Err(err(self.gap.span(), &origin, "the gap must be a scalar")),
+            Value::Vec2(_) | Value::Vec3(_) => {
+                Err(err(self.gap.span(), &origin, "the gap must be a scalar"))
+            }
         }
     }
 }
@@ -386,17 +453,35 @@ struct Builder {
 }
 
 impl Builder {
-    /// The implicit unknown's symbol (after `inputs!`, which `let`
-    /// statements require).
-    fn implicit_sym(&self) -> Sym {
+    /// The implicit unknown's symbols (after `inputs!`, which `let`
+    /// statements require, and `implicit!`, which sets their count).
+    fn implicit_syms(&self) -> Vec<Sym> {
         self.signature
             .as_ref()
             .expect("`inputs!` precedes every `let`")
-            .implicit_sym()
+            .implicit_syms()
     }
 
     fn declare_inputs(&mut self, tokens: &TokenStream, span: Span) -> Result<(), Error> {
         let text = tokens.to_string();
+        // `dim 3; points; params` (3D faces) or `points; params` (2D).
+        let (dim, text) = match text.trim_start().strip_prefix("dim ") {
+            Some(rest) => {
+                let (d, rest) = rest.split_once(';').unwrap_or((rest, ""));
+                match d.trim() {
+                    "2" => (2, rest.to_owned()),
+                    "3" => (3, rest.to_owned()),
+                    other => {
+                        return Err(err(
+                            span,
+                            &self.origin,
+                            format!("`dim {other}`: the dimension is 2 or 3"),
+                        ));
+                    }
+                }
+            }
+            None => (2, text),
+        };
         let (points, params) = text.split_once(';').ok_or_else(|| {
             err(
                 span,
@@ -404,18 +489,67 @@ impl Builder {
                 "expected `inputs!(p1, p2, p3, p4; xi_s)`",
             )
         })?;
+        // Faces: `slave points; master points; params`.
+        let (points, slave_points, params) = if dim == 3 {
+            let (master, params) = params.split_once(';').ok_or_else(|| {
+                err(
+                    span,
+                    &self.origin,
+                    "expected `inputs!(dim 3; slave points; master points; xi_s: 2)`",
+                )
+            })?;
+            let slave = points.split(',').count();
+            (format!("{points}, {master}"), slave, params)
+        } else {
+            (points.to_owned(), 0, params)
+        };
         let points: Vec<&str> = points.split(',').map(str::trim).collect();
-        let params: Vec<&str> = params
-            .split(',')
-            .map(str::trim)
-            .filter(|s| !s.is_empty())
-            .collect();
+        let slave_points = if dim == 3 {
+            slave_points
+        } else {
+            points.len() / 2
+        };
+        // A parameter is `name` (a scalar) or `name: 2` (a 2-vector).
+        let declared = params;
+        let mut params: Vec<(&str, usize)> = Vec::new();
+        for p in declared.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+            let (name, len) = match p.split_once(':') {
+                None => (p, 1),
+                Some((name, len)) => match len.trim() {
+                    "1" => (name.trim(), 1),
+                    "2" => (name.trim(), 2),
+                    other => {
+                        return Err(err(
+                            span,
+                            &self.origin,
+                            format!(
+                                "parameter `{}: {other}`: a parameter has 1 or 2 components",
+                                name.trim()
+                            ),
+                        ));
+                    }
+                },
+            };
+            params.push((name, len));
+        }
         let fits = match self.arity {
-            Arity::SegmentPair => matches!(points.len(), 4 | 6) && params.len() == 1,
+            Arity::SegmentPair if dim == 2 => {
+                matches!(points.len(), 4 | 6) && matches!(params.as_slice(), [(_, 1)])
+            }
+            // Faces: slave tri3 (3 points) or quad4 (4), then the master's.
+            Arity::SegmentPair => {
+                matches!(slave_points, 3 | 4)
+                    && matches!(points.len() - slave_points, 3 | 4)
+                    && matches!(params.as_slice(), [(_, 2)])
+            }
             Arity::Any => !points.is_empty() && points.iter().all(|p| !p.is_empty()),
         };
         if !fits {
             let expected = match self.arity {
+                Arity::SegmentPair if dim == 3 => {
+                    "a slave and a master face of 3 (tri3) or 4 (quad4) points each and the \
+                     slave point `xi_s: 2`: `inputs!(dim 3; xs1, xs2, xs3; xm1, xm2, xm3; xi_s: 2)`"
+                }
                 Arity::SegmentPair => {
                     "four points and one parameter: `inputs!(xs1, xs2, xm1, xm2; xi_s)` \
                      (or six for 3-node segments: `inputs!(xs1, xs2, xs3, xm1, xm2, xm3; xi_s)`)"
@@ -432,20 +566,25 @@ impl Builder {
                 ),
             ));
         }
-        let sig = Signature::new(
-            2,
+        let sig = Signature::with_param_lens(
+            dim,
             points.iter().map(|p| (*p).to_owned()).collect(),
-            params.iter().map(|p| (*p).to_owned()).collect(),
-            String::new(),
+            slave_points,
+            params.iter().map(|(p, _)| (*p).to_owned()).collect(),
+            params.iter().map(|(_, len)| *len).collect(),
         );
         for (i, p) in points.iter().enumerate() {
-            let x = self.dag.input(sig.coord_sym(2 * i));
-            let y = self.dag.input(sig.coord_sym(2 * i + 1));
-            self.bind(p, Value::Vec2([x, y]), span)?;
+            let c: Vec<Id> = (0..dim)
+                .map(|k| self.dag.input(sig.coord_sym(dim * i + k)))
+                .collect();
+            self.bind(p, Value::from_components(&c), span)?;
         }
-        for (i, p) in params.iter().enumerate() {
-            let s = self.dag.input(sig.param_sym(i));
-            self.bind(p, Value::Scalar(s), span)?;
+        for (i, (p, len)) in params.iter().enumerate() {
+            let first = sig.param_offset(i);
+            let c: Vec<Id> = (0..*len)
+                .map(|k| self.dag.input(sig.param_sym(first + k)))
+                .collect();
+            self.bind(p, Value::from_components(&c), span)?;
         }
         self.signature = Some(sig);
         Ok(())
@@ -461,33 +600,65 @@ impl Builder {
         Ok(())
     }
 
-    fn implicit(&mut self, tokens: &TokenStream, span: Span) -> Result<Id, Error> {
+    /// `implicit!(xi => r)` (a scalar unknown, one residual) or
+    /// `implicit!(xi: 2 => [r1, r2])` (a 2-vector unknown `(u, v)`, two
+    /// residuals); returns the residuals.
+    fn implicit(&mut self, tokens: &TokenStream, span: Span) -> Result<Vec<Id>, Error> {
         let closure = syn::parse2::<ImplicitDef>(tokens.clone())
             .map_err(|e| err(e.span(), &self.origin, e.to_string()))?;
         let var = closure.var.to_string();
-        let x = self.dag.input(self.implicit_sym());
-        let previous = self.env.insert(var.clone(), Value::Scalar(x));
-        let r = self.eval(&closure.residual);
+        let sig = self
+            .signature
+            .as_mut()
+            .expect("`inputs!` precedes every `let`");
+        sig.set_implicit_len(closure.len);
+        let syms = sig.implicit_syms();
+        let c: Vec<Id> = syms.iter().map(|s| self.dag.input(*s)).collect();
+        let previous = self.env.insert(var.clone(), Value::from_components(&c));
+        let r: Result<Vec<Value<Id>>, Error> = match (&closure.residual, closure.len) {
+            (syn::Expr::Array(a), 2) if a.elems.len() == 2 => {
+                a.elems.iter().map(|e| self.eval(e)).collect()
+            }
+            (e, 1) => self.eval(e).map(|v| vec![v]),
+            (e, _) => Err(err(
+                e.span(),
+                &self.origin,
+                "a 2-vector unknown needs two residuals: `implicit!(xi: 2 => [r1, r2])`",
+            )),
+        };
         match previous {
             Some(p) => self.env.insert(var.clone(), p),
             None => self.env.remove(&var),
         };
-        match r? {
-            Value::Scalar(r) if !self.dag.reachable([r])[x.index()] => Err(err(
+        let residuals: Vec<Id> = r?
+            .into_iter()
+            .map(|v| match v {
+                Value::Scalar(r) => Ok(r),
+                _ => Err(err(
+                    span,
+                    &self.origin,
+                    "each implicit residual must be a scalar",
+                )),
+            })
+            .collect::<Result<_, _>>()?;
+        // Every residual must change with the unknown, and every component
+        // of the unknown must enter some residual: otherwise the Jacobian
+        // is singular everywhere and there is no projection to solve for.
+        let reached = self.dag.reachable(residuals.iter().copied());
+        let independent = residuals
+            .iter()
+            .any(|&r| !c.iter().any(|x| self.dag.reachable([r])[x.index()]));
+        if independent || c.iter().any(|x| !reached[x.index()]) {
+            return Err(err(
                 closure.residual.span(),
                 &self.origin,
                 format!(
                     "the projection residual does not depend on `{var}`: `{var} => r` needs an \
                      r that changes with `{var}` (its zero is the projection)"
                 ),
-            )),
-            Value::Scalar(r) => Ok(r),
-            Value::Vec2(_) => Err(err(
-                span,
-                &self.origin,
-                "the implicit residual must be a scalar",
-            )),
+            ));
         }
+        Ok(residuals)
     }
 
     fn eval(&mut self, e: &syn::Expr) -> Result<Value<Id>, Error> {
@@ -495,18 +666,31 @@ impl Builder {
     }
 }
 
-/// `xi => residual`
+/// `xi => residual` or `xi: 2 => [r1, r2]`
 struct ImplicitDef {
     var: syn::Ident,
+    len: usize,
     residual: syn::Expr,
 }
 
 impl syn::parse::Parse for ImplicitDef {
     fn parse(input: syn::parse::ParseStream) -> syn::Result<Self> {
         let var = input.parse()?;
+        let mut len = 1;
+        if input.peek(syn::Token![:]) {
+            input.parse::<syn::Token![:]>()?;
+            let lit: syn::LitInt = input.parse()?;
+            len = lit.base10_parse::<usize>()?;
+            if !(1..=2).contains(&len) {
+                return Err(syn::Error::new(
+                    lit.span(),
+                    "an implicit unknown has 1 or 2 components",
+                ));
+            }
+        }
         input.parse::<syn::Token![=>]>()?;
         let residual = input.parse()?;
-        Ok(ImplicitDef { var, residual })
+        Ok(ImplicitDef { var, len, residual })
     }
 }
 
@@ -557,8 +741,16 @@ fn eval_expr_inner<D: Domain>(
     origin: &str,
     unknown: &str,
 ) -> Result<Value<D::S>, Error> {
-    use Value::{Scalar, Vec2};
+    use Value::{Scalar, Vec2, Vec3};
     let ev = |d: &mut D, e: &syn::Expr| eval_expr(d, env, e, origin, unknown);
+    let same_kind =
+        |a: &Value<D::S>, b: &Value<D::S>| std::mem::discriminant(a) == std::mem::discriminant(b);
+    // Component by component: `f(a_i, b_i)` (values of one kind).
+    let zip = |d: &mut D, a: Value<D::S>, b: Value<D::S>, f: fn(&mut D, D::S, D::S) -> D::S| {
+        let (a, b) = (a.components(), b.components());
+        let c: Vec<D::S> = a.iter().zip(&b).map(|(x, y)| f(d, *x, *y)).collect();
+        Value::from_components(&c)
+    };
     match e {
         syn::Expr::Paren(p) => ev(d, &p.expr),
         syn::Expr::Group(g) => ev(d, &g.expr),
@@ -578,10 +770,11 @@ fn eval_expr_inner<D: Domain>(
             })
         }
         syn::Expr::Unary(u) => match u.op {
-            syn::UnOp::Neg(_) => Ok(match ev(d, &u.expr)? {
-                Scalar(a) => Scalar(d.neg(a)),
-                Vec2([a, b]) => Vec2([d.neg(a), d.neg(b)]),
-            }),
+            syn::UnOp::Neg(_) => {
+                let v = ev(d, &u.expr)?;
+                let c: Vec<D::S> = v.components().into_iter().map(|a| d.neg(a)).collect();
+                Ok(v.like(&c))
+            }
             _ => Err(err(u.span(), origin, "only unary `-` is supported")),
         },
         syn::Expr::Field(f) => {
@@ -590,12 +783,18 @@ fn eval_expr_inner<D: Domain>(
                 return Err(err(f.span(), origin, "use `.x` or `.y`"));
             };
             match (v, m.to_string().as_str()) {
-                (Vec2([x, _]), "x") => Ok(Scalar(x)),
-                (Vec2([_, y]), "y") => Ok(Scalar(y)),
+                (Vec2([x, _]) | Vec3([x, _, _]), "x") => Ok(Scalar(x)),
+                (Vec2([_, y]) | Vec3([_, y, _]), "y") => Ok(Scalar(y)),
+                (Vec3([_, _, z]), "z") => Ok(Scalar(z)),
                 (Vec2(_), other) => Err(err(
                     m.span(),
                     origin,
                     format!("no component `{other}` (use `.x` or `.y`)"),
+                )),
+                (Vec3(_), other) => Err(err(
+                    m.span(),
+                    origin,
+                    format!("no component `{other}` (use `.x`, `.y` or `.z`)"),
                 )),
                 (Scalar(_), _) => Err(err(f.span(), origin, "a scalar has no components")),
             }
@@ -604,30 +803,27 @@ fn eval_expr_inner<D: Domain>(
             let (l, r) = (ev(d, &b.left)?, ev(d, &b.right)?);
             let bad = |what: &str| err(b.span(), origin, format!("cannot {what}"));
             match (&b.op, l, r) {
-                (syn::BinOp::Add(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.add(a, c))),
-                (syn::BinOp::Add(_), Vec2([a, b2]), Vec2([c, e2])) => {
-                    Ok(Vec2([d.add(a, c), d.add(b2, e2)]))
-                }
-                (syn::BinOp::Sub(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.sub(a, c))),
-                (syn::BinOp::Sub(_), Vec2([a, b2]), Vec2([c, e2])) => {
-                    Ok(Vec2([d.sub(a, c), d.sub(b2, e2)]))
-                }
-                (syn::BinOp::Add(_) | syn::BinOp::Sub(_), _, _) => {
+                (syn::BinOp::Add(_), l, r) if same_kind(&l, &r) => Ok(zip(d, l, r, D::add)),
+                (syn::BinOp::Sub(_), l, r) if same_kind(&l, &r) => Ok(zip(d, l, r, D::sub)),
+                (syn::BinOp::Add(_) | syn::BinOp::Sub(_), Scalar(_), _)
+                | (syn::BinOp::Add(_) | syn::BinOp::Sub(_), _, Scalar(_)) => {
                     Err(bad("add or subtract a scalar and a vector"))
                 }
+                (syn::BinOp::Add(_) | syn::BinOp::Sub(_), _, _) => {
+                    Err(bad("add or subtract vectors of different sizes"))
+                }
                 (syn::BinOp::Mul(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.mul(a, c))),
-                (syn::BinOp::Mul(_), Scalar(s), Vec2([a, c]))
-                | (syn::BinOp::Mul(_), Vec2([a, c]), Scalar(s)) => {
-                    Ok(Vec2([d.mul(s, a), d.mul(s, c)]))
+                (syn::BinOp::Mul(_), Scalar(s), v) | (syn::BinOp::Mul(_), v, Scalar(s)) => {
+                    let c: Vec<D::S> = v.components().into_iter().map(|a| d.mul(s, a)).collect();
+                    Ok(v.like(&c))
                 }
-                (syn::BinOp::Mul(_), Vec2(_), Vec2(_)) => {
-                    Err(bad("multiply two vectors (use `dot`)"))
-                }
+                (syn::BinOp::Mul(_), _, _) => Err(bad("multiply two vectors (use `dot`)")),
                 (syn::BinOp::Div(_), Scalar(a), Scalar(c)) => Ok(Scalar(d.div(a, c))),
-                (syn::BinOp::Div(_), Vec2([a, c]), Scalar(s)) => {
-                    Ok(Vec2([d.div(a, s), d.div(c, s)]))
+                (syn::BinOp::Div(_), v, Scalar(s)) => {
+                    let c: Vec<D::S> = v.components().into_iter().map(|a| d.div(a, s)).collect();
+                    Ok(v.like(&c))
                 }
-                (syn::BinOp::Div(_), _, Vec2(_)) => Err(bad("divide by a vector")),
+                (syn::BinOp::Div(_), _, _) => Err(bad("divide by a vector")),
                 _ => Err(err(b.span(), origin, "only `+ - * /` are supported")),
             }
         }
@@ -676,6 +872,9 @@ fn eval_expr_inner<D: Domain>(
                         (Vec2([ax, ay]), Vec2([bx, by])) => {
                             Ok(Vec2([comb(d, ax, bx), comb(d, ay, by)]))
                         }
+                        (Vec3([ax, ay, az]), Vec3([bx, by, bz])) => {
+                            Ok(Vec3([comb(d, ax, bx), comb(d, ay, by), comb(d, az, bz)]))
+                        }
                         _ => Err(type_err("two values of the same kind")),
                     }
                 }
@@ -687,7 +886,14 @@ fn eval_expr_inner<D: Domain>(
                             let v = d.mul(b2, e2);
                             Ok(Scalar(d.add(u, v)))
                         }
-                        _ => Err(type_err("two vectors")),
+                        (Vec3(a), Vec3(b)) => {
+                            let u = d.mul(a[0], b[0]);
+                            let v = d.mul(a[1], b[1]);
+                            let w = d.mul(a[2], b[2]);
+                            let uv = d.add(u, v);
+                            Ok(Scalar(d.add(uv, w)))
+                        }
+                        _ => Err(type_err("two vectors of one size")),
                     }
                 }
                 "perp" => {
@@ -704,6 +910,14 @@ fn eval_expr_inner<D: Domain>(
                             let u = d.mul(x, x);
                             let v = d.mul(y, y);
                             let s = d.add(u, v);
+                            Ok(Scalar(d.sqrt(s)))
+                        }
+                        Vec3([x, y, z]) => {
+                            let u = d.mul(x, x);
+                            let v = d.mul(y, y);
+                            let w = d.mul(z, z);
+                            let uv = d.add(u, v);
+                            let s = d.add(uv, w);
                             Ok(Scalar(d.sqrt(s)))
                         }
                         _ => Err(type_err("a vector")),
@@ -749,17 +963,138 @@ fn eval_expr_inner<D: Domain>(
                         _ => Err(type_err("two scalars")),
                     }
                 }
+                "vec3" => {
+                    arity(3)?;
+                    match (ev(d, args[0])?, ev(d, args[1])?, ev(d, args[2])?) {
+                        (Scalar(x), Scalar(y), Scalar(z)) => Ok(Vec3([x, y, z])),
+                        _ => Err(type_err("three scalars")),
+                    }
+                }
+                "cross" => {
+                    arity(2)?;
+                    match (ev(d, args[0])?, ev(d, args[1])?) {
+                        (Vec3(a), Vec3(b)) => {
+                            let mut c = [a[0]; 3];
+                            for (i, ci) in c.iter_mut().enumerate() {
+                                let (j, k) = ((i + 1) % 3, (i + 2) % 3);
+                                let p = d.mul(a[j], b[k]);
+                                let m = d.mul(a[k], b[j]);
+                                *ci = d.sub(p, m);
+                            }
+                            Ok(Vec3(c))
+                        }
+                        _ => Err(type_err("two 3-vectors")),
+                    }
+                }
+                "tri3_point" | "tri3_du" | "tri3_dv" | "quad4_point" | "quad4_du" | "quad4_dv" => {
+                    let quad = fname.starts_with("quad4");
+                    let nodes = if quad { 4 } else { 3 };
+                    // tri3_du and tri3_dv are constant: no parameter.
+                    let takes_xi = quad || fname == "tri3_point";
+                    arity(nodes + usize::from(takes_xi))?;
+                    let mut pts = Vec::with_capacity(nodes);
+                    for a in &args[..nodes] {
+                        match ev(d, a)? {
+                            Vec3(p) => pts.push(p),
+                            _ => return Err(type_err("3-vector nodes")),
+                        }
+                    }
+                    let xi = if takes_xi {
+                        match ev(d, args[nodes])? {
+                            Vec2(xi) => Some(xi),
+                            _ => return Err(type_err("a 2-vector `(u, v)` last")),
+                        }
+                    } else {
+                        None
+                    };
+                    let w = face_weights(d, &fname, xi);
+                    let mut out = [pts[0][0]; 3];
+                    for (k, o) in out.iter_mut().enumerate() {
+                        let mut acc: Option<D::S> = None;
+                        for (p, w) in pts.iter().zip(&w) {
+                            let t = match w {
+                                Weight::One => p[k],
+                                Weight::MinusOne => d.neg(p[k]),
+                                Weight::Of(w) => d.mul(*w, p[k]),
+                            };
+                            acc = Some(match acc {
+                                None => t,
+                                Some(a) => d.add(a, t),
+                            });
+                        }
+                        *o = acc.expect("a face has nodes");
+                    }
+                    Ok(Vec3(out))
+                }
                 other => Err(err(
                     fp.span(),
                     origin,
                     format!(
-                        "unknown function `{other}` (known: lerp, dot, perp, norm, sqrt, powi, vec2)"
+                        "unknown function `{other}` (known: lerp, dot, perp, norm, sqrt, powi, vec2, \
+                         vec3, cross, tri3_point, tri3_du, tri3_dv, quad4_point, quad4_du, quad4_dv)"
                     ),
                 )),
             }
         }
         syn::Expr::Macro(m) => Err(misplaced_macro(&m.mac, origin)),
         other => Err(err(other.span(), origin, "unsupported expression")),
+    }
+}
+
+/// A shape-function weight: exactly one, minus one, or an expression.
+enum Weight<S> {
+    One,
+    MinusOne,
+    Of(S),
+}
+
+/// The weights of a face's nodes in `name` (`tri3_point`, `tri3_du`,
+/// `tri3_dv`, `quad4_point`, `quad4_du`, `quad4_dv`) at `xi = (u, v)`:
+/// tri3 `N = (1 - u - v, u, v)`, `dx/du = x2 - x1`, `dx/dv = x3 - x1`;
+/// quad4 `N_a = (1 + u u_a)(1 + v v_a) / 4` with nodes at (-1,-1), (1,-1),
+/// (1,1), (-1,1), and its `u` and `v` derivatives.
+fn face_weights<D: Domain>(d: &mut D, name: &str, xi: Option<[D::S; 2]>) -> Vec<Weight<D::S>> {
+    use Weight::{MinusOne, Of, One};
+    match (name, xi) {
+        ("tri3_du", _) => vec![MinusOne, One, Of(d.constant(0.0))],
+        ("tri3_dv", _) => vec![MinusOne, Of(d.constant(0.0)), One],
+        ("tri3_point", Some([u, v])) => {
+            let one = d.constant(1.0);
+            let a = d.sub(one, u);
+            vec![Of(d.sub(a, v)), Of(u), Of(v)]
+        }
+        (_, Some([u, v])) => {
+            let (one, quarter) = (d.constant(1.0), d.constant(0.25));
+            let um = d.sub(one, u);
+            let up = d.add(one, u);
+            let vm = d.sub(one, v);
+            let vp = d.add(one, v);
+            // (1 + u u_a) and (1 + v v_a) per node, scaled by 1/4.
+            let nodes = [(um, vm), (up, vm), (up, vp), (um, vp)];
+            let signs = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+            nodes
+                .iter()
+                .zip(signs)
+                .map(|(&(fu, fv), (su, sv))| {
+                    let w = match name {
+                        "quad4_point" => {
+                            let p = d.mul(fu, fv);
+                            d.mul(quarter, p)
+                        }
+                        "quad4_du" => {
+                            let c = d.constant(0.25 * su);
+                            d.mul(c, fv)
+                        }
+                        _ => {
+                            let c = d.constant(0.25 * sv);
+                            d.mul(c, fu)
+                        }
+                    };
+                    Of(w)
+                })
+                .collect()
+        }
+        _ => unreachable!("every face function with a parameter has one"),
     }
 }
 

@@ -277,11 +277,18 @@ pub fn check(f: &Formulation) -> Result<(), Error> {
             .map(|&(_, line, column)| (line, column))
     };
     let start = f.gap.span().start();
-    let mut targets: Vec<(String, Id, Option<Position>)> = vec![(
-        "the projection residual".to_owned(),
-        f.implicit.residual,
-        at(&f.implicit.name),
-    )];
+    let mut targets: Vec<(String, Id, Option<Position>)> = f
+        .implicit
+        .components
+        .iter()
+        .map(|&(_, r)| {
+            (
+                "the projection residual".to_owned(),
+                r,
+                at(&f.implicit.name),
+            )
+        })
+        .collect();
     for e in &f.entities {
         for id in e.value.components() {
             targets.push((format!("entity `{}`", e.name), id, at(&e.name)));

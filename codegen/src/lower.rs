@@ -22,6 +22,7 @@
 //! | `Load(Coord(i))` | `d[i]` | — |
 //! | `Load(Param(i))` | parameter `i` (`xi_s`) | — |
 //! | `Load(Implicit)` | `xi_m` (or `xi` in the residual) | — |
+//! | `Load(ImplicitComponent(k))` | component `k` of a 2-vector `xi_m` | — |
 //! | `Add(a, b)`, `Sub(a, b)` | `a + b`, `a - b` | add |
 //! | `Mul(a, b)` | `a * b` | mul |
 //! | `Square(a)` | `a * a` | mul |
@@ -44,6 +45,9 @@ pub enum Source {
     Param(usize),
     /// The implicit variable's value.
     Implicit,
+    /// Component `k` of a vector implicit variable (`implicit!(xi: 2 =>
+    /// ..)`; a scalar one is [`Source::Implicit`]).
+    ImplicitComponent(usize),
 }
 
 /// An instruction operand.
@@ -155,8 +159,10 @@ impl Program {
     /// by zero; coordinate `i` is loaded from `d[i]`.
     pub fn lower(dag: &Dag, outputs: &[Option<Id>], sig: &Signature) -> Program {
         let coords = sig.coord_syms();
-        let params: Vec<Sym> = (0..sig.params().len()).map(|i| sig.param_sym(i)).collect();
+        let params: Vec<Sym> = (0..sig.param_count()).map(|i| sig.param_sym(i)).collect();
         let implicit = sig.implicit_sym();
+        let vector = sig.implicit_syms();
+        let vector = if vector.len() > 1 { vector } else { Vec::new() };
         let zeros: HashMap<Sym, f64> = sig
             .origin_coords()
             .into_iter()
@@ -182,6 +188,9 @@ impl Program {
             let o = |id: Id| reg[id.index()].expect("children precede parents");
             let instr = match node {
                 Node::Const(_) => unreachable!("handled above"),
+                Node::Input(s) if vector.contains(&s) => Instr::Load(Source::ImplicitComponent(
+                    vector.iter().position(|v| *v == s).expect("contained"),
+                )),
                 Node::Input(s) if s == implicit => Instr::Load(Source::Implicit),
                 Node::Input(s) if params.contains(&s) => Instr::Load(Source::Param(
                     params.iter().position(|p| *p == s).expect("contained"),
@@ -231,6 +240,12 @@ impl Program {
     /// relative coordinates, `params` the parameters, `implicit` the
     /// implicit unknown.
     pub fn run(&self, d: &[f64], params: &[f64], implicit: f64) -> Vec<f64> {
+        self.run_vector(d, params, &[implicit])
+    }
+
+    /// [`Program::run`] with every component of the implicit unknown
+    /// (`implicit[0]` for [`Source::Implicit`]).
+    pub fn run_vector(&self, d: &[f64], params: &[f64], implicit: &[f64]) -> Vec<f64> {
         let mut regs: Vec<f64> = Vec::with_capacity(self.instrs.len());
         let val = |regs: &Vec<f64>, o: Operand| match o {
             Operand::Reg(r) => regs[r as usize],
@@ -240,7 +255,8 @@ impl Program {
             let v = match *i {
                 Instr::Load(Source::Coord(k)) => d[k],
                 Instr::Load(Source::Param(i)) => params[i],
-                Instr::Load(Source::Implicit) => implicit,
+                Instr::Load(Source::Implicit) => implicit[0],
+                Instr::Load(Source::ImplicitComponent(k)) => implicit[k],
                 Instr::Add(a, b) => val(&regs, a) + val(&regs, b),
                 Instr::Sub(a, b) => val(&regs, a) - val(&regs, b),
                 Instr::Mul(a, b) => val(&regs, a) * val(&regs, b),

@@ -53,6 +53,8 @@ pub struct FormulationPlan {
     pub variant: String,
     /// The formulation file's `//!` documentation (may be empty).
     pub doc: String,
+    /// The dimension of its points (2: segments, 3: faces).
+    pub dim: usize,
     /// The kernels; `None` when not compiled in.
     pub kernels: Option<KernelSetPlan>,
 }
@@ -206,6 +208,7 @@ impl KernelPlan {
                 name: src.name.clone(),
                 variant: variant(&src.name),
                 doc: f.doc.clone(),
+                dim: f.signature.dim(),
                 kernels,
             });
         }
@@ -286,19 +289,20 @@ impl KernelSetPlan {
         };
         let params = sig.params().iter().enumerate().map(|(i, s)| Input {
             name: s.clone(),
-            len: 1,
+            len: sig.param_len(i),
             kind: InputKind::Param(i),
         });
         let mut inputs: Vec<Input> = std::iter::once(coords).chain(params).collect();
         let mut residual_inputs = inputs.clone();
+        let k = sig.implicit_len();
         residual_inputs.push(Input {
             name: "xi".into(),
-            len: 1,
+            len: k,
             kind: InputKind::Implicit,
         });
         inputs.push(Input {
             name: sig.implicit().to_owned(),
-            len: 1,
+            len: k,
             kind: InputKind::ImplicitInOut,
         });
         let scalar = |name: &str, first: usize, delivery: Delivery| Output {
@@ -308,24 +312,49 @@ impl KernelSetPlan {
             layout: Layout::Scalar,
             delivery,
         };
-        // The closed-form projection is the program's last output.
+        // The closed-form projection is the program's last output (its
+        // last `k` outputs for a vector unknown).
         let implicit_out = |prog: &Program| {
-            affine.then(|| scalar(sig.implicit(), prog.outputs.len() - 1, Delivery::Implicit))
+            affine.then(|| match k {
+                1 => scalar(sig.implicit(), prog.outputs.len() - 1, Delivery::Implicit),
+                _ => Output {
+                    name: sig.implicit().to_owned(),
+                    len: k,
+                    first: prog.outputs.len() - k,
+                    layout: Layout::Vector,
+                    delivery: Delivery::Implicit,
+                },
+            })
         };
 
         let ops = p.residual.op_count();
+        let (residual_doc, residual_outputs) = if k == 1 {
+            (
+                "`[r, dr/dxi]`",
+                vec![
+                    scalar("r", 0, Delivery::Return),
+                    scalar("r_xi", 1, Delivery::Return),
+                ],
+            )
+        } else {
+            (
+                "`[r_0, r_1, A_00, A_01, A_10, A_11]` (`A_ac = dr_a/dxi_c`)",
+                ["r0", "r1", "a00", "a01", "a10", "a11"]
+                    .iter()
+                    .enumerate()
+                    .map(|(i, n)| scalar(n, i, Delivery::Return))
+                    .collect(),
+            )
+        };
         let residual = FunctionPlan {
             name: format!("{ident}_residual"),
             doc: format!(
-                "`[r, dr/dxi]` of the `{name}` projection at `xi`.{}",
+                "{residual_doc} of the `{name}` projection at `xi`.{}",
                 ops_doc(&ops)
             ),
             role: Role::Residual,
             inputs: residual_inputs,
-            outputs: vec![
-                scalar("r", 0, Delivery::Return),
-                scalar("r_xi", 1, Delivery::Return),
-            ],
+            outputs: residual_outputs,
             program: p.residual.clone(),
             ops,
         };

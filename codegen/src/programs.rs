@@ -18,13 +18,16 @@ pub struct FormulationPrograms {
     /// returns `xi_m` as its last output; otherwise the kernels take the
     /// converged `xi_m` as input.
     pub affine: bool,
-    /// `[r, r_xi]` of the projection at `xi`.
+    /// `[r, r_xi]` of the projection at `xi` (a 2-vector unknown:
+    /// `[r_0, r_1, A_00, A_01, A_10, A_11]`, `A_ac = dr_a/dxi_c`).
     pub residual: Program,
-    /// The gap value (`[g]`, or `[g, xi_m]` when affine).
+    /// The gap value (`[g]`, or `[g, xi_m]` when affine; a 2-vector
+    /// unknown: `[g, u, v]`).
     pub gap: Program,
     /// Per type (1..=6): outputs `[g, grad(n), packed upper hess(n (n + 1) / 2)]`
-    /// (plus `xi_m` when affine; `n` from the formulation's signature), and
-    /// whether any Hessian entry survives.
+    /// (plus `xi_m` when affine, both components for a 2-vector unknown;
+    /// `n` from the formulation's signature), and whether any Hessian entry
+    /// survives.
     pub kernels: Vec<(Program, bool)>,
 }
 
@@ -33,6 +36,9 @@ pub struct FormulationPrograms {
 /// coordinates relative to the first point).
 pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
     crate::invariance::check(f)?;
+    if f.implicit.is_vector() {
+        return programs_vector(f);
+    }
     let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
         finite(f, Program::lower(dag, outs, &f.signature))
     };
@@ -116,4 +122,83 @@ fn finite(f: &Formulation, program: Program) -> Result<Program, Error> {
             ),
         }),
     }
+}
+
+/// [`programs`] for a 2-vector unknown: closed form `xi = -A^-1 r(q, 0)`
+/// when every `A_ac` is independent of `xi` (the residual is affine: a
+/// tri3 master), the inverse by adjugate over determinant.
+fn programs_vector(f: &Formulation) -> Result<FormulationPrograms, Error> {
+    let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
+        finite(f, Program::lower(dag, outs, &f.signature))
+    };
+    let xs: Vec<expr::Sym> = f.implicit.components.iter().map(|c| c.0).collect();
+    let closed_form = |dag: &mut expr::Dag| -> Option<[expr::Id; 2]> {
+        let ra = truncation::residual_vector(f, dag);
+        let mut diff = diff::Differentiator::new();
+        for a in &ra[2..] {
+            for x in &xs {
+                if diff.d(dag, *a, *x).is_some() {
+                    return None;
+                }
+            }
+        }
+        let zero = dag.constant(0.0);
+        let mut r0 = vec![Some(ra[0]), Some(ra[1])];
+        for x in &xs {
+            r0 = dag.replace(&r0, *x, zero);
+        }
+        let [r0, r1] = [r0[0].expect("some"), r0[1].expect("some")];
+        let (a00, a01, a10, a11) = (ra[2], ra[3], ra[4], ra[5]);
+        let p = dag.mul(a00, a11);
+        let m = dag.mul(a01, a10);
+        let det = dag.sub(p, m);
+        let inv = dag.recip(det);
+        // xi = -A^-1 r0 = -(adj A) r0 / det.
+        let t0 = dag.mul(a11, r0);
+        let t1 = dag.mul(a01, r1);
+        let u = dag.sub(t0, t1);
+        let u = dag.mul(u, inv);
+        let t2 = dag.mul(a00, r1);
+        let t3 = dag.mul(a10, r0);
+        let v = dag.sub(t2, t3);
+        let v = dag.mul(v, inv);
+        Some([dag.neg(u), dag.neg(v)])
+    };
+    let finish = |dag: &mut expr::Dag, outs: Vec<Option<expr::Id>>| -> Vec<Option<expr::Id>> {
+        match closed_form(dag) {
+            Some(x) => {
+                let mut outs = outs;
+                for (sym, val) in xs.iter().zip(x) {
+                    outs = dag.replace(&outs, *sym, val);
+                }
+                outs.extend(x.map(Some));
+                outs
+            }
+            None => outs,
+        }
+    };
+    let mut dag = f.dag.clone();
+    let affine = closed_form(&mut dag).is_some();
+    let ra = truncation::residual_vector(f, &mut dag);
+    let residual = lower(&dag, &ra.iter().map(|r| Some(*r)).collect::<Vec<_>>())?;
+    let g = truncation::gap_value(f, &mut dag)?;
+    let outs = finish(&mut dag, vec![Some(g)]);
+    let gap = lower(&dag, &outs)?;
+    let mut kernels = Vec::new();
+    for row in TYPES {
+        let mut dag = f.dag.clone();
+        let k = truncation::derive(f, &mut dag, row)?;
+        let has_hessian = k.has_hessian();
+        let mut outs = vec![Some(k.gap)];
+        outs.extend(k.grad);
+        outs.extend(k.hess);
+        let outs = finish(&mut dag, outs);
+        kernels.push((lower(&dag, &outs)?, has_hessian));
+    }
+    Ok(FormulationPrograms {
+        affine,
+        residual,
+        gap,
+        kernels,
+    })
 }

@@ -4,16 +4,20 @@
 //! `inputs!(p1, ..., pk; s1, ..., sm)` declares `k` nodal points of
 //! dimension [`Signature::dim`] (their coordinates, point by point, are the
 //! kernel coordinates `q`, `n = dim * k` of them) and `m` scalar parameters
-//! (`xi_s`). The formulation's `implicit!` adds the implicit unknown
-//! (`xi_m`). Everything downstream — jets, truncation, lowering, the kernel
+//! (`xi_s`); `inputs!(dim 3; p1, ..., pk; xi_s: 2)` points of three
+//! coordinates and a parameter of two components (a face's `(u, v)`). The
+//! formulation's `implicit!` adds the implicit unknown (`xi_m`: one
+//! component, or two for `implicit!(xi: 2 => ..)`). Everything downstream — jets, truncation, lowering, the kernel
 //! plan and its emitters — takes its sizes from here: no other module
 //! knows a coordinate count.
 //!
 //! ## Symbols
 //!
 //! The expression DAG names inputs by [`Sym`]: coordinates first
-//! (`Sym(0..n)`, point-major: `x1, y1, x2, y2, ...`), then the parameters
-//! (`Sym(n..n+m)`), then the implicit unknown (`Sym(n+m)`).
+//! (`Sym(0..n)`, point-major: `x1, y1, x2, y2, ...`), then the parameters'
+//! components (`Sym(n..n+m)`, `m` = [`Signature::param_count`], parameter
+//! after parameter), then the implicit unknown's components
+//! (`Sym(n+m..)`).
 //!
 //! ## Packed symmetric matrices
 //!
@@ -28,23 +32,57 @@ use crate::expr::Sym;
 pub struct Signature {
     dim: usize,
     points: Vec<String>,
+    /// Points of the slave face (the first ones); the rest are the
+    /// master's.
+    slave_points: usize,
     params: Vec<String>,
+    /// Components per parameter (1 or 2).
+    param_lens: Vec<usize>,
     implicit: String,
+    /// Components of the implicit unknown (1 or 2).
+    implicit_len: usize,
 }
 
 impl Signature {
     /// A signature of `points` of dimension `dim`, scalar `params` and the
     /// implicit unknown named `implicit`.
     pub fn new(dim: usize, points: Vec<String>, params: Vec<String>, implicit: String) -> Self {
+        let param_lens = vec![1; params.len()];
         Signature {
             dim,
+            slave_points: points.len() / 2,
             points,
             params,
+            param_lens,
             implicit,
+            implicit_len: 1,
         }
     }
 
-    /// The dimension of every point (2 for the formulation language).
+    /// A signature of `points` of dimension `dim`, the first
+    /// `slave_points` of them the slave face's, and parameters of
+    /// `param_lens[i]` components each (the implicit unknown named and
+    /// sized later, by `implicit!`).
+    pub fn with_param_lens(
+        dim: usize,
+        points: Vec<String>,
+        slave_points: usize,
+        params: Vec<String>,
+        param_lens: Vec<usize>,
+    ) -> Self {
+        debug_assert_eq!(params.len(), param_lens.len());
+        Signature {
+            dim,
+            slave_points,
+            points,
+            params,
+            param_lens,
+            implicit: String::new(),
+            implicit_len: 1,
+        }
+    }
+
+    /// The dimension of every point (2 for segments, 3 for faces).
     pub fn dim(&self) -> usize {
         self.dim
     }
@@ -54,9 +92,32 @@ impl Signature {
         &self.points
     }
 
-    /// The scalar parameter names (e.g. `xi_s`), in declaration order.
+    /// How many of the points are the slave's (the first ones): half of
+    /// them for segments, as declared for faces.
+    pub fn slave_points(&self) -> usize {
+        self.slave_points
+    }
+
+    /// The parameter names (e.g. `xi_s`), in declaration order.
     pub fn params(&self) -> &[String] {
         &self.params
+    }
+
+    /// The components of parameter `i` (1 or 2).
+    pub fn param_len(&self, i: usize) -> usize {
+        self.param_lens[i]
+    }
+
+    /// The index of parameter `i`'s first component among all parameter
+    /// components.
+    pub fn param_offset(&self, i: usize) -> usize {
+        self.param_lens[..i].iter().sum()
+    }
+
+    /// All parameter components (the number of `Sym`s between the
+    /// coordinates and the implicit unknown).
+    pub fn param_count(&self) -> usize {
+        self.param_lens.iter().sum()
     }
 
     /// The implicit unknown's name (e.g. `xi_m`).
@@ -64,9 +125,19 @@ impl Signature {
         &self.implicit
     }
 
+    /// The implicit unknown's components (1, or 2 for a face's `(u, v)`).
+    pub fn implicit_len(&self) -> usize {
+        self.implicit_len
+    }
+
     /// Names the implicit unknown (known only once `implicit!` is read).
     pub(crate) fn set_implicit(&mut self, name: String) {
         self.implicit = name;
+    }
+
+    /// Sizes the implicit unknown (known only once `implicit!` is read).
+    pub(crate) fn set_implicit_len(&mut self, len: usize) {
+        self.implicit_len = len;
     }
 
     /// The coordinate count `n = dim * points`.
@@ -99,15 +170,24 @@ impl Signature {
         (0..self.coords()).map(|i| self.coord_sym(i)).collect()
     }
 
-    /// The symbol of parameter `i`.
+    /// The symbol of parameter component `i` (for scalar parameters:
+    /// parameter `i`; see [`Signature::param_offset`]).
     pub fn param_sym(&self, i: usize) -> Sym {
-        debug_assert!(i < self.params.len());
+        debug_assert!(i < self.param_count());
         Sym((self.coords() + i) as u16)
     }
 
-    /// The symbol of the implicit unknown.
+    /// The symbol of the implicit unknown (a vector's first component).
     pub fn implicit_sym(&self) -> Sym {
-        Sym((self.coords() + self.params.len()) as u16)
+        Sym((self.coords() + self.param_count()) as u16)
+    }
+
+    /// The symbols of the implicit unknown's components.
+    pub fn implicit_syms(&self) -> Vec<Sym> {
+        let first = self.coords() + self.param_count();
+        (0..self.implicit_len)
+            .map(|k| Sym((first + k) as u16))
+            .collect()
     }
 
     /// The coordinates of the first point: the origin of the relative

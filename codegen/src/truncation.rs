@@ -29,6 +29,20 @@
 //! `g'' = sum_i (x_i n_i'' + n_i' x_i'^T + x_i' n_i'^T + n_i x_i'')`).
 //!
 //! The six types are the six rows of [`TYPES`].
+//!
+//! A 2-vector unknown `xi = (u, v)` (3D faces, `implicit!(xi: 2 => [r1,
+//! r2])`) follows the same rule with sums over its components
+//! (`vector.rs`): with `A_ac = dr_a/dxi_c`,
+//!
+//! ```text
+//! xi'    = -A^-1 r_q
+//! xi_b'' = -sum_a (A^-1)_ba [ r_a,qq + sum_c (r_a,qxi_c xi_c'^T + xi_c' r_a,xi_cq)
+//!                             + sum_cd r_a,xi_cxi_d xi_c' xi_d'^T ]
+//! E'  = E_q + [xi not constant] sum_b E_xi_b xi_b'
+//! E'' = E_qq + [xi not constant] sum_b (E_qxi_b xi_b'^T + xi_b' E_xi_bq
+//!                                       + sum_c E_xi_bxi_c xi_b' xi_c'^T)
+//!            + [xi quadratic] sum_b E_xi_b xi_b''
+//! ```
 
 use std::collections::HashMap;
 
@@ -37,6 +51,8 @@ use crate::diff::{Differentiator, add_opt, mul_opt};
 use crate::expr::{Dag, Id};
 use crate::formulation::{Formulation, Value};
 use crate::jet::{JetArena, JetId, Matrix, Parts, Vector};
+
+mod vector;
 
 /// How an entity depends on the displacements within a load step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -105,6 +121,9 @@ pub fn derive(
     dag: &mut Dag,
     orders: [EntityOrder; 3],
 ) -> Result<KernelExprs, Error> {
+    if formulation.implicit.is_vector() {
+        return vector::derive(formulation, dag, orders);
+    }
     let origin = format!("{}.rs", formulation.name);
     let order_of = |name: &str| -> Result<EntityOrder, Error> {
         ENTITY_NAMES
@@ -254,6 +273,7 @@ pub fn derive(
                 let a = comp(&mut arena, a);
                 Value::Vec2([a, comp(&mut arena, b)])
             }
+            Value::Vec3(c) => Value::Vec3(c.map(|x| comp(&mut arena, x))),
         };
         jets.insert(entity.name.clone(), v);
     }
@@ -261,6 +281,48 @@ pub fn derive(
     let gap = formulation.eval_gap(&mut arena, &jets)?;
     let (v, grad, hess) = arena.materialize(gap);
     Ok(KernelExprs { gap: v, grad, hess })
+}
+
+/// The order row `orders` gives entity `name`, or an error naming it.
+fn order_of(
+    formulation: &Formulation,
+    orders: [EntityOrder; 3],
+    name: &str,
+) -> Result<EntityOrder, Error> {
+    ENTITY_NAMES
+        .iter()
+        .position(|n| *n == name)
+        .map(|i| orders[i])
+        .ok_or_else(|| Error::Truncation {
+            file: format!("{}.rs", formulation.name),
+            message: format!(
+                "entity `{name}` has no column in the truncation table (known: {})",
+                ENTITY_NAMES.join(", ")
+            ),
+        })
+}
+
+/// Every entity of the table is defined, and every defined one has a
+/// column.
+fn check_entities(formulation: &Formulation, orders: [EntityOrder; 3]) -> Result<(), Error> {
+    let mut declared: Vec<&str> = formulation
+        .entities
+        .iter()
+        .map(|e| e.name.as_str())
+        .collect();
+    declared.push(&formulation.implicit.name);
+    for name in &declared {
+        order_of(formulation, orders, name)?;
+    }
+    for name in ENTITY_NAMES {
+        if !declared.contains(&name) {
+            return Err(Error::Truncation {
+                file: format!("{}.rs", formulation.name),
+                message: format!("the formulation does not define entity `{name}`"),
+            });
+        }
+    }
+    Ok(())
 }
 
 /// Adds `sym(u, B_b)` to a list of rank-2 terms.
@@ -289,9 +351,25 @@ pub fn gap_value(formulation: &Formulation, dag: &mut Dag) -> Result<Id, Error> 
         .iter()
         .map(|e| (e.name.clone(), e.value))
         .collect();
-    let x = dag.input(formulation.implicit.sym);
-    env.insert(formulation.implicit.name.clone(), Value::Scalar(x));
+    let x = formulation.implicit.value(dag);
+    env.insert(formulation.implicit.name.clone(), x);
     formulation.eval_gap(dag, &env)
+}
+
+/// The vector projection residual `[r_0, r_1]` and its Jacobian `A_ac =
+/// dr_a/dxi_c`, row-major: `[r_0, r_1, A_00, A_01, A_10, A_11]` (a
+/// structurally zero entry as the constant 0).
+pub fn residual_vector(formulation: &Formulation, dag: &mut Dag) -> Vec<Id> {
+    let c = &formulation.implicit.components;
+    let mut out: Vec<Id> = c.iter().map(|(_, r)| *r).collect();
+    let mut diff = Differentiator::new();
+    for (_, r) in c {
+        for (xi, _) in c {
+            let a = diff.d(dag, *r, *xi).unwrap_or_else(|| dag.constant(0.0));
+            out.push(a);
+        }
+    }
+    out
 }
 
 /// The projection residual and its derivative with respect to the implicit

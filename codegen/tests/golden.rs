@@ -12,7 +12,27 @@ fn formulations_dir() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../contact-kernels/formulations")
 }
 
+/// The shipped formulations of segments (2D): `kernels.rs` and
+/// `kernels_lanes.rs` are theirs.
 fn sources() -> Vec<codegen::Source> {
+    sources_of_dim(2)
+}
+
+/// The shipped formulations whose points have `dim` coordinates.
+fn sources_of_dim(dim: usize) -> Vec<codegen::Source> {
+    all_sources()
+        .into_iter()
+        .filter(|s| {
+            codegen::Formulation::parse(&s.name, &s.text)
+                .expect("the shipped formulations parse")
+                .signature
+                .dim()
+                == dim
+        })
+        .collect()
+}
+
+fn all_sources() -> Vec<codegen::Source> {
     let mut files: Vec<_> = std::fs::read_dir(formulations_dir())
         .expect("formulations directory")
         .map(|e| e.expect("dir entry").path())

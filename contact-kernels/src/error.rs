@@ -45,8 +45,8 @@ pub enum KernelError {
     /// A coordinate or `xi_s` is NaN or infinite.
     #[error("non-finite input: coordinate {index} is {value}")]
     NonFinite {
-        /// Index into `q` (`0..n`), or `n` (`q.len()`: 8 for two-node and 12
-        /// for three-node segment pairs) for `xi_s`.
+        /// Index into `q` (`0..n`), or `n + k` (`q.len()`: 8 for two-node
+        /// and 12 for three-node segment pairs) for component `k` of `xi_s`.
         index: usize,
         /// The offending value.
         value: f64,
@@ -74,6 +74,43 @@ pub enum KernelError {
         /// in chord lengths (`|mid_offset| < 1/4` is accepted).
         mid_offset: f64,
     },
+    /// A face's normal (nearly) vanishes: at a corner, `|t_1 x t_2|` is not
+    /// above [`crate::DEGENERATE_LENGTH`] times the face's size squared
+    /// (see the crate's `faces` module docs).
+    #[error(
+        "degenerate {face} face: |t1 x t2| = {area:e} at corner {corner} is not above {threshold:e}"
+    )]
+    DegenerateFace {
+        /// Which face.
+        face: Segment,
+        /// The corner (node index within the face; 0 for a tri3). (A `u8`
+        /// keeps `KernelError` at its 2D size.)
+        corner: u8,
+        /// `|t_1 x t_2|` there.
+        area: f64,
+        /// The smallest accepted value (relative to the face's size).
+        threshold: f64,
+    },
+    /// A quad4 face folds: at a corner, `t_1 x t_2` does not point the way
+    /// of the face's mean normal `(x_3 - x_1) x (x_4 - x_2)`.
+    #[error(
+        "folded {face} face: the normal at corner {corner} points against the face's mean normal"
+    )]
+    FoldedFace {
+        /// Which face.
+        face: Segment,
+        /// The corner (node index within the face).
+        corner: u8,
+    },
+    /// The slave point lies outside its face (tri3: `u, v >= 0`, `u + v <=
+    /// 1`; quad4: `[-1, 1]^2`).
+    #[error("slave point (u, v) = ({u}, {v}) lies outside its face")]
+    SlavePointOutside {
+        /// `xi_s[0]`.
+        u: f64,
+        /// `xi_s[1]`.
+        v: f64,
+    },
     /// The projection equation has no (finite) solution, e.g. for the
     /// slave-normal formulation when the master segment is perpendicular to
     /// the slave segment (`t_m . t_s = 0`).
@@ -82,7 +119,8 @@ pub enum KernelError {
     )]
     NoProjection {
         /// The derivative of the projection residual with respect to `xi`
-        /// where the solve gave up.
+        /// where the solve gave up (for a face: `det A`, the determinant of
+        /// the residuals' Jacobian in `(u, v)`).
         r_xi: f64,
     },
     /// The projection was found but lies absurdly far outside the master
@@ -132,12 +170,22 @@ pub enum KernelError {
         /// The coordinate count the buffer was sized for.
         found: usize,
     },
+    /// `xi_s` does not have the kernel's parametric dimension (one value
+    /// for a segment, two for a face: [`crate::Kernel::param_dim`]).
+    #[error("expected {expected} slave parametric coordinate(s), got {found}")]
+    ParamCount {
+        /// The kernel's parametric dimension.
+        expected: usize,
+        /// The length of the `xi_s` given (for a batch: values per point
+        /// do not divide, `found` is the total).
+        found: usize,
+    },
     /// This formulation was not compiled in (see the crate's features).
     #[error("formulation `{0}` was not compiled into this build of contact-kernels")]
     NotCompiled(Formulation),
 }
 
-/// The two segments of a contact pair.
+/// The two segments (or faces) of a contact pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Segment {
     /// The slave segment (the first half of the points: `q[0..4]` for

@@ -47,4 +47,43 @@ pub(crate) struct KernelSet {
     pub(crate) projection_ops: OpCount,
 }
 
+/// `(d, xi, out)`: a face projection's residuals and their Jacobian at
+/// `xi = (u, v)`, `[r_0, r_1, A_00, A_01, A_10, A_11]`, `A_ac = dr_a/dxi_c`.
+pub(crate) type FaceResidualFn = fn(&[f64], &[f64], &[f64]) -> [f64; 6];
+/// `(d, xi_s, xi_m) -> g` for faces: `xi_s` and `xi_m` have two values
+/// (`xi_m` in/out as for [`GapFn`]).
+pub(crate) type FaceGapFn = fn(&[f64], &[f64], &mut [f64]) -> f64;
+/// `(d, xi_s, xi_m, grad) -> g` for faces.
+pub(crate) type FaceGradientFn = fn(&[f64], &[f64], &mut [f64], &mut [f64]) -> f64;
+/// `(d, xi_s, xi_m, grad, hess) -> g` for faces.
+pub(crate) type FaceHessianFn = fn(&[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]) -> f64;
+
+/// One approximation type's kernel for faces.
+#[derive(Clone, Copy)]
+pub(crate) enum FaceKernel {
+    /// First-order only (Type 1).
+    Gradient(FaceGradientFn),
+    /// With the second-order term.
+    Hessian(FaceHessianFn),
+}
+
+/// The generated kernels of one formulation of 3D faces (points of three
+/// coordinates; `xi_s`, `xi_m` of two).
+pub(crate) struct FaceKernelSet {
+    /// The coordinate count `n` (3 times the points).
+    pub(crate) coords: usize,
+    /// Nodes of the slave face (3: tri3, 4: quad4), the first points.
+    pub(crate) slave_nodes: usize,
+    /// Nodes of the master face, the points after the slave's.
+    pub(crate) master_nodes: usize,
+    /// The residual is affine in `xi` (a tri3 master): every kernel solves
+    /// the projection itself.
+    pub(crate) closed_form_projection: bool,
+    pub(crate) residual: FaceResidualFn,
+    pub(crate) gap: FaceGapFn,
+    pub(crate) kernels: [FaceKernel; 6],
+    pub(crate) ops: [OpCount; 6],
+    pub(crate) projection_ops: OpCount,
+}
+
 include!(concat!(env!("OUT_DIR"), "/kernels.rs"));

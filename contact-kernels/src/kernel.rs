@@ -26,6 +26,15 @@
 //!   `n` scratch values for the relative coordinates; it fits every kernel
 //!   with `n` coordinates.
 //!
+//! ## Parametric coordinates
+//!
+//! `xi_s` is passed as any [`XiArg`] (`f64`, `[f64; N]`, `&[f64]`, ...) of
+//! the kernel's parametric dimension [`Kernel::param_dim`] (1 for
+//! segments, 2 for faces); another length is
+//! [`KernelError::ParamCount`]. The projection comes back as a slice of the
+//! same length ([`GapOut::xi_m_all`]); [`GapOut::xi_m`] is its first
+//! component (for a segment, the projection). See [`crate::param`].
+//!
 //! [`Kernel::eval_batch`] runs the same steps over many points into a
 //! [`GapBatch`] (structure of arrays: all gaps, then all gradients, then all
 //! Hessians), with one status per point: a point that fails (degenerate
@@ -35,21 +44,43 @@
 //! call of the lane kernels (`batch.rs`; AVX2 when the CPU has it), with
 //! the same results and errors as [`Kernel::eval`] point by point.
 
-use crate::generated::{self, KernelSet, kernel_set};
+use crate::generated::{self, KernelSet, face_kernel_set, kernel_set};
 use crate::generated_lanes::{self, LaneIsa, LaneKernel, LaneSet, lane_set};
+use crate::param::{Xi, XiArg};
 use crate::validate::{all_finite, relative_coordinates};
-use crate::{ApproxType, Formulation, KernelError, OpCount, OutputKind, projection};
+use crate::{ApproxType, Formulation, KernelError, OpCount, OutputKind, faces, projection};
 
 /// The generated kernel of one (formulation, approximation type).
 #[derive(Clone, Copy)]
 pub struct Kernel {
     formulation: Formulation,
     ty: ApproxType,
+    imp: Imp,
+}
+
+/// A kernel of segments (2D, with lane kernels for the batch) or of faces
+/// (3D).
+#[derive(Clone, Copy)]
+enum Imp {
+    Segments(Segments),
+    Faces(Faces),
+}
+
+/// A segment kernel: its set, the scalar kernel and the lane kernel.
+#[derive(Clone, Copy)]
+pub(crate) struct Segments {
     set: &'static KernelSet,
     kernel: generated::Kernel,
     lane_set: &'static LaneSet,
     lanes: LaneKernel,
     lane_isa: LaneIsa,
+}
+
+/// A face kernel: its set and the scalar kernel.
+#[derive(Clone, Copy)]
+pub(crate) struct Faces {
+    set: &'static generated::FaceKernelSet,
+    kernel: generated::FaceKernel,
 }
 
 mod batch;
@@ -69,7 +100,7 @@ impl std::fmt::Debug for Kernel {
 #[derive(Debug, Clone, PartialEq)]
 pub struct GapOut {
     pub(crate) gap: f64,
-    pub(crate) xi_m: f64,
+    pub(crate) xi_m: Xi,
     pub(crate) has_hessian: bool,
     pub(crate) grad: Vec<f64>,
     pub(crate) hess: Vec<f64>,
@@ -87,7 +118,7 @@ impl GapOut {
     pub fn with_coords(n: usize) -> GapOut {
         GapOut {
             gap: 0.0,
-            xi_m: 0.0,
+            xi_m: Xi::scalar(0.0),
             has_hessian: false,
             grad: vec![0.0; n],
             hess: vec![0.0; n * n],
@@ -105,9 +136,18 @@ impl GapOut {
         self.gap
     }
 
-    /// The master parametric coordinate of the projection.
+    /// The master parametric coordinate of the projection: for a segment
+    /// the projection, for a face its first component `u` (all of it:
+    /// [`GapOut::xi_m_all`]).
     pub fn xi_m(&self) -> f64 {
-        self.xi_m
+        self.xi_m.first()
+    }
+
+    /// The master parametric coordinates of the projection
+    /// ([`Kernel::param_dim`] of them: `[xi_m]` for a segment, `[u, v]` for
+    /// a face).
+    pub fn xi_m_all(&self) -> &[f64] {
+        self.xi_m.as_slice()
     }
 
     /// `dg/dq` as the type keeps it (`n` entries).
@@ -123,13 +163,15 @@ impl GapOut {
 }
 
 /// Outputs of [`Kernel::eval_batch`] for `len` points, structure of
-/// arrays: point `p`'s gap is `gaps()[p]`, its gradient
+/// arrays: point `p`'s gap is `gaps()[p]`, its projection
+/// `xi_ms()[p k..(p + 1) k]` (`k` = [`Kernel::param_dim`]), its gradient
 /// `grads()[p n..(p + 1) n]`, its Hessian `hessians()[p n n..(p + 1) n n]`
 /// (row-major, full), `n` the kernel's coordinate count. Reuse one batch
 /// for every call: it grows to the largest batch and never shrinks.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GapBatch {
     coords: usize,
+    param_dim: usize,
     len: usize,
     has_hessian: bool,
     gap: Vec<f64>,
@@ -146,6 +188,7 @@ impl GapBatch {
     pub fn new(kernel: &Kernel) -> GapBatch {
         GapBatch {
             coords: kernel.coords(),
+            param_dim: kernel.param_dim(),
             len: 0,
             has_hessian: false,
             gap: Vec::new(),
@@ -181,9 +224,23 @@ impl GapBatch {
         }
     }
 
-    /// Point `p`'s gap and `xi_m`.
+    /// Point `p`'s gap and `xi_m` (for a face: its first component; all
+    /// of it: [`GapBatch::xi_m`]).
     pub fn gap(&self, p: usize) -> Result<(f64, f64), &KernelError> {
-        self.status(p).map(|()| (self.gap[p], self.xi_m[p]))
+        let k = self.param_dim;
+        self.status(p).map(|()| (self.gap[p], self.xi_m[p * k]))
+    }
+
+    /// Point `p`'s projection ([`Kernel::param_dim`] values).
+    pub fn xi_m(&self, p: usize) -> Result<&[f64], &KernelError> {
+        let k = self.param_dim;
+        self.status(p).map(|()| &self.xi_m[p * k..(p + 1) * k])
+    }
+
+    /// All projections, point after point ([`Kernel::param_dim`] values
+    /// each; zero at failed points).
+    pub fn xi_ms(&self) -> &[f64] {
+        &self.xi_m[..self.len * self.param_dim]
     }
 
     /// Point `p`'s gradient.
@@ -223,7 +280,7 @@ impl GapBatch {
         self.has_hessian = has_hessian;
         if self.gap.len() < len {
             self.gap.resize(len, 0.0);
-            self.xi_m.resize(len, 0.0);
+            self.xi_m.resize(len * self.param_dim, 0.0);
             self.grad.resize(len * n, 0.0);
             self.status.resize(len, None);
         }
@@ -236,36 +293,60 @@ impl GapBatch {
 impl Kernel {
     /// The kernel of `(formulation, ty)`, or [`KernelError::NotCompiled`].
     pub fn new(formulation: Formulation, ty: ApproxType) -> Result<Kernel, KernelError> {
+        if let Some(set) = face_kernel_set(formulation) {
+            return Ok(Kernel {
+                formulation,
+                ty,
+                imp: Imp::Faces(Faces {
+                    set,
+                    kernel: set.kernels[ty.index() - 1],
+                }),
+            });
+        }
         let set = kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
         let lane_set = lane_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
         let (lanes, lane_isa) = generated_lanes::select(lane_set, ty.index(), LaneIsa::Avx2);
         Ok(Kernel {
             formulation,
             ty,
-            set,
-            kernel: set.kernels[ty.index() - 1],
-            lane_set,
-            lanes,
-            lane_isa,
+            imp: Imp::Segments(Segments {
+                set,
+                kernel: set.kernels[ty.index() - 1],
+                lane_set,
+                lanes,
+                lane_isa,
+            }),
         })
     }
 
     /// The instruction set of the lane kernel [`Kernel::eval_batch`] runs:
     /// AVX2 when the CPU has it, unless [`Kernel::with_lane_isa`] chose
-    /// the portable one.
+    /// the portable one. (Faces have no lane kernels: their batch runs
+    /// point by point, reported as [`LaneIsa::Portable`].)
     pub fn lane_isa(&self) -> LaneIsa {
-        self.lane_isa
+        match &self.imp {
+            Imp::Segments(s) => s.lane_isa,
+            Imp::Faces(_) => LaneIsa::Portable,
+        }
     }
 
     /// This kernel with [`Kernel::eval_batch`] running the lane kernel
     /// compiled for `isa` (the portable one when `isa` is AVX2 and the CPU
     /// lacks it). Results do not depend on the choice.
     pub fn with_lane_isa(self, isa: LaneIsa) -> Kernel {
-        let (lanes, lane_isa) = generated_lanes::select(self.lane_set, self.ty.index(), isa);
-        Kernel {
-            lanes,
-            lane_isa,
-            ..self
+        match self.imp {
+            Imp::Segments(s) => {
+                let (lanes, lane_isa) = generated_lanes::select(s.lane_set, self.ty.index(), isa);
+                Kernel {
+                    imp: Imp::Segments(Segments {
+                        lanes,
+                        lane_isa,
+                        ..s
+                    }),
+                    ..self
+                }
+            }
+            Imp::Faces(_) => self,
         }
     }
 
@@ -281,46 +362,82 @@ impl Kernel {
 
     /// The coordinate count `n` every `q` must have.
     pub fn coords(&self) -> usize {
-        self.set.coords
+        match &self.imp {
+            Imp::Segments(s) => s.set.coords,
+            Imp::Faces(f) => f.set.coords,
+        }
+    }
+
+    /// The parametric dimension of the faces: how many values `xi_s` has
+    /// and `xi_m` reports (1 for segments, 2 for tri3 and quad4 faces).
+    pub fn param_dim(&self) -> usize {
+        match &self.imp {
+            Imp::Segments(_) => 1,
+            Imp::Faces(_) => 2,
+        }
     }
 
     /// Whether the kernel computes a second-order term.
     pub fn has_hessian(&self) -> bool {
-        matches!(self.kernel, generated::Kernel::Hessian(_))
+        match &self.imp {
+            Imp::Segments(s) => s.has_hessian(),
+            Imp::Faces(f) => matches!(f.kernel, generated::FaceKernel::Hessian(_)),
+        }
     }
 
     /// The generated kernel's operation count.
     pub fn op_count(&self) -> OpCount {
-        self.set.ops[self.ty.index() - 1]
+        let ops = match &self.imp {
+            Imp::Segments(s) => &s.set.ops,
+            Imp::Faces(f) => &f.set.ops,
+        };
+        ops[self.ty.index() - 1]
     }
 
     /// Evaluates the gap and its derivatives at configuration `q` (`n`
     /// coordinates, [`KernelError::CoordinateCount`] otherwise) and slave
-    /// parameter `xi_s` into `out` (sized for `n` coordinates,
-    /// [`KernelError::BufferSize`] otherwise).
-    pub fn eval(&self, q: &[f64], xi_s: f64, out: &mut GapOut) -> Result<(), KernelError> {
+    /// point `xi_s` ([`Kernel::param_dim`] values: `0.3` for a segment,
+    /// `[0.2, -0.1]` for a face; [`KernelError::ParamCount`] otherwise) into
+    /// `out` (sized for `n` coordinates, [`KernelError::BufferSize`]
+    /// otherwise).
+    pub fn eval(&self, q: &[f64], xi_s: impl XiArg, out: &mut GapOut) -> Result<(), KernelError> {
         if out.coords() != self.coords() {
             return Err(KernelError::BufferSize {
                 expected: self.coords(),
                 found: out.coords(),
             });
         }
-        let (gap, xi_m) =
-            self.eval_into(q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
-        out.gap = gap;
-        out.xi_m = xi_m;
+        match &self.imp {
+            Imp::Segments(s) => {
+                let xi_s = param(xi_s.as_xi(), 1)?;
+                let (gap, xi_m) =
+                    s.eval_into(q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
+                out.gap = gap;
+                out.xi_m = Xi::scalar(xi_m);
+            }
+            Imp::Faces(f) => {
+                let xi_s = pair(xi_s.as_xi())?;
+                let (gap, xi_m) =
+                    f.eval_into(q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
+                out.gap = gap;
+                out.xi_m = Xi::pair(xi_m);
+            }
+        }
         out.has_hessian = self.has_hessian();
         Ok(())
     }
 
-    /// Evaluates the points `p = 0..xi_s.len()`, point `p` with the
-    /// coordinates `qs[p n..(p + 1) n]` and `xi_s[p]`, into `out`; returns
-    /// how many succeeded. Each point gives the bits [`Kernel::eval`]
-    /// gives it (and its error), though 4 points are evaluated per call of
-    /// the lane kernel ([`Kernel::lane_isa`]). Fails only when the shapes
-    /// disagree: `qs.len()` is not `n * xi_s.len()`
-    /// ([`KernelError::CoordinateCount`]) or `out` was made for another
-    /// coordinate count ([`KernelError::BufferSize`]).
+    /// Evaluates the points `p = 0..xi_s.len() / k` (`k` =
+    /// [`Kernel::param_dim`]), point `p` with the coordinates
+    /// `qs[p n..(p + 1) n]` and the slave point `xi_s[p k..(p + 1) k]`, into
+    /// `out`; returns how many succeeded. Each point gives the bits
+    /// [`Kernel::eval`] gives it (and its error), though 4 points are
+    /// evaluated per call of the lane kernel ([`Kernel::lane_isa`]; faces:
+    /// point by point). Fails only when the shapes disagree: `xi_s.len()`
+    /// is not a multiple of `k` ([`KernelError::ParamCount`]), `qs.len()`
+    /// is not `n` times the point count ([`KernelError::CoordinateCount`])
+    /// or `out` was made for another kernel's sizes
+    /// ([`KernelError::BufferSize`]).
     pub fn eval_batch(
         &self,
         qs: &[f64],
@@ -328,20 +445,64 @@ impl Kernel {
         out: &mut GapBatch,
     ) -> Result<usize, KernelError> {
         let n = self.coords();
-        if out.coords != n {
+        if out.coords != n || out.param_dim != self.param_dim() {
             return Err(KernelError::BufferSize {
                 expected: n,
                 found: out.coords,
             });
         }
-        if qs.len() != n * xi_s.len() {
+        if !xi_s.len().is_multiple_of(self.param_dim()) {
+            return Err(KernelError::ParamCount {
+                expected: self.param_dim(),
+                found: xi_s.len(),
+            });
+        }
+        let points = xi_s.len() / self.param_dim();
+        if qs.len() != n * points {
             return Err(KernelError::CoordinateCount {
-                expected: n * xi_s.len(),
+                expected: n * points,
                 found: qs.len(),
             });
         }
-        out.prepare(xi_s.len(), self.has_hessian());
-        Ok(self.eval_lanes(qs, xi_s, out))
+        out.prepare(points, self.has_hessian());
+        Ok(match &self.imp {
+            Imp::Segments(s) => s.eval_lanes(qs, xi_s, out),
+            Imp::Faces(f) => f.eval_points(qs, xi_s, out),
+        })
+    }
+
+    /// [`Segments::eval_into`] for a segment kernel (the value API's path);
+    /// a face kernel reports [`KernelError::ParamCount`] (it takes two).
+    #[inline]
+    pub(crate) fn eval_into(
+        &self,
+        q: &[f64],
+        xi_s: f64,
+        d: &mut [f64],
+        grad: &mut [f64],
+        hess: &mut [f64],
+    ) -> Result<(f64, f64), KernelError> {
+        match &self.imp {
+            Imp::Segments(s) => s.eval_into(q, xi_s, d, grad, hess),
+            Imp::Faces(_) => Err(KernelError::ParamCount {
+                expected: 2,
+                found: 1,
+            }),
+        }
+    }
+}
+
+impl Segments {
+    /// The coordinate count.
+    #[inline(always)]
+    pub(crate) fn coords(&self) -> usize {
+        self.set.coords
+    }
+
+    /// Whether the kernel computes a second-order term.
+    #[inline(always)]
+    pub(crate) fn has_hessian(&self) -> bool {
+        matches!(self.kernel, generated::Kernel::Hessian(_))
     }
 
     /// The evaluation on raw buffers: `d` (scratch), `grad` of `n` and
@@ -371,16 +532,106 @@ impl Kernel {
         };
         projection::check(set, d, xi_s, xi_m)?;
         if !(finite && gap.is_finite()) {
-            // Cold path: name the first non-finite output.
-            let output = if !gap.is_finite() {
-                OutputKind::Gap
-            } else if !all_finite(grad) {
-                OutputKind::Gradient
-            } else {
-                OutputKind::Hessian
-            };
-            return Err(KernelError::NonFiniteOutput { output, xi_m });
+            return Err(non_finite(gap, grad, xi_m));
         }
         Ok((gap, xi_m))
+    }
+}
+
+impl Faces {
+    /// The evaluation of a face pair on raw buffers (as
+    /// [`Segments::eval_into`]): validation (`faces::relative_coordinates`),
+    /// the projection (`faces::start`, `faces::check`), the kernel and the
+    /// finiteness of its outputs. Returns `(gap, [u, v])`.
+    #[inline]
+    pub(crate) fn eval_into(
+        &self,
+        q: &[f64],
+        xi_s: [f64; 2],
+        d: &mut [f64],
+        grad: &mut [f64],
+        hess: &mut [f64],
+    ) -> Result<(f64, [f64; 2]), KernelError> {
+        let set = self.set;
+        faces::relative_coordinates(set, q, xi_s, d)?;
+        let mut xi_m = faces::start(set, d, xi_s)?;
+        let (gap, finite) = match self.kernel {
+            generated::FaceKernel::Gradient(k) => {
+                let gap = k(d, &xi_s, &mut xi_m, grad);
+                (gap, all_finite(grad))
+            }
+            generated::FaceKernel::Hessian(k) => {
+                let gap = k(d, &xi_s, &mut xi_m, grad, hess);
+                (gap, all_finite(grad) & all_finite(hess))
+            }
+        };
+        faces::check(set, d, xi_s, xi_m)?;
+        if !(finite && gap.is_finite()) {
+            return Err(non_finite(gap, grad, xi_m[0]));
+        }
+        Ok((gap, xi_m))
+    }
+
+    /// The batch of a face kernel, point by point (each point exactly
+    /// [`Kernel::eval`]'s bits and error); returns how many succeeded.
+    fn eval_points(&self, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
+        let n = self.set.coords;
+        let nn = if out.has_hessian { n * n } else { 0 };
+        let mut ok = 0;
+        for p in 0..out.len {
+            let q = &qs[p * n..(p + 1) * n];
+            let grad = &mut out.grad[p * n..(p + 1) * n];
+            let hess = &mut out.hess[p * nn..(p + 1) * nn];
+            let xi = [xi_s[2 * p], xi_s[2 * p + 1]];
+            match self.eval_into(q, xi, &mut out.scratch, grad, hess) {
+                Ok((gap, xi_m)) => {
+                    out.gap[p] = gap;
+                    out.xi_m[2 * p..2 * p + 2].copy_from_slice(&xi_m);
+                    out.status[p] = None;
+                    ok += 1;
+                }
+                Err(e) => out.fail(p, e),
+            }
+        }
+        ok
+    }
+}
+
+/// The error of a kernel output that is not finite: the first non-finite
+/// one, in the order gap, gradient, Hessian (cold path).
+#[cold]
+fn non_finite(gap: f64, grad: &[f64], xi_m: f64) -> KernelError {
+    let output = if !gap.is_finite() {
+        OutputKind::Gap
+    } else if !all_finite(grad) {
+        OutputKind::Gradient
+    } else {
+        OutputKind::Hessian
+    };
+    KernelError::NonFiniteOutput { output, xi_m }
+}
+
+/// `xi_s` of a face: exactly two values.
+#[inline(always)]
+fn pair(xi_s: &[f64]) -> Result<[f64; 2], KernelError> {
+    match xi_s {
+        [u, v] => Ok([*u, *v]),
+        _ => Err(KernelError::ParamCount {
+            expected: 2,
+            found: xi_s.len(),
+        }),
+    }
+}
+
+/// `xi_s` checked against the parametric dimension `k` (the segment
+/// kernels take its one value).
+#[inline(always)]
+fn param(xi_s: &[f64], k: usize) -> Result<f64, KernelError> {
+    match xi_s {
+        [x] if k == 1 => Ok(*x),
+        _ => Err(KernelError::ParamCount {
+            expected: k,
+            found: xi_s.len(),
+        }),
     }
 }

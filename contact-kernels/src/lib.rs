@@ -38,7 +38,37 @@
 //!   `[f64; 8]` and return values ([`GapDerivatives`] with nalgebra
 //!   vectors), built on the handles with bit-identical results.
 //!
-//! Modules: `validate` (the one validation point), `projection` (the
+//! ## 3D faces
+//!
+//! The face formulations (`tri3-slave-normal`, `quad4-closest-point`,
+//! `tri3-quad4-slave-normal`, ...: tri3 and quad4 faces, every pair of kinds,
+//! both readings; the crate feature `faces`, on by default) take the slave
+//! face's nodes then the master face's, `(x, y, z)` each, and the slave point
+//! `xi_s = (u, v)`; they report `xi_m = (u, v)` (docs/conventions.md, "3D
+//! faces"):
+//!
+//! ```
+//! use contact_kernels::{ApproxType, Formulation, GapOut, Kernel};
+//!
+//! let k = Kernel::new(Formulation::Tri3SlaveNormal, ApproxType::Type6)?;
+//! let q = [
+//!     0.0, 0.0, 1.0, 0.1, 1.0, 1.05, 1.0, 0.1, 0.95, // slave tri3
+//!     -0.3, -0.2, 0.8, 1.4, 0.1, 0.85, 0.2, 1.5, 0.75, // master tri3
+//! ];
+//! let mut out = GapOut::new(&k);
+//! k.eval(&q, [0.3, 0.25], &mut out)?;
+//! assert!((out.gap() - 0.203900706766229).abs() < 1e-14);
+//! assert!((out.xi_m_all()[1] - 0.270469354510283).abs() < 1e-14);
+//! # Ok::<(), contact_kernels::KernelError>(())
+//! ```
+//!
+//! Parametric coordinates: the handles take `xi_s` as any [`XiArg`] of
+//! [`Kernel::param_dim`] values (`0.3` for a segment, `[0.2, -0.1]` for a
+//! face) and report `xi_m` as a slice of as many ([`GapOut::xi_m_all`]);
+//! see [`param`].
+//!
+//! Modules: `validate` (the one validation point), `param` (parametric
+//! coordinates, [`XiArg`]), `projection` (the
 //! projection solve and [`Projector`]), `kernel` ([`Kernel`], [`GapOut`]),
 //! `runtime` ([`eval_runtime`]: kernels given at run time, e.g. a user's
 //! formulation file interpreted, through the same checks),
@@ -61,12 +91,14 @@
 #![warn(missing_docs)]
 
 mod error;
+mod faces;
 #[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
 mod generated;
 #[allow(clippy::all, unused_parens, unused_variables, non_snake_case)]
 mod generated_lanes;
 mod kernel;
 mod lanes;
+pub mod param;
 mod projection;
 mod runtime;
 mod types;
@@ -75,6 +107,7 @@ mod validate;
 pub use error::{KernelError, OutputKind, Segment};
 pub use generated_lanes::LaneIsa;
 pub use kernel::{GapBatch, GapOut, Kernel};
+pub use param::{MAX_PARAM_DIM, XiArg};
 pub use projection::{Projector, XI_M_LIMIT};
 pub use runtime::{RuntimeKernels, eval_runtime};
 pub use types::{ApproxType, EntityOrder, Formulation, OpCount, ParseNameError};
@@ -92,8 +125,18 @@ pub struct Projection {
     /// The gap `g = n . x_ms` (negative when penetrating).
     pub gap: f64,
     /// The master parametric coordinate of the projection (inside the
-    /// segment when in `[-1, 1]`).
+    /// segment when in `[-1, 1]`); for a face its first component `u`
+    /// (all of it: [`Projection::xi_m_all`]).
     pub xi_m: f64,
+    xi: param::Xi,
+}
+
+impl Projection {
+    /// The master parametric coordinates of the projection (one for a
+    /// segment, `[u, v]` for a face).
+    pub fn xi_m_all(&self) -> &[f64] {
+        self.xi.as_slice()
+    }
 }
 
 /// The gap and its derivatives with respect to `q` as one approximation
@@ -156,10 +199,16 @@ pub fn evaluate(
 /// projection kernel's (one residual evaluation plus the gap) when `ty` is
 /// `None`. `None` when the formulation was not compiled in.
 pub fn op_count(formulation: Formulation, ty: Option<ApproxType>) -> Option<OpCount> {
-    let set = generated::kernel_set(formulation)?;
+    let (ops, projection_ops) = match generated::face_kernel_set(formulation) {
+        Some(f) => (&f.ops, f.projection_ops),
+        None => {
+            let set = generated::kernel_set(formulation)?;
+            (&set.ops, set.projection_ops)
+        }
+    };
     Some(match ty {
-        Some(t) => set.ops[t.index() - 1],
-        None => set.projection_ops,
+        Some(t) => ops[t.index() - 1],
+        None => projection_ops,
     })
 }
 
@@ -167,7 +216,7 @@ pub fn op_count(formulation: Formulation, ty: Option<ApproxType>) -> Option<OpCo
 pub fn compiled_formulations() -> Vec<Formulation> {
     Formulation::ALL
         .into_iter()
-        .filter(|f| generated::kernel_set(*f).is_some())
+        .filter(|f| f.coords().is_some())
         .collect()
 }
 

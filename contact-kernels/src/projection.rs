@@ -7,9 +7,10 @@
 //! otherwise [`start`] runs Newton's method on the generated residual.
 //! Either way [`check`] validates the `xi_m` a kernel used.
 
-use crate::generated::{KernelSet, kernel_set};
+use crate::generated::{FaceKernelSet, KernelSet, face_kernel_set, kernel_set};
+use crate::param::{Xi, XiArg};
 use crate::validate::relative_coordinates;
-use crate::{Formulation, KernelError, OutputKind, Projection};
+use crate::{Formulation, KernelError, OutputKind, Projection, faces};
 
 /// `|xi_m|` beyond which a projection is rejected as out of reach.
 pub const XI_M_LIMIT: f64 = 1e6;
@@ -91,7 +92,14 @@ pub(crate) fn check_with(
 #[derive(Clone, Copy)]
 pub struct Projector {
     formulation: Formulation,
-    set: &'static KernelSet,
+    sets: Sets,
+}
+
+/// The kernels a projector runs: a segment or a face formulation's.
+#[derive(Clone, Copy)]
+enum Sets {
+    Segments(&'static KernelSet),
+    Faces(&'static FaceKernelSet),
 }
 
 impl std::fmt::Debug for Projector {
@@ -107,8 +115,17 @@ impl Projector {
     /// The projection kernel of `formulation`, or
     /// [`KernelError::NotCompiled`].
     pub fn new(formulation: Formulation) -> Result<Projector, KernelError> {
+        if let Some(set) = face_kernel_set(formulation) {
+            return Ok(Projector {
+                formulation,
+                sets: Sets::Faces(set),
+            });
+        }
         let set = kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
-        Ok(Projector { formulation, set })
+        Ok(Projector {
+            formulation,
+            sets: Sets::Segments(set),
+        })
     }
 
     /// The formulation.
@@ -118,25 +135,46 @@ impl Projector {
 
     /// The coordinate count `n` every `q` must have.
     pub fn coords(&self) -> usize {
-        self.set.coords
+        match self.sets {
+            Sets::Segments(s) => s.coords,
+            Sets::Faces(f) => f.coords,
+        }
+    }
+
+    /// The parametric dimension of the faces (1 for segments, 2 for
+    /// faces): the length of `xi_s` and of [`Projection::xi_m_all`].
+    pub fn param_dim(&self) -> usize {
+        match self.sets {
+            Sets::Segments(_) => 1,
+            Sets::Faces(_) => 2,
+        }
     }
 
     /// Projects the slave point `x_s(xi_s)` of configuration `q` (`n`
-    /// coordinates) onto the master segment. `scratch` is the caller's
-    /// buffer of `n` values for the relative coordinates (overwritten).
+    /// coordinates) onto the master segment or face; `xi_s` has
+    /// [`Projector::param_dim`] values ([`KernelError::ParamCount`]
+    /// otherwise). `scratch` is the caller's buffer of `n` values for the
+    /// relative coordinates (overwritten).
     pub fn project(
         &self,
         q: &[f64],
-        xi_s: f64,
+        xi_s: impl XiArg,
         scratch: &mut [f64],
     ) -> Result<Projection, KernelError> {
-        if scratch.len() != self.set.coords {
+        if scratch.len() != self.coords() {
             return Err(KernelError::BufferSize {
-                expected: self.set.coords,
+                expected: self.coords(),
                 found: scratch.len(),
             });
         }
-        self.project_into(q, xi_s, scratch)
+        match (self.sets, xi_s.as_xi()) {
+            (Sets::Segments(_), [x]) => self.project_into(q, *x, scratch),
+            (Sets::Faces(set), [u, v]) => project_face(set, q, [*u, *v], scratch),
+            (_, other) => Err(KernelError::ParamCount {
+                expected: self.param_dim(),
+                found: other.len(),
+            }),
+        }
     }
 
     /// [`Projector::project`] with `d.len() == n` checked by the caller.
@@ -147,7 +185,15 @@ impl Projector {
         xi_s: f64,
         d: &mut [f64],
     ) -> Result<Projection, KernelError> {
-        let set = self.set;
+        let set = match self.sets {
+            Sets::Segments(s) => s,
+            Sets::Faces(_) => {
+                return Err(KernelError::ParamCount {
+                    expected: 2,
+                    found: 1,
+                });
+            }
+        };
         relative_coordinates(set, q, xi_s, d)?;
         let mut xi_m = start(set, d, xi_s)?;
         let gap = (set.gap)(d, xi_s, &mut xi_m);
@@ -158,8 +204,37 @@ impl Projector {
                 xi_m,
             });
         }
-        Ok(Projection { gap, xi_m })
+        Ok(Projection {
+            gap,
+            xi_m,
+            xi: Xi::scalar(xi_m),
+        })
     }
+}
+
+/// A face pair's projection (as [`Projector::project_into`] for segments):
+/// validation, the projection, the gap kernel.
+fn project_face(
+    set: &FaceKernelSet,
+    q: &[f64],
+    xi_s: [f64; 2],
+    d: &mut [f64],
+) -> Result<Projection, KernelError> {
+    faces::relative_coordinates(set, q, xi_s, d)?;
+    let mut xi_m = faces::start(set, d, xi_s)?;
+    let gap = (set.gap)(d, &xi_s, &mut xi_m);
+    faces::check(set, d, xi_s, xi_m)?;
+    if !gap.is_finite() {
+        return Err(KernelError::NonFiniteOutput {
+            output: OutputKind::Gap,
+            xi_m: xi_m[0],
+        });
+    }
+    Ok(Projection {
+        gap,
+        xi_m: xi_m[0],
+        xi: Xi::pair(xi_m),
+    })
 }
 
 #[cfg(test)]

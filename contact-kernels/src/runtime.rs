@@ -79,7 +79,7 @@ pub fn eval_runtime(
         return Err(KernelError::NonFiniteOutput { output, xi_m });
     }
     out.gap = gap;
-    out.xi_m = xi_m;
+    out.xi_m = crate::param::Xi::scalar(xi_m);
     out.has_hessian = has_hessian;
     Ok(())
 }

@@ -108,6 +108,58 @@ fn wrong_sizes_are_typed_errors() {
     );
 }
 
+/// `xi_s` as `f64`, `[f64; 1]`, `&[f64]` or `Vec<f64>`: one call, the same
+/// bits; `xi_m_all` is `[xi_m]`; another length is a typed error.
+#[test]
+// The borrowed forms are the point: `&[f64; 1]` is one of them.
+#[allow(clippy::needless_borrows_for_generic_args)]
+fn every_xi_argument_form_is_the_scalar_call() {
+    for f in pair_formulations() {
+        let kernel = Kernel::new(f, ApproxType::Type6).unwrap();
+        assert_eq!(kernel.param_dim(), 1);
+        assert_eq!(f.param_dim(), Some(1));
+        let (mut a, mut b) = (GapOut::new(&kernel), GapOut::new(&kernel));
+        for (q, xi_s) in configurations() {
+            kernel.eval(&q, xi_s, &mut a).unwrap();
+            for form in 0..4 {
+                match form {
+                    0 => kernel.eval(&q, [xi_s], &mut b),
+                    1 => kernel.eval(&q, &[xi_s][..], &mut b),
+                    2 => kernel.eval(&q, vec![xi_s], &mut b),
+                    _ => kernel.eval(&q, &[xi_s], &mut b),
+                }
+                .unwrap();
+                assert_eq!(a, b, "{f} form {form}");
+                assert_eq!(b.xi_m_all(), [b.xi_m()]);
+            }
+            let p = Projector::new(f).unwrap();
+            assert_eq!(p.param_dim(), 1);
+            let mut scratch = vec![0.0; p.coords()];
+            let one = p.project(&q, xi_s, &mut scratch).unwrap();
+            let slice = p.project(&q, &[xi_s][..], &mut scratch).unwrap();
+            assert_eq!(one, slice);
+            assert_eq!(one.xi_m_all(), [one.xi_m]);
+        }
+        for bad in [&[][..], &[0.1, 0.2][..], &[0.1, 0.2, 0.3][..]] {
+            let want = Err(KernelError::ParamCount {
+                expected: 1,
+                found: bad.len(),
+            });
+            assert_eq!(kernel.eval(&Q, bad, &mut a), want);
+            let p = Projector::new(f).unwrap();
+            assert_eq!(p.project(&Q, bad, &mut [0.0; 8]).map(|_| ()), want);
+        }
+    }
+    let e = KernelError::ParamCount {
+        expected: 2,
+        found: 1,
+    };
+    assert_eq!(
+        e.to_string(),
+        "expected 2 slave parametric coordinate(s), got 1"
+    );
+}
+
 #[test]
 fn formulations_not_compiled_in_are_reported() {
     for f in Formulation::ALL {

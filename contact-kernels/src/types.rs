@@ -125,10 +125,29 @@ impl std::str::FromStr for Formulation {
 
 impl Formulation {
     /// The coordinate count `n` of the formulation's kernels (8 for
-    /// two-node segment pairs, 12 for three-node ones); `None` when it was
-    /// not compiled in.
+    /// two-node segment pairs, 12 for three-node ones, 18 to 24 for face
+    /// pairs); `None` when it was not compiled in.
     pub fn coords(self) -> Option<usize> {
-        crate::generated::kernel_set(self).map(|s| s.coords)
+        match crate::generated::face_kernel_set(self) {
+            Some(f) => Some(f.coords),
+            None => crate::generated::kernel_set(self).map(|s| s.coords),
+        }
+    }
+
+    /// The node counts `(slave, master)` of a formulation of 3D faces (3:
+    /// tri3, 4: quad4); `None` for segments or when not compiled in.
+    pub fn face_nodes(self) -> Option<(usize, usize)> {
+        crate::generated::face_kernel_set(self).map(|f| (f.slave_nodes, f.master_nodes))
+    }
+
+    /// The parametric dimension of the formulation's faces (1 for
+    /// segments, 2 for tri3 and quad4 faces): the length of `xi_s` and
+    /// `xi_m`; `None` when it was not compiled in.
+    pub fn param_dim(self) -> Option<usize> {
+        match crate::generated::face_kernel_set(self) {
+            Some(_) => Some(2),
+            None => crate::generated::kernel_set(self).map(|_| 1),
+        }
     }
 }
 

@@ -101,6 +101,33 @@ fn mismatched_shapes_are_errors() {
     assert!(batch.is_empty());
 }
 
+/// A batch's projections come as slices of `param_dim` values per point:
+/// for segments `xi_m(p) == [gap(p).1]`.
+#[test]
+fn batch_projections_are_slices_of_the_parametric_dimension() {
+    let (qs, xi_s) = configurations(9, &mut Lcg(3));
+    for f in pair_formulations() {
+        let kernel = Kernel::new(f, ApproxType::Type2).unwrap();
+        assert_eq!(kernel.param_dim(), 1);
+        let mut batch = GapBatch::new(&kernel);
+        kernel.eval_batch(&qs, &xi_s, &mut batch).unwrap();
+        assert_eq!(batch.xi_ms().len(), 9);
+        for p in 0..9 {
+            match (batch.gap(p), batch.xi_m(p)) {
+                (Ok((_, xi_m)), Ok(all)) => {
+                    assert_eq!(all, [xi_m]);
+                    assert_eq!(batch.xi_ms()[p], xi_m);
+                }
+                (Err(a), Err(b)) => {
+                    assert_eq!(a, b);
+                    assert_eq!(batch.xi_ms()[p], 0.0);
+                }
+                other => panic!("{f} point {p}: {other:?}"),
+            }
+        }
+    }
+}
+
 /// The lane builds this CPU can run.
 fn lane_isas(kernel: Kernel) -> Vec<Kernel> {
     let mut out = vec![kernel.with_lane_isa(LaneIsa::Portable)];

@@ -55,7 +55,16 @@
 //! | `steep` | 100 with the master chord at 80–89° (either side) to the slave chord |
 //! | `ends` | `xi_m = ±1`, `xi_s = ±1`, penetration (gap -0.3, -1e-3) |
 
+//!
+//! ## 3D faces
+//!
+//! Formulations of tri3 and quad4 face pairs (`inputs!(dim 3; ..; ..; xi_s:
+//! 2)`) are checked on [`faces::faces`] (see that module: random, rotated,
+//! warped, edges and corners, far, scale, steep, penetration).
+
 #![warn(missing_docs)]
+
+pub mod faces;
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

@@ -14,16 +14,23 @@
 //! 8 for the two-node formulations (`slave-normal`, `closest-point`: slave
 //! node 1, slave node 2, master node 1, master node 2), 12 for
 //! `quadratic-slave-normal` (two 3-node segments, six points: each segment's
-//! end nodes, then its mid node, as Gmsh's line3). `--nodes` is read once the
-//! formulation is known, so a wrong count is reported with the count and the
-//! coordinate names that formulation expects.
+//! end nodes, then its mid node, as Gmsh's line3), 18 to 24 for the 3D face
+//! formulations (`tri3-slave-normal`, `quad4-closest-point`,
+//! `tri3-quad4-slave-normal`, ...: the slave face's nodes, then the master
+//! face's, each `x, y, z`). `--nodes` is read once the formulation is known,
+//! so a wrong count is reported with the count and the coordinate names that
+//! formulation expects.
+//!
+//! `--xi-s` is one number for segments and two, comma-separated, for faces
+//! (`--xi-s 0.2,-0.1`: `(u, v)`); a face's `xi_m` is printed as `[u, v]`:
+//! `{"gap":..,"xi_m":[u,v],"grad":[..],"hess":[[..]..]}`.
 //!
 //! `--formulation FILE.rs` evaluates a formulation file of the user's: its
 //! kernels are generated and run by codegen's interpreter
 //! ([`gapsim::verify::InterpretedKernels`]) through contact-kernels' own
 //! validation, projection and output checks
 //! ([`contact_kernels::eval_runtime`]), so the output (and every error) is
-//! what the compiled kernels of the same file give.
+//! what the compiled kernels of the same file give (segment formulations).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -79,16 +86,37 @@ pub fn coordinate_names(n: usize) -> Vec<String> {
         .collect()
 }
 
+/// Names of the coordinates of a face-pair kernel: the slave face's
+/// `slave` nodes `xs1, ys1, zs1, ...`, then the master face's `master`
+/// nodes `xm1, ym1, zm1, ...`.
+pub fn face_coordinate_names(slave: usize, master: usize) -> Vec<String> {
+    [("s", slave), ("m", master)]
+        .into_iter()
+        .flat_map(|(side, nodes)| {
+            (1..=nodes).flat_map(move |k| {
+                [
+                    format!("x{side}{k}"),
+                    format!("y{side}{k}"),
+                    format!("z{side}{k}"),
+                ]
+            })
+        })
+        .collect()
+}
+
 /// Arguments of `gapsim kernel`.
 #[derive(Debug, Clone, Args)]
 #[command(
     after_help = "Examples:\n  gapsim kernel --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n  \
 gapsim kernel --formulation quadratic-slave-normal --type 6 --xi-s 0.5 \\\n      \
 --nodes 0,0,2,0,1,0,2,-1,0,-1,1,-0.8\n  \
-gapsim kernel --formulation my-normal.rs --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n\n\
+gapsim kernel --formulation my-normal.rs --type 6 --xi-s 0.3 --nodes 0,1,2,1.1,2.1,0.9,-0.1,1.0\n  \
+gapsim kernel --formulation quad4-slave-normal --type 6 --xi-s 0.2,-0.1 \\\n      \
+--nodes 0,0,1,0,1,1.1,1,1,1,1,0,0.9,-0.2,-0.1,0.8,1.2,0,0.85,1.1,1.3,0.75,-0.1,1.2,0.8\n\n\
 Output: one JSON object {\"gap\":..,\"xi_m\":..,\"grad\":[n],\"hess\":[[n]xn]} \
 (derivatives with respect to the n coordinates: 8 for slave-normal and closest-point, \
-12 for quadratic-slave-normal; hess is all zeros for Type 1)."
+12 for quadratic-slave-normal, 3 per node of both faces for the face formulations, whose \
+xi_m is [u,v]; hess is all zeros for Type 1)."
 )]
 pub struct KernelArgs {
     /// Contact formulation: `slave-normal` (projection along the slave
@@ -106,9 +134,10 @@ pub struct KernelArgs {
     pub ty: ApproxType,
 
     /// Parametric coordinate of the slave integration point on the slave
-    /// segment, in [-1, 1] (-1: slave node 1, 1: slave node 2).
-    #[arg(long = "xi-s", value_name = "XI", allow_negative_numbers = true, value_parser = parse_xi_s)]
-    pub xi_s: f64,
+    /// segment, in [-1, 1] (-1: slave node 1, 1: slave node 2); for a face,
+    /// `u,v` (tri3: u, v >= 0, u + v <= 1; quad4: [-1, 1]^2).
+    #[arg(long = "xi-s", value_name = "XI", allow_hyphen_values = true, value_parser = parse_xi)]
+    pub xi_s: Xi,
 
     /// Current coordinates of the slave segment's nodes, then the master
     /// segment's, comma-separated, as many as the formulation takes.
@@ -120,13 +149,28 @@ pub struct KernelArgs {
     pub nodes: String,
 }
 
+/// `--xi-s`: one finite number (a segment's) or several, comma-separated
+/// (a face's `u,v`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Xi(pub Vec<f64>);
+
+/// The projection as printed: a number for a segment, `[u, v]` for a face.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum XiM {
+    /// A segment's `xi_m`.
+    One(f64),
+    /// A face's `(u, v)`.
+    Many(Vec<f64>),
+}
+
 /// The JSON printed by `gapsim kernel` (field order as in the contract).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct KernelOutput {
     /// The gap `g` (negative when penetrating).
     pub gap: f64,
-    /// The master parametric coordinate of the projection.
-    pub xi_m: f64,
+    /// The master parametric coordinate(s) of the projection.
+    pub xi_m: XiM,
     /// `dg/dq` (`n` entries).
     pub grad: Vec<f64>,
     /// `d2g/dq2`, row by row (`n` rows of `n`; all zeros for Type 1).
@@ -138,7 +182,10 @@ impl From<&GapOut> for KernelOutput {
         let n = out.coords();
         KernelOutput {
             gap: out.gap(),
-            xi_m: out.xi_m(),
+            xi_m: match out.xi_m_all() {
+                [x] => XiM::One(*x),
+                all => XiM::Many(all.to_vec()),
+            },
             grad: out.grad().to_vec(),
             hess: (0..n)
                 .map(|i| match out.hess() {
@@ -168,6 +215,21 @@ pub enum KernelCommandError {
         /// Its coordinate names, comma-separated.
         names: String,
         /// The number of comma-separated fields given.
+        found: usize,
+    },
+    /// `--xi-s` does not hold the formulation's parametric dimension.
+    #[error(
+        "--xi-s: the {formulation} formulation expects {expected} comma-separated value(s) \
+         ({names}), got {found}"
+    )]
+    ParamCount {
+        /// The formulation asked for (a name or a file).
+        formulation: String,
+        /// Its parametric dimension.
+        expected: usize,
+        /// The values' names.
+        names: &'static str,
+        /// The number given.
         found: usize,
     },
     /// A coordinate of `--nodes` is not a finite number.
@@ -223,17 +285,43 @@ pub fn run(args: &KernelArgs) -> CommandResult {
                 KernelError::NotCompiled(f) => KernelCommandError::NotCompiled(f),
                 e => kernel_error(e),
             })?;
-            let q = parse_nodes(&args.nodes, &name, kernel.coords())?;
+            let q = parse_nodes(&args.nodes, &name, f.face_nodes(), kernel.coords())?;
+            let xi_s = &args.xi_s.0;
+            if xi_s.len() != kernel.param_dim() {
+                return Err(KernelCommandError::ParamCount {
+                    formulation: name.clone(),
+                    expected: kernel.param_dim(),
+                    names: if kernel.param_dim() == 2 {
+                        "u,v"
+                    } else {
+                        "xi_s"
+                    },
+                    found: xi_s.len(),
+                }
+                .into());
+            }
             let mut out = GapOut::new(&kernel);
-            kernel.eval(&q, args.xi_s, &mut out).map_err(kernel_error)?;
+            kernel.eval(&q, &xi_s[..], &mut out).map_err(kernel_error)?;
             out
         }
         FormulationArg::File(path) => {
             let kernels = interpreted(path)?;
             let n = contact_kernels::RuntimeKernels::coords(&kernels);
-            let q = parse_nodes(&args.nodes, &name, n)?;
+            let q = parse_nodes(&args.nodes, &name, None, n)?;
+            let xi_s = match args.xi_s.0[..] {
+                [x] => x,
+                _ => {
+                    return Err(KernelCommandError::ParamCount {
+                        formulation: name.clone(),
+                        expected: 1,
+                        names: "xi_s",
+                        found: args.xi_s.0.len(),
+                    }
+                    .into());
+                }
+            };
             let mut out = GapOut::with_coords(n);
-            contact_kernels::eval_runtime(&kernels, args.ty, &q, args.xi_s, &mut out)
+            contact_kernels::eval_runtime(&kernels, args.ty, &q, xi_s, &mut out)
                 .map_err(kernel_error)?;
             out
         }
@@ -246,18 +334,20 @@ pub fn run(args: &KernelArgs) -> CommandResult {
     Ok(())
 }
 
-/// Parses `--xi-s`: a finite number in [-1, 1] (a slave point on its
-/// segment).
-fn parse_xi_s(s: &str) -> Result<f64, String> {
-    let v = parse_finite(s)?;
-    if (-1.0..=1.0).contains(&v) {
-        Ok(v)
-    } else {
-        Err(format!(
+/// Parses `--xi-s`: comma-separated finite numbers; a single one (a
+/// segment's) must lie in [-1, 1] (a slave point on its segment). A face's
+/// `u,v` is checked against its face by the kernel.
+fn parse_xi(s: &str) -> Result<Xi, String> {
+    let values: Vec<f64> = s.split(',').map(parse_finite).collect::<Result<_, _>>()?;
+    if let [v] = values[..]
+        && !(-1.0..=1.0).contains(&v)
+    {
+        return Err(format!(
             "`{s}` is outside [-1, 1]: the slave point must lie on its segment \
              (-1: slave node 1, 1: slave node 2)"
-        ))
+        ));
     }
+    Ok(Xi(values))
 }
 
 /// The generated kernels of a formulation file (a segment pair: 4 or 6
@@ -284,8 +374,16 @@ fn parse_finite(s: &str) -> Result<f64, String> {
 
 /// Parses `--nodes`: exactly `n` comma-separated finite coordinates, the
 /// coordinate count of `formulation`'s kernels.
-fn parse_nodes(s: &str, formulation: &str, n: usize) -> Result<Vec<f64>, KernelCommandError> {
-    let names = coordinate_names(n);
+fn parse_nodes(
+    s: &str,
+    formulation: &str,
+    faces: Option<(usize, usize)>,
+    n: usize,
+) -> Result<Vec<f64>, KernelCommandError> {
+    let names = match faces {
+        Some((slave, master)) => face_coordinate_names(slave, master),
+        None => coordinate_names(n),
+    };
     let parts: Vec<&str> = s.split(',').collect();
     if parts.len() != n {
         return Err(KernelCommandError::CoordinateCount {
@@ -329,23 +427,23 @@ mod tests {
     fn parses_nodes() {
         let sn = "slave-normal";
         assert_eq!(
-            parse_nodes("0,1,2,3,4,5,6,-7.5", sn, 8).unwrap(),
+            parse_nodes("0,1,2,3,4,5,6,-7.5", sn, None, 8).unwrap(),
             [0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, -7.5]
         );
         assert_eq!(
-            parse_nodes(" -0.1, 1e-3 ,2,3,4,5,6,7", sn, 8).unwrap()[..2],
+            parse_nodes(" -0.1, 1e-3 ,2,3,4,5,6,7", sn, None, 8).unwrap()[..2],
             [-0.1, 1e-3]
         );
-        let err = |s: &str, n: usize| parse_nodes(s, sn, n).unwrap_err().to_string();
+        let err = |s: &str, n: usize| parse_nodes(s, sn, None, n).unwrap_err().to_string();
         let e = err("1,2,3,4,5,6,7", 8);
         assert!(e.contains("expects 8") && e.contains("got 7"), "{e}");
         assert!(e.contains("(xs1,ys1,xs2,ys2,xm1,ym1,xm2,ym2)"), "{e}");
         assert!(err("1,2,3,4,5,6,7,8,", 8).contains("got 9"));
         assert!(err("1,2,3,x,5,6,7,8", 8).contains("coordinate 4 (ys2)"));
         assert!(err("1,2,3,4,NaN,6,7,8", 8).contains("not a finite number"));
-        assert!(parse_nodes("1,2,3,4,5,6,7,inf", sn, 8).is_err());
+        assert!(parse_nodes("1,2,3,4,5,6,7,inf", sn, None, 8).is_err());
         let quadratic = "0,0,2,0,1,0,2,-1,0,-1,1,-0.8";
-        assert_eq!(parse_nodes(quadratic, sn, 12).unwrap().len(), 12);
+        assert_eq!(parse_nodes(quadratic, sn, None, 12).unwrap().len(), 12);
         assert!(err(quadratic, 8).contains("got 12"));
         assert!(err("0,1,2,3,4,5,6,7,8,9,10,x", 12).contains("coordinate 12 (ym3)"));
     }

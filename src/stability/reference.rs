@@ -64,6 +64,17 @@ fn gap(f: Formulation, q: &[Hd; 8], xi_s: f64) -> (Hd, Hd) {
             let len = dot(t_m, t_m).sqrt();
             (t_m, [-t_m[1] / len, t_m[0] / len])
         }
+        // The sweep runs `pair_formulations()` (8 coordinates) only.
+        Formulation::Tri3SlaveNormal
+        | Formulation::Tri3ClosestPoint
+        | Formulation::Quad4SlaveNormal
+        | Formulation::Quad4ClosestPoint
+        | Formulation::Tri3Quad4SlaveNormal
+        | Formulation::Tri3Quad4ClosestPoint
+        | Formulation::Quad4Tri3SlaveNormal
+        | Formulation::Quad4Tri3ClosestPoint => {
+            unreachable!("the stability sweep takes segment pairs (pair_formulations) only")
+        }
     };
     let xi = -(dot(sub(c_m, x_s), t) * Hd::constant(2.0)) / dot(t_m, t);
     (dot(n, sub(lerp(xm1, xm2, xi), x_s)), xi)

@@ -25,6 +25,8 @@ pub struct InterpretedKernels {
     programs: FormulationPrograms,
     n: usize,
     dim: usize,
+    /// Components of the implicit unknown (1, or 2 for faces).
+    k: usize,
 }
 
 /// What [`InterpretedKernels::flip_sign`] changed.
@@ -47,6 +49,7 @@ impl InterpretedKernels {
             programs: codegen::programs(f)?,
             n: f.signature.coords(),
             dim: f.signature.dim(),
+            k: f.implicit.dim(),
         })
     }
 
@@ -107,17 +110,17 @@ impl InterpretedKernels {
     /// Runs type `ty` (1..=6) at relative coordinates `d`. `None` when the
     /// projection (Newton on the residual program) fails.
     pub fn eval(&self, ty: usize, d: &[f64], params: &[f64]) -> Option<KernelOutput> {
-        let n = self.n;
+        let (n, k) = (self.n, self.k);
         let xi = if self.programs.affine {
-            0.0
+            vec![0.0; k]
         } else {
             self.project(d, params)?
         };
         let (prog, has_hessian) = &self.programs.kernels[ty - 1];
-        let out = prog.run(d, params, xi);
+        let out = prog.run_vector(d, params, &xi);
         let xi_m = if self.programs.affine {
-            *out.last()
-                .expect("the closed-form projection is the last output")
+            // The closed-form projection is the last `k` outputs.
+            out[out.len() - k..].to_vec()
         } else {
             xi
         };
@@ -136,23 +139,34 @@ impl InterpretedKernels {
         });
         Some(KernelOutput {
             gap: out[0],
-            xi_m,
+            xi_m: xi_m[0],
+            xi_rest: xi_m[1..].to_vec(),
             grad,
             hess,
         })
     }
 
-    /// Newton's method on the residual program from `xi = 0`.
-    fn project(&self, d: &[f64], params: &[f64]) -> Option<f64> {
-        let mut xi = 0.0_f64;
+    /// Newton's method on the residual program from `xi = 0` (a 2-vector
+    /// unknown: the residual program's `[r_0, r_1, A_00, A_01, A_10, A_11]`,
+    /// the step by Cramer's rule, until `max|dxi| <= tol (1 + max|xi|)`).
+    fn project(&self, d: &[f64], params: &[f64]) -> Option<Vec<f64>> {
+        let mut xi = vec![0.0_f64; self.k];
+        let reach = |v: &[f64]| v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
         for _ in 0..ITERATIONS {
-            let r = self.programs.residual.run(d, params, xi);
-            let step = r[0] / r[1];
-            if !step.is_finite() {
+            let r = self.programs.residual.run_vector(d, params, &xi);
+            let step = match self.k {
+                1 => vec![r[0] / r[1]],
+                _ => {
+                    let [r0, r1, a00, a01, a10, a11] = [r[0], r[1], r[2], r[3], r[4], r[5]];
+                    let det = a00 * a11 - a01 * a10;
+                    vec![(a11 * r0 - a01 * r1) / det, (a00 * r1 - a10 * r0) / det]
+                }
+            };
+            if !step.iter().all(|s| s.is_finite()) {
                 return None;
             }
-            xi -= step;
-            if step.abs() <= TOLERANCE * (1.0 + xi.abs()) {
+            xi.iter_mut().zip(&step).for_each(|(x, s)| *x -= s);
+            if reach(&step) <= TOLERANCE * (1.0 + reach(&xi)) {
                 return Some(xi);
             }
         }

@@ -116,8 +116,11 @@ pub enum VerifyError {
 pub struct KernelOutput {
     /// The gap.
     pub gap: f64,
-    /// The projection coordinate.
+    /// The projection coordinate (a face's: its first component `u`).
     pub xi_m: f64,
+    /// The projection's further components (`[v]` for a face, empty for
+    /// a segment).
+    pub xi_rest: Vec<f64>,
     /// `dg/dq`.
     pub grad: Vec<f64>,
     /// `d2g/dq2`, row-major.
@@ -129,8 +132,10 @@ pub struct KernelOutput {
 pub struct Reference {
     /// The gap.
     pub gap: f64,
-    /// The projection coordinate.
+    /// The projection coordinate (a face's: its first component `u`).
     pub xi_m: f64,
+    /// The projection's further components (`[v]` for a face).
+    pub xi_rest: Vec<f64>,
     /// The kept gradient.
     pub grad: Vec<f64>,
     /// The kept Hessian, row-major `n x n`.
@@ -143,9 +148,16 @@ impl Reference {
         Reference {
             gap: 0.0,
             xi_m: 0.0,
+            xi_rest: Vec::new(),
             grad: vec![0.0; n],
             hess: vec![0.0; n * n],
         }
+    }
+
+    /// Sets the projection from all its components.
+    pub fn set_xi(&mut self, xi: &[f64]) {
+        self.xi_m = xi[0];
+        self.xi_rest = xi[1..].to_vec();
     }
 }
 
@@ -189,7 +201,17 @@ pub fn scaled_errors(out: &KernelOutput, r: &Reference, l: f64) -> Scaled {
     let nan_inf = |v: f64| if v.is_nan() { f64::INFINITY } else { v };
     Scaled {
         gap: nan_inf((out.gap - r.gap).abs() / r.gap.abs().max(l)),
-        xi_m: nan_inf((out.xi_m - r.xi_m).abs() / (1.0 + r.xi_m.abs())),
+        xi_m: nan_inf(
+            std::iter::once((out.xi_m, r.xi_m))
+                .chain(out.xi_rest.iter().copied().zip(r.xi_rest.iter().copied()))
+                .map(|(a, b)| (a - b).abs() / (1.0 + b.abs()))
+                .fold(0.0, f64::max)
+                + if out.xi_rest.len() == r.xi_rest.len() {
+                    0.0
+                } else {
+                    f64::INFINITY
+                },
+        ),
         grad: nan_inf(
             norm(out.grad.iter().zip(&r.grad).map(|(a, b)| a - b))
                 / norm(r.grad.iter().copied()).max(1.0),
@@ -356,7 +378,7 @@ pub fn verify(
             continue;
         };
         checked += 1;
-        let refs = reference.references(at, &c.params, xi0)?;
+        let refs = reference.references(at, &c.params, &xi0)?;
         for (row, r) in rows.iter_mut().zip(&refs) {
             match kernel(row.ty, &q, &c.params) {
                 Some(out) => {
@@ -385,6 +407,13 @@ pub fn verify(
 /// parameter (`xi_s`) either way.
 pub fn configurations(reference: &AdFormulation) -> Result<Vec<Config>, VerifyError> {
     let sig = &reference.formulation().signature;
+    if sig.dim() == 3 && sig.param_count() == 2 {
+        let slave = families::faces::FaceKind::of_nodes(sig.slave_points());
+        let master = families::faces::FaceKind::of_nodes(sig.points().len() - sig.slave_points());
+        if let (Some(s), Some(m)) = (slave, master) {
+            return Ok(families::faces::faces(s, m));
+        }
+    }
     match (sig.points().len(), sig.params().len()) {
         (4, 1) => Ok(families::all(families::Normal::Slave)),
         (6, 1) => Ok(families::quadratic()),
@@ -427,6 +456,7 @@ mod tests {
         KernelOutput {
             gap: r.gap,
             xi_m: r.xi_m,
+            xi_rest: r.xi_rest.clone(),
             grad: r.grad.clone(),
             hess: Some(r.hess.clone()),
         }
@@ -547,7 +577,7 @@ mod tests {
             move |ty: usize, q: &[f64], p: &[f64]| {
                 let d: Vec<f64> = q.iter().enumerate().map(|(i, v)| v - q[i % 2]).collect();
                 let xi = reference.project(&d, p, XI_M_SKIP)?;
-                let r = reference.references(&d, p, xi).ok()?;
+                let r = reference.references(&d, p, &xi).ok()?;
                 Some(out(&r[ty - 1]))
             }
         };

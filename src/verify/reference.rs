@@ -8,7 +8,8 @@
 //! differentiation, truncation, jets, lowering) is used.
 //!
 //! * `xi_m(q)`: Newton's method on the residual `r(q, xi)` in `f64`
-//!   (from `xi = 0`, as the kernels' projection), then three more Newton
+//!   (from `xi = 0`, as the kernels' projection; a 2-vector unknown with the
+//!   2 x 2 Jacobian by Cramer's rule), then three more Newton
 //!   steps in hyper-dual arithmetic with `r_xi` from a nested dual number:
 //!   each step doubles the order of the correct derivative parts, so the
 //!   result carries the exact `xi'` and `xi''` of the implicit function.
@@ -24,6 +25,10 @@
 //! E'  = E_q + [xi not constant] E_xi xi'
 //! E'' = E_qq + [xi not constant] (E_qxi xi'^T + xi' E_xiq + E_xixi xi' xi'^T)
 //!            + [xi quadratic]     E_xi xi''        (then zeroed by E's own order)
+//!
+//! (for a 2-vector xi = (u, v) the same with sums over its components:
+//! E' = E_q + sum_b E_xi_b xi_b', E'' = E_qq + sum_b (E_qxi_b xi_b'^T +
+//! xi_b' E_xi_bq + sum_c E_xi_bxi_c xi_b' xi_c'^T) + sum_b E_xi_b xi_b'')
 //! g'  = sum_a G_a E_a'
 //! g'' = sum_a G_a E_a'' + sum_ab G_ab E_a' E_b'^T
 //! ```
@@ -70,7 +75,10 @@ const DUAL_STEPS: usize = 3;
 pub struct AdFormulation {
     f: Formulation,
     n: usize,
+    /// Parameter components.
     params: usize,
+    /// Components of the implicit unknown.
+    k: usize,
 }
 
 /// A scalar the interpreter can evaluate the DAG in.
@@ -166,8 +174,9 @@ impl AdFormulation {
     /// Wraps a parsed formulation.
     pub fn new(f: Formulation) -> AdFormulation {
         let n = f.signature.coords();
-        let params = f.signature.params().len();
-        AdFormulation { f, n, params }
+        let params = f.signature.param_count();
+        let k = f.implicit.dim();
+        AdFormulation { f, n, params, k }
     }
 
     /// The parsed formulation.
@@ -192,8 +201,19 @@ impl AdFormulation {
             })
     }
 
-    /// The symbol values: `q`, the parameters, the implicit unknown.
-    fn input<'a, D: Scalar>(&self, q: &'a [D], params: &'a [f64], xi: D) -> impl Fn(Sym) -> D + 'a {
+    /// The implicit unknown's component count (1, or 2 for faces).
+    pub fn implicit_dim(&self) -> usize {
+        self.k
+    }
+
+    /// The symbol values: `q`, the parameters, the implicit unknown's
+    /// components.
+    fn input<'a, D: Scalar>(
+        &self,
+        q: &'a [D],
+        params: &'a [f64],
+        xi: &'a [D],
+    ) -> impl Fn(Sym) -> D + 'a {
         let (n, m) = (self.n, self.params);
         move |s: Sym| {
             let i = s.0 as usize;
@@ -202,60 +222,88 @@ impl AdFormulation {
             } else if i < n + m {
                 D::from(params[i - n])
             } else {
-                xi
+                xi[i - n - m]
             }
         }
     }
 
-    /// `r(q, xi)` and `r_xi(q, xi)` over `D` (nested dual along `xi`).
-    fn residual<D: Scalar>(&self, q: &[D], params: &[f64], xi: D) -> (D, D) {
+    /// The residuals `r_a(q, xi)` and their Jacobian `A_ac = dr_a/dxi_c`
+    /// (row-major) over `D`, by nested duals along each `xi_c`.
+    fn residual<D: Scalar>(&self, q: &[D], params: &[f64], xi: &[D]) -> (Vec<D>, Vec<D>) {
+        let k = self.k;
+        let roots: Vec<Id> = self.f.implicit.components.iter().map(|c| c.1).collect();
         let qd: Vec<Dual<D>> = q.iter().map(|&v| Dual::new(v, D::from(0.0))).collect();
-        let xid = Dual::new(xi, D::from(1.0));
-        let r = eval_nodes(
-            &self.f,
-            &[self.f.implicit.residual],
-            &self.input(&qd, params, xid),
-        )[0];
-        (r.re, r.eps)
+        let mut r = vec![D::from(0.0); k];
+        let mut a = vec![D::from(0.0); k * k];
+        for c in 0..k {
+            let xid: Vec<Dual<D>> = (0..k)
+                .map(|b| Dual::new(xi[b], D::from(if b == c { 1.0 } else { 0.0 })))
+                .collect();
+            let v = eval_nodes(&self.f, &roots, &self.input(&qd, params, &xid));
+            for (ai, va) in v.iter().enumerate() {
+                r[ai] = va.re;
+                a[ai * k + c] = va.eps;
+            }
+        }
+        (r, a)
     }
 
-    /// Solves `r(q, xi) = 0` in `f64` by Newton's method from `xi = 0`;
-    /// `None` when it does not converge or the root lies beyond
-    /// `|xi| = limit`.
-    pub fn project(&self, q: &[f64], params: &[f64], limit: f64) -> Option<f64> {
-        let mut xi = 0.0_f64;
+    /// The Newton step `A^-1 r` (1 x 1 or 2 x 2, by Cramer's rule).
+    fn step<D: Scalar>(r: &[D], a: &[D]) -> Vec<D> {
+        match r.len() {
+            1 => vec![r[0] / a[0]],
+            _ => {
+                let det = a[0] * a[3] - a[1] * a[2];
+                vec![
+                    (a[3] * r[0] - a[1] * r[1]) / det,
+                    (a[0] * r[1] - a[2] * r[0]) / det,
+                ]
+            }
+        }
+    }
+
+    /// Solves `r(q, xi) = 0` in `f64` by Newton's method from `xi = 0`
+    /// (every component); `None` when it does not converge or the root lies
+    /// beyond `max|xi| = limit`.
+    pub fn project(&self, q: &[f64], params: &[f64], limit: f64) -> Option<Vec<f64>> {
+        let mut xi = vec![0.0_f64; self.k];
+        let reach = |xi: &[f64]| xi.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         for _ in 0..ITERATIONS {
-            let (r, r_xi) = self.residual(q, params, xi);
-            let step = r / r_xi;
-            if !step.is_finite() {
+            let (r, a) = self.residual(q, params, &xi);
+            let step = Self::step(&r, &a);
+            if !step.iter().all(|s| s.is_finite()) {
                 return None;
             }
-            xi -= step;
-            if xi.abs() > limit {
+            xi.iter_mut().zip(&step).for_each(|(x, s)| *x -= s);
+            if reach(&xi) > limit {
                 return None;
             }
-            if step.abs() <= NEWTON_TOL * (1.0 + xi.abs()) {
+            if reach(&step) <= NEWTON_TOL * (1.0 + reach(&xi)) {
                 // One more step to settle the last bit.
-                let (r, r_xi) = self.residual(q, params, xi);
-                let last = r / r_xi;
-                return last.is_finite().then_some(xi - last);
+                let (r, a) = self.residual(q, params, &xi);
+                let last = Self::step(&r, &a);
+                if !last.iter().all(|s| s.is_finite()) {
+                    return None;
+                }
+                return Some(xi.iter().zip(&last).map(|(x, s)| x - s).collect());
             }
         }
         None
     }
 
     /// `xi_m(q)` in dual arithmetic from the converged `xi0`.
-    fn xi_dual<D: Scalar>(&self, q: &[D], params: &[f64], xi0: f64) -> D {
-        let mut xi = D::from(xi0);
+    fn xi_dual<D: Scalar>(&self, q: &[D], params: &[f64], xi0: &[f64]) -> Vec<D> {
+        let mut xi: Vec<D> = xi0.iter().map(|&x| D::from(x)).collect();
         for _ in 0..DUAL_STEPS {
-            let (r, r_xi) = self.residual(q, params, xi);
-            xi -= r / r_xi;
+            let (r, a) = self.residual(q, params, &xi);
+            let step = Self::step(&r, &a);
+            xi.iter_mut().zip(step).for_each(|(x, s)| *x -= s);
         }
         xi
     }
 
     /// The entity values at `(q, xi)`, by name (the implicit one included).
-    fn entities<D: Scalar>(&self, q: &[D], params: &[f64], xi: D) -> HashMap<String, Value<D>> {
+    fn entities<D: Scalar>(&self, q: &[D], params: &[f64], xi: &[D]) -> HashMap<String, Value<D>> {
         let roots: Vec<Id> = self
             .f
             .entities
@@ -266,14 +314,11 @@ impl AdFormulation {
         let mut at = 0;
         let mut out = HashMap::new();
         for e in &self.f.entities {
-            let v = match e.value {
-                Value::Scalar(_) => Value::Scalar(vals[at]),
-                Value::Vec2(_) => Value::Vec2([vals[at], vals[at + 1]]),
-            };
-            at += e.value.components().len();
-            out.insert(e.name.clone(), v);
+            let len = e.value.components().len();
+            out.insert(e.name.clone(), e.value.like(&vals[at..at + len]));
+            at += len;
         }
-        out.insert(self.f.implicit.name.clone(), Value::Scalar(xi));
+        out.insert(self.f.implicit.name.clone(), Value::from_components(xi));
         out
     }
 
@@ -286,19 +331,19 @@ impl AdFormulation {
     /// (row-major `n x n`), from `xi0`, the converged projection
     /// ([`AdFormulation::project`]). `q` should be relative to the first
     /// point (the kernels' own coordinates).
-    pub fn exact(&self, q: &[f64], params: &[f64], xi0: f64) -> Result<Reference, VerifyError> {
+    pub fn exact(&self, q: &[f64], params: &[f64], xi0: &[f64]) -> Result<Reference, VerifyError> {
         let n = self.n;
         let mut r = Reference::zeros(n);
-        r.xi_m = xi0;
+        r.set_xi(xi0);
         for j in 0..n {
             for k in j..n {
                 let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
                 let xi = self.xi_dual(&qd, params, xi0);
-                let g = self.gap(&self.entities(&qd, params, xi))?;
+                let g = self.gap(&self.entities(&qd, params, &xi))?;
                 if j == k {
                     r.grad[j] = g.eps1;
                     r.gap = g.re;
-                    r.xi_m = xi.re;
+                    r.set_xi(&xi.iter().map(|x| x.re).collect::<Vec<_>>());
                 }
                 r.hess[j * n + k] = g.eps1eps2;
                 r.hess[k * n + j] = g.eps1eps2;
@@ -313,7 +358,7 @@ impl AdFormulation {
         &self,
         q: &[f64],
         params: &[f64],
-        xi0: f64,
+        xi0: &[f64],
     ) -> Result<[Reference; 6], VerifyError> {
         let parts = self.partials(q, params, xi0)?;
         let mut out: [Reference; 6] = std::array::from_fn(|_| Reference::zeros(self.n));
@@ -331,7 +376,7 @@ impl AdFormulation {
         &self,
         q: &[f64],
         params: &[f64],
-        xi0: f64,
+        xi0: &[f64],
         row: [EntityOrder; 3],
     ) -> Result<Reference, VerifyError> {
         let parts = self.partials(q, params, xi0)?;
@@ -339,22 +384,24 @@ impl AdFormulation {
     }
 
     /// Every partial derivative the truncated formula needs.
-    fn partials(&self, q: &[f64], params: &[f64], xi0: f64) -> Result<Partials, VerifyError> {
-        let n = self.n;
-        // xi' and xi'' of the implicit function.
-        let mut xi1 = vec![0.0; n];
-        let mut xi2 = vec![0.0; n * n];
-        let mut xi_m = xi0;
+    fn partials(&self, q: &[f64], params: &[f64], xi0: &[f64]) -> Result<Partials, VerifyError> {
+        let (n, kx) = (self.n, self.k);
+        // xi_b' and xi_b'' of the implicit function, per component b.
+        let mut xi1 = vec![vec![0.0; n]; kx];
+        let mut xi2 = vec![vec![0.0; n * n]; kx];
+        let mut xi_m = xi0.to_vec();
         for j in 0..n {
             for k in j..n {
                 let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
                 let xi = self.xi_dual(&qd, params, xi0);
-                if j == k {
-                    xi1[j] = xi.eps1;
-                    xi_m = xi.re;
+                for (b, x) in xi.iter().enumerate() {
+                    if j == k {
+                        xi1[b][j] = x.eps1;
+                        xi_m[b] = x.re;
+                    }
+                    xi2[b][j * n + k] = x.eps1eps2;
+                    xi2[b][k * n + j] = x.eps1eps2;
                 }
-                xi2[j * n + k] = xi.eps1eps2;
-                xi2[k * n + j] = xi.eps1eps2;
             }
         }
         // Entity components as functions of z = (q, xi) at fixed xi.
@@ -365,13 +412,13 @@ impl AdFormulation {
             .flat_map(|e| (0..e.value.components().len()).map(move |c| (e.name.clone(), c)))
             .collect();
         let m = names.len();
-        let nz = n + 1;
+        let nz = n + kx;
         let mut ent = vec![Hd::zeros(nz); m];
         for j in 0..nz {
             for k in j..nz {
                 let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
-                let xi = seeded(xi_m, n, j, k);
-                let e = self.entities(&qd, params, xi);
+                let xi: Vec<HyperDual64> = (0..kx).map(|b| seeded(xi_m[b], n + b, j, k)).collect();
+                let e = self.entities(&qd, params, &xi);
                 let comps: Vec<HyperDual64> = self
                     .f
                     .entities
@@ -383,8 +430,10 @@ impl AdFormulation {
                 }
             }
         }
-        // The gap as a function of [xi, entity components].
-        let values: Vec<f64> = std::iter::once(xi_m)
+        // The gap as a function of [xi components, entity components].
+        let values: Vec<f64> = xi_m
+            .iter()
+            .copied()
             .chain(ent.iter().map(|h| h.value))
             .collect();
         let ng = values.len();
@@ -393,15 +442,15 @@ impl AdFormulation {
             for k in j..ng {
                 let v: Vec<HyperDual64> = (0..ng).map(|i| seeded(values[i], i, j, k)).collect();
                 let mut map = HashMap::new();
-                map.insert(self.f.implicit.name.clone(), Value::Scalar(v[0]));
-                let mut at = 1;
+                map.insert(
+                    self.f.implicit.name.clone(),
+                    Value::from_components(&v[..kx]),
+                );
+                let mut at = kx;
                 for e in &self.f.entities {
-                    let val = match e.value {
-                        Value::Scalar(_) => Value::Scalar(v[at]),
-                        Value::Vec2(_) => Value::Vec2([v[at], v[at + 1]]),
-                    };
-                    at += e.value.components().len();
-                    map.insert(e.name.clone(), val);
+                    let len = e.value.components().len();
+                    map.insert(e.name.clone(), e.value.like(&v[at..at + len]));
+                    at += len;
                 }
                 gap.record(&self.gap(&map)?, j, k);
             }
@@ -417,62 +466,75 @@ impl AdFormulation {
         })
     }
 
-    /// The truncated `g`, `g'`, `g''` of one table row.
+    /// The truncated `g`, `g'`, `g''` of one table row:
+    /// `E' = E_q + [xi not constant] sum_b E_xi_b xi_b'`,
+    /// `E'' = E_qq + [xi not constant] sum_b (E_qxi_b xi_b'^T + xi_b' E_xi_bq
+    /// + sum_c E_xi_bxi_c xi_b' xi_c'^T) + [xi quadratic] sum_b E_xi_b xi_b''`.
     fn assemble(&self, p: &Partials, row: [EntityOrder; 3]) -> Result<Reference, VerifyError> {
-        let n = p.n;
+        let (n, kx) = (p.n, self.k);
         let xi_order = self.order(&self.f.implicit.name, row)?;
         let xi_varies = xi_order != EntityOrder::Constant;
         let xi_quadratic = xi_order == EntityOrder::Quadratic;
-        // Kept (E', E'') of every gap argument: xi first, then components.
+        // Kept (E', E'') of every gap argument: xi's components first, then
+        // the entity components.
         let mut d1: Vec<Vec<f64>> = Vec::new();
         let mut d2: Vec<Vec<f64>> = Vec::new();
-        d1.push(if xi_varies {
-            p.xi1.clone()
-        } else {
-            vec![0.0; n]
-        });
-        d2.push(if xi_quadratic {
-            p.xi2.clone()
-        } else {
-            vec![0.0; n * n]
-        });
+        for b in 0..kx {
+            d1.push(if xi_varies {
+                p.xi1[b].clone()
+            } else {
+                vec![0.0; n]
+            });
+            d2.push(if xi_quadratic {
+                p.xi2[b].clone()
+            } else {
+                vec![0.0; n * n]
+            });
+        }
+        let nz = n + kx;
         for ((name, _), e) in p.names.iter().zip(&p.ent) {
             let own = self.order(name, row)?;
-            let nz = n + 1;
             let mut a = e.grad[..n].to_vec();
-            let mut b: Vec<f64> = (0..n * n).map(|i| e.hess[(i / n) * nz + i % n]).collect();
-            let e_xi = e.grad[n];
-            let e_xixi = e.hess[n * nz + n];
+            let mut h: Vec<f64> = (0..n * n).map(|i| e.hess[(i / n) * nz + i % n]).collect();
             if xi_varies {
-                for j in 0..n {
-                    a[j] += e_xi * p.xi1[j];
-                    let e_qxi_j = e.hess[j * nz + n];
-                    for k in 0..n {
-                        let e_qxi_k = e.hess[k * nz + n];
-                        b[j * n + k] +=
-                            e_qxi_j * p.xi1[k] + p.xi1[j] * e_qxi_k + e_xixi * p.xi1[j] * p.xi1[k];
+                for b in 0..kx {
+                    let e_xi = e.grad[n + b];
+                    for j in 0..n {
+                        a[j] += e_xi * p.xi1[b][j];
+                        let e_qxi_j = e.hess[j * nz + n + b];
+                        for k in 0..n {
+                            let e_qxi_k = e.hess[k * nz + n + b];
+                            h[j * n + k] += e_qxi_j * p.xi1[b][k] + p.xi1[b][j] * e_qxi_k;
+                            for c in 0..kx {
+                                let e_bc = e.hess[(n + b) * nz + n + c];
+                                h[j * n + k] += e_bc * p.xi1[b][j] * p.xi1[c][k];
+                            }
+                        }
                     }
                 }
             }
             if xi_quadratic {
-                for (bi, x2) in b.iter_mut().zip(&p.xi2) {
-                    *bi += e_xi * x2;
+                for b in 0..kx {
+                    let e_xi = e.grad[n + b];
+                    for (hi, x2) in h.iter_mut().zip(&p.xi2[b]) {
+                        *hi += e_xi * x2;
+                    }
                 }
             }
             match own {
                 EntityOrder::Constant => {
                     a.iter_mut().for_each(|v| *v = 0.0);
-                    b.iter_mut().for_each(|v| *v = 0.0);
+                    h.iter_mut().for_each(|v| *v = 0.0);
                 }
-                EntityOrder::Linear => b.iter_mut().for_each(|v| *v = 0.0),
+                EntityOrder::Linear => h.iter_mut().for_each(|v| *v = 0.0),
                 EntityOrder::Quadratic => {}
             }
             d1.push(a);
-            d2.push(b);
+            d2.push(h);
         }
         let mut r = Reference::zeros(n);
         r.gap = p.gap.value;
-        r.xi_m = p.xi_m;
+        r.set_xi(&p.xi_m);
         let ng = d1.len();
         for a in 0..ng {
             let ga = p.gap.grad[a];
@@ -531,9 +593,12 @@ impl Hd {
 #[derive(Debug, Clone)]
 struct Partials {
     n: usize,
-    xi_m: f64,
-    xi1: Vec<f64>,
-    xi2: Vec<f64>,
+    /// The projection's components.
+    xi_m: Vec<f64>,
+    /// `xi_b'` per component `b`.
+    xi1: Vec<Vec<f64>>,
+    /// `xi_b''` per component `b` (row-major `n x n`).
+    xi2: Vec<Vec<f64>>,
     /// Entity component names (entity, component).
     names: Vec<(String, usize)>,
     /// Per component, over `(q, xi)`.

@@ -137,6 +137,15 @@ static inline const char *gapsim_status_name(int status)
 #endif /* GAPSIM_H */
 "#;
 
+impl CEmitter {
+    /// Whether the C emitter writes a formulation of points of dimension
+    /// `dim`: segments (2) only; formulations of 3D faces are left out of
+    /// its files (`gapsim generate --lang c` refuses them).
+    pub fn supports(dim: usize) -> bool {
+        dim == 2
+    }
+}
+
 impl Emitter for CEmitter {
     /// `gapsim.h`, then `gapsim_{ident}.h` and `gapsim_{ident}.c` per
     /// compiled formulation, in plan order.
@@ -147,6 +156,10 @@ impl Emitter for CEmitter {
         }];
         for f in &plan.formulations {
             let Some(set) = &f.kernels else { continue };
+            // Faces (3D) have no C emitter ([`CEmitter::supports`]).
+            if !CEmitter::supports(f.dim) {
+                continue;
+            }
             files.push(EmittedFile {
                 name: format!("gapsim_{}.h", set.ident),
                 contents: header(f, set),
@@ -492,6 +505,7 @@ pub fn body(p: &Program, coords: &str, params: &[String], implicit: &str) -> Str
             Instr::Load(Source::Coord(k)) => format!("{coords}[{k}]"),
             Instr::Load(Source::Param(i)) => params[i].clone(),
             Instr::Load(Source::Implicit) => implicit.to_owned(),
+            Instr::Load(Source::ImplicitComponent(k)) => format!("{implicit}[{k}]"),
             Instr::Add(a, b) => format!("{} + {}", operand(a), operand(b)),
             Instr::Sub(a, b) => format!("{} - {}", operand(a), operand(b)),
             Instr::Mul(a, b) => format!("{} * {}", operand(a), operand(b)),

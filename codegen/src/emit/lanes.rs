@@ -76,7 +76,10 @@ fn module(plan: &KernelPlan) -> TokenStream {
     for f in &plan.formulations {
         let variant = Ident::new(&f.variant, Span::call_site());
         match &f.kernels {
+            // Faces (3D) have no lane kernels: their batch evaluates point
+            // by point.
             None => arms.push(quote!(Formulation::#variant => None,)),
+            Some(_) if f.dim == 3 => arms.push(quote!(Formulation::#variant => None,)),
             Some(set) => {
                 let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
                 arms.push(quote!(Formulation::#variant => Some(&#static_name),));

@@ -57,6 +57,7 @@ fn module(plan: &KernelPlan) -> TokenStream {
     let mut names = Vec::new();
     let mut docs = Vec::new();
     let mut arms = Vec::new();
+    let mut face_arms = Vec::new();
     let mut items = Vec::new();
     for f in &plan.formulations {
         let variant = Ident::new(&f.variant, Span::call_site());
@@ -72,6 +73,13 @@ fn module(plan: &KernelPlan) -> TokenStream {
         docs.push(quote!(Formulation::#variant => #doc_text,));
         match &f.kernels {
             None => arms.push(quote!(Formulation::#variant => None,)),
+            // Faces: a `FaceKernelSet`, looked up by `face_kernel_set`.
+            Some(set) if f.dim == 3 => {
+                let static_name = format_ident!("{}", set.ident.to_uppercase());
+                arms.push(quote!(Formulation::#variant => None,));
+                face_arms.push(quote!(Formulation::#variant => Some(&#static_name),));
+                items.push(face_kernel_set(set, &static_name));
+            }
             Some(set) => {
                 let static_name = format_ident!("{}", set.ident.to_uppercase());
                 arms.push(quote!(Formulation::#variant => Some(&#static_name),));
@@ -89,6 +97,18 @@ fn module(plan: &KernelPlan) -> TokenStream {
         quote!([#(EntityOrder::#r),*])
     });
     let types = proc_macro2::Literal::usize_unsuffixed(plan.truncation.len());
+    // Emitted when a formulation of faces exists (compiled in or not).
+    let faces = plan.formulations.iter().any(|f| f.dim == 3).then(|| {
+        quote! {
+            /// The kernels of a formulation of 3D faces, if compiled in.
+            pub(crate) fn face_kernel_set(f: Formulation) -> Option<&'static FaceKernelSet> {
+                match f {
+                    #(#face_arms)*
+                    _ => None,
+                }
+            }
+        }
+    });
     quote! {
         /// A contact formulation: one per file in `contact-kernels/formulations/`.
         #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -117,7 +137,53 @@ fn module(plan: &KernelPlan) -> TokenStream {
             match f { #(#arms)* }
         }
 
+        #faces
+
         #(#items)*
+    }
+}
+
+/// A compiled formulation of faces: its functions and its `static`
+/// `FaceKernelSet` (the run-time crate's; node counts of both faces).
+fn face_kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
+    let mut items = vec![function(&set.residual), function(&set.gap)];
+    let mut kernel_refs = Vec::new();
+    let mut op_lits = Vec::new();
+    for k in &set.kernels {
+        items.push(function(k));
+        let kfn = format_ident!("{}", k.name);
+        kernel_refs.push(match k.role {
+            Role::Kernel { hessian: true, .. } => quote!(FaceKernel::Hessian(#kfn)),
+            _ => quote!(FaceKernel::Gradient(#kfn)),
+        });
+        op_lits.push(ops_literal(&k.ops));
+    }
+    let (res_fn, gap_fn) = (
+        format_ident!("{}", set.residual.name),
+        format_ident!("{}", set.gap.name),
+    );
+    let affine = set.closed_form_projection;
+    let proj_ops = ops_literal(&set.projection_ops);
+    let set_doc = format!(" {}", set.doc);
+    let sig = &set.signature;
+    let coords = idx(sig.coords());
+    let slave = idx(sig.slave_points());
+    let master = idx(sig.points().len() - sig.slave_points());
+    quote! {
+        #(#items)*
+
+        #[doc = #set_doc]
+        static #static_name: FaceKernelSet = FaceKernelSet {
+            coords: #coords,
+            slave_nodes: #slave,
+            master_nodes: #master,
+            closed_form_projection: #affine,
+            residual: #res_fn,
+            gap: #gap_fn,
+            kernels: [#(#kernel_refs),*],
+            ops: [#(#op_lits),*],
+            projection_ops: #proj_ops,
+        };
     }
 }
 
@@ -174,6 +240,10 @@ fn function(f: &FunctionPlan) -> TokenStream {
     let mut params = Vec::new();
     let mut implicit = ident("xi");
     let mut implicit_ref = None;
+    // A vector input `x` of `len` components: `x: &[f64]` (`&mut` for the
+    // in/out unknown), its components bound to `x_0`, `x_1` (`component`).
+    let component = |x: &Ident, k: usize| format_ident!("{}_{}", x, k);
+    let mut implicit_len = 1;
     for input in &f.inputs {
         let x = ident(&input.name);
         match input.kind {
@@ -183,13 +253,36 @@ fn function(f: &FunctionPlan) -> TokenStream {
                 prologue.push(quote!(let #x = &#x[..#len];));
                 coords = x;
             }
+            InputKind::Param(_) if input.len > 1 => {
+                args.push(quote!(#x: &[f64]));
+                for k in 0..input.len {
+                    let c = component(&x, k);
+                    let kk = idx(k);
+                    prologue.push(quote!(let #c = #x[#kk];));
+                    params.push(c);
+                }
+            }
             InputKind::Param(_) => {
                 args.push(quote!(#x: f64));
                 params.push(x);
             }
+            InputKind::Implicit if input.len > 1 => {
+                args.push(quote!(#x: &[f64]));
+                for k in 0..input.len {
+                    let (c, kk) = (component(&x, k), idx(k));
+                    prologue.push(quote!(let #c = #x[#kk];));
+                }
+                implicit = x;
+            }
             InputKind::Implicit => {
                 args.push(quote!(#x: f64));
                 implicit = x;
+            }
+            InputKind::ImplicitInOut if input.len > 1 => {
+                args.push(quote!(#x: &mut [f64]));
+                implicit = ident("xi_in");
+                implicit_ref = Some(x);
+                implicit_len = input.len;
             }
             InputKind::ImplicitInOut => {
                 args.push(quote!(#x: &mut f64));
@@ -204,6 +297,15 @@ fn function(f: &FunctionPlan) -> TokenStream {
     for out in &f.outputs {
         match out.delivery {
             Delivery::Return => returns.push(output(f.program.outputs[out.first])),
+            Delivery::Implicit if out.len > 1 => {
+                let target = implicit_ref.as_ref().expect("an in/out implicit input");
+                let stmts = (0..out.len).map(|k| {
+                    let v = output(f.program.outputs[out.first + k]);
+                    let k = idx(k);
+                    quote!(#target[#k] = #v;)
+                });
+                write_back = Some(quote!(#(#stmts)*));
+            }
             Delivery::Implicit => {
                 let target = implicit_ref.as_ref().expect("an in/out implicit input");
                 let v = output(f.program.outputs[out.first]);
@@ -223,6 +325,13 @@ fn function(f: &FunctionPlan) -> TokenStream {
     }
     // The converged projection is read unless this function solves it.
     let read = match (&implicit_ref, &write_back) {
+        (Some(r), None) if implicit_len > 1 => {
+            let stmts = (0..implicit_len).map(|k| {
+                let (c, kk) = (component(&implicit, k), idx(k));
+                quote!(let #c = #r[#kk];)
+            });
+            quote!(#(#stmts)*)
+        }
         (Some(r), None) => quote!(let #implicit = *#r;),
         _ => quote!(),
     };
@@ -369,6 +478,10 @@ pub fn body_in(
                 quote!(#param)
             }
             Instr::Load(Source::Implicit) => quote!(#implicit),
+            Instr::Load(Source::ImplicitComponent(k)) => {
+                let c = format_ident!("{}_{}", implicit, k);
+                quote!(#c)
+            }
             Instr::Add(a, b) => {
                 let (a, b) = (operand(a), operand(b));
                 quote!(#a + #b)

@@ -1,4 +1,4 @@
-//! [`Kernel::eval_batch`]'s evaluation: the points in groups of [`LANES`],
+//! [`Kernel::eval_batch`](super::Kernel::eval_batch)'s evaluation: the points in groups of [`LANES`],
 //! one call of the lane kernel per group.
 //!
 //! Per group:
@@ -10,23 +10,23 @@
 //!    [`relative_coordinates`], which names its error, and its lane (like
 //!    the lanes past the end of a short last group) computes on zeros whose
 //!    results are discarded. The projection is started per point as
-//!    [`Kernel::eval`] starts it (`projection::start`);
+//!    [`Kernel::eval`](super::Kernel::eval) starts it (`projection::start`);
 //! 2. the lane kernel evaluates all lanes at once; lane `l` holds the
 //!    scalar kernel's bits for point `l`;
 //! 3. a lane is accepted when its `xi_m` passes `projection::check`'s tests
 //!    and every output is finite (the scalar path's two checks). Any other
 //!    lane is evaluated again by the scalar path, so a failing point
-//!    reports exactly the error [`Kernel::eval`] reports (no projection,
+//!    reports exactly the error [`Kernel::eval`](super::Kernel::eval) reports (no projection,
 //!    out of reach, non-finite output), never a second opinion;
 //! 4. accepted lanes are scattered into the [`GapBatch`] (4 x 4 transposes
 //!    when the whole group is accepted).
 //!
 //! The whole evaluation is compiled twice, like the lane kernels: for the
 //! target's baseline and, on x86-64, for AVX2 (no FMA), and runs in the
-//! copy of the kernel's [`Kernel::lane_isa`]. A failed point is zeroed and
+//! copy of the kernel's [`Kernel::lane_isa`](super::Kernel::lane_isa). A failed point is zeroed and
 //! carries its error ([`GapBatch::status`]).
 
-use super::{GapBatch, Kernel};
+use super::{GapBatch, Segments};
 use crate::KernelError;
 use crate::generated_lanes::{LaneIsa, LaneKernel};
 use crate::lanes::{LANES, Lanes};
@@ -53,7 +53,7 @@ impl LaneBuffers {
     }
 }
 
-impl Kernel {
+impl Segments {
     /// Evaluates every point of `xi_s` into `out` (shapes checked and
     /// `out` prepared by the caller); returns how many succeeded.
     pub(super) fn eval_lanes(&self, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
@@ -97,14 +97,14 @@ impl Kernel {
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn eval_all_avx2(k: &Kernel, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
+unsafe fn eval_all_avx2(k: &Segments, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
     eval_all::<true>(k, qs, xi_s, out)
 }
 
 /// Every group; returns how many points succeeded. `AVX2`: the caller runs
 /// with AVX2 enabled (the scatter uses its shuffles).
 #[inline(always)]
-fn eval_all<const AVX2: bool>(k: &Kernel, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
+fn eval_all<const AVX2: bool>(k: &Segments, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
     let mut ok = 0;
     let mut first = 0;
     while first < xi_s.len() {
@@ -119,7 +119,7 @@ fn eval_all<const AVX2: bool>(k: &Kernel, qs: &[f64], xi_s: &[f64], out: &mut Ga
 /// succeeded.
 #[inline(always)]
 fn eval_group<const AVX2: bool>(
-    k: &Kernel,
+    k: &Segments,
     first: usize,
     count: usize,
     qs: &[f64],
@@ -207,7 +207,7 @@ fn eval_group<const AVX2: bool>(
     ok
 }
 
-impl Kernel {
+impl Segments {
     /// Lane `l` (point `p`) when the lanes cannot decide alone: the scalar
     /// validation for a lane that failed the lane checks (its error, or
     /// its relative coordinates), then `projection::start`.
@@ -399,10 +399,10 @@ unsafe fn scatter_avx2(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
 
 impl GapBatch {
     /// Point `p` failed with `e`: zero entries, the error as its status.
-    fn fail(&mut self, p: usize, e: KernelError) {
-        let n = self.coords;
+    pub(super) fn fail(&mut self, p: usize, e: KernelError) {
+        let (n, k) = (self.coords, self.param_dim);
         self.gap[p] = 0.0;
-        self.xi_m[p] = 0.0;
+        self.xi_m[p * k..(p + 1) * k].fill(0.0);
         self.grad[p * n..(p + 1) * n].fill(0.0);
         if self.has_hessian {
             self.hess[p * n * n..(p + 1) * n * n].fill(0.0);

@@ -138,6 +138,16 @@ pub fn slave_coordinate_of_master_end(
         // it; its mid nodes would sit at the chord midpoints) is slave-normal.
         Formulation::SlaveNormal | Formulation::QuadraticSlaveNormal => t_s,
         Formulation::ClosestPoint => [master[1][0] - master[0][0], master[1][1] - master[0][1]],
+        // Faces (3D) are refused before any pairing (the scene and the run
+        // take 8-coordinate formulations only): no split.
+        Formulation::Tri3SlaveNormal
+        | Formulation::Tri3ClosestPoint
+        | Formulation::Quad4SlaveNormal
+        | Formulation::Quad4ClosestPoint
+        | Formulation::Tri3Quad4SlaveNormal
+        | Formulation::Tri3Quad4ClosestPoint
+        | Formulation::Quad4Tri3SlaveNormal
+        | Formulation::Quad4Tri3ClosestPoint => return f64::NAN,
     };
     let frac = (ea[0] * dir[0] + ea[1] * dir[1]) / (t_s[0] * dir[0] + t_s[1] * dir[1]);
     2.0 * frac - 1.0

@@ -1,0 +1,25 @@
+//! Projection along the slave normal between 3D faces: the slave face is
+//! a tri3 (linear triangle, `N = (1 - u - v, u, v)` on the unit triangle),
+//! the master face a quad4 (bilinear quadrilateral on [-1, 1]^2, nodes at (-1,-1), (1,-1), (1,1), (-1,1): Gmsh order).
+//! The gap vector stays perpendicular to both slave tangents at the slave
+//! point, `(x_m(xi) - x_s) . t_s1 = 0` and `(x_m(xi) - x_s) . t_s2 = 0`, and
+//! the normal is the slave's outward unit normal `t_s1 x t_s2 / |t_s1 x t_s2|`.
+//! On the quad4 master the residual is not affine in xi: Newton from (0, 0).
+inputs!(dim 3; xs1, xs2, xs3; xm1, xm2, xm3, xm4; xi_s: 2);
+
+// Slave point and slave tangents dx_s/du, dx_s/dv at xi_s.
+let x_s = tri3_point(xs1, xs2, xs3, xi_s);
+let ts1 = tri3_du(xs1, xs2, xs3);
+let ts2 = tri3_dv(xs1, xs2, xs3);
+
+// Projection (u, v) on the master face.
+let xi_m = implicit!(xi: 2 => [
+    dot(quad4_point(xm1, xm2, xm3, xm4, xi) - x_s, ts1),
+    dot(quad4_point(xm1, xm2, xm3, xm4, xi) - x_s, ts2)
+]);
+
+// Gap vector from the slave point to its projection, and the unit normal.
+let x_ms = entity!(quad4_point(xm1, xm2, xm3, xm4, xi_m) - x_s);
+let n = entity!(cross(ts1, ts2) / norm(cross(ts1, ts2)));
+
+gap!(dot(n, x_ms));
