@@ -76,7 +76,7 @@ fn parse_args() -> Result<Args, String> {
                         .ok_or_else(|| format!("--steady: `{v}` is not a number"))
                 };
                 let (from, to) = (bound()?, bound()?);
-                if !(from < to) {
+                if from >= to {
                     return Err(format!("--steady: {from} is not below {to}"));
                 }
                 args.steady = Some((from, to));
