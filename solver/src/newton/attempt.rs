@@ -138,27 +138,7 @@ impl Run<'_> {
     /// docs); for Types 1–6 followed by the step-end check and, while the
     /// pairing changes, repeated with the new pairing's expansion (see
     /// `repair.rs`).
-    ///
-    /// An attempt from the predictor of a prescribed increment (module docs
-    /// of `super`, "Prescribed increments") that fails is made once more
-    /// without it before the caller cuts back (its iterations are counted
-    /// as failed ones).
     pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
-        self.predict = true;
-        let outcome = self.attempt_once(to)?;
-        if let AttemptOutcome::CutBack(failed) = &outcome
-            && self.setup.lift(&self.u, to).is_some()
-        {
-            self.failed_iterations += failed.iterations;
-            self.predict = false;
-            let retry = self.attempt_once(to);
-            self.predict = true;
-            return retry;
-        }
-        Ok(outcome)
-    }
-
-    fn attempt_once(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
         let Method::Approx(ty) = self.opts.method else {
             return self.newton(to);
         };
@@ -193,11 +173,6 @@ impl Run<'_> {
         // (module docs of `super`, "Prescribed increments"); the prescribed
         // dofs take their values at `to` with the first correction
         let mut lift = self.setup.lift(&x.u, to);
-        if !self.predict {
-            // as without a predictor: the prescribed dofs at once
-            self.setup.prescribe(&mut x.u, to);
-            lift = None;
-        }
         let mut extrapolated = false;
         if let (Some(l), Some(previous)) = (&lift, &self.previous_u)
             && let Some(s) = self.setup.extrapolation(l, &x.u, previous)

@@ -62,11 +62,6 @@
 //!   correction. That first residual is a linearised one: it is never
 //!   taken as converged.
 //!
-//! An attempt from the predictor that fails is made once more without it
-//! (the prescribed dofs set at once, as before) before it is cut back: on
-//! the sliding scene at 10 steps the first slide step (0.75, three quarters
-//! of the block's width) fails from the predictor and converges without it.
-//!
 //! On the ironing scene at 20 steps the complete formulation then needs no
 //! cut-back (236 iterations, 5 per press step); the sliding scenes' results
 //! are unchanged to the solver tolerance, with fewer iterations.
@@ -254,9 +249,6 @@ pub(crate) struct Run<'a> {
     /// The converged displacements before the last commit (the secant
     /// predictor's, "Prescribed increments").
     previous_u: Option<Vec<f64>>,
-    /// Whether an attempt starts from the predictor of a prescribed
-    /// increment (`attempt.rs`: off for the one retry without it).
-    predict: bool,
     // history
     records: Vec<StepRecord>,
     cutbacks: Vec<Cutback>,
@@ -311,7 +303,6 @@ impl<'a> Run<'a> {
             taylor: None,
             tie_taylor: Vec::new(),
             previous_u: None,
-            predict: true,
             records: Vec::new(),
             cutbacks: Vec::new(),
             snapshots: Vec::new(),
