@@ -5,6 +5,8 @@
 //! ```text
 //! cargo run --release --example sliding_curves                    # 20 steps into target/sliding-curves
 //! cargo run --release --example sliding_curves -- --steps 40 --out DIR [SCENE]
+//! cargo run --release --example sliding_curves -- --steps 40 --steady 0.5 4.5 \
+//!     --out docs/ironing scenes/ironing.toml                     # the ironing benchmark
 //! ```
 //!
 //! `SCENE` (default `scenes/sliding.toml`) must have a support group named
@@ -23,7 +25,13 @@
 //!   `solver::StepRecord::reactions`);
 //! * `sliding-reactions-N.png`: the tangential reaction (`slide` x) and the
 //!   normal reaction (`press` y) against the slide distance, one line per
-//!   method (complete in black), in the style of the study's plots.
+//!   method (complete in black), in the style of the study's plots;
+//! * `sliding-steady-N.md`: per method, over the converged steps whose
+//!   slide distance lies in the `--steady FROM TO` window (default: every
+//!   step of the slide, distance above zero): the mean normal reaction
+//!   `mean(press y)`, its ripple `max |press y - mean| / |mean|` and the
+//!   drag `max |slide x| / |mean|` (zero for frictionless contact on a
+//!   flat, elastic strip: what is left is discretisation). Also printed.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -36,6 +44,7 @@ static FONT: &[u8] = include_bytes!("../assets/fonts/DejaVuSans.ttf");
 /// The command line.
 struct Args {
     steps: usize,
+    steady: Option<(f64, f64)>,
     out: PathBuf,
     scene: PathBuf,
 }
@@ -43,6 +52,7 @@ struct Args {
 fn parse_args() -> Result<Args, String> {
     let mut args = Args {
         steps: 20,
+        steady: None,
         out: PathBuf::from("target/sliding-curves"),
         scene: PathBuf::from("scenes/sliding.toml"),
     };
@@ -56,6 +66,20 @@ fn parse_args() -> Result<Args, String> {
                     .ok()
                     .filter(|n| *n >= 1)
                     .ok_or_else(|| format!("--steps: `{v}` is not a positive integer"))?;
+            }
+            "--steady" => {
+                let mut bound = || -> Result<f64, String> {
+                    let v = it.next().ok_or("--steady needs two slide distances")?;
+                    v.parse::<f64>()
+                        .ok()
+                        .filter(|d| d.is_finite())
+                        .ok_or_else(|| format!("--steady: `{v}` is not a number"))
+                };
+                let (from, to) = (bound()?, bound()?);
+                if from >= to {
+                    return Err(format!("--steady: {from} is not below {to}"));
+                }
+                args.steady = Some((from, to));
             }
             "--out" => args.out = it.next().ok_or("--out needs a directory")?.into(),
             s if s.starts_with("--") => return Err(format!("unknown option `{s}`")),
@@ -171,8 +195,63 @@ fn run() -> Result<(), String> {
         .join(format!("sliding-reactions-{}.png", args.steps));
     plot(&png, &curves, press, slide, args.steps)
         .map_err(|e| format!("cannot draw {}: {e}", png.display()))?;
-    println!("wrote {} and {}", csv.display(), png.display());
+    let table = steady_table(&curves, press, slide, args.steady)?;
+    print!("{table}");
+    let md = args.out.join(format!("sliding-steady-{}.md", args.steps));
+    gapsim::solver::out::write_atomic(&md, table)
+        .map_err(|e| format!("cannot write {}: {e}", md.display()))?;
+    println!(
+        "wrote {}, {} and {}",
+        csv.display(),
+        png.display(),
+        md.display()
+    );
     Ok(())
+}
+
+/// The steady-sliding table (module docs): per method, the mean normal
+/// reaction, its ripple and the drag over the window.
+fn steady_table(
+    curves: &[Curve],
+    press: usize,
+    slide: usize,
+    window: Option<(f64, f64)>,
+) -> Result<String, String> {
+    let inside = |d: f64| d > 0.0 && window.is_none_or(|(a, b)| (a..=b).contains(&d));
+    let mut out = match window {
+        Some((a, b)) => format!("Steady sliding, slide distance {a} to {b}:\n\n"),
+        None => "Steady sliding, the whole slide:\n\n".to_owned(),
+    };
+    out.push_str(
+        "| method | steps in window | mean normal reaction | ripple | drag | cut-backs |\n\
+         |---|---|---|---|---|---|\n",
+    );
+    for c in curves {
+        let rows: Vec<[f64; 2]> = c
+            .solution
+            .step_records
+            .iter()
+            .zip(&c.slide)
+            .filter(|(_, d)| inside(**d))
+            .map(|(r, _)| [r.reactions[press][1], r.reactions[slide][0]])
+            .collect();
+        if rows.is_empty() {
+            return Err("no converged step in the --steady window".to_owned());
+        }
+        let mean = rows.iter().map(|r| r[0]).sum::<f64>() / rows.len() as f64;
+        let ripple = rows.iter().map(|r| (r[0] - mean).abs()).fold(0.0, f64::max) / mean.abs();
+        let drag = rows.iter().map(|r| r[1].abs()).fold(0.0, f64::max) / mean.abs();
+        out.push_str(&format!(
+            "| {} | {} | {:.6} | {:.3} % | {:.3} % | {} |\n",
+            label(c.method),
+            rows.len(),
+            mean,
+            100.0 * ripple,
+            100.0 * drag,
+            c.solution.cutbacks.len()
+        ));
+    }
+    Ok(out)
 }
 
 fn to_csv(curves: &[Curve]) -> String {

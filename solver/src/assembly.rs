@@ -161,6 +161,23 @@ impl System {
 /// ([`crate::element::ElementGeometry::response`]): for an element of `n`
 /// nodes, its `2 n` rows in dof order, each row's `2 n` columns in order.
 pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
+    assemble_solid_lifted(model, dofs, u, None, sys);
+}
+
+/// [`assemble_solid`], and with `lift` (a displacement increment on the
+/// prescribed dofs, every dof's entry, zero on the free ones) also the
+/// linearised effect of that increment on the free rows, `K_fp du_p`, added
+/// to each free row after its internal force: the residual of the Newton
+/// step's linearised Dirichlet predictor (see [`crate::newton`],
+/// "Prescribed increments"). Without a lift this is [`assemble_solid`] bit
+/// for bit.
+pub fn assemble_solid_lifted(
+    model: &Model,
+    dofs: &DofMap,
+    u: &[f64],
+    lift: Option<&[f64]>,
+    sys: &mut System,
+) {
     let mesh = &model.mesh;
     let responses: Vec<ElementResponse> = par::map(mesh.element_count(), PAR_MIN_LEN, |e| {
         let e = ElementId::new(e);
@@ -181,6 +198,11 @@ pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System)
             for q in 0..n {
                 if let Some(eq) = eqs[q] {
                     sys.push(ep, eq, k[q]);
+                }
+            }
+            if let Some(du) = lift {
+                for q in (0..n).filter(|&q| eqs[q].is_none()) {
+                    sys.residual[ep.index()] += k[q] * du[DofId::of(el[q / 2], q % 2).index()];
                 }
             }
         }

@@ -64,7 +64,12 @@ impl ContactLayout {
         };
         if let Some(m) = start {
             match eval(m, counts) {
-                Ok(e) if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL => return Ok(Some(e)),
+                Ok(e)
+                    if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL
+                        && self.faces_each_other(mesh, u, i, m) =>
+                {
+                    return Ok(Some(e));
+                }
                 Ok(_) => {}
                 Err(e) if slave_side(&e) => {
                     return Err(PointFailure {

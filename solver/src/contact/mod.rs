@@ -67,7 +67,14 @@
 //! (`|xi_m| <= 1 + 1e-9`); otherwise the search walks along the master
 //! chain in the direction of `xi_m` and, failing that, tries every master
 //! segment and keeps the one with the smallest `|g|` among those the point
-//! projects into. A point that projects into no master segment is
+//! projects into. Only segments that **face** the point's slave segment
+//! count (outward normals against each other, `n_s . n_m < 0`,
+//! [`ContactLayout::faces_each_other`]): near the end of a curved slave
+//! face the slave normal is nearly parallel to the master, and its line
+//! meets the master face far away, behind the point (on the ironing punch,
+//! a point at the arc's end paired 6.3 "inside" a strip segment 7 away and
+//! pulled the punch into it). A point whose segment stops facing its
+//! master is re-paired at the next pairing update. A point that projects into no master segment is
 //! **inactive**: it contributes nothing, is counted and listed in the
 //! solution, and is re-paired at the next step start (Types 1–6) or at the
 //! next pairing update (complete). It is never extrapolated.
@@ -135,7 +142,12 @@
 //! exactly where the point projects onto the node (the two segments' lines
 //! meet there; both kernels are exact Type 6 evaluations, so the tangent is
 //! exact, see [`crate::assembly::assemble_ties`]). A tie holds while
-//! `theta` is in `[0, 1]`; at a converged iterate with `theta < 0` the tie
+//! `theta` is in `[0, 1]` and the point projects onto the node (`|xi_m|`
+//! on `p` within [`XI_STUCK_BAND`] of 1: where the two segments' lines
+//! nearly coincide, `g_o = g_p` holds wherever the point is, and a tied
+//! point slid away with the ironing punch, evaluated on `p`'s line 3 away
+//! from `p`: the energy was 1.2 % off); at a converged iterate with
+//! `theta < 0` or off the node the tie
 //! is released to `p`, with `theta > 1` to `o`, and Newton continues (after a
 //! release the point may switch once more: when other points moved
 //! meanwhile, `theta` can pick the wrong side). Ties are part of the

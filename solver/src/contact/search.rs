@@ -20,10 +20,28 @@ use super::{
 };
 
 impl ContactLayout {
-    /// Projects onto one master segment. `Ok(None)` when the kernel reports
-    /// a master-side or projection problem (the point does not project into
-    /// this segment); `Err` for slave-side problems, which no other master
-    /// segment can cure.
+    /// Whether point `i`'s slave segment and master segment `master` face
+    /// each other at displacements `u`: their outward normals point against
+    /// each other, `n_s . n_m < 0`. Both faces run counter-clockwise around
+    /// their bodies and the outward normal is the tangent turned clockwise,
+    /// so `n_s . n_m` is the dot product of the two tangents (see the
+    /// module docs).
+    pub fn faces_each_other(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        i: ContactPointIndex,
+        master: MasterSegmentIndex,
+    ) -> bool {
+        let q = Self::q(mesh, u, self.nodes(self.point(i), master));
+        (q[2] - q[0]) * (q[6] - q[4]) + (q[3] - q[1]) * (q[7] - q[5]) < 0.0
+    }
+
+    /// Projects onto one master segment. `Ok(None)` when the two segments
+    /// do not face each other ([`Self::faces_each_other`]; no kernel call)
+    /// or the kernel reports a master-side or projection problem (the point
+    /// does not project into this segment); `Err` for slave-side problems,
+    /// which no other master segment can cure.
     pub(super) fn project_on(
         &self,
         mesh: &Mesh,
@@ -32,6 +50,9 @@ impl ContactLayout {
         master: MasterSegmentIndex,
         counts: &mut KernelCounts,
     ) -> Result<Option<Projection>, PointFailure> {
+        if !self.faces_each_other(mesh, u, i, master) {
+            return Ok(None);
+        }
         let pt = self.point(i);
         counts.project += 1;
         match contact_kernels::project(
@@ -111,7 +132,12 @@ impl ContactLayout {
         for (i, ev) in evals.iter().enumerate() {
             let i = ContactPointIndex::new(i);
             let current = match ev {
-                Some(e) if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL => continue,
+                Some(e)
+                    if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL
+                        && self.faces_each_other(mesh, u, i, e.master) =>
+                {
+                    continue;
+                }
                 Some(e) => Some(e.master),
                 None => None,
             };

@@ -169,7 +169,20 @@ impl Run<'_> {
             pairing: self.pairing.clone(),
             ties: self.ties.clone(),
         };
-        self.setup.prescribe(&mut x.u, to);
+        // the prescribed increment enters through the linearised predictor
+        // (module docs of `super`, "Prescribed increments"); the prescribed
+        // dofs take their values at `to` with the first correction
+        let mut lift = self.setup.lift(&x.u, to);
+        let mut extrapolated = false;
+        if let (Some(l), Some(previous)) = (&lift, &self.previous_u)
+            && let Some(s) = self.setup.extrapolation(l, &x.u, previous)
+        {
+            for (u, p) in x.u.iter_mut().zip(previous) {
+                *u += s * (*u - p);
+            }
+            lift = self.setup.lift(&x.u, to);
+            extrapolated = true;
+        }
         let mut guard = PairingGuard::default();
         let mut residuals = Vec::new();
         // index into `residuals` of the first iterate with the current pairing
@@ -181,7 +194,9 @@ impl Run<'_> {
             let t = Instant::now();
             // complete formulation: re-pair at once in the first iterates,
             // until the first pairing change at a converged iterate
-            let at_once = (1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it) && phase_start == 0;
+            let at_once = ((1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it)
+                || (it == 0 && extrapolated))
+                && phase_start == 0;
             let (evals, others) = match self.evaluate_contact(&mut x, at_once) {
                 Ok(e) => e,
                 Err(reason) => {
@@ -195,7 +210,7 @@ impl Run<'_> {
             self.timings.contact_evaluation += t.elapsed();
             // solid
             let t = Instant::now();
-            let f_ext = self.setup.add_solid(&x.u, to, &mut sys);
+            let f_ext = self.setup.add_solid(&x.u, lift.as_deref(), to, &mut sys);
             self.timings.solid_assembly += t.elapsed();
 
             let norm = sys.residual_norm();
@@ -212,7 +227,7 @@ impl Run<'_> {
             let at_floor = last >= phase_start + 2
                 && norm <= STAGNATION_FACTOR * tol_abs
                 && norm >= 0.5 * residuals[last - 1];
-            if norm <= tol_abs || at_floor {
+            if lift.is_none() && (norm <= tol_abs || at_floor) {
                 let mut kept = Vec::new();
                 if self.opts.method == Method::Complete {
                     match self.settle_pairing(&mut guard, &mut x, &evals) {
@@ -280,6 +295,9 @@ impl Run<'_> {
                 }
             };
             x.correct(&self.setup.dofs, &dx);
+            if lift.take().is_some() {
+                self.setup.prescribe(&mut x.u, to);
+            }
             it += 1;
         }
     }

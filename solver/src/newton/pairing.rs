@@ -144,7 +144,12 @@ impl PairingGuard {
         let mut released = false;
         ties.retain(|t| {
             let theta = t.theta(layout, lambda).unwrap_or(-1.0);
-            if (0.0..=1.0).contains(&theta) {
+            // where the two segments' lines (nearly) coincide, `g_o = g_p`
+            // does not hold the point at the node: it may slide away with
+            // the tie; a point that left the node is released
+            let at_node =
+                evals[t.point.index()].is_none_or(|e| (e.xi_m.abs() - 1.0).abs() <= XI_STUCK_BAND);
+            if at_node && (0.0..=1.0).contains(&theta) {
                 return true;
             }
             if theta > 1.0 {

@@ -178,7 +178,8 @@ impl<'a> IterationProbe<'a> {
     /// Phase 2: adds the solid elements' forces and tangents and the
     /// external force to `system`; returns `|f_ext|`.
     pub fn solid(&self, system: &mut System) -> f64 {
-        self.setup.add_solid(&self.u, self.load_factor, system)
+        self.setup
+            .add_solid(&self.u, None, self.load_factor, system)
     }
 
     /// Phase 3: regularisation and the sparse LU solve of the assembled

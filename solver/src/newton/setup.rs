@@ -25,7 +25,7 @@ use std::cell::Cell;
 use contact_kernels::ApproxType;
 
 use crate::assembly::{
-    DofMap, System, add_external, assemble_contact, assemble_solid, assemble_ties,
+    DofMap, System, add_external, assemble_contact, assemble_solid_lifted, assemble_ties,
 };
 use crate::contact::{ContactLayout, KernelCounts, NodeTie, PointEval, PointFailure};
 use crate::error::SolverError;
@@ -86,6 +86,37 @@ impl<'a> Setup<'a> {
         for p in &self.model.prescribed {
             u[p.dof.index()] = self.model.factor(p.amplitude, to) * p.value;
         }
+    }
+
+    /// The increment of the prescribed dofs from `u` to load factor `to`
+    /// (every dof's entry, zero on the free ones), or `None` when every
+    /// prescribed dof of `u` already has its value at `to` (bit for bit):
+    /// the lift of the linearised Dirichlet predictor (see [`super`],
+    /// "Prescribed increments").
+    pub(super) fn lift(&self, u: &[f64], to: f64) -> Option<Vec<f64>> {
+        let mut target = u.to_vec();
+        self.prescribe(&mut target, to);
+        let moved = self
+            .model
+            .prescribed
+            .iter()
+            .any(|p| target[p.dof.index()].to_bits() != u[p.dof.index()].to_bits());
+        moved.then(|| target.iter().zip(u).map(|(t, u)| t - u).collect())
+    }
+
+    /// The factor `s` of the secant predictor (see [`super`], "Prescribed
+    /// increments"): the least-squares fit `lift ~ s (u - previous)` on the
+    /// prescribed dofs, when it is positive (`None` when the last step moved
+    /// no prescribed dof or moved them against or across this one's `lift`).
+    pub(super) fn extrapolation(&self, lift: &[f64], u: &[f64], previous: &[f64]) -> Option<f64> {
+        let (mut along, mut norm) = (0.0, 0.0);
+        for p in &self.model.prescribed {
+            let d = u[p.dof.index()] - previous[p.dof.index()];
+            along += lift[p.dof.index()] * d;
+            norm += d * d;
+        }
+        let s = along / norm;
+        (norm > 0.0 && s > 0.0 && s.is_finite()).then_some(s)
     }
 
     /// Pairs every point from scratch at displacements `u` (see
@@ -218,10 +249,18 @@ impl<'a> Setup<'a> {
         (sys, active)
     }
 
-    /// Adds the solid elements at displacements `u` and the external force
-    /// at load factor `to` to `sys`; returns `|f_ext|`.
-    pub(super) fn add_solid(&self, u: &[f64], to: f64, sys: &mut System) -> f64 {
-        assemble_solid(self.model, &self.dofs, u, sys);
+    /// Adds the solid elements at displacements `u` (with a `lift`, the
+    /// linearised effect of that prescribed increment,
+    /// [`assemble_solid_lifted`]) and the external force at load factor
+    /// `to` to `sys`; returns `|f_ext|`.
+    pub(super) fn add_solid(
+        &self,
+        u: &[f64],
+        lift: Option<&[f64]>,
+        to: f64,
+        sys: &mut System,
+    ) -> f64 {
+        assemble_solid_lifted(self.model, &self.dofs, u, lift, sys);
         add_external(self.model, &self.dofs, to, sys)
     }
 

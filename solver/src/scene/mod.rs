@@ -83,7 +83,8 @@
 //! max_cutbacks = 8            # bisections per scheduled step
 //! linear = "lu"               # linear solver: "lu" (default) or "ldlt"
 //! repair = true               # Types 1-6: repeat a step whose points end on
-//!                             # other master segments (default true)
+//!                             # other master segments (default true; the
+//!                             # paper scene sets false, the paper's scheme)
 //! taylor_tolerance = 1e-4     # Types 1-6: halve a step whose Taylor
 //!                             # remainder / element size exceeds this
 //!                             # (default none)
