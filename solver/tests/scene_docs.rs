@@ -411,6 +411,7 @@ steps = [3, 5]
         ("`[newton]`", "max_iterations", n.max_iterations.to_string()),
         ("`[newton]`", "max_cutbacks", n.max_cutbacks.to_string()),
         ("`[newton]`", "linear", format!("`\"{}\"`", n.linear)),
+        ("`[newton]`", "repair", format!("`{}`", n.repair)),
     ];
     let mut wrong = Vec::new();
     for (needle, key, value) in cases {
