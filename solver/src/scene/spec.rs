@@ -525,6 +525,9 @@ fn default_repair() -> bool {
 fn is_default_repair(b: &bool) -> bool {
     *b == default_repair()
 }
+fn is_false(b: &bool) -> bool {
+    !*b
+}
 fn default_tolerance() -> f64 {
     1e-10
 }
