@@ -63,3 +63,40 @@ fn the_command_line_option_is_refused() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("3-node segments"), "{err}");
 }
+
+/// The 3D face formulations are kernels only: a scene or solve option
+/// naming one is refused, saying it is for faces (not "4-node segments").
+#[test]
+fn the_face_formulations_are_refused_as_faces() {
+    for (f, kind) in [
+        (
+            Formulation::Tri3SlaveNormal,
+            "3-node slave face, 3-node master face",
+        ),
+        (
+            Formulation::Quad4Tri3ClosestPoint,
+            "4-node slave face, 3-node master face",
+        ),
+    ] {
+        let text = scene_text().replace(
+            "formulation = \"slave-normal\"",
+            &format!("formulation = \"{}\"", f.name()),
+        );
+        let e = solver::Scene::from_toml_str(&text, "pressed-blocks.toml")
+            .expect_err("refused")
+            .to_string();
+        assert!(
+            e.contains("3D faces") && e.contains(kind) && e.contains("two-node segments"),
+            "{e}"
+        );
+        let scene = solver::Scene::from_toml_str(&scene_text(), "pressed-blocks.toml").unwrap();
+        let options = solver::SolveOptions {
+            formulation: Some(f),
+            ..solver::SolveOptions::default()
+        };
+        let e = solver::solve(&scene, &options)
+            .expect_err("refused")
+            .to_string();
+        assert!(e.contains("3D faces") && e.contains(kind), "{e}");
+    }
+}

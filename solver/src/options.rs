@@ -146,3 +146,23 @@ impl SolveOptions {
         }
     }
 }
+
+/// Why `formulation` cannot evaluate the solver's contact faces (two-node
+/// segments), or `None` when it can: the one wording of the scene reader
+/// and of [`crate::Run::new`].
+pub fn unsupported_formulation(formulation: Formulation) -> Option<String> {
+    let n = formulation.coords()?;
+    if n == contact_kernels::PAIR_COORDS {
+        return None;
+    }
+    let kind = match formulation.face_nodes() {
+        Some((slave, master)) => {
+            format!("3D faces ({slave}-node slave face, {master}-node master face)")
+        }
+        None => format!("{}-node segments", n / 4),
+    };
+    Some(format!(
+        "formulation `{formulation}` is for {kind}; the solver's contact faces are two-node \
+         segments (use slave-normal or closest-point)"
+    ))
+}

@@ -286,14 +286,11 @@ impl<'a> Run<'a> {
         }
         // The contact faces are two-node segments: a formulation of 3-node
         // segments (quadratic-slave-normal) cannot evaluate them.
-        if let Some(f) = opts.formulation
-            && f.coords()
-                .is_some_and(|n| n != contact_kernels::PAIR_COORDS)
+        if let Some(why) = opts
+            .formulation
+            .and_then(crate::options::unsupported_formulation)
         {
-            return Err(SolverError::Options(format!(
-                "formulation `{f}` is for 3-node segments; the solver's contact faces are \
-                 two-node segments (use slave-normal or closest-point)"
-            )));
+            return Err(SolverError::Options(why));
         }
         let setup = Setup::new(model, opts)?;
         let n_points = setup.layout.points.len();

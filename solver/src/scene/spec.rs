@@ -585,13 +585,9 @@ fn de_formulation<'de, D: Deserializer<'de>>(d: D) -> Result<Formulation, D::Err
     let s = String::deserialize(d)?;
     let f: Formulation = s.parse().map_err(serde::de::Error::custom)?;
     // Only formulations of two-node segment pairs fit the solver's faces.
-    match f.coords() {
-        Some(n) if n != contact_kernels::PAIR_COORDS => Err(serde::de::Error::custom(format!(
-            "formulation `{f}` is for {}-node segments; the solver's contact faces are \
-             two-node segments (use slave-normal or closest-point)",
-            n / 4
-        ))),
-        _ => Ok(f),
+    match crate::options::unsupported_formulation(f) {
+        Some(why) => Err(serde::de::Error::custom(why)),
+        None => Ok(f),
     }
 }
 
