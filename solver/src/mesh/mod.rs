@@ -37,7 +37,10 @@ use crate::material::Material;
 use crate::quad::InvalidElement;
 
 pub mod block;
+pub mod block3d;
+pub mod faces;
 pub mod gmsh;
+pub mod volume;
 
 pub use block::{Block, Side};
 
