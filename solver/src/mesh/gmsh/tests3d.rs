@@ -9,7 +9,7 @@ use std::path::Path;
 
 use super::tests::{CUBE, CUBE_BINARY, TETS, TETS_BINARY};
 use super::*;
-use crate::mesh::volume::dot;
+use crate::mesh::volume::{FaceKind, dot};
 
 fn cube(edit: impl FnOnce(String) -> String) -> Result<MshVolumeMesh, MshError> {
     MshVolumeMesh::from_bytes(edit(CUBE.to_owned()).as_bytes(), "cube.msh")
@@ -347,5 +347,208 @@ fn the_fixtures_survive_the_fuzz_reader() {
     // `read_any` (the proptests' oracle) accepts the intact fixtures too
     for bytes in [CUBE.as_bytes(), CUBE_BINARY, TETS.as_bytes(), TETS_BINARY] {
         super::tests::read_any(bytes);
+    }
+}
+
+// ----- the 3D Hertz meshes (scripts/make-hertz3d-mesh.py) --------------------
+
+const R: f64 = 10.0;
+
+fn scene_file(name: &str) -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenes")
+        .join(name)
+}
+
+/// What every 3D Hertz mesh promises: its groups, elements of `kind`
+/// only, the bodies apart, each group on its plane or sphere with its
+/// faces owned and outward, and spacing about `h` at the contact.
+/// `counts`: nodes, volume elements, surface elements (as Gmsh counted them
+/// when it wrote the file).
+fn check_hertz3d(file: &str, kind: MshElementType, counts: [usize; 3]) {
+    let mesh = MshVolumeMesh::read(scene_file(file)).unwrap();
+    let mut names: Vec<&str> = mesh.groups().iter().map(|g| g.name.as_str()).collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "block",
+            "block_top",
+            "bottom",
+            "indenter",
+            "indenter_surface",
+            "indenter_top",
+            "symmetry_x",
+            "symmetry_y"
+        ]
+    );
+    let indenter = mesh.volume_elements("indenter").unwrap();
+    let block = mesh.volume_elements("block").unwrap();
+    assert!(indenter.iter().chain(&block).all(|e| e.kind == kind));
+    let surfaces = mesh.elements().iter().filter(|e| e.kind.dim() == 2).count();
+    assert_eq!(
+        [mesh.nodes().len(), indenter.len() + block.len(), surfaces],
+        counts,
+        "{file}"
+    );
+    // the bodies share no nodes, and every node is in one
+    let nodes_of = |elements: &[&MshElement]| {
+        let mut n: Vec<usize> = elements.iter().flat_map(|e| e.nodes().to_vec()).collect();
+        n.sort_unstable();
+        n.dedup();
+        n
+    };
+    let (ind_nodes, blk_nodes) = (nodes_of(&indenter), nodes_of(&block));
+    assert!(
+        ind_nodes
+            .iter()
+            .all(|n| blk_nodes.binary_search(n).is_err())
+    );
+    assert_eq!(ind_nodes.len() + blk_nodes.len(), mesh.nodes().len());
+    // each touches the origin with a node of its own
+    let at_origin = |nodes: &[usize]| {
+        nodes
+            .iter()
+            .any(|&n| mesh.nodes()[n].iter().all(|c| c.abs() < 1e-12))
+    };
+    assert!(at_origin(&ind_nodes) && at_origin(&blk_nodes));
+
+    assert_outward(&mesh);
+    let x = |n: usize| mesh.nodes()[n];
+    let owner_body = |f: &SurfaceFace| {
+        if indenter.iter().any(|e| e.tag == f.owner) {
+            "indenter"
+        } else {
+            "block"
+        }
+    };
+    // (group, the bodies it is on, on its surface, its outward direction)
+    let on_plane = |axis: usize, value: f64| move |p: [f64; 3]| (p[axis] - value).abs() < 1e-9;
+    type Check<'a> = (
+        &'a str,
+        &'a [&'a str],
+        Box<dyn Fn([f64; 3]) -> bool>,
+        [f64; 3],
+    );
+    let checks: [Check; 6] = [
+        (
+            "symmetry_x",
+            &["indenter", "block"],
+            Box::new(on_plane(0, 0.0)),
+            [-1.0, 0.0, 0.0],
+        ),
+        (
+            "symmetry_y",
+            &["indenter", "block"],
+            Box::new(on_plane(1, 0.0)),
+            [0.0, -1.0, 0.0],
+        ),
+        (
+            "bottom",
+            &["block"],
+            Box::new(on_plane(2, -10.0)),
+            [0.0, 0.0, -1.0],
+        ),
+        (
+            "block_top",
+            &["block"],
+            Box::new(on_plane(2, 0.0)),
+            [0.0, 0.0, 1.0],
+        ),
+        (
+            "indenter_top",
+            &["indenter"],
+            Box::new(on_plane(2, 5.0)),
+            [0.0, 0.0, 1.0],
+        ),
+        (
+            "indenter_surface",
+            &["indenter"],
+            Box::new(|p: [f64; 3]| (p[0].hypot(p[1]).hypot(p[2] - R) - R).abs() < 1e-9),
+            [0.0, 0.0, -1.0],
+        ),
+    ];
+    for (group, bodies, on_surface, outward) in checks {
+        let faces = mesh.surface_faces(group).unwrap();
+        let mut seen: Vec<&str> = faces.iter().map(owner_body).collect();
+        seen.sort();
+        seen.dedup();
+        let mut expected = bodies.to_vec();
+        expected.sort();
+        assert_eq!(seen, expected, "{group}");
+        for f in &faces {
+            assert!(f.face.kind() == FaceKind::of(kind), "{group}");
+            assert!(f.face.nodes().iter().all(|&n| on_surface(x(n))), "{group}");
+            // the sphere's normals point down where it is flat enough: all
+            // of them here (its slope stays below 45 degrees)
+            assert!(dot(f.face.map_nodes(x).normal(), outward) > 0.0, "{group}");
+        }
+    }
+    // spacing about h = 0.1 where the bodies touch: the mean edge of the
+    // contact faces within 1 of the axis
+    for group in ["indenter_surface", "block_top"] {
+        let mut edges = Vec::new();
+        for f in mesh.surface_faces(group).unwrap() {
+            let p = f.face.map_nodes(x);
+            let c = p.centroid();
+            if c[0].hypot(c[1]) < 1.0 {
+                let n = p.nodes();
+                for k in 0..n.len() {
+                    let (a, b) = (n[k], n[(k + 1) % n.len()]);
+                    edges.push(
+                        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2))
+                            .sqrt(),
+                    );
+                }
+            }
+        }
+        let mean = edges.iter().sum::<f64>() / edges.len() as f64;
+        assert!(
+            (0.08..0.13).contains(&mean),
+            "{file} {group}: mean edge {mean}"
+        );
+    }
+}
+
+impl FaceKind {
+    /// The face kind of a volume element type's faces (hexahedra: quad4,
+    /// tetrahedra: tri3).
+    fn of(kind: MshElementType) -> FaceKind {
+        match kind {
+            MshElementType::Hexahedron => FaceKind::Quad4,
+            _ => FaceKind::Tri3,
+        }
+    }
+}
+
+#[test]
+fn the_hexahedral_hertz3d_mesh_reads() {
+    check_hertz3d(
+        "hertz3d-hex.msh",
+        MshElementType::Hexahedron,
+        [30532, 26982, 4710],
+    );
+}
+
+#[test]
+fn the_tetrahedral_hertz3d_mesh_reads() {
+    check_hertz3d(
+        "hertz3d-tet.msh",
+        MshElementType::Tetrahedron,
+        [7851, 38971, 5754],
+    );
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+
+    #[test]
+    fn truncated_hertz3d_files_never_panic(
+        at in proptest::prelude::any::<proptest::sample::Index>(),
+    ) {
+        // the 3D Hertz mesh (2 MB) cut anywhere
+        let bytes = std::fs::read(scene_file("hertz3d-tet.msh")).unwrap();
+        let end = at.index(bytes.len());
+        super::tests::read_any(&bytes[..end]);
     }
 }
