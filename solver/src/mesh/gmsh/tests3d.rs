@@ -479,8 +479,9 @@ fn check_hertz3d(file: &str, kind: MshElementType, counts: [usize; 3]) {
         for f in &faces {
             assert!(f.face.kind() == FaceKind::of(kind), "{group}");
             assert!(f.face.nodes().iter().all(|&n| on_surface(x(n))), "{group}");
-            // the sphere's normals point down where it is flat enough: all
-            // of them here (its slope stays below 45 degrees)
+            // the sphere's outward normals point down wherever its slope is
+            // below 90 degrees: everywhere here (45 degrees at most, at the
+            // indenter's corner x = y = 5)
             assert!(dot(f.face.map_nodes(x).normal(), outward) > 0.0, "{group}");
         }
     }
