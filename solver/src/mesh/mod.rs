@@ -25,6 +25,11 @@
 //! rectangular blocks, with their sides as counter-clockwise segment
 //! chains). A reader of an unstructured mesh file is another generator that
 //! ends in [`Mesh::add_body`].
+//!
+//! The 3D data layer, not yet part of [`Mesh`]: volume cells and their
+//! outward faces ([`volume`]), boundary-face extraction ([`faces`]),
+//! structured hexahedral blocks with their six sides ([`block3d`]) and the
+//! 3D Gmsh reader ([`gmsh::MshVolumeMesh`]).
 
 use std::ops::Range;
 
@@ -37,7 +42,10 @@ use crate::material::Material;
 use crate::quad::InvalidElement;
 
 pub mod block;
+pub mod block3d;
+pub mod faces;
 pub mod gmsh;
+pub mod volume;
 
 pub use block::{Block, Side};
 

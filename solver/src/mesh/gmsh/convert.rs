@@ -1,6 +1,9 @@
-//! From the bytes of a file to the parts of an [`MshMesh`](super::MshMesh):
-//! the guard, `mshio`, the physical names and node tags, then the checks
-//! that give the mesh its invariants.
+//! From the bytes of a file to the parts of an [`MshMesh`](super::MshMesh)
+//! or an [`MshVolumeMesh`](super::MshVolumeMesh): the guard, `mshio`, the
+//! physical names and node tags, then the checks that give the mesh its
+//! invariants. The [`Dimension`] says which: a planar mesh of points,
+//! lines and surface elements, or a volume mesh that may also hold
+//! tetrahedra and hexahedra and nodes anywhere.
 
 use std::collections::HashMap;
 
@@ -14,9 +17,33 @@ use super::{Entity, MshElement, MshElementType, PhysicalGroup, node_tags, physic
 /// Relative tolerance on |z| (times `max(1, max |x|, |y|)`).
 const PLANAR_TOLERANCE: f64 = 1e-9;
 
+/// Which mesh is read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Dimension {
+    /// A 2D mesh: nodes in the plane z = 0, no volume elements.
+    Planar,
+    /// A 3D mesh: nodes anywhere, tetrahedra and hexahedra too.
+    Volume,
+}
+
+impl Dimension {
+    /// The element types it reads, as its error names them.
+    fn element_types(self) -> &'static str {
+        match self {
+            Dimension::Planar => {
+                "1-node points, 2-node lines, 3-node triangles and 4-node quadrangles"
+            }
+            Dimension::Volume => {
+                "1-node points, 2-node lines, 3-node triangles, 4-node quadrangles, 4-node tetrahedra and 8-node hexahedra"
+            }
+        }
+    }
+}
+
 /// What an [`MshMesh`](super::MshMesh) is made of.
 pub(super) struct Parts {
-    pub(super) nodes: Vec<[f64; 2]>,
+    /// (x, y, z); z is within the planar tolerance of 0 in a planar mesh.
+    pub(super) nodes: Vec<[f64; 3]>,
     pub(super) node_tags: Vec<u64>,
     pub(super) node_index: HashMap<u64, usize>,
     pub(super) elements: Vec<MshElement>,
@@ -24,12 +51,12 @@ pub(super) struct Parts {
 }
 
 /// Reads and checks a whole file.
-pub(super) fn read(bytes: &[u8]) -> Result<Parts, MshErrorKind> {
+pub(super) fn read(bytes: &[u8], dimension: Dimension) -> Result<Parts, MshErrorKind> {
     let encoding = guard::check(bytes)?;
     let msh = mshio::parse_msh_bytes(bytes).map_err(|e| malformed(bytes, &e))?;
     let names = physical_names::parse(bytes)?;
-    let (nodes, node_tags, node_index) = nodes(bytes, encoding, &msh)?;
-    let elements = elements(&msh, &node_index)?;
+    let (nodes, node_tags, node_index) = nodes(bytes, encoding, &msh, dimension)?;
+    let elements = elements(&msh, &node_index, dimension)?;
     let groups = groups(&msh, names)?;
     Ok(Parts {
         nodes,
@@ -76,13 +103,14 @@ fn offset_in(bytes: &[u8], rest: &[u8]) -> Option<usize> {
     (offset <= bytes.len()).then_some(offset)
 }
 
-type Nodes = (Vec<[f64; 2]>, Vec<u64>, HashMap<u64, usize>);
+type Nodes = (Vec<[f64; 3]>, Vec<u64>, HashMap<u64, usize>);
 
 /// The nodes in file order, their tags and the map from tags.
 fn nodes(
     bytes: &[u8],
     encoding: guard::Encoding,
     msh: &MshFile<u64, i32, f64>,
+    dimension: Dimension,
 ) -> Result<Nodes, MshErrorKind> {
     let Some(section) = &msh.data.nodes else {
         return Ok((Vec::new(), Vec::new(), HashMap::new()));
@@ -128,7 +156,7 @@ fn nodes(
                     z: node.z,
                 });
             }
-            if node.z.abs() > tolerance {
+            if dimension == Dimension::Planar && node.z.abs() > tolerance {
                 return Err(MshErrorKind::NotPlanar {
                     node: tag,
                     z: node.z,
@@ -138,7 +166,7 @@ fn nodes(
             if node_index.insert(tag, coordinates.len()).is_some() {
                 return Err(MshErrorKind::DuplicateNode(tag));
             }
-            coordinates.push([node.x, node.y]);
+            coordinates.push([node.x, node.y, node.z]);
             node_tags.push(tag);
         }
     }
@@ -149,6 +177,7 @@ fn nodes(
 fn elements(
     msh: &MshFile<u64, i32, f64>,
     node_index: &HashMap<u64, usize>,
+    dimension: Dimension,
 ) -> Result<Vec<MshElement>, MshErrorKind> {
     let Some(section) = &msh.data.elements else {
         return Ok(Vec::new());
@@ -174,6 +203,8 @@ fn elements(
             ElementType::Lin2 => MshElementType::Line,
             ElementType::Tri3 => MshElementType::Triangle,
             ElementType::Qua4 => MshElementType::Quad,
+            ElementType::Tet4 if dimension == Dimension::Volume => MshElementType::Tetrahedron,
+            ElementType::Hex8 if dimension == Dimension::Volume => MshElementType::Hexahedron,
             other => {
                 return Err(MshErrorKind::UnsupportedElement {
                     name: type_name(other),
@@ -181,6 +212,7 @@ fn elements(
                     count: block.elements.len(),
                     entity_dim: block.entity_dim,
                     entity_tag: block.entity_tag,
+                    read: dimension.element_types(),
                 });
             }
         };
@@ -200,7 +232,7 @@ fn elements(
             if !seen.insert(element.element_tag) {
                 return Err(MshErrorKind::DuplicateElement(element.element_tag));
             }
-            let mut nodes = [usize::MAX; 4];
+            let mut nodes = [usize::MAX; 8];
             for (slot, &tag) in nodes.iter_mut().zip(&element.nodes) {
                 *slot = *node_index.get(&tag).ok_or(MshErrorKind::UnknownNode {
                     element: element.element_tag,

@@ -61,10 +61,11 @@ pub enum MshErrorKind {
         /// Their dimension.
         dim: u8,
     },
-    /// An element type other than 1-node points, 2-node lines, 3-node
-    /// triangles and 4-node quadrangles.
+    /// An element type the reader does not read: other than 1-node points,
+    /// 2-node lines, 3-node triangles and 4-node quadrangles, and in a 3D
+    /// mesh 4-node tetrahedra and 8-node hexahedra.
     #[error(
-        "unsupported element type: {name} (type {gmsh_type}), {count} of them on entity {entity_dim}/{entity_tag}; only 1-node points, 2-node lines, 3-node triangles and 4-node quadrangles are read"
+        "unsupported element type: {name} (type {gmsh_type}), {count} of them on entity {entity_dim}/{entity_tag}; only {read} are read"
     )]
     UnsupportedElement {
         /// The type's name (`9-node second order quadrangle`).
@@ -77,6 +78,8 @@ pub enum MshErrorKind {
         entity_dim: i32,
         /// Tag of that entity.
         entity_tag: i32,
+        /// The types that are read (`1-node points, ...`).
+        read: &'static str,
     },
     /// An element block's entity dimension differs from its elements'.
     #[error(
@@ -162,6 +165,35 @@ pub enum MshErrorKind {
         found: String,
         /// What the query needs (`2 (a surface)`).
         expected: &'static str,
+    },
+    /// A volume element whose Jacobian is not positive at a corner
+    /// (inverted, or degenerate: at most `1e-12 L^3`, `L` its largest
+    /// coordinate difference; see [`crate::mesh::volume::Cell::is_valid`]).
+    #[error(
+        "element {element} ({kind}) is inverted or degenerate: its Jacobian at node {node} is {det_j:e}; nodes must be in Gmsh's order (a tetrahedron's 0, 1, 2 counter-clockwise seen from node 3, a hexahedron's 0-3 counter-clockwise seen from 4-7)"
+    )]
+    InvertedElement {
+        /// Gmsh tag of the element.
+        element: u64,
+        /// Its type's name (`8-node hexahedron`).
+        kind: &'static str,
+        /// The file's tag of the corner node with the smallest Jacobian.
+        node: u64,
+        /// That Jacobian determinant.
+        det_j: f64,
+    },
+    /// A triangle or quadrangle of a physical surface that is no boundary
+    /// face of a volume element: on no volume element, or between two.
+    #[error("element {element} ({kind}) of physical surface `{group}` {why}")]
+    UnownedFace {
+        /// Gmsh tag of the surface element.
+        element: u64,
+        /// Its type's name.
+        kind: &'static str,
+        /// The (first) physical surface it belongs to.
+        group: String,
+        /// Why (`is no face of a volume element`).
+        why: String,
     },
     /// The group has no elements of the kind the query reads.
     #[error("physical group `{name}` has no {what}")]

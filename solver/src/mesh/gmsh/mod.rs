@@ -1,6 +1,7 @@
-//! Gmsh MSH 4.1 meshes (ASCII and binary) and their physical groups.
+//! Gmsh MSH 4.1 meshes (ASCII and binary) and their physical groups, in
+//! 2D and in 3D.
 //!
-//! [`MshMesh::read`] reads a `.msh` file into a neutral structure that
+//! [`MshMesh::read`] reads a 2D `.msh` file into a neutral structure that
 //! knows nothing about bodies, materials or the solver: the nodes, the
 //! elements of the four kinds a 2D linear mesh has (1-node points, 2-node
 //! lines, 3-node triangles, 4-node quadrangles), each with the geometric
@@ -10,6 +11,14 @@
 //! ([`MshMesh::curve_segments`]), the nodes of a physical curve or point
 //! ([`MshMesh::group_nodes`]). Turning groups into bodies, faces and
 //! supports is the scene's mesh source's job.
+//!
+//! [`MshVolumeMesh::read`] (`volume.rs`) is the 3D path: the same file
+//! format, nodes with z, and also 4-node tetrahedra (Gmsh type 4) and
+//! 8-node hexahedra (type 5); physical volumes are bodies
+//! ([`MshVolumeMesh::volume_elements`]), physical surfaces are groups of
+//! faces oriented outward by the volume element that owns each
+//! ([`MshVolumeMesh::surface_faces`]). [`MshMesh::read`] keeps refusing a
+//! mesh off the plane z = 0, and volume elements.
 //!
 //! The sections are read by `mshio` (`$Entities`, `$Nodes`, `$Elements`),
 //! except what it skips or drops: `$PhysicalNames` (`physical_names.rs`)
@@ -26,9 +35,10 @@
 //!   no two elements, share a tag;
 //! * every node is finite and lies in the plane z = 0 (within
 //!   `1e-9 max(1, max |x|, |y|)`); only x and y are kept;
-//! * every element is one of [`MshElementType`], lies on an entity of its
-//!   own dimension and refers to existing nodes, in the file's node order
-//!   (Gmsh's: counter-clockwise about the surface's normal);
+//! * every element is a point, line, triangle or quadrangle of
+//!   [`MshElementType`], lies on an entity of its own dimension and refers
+//!   to existing nodes, in the file's node order (Gmsh's: counter-clockwise
+//!   about the surface's normal);
 //! * elements are in file order (block by block);
 //! * physical groups are those named in `$PhysicalNames` (unnamed physical
 //!   tags are not reachable); no two groups of one dimension share a name.
@@ -36,16 +46,22 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
+use super::volume::{Cell, Face};
+
 mod convert;
 mod error;
 mod guard;
 mod node_tags;
 mod physical_names;
+mod volume;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests3d;
 
 pub use error::{MshError, MshErrorKind};
+pub use volume::{MshVolumeMesh, SurfaceFace};
 
 /// The element types read; everything else is an error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -58,6 +74,10 @@ pub enum MshElementType {
     Triangle,
     /// 4-node quadrangle (type 3).
     Quad,
+    /// 4-node tetrahedron (type 4; read by [`MshVolumeMesh`] only).
+    Tetrahedron,
+    /// 8-node hexahedron (type 5; read by [`MshVolumeMesh`] only).
+    Hexahedron,
 }
 
 impl MshElementType {
@@ -67,16 +87,18 @@ impl MshElementType {
             MshElementType::Point => 1,
             MshElementType::Line => 2,
             MshElementType::Triangle => 3,
-            MshElementType::Quad => 4,
+            MshElementType::Quad | MshElementType::Tetrahedron => 4,
+            MshElementType::Hexahedron => 8,
         }
     }
 
-    /// The element's dimension (0 to 2).
+    /// The element's dimension (0 to 3).
     pub fn dim(self) -> u8 {
         match self {
             MshElementType::Point => 0,
             MshElementType::Line => 1,
             MshElementType::Triangle | MshElementType::Quad => 2,
+            MshElementType::Tetrahedron | MshElementType::Hexahedron => 3,
         }
     }
 
@@ -87,6 +109,20 @@ impl MshElementType {
             MshElementType::Line => 1,
             MshElementType::Triangle => 2,
             MshElementType::Quad => 3,
+            MshElementType::Tetrahedron => 4,
+            MshElementType::Hexahedron => 5,
+        }
+    }
+
+    /// Gmsh's name of the type (`8-node hexahedron`).
+    pub fn name(self) -> &'static str {
+        match self {
+            MshElementType::Point => "1-node point",
+            MshElementType::Line => "2-node line",
+            MshElementType::Triangle => "3-node triangle",
+            MshElementType::Quad => "4-node quadrangle",
+            MshElementType::Tetrahedron => "4-node tetrahedron",
+            MshElementType::Hexahedron => "8-node hexahedron",
         }
     }
 }
@@ -94,7 +130,7 @@ impl MshElementType {
 /// A geometric entity of the file: its dimension and tag.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Entity {
-    /// 0 point, 1 curve, 2 surface.
+    /// 0 point, 1 curve, 2 surface, 3 volume.
     pub dim: u8,
     /// The entity's tag (unique per dimension).
     pub tag: i32,
@@ -110,7 +146,7 @@ pub struct MshElement {
     /// The entity it lies on.
     pub entity: Entity,
     /// Its nodes (dense indices), padded with `usize::MAX`.
-    nodes: [usize; 4],
+    nodes: [usize; 8],
 }
 
 impl MshElement {
@@ -118,6 +154,28 @@ impl MshElement {
     /// `kind.node_count()` of them.
     pub fn nodes(&self) -> &[usize] {
         &self.nodes[..self.kind.node_count()]
+    }
+
+    /// A volume element as a [`Cell`] (the file's node order is the
+    /// cell's); `None` for elements of lower dimension.
+    pub fn cell(&self) -> Option<Cell> {
+        let n = self.nodes;
+        match self.kind {
+            MshElementType::Tetrahedron => Some(Cell::Tet4([n[0], n[1], n[2], n[3]])),
+            MshElementType::Hexahedron => Some(Cell::Hex8(n)),
+            _ => None,
+        }
+    }
+
+    /// A triangle or quadrangle as a [`Face`] in the file's node order;
+    /// `None` for other elements.
+    pub fn face(&self) -> Option<Face> {
+        let n = self.nodes;
+        match self.kind {
+            MshElementType::Triangle => Some(Face::Tri3([n[0], n[1], n[2]])),
+            MshElementType::Quad => Some(Face::Quad4([n[0], n[1], n[2], n[3]])),
+            _ => None,
+        }
     }
 }
 
@@ -135,12 +193,19 @@ pub struct PhysicalGroup {
     pub entities: Vec<i32>,
 }
 
-/// A Gmsh mesh as read from a file; see the module docs for its
+/// A 2D Gmsh mesh as read from a file; see the module docs for its
 /// invariants.
 #[derive(Debug, Clone)]
 pub struct MshMesh {
-    file: PathBuf,
     nodes: Vec<[f64; 2]>,
+    tables: Tables,
+}
+
+/// What a 2D and a 3D mesh have alike: the file, the node tags, the
+/// elements and the groups, with the queries by group name.
+#[derive(Debug, Clone)]
+struct Tables {
+    file: PathBuf,
     node_tags: Vec<u64>,
     node_index: HashMap<u64, usize>,
     elements: Vec<MshElement>,
@@ -166,30 +231,30 @@ const CURVE_OR_POINT: Expect = Expect {
     what: "0 or 1 (a physical point or curve)",
 };
 
+/// Reads the file at `path`, or names it in the error.
+fn read_file(path: &Path) -> Result<Vec<u8>, MshError> {
+    std::fs::read(path).map_err(|e| MshError {
+        file: path.to_owned(),
+        kind: MshErrorKind::Io(e),
+    })
+}
+
 impl MshMesh {
     /// Reads the `.msh` file at `path` (MSH 4.1, ASCII or binary). Errors
     /// name `path`.
     pub fn read(path: impl AsRef<Path>) -> Result<MshMesh, MshError> {
         let path = path.as_ref();
-        let bytes = std::fs::read(path).map_err(|e| MshError {
-            file: path.to_owned(),
-            kind: MshErrorKind::Io(e),
-        })?;
-        MshMesh::from_bytes(&bytes, path)
+        MshMesh::from_bytes(&read_file(path)?, path)
     }
 
     /// Reads the contents of a `.msh` file; `file` is the name errors give.
     /// Never panics, whatever the bytes.
     pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<MshMesh, MshError> {
         let file = file.into();
-        match convert::read(bytes) {
+        match convert::read(bytes, convert::Dimension::Planar) {
             Ok(parts) => Ok(MshMesh {
-                file,
-                nodes: parts.nodes,
-                node_tags: parts.node_tags,
-                node_index: parts.node_index,
-                elements: parts.elements,
-                groups: parts.groups,
+                nodes: parts.nodes.iter().map(|&[x, y, _]| [x, y]).collect(),
+                tables: Tables::new(file, parts),
             }),
             Err(kind) => Err(MshError { file, kind }),
         }
@@ -197,7 +262,7 @@ impl MshMesh {
 
     /// The file the mesh was read from.
     pub fn file(&self) -> &Path {
-        &self.file
+        &self.tables.file
     }
 
     /// Reference coordinates (x, y) of the nodes, by dense index.
@@ -207,31 +272,31 @@ impl MshMesh {
 
     /// The file's tag of node `index`.
     pub fn node_tag(&self, index: usize) -> Option<u64> {
-        self.node_tags.get(index).copied()
+        self.tables.node_tags.get(index).copied()
     }
 
     /// The dense index of the node with the file's tag `tag`.
     pub fn node_index(&self, tag: u64) -> Option<usize> {
-        self.node_index.get(&tag).copied()
+        self.tables.node_index.get(&tag).copied()
     }
 
     /// Every element, in file order.
     pub fn elements(&self) -> &[MshElement] {
-        &self.elements
+        &self.tables.elements
     }
 
     /// The named physical groups, in `$PhysicalNames` order.
     pub fn groups(&self) -> &[PhysicalGroup] {
-        &self.groups
+        &self.tables.groups
     }
 
     /// The triangles and quadrangles of the physical surface `name`, in
     /// file order. Errors: no group of that name, not a surface, no such
     /// elements.
     pub fn surface_elements(&self, name: &str) -> Result<Vec<&MshElement>, MshError> {
-        let elements = self.elements_of(name, &SURFACE)?;
+        let elements = self.tables.elements_of(name, &SURFACE)?;
         if elements.is_empty() {
-            return Err(self.error(MshErrorKind::EmptyGroup {
+            return Err(self.tables.error(MshErrorKind::EmptyGroup {
                 name: name.to_owned(),
                 what: "triangles or quadrangles",
             }));
@@ -245,13 +310,14 @@ impl MshMesh {
     /// curve, no line elements.
     pub fn curve_segments(&self, name: &str) -> Result<Vec<[usize; 2]>, MshError> {
         let segments: Vec<[usize; 2]> = self
+            .tables
             .elements_of(name, &CURVE)?
             .into_iter()
             .filter(|e| e.kind == MshElementType::Line)
             .map(|e| [e.nodes[0], e.nodes[1]])
             .collect();
         if segments.is_empty() {
-            return Err(self.error(MshErrorKind::EmptyGroup {
+            return Err(self.tables.error(MshErrorKind::EmptyGroup {
                 name: name.to_owned(),
                 what: "line elements",
             }));
@@ -264,20 +330,20 @@ impl MshMesh {
     /// name, of both. Errors: no group of that name, not a curve or point,
     /// no elements.
     pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
-        let mut nodes: Vec<usize> = self
-            .elements_of(name, &CURVE_OR_POINT)?
-            .into_iter()
-            .flat_map(|e| e.nodes().iter().copied())
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        if nodes.is_empty() {
-            return Err(self.error(MshErrorKind::EmptyGroup {
-                name: name.to_owned(),
-                what: "point or line elements",
-            }));
+        self.tables
+            .nodes_of(name, &CURVE_OR_POINT, "point or line elements")
+    }
+}
+
+impl Tables {
+    fn new(file: PathBuf, parts: convert::Parts) -> Tables {
+        Tables {
+            file,
+            node_tags: parts.node_tags,
+            node_index: parts.node_index,
+            elements: parts.elements,
+            groups: parts.groups,
         }
-        Ok(nodes)
     }
 
     /// The elements of the dimension(s) `expect` allows on the entities of
@@ -311,6 +377,30 @@ impl MshMesh {
             .iter()
             .filter(|e| e.kind.dim() == e.entity.dim && entities.contains(&e.entity))
             .collect())
+    }
+
+    /// The nodes (ascending, each once) of the elements [`Tables::elements_of`]
+    /// finds; `what` names them in the error for none.
+    fn nodes_of(
+        &self,
+        name: &str,
+        expect: &Expect,
+        what: &'static str,
+    ) -> Result<Vec<usize>, MshError> {
+        let mut nodes: Vec<usize> = self
+            .elements_of(name, expect)?
+            .into_iter()
+            .flat_map(|e| e.nodes().iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        if nodes.is_empty() {
+            return Err(self.error(MshErrorKind::EmptyGroup {
+                name: name.to_owned(),
+                what,
+            }));
+        }
+        Ok(nodes)
     }
 
     fn error(&self, kind: MshErrorKind) -> MshError {

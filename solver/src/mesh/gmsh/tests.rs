@@ -11,6 +11,10 @@ use super::*;
 const SQUARE: &[u8] = include_bytes!("testdata/square.msh");
 const SQUARE_BINARY: &[u8] = include_bytes!("testdata/square-binary.msh");
 const HERTZ_COARSE_BINARY: &[u8] = include_bytes!("testdata/hertz-coarse-binary.msh");
+pub(super) const CUBE: &str = include_str!("testdata/cube.msh");
+pub(super) const CUBE_BINARY: &[u8] = include_bytes!("testdata/cube-binary.msh");
+pub(super) const TETS: &str = include_str!("testdata/tets.msh");
+pub(super) const TETS_BINARY: &[u8] = include_bytes!("testdata/tets-binary.msh");
 
 /// One quadrangle (tags 1..4, the unit square), its bottom edge and a
 /// point, written by hand; the error tests edit it.
@@ -153,7 +157,7 @@ fn assert_same_mesh(a: &MshMesh, b: &MshMesh) {
             );
         }
     }
-    assert_eq!(a.node_tags, b.node_tags);
+    assert_eq!(a.tables.node_tags, b.tables.node_tags);
     assert_eq!(a.elements(), b.elements());
     assert_eq!(a.groups(), b.groups());
 }
@@ -623,9 +627,10 @@ fn binary_zero_counts_are_rejected() {
 
 // ----- never a panic ----------------------------------------------------------
 
-/// Reads `bytes` and queries every group; a panic fails the calling
-/// test, and so does an error that does not name the file.
-fn read_any(bytes: &[u8]) {
+/// Reads `bytes` as a 2D and as a 3D mesh and queries every group; a
+/// panic fails the calling test, and so does an error that does not name
+/// the file.
+pub(super) fn read_any(bytes: &[u8]) {
     fn named<T>(result: Result<T, MshError>) {
         if let Err(e) = result {
             assert_eq!(e.file, Path::new("fuzz.msh"));
@@ -643,14 +648,32 @@ fn read_any(bytes: &[u8]) {
         }
         Err(e) => named::<()>(Err(e)),
     }
+    match MshVolumeMesh::from_bytes(bytes, "fuzz.msh") {
+        Ok(m) => {
+            for g in m.groups() {
+                named(m.volume_elements(&g.name));
+                named(m.surface_faces(&g.name));
+                named(m.group_nodes(&g.name));
+            }
+            named(m.surface_faces("no such group"));
+        }
+        Err(e) => named::<()>(Err(e)),
+    }
 }
 
 #[test]
 fn every_truncation_is_an_error_or_ends_a_section() {
-    for file in [TINY.as_bytes(), SQUARE, SQUARE_BINARY] {
+    let planar = [TINY.as_bytes(), SQUARE, SQUARE_BINARY].map(|f| (f, false));
+    let volume = [CUBE.as_bytes(), CUBE_BINARY, TETS.as_bytes(), TETS_BINARY].map(|f| (f, true));
+    for (file, is_volume) in planar.into_iter().chain(volume) {
         for end in 0..file.len() {
             let cut = &file[..end];
-            if MshMesh::from_bytes(cut, "cut.msh").is_ok() {
+            let reads = if is_volume {
+                MshVolumeMesh::from_bytes(cut, "cut.msh").is_ok()
+            } else {
+                MshMesh::from_bytes(cut, "cut.msh").is_ok()
+            };
+            if reads {
                 // Sections are optional: a file cut just after one reads
                 // (and its queries fail for want of groups or elements).
                 let text = String::from_utf8_lossy(cut);
@@ -666,7 +689,15 @@ fn every_truncation_is_an_error_or_ends_a_section() {
 }
 
 fn fixture() -> impl Strategy<Value = &'static [u8]> {
-    prop_oneof![Just(TINY.as_bytes()), Just(SQUARE), Just(SQUARE_BINARY)]
+    prop_oneof![
+        Just(TINY.as_bytes()),
+        Just(SQUARE),
+        Just(SQUARE_BINARY),
+        Just(CUBE.as_bytes()),
+        Just(CUBE_BINARY),
+        Just(TETS.as_bytes()),
+        Just(TETS_BINARY),
+    ]
 }
 
 proptest! {
@@ -764,7 +795,12 @@ proptest! {
 
     #[test]
     fn random_numbers_in_ascii_files_never_panic(
-        file in prop_oneof![Just(TINY.as_bytes()), Just(SQUARE)],
+        file in prop_oneof![
+            Just(TINY.as_bytes()),
+            Just(SQUARE),
+            Just(CUBE.as_bytes()),
+            Just(TETS.as_bytes()),
+        ],
         edits in prop::collection::vec((any::<prop::sample::Index>(), number()), 1..4),
     ) {
         // whole numeric tokens replaced by other numbers: counts, tags,
@@ -780,7 +816,12 @@ proptest! {
 
     #[test]
     fn random_words_in_binary_files_never_panic(
-        file in prop_oneof![Just(SQUARE_BINARY), Just(HERTZ_COARSE_BINARY)],
+        file in prop_oneof![
+            Just(SQUARE_BINARY),
+            Just(HERTZ_COARSE_BINARY),
+            Just(CUBE_BINARY),
+            Just(TETS_BINARY),
+        ],
         edits in prop::collection::vec(
             (
                 any::<prop::sample::Index>(),

@@ -11,6 +11,12 @@ curve x = 1. Physical curves `bottom` (y = 0 of both surfaces) and `inner`
 
 The Hertz fixture `hertz-coarse-binary.msh` comes from
 `scripts/make-hertz-mesh.py 0.5 --binary`.
+
+The 3D fixtures `cube.msh` (one hexahedron, physical volume `body`, its
+bottom written inward) and `tets.msh` (two tetrahedra sharing a face) are
+written by hand; `cube-binary.msh` and `tets-binary.msh` are Gmsh's binary
+copies of them (same tags; Gmsh adds empty node blocks for the surface
+entities).
 """
 import gmsh
 
@@ -49,3 +55,16 @@ def square(binary, out):
 
 square(False, "square.msh")
 square(True, "square-binary.msh")
+
+
+def binary_copy(src, dst):
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.open(src)
+    gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
+    gmsh.option.setNumber("Mesh.Binary", 1)
+    gmsh.write(dst)
+    gmsh.finalize()
+
+binary_copy("cube.msh", "cube-binary.msh")
+binary_copy("tets.msh", "tets-binary.msh")

@@ -1,0 +1,238 @@
+//! [`MshVolumeMesh`]: a 3D Gmsh mesh, read as a volume-mesh description.
+//!
+//! The file is read as a 2D one is (the same guard, sections and checks),
+//! except that nodes may lie anywhere and 4-node tetrahedra (Gmsh type 4)
+//! and 8-node hexahedra (type 5) are read too. Physical volumes are bodies
+//! ([`MshVolumeMesh::volume_elements`], as [`Cell`]s through
+//! [`MshElement::cell`]); physical surfaces are groups of faces
+//! ([`MshVolumeMesh::surface_faces`]); physical points, curves and
+//! surfaces name node sets ([`MshVolumeMesh::group_nodes`]).
+//!
+//! Invariants, beyond those of the 2D reader (module docs of
+//! [`super`]) except planarity:
+//!
+//! * every tetrahedron and hexahedron is positive: its Jacobian exceeds
+//!   `1e-12 L^3` at every corner ([`Cell::is_valid`]); otherwise the read
+//!   fails naming the element's tag and the corner node;
+//! * every triangle and quadrangle on an entity of a named physical surface
+//!   is a boundary face of exactly one volume element of the file
+//!   ([`BoundaryFaces`] of all its tetrahedra and hexahedra, matched by
+//!   node set), which orients it: its [`SurfaceFace::face`] runs
+//!   counter-clockwise seen from outside that element (normal
+//!   `t_1 x t_2` outward), starting at the file element's first node,
+//!   whatever order the file lists its nodes in. A face that no volume
+//!   element has, or that lies between two, fails the read naming the
+//!   element's tag and its group.
+//!
+//! Whether bodies share nodes is not checked here: that is for whoever
+//! turns the groups into bodies, as for 2D meshes.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use super::{
+    Expect, MshElement, MshError, MshErrorKind, PhysicalGroup, Tables, convert, read_file,
+};
+use crate::mesh::faces::{BoundaryFaces, FaceLookup, starting_at};
+use crate::mesh::volume::{Cell, Face};
+
+const VOLUME: Expect = Expect {
+    dims: &[3],
+    what: "3 (a physical volume)",
+};
+const SURFACE: Expect = super::SURFACE;
+const BELOW_VOLUME: Expect = Expect {
+    dims: &[0, 1, 2],
+    what: "0, 1 or 2 (a physical point, curve or surface)",
+};
+
+/// A 3D Gmsh mesh; see the module docs for its invariants.
+#[derive(Debug, Clone)]
+pub struct MshVolumeMesh {
+    nodes: Vec<[f64; 3]>,
+    tables: Tables,
+    /// The outward face of every triangle and quadrangle of a named
+    /// physical surface, by the element's tag.
+    faces: HashMap<u64, SurfaceFace>,
+}
+
+/// A triangle or quadrangle of a physical surface, oriented by the volume
+/// element that owns it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SurfaceFace {
+    /// Gmsh tag of the surface element.
+    pub element: u64,
+    /// Gmsh tag of the volume element it bounds.
+    pub owner: u64,
+    /// Its nodes (dense indices), counter-clockwise seen from outside the
+    /// owner, from the file element's first node on.
+    pub face: Face,
+}
+
+impl MshVolumeMesh {
+    /// Reads the `.msh` file at `path` (MSH 4.1, ASCII or binary) as a 3D
+    /// mesh. Errors name `path`.
+    pub fn read(path: impl AsRef<Path>) -> Result<MshVolumeMesh, MshError> {
+        let path = path.as_ref();
+        MshVolumeMesh::from_bytes(&read_file(path)?, path)
+    }
+
+    /// Reads the contents of a `.msh` file as a 3D mesh; `file` is the
+    /// name errors give. Never panics, whatever the bytes.
+    pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<MshVolumeMesh, MshError> {
+        let file = file.into();
+        let parts = match convert::read(bytes, convert::Dimension::Volume) {
+            Ok(parts) => parts,
+            Err(kind) => return Err(MshError { file, kind }),
+        };
+        let nodes = parts.nodes.clone();
+        let tables = Tables::new(file, parts);
+        let faces = orient(&nodes, &tables).map_err(|kind| tables.error(kind))?;
+        Ok(MshVolumeMesh {
+            nodes,
+            tables,
+            faces,
+        })
+    }
+
+    /// The file the mesh was read from.
+    pub fn file(&self) -> &Path {
+        &self.tables.file
+    }
+
+    /// Reference coordinates (x, y, z) of the nodes, by dense index.
+    pub fn nodes(&self) -> &[[f64; 3]] {
+        &self.nodes
+    }
+
+    /// The file's tag of node `index`.
+    pub fn node_tag(&self, index: usize) -> Option<u64> {
+        self.tables.node_tags.get(index).copied()
+    }
+
+    /// The dense index of the node with the file's tag `tag`.
+    pub fn node_index(&self, tag: u64) -> Option<usize> {
+        self.tables.node_index.get(&tag).copied()
+    }
+
+    /// Every element, in file order.
+    pub fn elements(&self) -> &[MshElement] {
+        &self.tables.elements
+    }
+
+    /// The named physical groups, in `$PhysicalNames` order.
+    pub fn groups(&self) -> &[PhysicalGroup] {
+        &self.tables.groups
+    }
+
+    /// The tetrahedra and hexahedra of the physical volume `name`, in file
+    /// order (each a [`Cell`] through [`MshElement::cell`]). Errors: no
+    /// group of that name, not a volume, no such elements.
+    pub fn volume_elements(&self, name: &str) -> Result<Vec<&MshElement>, MshError> {
+        let elements = self.tables.elements_of(name, &VOLUME)?;
+        if elements.is_empty() {
+            return Err(self.tables.error(MshErrorKind::EmptyGroup {
+                name: name.to_owned(),
+                what: "tetrahedra or hexahedra",
+            }));
+        }
+        Ok(elements)
+    }
+
+    /// The faces of the physical surface `name`, in file order, each
+    /// oriented outward by its owning volume element (module docs).
+    /// Errors: no group of that name, not a surface, no triangles or
+    /// quadrangles.
+    pub fn surface_faces(&self, name: &str) -> Result<Vec<SurfaceFace>, MshError> {
+        let faces: Vec<SurfaceFace> = self
+            .tables
+            .elements_of(name, &SURFACE)?
+            .into_iter()
+            .filter_map(|e| self.faces.get(&e.tag).copied())
+            .collect();
+        if faces.is_empty() {
+            return Err(self.tables.error(MshErrorKind::EmptyGroup {
+                name: name.to_owned(),
+                what: "triangles or quadrangles",
+            }));
+        }
+        Ok(faces)
+    }
+
+    /// The nodes (dense indices, ascending, each once) of the elements of
+    /// the physical point, curve or surface `name` (of all of them if
+    /// several dimensions share the name). Errors: no group of that name,
+    /// a volume only, no elements.
+    pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
+        self.tables
+            .nodes_of(name, &BELOW_VOLUME, "point, line or surface elements")
+    }
+}
+
+/// Checks every volume element's Jacobian, then orients every triangle and
+/// quadrangle of a named physical surface by its owner (module docs).
+fn orient(nodes: &[[f64; 3]], tables: &Tables) -> Result<HashMap<u64, SurfaceFace>, MshErrorKind> {
+    let mut cells: Vec<Cell> = Vec::new();
+    let mut owners: Vec<u64> = Vec::new();
+    for e in &tables.elements {
+        let Some(cell) = e.cell() else { continue };
+        let x = cell.map_nodes(|n| nodes[n]);
+        if !x.is_valid() {
+            let (det_j, corner) = x.min_corner_jacobian();
+            let node = cell.nodes()[corner];
+            return Err(MshErrorKind::InvertedElement {
+                element: e.tag,
+                kind: e.kind.name(),
+                node: tables.node_tags.get(node).copied().unwrap_or(node as u64),
+                det_j,
+            });
+        }
+        cells.push(cell);
+        owners.push(e.tag);
+    }
+    // the first named physical surface of each surface entity
+    let mut group_of: HashMap<i32, &str> = HashMap::new();
+    for g in tables.groups.iter().filter(|g| g.dim == 2) {
+        for &entity in &g.entities {
+            group_of.entry(entity).or_insert(&g.name);
+        }
+    }
+    let boundary = BoundaryFaces::of(&cells);
+    let mut faces = HashMap::new();
+    for e in &tables.elements {
+        let Some(face) = e.face() else { continue };
+        let Some(&group) = group_of.get(&e.entity.tag).filter(|_| e.entity.dim == 2) else {
+            continue;
+        };
+        let unowned = |why: String| MshErrorKind::UnownedFace {
+            element: e.tag,
+            kind: e.kind.name(),
+            group: group.to_owned(),
+            why,
+        };
+        match boundary.find(face.nodes()) {
+            FaceLookup::Boundary(b) => {
+                faces.insert(
+                    e.tag,
+                    SurfaceFace {
+                        element: e.tag,
+                        owner: owners[b.cell],
+                        face: starting_at(b.face, face.nodes()[0]),
+                    },
+                );
+            }
+            FaceLookup::Interior { cells } => {
+                return Err(unowned(format!(
+                    "lies between {cells} volume elements; a group's faces must be on the boundary of one"
+                )));
+            }
+            FaceLookup::Missing => {
+                return Err(unowned(
+                    "is no face of a volume element (a surface group of a 3D mesh is made of faces of its tetrahedra and hexahedra)"
+                        .to_owned(),
+                ));
+            }
+        }
+    }
+    Ok(faces)
+}
