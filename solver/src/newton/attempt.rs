@@ -24,88 +24,16 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
-use crate::assembly::DofMap;
-use crate::contact::{NodeTie, PointEval, Taylor};
+use crate::contact::{PointEval, Taylor};
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex};
+use crate::ids::{ContactPointIndex, MasterSegmentIndex};
 use crate::options::Method;
 use crate::solution::{ContactPointId, CutbackReason};
 
+use super::iterate::Iterate;
+use super::outcome::{AttemptOutcome, Converged, PointsReport};
 use super::pairing::{GuardOutcome, PairingGuard};
-use super::repair::StepEnd;
 use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
-
-/// A converged attempt.
-pub(super) struct Converged {
-    /// The converged iterate (inactive multipliers exactly zero).
-    pub(super) state: Iterate,
-    /// Linear solves spent.
-    pub(super) iterations: usize,
-    /// The residual norms of the evaluated iterates.
-    pub(super) residuals: Vec<f64>,
-    /// Strain energy at the converged iterate.
-    pub(super) energy: f64,
-    /// Accepted at the round-off floor rather than below the tolerance.
-    pub(super) roundoff_floor: bool,
-    /// The contact points' state at the converged iterate.
-    pub(super) points: PointsReport,
-    /// The support groups' reactions at the converged iterate (see
-    /// `reactions.rs`).
-    pub(super) reactions: Vec<[f64; 2]>,
-    /// Which multipliers carry a constraint row at the converged iterate.
-    pub(super) active: Vec<bool>,
-    /// Types 1–6: what the step-end check found (`repair.rs`); `None` for
-    /// the complete formulation.
-    pub(super) step_end: Option<StepEnd>,
-}
-
-/// The contact points' state at a converged iterate, for the step record.
-pub(super) struct PointsReport {
-    /// Multipliers carrying a constraint row.
-    pub(super) active_multipliers: usize,
-    /// Points that project into no master segment.
-    pub(super) unpaired: Vec<ContactPointId>,
-    /// Points tied to a master node.
-    pub(super) node_ties: Vec<ContactPointId>,
-    /// Points kept on a segment their projection misses (within the band).
-    pub(super) kept_outside: Vec<ContactPointId>,
-}
-
-/// A failed attempt: the caller cuts the increment back.
-pub(super) struct Failed {
-    /// Why the attempt failed.
-    pub(super) reason: CutbackReason,
-    /// The residual norms of the evaluated iterates.
-    pub(super) residuals: Vec<f64>,
-    /// Linear solves spent.
-    pub(super) iterations: usize,
-}
-
-/// How an attempt ended.
-pub(super) enum AttemptOutcome {
-    /// Converged: the new converged state.
-    Converged(Converged),
-    /// Failed: cut back.
-    CutBack(Failed),
-    /// Types 1–6 with a `taylor_tolerance`: converged, but the Taylor
-    /// remainder exceeds the tolerance; halve the increment if the
-    /// schedule allows, else accept it.
-    TooCoarse(Converged),
-}
-
-impl AttemptOutcome {
-    pub(super) fn cut_back(
-        reason: CutbackReason,
-        residuals: Vec<f64>,
-        iterations: usize,
-    ) -> AttemptOutcome {
-        AttemptOutcome::CutBack(Failed {
-            reason,
-            residuals,
-            iterations,
-        })
-    }
-}
 
 impl Run<'_> {
     /// Builds the frozen Taylor coefficients at the converged state (Types
@@ -423,37 +351,6 @@ impl Run<'_> {
             unpaired,
             node_ties,
             kept_outside,
-        }
-    }
-}
-
-/// The unknowns of an attempt's current iterate (copies of the converged
-/// state at the start).
-pub(super) struct Iterate {
-    /// Displacements (all dofs).
-    pub(super) u: Vec<f64>,
-    /// Multipliers.
-    pub(super) lambda: Vec<f64>,
-    /// Each point's master segment.
-    pub(super) pairing: Vec<Option<MasterSegmentIndex>>,
-    /// Node ties (complete formulation).
-    pub(super) ties: Vec<NodeTie>,
-}
-
-impl Iterate {
-    /// Applies the Newton correction: `x -= dx` on the free dofs, the
-    /// multipliers and the ties' multipliers.
-    fn correct(&mut self, dofs: &DofMap, dx: &[f64]) {
-        for (dof, ud) in self.u.iter_mut().enumerate() {
-            if let Some(e) = dofs.eq(DofId::new(dof)) {
-                *ud -= dx[e.index()];
-            }
-        }
-        for (m, l) in self.lambda.iter_mut().enumerate() {
-            *l -= dx[dofs.mult_eq(MultiplierIndex::new(m)).index()];
-        }
-        for (k, tie) in self.ties.iter_mut().enumerate() {
-            tie.mu -= dx[dofs.tie_eq(k).index()];
         }
     }
 }

@@ -163,6 +163,11 @@
 //! * `schedule`: the scheduled load steps and their bisection cut-backs;
 //! * `attempt`: one Newton solve from the converged state to a target load
 //!   factor, ending in an `AttemptOutcome`;
+//! * `iterate`: the unknowns an attempt works on (a copy of the converged
+//!   state) and Newton's correction of them;
+//! * `outcome`: how an attempt ended (`AttemptOutcome`, `Converged`,
+//!   `Failed`, Types 1–6's `StepEnd`), shared by `attempt`, `repair` and
+//!   this module;
 //! * `pairing`: the pairing guard of the complete formulation (re-pairing
 //!   and node ties at converged iterates);
 //! * `repair`: Types 1–6 at a converged step end: re-pairing, the repeat
@@ -181,6 +186,8 @@
 //! still taken at the converged state).
 
 mod attempt;
+mod iterate;
+mod outcome;
 mod pairing;
 mod probe;
 mod reactions;
@@ -202,7 +209,7 @@ use crate::solution::{
     Timings,
 };
 
-use attempt::{AttemptOutcome, Converged};
+use outcome::{AttemptOutcome, Converged};
 use schedule::{ScheduledStep, give_up};
 use setup::Setup;
 

@@ -89,7 +89,7 @@ use crate::error::SolverError;
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex};
 use crate::solution::{ContactPointId, CutbackReason};
 
-use super::attempt::{AttemptOutcome, Converged};
+use super::outcome::{AttemptOutcome, Converged, StepEnd};
 use super::{MAX_REPAIR_REPEATS, Run};
 
 /// A point whose expansion was re-taken at an attempt's end (it crossed a
@@ -103,19 +103,6 @@ pub(super) const ANCHOR_TOLERANCE: f64 = 1e-8;
 /// the step); a point still above [`ANCHOR_TOLERANCE`] then shows in the
 /// step's Taylor remainder.
 pub(super) const MAX_ANCHOR_UPDATES: usize = 4;
-
-/// What the step-end check found for an accepted attempt.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub(super) struct StepEnd {
-    /// Times the step was solved again with a new pairing.
-    pub(super) repeats: usize,
-    /// Largest `|g_true - g~| / L_s` over the active points; `None` when
-    /// no point is active.
-    pub(super) remainder: Option<f64>,
-    /// Points whose pairing at the end differs from their expansion's
-    /// (`master_segment`: the expansion's).
-    pub(super) unsettled: Vec<ContactPointId>,
-}
 
 impl Run<'_> {
     /// Newton's method to `to` with the current expansions, then the
