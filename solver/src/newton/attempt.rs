@@ -70,7 +70,7 @@ impl<'a> Run<'a> {
             };
             let (treatment, mut cx, start) = self.split_treatment();
             match treatment.end_solve(&mut cx, start, c)? {
-                SolveEnd::Done(outcome) => return Ok(outcome),
+                SolveEnd::Done(outcome) => return Ok(*outcome),
                 SolveEnd::Again { warm: w, spent } => {
                     self.repeated_iterations += spent;
                     warm = Some(w);
@@ -82,7 +82,7 @@ impl<'a> Run<'a> {
     /// Newton's method from the converged state, or from the displacements
     /// and multipliers `warm` (an earlier solve's converged end at the same
     /// `to`), to load factor `to`; the pairing and ties are the run's.
-    pub(super) fn newton_from(
+    fn newton_from(
         &mut self,
         to: f64,
         warm: Option<(Vec<f64>, Vec<f64>)>,

@@ -116,7 +116,7 @@ impl ContactTreatment for Complete {
         _start: StepStart<'_>,
         c: Converged,
     ) -> Result<SolveEnd, SolverError> {
-        Ok(SolveEnd::Done(AttemptOutcome::Converged(c)))
+        Ok(SolveEnd::Done(Box::new(AttemptOutcome::Converged(c))))
     }
 
     fn committed(&mut self) {}

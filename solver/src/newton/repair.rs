@@ -120,11 +120,8 @@ impl Frozen {
         let found = match self.project_end(cx, start.pairing, &c.state.u) {
             Ok(f) => f,
             Err(reason) => {
-                return Ok(SolveEnd::Done(AttemptOutcome::cut_back(
-                    reason,
-                    c.residuals,
-                    c.iterations,
-                )));
+                let failed = AttemptOutcome::cut_back(reason, c.residuals, c.iterations);
+                return Ok(SolveEnd::Done(Box::new(failed)));
             }
         };
         // ties whose weight left [0, 1]: released to that side
@@ -197,11 +194,11 @@ impl Frozen {
             (Some(r), Some(tol)) if r > tol
         );
         c.step_end = Some(end);
-        Ok(SolveEnd::Done(if too_coarse {
+        Ok(SolveEnd::Done(Box::new(if too_coarse {
             AttemptOutcome::TooCoarse(c)
         } else {
             AttemptOutcome::Converged(c)
-        }))
+        })))
     }
 
     /// Per point: whether its expansion was taken elsewhere than at the

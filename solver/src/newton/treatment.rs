@@ -99,8 +99,9 @@ pub(super) enum Settling {
 
 /// The treatment's decision at the end of a converged Newton solve.
 pub(super) enum SolveEnd {
-    /// The attempt ends with this outcome.
-    Done(AttemptOutcome),
+    /// The attempt ends with this outcome (boxed: an outcome carries the
+    /// converged state's report, ten times the size of `Again`).
+    Done(Box<AttemptOutcome>),
     /// Solve the step again (same target), Newton starting from `warm`
     /// (the displacements and multipliers of the discarded solve's end),
     /// which spent `spent` linear solves.
