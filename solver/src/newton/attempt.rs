@@ -1,163 +1,88 @@
 //! One attempt: Newton's method from the converged state of a [`Run`] to a
-//! target load factor (see [`super`], steps 1–4 and the failure list).
+//! target load factor (see [`super`], steps 1–4 and the failure list),
+//! the same loop for every treatment of contact ([`super::treatment`]).
 //!
 //! An attempt works on an [`Iterate`], a copy of the converged state, and
 //! ends in an [`AttemptOutcome`]: converged (the caller commits it) or a
 //! cut-back request with the reason, the residual history and the
-//! iterations spent. Each iteration: contact evaluation
-//! (`Run::evaluate_contact`), contact and solid assembly, the convergence
-//! test (at a converged iterate the complete formulation lets the pairing
-//! guard settle the pairing, `Run::settle_pairing`, before `Run::accept`),
-//! the divergence tests, the regularised solve and the correction
-//! ([`Iterate::correct`]).
+//! iterations spent. It starts with the treatment's
+//! [`begin_attempt`](ContactTreatment::begin_attempt) and runs Newton
+//! solves until the treatment's
+//! [`end_solve`](ContactTreatment::end_solve) accepts one (Types 1–6 solve
+//! the step again while the pairing at its end changes, `repair.rs`).
+//! Each iteration: the treatment's contact evaluation, contact and solid
+//! assembly, the convergence test (at a converged iterate the treatment
+//! settles the pairing, before `Run::accept`), the divergence tests, the
+//! regularised solve and the correction ([`Iterate::correct`]).
 //! Errors that a smaller increment cannot cure (a kernel failure at the
 //! converged state, when the Taylor coefficients of Types 1–6 are built)
 //! are returned as `Err` and stop the solve.
 //!
 //! Invariants: the iteration count is the number of linear solves; the
 //! residual history holds one entry per evaluated iterate (one more per
-//! pairing change of the complete formulation, which evaluates the same
+//! pairing change at a converged iterate, which evaluates the same
 //! iterate again); the order of the phases within an iteration is that of
 //! [`Setup`](super::Setup) (contact, solid, regularised solve).
 
 use std::time::Instant;
 
-use contact_kernels::ApproxType;
-
-use crate::assembly::DofMap;
-use crate::contact::{NodeTie, PointEval, Taylor};
+use crate::contact::PointEval;
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex};
-use crate::options::Method;
+use crate::ids::{ContactPointIndex, MasterSegmentIndex};
 use crate::solution::{ContactPointId, CutbackReason};
 
-use super::pairing::{GuardOutcome, PairingGuard};
-use super::repair::StepEnd;
+use super::iterate::Iterate;
+use super::outcome::{AttemptOutcome, Converged, PointsReport};
+use super::treatment::{ContactTreatment, Context, Settling, SolveEnd, StepStart};
 use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
 
-/// A converged attempt.
-pub(super) struct Converged {
-    /// The converged iterate (inactive multipliers exactly zero).
-    pub(super) state: Iterate,
-    /// Linear solves spent.
-    pub(super) iterations: usize,
-    /// The residual norms of the evaluated iterates.
-    pub(super) residuals: Vec<f64>,
-    /// Strain energy at the converged iterate.
-    pub(super) energy: f64,
-    /// Accepted at the round-off floor rather than below the tolerance.
-    pub(super) roundoff_floor: bool,
-    /// The contact points' state at the converged iterate.
-    pub(super) points: PointsReport,
-    /// The support groups' reactions at the converged iterate (see
-    /// `reactions.rs`).
-    pub(super) reactions: Vec<[f64; 2]>,
-    /// Which multipliers carry a constraint row at the converged iterate.
-    pub(super) active: Vec<bool>,
-    /// Types 1–6: what the step-end check found (`repair.rs`); `None` for
-    /// the complete formulation.
-    pub(super) step_end: Option<StepEnd>,
-}
-
-/// The contact points' state at a converged iterate, for the step record.
-pub(super) struct PointsReport {
-    /// Multipliers carrying a constraint row.
-    pub(super) active_multipliers: usize,
-    /// Points that project into no master segment.
-    pub(super) unpaired: Vec<ContactPointId>,
-    /// Points tied to a master node.
-    pub(super) node_ties: Vec<ContactPointId>,
-    /// Points kept on a segment their projection misses (within the band).
-    pub(super) kept_outside: Vec<ContactPointId>,
-}
-
-/// A failed attempt: the caller cuts the increment back.
-pub(super) struct Failed {
-    /// Why the attempt failed.
-    pub(super) reason: CutbackReason,
-    /// The residual norms of the evaluated iterates.
-    pub(super) residuals: Vec<f64>,
-    /// Linear solves spent.
-    pub(super) iterations: usize,
-}
-
-/// How an attempt ended.
-pub(super) enum AttemptOutcome {
-    /// Converged: the new converged state.
-    Converged(Converged),
-    /// Failed: cut back.
-    CutBack(Failed),
-    /// Types 1–6 with a `taylor_tolerance`: converged, but the Taylor
-    /// remainder exceeds the tolerance; halve the increment if the
-    /// schedule allows, else accept it.
-    TooCoarse(Converged),
-}
-
-impl AttemptOutcome {
-    pub(super) fn cut_back(
-        reason: CutbackReason,
-        residuals: Vec<f64>,
-        iterations: usize,
-    ) -> AttemptOutcome {
-        AttemptOutcome::CutBack(Failed {
-            reason,
-            residuals,
-            iterations,
-        })
-    }
-}
-
-impl Run<'_> {
-    /// Builds the frozen Taylor coefficients at the converged state (Types
-    /// 1–6), re-pairing every point.
-    fn ensure_taylor(&mut self, ty: ApproxType) -> Result<(), SolverError> {
-        if self.taylor.is_some() {
-            return Ok(());
-        }
-        // a tie of Types 1-6 lasts one step (`repair.rs`)
-        self.ties.clear();
-        self.tie_taylor.clear();
-        let t = Instant::now();
-        let (evals, counts) = self
-            .setup
-            .layout
-            .evaluate_all(&self.setup.model.mesh, &self.u, &self.pairing, ty)
-            .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
-        self.counts += counts;
-        self.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
-        let taylor = evals
-            .into_iter()
-            .map(|e| e.map(|at_start| Taylor::at(at_start, &self.u)))
-            .collect();
-        self.taylor = Some(taylor);
-        self.timings.contact_evaluation += t.elapsed();
-        Ok(())
+impl<'a> Run<'a> {
+    /// The contact treatment with what it works on: the solve's context and
+    /// the run's converged state.
+    fn split_treatment(&mut self) -> (&mut dyn ContactTreatment, Context<'_, 'a>, StepStart<'_>) {
+        (
+            &mut *self.treatment,
+            Context {
+                setup: &self.setup,
+                opts: self.opts,
+                counts: &mut self.counts,
+                timings: &mut self.timings,
+            },
+            StepStart {
+                u: &self.u,
+                pairing: &mut self.pairing,
+                ties: &mut self.ties,
+                load_factor: self.load_factor,
+            },
+        )
     }
 
-    /// One Newton solve from the converged state to load factor `to` (module
-    /// docs); for Types 1–6 followed by the step-end check and, while the
-    /// pairing changes, repeated with the new pairing's expansion (see
-    /// `repair.rs`).
+    /// One attempt from the converged state to load factor `to` (module
+    /// docs): Newton solves until the treatment accepts one.
     pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
-        let Method::Approx(ty) = self.opts.method else {
-            return self.newton(to);
-        };
-        self.ensure_taylor(ty)?;
-        self.repaired_attempt(ty, to)
+        let (treatment, mut cx, start) = self.split_treatment();
+        treatment.begin_attempt(&mut cx, start)?;
+        let mut warm = None;
+        loop {
+            let outcome = self.newton_from(to, warm.take())?;
+            let AttemptOutcome::Converged(c) = outcome else {
+                return Ok(outcome);
+            };
+            let (treatment, mut cx, start) = self.split_treatment();
+            match treatment.end_solve(&mut cx, start, c)? {
+                SolveEnd::Done(outcome) => return Ok(*outcome),
+                SolveEnd::Again { warm: w, spent } => {
+                    self.repeated_iterations += spent;
+                    warm = Some(w);
+                }
+            }
+        }
     }
 
-    /// Newton's method from the converged state to load factor `to` with
-    /// the current Taylor coefficients (Types 1–6) or the complete
-    /// formulation.
-    pub(super) fn newton(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
-        self.newton_from(to, None)
-    }
-
-    /// [`Run::newton`] starting from the displacements and multipliers
-    /// `warm` (an earlier attempt's converged end at the same `to`)
-    /// instead of the converged state; the pairing and ties are the
-    /// run's.
-    pub(super) fn newton_from(
+    /// Newton's method from the converged state, or from the displacements
+    /// and multipliers `warm` (an earlier solve's converged end at the same
+    /// `to`), to load factor `to`; the pairing and ties are the run's.
+    fn newton_from(
         &mut self,
         to: f64,
         warm: Option<(Vec<f64>, Vec<f64>)>,
@@ -183,7 +108,6 @@ impl Run<'_> {
             lift = self.setup.lift(&x.u, to);
             extrapolated = true;
         }
-        let mut guard = PairingGuard::default();
         let mut residuals = Vec::new();
         // index into `residuals` of the first iterate with the current pairing
         let mut phase_start = 0;
@@ -192,12 +116,13 @@ impl Run<'_> {
             self.check_stop()?;
             // contact
             let t = Instant::now();
-            // complete formulation: re-pair at once in the first iterates,
-            // until the first pairing change at a converged iterate
+            // a re-projecting treatment re-pairs at once in the first
+            // iterates, until the first pairing change at a converged iterate
             let at_once = ((1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it)
                 || (it == 0 && extrapolated))
                 && phase_start == 0;
-            let (evals, others) = match self.evaluate_contact(&mut x, at_once) {
+            let (treatment, mut cx, _) = self.split_treatment();
+            let (evals, others) = match treatment.evaluate(&mut cx, &mut x, at_once) {
                 Ok(e) => e,
                 Err(reason) => {
                     self.timings.contact_evaluation += t.elapsed();
@@ -228,18 +153,16 @@ impl Run<'_> {
                 && norm <= STAGNATION_FACTOR * tol_abs
                 && norm >= 0.5 * residuals[last - 1];
             if lift.is_none() && (norm <= tol_abs || at_floor) {
-                let mut kept = Vec::new();
-                if self.opts.method == Method::Complete {
-                    match self.settle_pairing(&mut guard, &mut x, &evals) {
-                        Ok(Settling::Changed) => {
-                            // the same iterate again, with the new pairing
-                            phase_start = residuals.len();
-                            continue;
-                        }
-                        Ok(Settling::Settled(k)) => kept = k,
-                        Err(reason) => return Ok(AttemptOutcome::cut_back(reason, residuals, it)),
+                let (treatment, mut cx, _) = self.split_treatment();
+                let kept = match treatment.settle(&mut cx, &mut x, &evals) {
+                    Ok(Settling::Changed) => {
+                        // the same iterate again, with the new pairing
+                        phase_start = residuals.len();
+                        continue;
                     }
-                }
+                    Ok(Settling::Settled(kept)) => kept,
+                    Err(reason) => return Ok(AttemptOutcome::cut_back(reason, residuals, it)),
+                };
                 let points = self.accept(&mut x, &evals, &active, kept);
                 let t = Instant::now();
                 let reactions = self
@@ -302,85 +225,6 @@ impl Run<'_> {
         }
     }
 
-    /// The contact evaluation of the current iterate: Types 1–6 expand the
-    /// frozen Taylor coefficients; the complete formulation evaluates the
-    /// exact kernel (re-pairing every point when `at_once`) and takes the
-    /// pairing the evaluation ended with.
-    fn evaluate_contact(
-        &mut self,
-        x: &mut Iterate,
-        at_once: bool,
-    ) -> Result<(Vec<Option<PointEval>>, Vec<PointEval>), CutbackReason> {
-        match self.opts.method {
-            Method::Approx(_) => {
-                let taylor = self.taylor.as_deref().unwrap_or(&[]);
-                let evals: Vec<Option<PointEval>> =
-                    taylor.iter().map(|t| t.map(|t| t.expand(&x.u))).collect();
-                let others = self.tie_taylor.iter().map(|t| t.expand(&x.u)).collect();
-                Ok((evals, others))
-            }
-            Method::Complete => {
-                match self.setup.evaluate_complete(
-                    &x.u,
-                    &x.pairing,
-                    &x.ties,
-                    at_once,
-                    &mut self.counts,
-                ) {
-                    Ok((evals, others)) => {
-                        x.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
-                        Ok((evals, others))
-                    }
-                    Err(f) => Err(CutbackReason::Kernel {
-                        point: self.setup.failure_point(&f),
-                        error: f.error,
-                    }),
-                }
-            }
-        }
-    }
-
-    /// Complete formulation, at a converged iterate: the pairing guard's
-    /// update (see [`PairingGuard::update`]); a stuck point or a kernel
-    /// failure asks for a cut-back.
-    fn settle_pairing(
-        &mut self,
-        guard: &mut PairingGuard,
-        x: &mut Iterate,
-        evals: &[Option<PointEval>],
-    ) -> Result<Settling, CutbackReason> {
-        let t = Instant::now();
-        let outcome = guard.update(
-            &self.setup,
-            &x.u,
-            &x.lambda,
-            evals,
-            &mut x.pairing,
-            &mut x.ties,
-        );
-        self.timings.contact_evaluation += t.elapsed();
-        match outcome {
-            Ok((outcome, counts)) => {
-                self.counts += counts;
-                match outcome {
-                    GuardOutcome::Changed => Ok(Settling::Changed),
-                    GuardOutcome::Settled(k) => Ok(Settling::Settled(k)),
-                    GuardOutcome::Stuck { point, xi_m } => {
-                        let point = ContactPointId {
-                            master_segment: x.pairing[point.index()].map(MasterSegmentIndex::index),
-                            ..self.setup.point_id(point)
-                        };
-                        Err(CutbackReason::StuckAtMasterNode { point, xi_m })
-                    }
-                }
-            }
-            Err(f) => Err(CutbackReason::Kernel {
-                point: self.setup.failure_point(&f),
-                error: f.error,
-            }),
-        }
-    }
-
     /// Accepts the iterate `x` with contact evaluations `evals` and active
     /// set `active` (the inactive multipliers are set to exactly zero), with
     /// the points `kept` outside their segment: the points' report.
@@ -425,44 +269,4 @@ impl Run<'_> {
             kept_outside,
         }
     }
-}
-
-/// The unknowns of an attempt's current iterate (copies of the converged
-/// state at the start).
-pub(super) struct Iterate {
-    /// Displacements (all dofs).
-    pub(super) u: Vec<f64>,
-    /// Multipliers.
-    pub(super) lambda: Vec<f64>,
-    /// Each point's master segment.
-    pub(super) pairing: Vec<Option<MasterSegmentIndex>>,
-    /// Node ties (complete formulation).
-    pub(super) ties: Vec<NodeTie>,
-}
-
-impl Iterate {
-    /// Applies the Newton correction: `x -= dx` on the free dofs, the
-    /// multipliers and the ties' multipliers.
-    fn correct(&mut self, dofs: &DofMap, dx: &[f64]) {
-        for (dof, ud) in self.u.iter_mut().enumerate() {
-            if let Some(e) = dofs.eq(DofId::new(dof)) {
-                *ud -= dx[e.index()];
-            }
-        }
-        for (m, l) in self.lambda.iter_mut().enumerate() {
-            *l -= dx[dofs.mult_eq(MultiplierIndex::new(m)).index()];
-        }
-        for (k, tie) in self.ties.iter_mut().enumerate() {
-            tie.mu -= dx[dofs.tie_eq(k).index()];
-        }
-    }
-}
-
-/// The pairing guard's decision at a converged iterate, for the attempt.
-enum Settling {
-    /// Points were re-paired, tied or released: evaluate the same iterate
-    /// again.
-    Changed,
-    /// The pairing stands; the points kept outside their segment.
-    Settled(Vec<ContactPointIndex>),
 }

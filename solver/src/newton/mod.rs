@@ -161,26 +161,45 @@
 //!   numbering, linear solver) and the phases of one Newton iteration on it,
 //!   shared by `Run` and [`IterationProbe`];
 //! * `schedule`: the scheduled load steps and their bisection cut-backs;
-//! * `attempt`: one Newton solve from the converged state to a target load
-//!   factor, ending in an `AttemptOutcome`;
+//! * `treatment`: the seam `ContactTreatment`, how contact is treated: its
+//!   evaluation at an iterate, its decisions at a converged iterate and at
+//!   a converged solve (the module states the mathematics of both);
+//! * `complete`: the complete formulation's treatment (re-projection at
+//!   every iteration, exact derivatives, the pairing guard);
+//! * `frozen`: Types 1–6's treatment (the frozen expansions, built at the
+//!   converged state);
+//! * `attempt`: one attempt from the converged state to a target load
+//!   factor, ending in an `AttemptOutcome`: the Newton loop, the same for
+//!   every treatment;
+//! * `iterate`: the unknowns an attempt works on (a copy of the converged
+//!   state) and Newton's correction of them;
+//! * `outcome`: how an attempt ended (`AttemptOutcome`, `Converged`,
+//!   `Failed`, Types 1–6's `StepEnd`), shared by `attempt`, the treatments,
+//!   `repair` and this module;
 //! * `pairing`: the pairing guard of the complete formulation (re-pairing
 //!   and node ties at converged iterates);
-//! * `repair`: Types 1–6 at a converged step end: re-pairing, the repeat
-//!   with the new pairing's expansions, the Taylor remainder;
+//! * `repair`: Types 1–6's step-end check (`Frozen::check_end`):
+//!   re-pairing, the repeat with the new pairing's expansions, the Taylor
+//!   remainder;
 //! * `reactions`: the support groups' reaction forces at a converged
 //!   state ([`crate::StepRecord::reactions`]);
 //! * `regularize`: the tangent-only multiplier regularisation;
 //! * `probe`: [`IterationProbe`], one iteration for benchmarks.
 //!
-//! Invariants: the converged state of `Run` (`u`, `lambda`, `ties`,
+//! Invariants: the converged state of `Run` (`u`, `lambda`,
 //! `load_factor`) changes only in `Run::commit`, with a converged attempt; a
-//! failed attempt leaves it untouched. Its `pairing` changes there too and,
-//! for Types 1–6, when the Taylor coefficients are built at the converged
-//! state (which re-pairs every point), once per converged state, and when
-//! a step is repeated with re-paired expansions (`repair.rs`; they are
-//! still taken at the converged state).
+//! failed attempt leaves it untouched. Its `pairing` and `ties` change
+//! there too and otherwise only through the treatment: for Types 1–6 when
+//! the Taylor coefficients are built at the converged state (which
+//! re-pairs every point and drops the ties), once per converged state, and
+//! when a step is repeated with re-paired or tied expansions (`repair.rs`;
+//! they are still taken at the converged state).
 
 mod attempt;
+mod complete;
+mod frozen;
+mod iterate;
+mod outcome;
 mod pairing;
 mod probe;
 mod reactions;
@@ -188,23 +207,27 @@ mod regularize;
 mod repair;
 mod schedule;
 mod setup;
+mod treatment;
 
 use std::time::Instant;
 
-use crate::contact::{KernelCounts, NodeTie, Taylor};
+use crate::contact::{KernelCounts, NodeTie};
 use crate::error::SolverError;
 use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
 use crate::monitor::{Monitor, StepProgress};
-use crate::options::SolveOptions;
+use crate::options::{Method, SolveOptions};
 use crate::solution::{
     AccuracyHalving, ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord,
     Timings,
 };
 
-use attempt::{AttemptOutcome, Converged};
+use complete::Complete;
+use frozen::Frozen;
+use outcome::{AttemptOutcome, Converged};
 use schedule::{ScheduledStep, give_up};
 use setup::Setup;
+use treatment::ContactTreatment;
 
 pub use crate::options::DEFAULT_REGULARIZATION;
 pub use probe::{ContactPhase, IterationProbe, IterationSample};
@@ -246,10 +269,9 @@ pub(crate) struct Run<'a> {
     ties: Vec<NodeTie>,
     load_factor: f64,
     energy: f64,
-    taylor: Option<Vec<Option<Taylor>>>,
-    /// Types 1–6: the expansion on the other segment of each tie in
-    /// `ties` (`repair.rs`).
-    tie_taylor: Vec<Taylor>,
+    /// How contact is treated: the complete formulation, or Types 1–6's
+    /// frozen expansions (`treatment.rs`).
+    treatment: Box<dyn ContactTreatment>,
     /// The converged displacements before the last commit (the secant
     /// predictor's, "Prescribed increments").
     previous_u: Option<Vec<f64>>,
@@ -260,7 +282,6 @@ pub(crate) struct Run<'a> {
     iterations: usize,
     failed_iterations: usize,
     repeated_iterations: usize,
-    step_end_projections: u64,
     accuracy_halvings: Vec<AccuracyHalving>,
 }
 
@@ -294,6 +315,11 @@ impl<'a> Run<'a> {
         }
         let setup = Setup::new(model, opts)?;
         let n_points = setup.layout.points.len();
+        // the one place that matches on the method
+        let treatment: Box<dyn ContactTreatment> = match opts.method {
+            Method::Complete => Box::new(Complete::default()),
+            Method::Approx(ty) => Box::new(Frozen::new(ty)),
+        };
         Ok(Run {
             opts,
             monitor,
@@ -306,8 +332,7 @@ impl<'a> Run<'a> {
             setup,
             load_factor: 0.0,
             energy: 0.0,
-            taylor: None,
-            tie_taylor: Vec::new(),
+            treatment,
             previous_u: None,
             records: Vec::new(),
             cutbacks: Vec::new(),
@@ -315,7 +340,6 @@ impl<'a> Run<'a> {
             iterations: 0,
             failed_iterations: 0,
             repeated_iterations: 0,
-            step_end_projections: 0,
             accuracy_halvings: Vec::new(),
         })
     }
@@ -425,7 +449,7 @@ impl<'a> Run<'a> {
         self.load_factor = to;
         self.energy = c.energy;
         self.iterations += c.iterations;
-        self.taylor = None;
+        self.treatment.committed();
         let step_end = c.step_end.unwrap_or_default();
         self.records.push(StepRecord {
             step,
@@ -483,7 +507,7 @@ impl<'a> Run<'a> {
             failed_iterations: self.failed_iterations,
             repeats: self.records.iter().map(|r| r.repeats).sum(),
             repeated_iterations: self.repeated_iterations,
-            step_end_projections: self.step_end_projections,
+            step_end_projections: self.treatment.step_end_projections(),
             accuracy_halvings: self.accuracy_halvings.clone(),
             step_records: self.records.clone(),
             cutbacks: self.cutbacks.clone(),

@@ -15,7 +15,7 @@ use crate::contact::{
 
 use crate::ids::{ContactPointIndex, MasterSegmentIndex};
 
-use super::Setup;
+use super::setup::Setup;
 
 /// What [`PairingGuard::apply`] decided at a converged iterate.
 #[derive(Debug, Clone, PartialEq)]

@@ -16,7 +16,8 @@ use crate::model::Model;
 use crate::options::{Method, SolveOptions};
 use crate::solution::State;
 
-use super::Setup;
+use super::complete;
+use super::setup::Setup;
 
 /// The contact phase of one Newton iteration ([`IterationProbe::contact`]):
 /// a fresh system holding the contact contributions, and which multipliers
@@ -159,16 +160,15 @@ impl<'a> IterationProbe<'a> {
     /// Phase 1: re-projection and Type 6 kernel at every integration point,
     /// active set, and the contact scatter into a fresh system.
     pub fn contact(&self) -> Result<ContactPhase, SolverError> {
-        let (evals, others) = self
-            .setup
-            .evaluate_complete(
-                &self.u,
-                &self.pairing,
-                &[],
-                false,
-                &mut KernelCounts::default(),
-            )
-            .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
+        let (evals, others) = complete::evaluate(
+            &self.setup,
+            &self.u,
+            &self.pairing,
+            &[],
+            false,
+            &mut KernelCounts::default(),
+        )
+        .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
         let (system, active) = self
             .setup
             .contact_system(&evals, &others, &self.lambda, &[], false);

@@ -49,7 +49,7 @@
 //! tied the same way ([`NodeTie`]: potential `lambda w J0 g_A + mu (g_B -
 //! g_A)`, the equation `g_B = g_A`), with the expansions of both segments
 //! taken at the attempt's end (re-taken by the anchor iteration, kept in
-//! `Run::tie_taylor`), and the step is solved again. A tie whose weight
+//! `Frozen::ties`), and the step is solved again. A tie whose weight
 //! `theta = mu / (lambda w J0)` leaves `[0, 1]` at a converged end is
 //! released (to A for `theta < 0`, to B for `theta > 1`) and the point is
 //! never tied again in that attempt. Ties last one step: the next step's
@@ -82,15 +82,18 @@
 //! iterations and results are those without it; its projection calls are
 //! counted apart ([`crate::Solution::step_end_projections`]).
 
-use contact_kernels::ApproxType;
+use std::time::Instant;
 
 use crate::contact::{NodeTie, Paired, Taylor};
 use crate::error::SolverError;
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex};
 use crate::solution::{ContactPointId, CutbackReason};
 
-use super::attempt::{AttemptOutcome, Converged};
-use super::{MAX_REPAIR_REPEATS, Run};
+use super::MAX_REPAIR_REPEATS;
+use super::frozen::Frozen;
+use super::outcome::{AttemptOutcome, Converged};
+use super::setup::Setup;
+use super::treatment::{Context, SolveEnd, StepStart};
 
 /// A point whose expansion was re-taken at an attempt's end (it crossed a
 /// master node) gets it re-taken at the next end while its relative Taylor
@@ -104,145 +107,116 @@ pub(super) const ANCHOR_TOLERANCE: f64 = 1e-8;
 /// step's Taylor remainder.
 pub(super) const MAX_ANCHOR_UPDATES: usize = 4;
 
-/// What the step-end check found for an accepted attempt.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub(super) struct StepEnd {
-    /// Times the step was solved again with a new pairing.
-    pub(super) repeats: usize,
-    /// Largest `|g_true - g~| / L_s` over the active points; `None` when
-    /// no point is active.
-    pub(super) remainder: Option<f64>,
-    /// Points whose pairing at the end differs from their expansion's
-    /// (`master_segment`: the expansion's).
-    pub(super) unsettled: Vec<ContactPointId>,
-}
-
-impl Run<'_> {
-    /// Newton's method to `to` with the current expansions, then the
-    /// step-end check, repeated with new expansions while the pairing
-    /// changes (module docs).
-    pub(super) fn repaired_attempt(
+impl Frozen {
+    /// The step-end check of the converged solve `c` (module docs): the
+    /// attempt's outcome, or a repeat of the step with new expansions
+    /// while the pairing changes.
+    pub(super) fn check_end(
         &mut self,
-        ty: ApproxType,
-        to: f64,
-    ) -> Result<AttemptOutcome, SolverError> {
-        let mut tried: Vec<Vec<Option<MasterSegmentIndex>>> =
-            self.pairing.iter().map(|p| vec![*p]).collect();
-        let mut end = StepEnd::default();
-        // points whose expansion is not the step start's (taken at an
-        // attempt's end, here or in a longer attempt that was cut back)
-        let mut moved = self.anchored_elsewhere();
-        // points released from a tie in this attempt: never tied again
-        let mut released: Vec<ContactPointIndex> = Vec::new();
-        let (mut switches, mut updates) = (0, 0);
-        // the repeat starts Newton from the discarded attempt's end
-        let mut warm = None;
-        loop {
-            let outcome = self.newton_from(to, warm.take())?;
-            let AttemptOutcome::Converged(mut c) = outcome else {
-                return Ok(outcome);
-            };
-            let found = match self.project_end(&c.state.u) {
-                Ok(f) => f,
-                Err(reason) => {
-                    return Ok(AttemptOutcome::cut_back(reason, c.residuals, c.iterations));
-                }
-            };
-            // ties whose weight left [0, 1]: released to that side
-            let mut changed = self.release_ties(&c, &mut released);
-            let taylor = self.taylor.as_deref().unwrap_or(&[]);
-            let mut switch = Vec::new();
-            let mut tie = Vec::new();
-            let mut unsettled = Vec::new();
-            for (i, (t, f)) in taylor.iter().zip(&found).enumerate() {
-                let built = t.map(|t| t.at_start.master);
-                let now = f.map(|(m, _)| m);
-                let i = ContactPointIndex::new(i);
-                if now == built || self.ties.iter().any(|t| t.point == i) {
-                    continue;
-                }
-                if !self.opts.repair || switches >= MAX_REPAIR_REPEATS {
-                    // listed below
-                } else if !tried[i.index()].contains(&now) {
-                    switch.push((i, now));
-                    continue;
-                } else if let (Some(p), Some(o)) = (built, now)
-                    && !released.contains(&i)
-                    && self
-                        .setup
-                        .layout
-                        .shared_node(self.setup.layout.point(i).pair, p, o)
-                        .is_some()
-                {
-                    // cycling at the node between two segments: tie it
-                    tie.push((i, p, o));
-                    continue;
-                }
-                unsettled.push(ContactPointId {
-                    master_segment: built.map(MasterSegmentIndex::index),
-                    ..self.setup.point_id(i)
-                });
+        cx: &mut Context<'_, '_>,
+        mut start: StepStart<'_>,
+        mut c: Converged,
+    ) -> Result<SolveEnd, SolverError> {
+        let found = match self.project_end(cx, start.pairing, &c.state.u) {
+            Ok(f) => f,
+            Err(reason) => {
+                let failed = AttemptOutcome::cut_back(reason, c.residuals, c.iterations);
+                return Ok(SolveEnd::Done(Box::new(failed)));
             }
-            if !switch.is_empty() || !tie.is_empty() {
-                switches += 1;
-            } else if self.opts.repair && !changed && updates < MAX_ANCHOR_UPDATES {
-                // the moved points whose expansion misses their end gap
-                switch = self.unconverged_anchors(&c, &found, &moved);
-                let retied = self.reanchor_ties(ty, &c)?;
-                if !switch.is_empty() || retied {
-                    updates += 1;
-                    changed = true;
-                }
-            }
-            if !switch.is_empty() || !tie.is_empty() || changed {
-                // tied points too: released later in the attempt, they keep
-                // an end-taken expansion and must be re-anchored like a
-                // switched point
-                for i in switch
-                    .iter()
-                    .map(|(i, _)| i)
-                    .chain(tie.iter().map(|(i, ..)| i))
-                {
-                    moved[i.index()] = true;
-                }
-                self.switch_expansions(ty, &switch, &mut tried, &c.state.u)?;
-                self.tie_points(ty, &tie, &c.state.u)?;
-                warm = Some((c.state.u.clone(), c.state.lambda.clone()));
-                end.repeats += 1;
-                self.repeated_iterations += c.iterations;
+        };
+        // ties whose weight left [0, 1]: released to that side
+        let mut changed = self.release_ties(cx.setup, &mut start, &c);
+        let layout = &cx.setup.layout;
+        let mut switch = Vec::new();
+        let mut tie = Vec::new();
+        let mut unsettled = Vec::new();
+        for (i, (t, f)) in self.points.iter().zip(&found).enumerate() {
+            let built = t.map(|t| t.at_start.master);
+            let now = f.map(|(m, _)| m);
+            let i = ContactPointIndex::new(i);
+            if now == built || start.ties.iter().any(|t| t.point == i) {
                 continue;
             }
-            end.unsettled = unsettled;
-            end.remainder = self.remainder(&c, &found);
-            let too_coarse = matches!(
-                (end.remainder, self.opts.taylor_tolerance),
-                (Some(r), Some(tol)) if r > tol
-            );
-            c.step_end = Some(end);
-            return Ok(if too_coarse {
-                AttemptOutcome::TooCoarse(c)
-            } else {
-                AttemptOutcome::Converged(c)
+            if !cx.opts.repair || self.check.switches >= MAX_REPAIR_REPEATS {
+                // listed below
+            } else if !self.check.tried[i.index()].contains(&now) {
+                switch.push((i, now));
+                continue;
+            } else if let (Some(p), Some(o)) = (built, now)
+                && !self.check.released.contains(&i)
+                && layout.shared_node(layout.point(i).pair, p, o).is_some()
+            {
+                // cycling at the node between two segments: tie it
+                tie.push((i, p, o));
+                continue;
+            }
+            unsettled.push(ContactPointId {
+                master_segment: built.map(MasterSegmentIndex::index),
+                ..cx.setup.point_id(i)
             });
         }
+        if !switch.is_empty() || !tie.is_empty() {
+            self.check.switches += 1;
+        } else if cx.opts.repair && !changed && self.check.updates < MAX_ANCHOR_UPDATES {
+            // the moved points whose expansion misses their end gap
+            switch = self.unconverged_anchors(cx.setup, start.ties, &c, &found);
+            let retied = self.reanchor_ties(cx, start.ties, &c)?;
+            if !switch.is_empty() || retied {
+                self.check.updates += 1;
+                changed = true;
+            }
+        }
+        if !switch.is_empty() || !tie.is_empty() || changed {
+            // tied points too: released later in the attempt, they keep
+            // an end-taken expansion and must be re-anchored like a
+            // switched point
+            for i in switch
+                .iter()
+                .map(|(i, _)| i)
+                .chain(tie.iter().map(|(i, ..)| i))
+            {
+                self.check.moved[i.index()] = true;
+            }
+            self.switch_expansions(cx, start.pairing, &switch, &c.state.u)?;
+            self.tie_points(cx, &mut start, &tie, &c.state.u)?;
+            self.check.end.repeats += 1;
+            // the repeat starts Newton from the discarded solve's end
+            return Ok(SolveEnd::Again {
+                warm: (c.state.u, c.state.lambda),
+                spent: c.iterations,
+            });
+        }
+        let mut end = std::mem::take(&mut self.check.end);
+        end.unsettled = unsettled;
+        end.remainder = self.remainder(cx.setup, &c, &found);
+        let too_coarse = matches!(
+            (end.remainder, cx.opts.taylor_tolerance),
+            (Some(r), Some(tol)) if r > tol
+        );
+        c.step_end = Some(end);
+        Ok(SolveEnd::Done(Box::new(if too_coarse {
+            AttemptOutcome::TooCoarse(c)
+        } else {
+            AttemptOutcome::Converged(c)
+        })))
     }
 
     /// Per point: whether its expansion was taken elsewhere than at the
-    /// converged state (its anchor's nodal displacements differ from the
-    /// step start's).
-    fn anchored_elsewhere(&self) -> Vec<bool> {
-        let taylor = self.taylor.as_deref().unwrap_or(&[]);
-        let mut moved: Vec<bool> = taylor
+    /// converged state `start` (its anchor's nodal displacements differ
+    /// from the step start's), or the point is tied.
+    pub(super) fn anchored_elsewhere(&self, start: &StepStart<'_>) -> Vec<bool> {
+        let mut moved: Vec<bool> = self
+            .points
             .iter()
             .map(|t| {
                 t.is_some_and(|t| {
                     (0..8).any(|k| {
-                        t.u0[k] != self.u[DofId::of(t.at_start.nodes[k / 2], k % 2).index()]
+                        t.u0[k] != start.u[DofId::of(t.at_start.nodes[k / 2], k % 2).index()]
                     })
                 })
             })
             .collect();
-        for tie in &self.ties {
+        for tie in start.ties.iter() {
             moved[tie.point.index()] = true;
         }
         moved
@@ -251,11 +225,16 @@ impl Run<'_> {
     /// Releases the ties whose weight `theta` at the end of `c` left
     /// `[0, 1]`: to the paired segment for `theta < 0`, to the other one
     /// (its expansion becomes the point's) for `theta > 1`, as the
-    /// complete formulation does; records them in `released`. Returns
-    /// whether any was released.
-    fn release_ties(&mut self, c: &Converged, released: &mut Vec<ContactPointIndex>) -> bool {
-        let layout = &self.setup.layout;
-        let mut keep = Vec::with_capacity(self.ties.len());
+    /// complete formulation does; records them in the check's
+    /// `released`. Returns whether any was released.
+    fn release_ties(
+        &mut self,
+        setup: &Setup<'_>,
+        start: &mut StepStart<'_>,
+        c: &Converged,
+    ) -> bool {
+        let layout = &setup.layout;
+        let mut keep = Vec::with_capacity(start.ties.len());
         let mut changed = false;
         for (k, tie) in c.state.ties.iter().enumerate() {
             let theta = tie.theta(layout, &c.state.lambda).unwrap_or(-1.0);
@@ -264,17 +243,15 @@ impl Run<'_> {
                 continue;
             }
             if theta > 1.0 {
-                if let Some(taylor) = self.taylor.as_mut() {
-                    taylor[tie.point.index()] = Some(self.tie_taylor[k]);
-                }
-                self.pairing[tie.point.index()] = Some(tie.other);
+                self.points[tie.point.index()] = Some(self.ties[k]);
+                start.pairing[tie.point.index()] = Some(tie.other);
             }
-            released.push(tie.point);
+            self.check.released.push(tie.point);
             changed = true;
         }
         if changed {
+            *start.ties = keep.iter().map(|&k| start.ties[k]).collect();
             self.ties = keep.iter().map(|&k| self.ties[k]).collect();
-            self.tie_taylor = keep.iter().map(|&k| self.tie_taylor[k]).collect();
         }
         changed
     }
@@ -284,30 +261,29 @@ impl Run<'_> {
     /// `anchor` (module docs, "Points cycling at a node").
     fn tie_points(
         &mut self,
-        ty: ApproxType,
+        cx: &mut Context<'_, '_>,
+        start: &mut StepStart<'_>,
         tie: &[(ContactPointIndex, MasterSegmentIndex, MasterSegmentIndex)],
         anchor: &[f64],
     ) -> Result<(), SolverError> {
-        let mesh = &self.setup.model.mesh;
+        let mesh = &cx.setup.model.mesh;
+        let layout = &cx.setup.layout;
         for &(i, p, o) in tie {
-            let layout = &self.setup.layout;
             let (Ok(on_p), Ok(on_o)) = (
-                layout.evaluate_on(mesh, anchor, i, p, ty, &mut self.counts),
-                layout.evaluate_on(mesh, anchor, i, o, ty, &mut self.counts),
+                layout.evaluate_on(mesh, anchor, i, p, self.ty, cx.counts),
+                layout.evaluate_on(mesh, anchor, i, o, self.ty, cx.counts),
             ) else {
                 continue;
             };
-            if let Some(taylor) = self.taylor.as_mut() {
-                taylor[i.index()] = Some(Taylor::at(on_p, anchor));
-            }
-            self.pairing[i.index()] = Some(p);
-            self.ties.push(NodeTie {
+            self.points[i.index()] = Some(Taylor::at(on_p, anchor));
+            start.pairing[i.index()] = Some(p);
+            start.ties.push(NodeTie {
                 point: i,
                 paired: p,
                 other: o,
                 mu: 0.0,
             });
-            self.tie_taylor.push(Taylor::at(on_o, anchor));
+            self.ties.push(Taylor::at(on_o, anchor));
         }
         Ok(())
     }
@@ -315,32 +291,34 @@ impl Run<'_> {
     /// Re-takes both expansions of every tied point at the end of `c`
     /// when either misses that segment's gap there by more than
     /// [`ANCHOR_TOLERANCE`] (relative); returns whether any was re-taken.
-    fn reanchor_ties(&mut self, ty: ApproxType, c: &Converged) -> Result<bool, SolverError> {
-        let mesh = &self.setup.model.mesh;
+    fn reanchor_ties(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        ties: &[NodeTie],
+        c: &Converged,
+    ) -> Result<bool, SolverError> {
+        let setup = cx.setup;
+        let mesh = &setup.model.mesh;
+        let layout = &setup.layout;
         let u = &c.state.u;
         let mut changed = false;
-        for k in 0..self.ties.len() {
-            let tie = self.ties[k];
+        for (k, tie) in ties.iter().enumerate() {
             let i = tie.point;
-            let Some(Some(on_p_taylor)) = self.taylor.as_deref().map(|t| t[i.index()]) else {
+            let Some(on_p_taylor) = self.points[i.index()] else {
                 continue;
             };
-            let layout = &self.setup.layout;
             let (Ok(on_p), Ok(on_o)) = (
-                layout.evaluate_on(mesh, u, i, tie.paired, ty, &mut self.counts),
-                layout.evaluate_on(mesh, u, i, tie.other, ty, &mut self.counts),
+                layout.evaluate_on(mesh, u, i, tie.paired, self.ty, cx.counts),
+                layout.evaluate_on(mesh, u, i, tie.other, self.ty, cx.counts),
             ) else {
                 continue;
             };
             let off = |t: &Taylor, gap: f64| {
-                self.point_remainder(c, i, t, gap)
-                    .is_some_and(|r| r > ANCHOR_TOLERANCE)
+                point_remainder(setup, c, i, t, gap).is_some_and(|r| r > ANCHOR_TOLERANCE)
             };
-            if off(&on_p_taylor, on_p.gap) || off(&self.tie_taylor[k], on_o.gap) {
-                if let Some(taylor) = self.taylor.as_mut() {
-                    taylor[i.index()] = Some(Taylor::at(on_p, u));
-                }
-                self.tie_taylor[k] = Taylor::at(on_o, u);
+            if off(&on_p_taylor, on_p.gap) || off(&self.ties[k], on_o.gap) {
+                self.points[i.index()] = Some(Taylor::at(on_p, u));
+                self.ties[k] = Taylor::at(on_o, u);
                 changed = true;
             }
         }
@@ -348,48 +326,52 @@ impl Run<'_> {
     }
 
     /// Re-pairs every point at the end state `u` by projection, searching
-    /// from its expansion's segment (counted in `step_end_projections`).
-    fn project_end(&mut self, u: &[f64]) -> Result<Vec<Option<Paired>>, CutbackReason> {
-        let t = std::time::Instant::now();
-        let result = self
+    /// from its expansion's segment (`pairing`; counted in
+    /// `step_end_projections`).
+    fn project_end(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        pairing: &[Option<MasterSegmentIndex>],
+        u: &[f64],
+    ) -> Result<Vec<Option<Paired>>, CutbackReason> {
+        let t = Instant::now();
+        let result = cx
             .setup
             .layout
-            .project_all(&self.setup.model.mesh, u, &self.pairing);
-        self.timings.contact_evaluation += t.elapsed();
+            .project_all(&cx.setup.model.mesh, u, pairing);
+        cx.timings.contact_evaluation += t.elapsed();
         match result {
             Ok((found, counts)) => {
                 self.step_end_projections += counts.project + counts.evaluate;
                 Ok(found)
             }
             Err(f) => Err(CutbackReason::Kernel {
-                point: self.setup.failure_point(&f),
+                point: cx.setup.failure_point(&f),
                 error: f.error,
             }),
         }
     }
 
-    /// The points `moved` at an earlier attempt's end that end active on
-    /// the segment of their expansion with a relative remainder above
-    /// [`ANCHOR_TOLERANCE`], each with that segment: their expansion is to
-    /// be re-taken at this end (module docs).
+    /// The points moved at an earlier attempt's end (the check's `moved`)
+    /// that end active on the segment of their expansion with a relative
+    /// remainder above [`ANCHOR_TOLERANCE`], each with that segment: their
+    /// expansion is to be re-taken at this end (module docs).
     fn unconverged_anchors(
         &self,
+        setup: &Setup<'_>,
+        ties: &[NodeTie],
         c: &Converged,
         found: &[Option<Paired>],
-        moved: &[bool],
     ) -> Vec<(ContactPointIndex, Option<MasterSegmentIndex>)> {
-        let taylor = self.taylor.as_deref().unwrap_or(&[]);
         let mut again = Vec::new();
-        for (i, (t, f)) in taylor.iter().zip(found).enumerate() {
-            let (true, Some(t), Some((m, p))) = (moved[i], t, f) else {
+        for (i, (t, f)) in self.points.iter().zip(found).enumerate() {
+            let (true, Some(t), Some((m, p))) = (self.check.moved[i], t, f) else {
                 continue;
             };
             let i = ContactPointIndex::new(i);
             if *m == t.at_start.master
-                && self.ties.iter().all(|t| t.point != i)
-                && self
-                    .point_remainder(c, i, t, p.gap)
-                    .is_some_and(|r| r > ANCHOR_TOLERANCE)
+                && ties.iter().all(|t| t.point != i)
+                && point_remainder(setup, c, i, t, p.gap).is_some_and(|r| r > ANCHOR_TOLERANCE)
             {
                 again.push((i, Some(*m)));
             }
@@ -397,80 +379,79 @@ impl Run<'_> {
         again
     }
 
-    /// The relative Taylor remainder `|g - g~| / L_s` of point `i` with
-    /// expansion `t` and re-projected gap `gap` at the end of `c`; `None`
-    /// when none of its multipliers carries a constraint row.
-    fn point_remainder(
-        &self,
-        c: &Converged,
-        i: ContactPointIndex,
-        t: &Taylor,
-        gap: f64,
-    ) -> Option<f64> {
-        let pt = self.setup.layout.point(i);
-        if !pt.multipliers.iter().any(|m| c.active[m.index()]) {
-            return None;
-        }
-        let mesh = &self.setup.model.mesh;
-        let [a, b] = pt.slave_nodes.map(|n| mesh.node_ref(n));
-        let length = (b[0] - a[0]).hypot(b[1] - a[1]);
-        Some((gap - t.expand(&c.state.u).gap).abs() / length)
-    }
-
     /// Replaces the expansions of the points in `switch` by those of their
     /// new pairing taken at the state `anchor` (the end of the attempt
     /// that found it; `None`: no expansion, the point is inactive); a
     /// point whose new segment the kernel cannot evaluate there keeps its
-    /// expansion. Records every new pairing in `tried`.
+    /// expansion. Records every new pairing in the check's `tried`.
     fn switch_expansions(
         &mut self,
-        ty: ApproxType,
+        cx: &mut Context<'_, '_>,
+        pairing: &mut [Option<MasterSegmentIndex>],
         switch: &[(ContactPointIndex, Option<MasterSegmentIndex>)],
-        tried: &mut [Vec<Option<MasterSegmentIndex>>],
         anchor: &[f64],
     ) -> Result<(), SolverError> {
-        let t = std::time::Instant::now();
-        let mesh = &self.setup.model.mesh;
+        let t = Instant::now();
+        let mesh = &cx.setup.model.mesh;
         let u0 = anchor;
-        let taylor = self.taylor.get_or_insert_with(Vec::new);
         for &(i, now) in switch {
-            if !tried[i.index()].contains(&now) {
-                tried[i.index()].push(now);
+            let tried = &mut self.check.tried[i.index()];
+            if !tried.contains(&now) {
+                tried.push(now);
             }
             let new = match now {
                 None => None,
                 Some(m) => {
-                    match self
+                    match cx
                         .setup
                         .layout
-                        .evaluate_on(mesh, u0, i, m, ty, &mut self.counts)
+                        .evaluate_on(mesh, u0, i, m, self.ty, cx.counts)
                     {
                         Ok(at_start) => Some(Taylor::at(at_start, u0)),
                         Err(_) => continue,
                     }
                 }
             };
-            taylor[i.index()] = new;
-            self.pairing[i.index()] = now;
+            self.points[i.index()] = new;
+            pairing[i.index()] = now;
         }
-        self.timings.contact_evaluation += t.elapsed();
+        cx.timings.contact_evaluation += t.elapsed();
         Ok(())
     }
 
     /// The largest relative Taylor remainder of the converged attempt `c`
     /// over its active points, with `found` the re-projection at its end
     /// (module docs).
-    fn remainder(&self, c: &Converged, found: &[Option<Paired>]) -> Option<f64> {
-        let taylor = self.taylor.as_deref()?;
+    fn remainder(&self, setup: &Setup<'_>, c: &Converged, found: &[Option<Paired>]) -> Option<f64> {
         let mut worst: Option<f64> = None;
-        for (i, (t, f)) in taylor.iter().zip(found).enumerate() {
+        for (i, (t, f)) in self.points.iter().zip(found).enumerate() {
             let (Some(t), Some((_, p))) = (t, f) else {
                 continue;
             };
-            if let Some(r) = self.point_remainder(c, ContactPointIndex::new(i), t, p.gap) {
+            if let Some(r) = point_remainder(setup, c, ContactPointIndex::new(i), t, p.gap) {
                 worst = Some(worst.map_or(r, |w| w.max(r)));
             }
         }
         worst
     }
+}
+
+/// The relative Taylor remainder `|g - g~| / L_s` of point `i` with
+/// expansion `t` and re-projected gap `gap` at the end of `c`; `None`
+/// when none of its multipliers carries a constraint row.
+fn point_remainder(
+    setup: &Setup<'_>,
+    c: &Converged,
+    i: ContactPointIndex,
+    t: &Taylor,
+    gap: f64,
+) -> Option<f64> {
+    let pt = setup.layout.point(i);
+    if !pt.multipliers.iter().any(|m| c.active[m.index()]) {
+        return None;
+    }
+    let mesh = &setup.model.mesh;
+    let [a, b] = pt.slave_nodes.map(|n| mesh.node_ref(n));
+    let length = (b[0] - a[0]).hypot(b[1] - a[1]);
+    Some((gap - t.expand(&c.state.u).gap).abs() / length)
 }

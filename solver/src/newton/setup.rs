@@ -7,9 +7,10 @@
 //! symbolic analysis across iterations). Its methods are the phases of an
 //! iteration, in the order [`super::attempt`] calls them:
 //!
-//! 1. the contact evaluation of the complete formulation
-//!    ([`Setup::evaluate_complete`]; Types 1–6 expand their frozen Taylor
-//!    coefficients instead);
+//! 1. the contact evaluation, by the treatment of contact
+//!    ([`super::treatment`]: the complete formulation re-projects,
+//!    `complete::evaluate`; Types 1–6 expand their frozen Taylor
+//!    coefficients);
 //! 2. the contact system ([`Setup::contact_system`]): active set, contact
 //!    and tie contributions into a fresh [`System`];
 //! 3. the solid elements and the external force ([`Setup::add_solid`]);
@@ -21,8 +22,6 @@
 //! sum of the assembly.
 
 use std::cell::Cell;
-
-use contact_kernels::ApproxType;
 
 use crate::assembly::{
     DofMap, System, add_external, assemble_contact, assemble_solid_lifted, assemble_ties,
@@ -158,61 +157,6 @@ impl<'a> Setup<'a> {
             load_factor,
             error: f.error,
         }
-    }
-
-    /// The complete formulation's contact evaluation at one iterate: the
-    /// Type 6 kernel of every point on its paired master segment (see
-    /// [`ContactLayout::evaluate_paired`]; with `at_once`, re-paired by
-    /// [`ContactLayout::evaluate_all`]) and of every tied point on its
-    /// other segment. A kernel failure may force a re-pairing: the caller
-    /// takes the new pairing from the evaluations' master segments. Kernel
-    /// calls are added to `counts` (on failure only those of the first
-    /// pass).
-    pub(super) fn evaluate_complete(
-        &self,
-        u: &[f64],
-        pairing: &[Option<MasterSegmentIndex>],
-        ties: &[NodeTie],
-        at_once: bool,
-        counts_out: &mut KernelCounts,
-    ) -> Result<(Vec<Option<PointEval>>, Vec<PointEval>), PointFailure> {
-        let mesh = &self.model.mesh;
-        let (mut evals, counts) = if at_once {
-            self.layout
-                .evaluate_all(mesh, u, pairing, ApproxType::Type6)?
-        } else {
-            self.layout
-                .evaluate_paired(mesh, u, pairing, ApproxType::Type6)?
-        };
-        *counts_out += counts;
-        let mut counts = KernelCounts::default();
-        for t in ties {
-            if evals[t.point.index()].is_none_or(|e| e.master != t.paired) {
-                evals[t.point.index()] = Some(
-                    self.layout
-                        .evaluate_on(mesh, u, t.point, t.paired, ApproxType::Type6, &mut counts)
-                        .map_err(|error| PointFailure {
-                            point: t.point,
-                            master_segment: Some(t.paired),
-                            error,
-                        })?,
-                );
-            }
-        }
-        let others = ties
-            .iter()
-            .map(|t| {
-                self.layout
-                    .evaluate_on(mesh, u, t.point, t.other, ApproxType::Type6, &mut counts)
-                    .map_err(|error| PointFailure {
-                        point: t.point,
-                        master_segment: Some(t.other),
-                        error,
-                    })
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        *counts_out += counts;
-        Ok((evals, others))
     }
 
     /// The active multipliers at `(evals, lambda)` (in the `first`

@@ -1,0 +1,183 @@
+//! The complete formulation's treatment of contact (see [`super::treatment`]):
+//! every iteration re-projects each point onto its paired master segment
+//! and evaluates the exact gap with every derivative term
+//! ([`DERIVATIVES`]); the pairing changes at once in the first iterates of
+//! an attempt and otherwise only at a converged iterate, through the
+//! pairing guard (`pairing.rs`; see [`crate::contact`], "Pairing in the
+//! complete formulation" and "Points stuck at a master node"). A converged
+//! solve whose pairing stands ends the attempt: there is no step-end
+//! check.
+//!
+//! Invariant: the evaluations are in point order, the tied points' after
+//! the regular ones in tie order; kernel calls are counted as they are
+//! made.
+
+use std::time::Instant;
+
+use contact_kernels::ApproxType;
+
+use crate::contact::{KernelCounts, NodeTie, PointEval, PointFailure};
+use crate::error::SolverError;
+use crate::ids::MasterSegmentIndex;
+use crate::solution::{ContactPointId, CutbackReason};
+
+use super::iterate::Iterate;
+use super::outcome::{AttemptOutcome, Converged};
+use super::pairing::{GuardOutcome, PairingGuard};
+use super::setup::Setup;
+use super::treatment::{ContactTreatment, Context, Evaluations, Settling, SolveEnd, StepStart};
+
+/// The kernel the complete formulation evaluates: Type 6 drops no term of
+/// the gap's gradient and Hessian, so it is the exact linearisation.
+pub(super) const DERIVATIVES: ApproxType = ApproxType::Type6;
+
+/// The complete formulation (module docs); its state is the current
+/// attempt's pairing guard.
+#[derive(Debug, Default)]
+pub(super) struct Complete {
+    /// The pairing changes of the current attempt.
+    guard: PairingGuard,
+}
+
+impl ContactTreatment for Complete {
+    fn begin_attempt(
+        &mut self,
+        _cx: &mut Context<'_, '_>,
+        _start: StepStart<'_>,
+    ) -> Result<(), SolverError> {
+        self.guard = PairingGuard::default();
+        Ok(())
+    }
+
+    /// The exact kernel at every point (re-pairing every point when
+    /// `at_once`); the iterate takes the pairing the evaluation ended
+    /// with.
+    fn evaluate(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        x: &mut Iterate,
+        at_once: bool,
+    ) -> Result<Evaluations, CutbackReason> {
+        match evaluate(cx.setup, &x.u, &x.pairing, &x.ties, at_once, cx.counts) {
+            Ok((evals, others)) => {
+                x.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+                Ok((evals, others))
+            }
+            Err(f) => Err(CutbackReason::Kernel {
+                point: cx.setup.failure_point(&f),
+                error: f.error,
+            }),
+        }
+    }
+
+    /// The pairing guard's update (see [`PairingGuard::update`]); a stuck
+    /// point or a kernel failure asks for a cut-back.
+    fn settle(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        x: &mut Iterate,
+        evals: &[Option<PointEval>],
+    ) -> Result<Settling, CutbackReason> {
+        let t = Instant::now();
+        let outcome = self.guard.update(
+            cx.setup,
+            &x.u,
+            &x.lambda,
+            evals,
+            &mut x.pairing,
+            &mut x.ties,
+        );
+        cx.timings.contact_evaluation += t.elapsed();
+        match outcome {
+            Ok((outcome, counts)) => {
+                *cx.counts += counts;
+                match outcome {
+                    GuardOutcome::Changed => Ok(Settling::Changed),
+                    GuardOutcome::Settled(k) => Ok(Settling::Settled(k)),
+                    GuardOutcome::Stuck { point, xi_m } => {
+                        let point = ContactPointId {
+                            master_segment: x.pairing[point.index()].map(MasterSegmentIndex::index),
+                            ..cx.setup.point_id(point)
+                        };
+                        Err(CutbackReason::StuckAtMasterNode { point, xi_m })
+                    }
+                }
+            }
+            Err(f) => Err(CutbackReason::Kernel {
+                point: cx.setup.failure_point(&f),
+                error: f.error,
+            }),
+        }
+    }
+
+    fn end_solve(
+        &mut self,
+        _cx: &mut Context<'_, '_>,
+        _start: StepStart<'_>,
+        c: Converged,
+    ) -> Result<SolveEnd, SolverError> {
+        Ok(SolveEnd::Done(Box::new(AttemptOutcome::Converged(c))))
+    }
+
+    fn committed(&mut self) {}
+
+    fn step_end_projections(&self) -> u64 {
+        0
+    }
+}
+
+/// The complete formulation's contact evaluation at one iterate: the
+/// [`DERIVATIVES`] kernel of every point on its paired master segment
+/// (see [`ContactLayout::evaluate_paired`](crate::contact::ContactLayout::evaluate_paired);
+/// with `at_once`, re-paired by
+/// [`ContactLayout::evaluate_all`](crate::contact::ContactLayout::evaluate_all))
+/// and of every tied point on its other segment. A kernel failure may
+/// force a re-pairing: the caller takes the new pairing from the
+/// evaluations' master segments. Kernel calls are added to `counts_out`
+/// (on failure only those of the first pass). Shared by the solve and
+/// [`super::IterationProbe`].
+pub(super) fn evaluate(
+    setup: &Setup<'_>,
+    u: &[f64],
+    pairing: &[Option<MasterSegmentIndex>],
+    ties: &[NodeTie],
+    at_once: bool,
+    counts_out: &mut KernelCounts,
+) -> Result<Evaluations, PointFailure> {
+    let mesh = &setup.model.mesh;
+    let layout = &setup.layout;
+    let (mut evals, counts) = if at_once {
+        layout.evaluate_all(mesh, u, pairing, DERIVATIVES)?
+    } else {
+        layout.evaluate_paired(mesh, u, pairing, DERIVATIVES)?
+    };
+    *counts_out += counts;
+    let mut counts = KernelCounts::default();
+    for t in ties {
+        if evals[t.point.index()].is_none_or(|e| e.master != t.paired) {
+            evals[t.point.index()] = Some(
+                layout
+                    .evaluate_on(mesh, u, t.point, t.paired, DERIVATIVES, &mut counts)
+                    .map_err(|error| PointFailure {
+                        point: t.point,
+                        master_segment: Some(t.paired),
+                        error,
+                    })?,
+            );
+        }
+    }
+    let others = ties
+        .iter()
+        .map(|t| {
+            layout
+                .evaluate_on(mesh, u, t.point, t.other, DERIVATIVES, &mut counts)
+                .map_err(|error| PointFailure {
+                    point: t.point,
+                    master_segment: Some(t.other),
+                    error,
+                })
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    *counts_out += counts;
+    Ok((evals, others))
+}

@@ -1,0 +1,175 @@
+//! Types 1–6: frozen second-order expansions of one approximation type (see
+//! [`super::treatment`] and [`crate::contact`], "Types 1–6: Taylor
+//! coefficients frozen per load step").
+//!
+//! At the first attempt from a converged state every point is re-paired
+//! and the type's kernel there gives its [`Taylor`] expansion; the Newton
+//! iterations expand it and never re-project. The expansions stay across
+//! the attempts from that state (a cut-back keeps them, with the
+//! re-anchored ones of a longer attempt) and are rebuilt after a commit.
+//! At a converged solve the step-end check (`repair.rs`) re-pairs the
+//! points, replaces the expansions of those that changed segment, ties
+//! those cycling at a master node, and asks for the step to be solved
+//! again; a tie lasts one step (the expansions are built without ties).
+//!
+//! Invariant: `points` has one entry per contact point, in point order,
+//! and `ties` one per tie of the run's converged state, in tie order,
+//! whenever an attempt is in progress.
+
+use std::time::Instant;
+
+use contact_kernels::ApproxType;
+
+use crate::contact::{PointEval, Taylor};
+use crate::error::SolverError;
+use crate::ids::{ContactPointIndex, MasterSegmentIndex};
+use crate::solution::CutbackReason;
+
+use super::iterate::Iterate;
+use super::outcome::{Converged, StepEnd};
+use super::treatment::{ContactTreatment, Context, Evaluations, Settling, SolveEnd, StepStart};
+
+/// The frozen expansions of one type (module docs).
+#[derive(Debug)]
+pub(super) struct Frozen {
+    /// The approximation type whose kernel gives the expansions.
+    pub(super) ty: ApproxType,
+    /// Each point's expansion (`None`: the point is unpaired).
+    pub(super) points: Vec<Option<Taylor>>,
+    /// The expansion on the other segment of each tie of the run's
+    /// converged state (`repair.rs`).
+    pub(super) ties: Vec<Taylor>,
+    /// Whether the expansions belong to the run's converged state (false
+    /// before the first attempt and after a commit).
+    current: bool,
+    /// The step-end check's state within the current attempt.
+    pub(super) check: Check,
+    /// Projection and kernel calls of the step-end checks.
+    pub(super) step_end_projections: u64,
+}
+
+/// The step-end check's state within one attempt (`repair.rs`).
+#[derive(Debug, Default)]
+pub(super) struct Check {
+    /// Per point, the pairings its expansion has had in the attempt.
+    pub(super) tried: Vec<Vec<Option<MasterSegmentIndex>>>,
+    /// What the check has found so far (the repeats).
+    pub(super) end: StepEnd,
+    /// Per point: whether its expansion is not the step start's (taken at
+    /// an attempt's end, here or in a longer attempt that was cut back).
+    pub(super) moved: Vec<bool>,
+    /// Points released from a tie in this attempt: never tied again.
+    pub(super) released: Vec<ContactPointIndex>,
+    /// Repeats for pairing changes.
+    pub(super) switches: usize,
+    /// Repeats for anchor updates.
+    pub(super) updates: usize,
+}
+
+impl Frozen {
+    /// The expansions of type `ty`, built at the first attempt.
+    pub(super) fn new(ty: ApproxType) -> Frozen {
+        Frozen {
+            ty,
+            points: Vec::new(),
+            ties: Vec::new(),
+            current: false,
+            check: Check::default(),
+            step_end_projections: 0,
+        }
+    }
+
+    /// Builds the expansions at the converged state, re-pairing every
+    /// point; the converged state's ties are dropped (a tie of Types 1–6
+    /// lasts one step, `repair.rs`).
+    fn build(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        start: &mut StepStart<'_>,
+    ) -> Result<(), SolverError> {
+        start.ties.clear();
+        self.ties.clear();
+        let t = Instant::now();
+        let (evals, counts) = cx
+            .setup
+            .layout
+            .evaluate_all(&cx.setup.model.mesh, start.u, start.pairing, self.ty)
+            .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
+        *cx.counts += counts;
+        *start.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+        self.points = evals
+            .into_iter()
+            .map(|e| e.map(|at_start| Taylor::at(at_start, start.u)))
+            .collect();
+        self.current = true;
+        cx.timings.contact_evaluation += t.elapsed();
+        Ok(())
+    }
+}
+
+impl ContactTreatment for Frozen {
+    /// Builds the expansions if the converged state has none yet, and
+    /// starts the attempt's step-end check.
+    fn begin_attempt(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        mut start: StepStart<'_>,
+    ) -> Result<(), SolverError> {
+        if !self.current {
+            self.build(cx, &mut start)?;
+        }
+        self.check = Check {
+            tried: start.pairing.iter().map(|p| vec![*p]).collect(),
+            end: StepEnd::default(),
+            moved: self.anchored_elsewhere(&start),
+            released: Vec::new(),
+            switches: 0,
+            updates: 0,
+        };
+        Ok(())
+    }
+
+    /// Every point's expansion and every tie's second one at `x`.
+    fn evaluate(
+        &mut self,
+        _cx: &mut Context<'_, '_>,
+        x: &mut Iterate,
+        _at_once: bool,
+    ) -> Result<Evaluations, CutbackReason> {
+        let evals: Vec<Option<PointEval>> = self
+            .points
+            .iter()
+            .map(|t| t.map(|t| t.expand(&x.u)))
+            .collect();
+        let others = self.ties.iter().map(|t| t.expand(&x.u)).collect();
+        Ok((evals, others))
+    }
+
+    /// The pairing of a frozen step stands until its end.
+    fn settle(
+        &mut self,
+        _cx: &mut Context<'_, '_>,
+        _x: &mut Iterate,
+        _evals: &[Option<PointEval>],
+    ) -> Result<Settling, CutbackReason> {
+        Ok(Settling::Settled(Vec::new()))
+    }
+
+    /// The step-end check (`repair.rs`).
+    fn end_solve(
+        &mut self,
+        cx: &mut Context<'_, '_>,
+        start: StepStart<'_>,
+        c: Converged,
+    ) -> Result<SolveEnd, SolverError> {
+        self.check_end(cx, start, c)
+    }
+
+    fn committed(&mut self) {
+        self.current = false;
+    }
+
+    fn step_end_projections(&self) -> u64 {
+        self.step_end_projections
+    }
+}
