@@ -1,15 +1,20 @@
-//! The solid-element seam: the element kinds a mesh holds (the 4-node
-//! quadrilateral of [`crate::quad`] and the 3-node triangle of
-//! [`crate::tri`]), their connectivity, their reference geometry and their
-//! response, so that the mesh, the assembly, the stresses and the output
-//! dispatch through one place instead of branching on the kind everywhere.
+//! The solid elements and their seam: the element kinds a mesh holds (the
+//! 4-node quadrilateral of [`quad`] and the 3-node triangle of [`tri`]),
+//! their connectivity, their reference geometry and their response, so that
+//! the mesh, the assembly, the stresses and the output dispatch through one
+//! place instead of branching on the kind everywhere. Each kind owns its
+//! VTK cell type ([`ElementKind::vtk_cell_type`]).
 //!
-//! Both elements are total-Lagrangian St Venant–Kirchhoff elements with the
-//! same point kinematics (`kinematics.rs`); they differ in their shape
-//! functions and integration rule only (Q4: bilinear, 2x2 Gauss; T3:
-//! linear, one point, exact). An element with `n` nodes has `2n` dofs,
-//! ordered `[u1x, u1y, u2x, u2y, ...]`; element buffers are sized for the
-//! largest element (8 dofs) and a triangle uses their first 6 entries.
+//! Every element is a total-Lagrangian St Venant–Kirchhoff element with
+//! the same point kinematics ([`kinematics`]) and one integrand
+//! ([`solid`]: `B^T D B`, the geometric stiffness, the energy and the
+//! stresses, written once); they differ in their shape functions and
+//! integration rule only (Q4: bilinear, 2x2 Gauss; T3: linear, one point,
+//! exact). The material is [`material`], the stress measures [`Stress`].
+//! A 2D element with `n` nodes has `2n` dofs, ordered
+//! `[u1x, u1y, u2x, u2y, ...]`; the seam's element buffers are sized for
+//! the largest 2D element (8 dofs) and a triangle uses their first 6
+//! entries.
 //!
 //! Invariants: an [`Element`]'s nodes run counter-clockwise; an
 //! [`ElementGeometry`] exists only for a positive reference Jacobian (see
@@ -22,15 +27,40 @@ use std::fmt;
 use std::ops::Deref;
 
 use crate::ids::NodeId;
-use crate::material::Material;
-use crate::quad::{
-    InvalidElement, QuadGeometry, QuadResponse, QuadStress, quad_energy, quad_mean_stress,
-    quad_point_stresses, quad_response,
+
+pub mod kinematics;
+pub mod material;
+pub mod quad;
+pub mod solid;
+mod stress;
+pub mod tri;
+
+use material::Material;
+use quad::{
+    QuadGeometry, QuadResponse, quad_energy, quad_mean_stress, quad_point_stresses, quad_response,
 };
-use crate::tri::{
+pub use stress::Stress;
+use tri::{
     TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_point_stresses, tri_response,
 };
-use crate::vtk::{VTK_QUAD, VTK_TRIANGLE};
+
+/// VTK cell type of a 4-node quadrilateral.
+pub const VTK_QUAD: u8 = 9;
+
+/// VTK cell type of a 3-node triangle.
+pub const VTK_TRIANGLE: u8 = 5;
+
+/// A reference element whose Jacobian is not positive somewhere (inverted,
+/// degenerate, badly distorted, or with a non-finite coordinate).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error(
+    "the reference Jacobian determinant is {det_j0:e}, not positive (an inverted, degenerate or non-finite element)"
+)]
+pub struct InvalidElement {
+    /// The smallest `detJ0` over the element's integration points (NaN
+    /// for a non-finite coordinate).
+    pub det_j0: f64,
+}
 
 /// The largest number of dofs of an element (the quadrilateral's 8).
 pub const MAX_ELEMENT_DOFS: usize = 8;
@@ -38,9 +68,9 @@ pub const MAX_ELEMENT_DOFS: usize = 8;
 /// The kind of a solid element.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ElementKind {
-    /// The 4-node bilinear quadrilateral ([`crate::quad`]).
+    /// The 4-node bilinear quadrilateral ([`quad`]).
     Quad4,
-    /// The 3-node linear triangle ([`crate::tri`]).
+    /// The 3-node linear triangle ([`tri`]).
     Tri3,
 }
 
@@ -217,11 +247,7 @@ impl ElementGeometry {
 
     /// The stresses at each of its integration points (four for a
     /// quadrilateral, one for a triangle).
-    pub fn point_stresses(
-        &self,
-        u: &[f64; MAX_ELEMENT_DOFS],
-        material: &Material,
-    ) -> Vec<QuadStress> {
+    pub fn point_stresses(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> Vec<Stress> {
         match self {
             ElementGeometry::Quad4(g) => quad_point_stresses(g, u, material).to_vec(),
             ElementGeometry::Tri3(g) => tri_point_stresses(g, &tri_dofs(u), material).to_vec(),
@@ -229,7 +255,7 @@ impl ElementGeometry {
     }
 
     /// The element's stresses averaged over its integration points.
-    pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> QuadStress {
+    pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> Stress {
         match self {
             ElementGeometry::Quad4(g) => quad_mean_stress(g, u, material),
             ElementGeometry::Tri3(g) => tri_mean_stress(g, &tri_dofs(u), material),

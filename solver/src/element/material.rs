@@ -147,7 +147,7 @@ mod tests {
             young: 1000.0,
             poisson: 0.3,
             model: PlaneModel::PlaneStress,
-            kinematics: crate::material::Kinematics::Finite,
+            kinematics: Kinematics::Finite,
         };
         let d = m.d_matrix();
         let c = 1000.0 / 0.91;
@@ -163,14 +163,14 @@ mod tests {
             young: 1.0,
             poisson: 0.5,
             model: PlaneModel::PlaneStrain,
-            kinematics: crate::material::Kinematics::Finite,
+            kinematics: Kinematics::Finite,
         };
         assert!(m.check().is_err());
         let m = Material {
             young: -1.0,
             poisson: 0.3,
             model: PlaneModel::PlaneStress,
-            kinematics: crate::material::Kinematics::Finite,
+            kinematics: Kinematics::Finite,
         };
         assert!(m.check().is_err());
     }
