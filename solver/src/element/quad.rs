@@ -26,10 +26,10 @@
 //! derivative of `B^T` at fixed `S`), and `f_int` the exact gradient of `U`.
 //! The point's sums are [`super::solid`]'s, shared with every element.
 
-use super::InvalidElement;
 use super::material::Material;
 use super::solid::{SolidResponse, add_point, point_energy, point_stress};
 use super::stress::Stress;
+use super::{ElementKind, InvalidElement, SolidElement};
 
 /// The 2x2 Gauss points on the parent square (weights are all one).
 pub const GAUSS_2X2: [[f64; 2]; 4] = {
@@ -153,6 +153,34 @@ pub fn quad_point_stresses(geom: &QuadGeometry, u: &[f64; 8], material: &Materia
 /// Stresses averaged over the Gauss points (equal weights).
 pub fn quad_mean_stress(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> Stress {
     Stress::mean(&quad_point_stresses(geom, u, material))
+}
+
+impl SolidElement<2, 4, 8, 3> for QuadGeometry {
+    const KIND: ElementKind = ElementKind::Quad4;
+
+    fn from_reference(x_ref: &[[f64; 2]; 4]) -> Result<Self, InvalidElement> {
+        QuadGeometry::new(x_ref)
+    }
+
+    fn measure_ref(&self) -> f64 {
+        self.area_ref()
+    }
+
+    fn response(&self, u: &[f64; 8], material: &Material) -> SolidResponse<8> {
+        quad_response(self, u, material)
+    }
+
+    fn energy(&self, u: &[f64; 8], material: &Material) -> f64 {
+        quad_energy(self, u, material)
+    }
+
+    fn point_stresses(&self, u: &[f64; 8], material: &Material) -> Vec<Stress<3>> {
+        quad_point_stresses(self, u, material).to_vec()
+    }
+
+    fn mean_stress(&self, u: &[f64; 8], material: &Material) -> Stress<3> {
+        quad_mean_stress(self, u, material)
+    }
 }
 
 #[cfg(test)]

@@ -41,10 +41,10 @@
 //!
 //! [`quad`]: super::quad
 
-use super::InvalidElement;
 use super::material::Material;
 use super::solid::{SolidResponse, add_point, point_energy, point_stress};
 use super::stress::Stress;
+use super::{ElementKind, InvalidElement, SolidElement};
 
 /// The smallest admissible `detJ0 / l_max^2` (`l_max` the longest reference
 /// edge): below it the element's area is at the level of the rounding error
@@ -135,6 +135,34 @@ pub fn tri_point_stresses(geom: &TriGeometry, u: &[f64; 6], material: &Material)
 pub fn tri_mean_stress(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> Stress {
     let [s] = tri_point_stresses(geom, u, material);
     s
+}
+
+impl SolidElement<2, 3, 6, 3> for TriGeometry {
+    const KIND: ElementKind = ElementKind::Tri3;
+
+    fn from_reference(x_ref: &[[f64; 2]; 3]) -> Result<Self, InvalidElement> {
+        TriGeometry::new(x_ref)
+    }
+
+    fn measure_ref(&self) -> f64 {
+        self.area_ref()
+    }
+
+    fn response(&self, u: &[f64; 6], material: &Material) -> SolidResponse<6> {
+        tri_response(self, u, material)
+    }
+
+    fn energy(&self, u: &[f64; 6], material: &Material) -> f64 {
+        tri_energy(self, u, material)
+    }
+
+    fn point_stresses(&self, u: &[f64; 6], material: &Material) -> Vec<Stress<3>> {
+        tri_point_stresses(self, u, material).to_vec()
+    }
+
+    fn mean_stress(&self, u: &[f64; 6], material: &Material) -> Stress<3> {
+        tri_mean_stress(self, u, material)
+    }
 }
 
 #[cfg(test)]
