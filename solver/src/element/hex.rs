@@ -97,7 +97,7 @@ fn inverse(m: &[[f64; 3]; 3], det: f64) -> [[f64; 3]; 3] {
 /// `G_a = J0^-T dN_a/dxi` of the element with reference coordinates
 /// `x_ref` at the parent gradients `dn`, with `detJ0`; `None` when `detJ0`
 /// is not positive.
-pub(crate) fn reference_gradients<const N: usize>(
+fn reference_gradients<const N: usize>(
     x_ref: &[[f64; 3]; N],
     dn: &[[f64; 3]; N],
 ) -> (f64, Option<[[f64; 3]; N]>) {
@@ -147,9 +147,12 @@ impl HexGeometry {
         let mut worst = f64::INFINITY;
         for (gp, p) in GAUSS_2X2X2.iter().enumerate() {
             let (d, g) = reference_gradients(x_ref, &parent_gradients(p));
-            if !(d >= worst) {
-                worst = d;
-            }
+            // the smallest, and NaN once one is NaN (an overflow)
+            worst = if d.is_nan() || worst.is_nan() {
+                f64::NAN
+            } else {
+                worst.min(d)
+            };
             if let Some(g) = g {
                 grads_ref[gp] = g;
                 weight_ref[gp] = d;

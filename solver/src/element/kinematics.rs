@@ -19,8 +19,12 @@
 //! `E = (H + H^T)/2`, so `S_v` is the Cauchy stress of linear elasticity
 //! and the element drops its geometric stiffness.
 //!
-//! One function serves every element of a dimension, so a homogeneous
-//! deformation gives every element type the same bits. Every sum starts
+//! One function serves every element of a dimension, so the same `F`
+//! gives every element type the same stress bits (a homogeneous
+//! deformation gives each element its `F` up to the rounding of its
+//! reference gradients: exact for a triangle or tetrahedron with dyadic
+//! coordinates, not at the quadrilateral's and hexahedron's Gauss points,
+//! `1/sqrt 3` being irrational). Every sum starts
 //! from its first term and runs in index order, so in 2D the operations
 //! are exactly those of the two-dimensional formulas written out.
 

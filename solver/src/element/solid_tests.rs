@@ -629,7 +629,10 @@ fn invalid_3d_elements_are_refused() {
         assert!(TetGeometry::new(&t).unwrap_err().det_j0.is_nan());
     }
 
+    // coordinates whose Jacobian overflows
+    assert!(HexGeometry::new(&x.map(|p| p.map(|v| v * 1e200))).is_err());
     let t = random_tet(&mut rng);
+    assert!(TetGeometry::new(&t.map(|p| p.map(|v| v * 1e200))).is_err());
     let swapped = [t[0], t[2], t[1], t[3]];
     assert!(TetGeometry::new(&swapped).unwrap_err().det_j0 < 0.0);
     let coplanar = [
