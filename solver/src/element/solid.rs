@@ -20,7 +20,7 @@
 //!
 //! `K` is the exact derivative of `f_int` (the geometric term is the
 //! derivative of `B^T` at fixed `S`), and `f_int` the exact gradient of `U`.
-//! Only the upper triangle of `K` is summed; [`SolidResponse::symmetrize`]
+//! Only the upper triangle of `K` is summed; `SolidResponse::symmetrize`
 //! mirrors it once every point is in.
 
 use super::kinematics::{PointState, check_dims, det, dot, point_state, tensor, voigt};
