@@ -28,7 +28,7 @@ use std::path::Path;
 use std::process::ExitCode;
 
 use solver::contact::Integration;
-use solver::quad::QuadStress;
+use solver::element::Stress;
 use solver::{Formulation, Method, Scene, Solution, SolveOptions, solve};
 
 /// The pressure of the scene (per unit reference length).
@@ -51,7 +51,7 @@ fn errors(sol: &Solution) -> Errors {
     let points = sol.point_stresses();
     let n = points.len() as f64;
     let mut stress: f64 = 0.0;
-    let measures: [fn(&QuadStress) -> [f64; 3]; 2] = [|s| s.pk2, |s| s.cauchy];
+    let measures: [fn(&Stress) -> [f64; 3]; 2] = [|s| s.pk2, |s| s.cauchy];
     for measure in measures {
         let mean: [f64; 3] =
             std::array::from_fn(|c| points.iter().map(|p| measure(p)[c]).sum::<f64>() / n);

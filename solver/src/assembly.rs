@@ -9,7 +9,7 @@
 //! r_la = sum_gp w J0 N_a g        (active multiplier)  or  l_a  (inactive)
 //! ```
 //!
-//! and the tangent its exact derivative (see [`crate::quad`], [`crate::tri`] and
+//! and the tangent its exact derivative (see [`crate::element::solid`] and
 //! [`crate::contact`]). Element matrices are computed in parallel
 //! (`crate::par`), collected in element order and scattered sequentially
 //! into coordinate triplets, so the result is deterministic. The triplet index order depends

@@ -4,8 +4,8 @@
 //!
 //! * Solid: total-Lagrangian 4-node quadrilaterals (2x2 Gauss) and 3-node
 //!   triangles (one point), mixed in one mesh, St Venant–Kirchhoff, plane
-//!   stress or plane strain, unit thickness ([`quad`], [`tri`], [`element`],
-//!   [`material`]).
+//!   stress or plane strain, unit thickness ([`element`]: [`element::quad`],
+//!   [`element::tri`], [`material`]).
 //! * Contact: 2-point (or `n`-point) Gauss on the slave segments in the
 //!   reference configuration, multipliers at slave nodes, persistent or
 //!   unilateral ([`contact`]).
@@ -18,7 +18,7 @@
 //!
 //! The modules, bottom up: [`ids`] (typed indices) and [`options`] (what a
 //! solve is asked to do; modules import it from there, not from the crate
-//! root); [`material`], [`quad`], [`tri`], [`element`], [`mesh`], [`model`] (the discrete problem;
+//! root); [`element`] (with [`material`]), [`mesh`], [`model`] (the discrete problem;
 //! [`scene`] builds it from TOML); [`contact`] and [`assembly`] (one Newton
 //! system); [`linear`] (its solution); [`newton`] (the load schedule and
 //! the iterations), which fills in the report types of [`solution`]
@@ -43,9 +43,8 @@ pub mod contact;
 pub mod element;
 mod error;
 pub mod ids;
-mod kinematics;
 pub mod linear;
-pub mod material;
+pub use element::material;
 pub mod memory;
 pub mod mesh;
 pub mod model;
@@ -54,10 +53,8 @@ pub mod newton;
 pub mod options;
 pub mod out;
 mod par;
-pub mod quad;
 pub mod scene;
 pub mod solution;
-pub mod tri;
 pub mod vtk;
 
 #[cfg(test)]

@@ -15,11 +15,11 @@ use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
+use crate::element::Stress;
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
 use crate::options::Method;
-use crate::quad::QuadStress;
 
 /// Identifies one slave integration point.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -372,7 +372,7 @@ impl Solution {
     /// The stresses at every integration point of every element of the
     /// final state, element after element (four per quadrilateral, one per
     /// triangle).
-    pub fn point_stresses(&self) -> Vec<crate::quad::QuadStress> {
+    pub fn point_stresses(&self) -> Vec<Stress> {
         let u: Vec<f64> = self
             .final_state
             .displacements
@@ -475,7 +475,7 @@ impl Solution {
     }
 
     /// Element stresses (averaged over the Gauss points) in `state`.
-    pub fn element_stresses(&self, state: &State) -> Vec<QuadStress> {
+    pub fn element_stresses(&self, state: &State) -> Vec<Stress> {
         let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
         self.mesh
             .element_ids()

@@ -3,8 +3,9 @@
 //! One file per state: the points are the **reference** coordinates (z = 0)
 //! and the point field `displacement` (3 components, z = 0) moves them to the
 //! deformed configuration (ParaView: *Warp By Vector*). Cells are the
-//! mesh's elements, quadrilaterals (`VTK_QUAD = 9`) and triangles
-//! (`VTK_TRIANGLE = 5`), in element order. Fields:
+//! mesh's elements, each with its kind's cell type
+//! ([`crate::element::ElementKind::vtk_cell_type`]: quadrilaterals 9,
+//! triangles 5), in element order. Fields:
 //!
 //! * point data: `displacement`, `multiplier` (the Lagrange multiplier at
 //!   slave nodes, summed over pairs, zero elsewhere), `contact_pressure`
@@ -36,12 +37,6 @@ use std::path::Path;
 
 use crate::mesh::NodeNumbering;
 use crate::solution::{Solution, State};
-
-/// VTK cell type of a 4-node quadrilateral.
-pub const VTK_QUAD: u8 = 9;
-
-/// VTK cell type of a 3-node triangle.
-pub const VTK_TRIANGLE: u8 = 5;
 
 /// Writes the final state of `solution` to `path`.
 pub fn write_vtu(path: impl AsRef<Path>, solution: &Solution) -> std::io::Result<()> {

@@ -35,11 +35,11 @@ use std::ops::Range;
 
 use serde::Serialize;
 
+use crate::element::InvalidElement;
 use crate::element::MAX_ELEMENT_DOFS;
 pub use crate::element::{Element, ElementGeometry, ElementKind};
 use crate::ids::{DofId, ElementId, NodeId};
 use crate::material::Material;
-use crate::quad::InvalidElement;
 
 pub mod block;
 pub mod block3d;

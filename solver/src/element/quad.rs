@@ -24,9 +24,12 @@
 //!
 //! `K` is the exact derivative of `f_int` (the geometric term is the
 //! derivative of `B^T` at fixed `S`), and `f_int` the exact gradient of `U`.
+//! The point's sums are [`super::solid`]'s, shared with every element.
 
-use crate::kinematics::{PointState, point_state};
-use crate::material::Material;
+use super::material::Material;
+use super::solid::{SolidResponse, add_point, point_energy, point_stress};
+use super::stress::Stress;
+use super::{ElementKind, InvalidElement, SolidElement};
 
 /// The 2x2 Gauss points on the parent square (weights are all one).
 pub const GAUSS_2X2: [[f64; 2]; 4] = {
@@ -57,13 +60,6 @@ pub struct QuadGeometry {
     pub grads_ref: [[[f64; 2]; 4]; 4],
     /// `w detJ0` per Gauss point (the reference area weight).
     pub weight_ref: [f64; 4],
-}
-
-/// A reference element whose Jacobian is not positive somewhere.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InvalidElement {
-    /// The smallest `detJ0` over the Gauss points.
-    pub det_j0: f64,
 }
 
 impl QuadGeometry {
@@ -118,72 +114,25 @@ impl QuadGeometry {
     }
 }
 
-/// Internal force, tangent stiffness and strain energy of one element.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct QuadResponse {
-    /// `f_int` (8, ordered `[u1x, u1y, u2x, ..., u4y]`).
-    pub f_int: [f64; 8],
-    /// The symmetric tangent `d f_int / d u` (8x8).
-    pub k: [[f64; 8]; 8],
-    /// The strain energy `U`.
-    pub energy: f64,
-}
+/// Internal force, tangent stiffness and strain energy of one element
+/// (`f_int` ordered `[u1x, u1y, u2x, ..., u4y]`, the 8x8 tangent).
+pub type QuadResponse = SolidResponse<8>;
 
 /// Evaluates the element at displacements `u` (reference frame).
 pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> QuadResponse {
     let d = material.d_matrix();
-    let mut out = QuadResponse {
-        f_int: [0.0; 8],
-        k: [[0.0; 8]; 8],
-        energy: 0.0,
-    };
+    let mut out = SolidResponse::starting_at(0.0);
     for gp in 0..4 {
-        let g = &geom.grads_ref[gp];
-        let w = geom.weight_ref[gp];
-        let PointState { f, e_v, s_v } = point_state(g, u, &d, material.kinematics);
-        let mut b = [[0.0; 8]; 3];
-        for a in 0..4 {
-            for i in 0..2 {
-                b[0][2 * a + i] = f[i][0] * g[a][0];
-                b[1][2 * a + i] = f[i][1] * g[a][1];
-                b[2][2 * a + i] = f[i][0] * g[a][1] + f[i][1] * g[a][0];
-            }
-        }
-        out.energy += w * 0.5 * (e_v[0] * s_v[0] + e_v[1] * s_v[1] + e_v[2] * s_v[2]);
-        // D B (3x8)
-        let mut db = [[0.0; 8]; 3];
-        for r in 0..3 {
-            for c in 0..8 {
-                db[r][c] = d[r][0] * b[0][c] + d[r][1] * b[1][c] + d[r][2] * b[2][c];
-            }
-        }
-        for p in 0..8 {
-            out.f_int[p] += w * (b[0][p] * s_v[0] + b[1][p] * s_v[1] + b[2][p] * s_v[2]);
-            for q in p..8 {
-                let v = b[0][p] * db[0][q] + b[1][p] * db[1][q] + b[2][p] * db[2][q];
-                out.k[p][q] += w * v;
-            }
-        }
-        if material.kinematics.geometric_stiffness() {
-            for a in 0..4 {
-                for bn in a..4 {
-                    let sg = [
-                        s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
-                        s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
-                    ];
-                    let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
-                    for i in 0..2 {
-                        out.k[2 * a + i][2 * bn + i] += geo;
-                    }
-                }
-            }
-        }
+        add_point(
+            &mut out,
+            &geom.grads_ref[gp],
+            geom.weight_ref[gp],
+            u,
+            &d,
+            material,
+        );
     }
-    for p in 0..8 {
-        for q in 0..p {
-            out.k[p][q] = out.k[q][p];
-        }
-    }
+    out.symmetrize();
     out
 }
 
@@ -191,88 +140,60 @@ pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> 
 pub fn quad_energy(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> f64 {
     let d = material.d_matrix();
     (0..4)
-        .map(|gp| {
-            let s = point_state(&geom.grads_ref[gp], u, &d, material.kinematics);
-            geom.weight_ref[gp]
-                * 0.5
-                * (s.e_v[0] * s.s_v[0] + s.e_v[1] * s.s_v[1] + s.e_v[2] * s.s_v[2])
-        })
+        .map(|gp| point_energy(&geom.grads_ref[gp], geom.weight_ref[gp], u, &d, material))
         .sum()
 }
 
-/// Stress measures of one element, averaged over its Gauss points
-/// (components `[xx, yy, xy]`).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct QuadStress {
-    /// Second Piola–Kirchhoff stress (reference frame).
-    pub pk2: [f64; 3],
-    /// Cauchy stress `sigma = F S F^T / det F` (current frame, in-plane).
-    pub cauchy: [f64; 3],
-    /// Green–Lagrange strain `[E11, E22, E12]` (tensor shear).
-    pub green: [f64; 3],
-}
-
 /// Stresses at each Gauss point of the element.
-pub fn quad_point_stresses(
-    geom: &QuadGeometry,
-    u: &[f64; 8],
-    material: &Material,
-) -> [QuadStress; 4] {
+pub fn quad_point_stresses(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> [Stress; 4] {
     let d = material.d_matrix();
-    std::array::from_fn(|gp| {
-        let PointState { f, e_v, s_v } =
-            point_state(&geom.grads_ref[gp], u, &d, material.kinematics);
-        let s = [[s_v[0], s_v[2]], [s_v[2], s_v[1]]];
-        let det_f = f[0][0] * f[1][1] - f[0][1] * f[1][0];
-        let mut sigma = [[0.0; 2]; 2];
-        for i in 0..2 {
-            for j in 0..2 {
-                let mut v = 0.0;
-                for k in 0..2 {
-                    for l in 0..2 {
-                        v += f[i][k] * s[k][l] * f[j][l];
-                    }
-                }
-                sigma[i][j] = v / det_f;
-            }
-        }
-        QuadStress {
-            pk2: s_v,
-            cauchy: [sigma[0][0], sigma[1][1], sigma[0][1]],
-            green: [e_v[0], e_v[1], e_v[2] / 2.0],
-        }
-    })
+    std::array::from_fn(|gp| point_stress(&geom.grads_ref[gp], u, &d, material))
 }
 
 /// Stresses averaged over the Gauss points (equal weights).
-pub fn quad_mean_stress(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> QuadStress {
-    let pts = quad_point_stresses(geom, u, material);
-    let mut m = QuadStress {
-        pk2: [0.0; 3],
-        cauchy: [0.0; 3],
-        green: [0.0; 3],
-    };
-    for p in &pts {
-        for c in 0..3 {
-            m.pk2[c] += p.pk2[c] / 4.0;
-            m.cauchy[c] += p.cauchy[c] / 4.0;
-            m.green[c] += p.green[c] / 4.0;
-        }
+pub fn quad_mean_stress(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> Stress {
+    Stress::mean(&quad_point_stresses(geom, u, material))
+}
+
+impl SolidElement<2, 4, 8, 3> for QuadGeometry {
+    const KIND: ElementKind = ElementKind::Quad4;
+
+    fn from_reference(x_ref: &[[f64; 2]; 4]) -> Result<Self, InvalidElement> {
+        QuadGeometry::new(x_ref)
     }
-    m
+
+    fn measure_ref(&self) -> f64 {
+        self.area_ref()
+    }
+
+    fn response(&self, u: &[f64; 8], material: &Material) -> SolidResponse<8> {
+        quad_response(self, u, material)
+    }
+
+    fn energy(&self, u: &[f64; 8], material: &Material) -> f64 {
+        quad_energy(self, u, material)
+    }
+
+    fn point_stresses(&self, u: &[f64; 8], material: &Material) -> Vec<Stress<3>> {
+        quad_point_stresses(self, u, material).to_vec()
+    }
+
+    fn mean_stress(&self, u: &[f64; 8], material: &Material) -> Stress<3> {
+        quad_mean_stress(self, u, material)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::PlaneModel;
+    use crate::element::material::PlaneModel;
     use crate::testutil::Lcg;
 
     const MAT: Material = Material {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
+        kinematics: crate::element::material::Kinematics::Finite,
     };
 
     fn distorted() -> [[f64; 2]; 4] {

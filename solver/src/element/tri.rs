@@ -29,21 +29,22 @@
 //! The integrand is constant, so one integration point (weight `A0`) is
 //! exact. `K` is the exact derivative of `f_int` (the geometric term is the
 //! derivative of `B^T` at fixed `S`), and `f_int` the exact gradient of `U`.
-//! The operations per point are those of [`quad`] (same `E` without the
-//! cancellation of `F^T F - I`, same assembly of `K`), so a homogeneous
-//! deformation gives the triangle and the quadrilateral the same stress.
+//! The operations per point are those of [`quad`] (one integrand,
+//! [`super::solid`]), so a homogeneous deformation gives the triangle and
+//! the quadrilateral the same stress.
 //!
 //! Invariant of a [`TriGeometry`]: finite reference coordinates and
 //! `detJ0 > MIN_RELATIVE_DET * l_max^2` (`l_max` the longest edge), i.e.
 //! counter-clockwise and not degenerate beyond rounding. Failures reuse
-//! [`InvalidElement`] of [`quad`] (`det_j0` is the element's one `detJ0`,
-//! NaN for a non-finite coordinate).
+//! [`InvalidElement`] (`det_j0` is the element's one `detJ0`, NaN for a
+//! non-finite coordinate).
 //!
-//! [`quad`]: crate::quad
+//! [`quad`]: super::quad
 
-use crate::kinematics::{PointState, point_state};
-use crate::material::Material;
-use crate::quad::{InvalidElement, QuadStress};
+use super::material::Material;
+use super::solid::{SolidResponse, add_point, point_energy, point_stress};
+use super::stress::Stress;
+use super::{ElementKind, InvalidElement, SolidElement};
 
 /// The smallest admissible `detJ0 / l_max^2` (`l_max` the longest reference
 /// edge): below it the element's area is at the level of the rounding error
@@ -103,129 +104,79 @@ impl TriGeometry {
     }
 }
 
-/// Internal force, tangent stiffness and strain energy of one element.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TriResponse {
-    /// `f_int` (6, ordered `[u1x, u1y, u2x, u2y, u3x, u3y]`).
-    pub f_int: [f64; 6],
-    /// The symmetric tangent `d f_int / d u` (6x6).
-    pub k: [[f64; 6]; 6],
-    /// The strain energy `U`.
-    pub energy: f64,
-}
+/// Internal force, tangent stiffness and strain energy of one element
+/// (`f_int` ordered `[u1x, u1y, u2x, u2y, u3x, u3y]`, the 6x6 tangent).
+pub type TriResponse = SolidResponse<6>;
 
 /// Evaluates the element at displacements `u` (reference frame).
 pub fn tri_response(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> TriResponse {
     let d = material.d_matrix();
-    let mut out = TriResponse {
-        f_int: [0.0; 6],
-        k: [[0.0; 6]; 6],
-        energy: 0.0,
-    };
-    let g = &geom.grads_ref;
-    let w = geom.weight_ref;
-    let PointState { f, e_v, s_v } = point_state(g, u, &d, material.kinematics);
-    let mut b = [[0.0; 6]; 3];
-    for a in 0..3 {
-        for i in 0..2 {
-            b[0][2 * a + i] = f[i][0] * g[a][0];
-            b[1][2 * a + i] = f[i][1] * g[a][1];
-            b[2][2 * a + i] = f[i][0] * g[a][1] + f[i][1] * g[a][0];
-        }
-    }
-    out.energy = w * 0.5 * (e_v[0] * s_v[0] + e_v[1] * s_v[1] + e_v[2] * s_v[2]);
-    // D B (3x6)
-    let mut db = [[0.0; 6]; 3];
-    for r in 0..3 {
-        for c in 0..6 {
-            db[r][c] = d[r][0] * b[0][c] + d[r][1] * b[1][c] + d[r][2] * b[2][c];
-        }
-    }
-    for p in 0..6 {
-        out.f_int[p] = w * (b[0][p] * s_v[0] + b[1][p] * s_v[1] + b[2][p] * s_v[2]);
-        for q in p..6 {
-            let v = b[0][p] * db[0][q] + b[1][p] * db[1][q] + b[2][p] * db[2][q];
-            out.k[p][q] = w * v;
-        }
-    }
-    if material.kinematics.geometric_stiffness() {
-        for a in 0..3 {
-            for bn in a..3 {
-                let sg = [
-                    s_v[0] * g[bn][0] + s_v[2] * g[bn][1],
-                    s_v[2] * g[bn][0] + s_v[1] * g[bn][1],
-                ];
-                let geo = w * (g[a][0] * sg[0] + g[a][1] * sg[1]);
-                for i in 0..2 {
-                    out.k[2 * a + i][2 * bn + i] += geo;
-                }
-            }
-        }
-    }
-    for p in 0..6 {
-        for q in 0..p {
-            out.k[p][q] = out.k[q][p];
-        }
-    }
+    let mut out = SolidResponse::starting_at(-0.0);
+    add_point(&mut out, &geom.grads_ref, geom.weight_ref, u, &d, material);
+    out.symmetrize();
     out
 }
 
 /// Strain energy only (cheaper than [`tri_response`]).
 pub fn tri_energy(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> f64 {
     let d = material.d_matrix();
-    let s = point_state(&geom.grads_ref, u, &d, material.kinematics);
-    geom.weight_ref * 0.5 * (s.e_v[0] * s.s_v[0] + s.e_v[1] * s.s_v[1] + s.e_v[2] * s.s_v[2])
+    point_energy(&geom.grads_ref, geom.weight_ref, u, &d, material)
 }
 
-/// Stresses at the element's one integration point (the same type as the
-/// quadrilateral's, [`QuadStress`]).
-pub fn tri_point_stresses(
-    geom: &TriGeometry,
-    u: &[f64; 6],
-    material: &Material,
-) -> [QuadStress; 1] {
+/// Stresses at the element's one integration point (the type of every
+/// element's, [`Stress`]).
+pub fn tri_point_stresses(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> [Stress; 1] {
     let d = material.d_matrix();
-    let PointState { f, e_v, s_v } = point_state(&geom.grads_ref, u, &d, material.kinematics);
-    let s = [[s_v[0], s_v[2]], [s_v[2], s_v[1]]];
-    let det_f = f[0][0] * f[1][1] - f[0][1] * f[1][0];
-    let mut sigma = [[0.0; 2]; 2];
-    for i in 0..2 {
-        for j in 0..2 {
-            let mut v = 0.0;
-            for k in 0..2 {
-                for l in 0..2 {
-                    v += f[i][k] * s[k][l] * f[j][l];
-                }
-            }
-            sigma[i][j] = v / det_f;
-        }
-    }
-    [QuadStress {
-        pk2: s_v,
-        cauchy: [sigma[0][0], sigma[1][1], sigma[0][1]],
-        green: [e_v[0], e_v[1], e_v[2] / 2.0],
-    }]
+    [point_stress(&geom.grads_ref, u, &d, material)]
 }
 
 /// The element's stress (constant over it, so the mean is the value at its
 /// one integration point).
-pub fn tri_mean_stress(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> QuadStress {
+pub fn tri_mean_stress(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> Stress {
     let [s] = tri_point_stresses(geom, u, material);
     s
+}
+
+impl SolidElement<2, 3, 6, 3> for TriGeometry {
+    const KIND: ElementKind = ElementKind::Tri3;
+
+    fn from_reference(x_ref: &[[f64; 2]; 3]) -> Result<Self, InvalidElement> {
+        TriGeometry::new(x_ref)
+    }
+
+    fn measure_ref(&self) -> f64 {
+        self.area_ref()
+    }
+
+    fn response(&self, u: &[f64; 6], material: &Material) -> SolidResponse<6> {
+        tri_response(self, u, material)
+    }
+
+    fn energy(&self, u: &[f64; 6], material: &Material) -> f64 {
+        tri_energy(self, u, material)
+    }
+
+    fn point_stresses(&self, u: &[f64; 6], material: &Material) -> Vec<Stress<3>> {
+        tri_point_stresses(self, u, material).to_vec()
+    }
+
+    fn mean_stress(&self, u: &[f64; 6], material: &Material) -> Stress<3> {
+        tri_mean_stress(self, u, material)
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::PlaneModel;
-    use crate::quad::{QuadGeometry, quad_energy, quad_response};
+    use crate::element::material::PlaneModel;
+    use crate::element::quad::{QuadGeometry, quad_energy, quad_response};
     use crate::testutil::Lcg;
 
     const MAT: Material = Material {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
+        kinematics: crate::element::material::Kinematics::Finite,
     };
 
     fn skewed() -> [[f64; 2]; 3] {

@@ -1,15 +1,26 @@
-//! The solid-element seam: the element kinds a mesh holds (the 4-node
-//! quadrilateral of [`crate::quad`] and the 3-node triangle of
-//! [`crate::tri`]), their connectivity, their reference geometry and their
-//! response, so that the mesh, the assembly, the stresses and the output
-//! dispatch through one place instead of branching on the kind everywhere.
+//! The solid elements and their seam: the element kinds a mesh holds (the
+//! 4-node quadrilateral of [`quad`] and the 3-node triangle of [`tri`]),
+//! their connectivity, their reference geometry and their response, so that
+//! the mesh, the assembly, the stresses and the output dispatch through one
+//! place instead of branching on the kind everywhere. Each kind owns its
+//! VTK cell type ([`ElementKind::vtk_cell_type`]).
 //!
-//! Both elements are total-Lagrangian St Venant–Kirchhoff elements with the
-//! same point kinematics (`kinematics.rs`); they differ in their shape
-//! functions and integration rule only (Q4: bilinear, 2x2 Gauss; T3:
-//! linear, one point, exact). An element with `n` nodes has `2n` dofs,
-//! ordered `[u1x, u1y, u2x, u2y, ...]`; element buffers are sized for the
-//! largest element (8 dofs) and a triangle uses their first 6 entries.
+//! Every element is a total-Lagrangian St Venant–Kirchhoff element with
+//! the same point kinematics ([`kinematics`], over the dimension `D`) and
+//! one integrand ([`solid`]: `B^T D B`, the geometric stiffness, the energy
+//! and the stresses, written once); they differ in their shape functions
+//! and integration rule only (Q4: bilinear, 2x2 Gauss; T3: linear, one
+//! point, exact; in 3D H8 ([`hex`]): trilinear, 2x2x2 Gauss; T4 ([`tet`]):
+//! linear, one point, exact). The material is [`material`], the stress
+//! measures [`Stress`]. Every element type implements [`SolidElement`],
+//! one interface for 2D and 3D; the mesh holds 2D elements, and the 3D
+//! ones ([`ElementKind::Hex8`], [`ElementKind::Tet4`]) join [`Element`],
+//! [`ElementGeometry`] and [`ElementResponse`] as variants calling their
+//! [`SolidElement`] methods once the mesh has three coordinates.
+//! A 2D element with `n` nodes has `2n` dofs, ordered
+//! `[u1x, u1y, u2x, u2y, ...]`; the seam's element buffers are sized for
+//! the largest 2D element (8 dofs) and a triangle uses their first 6
+//! entries.
 //!
 //! Invariants: an [`Element`]'s nodes run counter-clockwise; an
 //! [`ElementGeometry`] exists only for a positive reference Jacobian (see
@@ -22,26 +33,65 @@ use std::fmt;
 use std::ops::Deref;
 
 use crate::ids::NodeId;
-use crate::material::Material;
-use crate::quad::{
-    InvalidElement, QuadGeometry, QuadResponse, QuadStress, quad_energy, quad_mean_stress,
-    quad_point_stresses, quad_response,
+
+pub mod hex;
+pub mod kinematics;
+pub mod material;
+pub mod quad;
+pub mod solid;
+mod stress;
+pub mod tet;
+pub mod tri;
+
+use material::Material;
+use quad::{
+    QuadGeometry, QuadResponse, quad_energy, quad_mean_stress, quad_point_stresses, quad_response,
 };
-use crate::tri::{
+use solid::SolidResponse;
+pub use stress::Stress;
+use tri::{
     TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_point_stresses, tri_response,
 };
-use crate::vtk::{VTK_QUAD, VTK_TRIANGLE};
 
-/// The largest number of dofs of an element (the quadrilateral's 8).
+/// VTK cell type of a 4-node quadrilateral.
+pub const VTK_QUAD: u8 = 9;
+
+/// VTK cell type of a 3-node triangle.
+pub const VTK_TRIANGLE: u8 = 5;
+
+/// VTK cell type of an 8-node hexahedron.
+pub const VTK_HEXAHEDRON: u8 = 12;
+
+/// VTK cell type of a 4-node tetrahedron.
+pub const VTK_TETRA: u8 = 10;
+
+/// A reference element whose Jacobian is not positive somewhere (inverted,
+/// degenerate, badly distorted, or with a non-finite coordinate).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error(
+    "the reference Jacobian determinant is {det_j0:e}, not positive (an inverted, degenerate or non-finite element)"
+)]
+pub struct InvalidElement {
+    /// The smallest `detJ0` over the element's integration points (NaN
+    /// for a non-finite coordinate).
+    pub det_j0: f64,
+}
+
+/// The largest number of dofs of a 2D element (the quadrilateral's 8): the
+/// size of the seam's element buffers.
 pub const MAX_ELEMENT_DOFS: usize = 8;
 
 /// The kind of a solid element.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum ElementKind {
-    /// The 4-node bilinear quadrilateral ([`crate::quad`]).
+    /// The 4-node bilinear quadrilateral ([`quad`]).
     Quad4,
-    /// The 3-node linear triangle ([`crate::tri`]).
+    /// The 3-node linear triangle ([`tri`]).
     Tri3,
+    /// The 8-node trilinear hexahedron ([`hex`]).
+    Hex8,
+    /// The 4-node linear tetrahedron ([`tet`]).
+    Tet4,
 }
 
 impl ElementKind {
@@ -50,14 +100,28 @@ impl ElementKind {
         match self {
             ElementKind::Quad4 => 4,
             ElementKind::Tri3 => 3,
+            ElementKind::Hex8 => 8,
+            ElementKind::Tet4 => 4,
         }
     }
 
-    /// The VTK cell type ([`VTK_QUAD`] = 9, [`VTK_TRIANGLE`] = 5).
+    /// The spatial dimension (2 or 3): each node has this many dofs.
+    pub fn dim(self) -> usize {
+        match self {
+            ElementKind::Quad4 | ElementKind::Tri3 => 2,
+            ElementKind::Hex8 | ElementKind::Tet4 => 3,
+        }
+    }
+
+    /// The VTK cell type ([`VTK_QUAD`] = 9, [`VTK_TRIANGLE`] = 5,
+    /// [`VTK_HEXAHEDRON`] = 12, [`VTK_TETRA`] = 10; VTK's node orders are
+    /// Gmsh's for all four).
     pub fn vtk_cell_type(self) -> u8 {
         match self {
             ElementKind::Quad4 => VTK_QUAD,
             ElementKind::Tri3 => VTK_TRIANGLE,
+            ElementKind::Hex8 => VTK_HEXAHEDRON,
+            ElementKind::Tet4 => VTK_TETRA,
         }
     }
 }
@@ -67,8 +131,44 @@ impl fmt::Display for ElementKind {
         f.write_str(match self {
             ElementKind::Quad4 => "4-node quadrilateral",
             ElementKind::Tri3 => "3-node triangle",
+            ElementKind::Hex8 => "8-node hexahedron",
+            ElementKind::Tet4 => "4-node tetrahedron",
         })
     }
+}
+
+/// One element type through one interface, in 2D and 3D: `D` dimensions,
+/// `N` nodes, `M = D N` dofs (ordered `[u1x, u1y, (u1z,) u2x, ...]`), `V`
+/// Voigt components (3 in 2D, 6 in 3D). Implemented by the reference
+/// geometries [`QuadGeometry`] (`<2, 4, 8, 3>`), [`TriGeometry`]
+/// (`<2, 3, 6, 3>`), [`hex::HexGeometry`] (`<3, 8, 24, 6>`) and
+/// [`tet::TetGeometry`] (`<3, 4, 12, 6>`); the seam's dispatch arms are
+/// calls of these methods.
+pub trait SolidElement<const D: usize, const N: usize, const M: usize, const V: usize>:
+    Sized + Copy + fmt::Debug
+{
+    /// The element's kind (`KIND.node_count() == N`, `KIND.dim() == D`).
+    const KIND: ElementKind;
+
+    /// The geometry of the element whose reference node coordinates are
+    /// `x_ref` (in the kind's node order); fails for a non-positive,
+    /// degenerate or non-finite reference Jacobian.
+    fn from_reference(x_ref: &[[f64; D]; N]) -> Result<Self, InvalidElement>;
+
+    /// The reference area (2D, unit thickness) or volume (3D).
+    fn measure_ref(&self) -> f64;
+
+    /// Internal force, tangent and strain energy at the displacements `u`.
+    fn response(&self, u: &[f64; M], material: &Material) -> SolidResponse<M>;
+
+    /// The strain energy at the displacements `u`.
+    fn energy(&self, u: &[f64; M], material: &Material) -> f64;
+
+    /// The stresses at each integration point.
+    fn point_stresses(&self, u: &[f64; M], material: &Material) -> Vec<Stress<V>>;
+
+    /// The stresses averaged over the integration points.
+    fn mean_stress(&self, u: &[f64; M], material: &Material) -> Stress<V>;
 }
 
 /// The connectivity of one element: its nodes, counter-clockwise. `N` is
@@ -217,11 +317,7 @@ impl ElementGeometry {
 
     /// The stresses at each of its integration points (four for a
     /// quadrilateral, one for a triangle).
-    pub fn point_stresses(
-        &self,
-        u: &[f64; MAX_ELEMENT_DOFS],
-        material: &Material,
-    ) -> Vec<QuadStress> {
+    pub fn point_stresses(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> Vec<Stress> {
         match self {
             ElementGeometry::Quad4(g) => quad_point_stresses(g, u, material).to_vec(),
             ElementGeometry::Tri3(g) => tri_point_stresses(g, &tri_dofs(u), material).to_vec(),
@@ -229,7 +325,7 @@ impl ElementGeometry {
     }
 
     /// The element's stresses averaged over its integration points.
-    pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> QuadStress {
+    pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> Stress {
         match self {
             ElementGeometry::Quad4(g) => quad_mean_stress(g, u, material),
             ElementGeometry::Tri3(g) => tri_mean_stress(g, &tri_dofs(u), material),
@@ -280,5 +376,7 @@ impl ElementResponse {
     }
 }
 
+#[cfg(test)]
+mod solid_tests;
 #[cfg(test)]
 mod tests;

@@ -1,72 +1,147 @@
 //! Kinematics and stress at one integration point of a total-Lagrangian
-//! element, shared by the Q4 ([`crate::quad`]) and the triangle
-//! ([`crate::tri`]).
+//! element in `D = 2` or `3` dimensions, shared by every element
+//! ([`super::quad`], [`super::tri`], [`super::hex`], [`super::tet`]).
 //!
 //! With the reference gradients `G_a = dN_a/dX` of the element's `N` nodes
-//! and their displacements `u` (`[u1x, u1y, u2x, ...]`):
+//! and their displacements `u` (`[u1x, u1y, (u1z,) u2x, ...]`):
 //!
 //! ```text
 //! H   = sum_a u_a G_a^T                 (displacement gradient du/dX)
 //! F   = I + H
-//! E_v = [E11, E22, 2 E12],  E = (H + H^T + H^T H)/2   (no cancellation of F^T F - I)
+//! E   = (H + H^T + H^T H)/2             (no cancellation of F^T F - I)
+//! E_v = E in Voigt order with engineering shear (`VOIGT`):
+//!       2D [E11, E22, 2 E12], 3D [E11, E22, E33, 2 E23, 2 E13, 2 E12]
 //! S_v = D E_v                            (St Venant–Kirchhoff, see `material`)
 //! ```
 //!
 //! With [`Kinematics::Small`] (linear elasticity) `F` is taken as `I` in
 //! what the elements build from it (the strain-displacement matrix) and
-//! `E_v = [H11, H22, H12 + H21]`, so `S_v` is the Cauchy stress of linear
-//! elasticity and the element drops its geometric stiffness.
+//! `E = (H + H^T)/2`, so `S_v` is the Cauchy stress of linear elasticity
+//! and the element drops its geometric stiffness.
 //!
-//! One function serves every element, so a homogeneous deformation gives
-//! every element type the same bits.
+//! One function serves every element of a dimension, so the same `F`
+//! gives every element type the same stress bits (a homogeneous
+//! deformation gives each element its `F` up to the rounding of its
+//! reference gradients: exact for a triangle or tetrahedron with dyadic
+//! coordinates, not at the quadrilateral's and hexahedron's Gauss points,
+//! `1/sqrt 3` being irrational). Every sum starts
+//! from its first term and runs in index order, so in 2D the operations
+//! are exactly those of the two-dimensional formulas written out.
 
-use crate::material::Kinematics;
+use super::material::Kinematics;
+
+/// The tensor index pairs `(i, j)` of the Voigt components in `D = 2`
+/// dimensions: `[11, 22, 12]`.
+pub const VOIGT_2D: [(usize, usize); 3] = [(0, 0), (1, 1), (0, 1)];
+
+/// The tensor index pairs `(i, j)` of the Voigt components in `D = 3`
+/// dimensions: `[11, 22, 33, 23, 13, 12]`.
+pub const VOIGT_3D: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)];
+
+/// The Voigt index pairs for `V` components (3 in 2D, 6 in 3D).
+pub(crate) const fn voigt<const V: usize>() -> [(usize, usize); V] {
+    let mut out = [(0, 0); V];
+    let mut r = 0;
+    while r < V {
+        out[r] = if V == 3 { VOIGT_2D[r] } else { VOIGT_3D[r] };
+        r += 1;
+    }
+    out
+}
+
+/// Compile-time check that `D` is 2 or 3, `V` its number of Voigt
+/// components and, when given, `M = D N`.
+pub(crate) const fn check_dims<const D: usize, const V: usize>(n: usize, m: usize) {
+    assert!(
+        (D == 2 && V == 3) || (D == 3 && V == 6),
+        "D must be 2 or 3 and V = D(D+1)/2"
+    );
+    assert!(m == D * n, "an element of N nodes has D N dofs");
+}
+
+/// The symmetric `D x D` tensor of the Voigt vector `v` (stress
+/// components, no engineering factor).
+pub(crate) fn tensor<const D: usize, const V: usize>(v: &[f64; V]) -> [[f64; D]; D] {
+    let pairs = voigt::<V>();
+    let mut t = [[0.0; D]; D];
+    for (r, &(i, j)) in pairs.iter().enumerate() {
+        t[i][j] = v[r];
+        t[j][i] = v[r];
+    }
+    t
+}
+
+/// The determinant of a `2 x 2` or `3 x 3` matrix.
+pub(crate) fn det<const D: usize>(m: &[[f64; D]; D]) -> f64 {
+    const { assert!(D == 2 || D == 3, "D must be 2 or 3") };
+    if D == 2 {
+        m[0][0] * m[1][1] - m[0][1] * m[1][0]
+    } else {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    }
+}
 
 /// Deformation gradient, strain and stress at one point.
-pub(crate) struct PointState {
-    /// `F = I + H`.
-    pub(crate) f: [[f64; 2]; 2],
-    /// Green–Lagrange strain, Voigt with engineering shear.
-    pub(crate) e_v: [f64; 3],
-    /// Second Piola–Kirchhoff stress `D E_v`.
-    pub(crate) s_v: [f64; 3],
+pub(crate) struct PointState<const D: usize, const V: usize> {
+    /// `F = I + H` (`I` with small kinematics).
+    pub(crate) f: [[f64; D]; D],
+    /// The strain, Voigt with engineering shear.
+    pub(crate) e_v: [f64; V],
+    /// The stress `D E_v` (second Piola–Kirchhoff; Cauchy with small
+    /// kinematics).
+    pub(crate) s_v: [f64; V],
 }
 
 /// The state at a point with reference gradients `grads` of `N` nodes and
-/// displacements `u` (`2 N` values), for the material matrix `d` and the
+/// displacements `u` (`D N` values), for the material matrix `d` and the
 /// strain measure `kinematics`.
-pub(crate) fn point_state<const N: usize>(
-    grads: &[[f64; 2]; N],
+pub(crate) fn point_state<const D: usize, const V: usize, const N: usize>(
+    grads: &[[f64; D]; N],
     u: &[f64],
-    d: &[[f64; 3]; 3],
+    d: &[[f64; V]; V],
     kinematics: Kinematics,
-) -> PointState {
-    let u = &u[..2 * N];
+) -> PointState<D, V> {
+    const { check_dims::<D, V>(N, D * N) };
+    let pairs = voigt::<V>();
+    let u = &u[..D * N];
     // displacement gradient H = du/dX; F = I + H
-    let mut h = [[0.0; 2]; 2];
+    let mut h = [[0.0; D]; D];
     for a in 0..N {
-        for i in 0..2 {
-            for j in 0..2 {
-                h[i][j] += u[2 * a + i] * grads[a][j];
+        for i in 0..D {
+            for j in 0..D {
+                h[i][j] += u[D * a + i] * grads[a][j];
             }
         }
     }
     if kinematics == Kinematics::Small {
-        let e_v = [h[0][0], h[1][1], h[0][1] + h[1][0]];
+        let e_v = pairs.map(|(i, j)| if i == j { h[i][i] } else { h[i][j] + h[j][i] });
+        let f = std::array::from_fn(|i| std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }));
         return PointState {
-            f: [[1.0, 0.0], [0.0, 1.0]],
+            f,
             e_v,
             s_v: stress(d, &e_v),
         };
     }
-    let f = [[1.0 + h[0][0], h[0][1]], [h[1][0], 1.0 + h[1][1]]];
+    let f = std::array::from_fn(|i| {
+        std::array::from_fn(|j| if i == j { 1.0 + h[i][j] } else { h[i][j] })
+    });
     // E = (H + H^T + H^T H)/2, without the cancellation of F^T F - I
-    let hh = |j: usize, k: usize| h[0][j] * h[0][k] + h[1][j] * h[1][k];
-    let e_v = [
-        h[0][0] + hh(0, 0) / 2.0,
-        h[1][1] + hh(1, 1) / 2.0,
-        h[0][1] + h[1][0] + hh(0, 1),
-    ];
+    let hh = |j: usize, k: usize| {
+        let mut s = h[0][j] * h[0][k];
+        for i in 1..D {
+            s += h[i][j] * h[i][k];
+        }
+        s
+    };
+    let e_v = pairs.map(|(i, j)| {
+        if i == j {
+            h[i][i] + hh(i, i) / 2.0
+        } else {
+            h[i][j] + h[j][i] + hh(i, j)
+        }
+    });
     PointState {
         f,
         e_v,
@@ -75,20 +150,25 @@ pub(crate) fn point_state<const N: usize>(
 }
 
 /// `S_v = D E_v`.
-fn stress(d: &[[f64; 3]; 3], e_v: &[f64; 3]) -> [f64; 3] {
-    let mut s_v = [0.0; 3];
-    for r in 0..3 {
-        s_v[r] = d[r][0] * e_v[0] + d[r][1] * e_v[1] + d[r][2] * e_v[2];
+fn stress<const V: usize>(d: &[[f64; V]; V], e_v: &[f64; V]) -> [f64; V] {
+    std::array::from_fn(|r| dot(&d[r], e_v))
+}
+
+/// `a . b`, summed in index order from the first term.
+pub(crate) fn dot<const V: usize>(a: &[f64; V], b: &[f64; V]) -> f64 {
+    let mut s = a[0] * b[0];
+    for t in 1..V {
+        s += a[t] * b[t];
     }
-    s_v
+    s
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::material::{Kinematics, Material, PlaneModel};
-    use crate::quad::{QuadGeometry, quad_energy, quad_response};
+    use crate::element::material::{Kinematics, Material, PlaneModel};
+    use crate::element::quad::{QuadGeometry, quad_energy, quad_response};
+    use crate::element::tri::{TriGeometry, tri_energy, tri_response};
     use crate::testutil::Lcg;
-    use crate::tri::{TriGeometry, tri_energy, tri_response};
 
     const SMALL: Material = Material {
         young: 200.0,
