@@ -155,6 +155,8 @@
 
 use std::path::Path;
 
+use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
+
 mod build;
 mod error;
 mod initial_contact;
@@ -219,6 +221,26 @@ impl Scene {
             .default_steps
             .or(self.loading.steps.first().copied())
             .unwrap_or(1)
+    }
+}
+
+impl SolveOptions {
+    /// The scene's defaults: its method, default step count and Newton
+    /// settings (including `[newton] linear`).
+    pub fn from_scene(scene: &Scene) -> SolveOptions {
+        SolveOptions {
+            method: scene.loading.method,
+            steps: scene.default_steps(),
+            formulation: None,
+            record_steps: false,
+            max_iterations: scene.newton.max_iterations,
+            max_cutbacks: scene.newton.max_cutbacks,
+            tolerance: scene.newton.tolerance,
+            regularization: DEFAULT_REGULARIZATION,
+            linear: scene.newton.linear,
+            repair: scene.newton.repair,
+            taylor_tolerance: scene.newton.taylor_tolerance,
+        }
     }
 }
 
