@@ -27,10 +27,10 @@ use crate::quad::{
     InvalidElement, QuadGeometry, QuadResponse, QuadStress, quad_energy, quad_mean_stress,
     quad_point_stresses, quad_response,
 };
+use crate::report::{VTK_QUAD, VTK_TRIANGLE};
 use crate::tri::{
     TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_point_stresses, tri_response,
 };
-use crate::vtk::{VTK_QUAD, VTK_TRIANGLE};
 
 /// The largest number of dofs of an element (the quadrilateral's 8).
 pub const MAX_ELEMENT_DOFS: usize = 8;

@@ -21,8 +21,9 @@
 //! root); [`material`], [`quad`], [`tri`], [`element`], [`mesh`], [`model`] (the discrete problem;
 //! [`scene`] builds it from TOML); [`contact`] and [`assembly`] (one Newton
 //! system); [`linear`] (its solution); [`newton`] (the load schedule and
-//! the iterations), which fills in the report types of [`solution`]
-//! (written as VTK by [`vtk`]).
+//! the iterations), which fills in the report types of [`solution`];
+//! [`report`] writes a solution out (`.vtu`, `contact.csv`,
+//! `reactions.csv`, atomically).
 //!
 //! ```no_run
 //! use solver::{Scene, SolveOptions, solve};
@@ -52,13 +53,12 @@ pub mod model;
 pub mod monitor;
 pub mod newton;
 pub mod options;
-pub mod out;
 mod par;
 pub mod quad;
+pub mod report;
 pub mod scene;
 pub mod solution;
 pub mod tri;
-pub mod vtk;
 
 #[cfg(test)]
 mod tests;

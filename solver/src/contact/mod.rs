@@ -220,8 +220,6 @@ mod search;
 mod segmented;
 mod taylor;
 
-pub mod nodal;
-
 use contact_kernels::{KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 
@@ -401,7 +399,7 @@ impl NodeTie {
 /// master segment avoids them. (`CoordinateCount`: a formulation of 3-node
 /// segments given the solver's two-node ones, e.g. `--formulation
 /// quadratic-slave-normal`, fails loudly instead of finding no contact.)
-fn slave_side(e: &KernelError) -> bool {
+pub(crate) fn slave_side(e: &KernelError) -> bool {
     matches!(
         e,
         KernelError::NonFinite { .. }
