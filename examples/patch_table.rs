@@ -27,7 +27,7 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use solver::contact::Integration;
+use solver::model::Integration;
 use solver::quad::QuadStress;
 use solver::{Formulation, Method, Scene, Solution, SolveOptions, solve};
 

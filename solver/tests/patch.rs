@@ -26,7 +26,7 @@
 
 use std::path::PathBuf;
 
-use solver::contact::Integration;
+use solver::model::Integration;
 use solver::quad::QuadStress;
 use solver::{ContactMode, Formulation, Method, Scene, Solution, SolveOptions, solve};
 

@@ -200,7 +200,7 @@
 //! * `layout`: [`ContactLayout`], the integration points, multipliers and
 //!   master chains of all pairs (built once per solve; never changes);
 //! * `segmented`: the integration rule on a slave segment, plain Gauss or
-//!   segmented at the projections of the master nodes ([`Integration`]);
+//!   segmented at the projections of the master nodes ([`crate::model::Integration`]);
 //! * `search`: pairing by projection (walk along the master chain, then
 //!   every segment);
 //! * `evaluate`: the kernel evaluations at every point, in parallel;
@@ -227,8 +227,7 @@ use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, NodeId,
 
 pub use layout::ContactLayout;
 pub use segmented::{
-    Integration, SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end,
-    split_coordinates,
+    SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
 };
 pub use taylor::Taylor;
 

@@ -160,6 +160,7 @@ use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
 mod build;
 mod error;
 mod initial_contact;
+mod memory;
 mod select;
 mod source;
 mod spec;
@@ -175,6 +176,7 @@ mod bad_input_tests;
 
 pub use error::SceneError;
 pub use initial_contact::{FACING_TOL, PENETRATION_FRACTION};
+pub use memory::{check_scene, scene_equations};
 pub use spec::{
     BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
     PrescribeSpec, RefineSpec, Scene, TractionSpec,

@@ -12,11 +12,10 @@
 use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::contact::Integration;
 use crate::linear::LinearSolverKind;
 use crate::material::Material;
 use crate::mesh::Side;
-use crate::model::ContactMode;
+use crate::model::{ContactMode, Integration};
 use crate::options::{
     DEFAULT_MAX_CUTBACKS, DEFAULT_MAX_ITERATIONS, DEFAULT_REPAIR, DEFAULT_TOLERANCE, Method,
 };
