@@ -209,10 +209,10 @@ fn run() -> Result<(), String> {
     }
     std::fs::create_dir_all(&out).map_err(|e| format!("{}: {e}", out.display()))?;
     let csv_path = out.join("adaptive-cost.csv");
-    solver::out::write_atomic(&csv_path, csv(&rows).as_bytes())
+    solver::report::write_atomic(&csv_path, csv(&rows).as_bytes())
         .map_err(|e| format!("{}: {e}", csv_path.display()))?;
     let md_path = out.join("adaptive-cost.md");
-    solver::out::write_atomic(&md_path, markdown(&rows).as_bytes())
+    solver::report::write_atomic(&md_path, markdown(&rows).as_bytes())
         .map_err(|e| format!("{}: {e}", md_path.display()))?;
     println!("wrote {} and {}", csv_path.display(), md_path.display());
     Ok(())

@@ -426,7 +426,7 @@ fn main() -> Result<(), Box<dyn Error>> {
             ("hertz-vs-calculix.csv", &csv),
         ] {
             let path = dir.join(name);
-            solver::out::write_atomic(&path, text)
+            solver::report::write_atomic(&path, text)
                 .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
             eprintln!("wrote {}", path.display());
         }

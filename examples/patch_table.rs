@@ -27,8 +27,8 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use solver::contact::Integration;
 use solver::element::Stress;
+use solver::model::Integration;
 use solver::{Formulation, Method, Scene, Solution, SolveOptions, solve};
 
 /// The pressure of the scene (per unit reference length).

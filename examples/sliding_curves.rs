@@ -188,7 +188,7 @@ fn run() -> Result<(), String> {
     let csv = args
         .out
         .join(format!("sliding-reactions-{}.csv", args.steps));
-    gapsim::solver::out::write_atomic(&csv, to_csv(&curves))
+    gapsim::solver::report::write_atomic(&csv, to_csv(&curves))
         .map_err(|e| format!("cannot write {}: {e}", csv.display()))?;
     let png = args
         .out
@@ -198,7 +198,7 @@ fn run() -> Result<(), String> {
     let table = steady_table(&curves, press, slide, args.steady)?;
     print!("{table}");
     let md = args.out.join(format!("sliding-steady-{}.md", args.steps));
-    gapsim::solver::out::write_atomic(&md, table)
+    gapsim::solver::report::write_atomic(&md, table)
         .map_err(|e| format!("cannot write {}: {e}", md.display()))?;
     println!(
         "wrote {}, {} and {}",

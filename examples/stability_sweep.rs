@@ -10,7 +10,7 @@
 
 use std::path::PathBuf;
 
-use gapsim::solver::out::write_atomic;
+use gapsim::solver::report::write_atomic;
 use gapsim::stability::{csv, markdown, plot, sweep};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {

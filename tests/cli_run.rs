@@ -62,7 +62,7 @@ fn contact_csv_balances_the_load() {
         assert_eq!((row[11], row[12]), ("internal", "internal"), "{row:?}");
         let num = |k: usize| row[k].parse::<f64>().unwrap();
         // closed: gap 0 up to Newton's tolerance (see the solver's
-        // contact::nodal tests for the bound), pressure 1 = F / width
+        // report::nodal tests for the bound), pressure 1 = F / width
         assert!(num(4).abs() < 1e-8, "{row:?}");
         assert!((num(5) - 1.0).abs() < 1e-8, "{row:?}");
         assert!(num(6).abs() <= 1.0 + 1e-9, "{row:?}");

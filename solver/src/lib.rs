@@ -16,13 +16,18 @@
 //!   ([`newton`]), a sparse direct solver (faer's LU) with symbolic reuse
 //!   behind the [`linear::LinearSolver`] seam ([`linear`]).
 //!
-//! The modules, bottom up: [`ids`] (typed indices) and [`options`] (what a
-//! solve is asked to do; modules import it from there, not from the crate
-//! root); [`element`] (with [`material`]), [`mesh`], [`model`] (the discrete problem;
-//! [`scene`] builds it from TOML); [`contact`] and [`assembly`] (one Newton
-//! system); [`linear`] (its solution); [`newton`] (the load schedule and
-//! the iterations), which fills in the report types of [`solution`]
-//! (written as VTK by [`vtk`]).
+//! The modules, bottom up (the layers of `docs/architecture.md`, which
+//! `solver/tests/layers.rs` checks: a module imports nothing from a layer
+//! above its own): [`ids`] (typed indices), [`amplitude`], [`linear`] (the
+//! sparse solvers) and [`options`] (what a solve is asked to do; modules
+//! import it from there, not from the crate root); [`element`] (the solid
+//! elements, kinematics and [`material`]), [`mesh`], [`model`] (the discrete
+//! problem); [`contact`] (the contact element), [`assembly`] (one Newton
+//! system), [`memory`] and [`solution`] (what a solve returns); [`scene`]
+//! (builds a model from TOML); [`monitor`] and the error type; [`newton`]
+//! (the load schedule and the iterations), which fills in the solution;
+//! [`report`] (writes a solution out: `.vtu`, `contact.csv`,
+//! `reactions.csv`, atomically).
 //!
 //! ```no_run
 //! use solver::{Scene, SolveOptions, solve};
@@ -51,11 +56,10 @@ pub mod model;
 pub mod monitor;
 pub mod newton;
 pub mod options;
-pub mod out;
 mod par;
+pub mod report;
 pub mod scene;
 pub mod solution;
-pub mod vtk;
 
 #[cfg(test)]
 mod tests;

@@ -21,7 +21,7 @@
 //!
 //! # When
 //!
-//! [`check_scene`] runs before a scene's model is built (also when a
+//! [`crate::scene::check_scene`] runs before a scene's model is built (also when a
 //! scene is loaded, which builds it once to validate it), with the nodes
 //! of its block bodies (`(nx rx + 1)(ny ry + 1)` each, from the scene
 //! alone: no mesh is allocated); a Gmsh body's nodes are known only once
@@ -30,10 +30,8 @@
 //! estimate with `MemAvailable` of `/proc/meminfo`; where that cannot be
 //! read (not Linux, or no such line), the check is skipped.
 
-use crate::error::SolverError;
 use crate::linear::LinearSolverKind;
 use crate::model::Model;
-use crate::scene::Scene;
 
 /// LU: the bytes per equation of the model and the first factorisation
 /// (module docs: half of the smallest measured 7.3 KiB).
@@ -75,27 +73,6 @@ fn mem_available(meminfo: &str) -> Option<u64> {
     value.checked_mul(scale)
 }
 
-/// The equations of a scene's block bodies: twice their nodes
-/// (`(nx rx + 1)(ny ry + 1)` per block, `[refine]` factors included).
-/// Bodies that are not complete blocks count nothing here, nor do blocks
-/// above the block limit ([`crate::scene::MAX_BLOCK_ELEMENTS`] elements):
-/// building the model refuses those with an error naming the body.
-pub fn scene_equations(scene: &Scene) -> u64 {
-    let (rx, ry) = (scene.refine.x as u64, scene.refine.y as u64);
-    let limit = crate::scene::MAX_BLOCK_ELEMENTS as u64;
-    scene
-        .bodies
-        .iter()
-        .filter_map(|b| {
-            let nx = (b.nx? as u64).checked_mul(rx)?;
-            let ny = (b.ny? as u64).checked_mul(ry)?;
-            nx.checked_mul(ny).filter(|&n| n <= limit)?;
-            // nx ny <= limit, so (nx + 1)(ny + 1) <= 2 limit + 2: no overflow
-            Some(2 * (nx + 1) * (ny + 1))
-        })
-        .fold(0, u64::saturating_add)
-}
-
 /// A model whose estimate exceeds the available memory.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
@@ -134,19 +111,11 @@ pub fn check(
     }
 }
 
-/// [`check`] on a scene's block bodies, before its model is built
-/// ([`Scene::build_model`] calls it first, so loading a scene checks it
-/// too). The linear solver may still be chosen after loading, so the
-/// estimate is the LDLᵀ's, the smaller one.
-pub fn check_scene(scene: &Scene) -> Result<(), MemoryError> {
-    check(scene_equations(scene), LinearSolverKind::Ldlt, available())
-}
-
 /// [`check`] on a built model (every body, Gmsh ones included), before
 /// the solve allocates its linear system.
-pub fn check_model(model: &Model, linear: LinearSolverKind) -> Result<(), SolverError> {
+pub fn check_model(model: &Model, linear: LinearSolverKind) -> Result<(), MemoryError> {
     let equations = (model.mesh.node_count() as u64).saturating_mul(2);
-    Ok(check(equations, linear, available())?)
+    check(equations, linear, available())
 }
 
 #[cfg(test)]

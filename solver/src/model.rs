@@ -31,9 +31,32 @@ use serde::{Deserialize, Serialize};
 use std::ops::Range;
 
 use crate::amplitude::Amplitude;
-use crate::contact::Integration;
 use crate::ids::{AmplitudeId, DofId, NodeId};
 use crate::mesh::Mesh;
+
+/// How a contact pair integrates over its slave segments
+/// (`[[contact]] integration`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Integration {
+    /// `gauss_points` Gauss points on every slave segment (the default).
+    #[default]
+    Gauss,
+    /// Each slave segment split at the projections of the master nodes,
+    /// `gauss_points` Gauss points on every piece (see
+    /// [`crate::contact::segmented_rule`]).
+    Segmented,
+}
+
+impl Integration {
+    /// The name used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integration::Gauss => "gauss",
+            Integration::Segmented => "segmented",
+        }
+    }
+}
 
 /// How a contact pair's constraint is enforced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -77,7 +100,7 @@ pub struct ContactPair {
     /// segmented integration.
     pub gauss_points: usize,
     /// The integration rule on the slave segments (see
-    /// [`crate::contact::Integration`]).
+    /// [`Integration`]).
     pub integration: Integration,
 }
 

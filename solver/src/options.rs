@@ -1,19 +1,37 @@
 //! The options of one solve: the contact [`Method`] and [`SolveOptions`].
 //!
-//! This module sits below the solution modules (it imports only the kernel
-//! types, [`crate::linear::LinearSolverKind`] and, for
-//! [`SolveOptions::from_scene`], the scene), so the modules that read the
-//! options import them from here rather than from the crate root. The defaults are part of the behaviour: changing one changes
-//! every result.
+//! This module sits low (it imports only the kernel types and
+//! [`crate::linear::LinearSolverKind`]): the scene reads its defaults from
+//! here (`[newton]`'s keys default to the `DEFAULT_` constants, and
+//! `SolveOptions::from_scene` is written in [`crate::scene`]), and the
+//! modules that read the options import them from here rather than from
+//! the crate root. The defaults are part of the behaviour: changing one
+//! changes every result.
 
 use contact_kernels::{ApproxType, Formulation};
 
 use crate::linear::LinearSolverKind;
-use crate::scene::{NewtonSpec, Scene};
 
 /// Default of [`SolveOptions::regularization`] (see [`crate::newton`],
 /// "Multiplier regularisation").
 pub const DEFAULT_REGULARIZATION: f64 = 1e-10;
+
+/// Default of [`SolveOptions::steps`] (a scene's own default is its
+/// `[loading]`'s).
+pub const DEFAULT_STEPS: usize = 4;
+
+/// Default of [`SolveOptions::tolerance`] and `[newton] tolerance`.
+pub const DEFAULT_TOLERANCE: f64 = 1e-10;
+
+/// Default of [`SolveOptions::max_iterations`] and `[newton]
+/// max_iterations`.
+pub const DEFAULT_MAX_ITERATIONS: usize = 30;
+
+/// Default of [`SolveOptions::max_cutbacks`] and `[newton] max_cutbacks`.
+pub const DEFAULT_MAX_CUTBACKS: usize = 8;
+
+/// Default of [`SolveOptions::repair`] and `[newton] repair`.
+pub const DEFAULT_REPAIR: bool = true;
 
 /// How the contact gap is treated within a load step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -92,8 +110,8 @@ pub struct SolveOptions {
     /// Types 1–6: re-pair at every converged step end and repeat the step
     /// with the new pairing's Taylor expansion when a point changed its
     /// master segment (see [`crate::newton`], "Re-pairing at the step
-    /// end"; `[newton] repair`, default `true`, the default of
-    /// [`NewtonSpec`]; the paper scene sets `false`, the paper's scheme).
+    /// end"; `[newton] repair`, default [`DEFAULT_REPAIR`] (`true`); the
+    /// paper scene sets `false`, the paper's scheme).
     /// On the contact-heavy paper variant at 4 steps repair takes the
     /// final energy error from 3.6e-4 % to 2.0e-2 %, but the final figure
     /// without it is a cancellation: the errors along the way fall from
@@ -107,42 +125,21 @@ pub struct SolveOptions {
 }
 
 impl Default for SolveOptions {
-    /// The defaults of a scene without `[newton]` settings (the Newton
-    /// settings from [`NewtonSpec::default`]).
+    /// The defaults of a scene without `[newton]` settings (the `DEFAULT_`
+    /// constants; the linear solver's default kind, no Taylor tolerance).
     fn default() -> Self {
-        let newton = NewtonSpec::default();
         SolveOptions {
             method: Method::Complete,
-            steps: 4,
+            steps: DEFAULT_STEPS,
             formulation: None,
             record_steps: false,
-            max_iterations: newton.max_iterations,
-            max_cutbacks: newton.max_cutbacks,
-            tolerance: newton.tolerance,
+            max_iterations: DEFAULT_MAX_ITERATIONS,
+            max_cutbacks: DEFAULT_MAX_CUTBACKS,
+            tolerance: DEFAULT_TOLERANCE,
             regularization: DEFAULT_REGULARIZATION,
-            linear: newton.linear,
-            repair: newton.repair,
-            taylor_tolerance: newton.taylor_tolerance,
-        }
-    }
-}
-
-impl SolveOptions {
-    /// The scene's defaults: its method, default step count and Newton
-    /// settings (including `[newton] linear`).
-    pub fn from_scene(scene: &Scene) -> SolveOptions {
-        SolveOptions {
-            method: scene.loading.method,
-            steps: scene.default_steps(),
-            formulation: None,
-            record_steps: false,
-            max_iterations: scene.newton.max_iterations,
-            max_cutbacks: scene.newton.max_cutbacks,
-            tolerance: scene.newton.tolerance,
-            regularization: DEFAULT_REGULARIZATION,
-            linear: scene.newton.linear,
-            repair: scene.newton.repair,
-            taylor_tolerance: scene.newton.taylor_tolerance,
+            linear: LinearSolverKind::default(),
+            repair: DEFAULT_REPAIR,
+            taylor_tolerance: None,
         }
     }
 }

@@ -360,7 +360,7 @@ pub struct Solution {
     pub snapshots: Vec<State>,
     /// Slave integration points at the final state.
     pub contact_points: Vec<ContactPointReport>,
-    /// The contact pairs, in model order (see [`crate::contact::nodal`]).
+    /// The contact pairs, in model order (see [`crate::report::nodal`]).
     pub contact_pairs: Vec<ContactPairInfo>,
     /// The support groups whose reactions each [`StepRecord::reactions`]
     /// holds (a scene's `[[fix]]` and `[[prescribe]]` items: their `group`,
@@ -452,28 +452,6 @@ impl Solution {
             .collect()
     }
 
-    /// The reactions as CSV: a header `step,load_factor,<group>_x,<group>_y,
-    /// ...` (names quoted where CSV needs it), then one row per converged
-    /// (sub)step, values in shortest round-trip form.
-    pub fn reactions_csv(&self) -> String {
-        let mut out = String::from("step,load_factor");
-        for g in &self.support_groups {
-            for c in ["x", "y"] {
-                out.push(',');
-                out.push_str(&csv_field(&format!("{g}_{c}")));
-            }
-        }
-        out.push('\n');
-        for r in &self.step_records {
-            out.push_str(&format!("{},{:?}", r.step, r.load_factor));
-            for v in r.reactions.iter().flatten() {
-                out.push_str(&format!(",{v:?}"));
-            }
-            out.push('\n');
-        }
-        out
-    }
-
     /// Element stresses (averaged over the Gauss points) in `state`.
     pub fn element_stresses(&self, state: &State) -> Vec<Stress> {
         let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
@@ -485,15 +463,5 @@ impl Solution {
                     .mean_stress(&self.mesh.element_displacements(e, &u), mat)
             })
             .collect()
-    }
-}
-
-/// `text` as one CSV field: quoted (with doubled quotes) when it holds a
-/// comma, a quote or a line break.
-fn csv_field(text: &str) -> String {
-    if text.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", text.replace('"', "\"\""))
-    } else {
-        text.to_owned()
     }
 }

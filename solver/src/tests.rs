@@ -750,7 +750,7 @@ fn vtu_output_is_consistent() {
     )
     .unwrap();
     assert_eq!(sol.snapshots.len(), 5);
-    let text = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+    let text = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
     assert!(text.starts_with("<?xml") && text.trim_end().ends_with("</VTKFile>"));
     assert!(text.contains("NumberOfPoints=\"32\" NumberOfCells=\"14\""));
     let array = |name: &str| -> Vec<String> {
@@ -776,7 +776,7 @@ fn vtu_output_is_consistent() {
     let dir = std::env::temp_dir().join(format!("gapsim-vtu-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("final.vtu");
-    crate::vtk::write_vtu(&path, &sol).unwrap();
+    crate::report::write_vtu(&path, &sol).unwrap();
     assert_eq!(std::fs::read_to_string(&path).unwrap(), text);
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -220,7 +220,7 @@ fn reactions_balance_the_loads_without_contact() {
         // the prescribed stretch pulls: the support at x = 0 pulls back
         assert!(r.reactions[0][0] * a < 0.0, "{:?}", r.reactions);
     }
-    let csv = sol.reactions_csv();
+    let csv = solver::report::reactions_csv(&sol);
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(
         lines[0],

@@ -26,8 +26,8 @@
 
 use std::path::PathBuf;
 
-use solver::contact::Integration;
 use solver::element::Stress;
+use solver::model::Integration;
 use solver::{ContactMode, Formulation, Method, Scene, Solution, SolveOptions, solve};
 
 /// The applied pressure (per unit reference length).

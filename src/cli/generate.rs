@@ -222,7 +222,7 @@ pub fn run(args: &GenerateArgs) -> CommandResult {
     })?;
     for file in &emitted {
         let path = args.out.join(&file.name);
-        solver::out::write_atomic(&path, &file.contents).map_err(|reason| {
+        solver::report::write_atomic(&path, &file.contents).map_err(|reason| {
             GenerateError::Write {
                 path: path.clone(),
                 reason,

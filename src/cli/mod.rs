@@ -10,7 +10,6 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-pub mod contact_csv;
 pub mod generate;
 pub mod interrupt;
 pub mod kernel;

@@ -9,7 +9,7 @@
 //! `.vtu` files that ParaView opens (displacement, stresses, contact
 //! pressure and gap), and a scene with contact pairs also gets
 //! `DIR/contact.csv`, the final state's contact pressure and gap at every
-//! slave node (see [`super::contact_csv`]); the reaction force of every
+//! slave node (see [`solver::report::contact_csv`]); the reaction force of every
 //! `[[fix]]` and `[[prescribe]]` group at every converged step goes to
 //! `reactions.csv`. Types 1–6 also report the step-end checks: step repeats
 //! for re-pairing, accuracy halvings and the largest Taylor remainder (with
@@ -31,10 +31,10 @@ use solver::ids::NodeId;
 use solver::{LinearSolverKind, Method, Scene, SolveOptions};
 
 use solver::monitor::{Monitor, StepProgress};
+use solver::report::{contact_csv, reactions_csv};
 use solver::{Cutback, SolverError};
 
 use super::CommandResult;
-use super::contact_csv::contact_csv;
 use super::interrupt::Interrupt;
 use super::out_dir::OutDir;
 
@@ -314,13 +314,13 @@ pub fn run(args: &RunArgs) -> CommandResult {
         if args.every_step {
             for (i, state) in sol.snapshots.iter().enumerate() {
                 let (path, shown) = at(&format!("step-{i:04}.vtu"));
-                solver::vtk::write_vtu_state(&path, &sol, state)
+                solver::report::write_vtu_state(&path, &sol, state)
                     .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
                 vtu_files += 1;
             }
         }
         let (path, shown) = at("final.vtu");
-        solver::vtk::write_vtu(&path, &sol)
+        solver::report::write_vtu(&path, &sol)
             .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
         vtu_files += 1;
         let mut wrote = vec![format!(
@@ -329,7 +329,7 @@ pub fn run(args: &RunArgs) -> CommandResult {
         )];
         if !sol.support_groups.is_empty() {
             let (path, shown) = at("reactions.csv");
-            solver::out::write_atomic(&path, sol.reactions_csv())
+            solver::report::write_atomic(&path, reactions_csv(&sol))
                 .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
             wrote.push(format!("wrote           {}", shown.display()));
         }
@@ -337,7 +337,7 @@ pub fn run(args: &RunArgs) -> CommandResult {
             let (path, shown) = at("contact.csv");
             let text = contact_csv(&sol, &sol.final_state)
                 .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-            solver::out::write_atomic(&path, text)
+            solver::report::write_atomic(&path, text)
                 .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
             wrote.push(format!("wrote           {}", shown.display()));
         }

@@ -163,7 +163,7 @@ pub fn run(args: &SafetyMapArgs) -> CommandResult {
         ("safety-map-runs.csv", safety_map::runs_csv(&map)),
         ("safety-map.md", safety_map::markdown(&map, &command)),
     ] {
-        solver::out::write_atomic(staging.path().join(name), text)
+        solver::report::write_atomic(staging.path().join(name), text)
             .map_err(|e| format!("cannot write {}: {e}", args.out.join(name).display()))?;
     }
     staging.commit(Some(&interrupt))?;

@@ -104,7 +104,7 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     let interrupt = Interrupt::install().map_err(|e| format!("cannot catch Ctrl-C: {e}"))?;
     let staging = out.stage()?;
     let write = |name: &str, text: &str| -> CommandResult {
-        solver::out::write_atomic(staging.path().join(name), text)
+        solver::report::write_atomic(staging.path().join(name), text)
             .map_err(|e| format!("cannot write {}: {e}", args.out.join(name).display()))?;
         Ok(())
     };
@@ -155,7 +155,7 @@ pub fn run(args: &StudyArgs) -> CommandResult {
                 report::README_END
             )
         })?;
-        solver::out::write_atomic(readme, new)
+        solver::report::write_atomic(readme, new)
             .map_err(|e| format!("cannot write {}: {e}", readme.display()))?;
         println!("updated the results section of {}", readme.display());
     }

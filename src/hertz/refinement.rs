@@ -211,7 +211,7 @@ pub fn write(
         ("hertz-refinement.md", markdown(rows, problem)),
     ] {
         let path = dir.join(name);
-        solver::out::write_atomic(&path, text).map_err(|e| fail(&path, &e))?;
+        solver::report::write_atomic(&path, text).map_err(|e| fail(&path, &e))?;
         written.push(path);
     }
     crate::study::plots::register_font();

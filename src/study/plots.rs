@@ -54,18 +54,18 @@ fn plot_err(path: &Path, e: impl std::fmt::Display) -> StudyError {
     }
 }
 
-/// What a plot written through [`solver::out::replace_with`] fails with.
+/// What a plot written through [`solver::report::replace_with`] fails with.
 type PlotResult = Result<(), Box<dyn std::error::Error + Send + Sync>>;
 
 /// Draws `$draw` (an expression using the drawing area `$root`) into
 /// `$stem.png` and `$stem.svg`: the body is expanded once per backend.
 /// Each file is drawn at a temporary path and then renamed
-/// ([`solver::out::replace_with`]), so a plot is replaced atomically.
+/// ([`solver::report::replace_with`]), so a plot is replaced atomically.
 macro_rules! both {
     ($dir:expr, $stem:expr, $size:expr, |$root:ident| $draw:expr) => {{
         register_font();
         let png = $dir.join(format!("{}.png", $stem));
-        solver::out::replace_with(&png, |tmp| -> PlotResult {
+        solver::report::replace_with(&png, |tmp| -> PlotResult {
             let $root = BitMapBackend::new(tmp, $size).into_drawing_area();
             $draw.map_err(|e| e.to_string())?;
             $root.present().map_err(|e| e.to_string())?;
@@ -73,7 +73,7 @@ macro_rules! both {
         })
         .map_err(|e| plot_err(&png, e))?;
         let svg = $dir.join(format!("{}.svg", $stem));
-        solver::out::replace_with(&svg, |tmp| -> PlotResult {
+        solver::report::replace_with(&svg, |tmp| -> PlotResult {
             let $root = SVGBackend::new(tmp, $size).into_drawing_area();
             $draw.map_err(|e| e.to_string())?;
             $root.present().map_err(|e| e.to_string())?;

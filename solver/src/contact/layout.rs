@@ -17,9 +17,9 @@ use contact_kernels::Formulation;
 
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
-use crate::model::{ContactMode, Model};
+use crate::model::{ContactMode, Integration, Model};
 
-use super::segmented::{Integration, segmented_rule, split_coordinates};
+use super::segmented::{segmented_rule, split_coordinates};
 use super::{ContactPoint, MultiplierDof, gauss_legendre};
 
 /// The integration points, multipliers and master-chain adjacency of all

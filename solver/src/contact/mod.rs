@@ -200,7 +200,7 @@
 //! * `layout`: [`ContactLayout`], the integration points, multipliers and
 //!   master chains of all pairs (built once per solve; never changes);
 //! * `segmented`: the integration rule on a slave segment, plain Gauss or
-//!   segmented at the projections of the master nodes ([`Integration`]);
+//!   segmented at the projections of the master nodes ([`crate::model::Integration`]);
 //! * `search`: pairing by projection (walk along the master chain, then
 //!   every segment);
 //! * `evaluate`: the kernel evaluations at every point, in parallel;
@@ -220,8 +220,6 @@ mod search;
 mod segmented;
 mod taylor;
 
-pub mod nodal;
-
 use contact_kernels::{KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 
@@ -229,8 +227,7 @@ use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, NodeId,
 
 pub use layout::ContactLayout;
 pub use segmented::{
-    Integration, SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end,
-    split_coordinates,
+    SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
 };
 pub use taylor::Taylor;
 
@@ -401,7 +398,7 @@ impl NodeTie {
 /// master segment avoids them. (`CoordinateCount`: a formulation of 3-node
 /// segments given the solver's two-node ones, e.g. `--formulation
 /// quadratic-slave-normal`, fails loudly instead of finding no contact.)
-fn slave_side(e: &KernelError) -> bool {
+pub(crate) fn slave_side(e: &KernelError) -> bool {
     matches!(
         e,
         KernelError::NonFinite { .. }

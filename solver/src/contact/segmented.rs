@@ -70,37 +70,13 @@
 //! Every master segment of the pair is considered, also one far away or
 //! facing away: its splits cost points but do not make the rule wrong.
 //!
-//! Invariants: with [`Integration::Gauss`] the points and weights are
+//! Invariants: with [`crate::model::Integration::Gauss`] the points and weights are
 //! those of the Gauss rule itself (bit for bit the rule before segmented
 //! integration existed); the splits are sorted, strictly inside
 //! `(-1, 1)` and at least [`SPLIT_TOL`] apart and away from `+-1`; the
 //! weights of a segment's points add up to 2 (to rounding).
 
 use contact_kernels::Formulation;
-use serde::{Deserialize, Serialize};
-
-/// How a contact pair integrates over its slave segments
-/// (`[[contact]] integration`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Integration {
-    /// `gauss_points` Gauss points on every slave segment (the default).
-    #[default]
-    Gauss,
-    /// Each slave segment split at the projections of the master nodes,
-    /// `gauss_points` Gauss points on every piece (module docs).
-    Segmented,
-}
-
-impl Integration {
-    /// The name used in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Integration::Gauss => "gauss",
-            Integration::Segmented => "segmented",
-        }
-    }
-}
 
 /// Splits closer than this (in the slave segment's parametric coordinate,
 /// on `[-1, 1]`) to a slave node or to each other are one: a master node

@@ -418,7 +418,7 @@ mod mixed {
             load_factor_end: 1.0,
         };
         let sol = solve_model(&model, &SolveOptions::default()).unwrap();
-        let text = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+        let text = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
         assert!(text.contains("NumberOfPoints=\"8\" NumberOfCells=\"8\""));
         let array = |name: &str| -> Vec<String> {
             let start = text.find(&format!("Name=\"{name}\"")).unwrap();

@@ -58,7 +58,7 @@ impl Scene {
     /// Builds the finite-element model.
     pub fn build_model(&self) -> Result<Model, SceneError> {
         self.check_refine()?;
-        crate::memory::check_scene(self).map_err(|e| self.invalid("body", e.to_string()))?;
+        super::memory::check_scene(self).map_err(|e| self.invalid("body", e.to_string()))?;
         let mut sources = Sources::of(self)?;
         let mut mesh = Mesh::new();
         for i in 0..self.bodies.len() {

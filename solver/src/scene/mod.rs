@@ -155,9 +155,12 @@
 
 use std::path::Path;
 
+use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
+
 mod build;
 mod error;
 mod initial_contact;
+mod memory;
 mod select;
 mod source;
 mod spec;
@@ -173,6 +176,7 @@ mod bad_input_tests;
 
 pub use error::SceneError;
 pub use initial_contact::{FACING_TOL, PENETRATION_FRACTION};
+pub use memory::{check_scene, scene_equations};
 pub use spec::{
     BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
     PrescribeSpec, RefineSpec, Scene, TractionSpec,
@@ -219,6 +223,26 @@ impl Scene {
             .default_steps
             .or(self.loading.steps.first().copied())
             .unwrap_or(1)
+    }
+}
+
+impl SolveOptions {
+    /// The scene's defaults: its method, default step count and Newton
+    /// settings (including `[newton] linear`).
+    pub fn from_scene(scene: &Scene) -> SolveOptions {
+        SolveOptions {
+            method: scene.loading.method,
+            steps: scene.default_steps(),
+            formulation: None,
+            record_steps: false,
+            max_iterations: scene.newton.max_iterations,
+            max_cutbacks: scene.newton.max_cutbacks,
+            tolerance: scene.newton.tolerance,
+            regularization: DEFAULT_REGULARIZATION,
+            linear: scene.newton.linear,
+            repair: scene.newton.repair,
+            taylor_tolerance: scene.newton.taylor_tolerance,
+        }
     }
 }
 

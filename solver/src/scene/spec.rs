@@ -12,12 +12,13 @@
 use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::Method;
-use crate::contact::Integration;
 use crate::linear::LinearSolverKind;
 use crate::material::Material;
 use crate::mesh::Side;
-use crate::model::ContactMode;
+use crate::model::{ContactMode, Integration};
+use crate::options::{
+    DEFAULT_MAX_CUTBACKS, DEFAULT_MAX_ITERATIONS, DEFAULT_REPAIR, DEFAULT_TOLERANCE, Method,
+};
 
 /// A scene (see the module docs for the file format).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -456,14 +457,15 @@ impl Default for RefineSpec {
 #[serde(deny_unknown_fields)]
 pub struct NewtonSpec {
     /// `tolerance`: converged when `|r| <= tolerance * max(1, |f_ext|)`
-    /// (positive, default 1e-10).
+    /// (positive, default 1e-10, [`crate::options::DEFAULT_TOLERANCE`]).
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
     /// `max_iterations`: Newton iterations per attempt (at least 1,
-    /// default 30).
+    /// default 30, [`crate::options::DEFAULT_MAX_ITERATIONS`]).
     #[serde(default = "default_max_iterations")]
     pub max_iterations: usize,
-    /// `max_cutbacks`: bisections per scheduled step (default 8).
+    /// `max_cutbacks`: bisections per scheduled step (default 8,
+    /// [`crate::options::DEFAULT_MAX_CUTBACKS`]).
     #[serde(default = "default_max_cutbacks")]
     pub max_cutbacks: usize,
     /// `linear`: the linear solver, `"lu"` (default) or `"ldlt"` (not
@@ -517,10 +519,10 @@ impl Default for NewtonSpec {
 fn one() -> usize {
     1
 }
-/// `[newton] repair`'s default, the one place it is written
-/// ([`crate::SolveOptions::default`] takes it from [`NewtonSpec::default`]).
+// `[newton]`'s defaults are written once, in `crate::options` (the
+// `DEFAULT_` constants, which `SolveOptions::default` takes too)
 fn default_repair() -> bool {
-    true
+    DEFAULT_REPAIR
 }
 fn is_default_repair(b: &bool) -> bool {
     *b == default_repair()
@@ -529,13 +531,13 @@ fn is_false(b: &bool) -> bool {
     !*b
 }
 fn default_tolerance() -> f64 {
-    1e-10
+    DEFAULT_TOLERANCE
 }
 fn default_max_iterations() -> usize {
-    30
+    DEFAULT_MAX_ITERATIONS
 }
 fn default_max_cutbacks() -> usize {
-    8
+    DEFAULT_MAX_CUTBACKS
 }
 fn default_gauss_points() -> usize {
     2

@@ -11,7 +11,7 @@
 //!   slave nodes, summed over pairs, zero elsewhere), `contact_pressure`
 //!   (`p = -multiplier`, positive in compression), `contact_gap` (the gap
 //!   of the node projected onto the master face,
-//!   [`crate::contact::nodal`]), `contact_slave` (1 at a slave node of any
+//!   [`super::nodal`]), `contact_slave` (1 at a slave node of any
 //!   pair, 0 elsewhere) and `contact_paired` (1 where the node projects
 //!   into a master segment, 0 elsewhere). `contact_gap` is 0 where
 //!   `contact_paired` is 0. A node that is a slave node of two pairs
@@ -27,7 +27,7 @@
 //!   (the body index).
 //!
 //! A state whose nodal contact table does not exist (a
-//! [`crate::contact::nodal::NodalContactError`]: e.g. a collapsed slave
+//! [`super::nodal::NodalContactError`]: e.g. a collapsed slave
 //! segment) has no `.vtu` document: [`vtu_string`] returns the error and
 //! [`write_vtu_state`] reports it as an `InvalidData` I/O error, writing
 //! nothing.
@@ -37,6 +37,9 @@ use std::path::Path;
 
 use crate::mesh::NodeNumbering;
 use crate::solution::{Solution, State};
+
+use super::atomic::write_atomic;
+use super::nodal::{NodalContactError, nodal_contact};
 
 /// Writes the final state of `solution` to `path`.
 pub fn write_vtu(path: impl AsRef<Path>, solution: &Solution) -> std::io::Result<()> {
@@ -51,7 +54,7 @@ pub fn write_vtu_state(
 ) -> std::io::Result<()> {
     let text = vtu_string(solution, state)
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))?;
-    crate::out::write_atomic(path, text)
+    write_atomic(path, text)
 }
 
 fn array(
@@ -96,10 +99,7 @@ fn num(v: f64) -> String {
 
 /// The `.vtu` document of `state`; an error when its nodal contact table
 /// cannot be computed (see the module docs).
-pub fn vtu_string(
-    solution: &Solution,
-    state: &State,
-) -> Result<String, crate::contact::nodal::NodalContactError> {
+pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalContactError> {
     let mesh = &solution.mesh;
     let n = mesh.node_count();
     let m = mesh.elements.len();
@@ -109,7 +109,7 @@ pub fn vtu_string(
     }
     let mut slave = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
-    for row in crate::contact::nodal::nodal_contact(solution, state)? {
+    for row in nodal_contact(solution, state)? {
         slave[row.node] = 1;
         if let Some(pr) = row.projection
             && gap[row.node].is_none_or(|g| pr.gap.abs() < g.abs())

@@ -1,6 +1,6 @@
 //! `contact.csv`: the nodal contact table of a solved state
-//! ([`solver::contact::nodal`]) as comma-separated values, written by
-//! `gapsim run --out DIR`.
+//! ([`super::nodal`]) as comma-separated values, written by `gapsim run
+//! --out DIR`.
 //!
 //! One row per slave node and contact pair, pair by pair and in slave-face
 //! order, with the header
@@ -10,7 +10,7 @@
 //! ```
 //!
 //! `pair` is the pair's name (quoted when it holds a comma, quote or line
-//! break), `node` the slave node, `x`, `y` its current coordinates,
+//! break, [`super::csv::field`]), `node` the slave node, `x`, `y` its current coordinates,
 //! `pressure` the contact pressure `p = -lambda` (positive in compression),
 //! `gap`, `xi_m`, `master_segment` (index within the pair's master face)
 //! and its two global nodes where the node projects into the master face
@@ -18,7 +18,7 @@
 //! length the node's pressure acts on (`sum pressure x tributary_length`
 //! over a pair is the pressure's integral over its slave face). Node
 //! numbers (`node`, `master_node_1`, `master_node_2`) are those of the
-//! node's body ([`solver::Mesh::node_number`]): the mesh file's node tag for
+//! node's body ([`crate::Mesh::node_number`]): the mesh file's node tag for
 //! a body read from the scene's `[mesh] file`, the internal 0-based index
 //! for a block body; `node_numbering` says which `node` is (`msh` or
 //! `internal`), `master_numbering` which the two master nodes are (empty
@@ -30,23 +30,16 @@
 //! written in Rust's shortest round-trip form (with an exponent below
 //! 1e-4 and from 1e15 on). A state with a slave node the kernels cannot
 //! project for a slave-side reason (a collapsed or folded slave segment,
-//! see [`solver::contact::nodal`]) has no table: the error is returned,
+//! see [`super::nodal`]) has no table: the error is returned,
 //! never a row without a gap.
 
-use solver::contact::nodal::{NodalContactError, nodal_contact};
-use solver::{Solution, State};
+use crate::solution::{Solution, State};
+
+use super::csv::field;
+use super::nodal::{NodalContactError, nodal_contact};
 
 /// The header line of `contact.csv` (without the line break).
 pub const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
-
-/// `field` quoted as RFC 4180 wants where it holds a separator.
-fn quoted(field: &str) -> String {
-    if field.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", field.replace('"', "\"\""))
-    } else {
-        field.to_owned()
-    }
-}
 
 /// `v` in Rust's shortest round-trip form: positional, or with an
 /// exponent where that is shorter (below 1e-4 and from 1e15 on).
@@ -64,7 +57,7 @@ pub fn contact_csv(solution: &Solution, state: &State) -> Result<String, NodalCo
     let mut out = format!("{HEADER}\n");
     let number = |n: usize| solution.mesh.node_number(n);
     for row in nodal_contact(solution, state)? {
-        let name = quoted(&solution.contact_pairs[row.pair].name);
+        let name = field(&solution.contact_pairs[row.pair].name);
         let (projection, master_numbering) = match row.projection {
             Some(p) => {
                 let (m1, numbering) = number(p.master_nodes[0]);
@@ -100,13 +93,6 @@ mod tests {
     use super::*;
 
     #[test]
-    fn names_with_separators_are_quoted() {
-        assert_eq!(quoted("interface"), "interface");
-        assert_eq!(quoted("a,b"), "\"a,b\"");
-        assert_eq!(quoted("say \"x\""), "\"say \"\"x\"\"\"");
-    }
-
-    #[test]
     fn numbers_round_trip() {
         for v in [
             0.0,
@@ -130,10 +116,10 @@ mod tests {
     /// scene keeps the internal indices (`internal`).
     #[test]
     fn gmsh_nodes_are_numbered_by_their_file_tags() {
-        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes");
-        let scene = solver::Scene::from_file(format!("{dir}/hertz-coarse.toml")).unwrap();
-        let sol = solver::solve(&scene, &solver::SolveOptions::from_scene(&scene)).unwrap();
-        let msh = solver::mesh::gmsh::MshMesh::read(format!("{dir}/hertz-coarse.msh")).unwrap();
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
+        let scene = crate::Scene::from_file(format!("{dir}/hertz-coarse.toml")).unwrap();
+        let sol = crate::solve(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
+        let msh = crate::mesh::gmsh::MshMesh::read(format!("{dir}/hertz-coarse.msh")).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
         let table = nodal_contact(&sol, &sol.final_state).unwrap();
         let at_tag = |field: &str| msh.nodes()[msh.node_index(field.parse().unwrap()).unwrap()];
@@ -155,7 +141,7 @@ mod tests {
         // the internal numbers are not the tags (the test can fail)
         assert!(differs > 0, "{text}");
         // the `.vtu`'s node_number is the tag of every node
-        let vtu = solver::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+        let vtu = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
         let values = |name: &str| -> Vec<u64> {
             let at = vtu.find(&format!("Name=\"{name}\"")).unwrap();
             let body = &vtu[at..];
@@ -170,8 +156,8 @@ mod tests {
             assert_eq!(at_tag(&tag.to_string()), sol.mesh.nodes_ref[n]);
         }
         assert!(values("node_number_from_mesh_file").iter().all(|&v| v == 1));
-        let scene = solver::Scene::from_file(format!("{dir}/pressed-blocks.toml")).unwrap();
-        let sol = solver::solve(&scene, &solver::SolveOptions::from_scene(&scene)).unwrap();
+        let scene = crate::Scene::from_file(format!("{dir}/pressed-blocks.toml")).unwrap();
+        let sol = crate::solve(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
         let table = nodal_contact(&sol, &sol.final_state).unwrap();
         for (line, row) in text.lines().skip(1).zip(&table) {
@@ -182,7 +168,7 @@ mod tests {
             );
         }
         // the `.vtu` carries the same numbers
-        let vtu = solver::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+        let vtu = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
         assert!(vtu.contains("Name=\"node_number\""), "{vtu}");
         assert!(vtu.contains("Name=\"node_number_from_mesh_file\""), "{vtu}");
     }
@@ -191,9 +177,9 @@ mod tests {
     /// error names the pair and the slave segment's failure.
     #[test]
     fn a_collapsed_slave_segment_is_reported() {
-        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/pressed-blocks.toml");
-        let scene = solver::Scene::from_file(path).unwrap();
-        let mut sol = solver::solve(&scene, &solver::SolveOptions::from_scene(&scene)).unwrap();
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/pressed-blocks.toml");
+        let scene = crate::Scene::from_file(path).unwrap();
+        let mut sol = crate::solve(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
         assert_eq!(text.lines().count(), 6, "{text}");
         let [a, b] = sol.contact_pairs[0].slave[0];

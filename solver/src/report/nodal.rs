@@ -19,12 +19,12 @@
 //!
 //! The node itself (not an integration point) is projected onto the
 //! master face in the current configuration with the pair's formulation,
-//! the complete projection of [`super::ContactLayout::project_all`]: every
+//! the complete projection of [`crate::contact::ContactLayout::project_all`]: every
 //! master segment of the pair is tried, those the node projects into
-//! (`|xi_m| <= 1 +` [`super::XI_INSIDE_TOL`]) are kept, and the one with
+//! (`|xi_m| <= 1 +` [`crate::contact::XI_INSIDE_TOL`]) are kept, and the one with
 //! the smallest `|g|` wins (the first on a tie, in master order). Where the
 //! node projects into none, the segment its projection misses by the least
-//! is taken if that is within [`super::XI_STUCK_BAND`] (`1 < |xi_m| <= 1 +`
+//! is taken if that is within [`crate::contact::XI_STUCK_BAND`] (`1 < |xi_m| <= 1 +`
 //! band): a node at the very end of the master face, such as a node on a
 //! symmetry line where both faces end, whose slave-normal projection lands
 //! a hair beyond the master's last node, or a node in the shadow of a
@@ -55,15 +55,14 @@
 //!
 //! Invariants: rows come pair by pair in model order and, within a pair,
 //! in slave-face order (the multiplier order of
-//! [`super::ContactLayout`]); every value is finite.
+//! [`crate::contact::ContactLayout`]); every value is finite.
 
 use std::collections::HashMap;
 
 use contact_kernels::{KernelError, PAIR_COORDS};
 
+use crate::contact::{XI_INSIDE_TOL, XI_STUCK_BAND, slave_side};
 use crate::solution::{Solution, State};
-
-use super::{XI_INSIDE_TOL, XI_STUCK_BAND, slave_side};
 
 /// A slave node the kernels cannot project for a reason no master segment
 /// avoids (see the module docs): the nodal table of that state does not
@@ -347,7 +346,7 @@ mod tests {
             msg.contains("contact pair `interface`") && msg.contains("degenerate slave segment"),
             "{msg}"
         );
-        let vtu = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap_err();
+        let vtu = crate::report::vtu_string(&sol, &sol.final_state).unwrap_err();
         assert_eq!(vtu, e);
     }
 
@@ -432,7 +431,7 @@ mod tests {
     #[test]
     fn the_vtu_file_carries_the_table() {
         let sol = pressed_blocks(Formulation::SlaveNormal);
-        let vtu = crate::vtk::vtu_string(&sol, &sol.final_state).unwrap();
+        let vtu = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
         let field = |name: &str| -> Vec<f64> {
             let start = vtu
                 .find(&format!("Name=\"{name}\""))
