@@ -31,10 +31,21 @@
 //! [`LinearSolver::fallbacks`]):
 //!
 //! - the numeric factorisation reports a zero or non-finite pivot;
-//! - a pivot has the wrong sign: expected positive for a row whose assembled
-//!   diagonal is positive (the `K` rows, inactive multipliers) and negative
-//!   otherwise (active multipliers, ties) — `K` indefinite (buckling) or
-//!   singular (a body held only by contact) shows up here;
+//! - the pivots have the wrong inertia. By Sylvester's law the pivots have
+//!   as many positive signs as the matrix has positive eigenvalues, and a
+//!   saddle-point matrix whose `K` is positive definite on the null space of
+//!   the active constraints' `G` has one positive eigenvalue per row whose
+//!   assembled diagonal is positive (the `K` rows, inactive multipliers) and
+//!   one negative per other row (active multipliers, ties). The check counts
+//!   positive pivots against those rows, not the sign of each pivot: where
+//!   `K` itself is singular or slightly indefinite along a mode that only
+//!   contact holds (a body held only by contact, e.g. the Hertz cylinder
+//!   under finite strain), the last displacement pivot of that mode is
+//!   negative and the multiplier ordered after it positive, a pair of the
+//!   right inertia that refinement solves to a backward error of about
+//!   1e-18. `K` indefinite on that null space (buckling) shows up as a
+//!   wrong count; a numerically singular matrix as a zero pivot, a wrong
+//!   count, or in the next check (and [`check_solution`]);
 //! - the solution is not finite, or its normwise backward error
 //!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
 //!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.
@@ -182,7 +193,7 @@ impl SparseLdlt {
                 diagonal[p.rows[k]] += vals[k];
             }
         }
-        let expect_positive: Vec<bool> = diagonal.iter().map(|&d| d > 0.0).collect();
+        let expected_positive = diagonal.iter().filter(|&&d| d > 0.0).count();
         drop(diagonal);
         let a = SparseColMatRef::new(p.symbolic.as_ref(), &lower_vals);
         let mut l_values = std::mem::take(&mut self.spare);
@@ -203,7 +214,7 @@ impl SparseLdlt {
                 Default::default(),
             )
             .is_ok()
-            && pivots_have_expected_signs(&p.cholesky, &l_values, &expect_positive);
+            && pivots_have_expected_inertia(&p.cholesky, &l_values, expected_positive);
         if safe {
             self.numeric = Some(Factor::Ldlt {
                 l_values,
@@ -411,32 +422,35 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
 
-/// Whether every pivot of the factorisation `l_values` is non-zero, finite
-/// and of the expected sign (`expect_positive[i]` for original row `i`).
-fn pivots_have_expected_signs(
+/// Whether every pivot of the factorisation `l_values` is non-zero and
+/// finite, and `expected` of them are positive (the inertia of the module
+/// docs).
+fn pivots_have_expected_inertia(
     cholesky: &SymbolicCholesky<usize>,
     l_values: &[f64],
-    expect_positive: &[bool],
+    expected: usize,
 ) -> bool {
-    let fwd: Option<&[usize]> = cholesky.perm().map(|p| p.arrays().0);
-    let original = |j: usize| fwd.map_or(j, |f| f[j]);
-    let ok =
-        |j: usize, d: f64| d.is_finite() && (d > 0.0) == expect_positive[original(j)] && d != 0.0;
-    match cholesky.raw() {
+    let mut positive = 0;
+    let mut ok = |d: f64| {
+        positive += usize::from(d > 0.0);
+        d.is_finite() && d != 0.0
+    };
+    let each = match cholesky.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             // the diagonal is the first entry of each column of the factor
             let col_ptr = s.factor().col_ptr();
-            (0..s.nrows()).all(|j| ok(j, l_values[col_ptr[j]]))
+            (0..s.nrows()).all(|j| ok(l_values[col_ptr[j]]))
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
             let ldlt = SupernodalLdltRef::new(s, l_values);
             (0..s.n_supernodes()).all(|k| {
                 let node = ldlt.supernode(k);
                 let val = node.val();
-                (0..val.ncols()).all(|c| ok(node.start() + c, val[(c, c)]))
+                (0..val.ncols()).all(|c| ok(val[(c, c)]))
             })
         }
-    }
+    };
+    each && positive == expected
 }
 
 impl LinearSolver for SparseLdlt {
@@ -669,6 +683,67 @@ mod tests {
         let t = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 0.0)];
         let (x, y, _) = both(2, &t, &[1.0, 1.0]);
         assert_close(&x, &y);
+    }
+
+    /// `K` slightly indefinite along a mode that only the constraint holds
+    /// (a body held only by contact): `K = [1 -1; -1 1 - d]`, the multiplier
+    /// on dof 1 ordered after it. The pivots are `1, -d, 1/d + eps`: two
+    /// with the wrong sign for their rows but the right inertia (two
+    /// positive, one negative), so the LDL^T is kept and gives LU's
+    /// solution without fallback. A per-row sign check fell back here.
+    #[test]
+    fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
+        let d = 0.02;
+        let t = [
+            (0, 0, 1.0),
+            (0, 1, -1.0),
+            (1, 0, -1.0),
+            (1, 1, 1.0 - d),
+            (1, 2, 1.0),
+            (2, 1, 1.0),
+            (2, 2, -1e-8),
+        ];
+        let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
+        let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+        let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
+        let b = [1.0, 0.5, -0.25];
+        let mut s = SparseLdlt::new();
+        s.set_constraints_from(2);
+        let x = s.solve_system(3, &rows, &cols, &vals, &b).unwrap();
+        let y = SparseLu::new()
+            .solve_system(3, &rows, &cols, &vals, &b)
+            .unwrap();
+        assert_close(&x, &y);
+        assert_eq!(s.fallbacks(), 0);
+        // the multiplier after both displacement dofs: the wrong-signed pair
+        let p = s.pattern.as_ref().unwrap();
+        let fwd = p.cholesky.perm().unwrap().arrays().0;
+        assert_eq!(fwd[2], 2);
+        // K indefinite on the constraint's null space (buckling: the
+        // constraint on dof 2, the indefinite block on dofs 0 and 1, every
+        // diagonal positive): two positive pivots for three positive rows,
+        // and the solve falls back
+        let t = [
+            (0, 0, 1.0),
+            (0, 1, 2.0),
+            (1, 0, 2.0),
+            (1, 1, 1.0),
+            (2, 2, 1.0),
+            (2, 3, 1.0),
+            (3, 2, 1.0),
+            (3, 3, -1e-8),
+        ];
+        let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
+        let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+        let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
+        let b = [1.0, 0.5, -0.25, 0.125];
+        s.set_constraints_from(3);
+        let x = s.solve_system(4, &rows, &cols, &vals, &b).unwrap();
+        let y = SparseLu::new()
+            .solve_system(4, &rows, &cols, &vals, &b)
+            .unwrap();
+        assert_close(&x, &y);
+        assert_eq!(s.fallbacks(), 1);
     }
 
     /// The fill: a tridiagonal matrix factorises without fill (`2n - 1`
