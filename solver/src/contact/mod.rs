@@ -215,6 +215,7 @@
 
 mod active_set;
 mod evaluate;
+pub mod face_index;
 mod layout;
 mod search;
 mod segmented;
