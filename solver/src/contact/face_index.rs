@@ -59,33 +59,55 @@ pub enum IndexError {
     /// A coordinate of face `face`'s box (or its nodes) is not finite.
     #[error("face {face}: coordinate {axis} is not finite ({value})")]
     NonFinite {
+        /// The face.
         face: usize,
+        /// The coordinate axis.
         axis: usize,
+        /// The value found.
         value: f64,
     },
     /// Face `face`'s box has `min > max` on axis `axis`.
     #[error("face {face}: box min {min} > max {max} on axis {axis}")]
     Inverted {
+        /// The face.
         face: usize,
+        /// The coordinate axis.
         axis: usize,
+        /// The box's lower bound.
         min: f64,
+        /// The box's upper bound.
         max: f64,
     },
     /// A face given with no nodes to box.
     #[error("face {face} has no nodes")]
-    NoNodes { face: usize },
+    NoNodes {
+        /// The face.
+        face: usize,
+    },
     /// A margin or radius that is negative or not finite.
     #[error("{what} must be finite and non-negative (got {value})")]
-    BadDistance { what: &'static str, value: f64 },
+    BadDistance {
+        /// `margin` or `radius`.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
     /// A query point or box with a non-finite coordinate.
     #[error("query coordinate {axis} is not finite ({value})")]
-    NonFiniteQuery { axis: usize, value: f64 },
+    NonFiniteQuery {
+        /// The coordinate axis.
+        axis: usize,
+        /// The value given.
+        value: f64,
+    },
 }
 
 /// A closed axis-aligned box `[min, max]` in `D` dimensions.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb<const D: usize> {
+    /// The lower corner.
     pub min: [f64; D],
+    /// The upper corner.
     pub max: [f64; D],
 }
 

@@ -214,6 +214,7 @@
 //! evaluations return in that order (`crate::par`).
 
 mod active_set;
+pub mod clip;
 mod evaluate;
 pub mod face_index;
 mod layout;
