@@ -507,7 +507,7 @@ mod tests {
         assert_eq!(empty.depth(), 0);
         assert_eq!(empty.query_point(&[0.0; 3], 1.0).unwrap(), vec![]);
         // All faces collapsed onto one point: one answer holding them all.
-        let same = FaceIndex::<2>::from_faces(&vec![[[2.0, 3.0]]; 9], 0.0).unwrap();
+        let same = FaceIndex::<2>::from_faces(&[[[2.0, 3.0]]; 9], 0.0).unwrap();
         assert_eq!(
             same.query_point(&[2.0, 3.0], 0.0).unwrap(),
             (0..9).collect::<Vec<_>>()
@@ -588,6 +588,42 @@ mod tests {
             matches!(err, IndexError::NonFiniteQuery { axis: 0, .. }),
             "{err}"
         );
+    }
+
+    #[test]
+    fn candidates_hold_every_segment_a_point_projects_into_within_the_margin() {
+        // A wavy master chain of 2D segments, as the 2D pairing walks it.
+        let nodes: Vec<[f64; 2]> = (0..=200)
+            .map(|i| {
+                let x = i as f64 * 0.05;
+                [x, 0.3 * (2.0 * x).sin()]
+            })
+            .collect();
+        let segments: Vec<[[f64; 2]; 2]> = nodes.windows(2).map(|w| [w[0], w[1]]).collect();
+        let margin = 0.08;
+        let index = FaceIndex::from_faces(&segments, margin).unwrap();
+        let mut rng = Lcg::new(11);
+        let mut paired = 0;
+        for _ in 0..2000 {
+            let p = [rng.uniform(-0.2, 10.2), rng.uniform(-0.5, 0.5)];
+            let found = index.query_point(&p, 0.0).unwrap();
+            for (s, [a, b]) in segments.iter().enumerate() {
+                let t = [b[0] - a[0], b[1] - a[1]];
+                let xi =
+                    ((p[0] - a[0]) * t[0] + (p[1] - a[1]) * t[1]) / (t[0] * t[0] + t[1] * t[1]);
+                let q = [a[0] + xi * t[0], a[1] + xi * t[1]];
+                let gap = (p[0] - q[0]).hypot(p[1] - q[1]);
+                if (0.0..=1.0).contains(&xi) && gap <= margin {
+                    paired += 1;
+                    assert!(
+                        found.contains(&s),
+                        "{p:?} projects into {s} ({gap}): {found:?}"
+                    );
+                }
+            }
+            assert!(found.windows(2).all(|w| w[0] < w[1]));
+        }
+        assert!(paired > 200, "{paired}");
     }
 
     /// The unit quads of an `n x n` grid in the plane z = 0, as 3D faces.
