@@ -109,8 +109,9 @@ pub enum ClipError {
         area: f64,
     },
     /// A face whose polygon in the slave plane is not convex (folded or
-    /// self-intersecting); `corner` is the first corner turning the wrong
-    /// way.
+    /// self-intersecting); `corner` is a corner turning against another
+    /// (the later of the first two that disagree), or on a slave face the
+    /// first corner that does not turn counter-clockwise.
     #[error("{role} face is not convex in the slave plane (corner {corner})")]
     NotConvex {
         /// The face.
