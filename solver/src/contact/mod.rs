@@ -214,7 +214,9 @@
 //! evaluations return in that order (`crate::par`).
 
 mod active_set;
+pub mod clip;
 mod evaluate;
+pub mod face_index;
 mod layout;
 mod search;
 mod segmented;
