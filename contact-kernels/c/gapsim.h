@@ -8,13 +8,17 @@
  * the codes below; on GAPSIM_OK every output is finite and written, on any
  * other code the outputs are unspecified (gap and xi_m are left untouched).
  * The codes mirror the Rust crate contact-kernels' KernelError (its
- * CoordinateCount, BufferSize and NotCompiled cannot occur in C: the array
- * sizes are fixed, the formulation is chosen by the function's name).
+ * CoordinateCount, BufferSize, ParamCount and NotCompiled cannot occur in
+ * C: the array sizes are fixed, a face's slave point is two doubles, the
+ * formulation is chosen by the function's name).
  */
 #ifndef GAPSIM_H
 #define GAPSIM_H
 
-/* Status codes, checked in this order. */
+/* Status codes. Segments check them in this order; 3D faces check
+ * GAPSIM_NON_FINITE_INPUT, GAPSIM_SLAVE_POINT_OUTSIDE, the slave face's
+ * GAPSIM_DEGENERATE_SLAVE_FACE and GAPSIM_FOLDED_SLAVE_FACE, the master
+ * face's, then the projection and output codes in this order. */
 enum gapsim_status {
     /* Success. */
     GAPSIM_OK = 0,
@@ -47,7 +51,22 @@ enum gapsim_status {
      * degenerate-segment codes. */
     GAPSIM_FOLDED_SLAVE = 10,
     /* The same for the master segment. */
-    GAPSIM_FOLDED_MASTER = 11
+    GAPSIM_FOLDED_MASTER = 11,
+    /* A 3D slave face's normal (nearly) vanishes: at a corner, |t1 x t2|
+     * is not above GAPSIM_DEGENERATE_LENGTH times the face's size squared
+     * (its size: the largest coordinate difference between its first node
+     * and the others) (KernelError::DegenerateFace). */
+    GAPSIM_DEGENERATE_SLAVE_FACE = 12,
+    /* The same for the master face. */
+    GAPSIM_DEGENERATE_MASTER_FACE = 13,
+    /* A quad4 slave face folds: at a corner, t1 x t2 does not point the way
+     * of the face's mean normal (x3 - x1) x (x4 - x2) (KernelError::FoldedFace). */
+    GAPSIM_FOLDED_SLAVE_FACE = 14,
+    /* The same for the master face. */
+    GAPSIM_FOLDED_MASTER_FACE = 15,
+    /* The slave point (u, v) lies outside its face (tri3: u, v >= 0 and
+     * u + v <= 1; quad4: [-1, 1]^2) (KernelError::SlavePointOutside). */
+    GAPSIM_SLAVE_POINT_OUTSIDE = 16
 };
 
 /* A segment shorter than this times the configuration's size (its largest
@@ -57,7 +76,8 @@ enum gapsim_status {
 #define GAPSIM_XI_M_LIMIT 1e6
 /* Newton iterations allowed for a projection not in closed form. */
 #define GAPSIM_PROJECTION_ITERATIONS 20
-/* A Newton correction below this times (1 + |xi|) ends the projection. */
+/* A Newton correction below this times (1 + |xi|) ends the projection (for
+ * a face: max(|du|, |dv|) against 1 + max(|u|, |v|)). */
 #define GAPSIM_PROJECTION_TOLERANCE 1e-12
 
 /* The name of a status code ("GAPSIM_OK", ...; "unknown" otherwise). */
@@ -76,6 +96,11 @@ static inline const char *gapsim_status_name(int status)
     case GAPSIM_NON_FINITE_HESSIAN: return "GAPSIM_NON_FINITE_HESSIAN";
     case GAPSIM_FOLDED_SLAVE: return "GAPSIM_FOLDED_SLAVE";
     case GAPSIM_FOLDED_MASTER: return "GAPSIM_FOLDED_MASTER";
+    case GAPSIM_DEGENERATE_SLAVE_FACE: return "GAPSIM_DEGENERATE_SLAVE_FACE";
+    case GAPSIM_DEGENERATE_MASTER_FACE: return "GAPSIM_DEGENERATE_MASTER_FACE";
+    case GAPSIM_FOLDED_SLAVE_FACE: return "GAPSIM_FOLDED_SLAVE_FACE";
+    case GAPSIM_FOLDED_MASTER_FACE: return "GAPSIM_FOLDED_MASTER_FACE";
+    case GAPSIM_SLAVE_POINT_OUTSIDE: return "GAPSIM_SLAVE_POINT_OUTSIDE";
     default: return "unknown";
     }
 }

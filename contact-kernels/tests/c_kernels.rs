@@ -21,6 +21,16 @@
 //! slave tangent, no root) and non-finite 3-node configurations and on the
 //! verifier's 3-node families (`gapsim_families::quadratic`).
 //!
+//! The formulations of 3D faces (tri3 and quad4, every pair of kinds, both
+//! readings) are compared the same way through `tests/c/driver_faces.c`
+//! (the projection and types 1..=6, `xi_m` of two values) on the
+//! verifier's face families (`gapsim_families::faces`) plus non-finite
+//! input, slave points outside and on the edges of their face, degenerate
+//! and folded faces, a master along the slave normal, projections out of
+//! reach and extreme scales (`tests/common/faces.rs`); every status of the
+//! face path occurs. The face sources are compiled one object each, as
+//! many at once as the machine has cores.
+//!
 //! The test is skipped, with a message, only when no C compiler is found.
 //! It also compiles and runs `examples/c/evaluate.c`.
 
@@ -28,7 +38,6 @@ use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-#[cfg(feature = "quadratic-slave-normal")]
 use contact_kernels::Formulation;
 use contact_kernels::{
     ApproxType, DEGENERATE_LENGTH, GapOut, Kernel, KernelError, OutputKind, Projector, Segment,
@@ -42,7 +51,9 @@ use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
 mod common;
+use common::faces::{FACES, FaceConfig, face_configurations};
 use common::{BOTH, Config, configurations};
+use gapsim_families::faces::FaceKind;
 
 // ---------------------------------------------------------------------------
 // The two sides.
@@ -51,6 +62,23 @@ use common::{BOTH, Config, configurations};
 /// The C status code of a Rust error (gapsim.h's `enum gapsim_status`).
 fn code(e: &KernelError) -> i32 {
     match e {
+        KernelError::DegenerateFace {
+            face: Segment::Slave,
+            ..
+        } => 12,
+        KernelError::DegenerateFace {
+            face: Segment::Master,
+            ..
+        } => 13,
+        KernelError::FoldedFace {
+            face: Segment::Slave,
+            ..
+        } => 14,
+        KernelError::FoldedFace {
+            face: Segment::Master,
+            ..
+        } => 15,
+        KernelError::SlavePointOutside { .. } => 16,
         KernelError::NonFinite { .. } => 1,
         KernelError::DegenerateSegment {
             segment: Segment::Slave,
@@ -157,19 +185,22 @@ fn have_compiler() -> bool {
     }
 }
 
+/// The test's C flags.
+const FLAGS: [&str; 7] = [
+    "-std=c99",
+    "-O2",
+    "-ffp-contract=off",
+    "-Wall",
+    "-Wextra",
+    "-pedantic",
+    "-Werror",
+];
+
 /// Compiles `sources` with the test's flags into `out`.
 fn compile(sources: &[PathBuf], out: &Path) {
     let c_dir = manifest().join("c");
     let output = Command::new(compiler())
-        .args([
-            "-std=c99",
-            "-O2",
-            "-ffp-contract=off",
-            "-Wall",
-            "-Wextra",
-            "-pedantic",
-            "-Werror",
-        ])
+        .args(FLAGS)
         .arg("-I")
         .arg(&c_dir)
         .args(sources)
@@ -182,6 +213,60 @@ fn compile(sources: &[PathBuf], out: &Path) {
         output.status.success(),
         "{} failed on {sources:?}:\n{}",
         compiler(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// Compiles each of `sources` with the test's flags into an object file in
+/// `dir` (as many compilers at once as the machine has cores: the face
+/// kernels are large), then links them into `out`.
+fn compile_each(sources: &[PathBuf], dir: &Path, out: &Path) {
+    let c_dir = manifest().join("c");
+    let jobs = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let objects: Vec<PathBuf> = sources
+        .iter()
+        .map(|s| dir.join(s.file_name().unwrap()).with_extension("o"))
+        .collect();
+    let pending: Vec<(&PathBuf, &PathBuf)> = sources.iter().zip(&objects).collect();
+    for batch in pending.chunks(jobs) {
+        let children: Vec<_> = batch
+            .iter()
+            .map(|(src, obj)| {
+                let child = Command::new(compiler())
+                    .args(FLAGS)
+                    .arg("-I")
+                    .arg(&c_dir)
+                    .arg("-c")
+                    .arg(src)
+                    .arg("-o")
+                    .arg(obj)
+                    .stderr(Stdio::piped())
+                    .spawn()
+                    .expect("run the C compiler");
+                (src, child)
+            })
+            .collect();
+        for (src, child) in children {
+            let output = child.wait_with_output().expect("wait for the C compiler");
+            assert!(
+                output.status.success(),
+                "{} failed on {}:\n{}",
+                compiler(),
+                src.display(),
+                String::from_utf8_lossy(&output.stderr)
+            );
+        }
+    }
+    let output = Command::new(compiler())
+        .args(&objects)
+        .arg("-o")
+        .arg(out)
+        .arg("-lm")
+        .output()
+        .expect("run the linker");
+    assert!(
+        output.status.success(),
+        "linking {objects:?} failed:\n{}",
         String::from_utf8_lossy(&output.stderr)
     );
 }
@@ -563,5 +648,159 @@ fn c_quadratic_kernels_equal_rust_kernels_bit_for_bit() {
     );
     for s in [0, 1, 2, 3, 4, 10, 11] {
         assert!(statuses[s] > 0, "no configuration gave status {s}");
+    }
+}
+
+// ---------------------------------------------------------------------------
+// 3D faces (18 to 24 coordinates, xi_s and xi_m of two values).
+// ---------------------------------------------------------------------------
+
+/// The Rust side for one face configuration of formulation `f`: the
+/// projection and types 1..=6, in the face driver's order.
+fn rust_face_outcomes(f: Formulation, c: &FaceConfig) -> Vec<Outcome> {
+    let projector = Projector::new(f).unwrap();
+    let mut scratch = vec![0.0; projector.coords()];
+    let mut out = vec![match projector.project(&c.q, c.xi_s, &mut scratch) {
+        Ok(p) => Outcome {
+            status: 0,
+            bits: std::iter::once(p.gap)
+                .chain(p.xi_m_all().iter().copied())
+                .map(f64::to_bits)
+                .collect(),
+        },
+        Err(e) => Outcome {
+            status: code(&e),
+            bits: Vec::new(),
+        },
+    }];
+    for ty in ApproxType::ALL {
+        let kernel = Kernel::new(f, ty).unwrap();
+        let mut g = GapOut::new(&kernel);
+        out.push(match kernel.eval(&c.q, c.xi_s, &mut g) {
+            Ok(()) => {
+                let mut bits = vec![g.gap().to_bits()];
+                bits.extend(g.xi_m_all().iter().map(|v| v.to_bits()));
+                bits.extend(g.grad().iter().map(|v| v.to_bits()));
+                if let Some(h) = g.hess() {
+                    bits.extend(h.iter().map(|v| v.to_bits()));
+                }
+                Outcome { status: 0, bits }
+            }
+            Err(e) => Outcome {
+                status: code(&e),
+                bits: Vec::new(),
+            },
+        });
+    }
+    out
+}
+
+#[test]
+fn c_face_kernels_equal_rust_kernels_bit_for_bit() {
+    if !have_compiler() {
+        eprintln!(
+            "SKIPPED: no C compiler (`{}` not found); the C face kernels were not compared",
+            compiler()
+        );
+        return;
+    }
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_kernels_faces");
+    std::fs::create_dir_all(&dir).unwrap();
+    let driver = dir.join("driver_faces");
+    let mut sources = vec![manifest().join("tests/c/driver_faces.c")];
+    sources.extend(
+        FACES
+            .iter()
+            .map(|(_, id, _, _)| manifest().join(format!("c/gapsim_{id}.c"))),
+    );
+    compile_each(&sources, &dir, &driver);
+
+    let configs: Vec<(usize, FaceConfig)> = FACES
+        .iter()
+        .enumerate()
+        .flat_map(|(i, &(_, _, s, m))| face_configurations(s, m).into_iter().map(move |c| (i, c)))
+        .collect();
+    let mut input = String::new();
+    for (i, c) in &configs {
+        input.push_str(&i.to_string());
+        for v in c.xi_s.iter().chain(&c.q) {
+            input.push_str(&format!(" {:016x}", v.to_bits()));
+        }
+        input.push('\n');
+    }
+    let mut child = Command::new(&driver)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("run the face driver");
+    let mut stdin = child.stdin.take().unwrap();
+    let writer = std::thread::spawn(move || stdin.write_all(input.as_bytes()));
+    let output = child.wait_with_output().unwrap();
+    writer.join().unwrap().unwrap();
+    assert!(output.status.success(), "the face driver failed");
+    let text = String::from_utf8(output.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), configs.len() * 7, "driver output lines");
+
+    let (mut values, mut errors, mut differences) = (0usize, 0usize, Vec::new());
+    let mut statuses = [[0usize; 17]; 8];
+    for (k, (i, c)) in configs.iter().enumerate() {
+        let f = FACES[*i].0;
+        for (j, r) in rust_face_outcomes(f, c).into_iter().enumerate() {
+            let cside = parse_outcome(lines[k * 7 + j]);
+            statuses[*i][r.status as usize] += 1;
+            values += r.bits.len();
+            errors += usize::from(r.status != 0);
+            if cside != r {
+                differences.push(format!(
+                    "{} function {j} #{k} ({}, q = {:?}, xi_s = {:?}): C {cside:?}, Rust {r:?}",
+                    f.name(),
+                    c.label,
+                    c.q,
+                    c.xi_s
+                ));
+            }
+        }
+    }
+    for (i, (f, ..)) in FACES.iter().enumerate() {
+        eprintln!("{}: statuses (0..=16) {:?}", f.name(), statuses[i]);
+    }
+    eprintln!(
+        "faces: {} configurations x 7 functions: {values} output values compared bit for bit, \
+         {errors} error codes compared; {} differences",
+        configs.len(),
+        differences.len()
+    );
+    assert!(
+        differences.is_empty(),
+        "{} differences between the C and the Rust face kernels, e.g.:\n{}",
+        differences.len(),
+        differences[..differences.len().min(10)].join("\n")
+    );
+    // Every formulation: values, non-finite input, a slave point outside,
+    // degenerate faces on both sides; quad4 faces also folded; every
+    // slave-normal formulation a master along the slave normal; the master
+    // moved far away: a tri3's closed-form projection out of reach, a
+    // quad4's Newton projection diverged.
+    for (i, &(f, _, s, m)) in FACES.iter().enumerate() {
+        let mut expected = vec![0, 1, 12, 13, 16];
+        if s == FaceKind::Quad4 {
+            expected.push(14);
+        }
+        if m == FaceKind::Quad4 {
+            expected.extend([15, 6]);
+        } else {
+            expected.push(5);
+        }
+        if f.name().ends_with("slave-normal") {
+            expected.push(4);
+        }
+        for code in expected {
+            assert!(
+                statuses[i][code] > 0,
+                "{}: no configuration gave status {code}",
+                f.name()
+            );
+        }
     }
 }

@@ -36,7 +36,7 @@ pub enum Lang {
 A formulation file is Rust syntax: inputs!(xs1, xs2, xm1, xm2; xi_s); let ... = implicit!(xi => ...); \
 entity!(...); gap!(...) (reference: docs/formulations.md; example: contact-kernels/formulations/slave-normal.rs); 3D faces: \
 inputs!(dim 3; xs1, xs2, xs3; xm1, xm2, xm3; xi_s: 2), implicit!(xi: 2 => [r1, r2]) \
-(see contact-kernels/formulations/tri3-slave-normal.rs; Rust only)."
+(see contact-kernels/formulations/tri3-slave-normal.rs)."
 )]
 pub struct GenerateArgs {
     /// Formulation files (`NAME.rs`; the stem names the formulation).
@@ -191,23 +191,6 @@ pub fn run(args: &GenerateArgs) -> CommandResult {
         files.push(f);
     }
     let sources: Vec<codegen::Source> = files.iter().map(|f| f.source.clone()).collect();
-    if args.lang == Lang::C {
-        // The C emitter writes segment formulations only: refuse faces
-        // rather than leave them out.
-        for f in &files {
-            let parsed = codegen::Formulation::parse(&f.source.name, &f.source.text)
-                .map_err(|e| locate(e, &files))?;
-            if !codegen::emit::CEmitter::supports(parsed.signature.dim()) {
-                return Err(GenerateError::Unsupported {
-                    path: f.path.clone(),
-                    message: "the C emitter writes formulations of 2D segments only; this file \
-                              declares 3D faces (generate Rust with --lang rust)"
-                        .into(),
-                }
-                .into());
-            }
-        }
-    }
     let origin: Vec<String> = files.iter().map(|f| f.path.display().to_string()).collect();
     let plan = codegen::KernelPlan::build(&sources)
         .map_err(|e| locate(e, &files))?

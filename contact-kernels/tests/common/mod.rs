@@ -4,6 +4,8 @@
 //! input only these tests need.
 #![allow(dead_code)] // each test binary uses part of it
 
+pub mod faces;
+
 use contact_kernels::Formulation;
 use gapsim_families::{Normal, Shape, WORKED_Q, WORKED_XI_S, seeded};
 use rand::Rng;
