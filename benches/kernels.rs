@@ -27,8 +27,9 @@
 //! tri3-on-tri3 configurations near the worked example of
 //! docs/conventions.md ("3D faces"), the sympy-cse 3D peer
 //! (`benches/peer/sympy_kernel_3d.rs`), gapsim's `tri3-slave-normal` Types 1
-//! and 6 through the handle and `Kernel::eval_batch` (point by point for
-//! faces), and num-dual's `hessian` of the same gap (18 coordinates). Run it
+//! and 6 through the handle and `Kernel::eval_batch` (the face lane
+//! kernels, 4 points per call), and num-dual's `hessian` of the same gap
+//! (18 coordinates). Run it
 //! alone with `cargo bench --bench kernels -- faces`.
 //!
 //! Warm-up and measurement are 1 s each so the whole run takes about a

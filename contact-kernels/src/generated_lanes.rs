@@ -9,6 +9,9 @@
 //! symmetric Hessian into `hess` (`n * n` values, row-major). Lane `l` of
 //! every output is bit for bit what the scalar kernel gives point `l`.
 //!
+//! The kernels of 3D faces take `xi_s` and `xi_m` as two [`Lanes`] each
+//! (`face_lane_set`, [`FaceLaneKernel`]).
+//!
 //! Each kernel exists twice: portable, and on x86-64 compiled for AVX2
 //! (no FMA). [`select`] picks the AVX2 copy when the CPU has it
 //! (`is_x86_feature_detected!`), once, when a `Kernel` is made.
@@ -35,6 +38,25 @@ pub(crate) enum LaneKernel {
     Hessian(LaneHessianFn),
 }
 
+/// `(d, xi_s, xi_m, grad) -> g` over lanes for faces: `xi_s` and the
+/// in/out `xi_m` are two [`Lanes`] each (`u`, `v` of every point); safety
+/// as for [`LaneGradientFn`].
+pub(crate) type FaceLaneGradientFn =
+    unsafe fn(&[Lanes], &[Lanes], &mut [Lanes], &mut [Lanes]) -> Lanes;
+/// `(d, xi_s, xi_m, grad, hess) -> g` over lanes for faces; safety as for
+/// [`LaneGradientFn`].
+pub(crate) type FaceLaneHessianFn =
+    unsafe fn(&[Lanes], &[Lanes], &mut [Lanes], &mut [Lanes], &mut [Lanes]) -> Lanes;
+
+/// One approximation type's lane kernel for faces.
+#[derive(Clone, Copy)]
+pub(crate) enum FaceLaneKernel {
+    /// First-order only (Type 1).
+    Gradient(FaceLaneGradientFn),
+    /// With the second-order term.
+    Hessian(FaceLaneHessianFn),
+}
+
 /// The instruction set a lane kernel was compiled for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LaneIsa {
@@ -44,11 +66,12 @@ pub enum LaneIsa {
     Avx2,
 }
 
-/// The lane kernels of one formulation, types 1..=6.
-pub(crate) struct LaneSet {
-    pub(crate) portable: [LaneKernel; 6],
+/// The lane kernels of one formulation, types 1..=6 ([`LaneKernel`]s of
+/// segments, [`FaceLaneKernel`]s of faces).
+pub(crate) struct LaneSet<K = LaneKernel> {
+    pub(crate) portable: [K; 6],
     #[cfg(target_arch = "x86_64")]
-    pub(crate) avx2: [LaneKernel; 6],
+    pub(crate) avx2: [K; 6],
 }
 
 /// The lane kernel of type `ty` (1..=6) for the best instruction set this
@@ -56,7 +79,7 @@ pub(crate) struct LaneSet {
 ///
 /// Invariant: an [`LaneIsa::Avx2`] kernel is returned only when the CPU
 /// supports AVX2, so calling it is sound.
-pub(crate) fn select(set: &LaneSet, ty: usize, isa: LaneIsa) -> (LaneKernel, LaneIsa) {
+pub(crate) fn select<K: Copy>(set: &LaneSet<K>, ty: usize, isa: LaneIsa) -> (K, LaneIsa) {
     #[cfg(target_arch = "x86_64")]
     if isa == LaneIsa::Avx2 && std::is_x86_feature_detected!("avx2") {
         return (set.avx2[ty - 1], LaneIsa::Avx2);

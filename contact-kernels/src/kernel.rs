@@ -42,10 +42,13 @@
 //! failures per point. A failed point's entries are zero and its accessors
 //! return its error, never stale or NaN values. It evaluates 4 points per
 //! call of the lane kernels (`batch.rs`; AVX2 when the CPU has it), with
-//! the same results and errors as [`Kernel::eval`] point by point.
+//! the same results and errors as [`Kernel::eval`] point by point; a face
+//! kernel's batch runs the face lane kernels (`face_batch.rs`).
 
 use crate::generated::{self, KernelSet, face_kernel_set, kernel_set};
-use crate::generated_lanes::{self, LaneIsa, LaneKernel, LaneSet, lane_set};
+use crate::generated_lanes::{
+    self, FaceLaneKernel, LaneIsa, LaneKernel, LaneSet, face_lane_set, lane_set,
+};
 use crate::param::{Xi, XiArg};
 use crate::validate::{all_finite, relative_coordinates};
 use crate::{ApproxType, Formulation, KernelError, OpCount, OutputKind, faces, projection};
@@ -76,14 +79,18 @@ pub(crate) struct Segments {
     lane_isa: LaneIsa,
 }
 
-/// A face kernel: its set and the scalar kernel.
+/// A face kernel: its set, the scalar kernel and the lane kernel.
 #[derive(Clone, Copy)]
 pub(crate) struct Faces {
     set: &'static generated::FaceKernelSet,
     kernel: generated::FaceKernel,
+    lane_set: &'static LaneSet<FaceLaneKernel>,
+    lanes: FaceLaneKernel,
+    lane_isa: LaneIsa,
 }
 
 mod batch;
+mod face_batch;
 
 impl std::fmt::Debug for Kernel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -294,12 +301,18 @@ impl Kernel {
     /// The kernel of `(formulation, ty)`, or [`KernelError::NotCompiled`].
     pub fn new(formulation: Formulation, ty: ApproxType) -> Result<Kernel, KernelError> {
         if let Some(set) = face_kernel_set(formulation) {
+            let lane_set =
+                face_lane_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
+            let (lanes, lane_isa) = generated_lanes::select(lane_set, ty.index(), LaneIsa::Avx2);
             return Ok(Kernel {
                 formulation,
                 ty,
                 imp: Imp::Faces(Faces {
                     set,
                     kernel: set.kernels[ty.index() - 1],
+                    lane_set,
+                    lanes,
+                    lane_isa,
                 }),
             });
         }
@@ -321,12 +334,11 @@ impl Kernel {
 
     /// The instruction set of the lane kernel [`Kernel::eval_batch`] runs:
     /// AVX2 when the CPU has it, unless [`Kernel::with_lane_isa`] chose
-    /// the portable one. (Faces have no lane kernels: their batch runs
-    /// point by point, reported as [`LaneIsa::Portable`].)
+    /// the portable one.
     pub fn lane_isa(&self) -> LaneIsa {
         match &self.imp {
             Imp::Segments(s) => s.lane_isa,
-            Imp::Faces(_) => LaneIsa::Portable,
+            Imp::Faces(f) => f.lane_isa,
         }
     }
 
@@ -346,7 +358,17 @@ impl Kernel {
                     ..self
                 }
             }
-            Imp::Faces(_) => self,
+            Imp::Faces(f) => {
+                let (lanes, lane_isa) = generated_lanes::select(f.lane_set, self.ty.index(), isa);
+                Kernel {
+                    imp: Imp::Faces(Faces {
+                        lanes,
+                        lane_isa,
+                        ..f
+                    }),
+                    ..self
+                }
+            }
         }
     }
 
@@ -432,8 +454,8 @@ impl Kernel {
     /// `qs[p n..(p + 1) n]` and the slave point `xi_s[p k..(p + 1) k]`, into
     /// `out`; returns how many succeeded. Each point gives the bits
     /// [`Kernel::eval`] gives it (and its error), though 4 points are
-    /// evaluated per call of the lane kernel ([`Kernel::lane_isa`]; faces:
-    /// point by point). Fails only when the shapes disagree: `xi_s.len()`
+    /// evaluated per call of the lane kernel ([`Kernel::lane_isa`]).
+    /// Fails only when the shapes disagree: `xi_s.len()`
     /// is not a multiple of `k` ([`KernelError::ParamCount`]), `qs.len()`
     /// is not `n` times the point count ([`KernelError::CoordinateCount`])
     /// or `out` was made for another kernel's sizes
@@ -467,7 +489,7 @@ impl Kernel {
         out.prepare(points, self.has_hessian());
         Ok(match &self.imp {
             Imp::Segments(s) => s.eval_lanes(qs, xi_s, out),
-            Imp::Faces(f) => f.eval_points(qs, xi_s, out),
+            Imp::Faces(f) => f.eval_lanes(qs, xi_s, out),
         })
     }
 
@@ -570,30 +592,6 @@ impl Faces {
             return Err(non_finite(gap, grad, xi_m[0]));
         }
         Ok((gap, xi_m))
-    }
-
-    /// The batch of a face kernel, point by point (each point exactly
-    /// [`Kernel::eval`]'s bits and error); returns how many succeeded.
-    fn eval_points(&self, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
-        let n = self.set.coords;
-        let nn = if out.has_hessian { n * n } else { 0 };
-        let mut ok = 0;
-        for p in 0..out.len {
-            let q = &qs[p * n..(p + 1) * n];
-            let grad = &mut out.grad[p * n..(p + 1) * n];
-            let hess = &mut out.hess[p * nn..(p + 1) * nn];
-            let xi = [xi_s[2 * p], xi_s[2 * p + 1]];
-            match self.eval_into(q, xi, &mut out.scratch, grad, hess) {
-                Ok((gap, xi_m)) => {
-                    out.gap[p] = gap;
-                    out.xi_m[2 * p..2 * p + 2].copy_from_slice(&xi_m);
-                    out.status[p] = None;
-                    ok += 1;
-                }
-                Err(e) => out.fail(p, e),
-            }
-        }
-        ok
     }
 }
 

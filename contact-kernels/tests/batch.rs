@@ -4,7 +4,9 @@
 //! (portable and AVX2): every configuration of the num-dual and C tests
 //! (`common/`, hard families, degenerate, non-finite and extreme input) is
 //! evaluated in every lane position, by both lane builds, and compared
-//! with `Kernel::eval` bit for bit, errors included.
+//! with `Kernel::eval` bit for bit, errors included. The face kernels' lanes
+//! (`xi_s` and `xi_m` of two values) are checked the same way on the face
+//! configurations of the C test (`common/faces.rs`).
 
 mod common;
 
@@ -142,11 +144,11 @@ fn lane_isas(kernel: Kernel) -> Vec<Kernel> {
 /// Point `p` of `batch` against `Kernel::eval` of the same point: equal
 /// bits, or the same error (compared by their Debug text, so that NaN
 /// fields compare equal).
-fn assert_point_equals_eval(kernel: &Kernel, batch: &GapBatch, p: usize, q: &[f64], xi_s: f64) {
+fn assert_point_equals_eval(kernel: &Kernel, batch: &GapBatch, p: usize, q: &[f64], xi_s: &[f64]) {
     let mut single = GapOut::new(kernel);
     let what = || {
         format!(
-            "{:?} ({:?}) point {p}: q = {q:?}, xi_s = {xi_s}",
+            "{:?} ({:?}) point {p}: q = {q:?}, xi_s = {xi_s:?}",
             kernel,
             kernel.lane_isa()
         )
@@ -154,9 +156,15 @@ fn assert_point_equals_eval(kernel: &Kernel, batch: &GapBatch, p: usize, q: &[f6
     match kernel.eval(q, xi_s, &mut single) {
         Ok(()) => {
             let (gap, xi_m) = batch.gap(p).unwrap_or_else(|e| panic!("{}: {e}", what()));
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
             assert_eq!(gap.to_bits(), single.gap().to_bits(), "{}", what());
             assert_eq!(xi_m.to_bits(), single.xi_m().to_bits(), "{}", what());
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(batch.xi_m(p).unwrap()),
+                bits(single.xi_m_all()),
+                "{}",
+                what()
+            );
             assert_eq!(
                 bits(batch.grad(p).unwrap()),
                 bits(single.grad()),
@@ -202,7 +210,7 @@ fn lanes_equal_eval_bit_for_bit_on_every_test_configuration() {
                         .unwrap();
                     assert_eq!(batch.len(), configs.len() - skip);
                     for (p, c) in configs[skip..].iter().enumerate() {
-                        assert_point_equals_eval(&kernel, &batch, p, &c.q, c.xi_s);
+                        assert_point_equals_eval(&kernel, &batch, p, &c.q, &[c.xi_s]);
                     }
                     let failed = (0..batch.len())
                         .filter(|&p| batch.status(p).is_err())
@@ -243,7 +251,7 @@ fn short_batches_and_failures_in_the_last_group() {
                 kernel.eval_batch(&qs, &xi_s, &mut batch).unwrap();
                 assert_eq!(batch.len(), len);
                 for (p, c) in chosen.iter().enumerate() {
-                    assert_point_equals_eval(&kernel, &batch, p, &c.q, c.xi_s);
+                    assert_point_equals_eval(&kernel, &batch, p, &c.q, &[c.xi_s]);
                 }
             }
         }
@@ -286,12 +294,52 @@ fn lanes_equal_eval_on_the_3_node_families() {
                     .eval_batch(&qs[n * skip..], &xi_s[skip..], &mut batch)
                     .unwrap();
                 for (p, c) in configs[skip..].iter().enumerate() {
-                    assert_point_equals_eval(&kernel, &batch, p, &c.q, c.params[0]);
+                    assert_point_equals_eval(&kernel, &batch, p, &c.q, &c.params);
                 }
                 failures += batch.len() - ok;
             }
         }
     }
     // Uniform draws without a real root are among the families.
+    assert!(failures > 0);
+}
+
+/// The face lanes (every formulation of 3D faces, every type, both lane
+/// builds) equal `Kernel::eval` bit for bit on the face configurations of
+/// the C test (the verifier's face families plus non-finite, outside,
+/// degenerate, folded, unprojectable, far and extreme input), errors
+/// included, every configuration in every lane and last groups of every
+/// length.
+#[test]
+fn face_lanes_equal_eval_bit_for_bit_on_every_face_configuration() {
+    let mut failures = 0;
+    let mut points = 0;
+    for &(f, _, s, m) in &common::faces::FACES {
+        let configs = common::faces::face_configurations(s, m);
+        let qs: Vec<f64> = configs.iter().flat_map(|c| c.q.iter().copied()).collect();
+        let xi_s: Vec<f64> = configs.iter().flat_map(|c| c.xi_s).collect();
+        for ty in ApproxType::ALL {
+            let kernel = Kernel::new(f, ty).unwrap();
+            let n = kernel.coords();
+            assert_eq!(kernel.param_dim(), 2);
+            for kernel in lane_isas(kernel) {
+                let mut batch = GapBatch::new(&kernel);
+                for skip in 0..4 {
+                    let ok = kernel
+                        .eval_batch(&qs[n * skip..], &xi_s[2 * skip..], &mut batch)
+                        .unwrap();
+                    assert_eq!(batch.len(), configs.len() - skip);
+                    for (p, c) in configs[skip..].iter().enumerate() {
+                        assert_point_equals_eval(&kernel, &batch, p, &c.q, &c.xi_s);
+                    }
+                    points += batch.len();
+                    failures += batch.len() - ok;
+                }
+            }
+        }
+    }
+    eprintln!(
+        "face lanes: {points} points compared with Kernel::eval, {failures} failures matched"
+    );
     assert!(failures > 0);
 }

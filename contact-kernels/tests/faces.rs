@@ -285,8 +285,8 @@ fn no_projection_is_reported_not_returned() {
     }
 }
 
-/// The batch of a face kernel: each point the bits and the error of
-/// `Kernel::eval`; `xi_s` two values per point.
+/// The batch of a face kernel (its lane kernels): each point the bits and
+/// the error of `Kernel::eval`; `xi_s` two values per point.
 #[test]
 fn the_face_batch_is_eval_point_by_point() {
     let k = kernel("quad4-closest-point");

@@ -20,14 +20,18 @@
 //!   FMA, so the bits stay those of the scalar kernel). The caller picks one
 //!   at run time (`is_x86_feature_detected!`);
 //! * per compiled formulation one `static` `LaneSet` and `lane_set`, which
-//!   maps a `Formulation` to it (`None` when not compiled in).
+//!   maps a `Formulation` to it (`None` when not compiled in, and for
+//!   faces); for a formulation of 3D faces a `LaneSet<FaceLaneKernel>`,
+//!   mapped by `face_lane_set` (emitted when the plan has faces, so a plan
+//!   of segments is emitted as before faces).
 //!
 //! Functions take the relative coordinates as `d: &[Lanes]` (`n` values:
 //! coordinate `i` of every lane), `xi_s` and the in/out `xi_m` as `Lanes`,
 //! and store into `grad: &mut [Lanes]` (`n`) and, where the type has a
 //! second-order term, `hess: &mut [Lanes]` (`n * n`: the full symmetric
 //! matrix, row-major, each off-diagonal value stored twice, as the scalar
-//! kernels store it). They return the gap. The sizes come from the plan's
+//! kernels store it). Face kernels take `xi_s: &[Lanes]` and
+//! `xi_m: &mut [Lanes]` (two each: `u`, `v`). They return the gap. The sizes come from the plan's
 //! signature: nothing here knows a coordinate count.
 
 use proc_macro2::{Ident, Span, TokenStream};
@@ -72,33 +76,54 @@ impl LanesEmitter {
 /// The whole module: `lane_set` and every compiled formulation's kernels.
 fn module(plan: &KernelPlan) -> TokenStream {
     let mut arms = Vec::new();
+    let mut face_arms = Vec::new();
     let mut items = Vec::new();
     for f in &plan.formulations {
         let variant = Ident::new(&f.variant, Span::call_site());
         match &f.kernels {
-            // Faces (3D) have no lane kernels: their batch evaluates point
-            // by point.
             None => arms.push(quote!(Formulation::#variant => None,)),
-            Some(_) if f.dim == 3 => arms.push(quote!(Formulation::#variant => None,)),
+            // Faces (3D): a `LaneSet<FaceLaneKernel>`, looked up by
+            // `face_lane_set`.
+            Some(set) if f.dim == 3 => {
+                let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
+                arms.push(quote!(Formulation::#variant => None,));
+                face_arms.push(quote!(Formulation::#variant => Some(&#static_name),));
+                items.push(lane_set(set, &static_name, true));
+            }
             Some(set) => {
                 let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
                 arms.push(quote!(Formulation::#variant => Some(&#static_name),));
-                items.push(lane_set(set, &static_name));
+                items.push(lane_set(set, &static_name, false));
             }
         }
     }
+    // Emitted when a formulation of faces exists (compiled in or not).
+    let faces = plan.formulations.iter().any(|f| f.dim == 3).then(|| {
+        quote! {
+            /// The lane kernels of a formulation of 3D faces, if compiled in.
+            pub(crate) fn face_lane_set(f: Formulation) -> Option<&'static LaneSet<FaceLaneKernel>> {
+                match f {
+                    #(#face_arms)*
+                    _ => None,
+                }
+            }
+        }
+    });
     quote! {
         /// The lane kernels of a formulation, if compiled in.
         pub(crate) fn lane_set(f: Formulation) -> Option<&'static LaneSet> {
             match f { #(#arms)* }
         }
 
+        #faces
+
         #(#items)*
     }
 }
 
-/// A formulation's lane kernels and its `static` `LaneSet`.
-fn lane_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
+/// A formulation's lane kernels and its `static` `LaneSet` (of
+/// `FaceLaneKernel`s for `faces`).
+fn lane_set(set: &KernelSetPlan, static_name: &Ident, faces: bool) -> TokenStream {
     let mut items = Vec::new();
     let mut portable = Vec::new();
     let mut avx2 = Vec::new();
@@ -112,15 +137,25 @@ fn lane_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
             Role::Kernel { hessian: true, .. } => format_ident!("Hessian"),
             _ => format_ident!("Gradient"),
         };
-        portable.push(quote!(LaneKernel::#variant(#p)));
-        avx2.push(quote!(LaneKernel::#variant(#a)));
+        let ty = if faces {
+            format_ident!("FaceLaneKernel")
+        } else {
+            format_ident!("LaneKernel")
+        };
+        portable.push(quote!(#ty::#variant(#p)));
+        avx2.push(quote!(#ty::#variant(#a)));
     }
     let doc = format!(" The lane kernels of `{}`.", set.ident);
+    let set_ty = if faces {
+        quote!(LaneSet<FaceLaneKernel>)
+    } else {
+        quote!(LaneSet)
+    };
     quote! {
         #(#items)*
 
         #[doc = #doc]
-        static #static_name: LaneSet = LaneSet {
+        static #static_name: #set_ty = LaneSet {
             portable: [#(#portable),*],
             #[cfg(target_arch = "x86_64")]
             avx2: [#(#avx2),*],
@@ -142,6 +177,10 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
     let mut scalar_params = Vec::new();
     let mut implicit = ident("xi_in");
     let mut implicit_ref = None;
+    // A 2-vector `xi_s` or `xi_m` (faces): `&[Lanes]` (`&mut` for the
+    // in/out unknown), read into `x_0`, `x_1` as the scalar emitter does.
+    let component = |x: &Ident, k: usize| format_ident!("{}_{}", x, k);
+    let mut implicit_len = 1;
     for input in &f.inputs {
         let x = ident(&input.name);
         match input.kind {
@@ -150,6 +189,19 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
                 params.push(quote!(#x: &[Lanes]));
                 prologue.push(quote!(let #x = &#x[..#len];));
                 coords = x.clone();
+            }
+            InputKind::Param(_) if input.len > 1 => {
+                params.push(quote!(#x: &[Lanes]));
+                for k in 0..input.len {
+                    let (c, kk) = (component(&x, k), idx(k));
+                    prologue.push(quote!(let #c = #x[#kk];));
+                    scalar_params.push(c);
+                }
+            }
+            InputKind::ImplicitInOut if input.len > 1 => {
+                params.push(quote!(#x: &mut [Lanes]));
+                implicit_ref = Some(x.clone());
+                implicit_len = input.len;
             }
             InputKind::Param(_) => {
                 params.push(quote!(#x: Lanes));
@@ -173,6 +225,15 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
     for out in &f.outputs {
         match out.delivery {
             Delivery::Return => returns.push(output(f.program.outputs[out.first])),
+            Delivery::Implicit if out.len > 1 => {
+                let target = implicit_ref.as_ref().expect("an in/out implicit input");
+                let stmts = (0..out.len).map(|k| {
+                    let v = output(f.program.outputs[out.first + k]);
+                    let k = idx(k);
+                    quote!(#target[#k] = #v;)
+                });
+                write_back = Some(quote!(#(#stmts)*));
+            }
             Delivery::Implicit => {
                 let target = implicit_ref.as_ref().expect("an in/out implicit input");
                 let v = output(f.program.outputs[out.first]);
@@ -192,6 +253,13 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         }
     }
     let read = match (&implicit_ref, &write_back) {
+        (Some(r), None) if implicit_len > 1 => {
+            let stmts = (0..implicit_len).map(|k| {
+                let (c, kk) = (component(&implicit, k), idx(k));
+                quote!(let #c = #r[#kk];)
+            });
+            quote!(#(#stmts)*)
+        }
         (Some(r), None) => quote!(let #implicit = *#r;),
         _ => quote!(),
     };
@@ -339,6 +407,36 @@ mod tests {
         assert_eq!(lets, instrs);
         assert!(code.contains("#[target_feature(enable = \"avx2\")]"));
         assert!(!code.contains("mul_add"), "no fused multiply-add");
+    }
+
+    /// A formulation of faces: its kernels over lanes with `xi_s` and the
+    /// in/out `xi_m` as two lanes each, one statement per instruction, in
+    /// a `LaneSet<FaceLaneKernel>` found by `face_lane_set`.
+    #[test]
+    fn face_kernels_take_two_lane_components() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../contact-kernels/formulations/tri3-slave-normal.rs"
+        ))
+        .unwrap();
+        let plan = KernelPlan::build(&[FormulationSource {
+            name: "tri3-slave-normal".into(),
+            text,
+            compiled: true,
+        }])
+        .unwrap();
+        let code = LanesEmitter.source(&plan);
+        let set = plan.formulations[0].kernels.as_ref().unwrap();
+        assert!(code.contains("fn face_lane_set("));
+        assert!(code.contains("static TRI3_SLAVE_NORMAL_LANES: LaneSet<FaceLaneKernel>"));
+        assert!(code.contains("Formulation::Tri3SlaveNormal => None"));
+        assert!(code.contains("xi_s: &[Lanes]") && code.contains("xi_m: &mut [Lanes]"));
+        assert!(code.contains("let xi_s_0 = xi_s[0];"));
+        // The closed-form projection is written back, both components.
+        assert!(code.contains("xi_m[0] =") && code.contains("xi_m[1] ="));
+        let lets = code.matches("let v").count();
+        let instrs: usize = set.kernels.iter().map(|k| k.program.instrs.len()).sum();
+        assert_eq!(lets, instrs);
     }
 
     #[test]

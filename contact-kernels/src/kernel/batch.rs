@@ -37,9 +37,9 @@ use crate::validate::{relative_coordinates, relative_coordinates_lanes};
 /// (full, row-major), `LANES` points each.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct LaneBuffers {
-    d: Vec<Lanes>,
-    grad: Vec<Lanes>,
-    hess: Vec<Lanes>,
+    pub(super) d: Vec<Lanes>,
+    pub(super) grad: Vec<Lanes>,
+    pub(super) hess: Vec<Lanes>,
 }
 
 impl LaneBuffers {
@@ -274,7 +274,7 @@ fn gather<const AVX2: bool>(qs: &[f64], d: &mut [Lanes]) {
 /// transpose per block; with `AVX2`, which the caller must have enabled, in
 /// four shuffles and four 256-bit stores).
 #[inline(always)]
-fn scatter<const AVX2: bool>(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
+pub(super) fn scatter<const AVX2: bool>(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
     #[cfg(target_arch = "x86_64")]
     if AVX2 {
         // SAFETY: `AVX2` is true only in `eval_all_avx2`, which runs on a
