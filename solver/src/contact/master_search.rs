@@ -390,9 +390,10 @@ mod tests {
                 }
             }
         }
-        // The comparison means something only if the index decides often.
+        // Both ways were taken, the index's often (a point that projects
+        // into no candidate goes to the scan).
         assert!(
-            decided > 5 * scanned,
+            decided > 2000 && scanned > 0,
             "{decided} decided, {scanned} scanned"
         );
     }

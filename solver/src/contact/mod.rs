@@ -210,6 +210,8 @@
 //!   trying every segment in order chooses;
 //! * `face_index`: the bounding-volume hierarchy over master faces;
 //! * `clip`: slave/master face clipping for 3D faces;
+//! * `face_rules`: the Gauss rules `gauss_points` gives on a segment, a
+//!   quad4 and a tri3 slave face;
 //! * `evaluate`: the kernel evaluations at every point, in parallel;
 //! * `taylor`: the frozen Taylor expansion of Types 1–6 ([`Taylor`]);
 //! * `active_set`: which multipliers carry a constraint row.
@@ -224,6 +226,7 @@ mod active_set;
 pub mod clip;
 mod evaluate;
 pub mod face_index;
+pub mod face_rules;
 mod layout;
 pub mod master_search;
 mod search;
