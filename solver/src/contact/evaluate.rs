@@ -51,6 +51,7 @@ impl ContactLayout {
     /// Pairs point `i` (from its current master `start`) and evaluates the
     /// kernel of type `ty` there. `Ok(None)`: the point projects into no
     /// master segment.
+    #[allow(clippy::too_many_arguments)] // the pass's state: mesh, u, indexes, counts
     fn pair_and_evaluate(
         &self,
         mesh: &Mesh,
