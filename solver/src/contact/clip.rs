@@ -150,33 +150,21 @@ impl TriangleRule {
     }
 
     /// Points as barycentric coordinates of the 2nd and 3rd vertex
-    /// `(b_2, b_3)`, with weights summing to 1.
+    /// `(b_2, b_3)`, with weights summing to 1: the tri3 rules of
+    /// `face_rules.rs` (there on the unit triangle, weights summing to its
+    /// area 1/2; doubled here, exactly).
     pub fn points(self) -> Vec<([f64; 2], f64)> {
-        match self {
-            TriangleRule::Centroid => vec![([1.0 / 3.0, 1.0 / 3.0], 1.0)],
-            TriangleRule::Three => {
-                let (a, b) = (1.0 / 6.0, 2.0 / 3.0);
-                vec![
-                    ([a, a], 1.0 / 3.0),
-                    ([b, a], 1.0 / 3.0),
-                    ([a, b], 1.0 / 3.0),
-                ]
-            }
-            TriangleRule::Seven => {
-                let s = 15f64.sqrt();
-                let (a, b) = ((6.0 - s) / 21.0, (6.0 + s) / 21.0);
-                let (wa, wb) = ((155.0 - s) / 1200.0, (155.0 + s) / 1200.0);
-                vec![
-                    ([1.0 / 3.0, 1.0 / 3.0], 9.0 / 40.0),
-                    ([a, a], wa),
-                    ([1.0 - 2.0 * a, a], wa),
-                    ([a, 1.0 - 2.0 * a], wa),
-                    ([b, b], wb),
-                    ([1.0 - 2.0 * b, b], wb),
-                    ([b, 1.0 - 2.0 * b], wb),
-                ]
-            }
-        }
+        let n = match self {
+            TriangleRule::Centroid => 1,
+            TriangleRule::Three => 3,
+            TriangleRule::Seven => 7,
+        };
+        super::face_rules::tri3_rule(n)
+            .expect("face_rules has the tri3 rules of 1, 3 and 7 points")
+            .points
+            .into_iter()
+            .map(|(p, w)| (p, 2.0 * w))
+            .collect()
     }
 }
 

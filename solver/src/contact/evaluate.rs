@@ -13,7 +13,8 @@ use crate::mesh::Mesh;
 use crate::par;
 
 use super::{
-    ContactLayout, KernelCounts, PAR_MIN_LEN, PointEval, PointFailure, XI_INSIDE_TOL, slave_side,
+    ContactLayout, KernelCounts, PAR_MIN_LEN, PassIndexes, PointEval, PointFailure, XI_INSIDE_TOL,
+    slave_side,
 };
 
 impl ContactLayout {
@@ -50,6 +51,7 @@ impl ContactLayout {
     /// Pairs point `i` (from its current master `start`) and evaluates the
     /// kernel of type `ty` there. `Ok(None)`: the point projects into no
     /// master segment.
+    #[allow(clippy::too_many_arguments)] // the pass's state: mesh, u, indexes, counts
     fn pair_and_evaluate(
         &self,
         mesh: &Mesh,
@@ -57,6 +59,7 @@ impl ContactLayout {
         i: ContactPointIndex,
         start: Option<MasterSegmentIndex>,
         ty: ApproxType,
+        indexes: &PassIndexes,
         counts: &mut KernelCounts,
     ) -> Result<Option<PointEval>, PointFailure> {
         let eval = |master: MasterSegmentIndex, counts: &mut KernelCounts| {
@@ -81,7 +84,7 @@ impl ContactLayout {
                 Err(_) => {}
             }
         }
-        match self.find_master(mesh, u, i, start, counts)? {
+        match self.find_master(mesh, u, i, start, indexes, counts)? {
             None => Ok(None),
             Some((m, _)) => eval(m, counts).map(Some).map_err(|error| PointFailure {
                 point: i,
@@ -101,9 +104,10 @@ impl ContactLayout {
         pairing: &[Option<MasterSegmentIndex>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
+        let indexes = self.pass_indexes();
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
             let start = pairing[i];
-            self.pair_and_evaluate(mesh, u, ContactPointIndex::new(i), start, ty, c)
+            self.pair_and_evaluate(mesh, u, ContactPointIndex::new(i), start, ty, &indexes, c)
         })
     }
 
@@ -121,6 +125,7 @@ impl ContactLayout {
         pairing: &[Option<MasterSegmentIndex>],
         ty: ApproxType,
     ) -> Result<(Vec<Option<PointEval>>, KernelCounts), PointFailure> {
+        let indexes = self.pass_indexes();
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |raw, c| {
             match pairing[raw] {
                 None => Ok(None),
@@ -131,9 +136,15 @@ impl ContactLayout {
                         master_segment: Some(m),
                         error,
                     }),
-                    Err(_) => {
-                        self.pair_and_evaluate(mesh, u, ContactPointIndex::new(raw), None, ty, c)
-                    }
+                    Err(_) => self.pair_and_evaluate(
+                        mesh,
+                        u,
+                        ContactPointIndex::new(raw),
+                        None,
+                        ty,
+                        &indexes,
+                        c,
+                    ),
                 },
             }
         })

@@ -40,6 +40,11 @@ pub struct ContactLayout {
     pub(super) adjacency: Vec<Vec<[Option<MasterSegmentIndex>; 2]>>,
     /// Active-set constant `c` per pair (unilateral mode).
     pub complementarity: Vec<f64>,
+    /// Pairs with at least this many master segments search them through
+    /// the spatial index (`master_search`; default
+    /// [`super::INDEX_MIN_SEGMENTS`]); the choices are the same either
+    /// way.
+    pub index_min_segments: usize,
 }
 
 impl ContactLayout {
@@ -128,6 +133,7 @@ impl ContactLayout {
             masters: model.contacts.iter().map(|c| c.master.clone()).collect(),
             adjacency,
             complementarity,
+            index_min_segments: super::INDEX_MIN_SEGMENTS,
         }
     }
 

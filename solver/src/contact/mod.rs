@@ -67,7 +67,9 @@
 //! (`|xi_m| <= 1 + 1e-9`); otherwise the search walks along the master
 //! chain in the direction of `xi_m` and, failing that, tries every master
 //! segment and keeps the one with the smallest `|g|` among those the point
-//! projects into. Only segments that **face** the point's slave segment
+//! projects into (the first in master order on a tie; on a master face of
+//! [`INDEX_MIN_SEGMENTS`] segments or more, only the candidates the spatial
+//! index proves can win are tried, see `master_search`). Only segments that **face** the point's slave segment
 //! count (outward normals against each other, `n_s . n_m < 0`,
 //! [`ContactLayout::faces_each_other`]): near the end of a curved slave
 //! face the slave normal is nearly parallel to the master, and its line
@@ -202,7 +204,14 @@
 //! * `segmented`: the integration rule on a slave segment, plain Gauss or
 //!   segmented at the projections of the master nodes ([`crate::model::Integration`]);
 //! * `search`: pairing by projection (walk along the master chain, then
-//!   every segment);
+//!   every segment, through the spatial index on long master faces);
+//! * `master_search`: the search over every master segment through the
+//!   spatial index (`face_index`), with the proof that it chooses what
+//!   trying every segment in order chooses;
+//! * `face_index`: the bounding-volume hierarchy over master faces;
+//! * `clip`: slave/master face clipping for 3D faces;
+//! * `face_rules`: the Gauss rules `gauss_points` gives on a segment, a
+//!   quad4 and a tri3 slave face;
 //! * `evaluate`: the kernel evaluations at every point, in parallel;
 //! * `taylor`: the frozen Taylor expansion of Types 1–6 ([`Taylor`]);
 //! * `active_set`: which multipliers carry a constraint row.
@@ -217,7 +226,9 @@ mod active_set;
 pub mod clip;
 mod evaluate;
 pub mod face_index;
+pub mod face_rules;
 mod layout;
+pub mod master_search;
 mod search;
 mod segmented;
 mod taylor;
@@ -228,6 +239,8 @@ use nalgebra::{SMatrix, SVector};
 use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
 pub use layout::ContactLayout;
+pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
+pub use search::PassIndexes;
 pub use segmented::{
     SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
 };
