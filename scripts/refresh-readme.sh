@@ -21,6 +21,8 @@ splice() {
 cargo bench --bench kernels
 cargo run -q --release --example bench_table > target/bench-table.md
 splice bench target/bench-table.md
+cargo run -q --release --example bench_table -- --faces > target/bench-faces-table.md
+splice bench-faces target/bench-faces-table.md
 
 # one iteration from 1e3 to 1e6 equations with the LDL^T, against the LU up
 # to 1e5 (several minutes; docs/scaling/scaling.md is the committed copy)
@@ -38,6 +40,7 @@ splice patch target/patch-table.md
 
 cargo run -q --release --example stability_sweep > target/stability-table.md
 splice stability target/stability-table.md
+splice stability-faces docs/stability/stability-faces.md
 
 cargo run -q --release --example sliding_curves -- --steps 20 --out docs/sliding
 cargo run -q --release --example adaptive_cost -- --out docs/adaptive
