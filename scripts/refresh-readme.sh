@@ -40,7 +40,6 @@ splice patch target/patch-table.md
 
 cargo run -q --release --example stability_sweep > target/stability-table.md
 splice stability target/stability-table.md
-splice stability-faces docs/stability/stability-faces.md
 
 cargo run -q --release --example sliding_curves -- --steps 20 --out docs/sliding
 cargo run -q --release --example adaptive_cost -- --out docs/adaptive
