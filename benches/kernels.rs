@@ -27,10 +27,12 @@
 //! tri3-on-tri3 configurations near the worked example of
 //! docs/conventions.md ("3D faces"), the sympy-cse 3D peer
 //! (`benches/peer/sympy_kernel_3d.rs`), gapsim's `tri3-slave-normal` Types 1
-//! and 6 through the handle and `Kernel::eval_batch` (the face lane
-//! kernels, 4 points per call), and num-dual's `hessian` of the same gap
-//! (18 coordinates). Run it
-//! alone with `cargo bench --bench kernels -- faces`.
+//! and 6 one point at a time through the handle (`Kernel::eval`) and the
+//! 64 points in one `Kernel::eval_batch` call (the face lane kernels, 4
+//! points per lane call; Type 6 also with the portable lane build), and
+//! num-dual's `hessian` of the same gap (18 coordinates). Run it alone
+//! with `cargo bench --bench kernels -- faces`, then
+//! `cargo run --release --example bench_table -- --faces` for its table.
 //!
 //! Warm-up and measurement are 1 s each so the whole run takes about a
 //! minute of measurement (44 benchmarks).
@@ -361,15 +363,22 @@ fn faces(c: &mut Criterion) {
             })
         });
         let mut batch = GapBatch::new(&kernel);
-        group.bench_function(format!("type{i}-batch"), |b| {
-            b.iter(|| {
-                let ok = kernel
-                    .eval_batch(black_box(&flat), black_box(&flat_uv), &mut batch)
-                    .unwrap();
-                assert_eq!(ok, POINTS);
-                black_box(&batch);
-            })
-        });
+        let mut isas = vec![(format!("type{i}-batch"), kernel)];
+        if ty == ApproxType::Type6 {
+            let portable = kernel.with_lane_isa(LaneIsa::Portable);
+            isas.push((format!("type{i}-batch-portable"), portable));
+        }
+        for (id, kernel) in isas {
+            group.bench_function(id, |b| {
+                b.iter(|| {
+                    let ok = kernel
+                        .eval_batch(black_box(&flat), black_box(&flat_uv), &mut batch)
+                        .unwrap();
+                    assert_eq!(ok, POINTS);
+                    black_box(&batch);
+                })
+            });
+        }
     }
     group.bench_function("num-dual-hessian", |b| {
         b.iter(|| {

@@ -2,7 +2,12 @@
 //!
 //! ```text
 //! cargo bench --bench kernels && cargo run --release --example bench_table
+//! cargo bench --bench kernels -- faces && cargo run --release --example bench_table -- --faces
 //! ```
+//!
+//! With `--faces` it prints only the 3D face table (group
+//! `faces-tri3-slave-normal`, the README's `bench-faces` section), with
+//! the CPU model of `/proc/cpuinfo`.
 //!
 //! Reads criterion's results (`<criterion dir>/<formulation>/<id>/new/estimates.json`,
 //! the median's point estimate in ns) written by `benches/kernels.rs` (the
@@ -20,7 +25,7 @@ use contact_kernels::{ApproxType, OpCount, op_count, pair_formulations};
 
 /// Where criterion wrote its results.
 fn criterion_dir() -> PathBuf {
-    if let Some(arg) = std::env::args_os().nth(1) {
+    if let Some(arg) = std::env::args_os().skip(1).find(|a| a != "--faces") {
         return PathBuf::from(arg);
     }
     if let Some(home) = std::env::var_os("CRITERION_HOME") {
@@ -194,8 +199,108 @@ fn points_table(dir: &Path) -> Result<String, String> {
     Ok(out)
 }
 
+/// The 3D face targets for Type 6 through `eval_batch` per point: at
+/// least this many times faster than the sympy-cse 3D peer and than
+/// num-dual's `hessian`.
+const FACE_PEER_TARGET: f64 = 5.0;
+const FACE_DUAL_TARGET: f64 = 100.0;
+
+/// The CPU's model name and whether it has AVX2 and AVX-512F (from
+/// `/proc/cpuinfo`; "unknown CPU" elsewhere).
+fn cpu() -> String {
+    let info = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+    let model = info
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("model name")?
+                .split_once(':')
+                .map(|(_, m)| m.trim().to_owned())
+        })
+        .unwrap_or_else(|| "unknown CPU".to_owned());
+    let flags = info
+        .lines()
+        .find_map(|l| {
+            l.strip_prefix("flags")?
+                .split_once(':')
+                .map(|(_, f)| f.to_owned())
+        })
+        .unwrap_or_default();
+    let has = |f: &str| flags.split_whitespace().any(|x| x == f);
+    let cores = info.lines().filter(|l| l.starts_with("processor")).count();
+    format!(
+        "{model}, {cores} cores, AVX2 {}, AVX-512F {}",
+        if has("avx2") { "yes" } else { "no" },
+        if has("avx512f") { "yes" } else { "no" }
+    )
+}
+
+/// The `faces-tri3-slave-normal` table: 64 tri3-on-tri3 configurations
+/// per iteration, every row per point and against the sympy-cse 3D peer
+/// and num-dual, all from the same run; then the targets for Type 6
+/// through `eval_batch`.
+fn faces_table(dir: &Path) -> Result<String, String> {
+    const GROUP: &str = "faces-tri3-slave-normal";
+    const POINTS: f64 = 64.0;
+    let per_point = |id: &str| median_ns(dir, GROUP, id).map(|t| t / POINTS);
+    let peer = per_point("sympy-cse")?;
+    let dual = per_point("num-dual-hessian")?;
+    let mut out = format!(
+        "Per point over 64 tri3-on-tri3 configurations near the worked example (group `{GROUP}`, \
+         one criterion run, median; CPU: {}): gapsim's `tri3-slave-normal` kernels, the sympy-cse 3D \
+         peer of `benches/peer/sympy_kernel_3d.rs` and num-dual's `hessian` of the same gap \
+         (18 coordinates).\n\n\
+         | kernel (tri3-slave-normal) | ns/point | peer / this | num-dual / this |\n|---|---:|---:|---:|\n",
+        cpu()
+    );
+    let mut row = |name: &str, t: f64| {
+        out.push_str(&format!(
+            "| {name} | {t:.1} | {:.2}× | {:.1}× |\n",
+            peer / t,
+            dual / t
+        ));
+    };
+    let batch = "(64 points per call, SIMD lanes)";
+    for ty in [1, 6] {
+        row(
+            &format!("Type {ty}, `Kernel::eval` (one point at a time)"),
+            per_point(&format!("type{ty}-handle"))?,
+        );
+        row(
+            &format!("Type {ty}, `Kernel::eval_batch` {batch}"),
+            per_point(&format!("type{ty}-batch"))?,
+        );
+    }
+    if let Ok(t) = per_point("type6-batch-portable") {
+        row(
+            &format!("Type 6, `Kernel::eval_batch` {batch}, portable lane build (no AVX2)"),
+            t,
+        );
+    }
+    row("sympy-cse 3D peer (g, xi_m, gradient, full Hessian)", peer);
+    row("num-dual `hessian`", dual);
+    let t = per_point("type6-batch")?;
+    out.push_str(&format!(
+        "\nType 6 through `eval_batch` ({t:.1} ns/point): against the peer {}; against num-dual {}.\n",
+        verdict(peer / t, FACE_PEER_TARGET),
+        verdict(dual / t, FACE_DUAL_TARGET)
+    ));
+    Ok(out)
+}
+
 fn main() -> ExitCode {
     let dir = criterion_dir();
+    if std::env::args().any(|a| a == "--faces") {
+        return match faces_table(&dir) {
+            Ok(t) => {
+                print!("{t}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("bench_table: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     // Each table is printed when its group's results exist (`cargo bench
     // --bench kernels -- points64` runs only the second group).
     let mut printed = false;

@@ -21,12 +21,17 @@
 //! largest entry error over the largest reference entry. A configuration
 //! the kernel refuses (an error such as `NoProjection`) is counted, not
 //! compared.
+//!
+//! [`faces`] does the same for the 3D face kernels (tri3 and quad4, both
+//! readings) against [`face_reference`], over [`Family::FACES`].
 
 use std::fmt::Write as _;
 
 use contact_kernels::{ApproxType, Formulation, GapOut, Kernel, pair_formulations};
 
 pub mod dd;
+pub mod face_reference;
+pub mod faces;
 pub mod hyper;
 pub mod plot;
 pub mod reference;
@@ -46,6 +51,10 @@ pub enum Family {
     End,
     /// Small gaps.
     Gap,
+    /// Projection near or on a master face's edge (3D).
+    Edge,
+    /// Projection near or at a master face's corner (3D).
+    Corner,
 }
 
 impl Family {
@@ -58,6 +67,16 @@ impl Family {
         Family::Gap,
     ];
 
+    /// The families of the face sweep ([`faces`]), in table order.
+    pub const FACES: [Family; 6] = [
+        Family::Offset,
+        Family::Scale,
+        Family::Angle,
+        Family::Edge,
+        Family::Corner,
+        Family::Gap,
+    ];
+
     /// Its name.
     pub fn name(self) -> &'static str {
         match self {
@@ -66,6 +85,8 @@ impl Family {
             Family::Angle => "angle",
             Family::End => "end",
             Family::Gap => "gap",
+            Family::Edge => "edge",
+            Family::Corner => "corner",
         }
     }
 
@@ -77,6 +98,8 @@ impl Family {
             Family::Angle => "90° - angle (degrees)",
             Family::End => "1 - xi_m",
             Family::Gap => "gap",
+            Family::Edge => "distance of xi_m from a master edge",
+            Family::Corner => "distance of xi_m from a master corner",
         }
     }
 
@@ -88,6 +111,16 @@ impl Family {
             Family::Angle => &[90.0, 30.0, 10.0, 1.0, 0.1, 0.01],
             Family::End => &[0.1, 1e-4, 1e-8, 0.0],
             Family::Gap => &[1.0, 1e-2, 1e-4, 1e-8, 1e-14],
+            Family::Edge | Family::Corner => &[0.1, 1e-4, 1e-8, 0.0],
+        }
+    }
+
+    /// The parameter values of the face sweep: those of [`Family::values`],
+    /// with a master tilted 85° (`90° - tilt = 5`) among the angles.
+    pub fn face_values(self) -> &'static [f64] {
+        match self {
+            Family::Angle => &[90.0, 30.0, 10.0, 5.0, 1.0, 0.1, 0.01],
+            _ => self.values(),
         }
     }
 }
@@ -193,6 +226,8 @@ fn geometry(family: Family, value: f64, rng: &mut Lcg) -> Geometry {
         Family::Angle => g.tilt = 90.0 - value,
         Family::End => g.xi_m = 1.0 - value,
         Family::Gap => g.gap = value,
+        // Face families (the face sweep's).
+        Family::Edge | Family::Corner => {}
     }
     g
 }
@@ -282,26 +317,45 @@ pub fn csv(rows: &[SweepRow]) -> String {
 /// The sweep as a Markdown table (one row per family value, both
 /// formulations side by side).
 pub fn markdown(rows: &[SweepRow]) -> String {
-    let formulations = pair_formulations();
+    table(rows, &Family::ALL, Family::values, &pair_formulations())
+}
+
+/// The face sweep ([`faces::sweep_faces`]) as a Markdown table (one row
+/// per family value, the four face formulations side by side).
+pub fn markdown_faces(rows: &[SweepRow]) -> String {
+    table(
+        rows,
+        &Family::FACES,
+        Family::face_values,
+        &faces::face_formulations(),
+    )
+}
+
+fn table(
+    rows: &[SweepRow],
+    families: &[Family],
+    values: fn(Family) -> &'static [f64],
+    formulations: &[Formulation],
+) -> String {
     let mut out = String::from("| family | parameter |");
-    for f in &formulations {
+    for f in formulations {
         let _ = write!(out, " {f}: g | g' | g'' | refused |");
     }
     out.push('\n');
     out.push_str("|---|---:|");
-    for _ in &formulations {
+    for _ in formulations {
         out.push_str("---:|---:|---:|---:|");
     }
     out.push('\n');
-    for family in Family::ALL {
-        for &value in family.values() {
+    for &family in families {
+        for &value in values(family) {
             let _ = write!(
                 out,
                 "| {} | {} = {value:e} |",
                 family.name(),
                 family.parameter()
             );
-            for f in &formulations {
+            for f in formulations {
                 if let Some(r) = rows
                     .iter()
                     .find(|r| r.family == family && r.value == value && r.formulation == *f)
