@@ -259,7 +259,7 @@ fn every_key_of_the_format_is_documented() {
     assert_eq!(
         side.map(|(_, v)| v.clone()),
         Some(
-            ["bottom", "right", "top", "left"]
+            ["bottom", "right", "top", "left", "front", "back"]
                 .map(String::from)
                 .to_vec()
         )
@@ -381,13 +381,13 @@ steps = [3, 5]
         "defaults.toml",
     )
     .unwrap();
-    let material = scene.material.unwrap();
+    let material = scene.material.unwrap().material();
     let contact = &scene.contacts[0];
     let n = &scene.newton;
     let cases: Vec<(&str, &str, String)> = vec![
         ("`[material]`", "model", quoted(&material.model)),
         ("`[material]`", "kinematics", quoted(&material.kinematics)),
-        ("`[[fix]]`", "dofs", quoted(&scene.fixes[0].dofs)),
+        ("`[[fix]]`", "dofs", "every component".to_owned()),
         (
             "`[[contact]]`",
             "formulation",

@@ -239,7 +239,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     for load in &scene.loads {
         // a load on a physical group has no position to report
-        let Some(at) = load.at else { continue };
+        let Some(at) = load.at.and_then(|c| c.xy()) else {
+            continue;
+        };
         let bodies: Vec<&str> = match &load.body {
             Some(b) => vec![b.as_str()],
             None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
