@@ -231,19 +231,3 @@ impl Scene {
     }
 }
 
-impl Scene {
-    /// Builds the model of a 3D scene.
-    pub fn build_model_3d(&self) -> Result<(), SceneError> {
-        let (file, _) = self.prepare()?;
-        self.build_solid(file)
-    }
-
-    /// [`Scene::build_model_3d`] after [`Scene::prepare`].
-    pub(super) fn build_solid(&self, _file: Option<AnyMsh>) -> Result<(), SceneError> {
-        Err(SceneError::Unsupported {
-            origin: self.origin.clone(),
-            field: "body".into(),
-            message: "WIP".into(),
-        })
-    }
-}

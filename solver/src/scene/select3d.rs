@@ -2,7 +2,8 @@
 //! `z`, `at`) or physical group, faces by block side or physical surface.
 //!
 //! As in 2D (`select.rs`), coordinates match every node within `1e-9`
-//! times the diagonal of the bounding box of all nodes; faces are resolved
+//! times the diagonal of the bounding box of all nodes
+//! ([`Mesh::select_nodes_at`]); faces are resolved
 //! by the body's mesh source ([`Solids`]), each quad4 or tri3 face
 //! counter-clockwise seen from outside its body.
 
@@ -11,25 +12,6 @@ use super::{Scene, SceneError, SideName};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::mesh::volume::Face;
-
-/// The tolerance of a selection by coordinates: `1e-9` times the diagonal
-/// of the bounding box of the nodes.
-fn tolerance(nodes: &[[f64; 3]]) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in nodes {
-        for c in 0..3 {
-            lo[c] = lo[c].min(p[c]);
-            hi[c] = hi[c].max(p[c]);
-        }
-    }
-    let d = if nodes.is_empty() {
-        0.0
-    } else {
-        (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt()
-    };
-    1e-9 * d.max(1e-300)
-}
 
 impl Scene {
     /// The index of the body named `body` in the 3D mesh, if one is named;
@@ -103,18 +85,7 @@ impl Scene {
             }
             None => xyz,
         };
-        let tol = tolerance(&mesh.nodes_ref);
-        let range = match b {
-            Some(b) => mesh.bodies[b].nodes.clone(),
-            None => 0..mesh.node_count(),
-        };
-        let nodes: Vec<NodeId> = range
-            .filter(|&n| {
-                let p = mesh.nodes_ref[n];
-                (0..3).all(|c| want[c].is_none_or(|w| (p[c] - w).abs() <= tol))
-            })
-            .map(NodeId::new)
-            .collect();
+        let nodes = mesh.select_nodes_at(b, &want);
         if nodes.is_empty() {
             return Err(self.invalid(
                 field,

@@ -369,3 +369,196 @@ fn the_3d_hertz_scene_parses_as_written() {
     let tet = HERTZ3D.replace("hertz3d-hex.msh", "hertz3d-tet.msh");
     Scene::from_toml_str(&tet, &origin).unwrap_or_else(|e| panic!("{e}"));
 }
+
+#[test]
+fn the_shipped_3d_hertz_scene_is_the_issues_text() {
+    let file = std::fs::read_to_string(scenes_dir("hertz3d.toml")).unwrap();
+    assert_eq!(file, HERTZ3D);
+}
+
+/// The 3D Hertz scene without its `[[contact]]` table.
+fn hertz3d_without_contact(mesh: &str) -> String {
+    let start = HERTZ3D.find("[[contact]]").unwrap();
+    let end = HERTZ3D.find("[loading]").unwrap();
+    let text = format!("{}{}", &HERTZ3D[..start], &HERTZ3D[end..]);
+    text.replace("hertz3d-hex.msh", mesh)
+}
+
+#[test]
+fn the_3d_hertz_scene_fails_to_build_naming_3d_contact() {
+    let scene = Scene::from_file(scenes_dir("hertz3d.toml")).unwrap();
+    match scene.build_model_3d() {
+        Err(SceneError::Unsupported { field, message, .. }) => {
+            assert_eq!(field, "contact[0]");
+            assert!(
+                message.contains("contact between 3D bodies is not supported yet")
+                    && message.contains("slave faces on `indenter`")
+                    && message.contains("master faces on `block`"),
+                "{message}"
+            );
+        }
+        other => panic!("{:?}", other.map(|m| m.mesh.node_count())),
+    }
+    // nor is it a 2D model
+    assert!(matches!(
+        scene.build_model(),
+        Err(SceneError::Invalid { field, .. }) if field == "mesh.file"
+    ));
+}
+
+#[test]
+fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
+    use crate::mesh::gmsh::MshVolumeMesh;
+    for mesh in ["hertz3d-hex.msh", "hertz3d-tet.msh"] {
+        let origin = scenes_dir("hertz3d.toml");
+        let scene = Scene::from_toml_str(&hertz3d_without_contact(mesh), &origin)
+            .unwrap_or_else(|e| panic!("{mesh}: {e}"));
+        let model = scene.build_model_3d().unwrap_or_else(|e| panic!("{mesh}: {e}"));
+        let msh = MshVolumeMesh::read(scenes_dir(mesh)).unwrap();
+        let names: Vec<&str> = model.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
+        assert_eq!(names, ["indenter", "block"]);
+        for (b, body) in model.mesh.bodies.iter().enumerate() {
+            let cells = msh.volume_elements(&body.name).unwrap();
+            assert_eq!(body.elements.len(), cells.len(), "{mesh} {}", body.name);
+            let mut nodes: Vec<usize> = cells.iter().flat_map(|e| e.nodes().to_vec()).collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            assert_eq!(body.nodes.len(), nodes.len());
+            // the mesh nodes are the file's, by tag and position
+            let tags = body.node_tags.as_ref().unwrap();
+            for (k, &n) in nodes.iter().enumerate() {
+                assert_eq!(tags[k], msh.node_tag(n).unwrap());
+                assert_eq!(model.mesh.nodes_ref[body.nodes.start + k], msh.nodes()[n]);
+            }
+            assert!(model.mesh.element_body[body.elements.clone()].iter().all(|&e| e == b));
+        }
+        let groups: Vec<&str> = model.supports.iter().map(|g| g.name.as_str()).collect();
+        assert_eq!(groups, ["symmetry_x", "symmetry_y", "bottom", "indenter_top"]);
+        // the mesh node of each of the file's nodes of a group
+        let node_of = |n: usize| {
+            let tag = msh.node_tag(n).unwrap();
+            model
+                .mesh
+                .bodies
+                .iter()
+                .find_map(|b| {
+                    let k = b.node_tags.as_ref()?.iter().position(|&t| t == tag)?;
+                    Some(b.nodes.start + k)
+                })
+                .unwrap()
+        };
+        let prescribed = |dof: usize| model.prescribed.iter().find(|p| p.dof.index() == dof);
+        for (g, group, components, value) in [
+            (0, "symmetry_x", &[0][..], 0.0),
+            (1, "symmetry_y", &[1][..], 0.0),
+            (2, "bottom", &[0, 1, 2][..], 0.0),
+            (3, "indenter_top", &[2][..], -0.1),
+        ] {
+            let nodes: Vec<usize> = msh.group_nodes(group).unwrap().into_iter().map(node_of).collect();
+            assert!(!nodes.is_empty(), "{group}");
+            for &n in &nodes {
+                for &c in components {
+                    let p = prescribed(3 * n + c).unwrap_or_else(|| panic!("{group}: node {n} {c}"));
+                    assert_eq!(p.value, value, "{group}");
+                    assert_eq!(p.amplitude, None);
+                }
+            }
+            // the group's own dofs are its components of its nodes
+            for p in &model.prescribed[model.supports[g].prescribed.clone()] {
+                let (n, c) = (p.dof.index() / 3, p.dof.index() % 3);
+                assert!(nodes.contains(&n) && components.contains(&c), "{group}: {n} {c}");
+            }
+        }
+        // the indenter's top is on the indenter, pushed down
+        let top = &model.prescribed[model.supports[3].prescribed.clone()];
+        assert!(top.iter().all(|p| model.mesh.bodies[0].nodes.contains(&(p.dof.index() / 3))));
+        assert!(model.loads.is_empty() && model.contacts.is_empty());
+        assert_eq!(model.load_factor_end, 1.0);
+    }
+}
+
+#[test]
+fn a_3d_block_fixes_every_component_and_loads_its_side_consistently() {
+    let text = BLOCK3D.replace("ny = 1\nnz = 1", "ny = 2\nnz = 2");
+    let scene = error_free(&text);
+    let model = scene.build_model_3d().unwrap();
+    assert_eq!(model.mesh.node_count(), 5 * 3 * 3);
+    assert_eq!(model.mesh.elements.len(), 4 * 2 * 2);
+    // x = 0: 9 nodes, all three components, node by node
+    let fixed: Vec<usize> = model.prescribed.iter().map(|p| p.dof.index()).collect();
+    let want: Vec<usize> = (0..3)
+        .flat_map(|k| (0..3).map(move |j| (k * 3 + j) * 5))
+        .flat_map(|n| (0..3).map(move |c| 3 * n + c))
+        .collect();
+    assert_eq!(fixed, want);
+    // the end face: 4 squares of 1/4; corners t/16, edges t/8, centre t/4
+    let mut fz = vec![0.0; model.mesh.node_count()];
+    for l in &model.loads {
+        let (n, c) = (l.dof.index() / 3, l.dof.index() % 3);
+        if c == 2 {
+            fz[n] += l.value;
+        } else {
+            assert_eq!(l.value, 0.0);
+        }
+    }
+    let t = -0.01;
+    let total: f64 = fz.iter().sum();
+    assert!((total - t).abs() <= 1e-15, "{total}");
+    for k in 0..3 {
+        for j in 0..3 {
+            let n = (k * 3 + j) * 5 + 4;
+            let edges = [j == 0 || j == 2, k == 0 || k == 2];
+            let share = match edges {
+                [true, true] => 1.0 / 16.0,
+                [true, false] | [false, true] => 1.0 / 8.0,
+                [false, false] => 1.0 / 4.0,
+            };
+            assert!((fz[n] - t * share).abs() <= 1e-17, "({j}, {k}): {}", fz[n]);
+        }
+    }
+    // only the end face is loaded
+    assert!(fz.iter().enumerate().all(|(n, &f)| n % 5 == 4 || f == 0.0));
+}
+
+#[test]
+fn selections_and_refinement_in_3d() {
+    // z selects a plane, `dofs` any set, [refine] z multiplies nz
+    let text = BLOCK3D.replace(
+        "[[fix]]\nx = 0.0\n",
+        "[[fix]]\nz = 0.0\ndofs = \"zx\"\n\n[[prescribe]]\nat = [4.0, 1.0, 1.0]\nuz = -0.5\n",
+    ) + "\n[refine]\nz = 3\n";
+    let model = error_free(&text).build_model_3d().unwrap();
+    assert_eq!(model.mesh.node_count(), 5 * 2 * 4);
+    let fix = &model.prescribed[model.supports[0].prescribed.clone()];
+    assert_eq!(fix.len(), 2 * 10);
+    for p in fix {
+        let (n, c) = (p.dof.index() / 3, p.dof.index() % 3);
+        assert_eq!(model.mesh.nodes_ref[n][2], 0.0);
+        assert!(c == 0 || c == 2);
+    }
+    let top = &model.prescribed[model.supports[1].prescribed.clone()];
+    assert_eq!(top.len(), 1);
+    assert_eq!(model.mesh.nodes_ref[top[0].dof.index() / 3], [4.0, 1.0, 1.0]);
+    assert_eq!((top[0].dof.index() % 3, top[0].value), (2, -0.5));
+    // a point that no node has
+    let text = BLOCK3D.replace("[[fix]]\nx = 0.0\n", "[[fix]]\nat = [0.5, 0.5, 0.5]\n");
+    let (field, message) = invalid(&text);
+    assert_eq!(field, "fix[0]");
+    assert!(message.contains("no node at"), "{message}");
+    // the sides of a 3D block by name; a mesh group without a mesh file
+    let text = BLOCK3D.replace("side = \"right\"", "side = \"back\"");
+    let model = error_free(&text).build_model_3d().unwrap();
+    assert!(model.loads.iter().all(|l| l.value == 0.0
+        || model.mesh.nodes_ref[l.dof.index() / 3][1] == 1.0));
+    let text = BLOCK3D.replace("side = \"right\"", "group = \"end\"");
+    assert_eq!(invalid(&text).0, "traction[0].group");
+}
+
+#[test]
+fn a_3d_solid_needs_poisson_below_one_half() {
+    let (field, message) = invalid(&BLOCK3D.replace("poisson = 0.3", "poisson = 0.5"));
+    assert_eq!(field, "material");
+    assert!(message.contains("(-1, 0.5) for a 3D solid"), "{message}");
+    // plane stress admits 0.6 in 2D
+    error_free(&BLOCK2D.replace("poisson = 0.3", "poisson = 0.6"));
+}

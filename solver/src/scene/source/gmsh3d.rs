@@ -45,14 +45,6 @@ pub(super) struct VolumeFile {
     element_body: HashMap<u64, usize>,
 }
 
-/// A mesh element of a file's cell, with body-local nodes.
-fn element(cell: Cell) -> Element<usize> {
-    match cell {
-        Cell::Hex8(n) => Element::Hex8(n),
-        Cell::Tet4(n) => Element::Tet4(n),
-    }
-}
-
 impl VolumeFile {
     /// The source of the file's mesh `msh`.
     pub(super) fn new(msh: MshVolumeMesh) -> VolumeFile {
@@ -115,7 +107,7 @@ impl VolumeFile {
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| msh.nodes()[n]).collect();
         let conn: Vec<Element<usize>> = cells
             .iter()
-            .map(|(_, c)| element(c.map_nodes(|n| local[&n])))
+            .map(|(_, c)| c.map_nodes(|n| local[&n]).into())
             .collect();
         let elem0 = mesh.element_count();
         let node0 = mesh.node_count();

@@ -11,13 +11,12 @@
 
 use super::gmsh3d::VolumeFile;
 use super::{blocks3d, is_block};
-use crate::element::Element;
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::gmsh::MshVolumeMesh;
-use crate::mesh::volume::{Cell, Face};
+use crate::mesh::volume::Face;
 use crate::scene::{Scene, SceneError};
 
 /// A 3D scene's mesh sources, and the block of each block body.
@@ -51,21 +50,9 @@ impl<'s> Solids<'s> {
         let f = format!("body[{i}]");
         if is_block(&scene.bodies[i]) {
             let block = blocks3d::block(scene, i)?;
-            let nodes = block
-                .nodes()
-                .map_err(|e| scene.invalid(&f, e.to_string()))?;
-            let cells: Vec<Element<usize>> = block
-                .cells()
-                .map_err(|e| scene.invalid(&f, e.to_string()))?
-                .into_iter()
-                .map(|c| match c {
-                    Cell::Hex8(n) => Element::Hex8(n),
-                    Cell::Tet4(n) => Element::Tet4(n),
-                })
-                .collect();
             let node0 = mesh.node_count();
             let body = mesh
-                .add_body(&scene.bodies[i].name, material, &nodes, &cells)
+                .add_block3d(&scene.bodies[i].name, material, block)
                 .map_err(|e| scene.invalid(&f, e.to_string()))?;
             self.blocks.push(Some((block, node0)));
             return Ok(body);
@@ -82,7 +69,8 @@ impl<'s> Solids<'s> {
     }
 
     /// The faces of `side` of the mesh body `body` (mesh nodes), if it is
-    /// a block.
+    /// a block: [`Block3d::side`]'s body-local nodes plus the body's first
+    /// node ([`Mesh::add_block3d`] numbers the body so).
     pub(in crate::scene) fn side(&self, body: usize, side: Side3d) -> Option<Vec<Face<NodeId>>> {
         let (block, node0) = (*self.blocks.get(body)?)?;
         let faces = block.side(side).ok()?;
