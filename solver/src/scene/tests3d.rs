@@ -121,8 +121,7 @@ fn the_dimension_comes_from_the_blocks_or_the_mesh_file() {
     let s2 = error_free(BLOCK2D);
     assert_eq!(s2.dimension().unwrap(), Dimension::Two);
     // the 3D Hertz mesh makes its scene 3D; the 2D Hertz mesh its 2D
-    let hertz = super::error::parse(HERTZ3D, &scenes_dir("hertz3d.toml")).unwrap();
-    let mut hertz = hertz;
+    let mut hertz = super::error::parse(HERTZ3D, "hertz3d.toml").unwrap();
     hertz.origin = scenes_dir("hertz3d.toml");
     assert_eq!(hertz.dimension().unwrap(), Dimension::Three);
     let hertz2 = Scene::from_file(scenes_dir("hertz.toml")).unwrap();
