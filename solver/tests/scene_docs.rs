@@ -69,7 +69,8 @@ fn every_example_parses_builds_and_runs() {
             .unwrap_or_else(|e| panic!("{at}: written back: {e}"));
         assert_eq!(again, scene, "{at}: written back");
         let options = SolveOptions::from_scene(&scene);
-        let (load_factor, energy) = match scene.dimension().unwrap_or_else(|e| panic!("{at}: {e}")) {
+        let (load_factor, energy) = match scene.dimension().unwrap_or_else(|e| panic!("{at}: {e}"))
+        {
             Dimension::Two => {
                 let model = scene.build_model().unwrap_or_else(|e| panic!("{at}: {e}"));
                 assert!(model.mesh.node_count() > 0, "{at}");
@@ -77,7 +78,9 @@ fn every_example_parses_builds_and_runs() {
                 (s.load_factor, s.strain_energy)
             }
             Dimension::Three => {
-                let model = scene.build_model_3d().unwrap_or_else(|e| panic!("{at}: {e}"));
+                let model = scene
+                    .build_model_3d()
+                    .unwrap_or_else(|e| panic!("{at}: {e}"));
                 assert!(model.mesh.node_count() > 0, "{at}");
                 let s = solve_model(&model, &options).unwrap_or_else(|e| panic!("{at}: {e}"));
                 (s.load_factor, s.strain_energy)

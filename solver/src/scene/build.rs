@@ -230,4 +230,3 @@ impl Scene {
         Ok(model)
     }
 }
-

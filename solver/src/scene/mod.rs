@@ -158,11 +158,13 @@ use std::path::Path;
 use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
 
 mod build;
+mod build3d;
 mod dimension;
 mod error;
 mod initial_contact;
 mod memory;
 mod select;
+mod select3d;
 mod source;
 mod spec;
 mod supports;

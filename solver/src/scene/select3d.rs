@@ -58,10 +58,9 @@ impl Scene {
         let coordinates = xyz.iter().any(Option::is_some) || at.is_some();
         if let Some(group) = group {
             if coordinates {
-                return Err(self.invalid(
-                    field,
-                    "give either `group` or `x`/`y`/`z`/`at`, not both",
-                ));
+                return Err(
+                    self.invalid(field, "give either `group` or `x`/`y`/`z`/`at`, not both")
+                );
             }
             let mut nodes = sources.group_nodes(&format!("{field}.group"), group)?;
             if let Some(b) = b {

@@ -412,7 +412,9 @@ fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
         let origin = scenes_dir("hertz3d.toml");
         let scene = Scene::from_toml_str(&hertz3d_without_contact(mesh), &origin)
             .unwrap_or_else(|e| panic!("{mesh}: {e}"));
-        let model = scene.build_model_3d().unwrap_or_else(|e| panic!("{mesh}: {e}"));
+        let model = scene
+            .build_model_3d()
+            .unwrap_or_else(|e| panic!("{mesh}: {e}"));
         let msh = MshVolumeMesh::read(scenes_dir(mesh)).unwrap();
         let names: Vec<&str> = model.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
         assert_eq!(names, ["indenter", "block"]);
@@ -429,10 +431,17 @@ fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
                 assert_eq!(tags[k], msh.node_tag(n).unwrap());
                 assert_eq!(model.mesh.nodes_ref[body.nodes.start + k], msh.nodes()[n]);
             }
-            assert!(model.mesh.element_body[body.elements.clone()].iter().all(|&e| e == b));
+            assert!(
+                model.mesh.element_body[body.elements.clone()]
+                    .iter()
+                    .all(|&e| e == b)
+            );
         }
         let groups: Vec<&str> = model.supports.iter().map(|g| g.name.as_str()).collect();
-        assert_eq!(groups, ["symmetry_x", "symmetry_y", "bottom", "indenter_top"]);
+        assert_eq!(
+            groups,
+            ["symmetry_x", "symmetry_y", "bottom", "indenter_top"]
+        );
         // the mesh node of each of the file's nodes of a group
         let node_of = |n: usize| {
             let tag = msh.node_tag(n).unwrap();
@@ -453,11 +462,17 @@ fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
             (2, "bottom", &[0, 1, 2][..], 0.0),
             (3, "indenter_top", &[2][..], -0.1),
         ] {
-            let nodes: Vec<usize> = msh.group_nodes(group).unwrap().into_iter().map(node_of).collect();
+            let nodes: Vec<usize> = msh
+                .group_nodes(group)
+                .unwrap()
+                .into_iter()
+                .map(node_of)
+                .collect();
             assert!(!nodes.is_empty(), "{group}");
             for &n in &nodes {
                 for &c in components {
-                    let p = prescribed(3 * n + c).unwrap_or_else(|| panic!("{group}: node {n} {c}"));
+                    let p =
+                        prescribed(3 * n + c).unwrap_or_else(|| panic!("{group}: node {n} {c}"));
                     assert_eq!(p.value, value, "{group}");
                     assert_eq!(p.amplitude, None);
                 }
@@ -465,12 +480,18 @@ fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
             // the group's own dofs are its components of its nodes
             for p in &model.prescribed[model.supports[g].prescribed.clone()] {
                 let (n, c) = (p.dof.index() / 3, p.dof.index() % 3);
-                assert!(nodes.contains(&n) && components.contains(&c), "{group}: {n} {c}");
+                assert!(
+                    nodes.contains(&n) && components.contains(&c),
+                    "{group}: {n} {c}"
+                );
             }
         }
         // the indenter's top is on the indenter, pushed down
         let top = &model.prescribed[model.supports[3].prescribed.clone()];
-        assert!(top.iter().all(|p| model.mesh.bodies[0].nodes.contains(&(p.dof.index() / 3))));
+        assert!(
+            top.iter()
+                .all(|p| model.mesh.bodies[0].nodes.contains(&(p.dof.index() / 3)))
+        );
         assert!(model.loads.is_empty() && model.contacts.is_empty());
         assert_eq!(model.load_factor_end, 1.0);
     }
@@ -537,7 +558,10 @@ fn selections_and_refinement_in_3d() {
     }
     let top = &model.prescribed[model.supports[1].prescribed.clone()];
     assert_eq!(top.len(), 1);
-    assert_eq!(model.mesh.nodes_ref[top[0].dof.index() / 3], [4.0, 1.0, 1.0]);
+    assert_eq!(
+        model.mesh.nodes_ref[top[0].dof.index() / 3],
+        [4.0, 1.0, 1.0]
+    );
     assert_eq!((top[0].dof.index() % 3, top[0].value), (2, -0.5));
     // a point that no node has
     let text = BLOCK3D.replace("[[fix]]\nx = 0.0\n", "[[fix]]\nat = [0.5, 0.5, 0.5]\n");
@@ -547,8 +571,12 @@ fn selections_and_refinement_in_3d() {
     // the sides of a 3D block by name; a mesh group without a mesh file
     let text = BLOCK3D.replace("side = \"right\"", "side = \"back\"");
     let model = error_free(&text).build_model_3d().unwrap();
-    assert!(model.loads.iter().all(|l| l.value == 0.0
-        || model.mesh.nodes_ref[l.dof.index() / 3][1] == 1.0));
+    assert!(
+        model
+            .loads
+            .iter()
+            .all(|l| l.value == 0.0 || model.mesh.nodes_ref[l.dof.index() / 3][1] == 1.0)
+    );
     let text = BLOCK3D.replace("side = \"right\"", "group = \"end\"");
     assert_eq!(invalid(&text).0, "traction[0].group");
 }

@@ -87,10 +87,7 @@ impl VolumeFile {
             .filter_map(|e| Some((e.tag, e.cell()?)))
             .collect();
         // the body's nodes: those of its elements, in the file's order
-        let mut nodes: Vec<usize> = cells
-            .iter()
-            .flat_map(|(_, c)| c.nodes().to_vec())
-            .collect();
+        let mut nodes: Vec<usize> = cells.iter().flat_map(|(_, c)| c.nodes().to_vec()).collect();
         nodes.sort_unstable();
         nodes.dedup();
         if let Some(&n) = nodes.iter().find(|&&n| self.body_of[n].is_some()) {

@@ -32,12 +32,16 @@ use crate::mesh::gmsh::MshMesh;
 use crate::mesh::{Mesh, Side};
 
 mod blocks;
+mod blocks3d;
 mod gmsh;
+mod gmsh3d;
+mod solid;
 
 pub(super) use blocks::Blocks;
 pub(crate) use blocks::MAX_BLOCK_ELEMENTS;
 pub(super) use blocks::is_block;
 pub(super) use gmsh::Gmsh;
+pub(super) use solid::Solids;
 
 /// The path of the mesh file `file` of the scene read from `origin`:
 /// relative to the scene file's directory.
