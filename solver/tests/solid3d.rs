@@ -165,9 +165,9 @@ fn patch_errors(mesh: Mesh<3>, kinematics: Kinematics) -> (f64, f64) {
             A[0][2] + A[2][0],
             A[0][1] + A[1][0],
         ];
-        for r in 0..6 {
-            let exact: f64 = (0..6).map(|k| d[r][k] * eps[k]).sum();
-            s_err = s_err.max((first.pk2[r] - exact).abs() / scale);
+        for (row, s) in d.iter().zip(first.pk2) {
+            let exact: f64 = row.iter().zip(&eps).map(|(d, e)| d * e).sum();
+            s_err = s_err.max((s - exact).abs() / scale);
         }
     }
     (u_err, s_err)
@@ -280,9 +280,9 @@ fn assembled_tangent_is_the_residual_derivative() {
         up[j] += h;
         down[j] -= h;
         let (rp, rm) = (residual(&up), residual(&down));
-        for i in 0..n {
-            let fd = (rp.residual[i] - rm.residual[i]) / (2.0 * h);
-            worst = worst.max((fd - k[i][j]).abs() / scale);
+        for ((p, m), row) in rp.residual.iter().zip(&rm.residual).zip(&k) {
+            let fd = (p - m) / (2.0 * h);
+            worst = worst.max((fd - row[j]).abs() / scale);
         }
         // the energy's derivative is the residual
         let de = (rp.energy - rm.energy) / (2.0 * h);
