@@ -11,6 +11,7 @@
 //! to 2 and 3; the functions it calls need no bound.
 
 use crate::model::Model;
+use crate::solution::{Solution, State};
 
 /// The spatial dimension `D` as a type (see [`SpaceDim`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -26,6 +27,14 @@ pub trait SpaceDim<const D: usize> {
     /// a contact pair is refused by [`Model::check`], so Newton treats a
     /// 3D model as one without contact).
     fn planar(model: &Model<D>) -> Option<&Model<2>>;
+
+    /// A solution and one of its states as the 2D contact report sees
+    /// them (the nodal contact table): themselves in 2D, `None` in 3D
+    /// (no contact).
+    fn planar_solution<'s>(
+        solution: &'s Solution<D>,
+        state: &'s State<D>,
+    ) -> Option<(&'s Solution<2>, &'s State<2>)>;
 }
 
 impl SpaceDim<2> for Dim<2> {
@@ -34,12 +43,26 @@ impl SpaceDim<2> for Dim<2> {
     fn planar(model: &Model<2>) -> Option<&Model<2>> {
         Some(model)
     }
+
+    fn planar_solution<'s>(
+        solution: &'s Solution<2>,
+        state: &'s State<2>,
+    ) -> Option<(&'s Solution<2>, &'s State<2>)> {
+        Some((solution, state))
+    }
 }
 
 impl SpaceDim<3> for Dim<3> {
     const AXES: [&'static str; 3] = ["x", "y", "z"];
 
     fn planar(_: &Model<3>) -> Option<&Model<2>> {
+        None
+    }
+
+    fn planar_solution<'s>(
+        _: &'s Solution<3>,
+        _: &'s State<3>,
+    ) -> Option<(&'s Solution<2>, &'s State<2>)> {
         None
     }
 }

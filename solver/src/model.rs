@@ -28,7 +28,9 @@
 //! A model lives in the dimension of its mesh (`Model<D>`, 2 by default;
 //! one type and one solver for both). Contact is 2D for now: a 3D model
 //! with a contact pair is refused by [`Model::check`]
-//! ([`ModelError::ContactIn3d`]).
+//! ([`ModelError::ContactIn3d`]), and so is a 3D body whose material is
+//! not admissible in 3D ([`ModelError::Material`]: Poisson's ratio must be
+//! below 1/2; a 2D model's materials are checked where they are read).
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
@@ -311,6 +313,15 @@ pub enum ModelError {
         /// What.
         what: &'static str,
     },
+    /// A body of a 3D model whose material is not admissible for a 3D
+    /// solid ([`crate::material::Material::check_3d`]: `nu` below 1/2).
+    #[error("body `{body}`: {error}")]
+    Material {
+        /// The body.
+        body: String,
+        /// Why.
+        error: crate::material::MaterialError,
+    },
     /// A contact pair in a model of another dimension than 2 (contact is
     /// 2D only for now).
     #[error("contact pair `{pair}`: contact is not available in {dim}D models yet (2D only)")]
@@ -427,6 +438,16 @@ impl<const D: usize> Model<D> {
                 && (0..D).any(|c| prescribed[DofId::in_dim::<D>(n, c).index()].is_none())
         }) {
             return Err(ModelError::OrphanNode { node: node.index() });
+        }
+        if D == 3 {
+            for b in &self.mesh.bodies {
+                b.material
+                    .check_3d()
+                    .map_err(|error| ModelError::Material {
+                        body: b.name.clone(),
+                        error,
+                    })?;
+            }
         }
         if let Some(pair) = self.contacts.first()
             && D != 2

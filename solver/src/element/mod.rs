@@ -503,6 +503,7 @@ impl ElementStress {
 /// computed per element and iteration, and boxing would add an allocation
 /// to each; the 3D ones (4.6 kB and 1.2 kB) are boxed, so that a 2D
 /// assembly's vector of responses keeps the quadrilateral's size.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum ElementResponse {
     /// A quadrilateral's.
