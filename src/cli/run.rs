@@ -273,7 +273,7 @@ pub fn run(args: &RunArgs) -> CommandResult {
 }
 
 /// The error of a solve stopped by Ctrl-C at `load_factor`.
-fn interrupted(args: &RunArgs, load_factor: f64) -> Box<dyn std::error::Error> {
+fn interrupted(args: &RunArgs, load_factor: f64) -> Box<dyn std::error::Error + Send + Sync> {
     let kept = match &args.out {
         Some(dir) => format!(", {} left as it was", dir.display()),
         None => String::new(),
