@@ -177,8 +177,9 @@ impl Scene {
                 }
             }
         }
-        for (i, c) in self.contacts.iter().enumerate() {
-            let f = format!("contact[{i}]");
+        // the first pair is named (each is refused the same way)
+        if let Some(c) = self.contacts.first() {
+            let f = "contact[0]".to_owned();
             let face = |which: &str, spec: &super::FaceSpec| {
                 let field = format!("{f}.{which}");
                 self.faces_3d(&mesh, &sources, &field, &spec.body, spec.side, &spec.group)
