@@ -29,7 +29,7 @@ fn scene(file: &str) -> Scene {
 fn run(file: &str, scale: f64) -> (HertzMeasured, HertzProblem) {
     let mut scene = scene(file);
     for t in &mut scene.tractions {
-        t.force_per_length = t.force_per_length.map(|v| v * scale);
+        t.force_per_length = t.force_per_length.map(|v| v.map(|c| c * scale));
     }
     let problem = SCENES.scaled(scale);
     let sol = solve(&scene, &SolveOptions::from_scene(&scene)).unwrap();

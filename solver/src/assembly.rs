@@ -43,9 +43,10 @@ pub struct DofMap {
 }
 
 impl DofMap {
-    /// Numbers the free dofs of `model` and `n_mult` multipliers.
-    pub fn new(model: &Model, n_mult: usize) -> DofMap {
-        let ndof = 2 * model.mesh.node_count();
+    /// Numbers the free dofs of `model` (`D` per node) and `n_mult`
+    /// multipliers.
+    pub fn new<const D: usize>(model: &Model<D>, n_mult: usize) -> DofMap {
+        let ndof = model.dof_count();
         let mut eq = vec![0; ndof];
         for p in &model.prescribed {
             eq[p.dof.index()] = PRESCRIBED;
@@ -77,17 +78,24 @@ impl DofMap {
         (e != PRESCRIBED).then_some(EquationIndex::new(e))
     }
 
-    /// The equations of the 8 dofs of `nodes` (`x` then `y` of each node, in
-    /// node order), `None` for prescribed ones.
+    /// The equations of the 8 dofs of the 2D contact element `nodes` (`x`
+    /// then `y` of each node, in node order), `None` for prescribed ones.
     pub fn node_eqs(&self, nodes: &[NodeId; 4]) -> [Option<EquationIndex>; 8] {
         std::array::from_fn(|k| self.eq(DofId::of(nodes[k / 2], k % 2)))
     }
 
-    /// The equations of the `2 n` dofs of an element's `n` nodes (`x` then
-    /// `y` of each node, in node order), `None` for prescribed ones, then
-    /// `None` up to [`MAX_ELEMENT_DOFS`].
-    pub fn element_eqs(&self, nodes: &[NodeId]) -> [Option<EquationIndex>; MAX_ELEMENT_DOFS] {
-        std::array::from_fn(|k| nodes.get(k / 2).and_then(|&n| self.eq(DofId::of(n, k % 2))))
+    /// The equations of the `D n` dofs of an element's `n` nodes in `D`
+    /// dimensions (`x`, `y` (and `z`) of each node, in node order), `None`
+    /// for prescribed ones, then `None` up to [`MAX_ELEMENT_DOFS`].
+    pub fn element_eqs<const D: usize>(
+        &self,
+        nodes: &[NodeId],
+    ) -> [Option<EquationIndex>; MAX_ELEMENT_DOFS] {
+        std::array::from_fn(|k| {
+            nodes
+                .get(k / D)
+                .and_then(|&n| self.eq(DofId::in_dim::<D>(n, k % D)))
+        })
     }
 
     /// The equation of multiplier `m`.
@@ -159,8 +167,14 @@ impl System {
 /// Adds the solid elements' internal forces, tangents and energies at
 /// displacements `u`, element after element, each through the element seam
 /// ([`crate::element::ElementGeometry::response`]): for an element of `n`
-/// nodes, its `2 n` rows in dof order, each row's `2 n` columns in order.
-pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System) {
+/// nodes in `D` dimensions, its `D n` rows in dof order, each row's `D n`
+/// columns in order.
+pub fn assemble_solid<const D: usize>(
+    model: &Model<D>,
+    dofs: &DofMap,
+    u: &[f64],
+    sys: &mut System,
+) {
     assemble_solid_lifted(model, dofs, u, None, sys);
 }
 
@@ -171,8 +185,8 @@ pub fn assemble_solid(model: &Model, dofs: &DofMap, u: &[f64], sys: &mut System)
 /// step's linearised Dirichlet predictor (see [`crate::newton`],
 /// "Prescribed increments"). Without a lift this is [`assemble_solid`] bit
 /// for bit.
-pub fn assemble_solid_lifted(
-    model: &Model,
+pub fn assemble_solid_lifted<const D: usize>(
+    model: &Model<D>,
     dofs: &DofMap,
     u: &[f64],
     lift: Option<&[f64]>,
@@ -188,7 +202,7 @@ pub fn assemble_solid_lifted(
     sys.cols.reserve(64 * responses.len());
     sys.vals.reserve(64 * responses.len());
     for (el, resp) in mesh.elements.iter().zip(&responses) {
-        let eqs = dofs.element_eqs(el);
+        let eqs = dofs.element_eqs::<D>(el);
         let f_int = resp.f_int();
         let n = f_int.len();
         for p in 0..n {
@@ -202,7 +216,8 @@ pub fn assemble_solid_lifted(
             }
             if let Some(du) = lift {
                 for q in (0..n).filter(|&q| eqs[q].is_none()) {
-                    sys.residual[ep.index()] += k[q] * du[DofId::of(el[q / 2], q % 2).index()];
+                    sys.residual[ep.index()] +=
+                        k[q] * du[DofId::in_dim::<D>(el[q / D], q % D).index()];
                 }
             }
         }
@@ -331,8 +346,13 @@ pub fn assemble_ties(
 /// Subtracts the external force at `load_factor` (`load_factor f_ref`, each
 /// load with a curve scaled by it instead, [`Model::factor`]); returns its
 /// norm.
-pub fn add_external(model: &Model, dofs: &DofMap, load_factor: f64, sys: &mut System) -> f64 {
-    let mut f = vec![0.0; 2 * model.mesh.node_count()];
+pub fn add_external<const D: usize>(
+    model: &Model<D>,
+    dofs: &DofMap,
+    load_factor: f64,
+    sys: &mut System,
+) -> f64 {
+    let mut f = vec![0.0; model.dof_count()];
     for l in &model.loads {
         f[l.dof.index()] += model.factor(l.amplitude, load_factor) * l.value;
     }

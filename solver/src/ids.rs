@@ -8,7 +8,7 @@
 //! |---|---|---|
 //! | [`NodeId`] | mesh nodes, body after body | `Mesh::nodes_ref`, `u` by `DofId::of` |
 //! | [`ElementId`] | mesh elements, body after body | `Mesh::elements`, `Mesh::geometry` |
-//! | [`DofId`] | displacement dofs, `2 node + component` | `u`, `Model::prescribed[].dof` |
+//! | [`DofId`] | displacement dofs, `D node + component` in `D` dimensions | `u`, `Model::prescribed[].dof` |
 //! | [`EquationIndex`] | rows/columns of the Newton system | `System::residual`, `dx` |
 //! | [`MultiplierIndex`] | multiplier dofs, pair by pair | `lambda`, `ContactLayout::multipliers` |
 //! | [`ContactPointIndex`] | slave integration points | `ContactLayout::points`, pairings, evaluations |
@@ -55,7 +55,7 @@ macro_rules! index_type {
 
 index_type!(
     /// A mesh node (index into [`Mesh::nodes_ref`](crate::mesh::Mesh::nodes_ref));
-    /// its dofs are [`DofId::of`]`(node, 0 | 1)`.
+    /// its dofs are [`DofId::in_dim`]`::<D>(node, 0..D)`.
     NodeId
 );
 
@@ -66,28 +66,48 @@ index_type!(
 );
 
 index_type!(
-    /// A displacement degree of freedom: `2 node + component` (component 0
-    /// is `x`, 1 is `y`).
+    /// A displacement degree of freedom: `D node + component` in a mesh of
+    /// `D` dimensions (component 0 is `x`, 1 is `y`, 2 is `z`).
     DofId
 );
 
 impl DofId {
-    /// The dof of `component` (0: `x`, 1: `y`) of `node`.
+    /// The dof of `component` (0: `x`, 1: `y`, 2: `z`) of `node` in `D`
+    /// dimensions: `D node + component`, the one dof formula.
+    #[inline]
+    pub const fn in_dim<const D: usize>(node: NodeId, component: usize) -> DofId {
+        DofId(D * node.0 + component)
+    }
+
+    /// The node this dof belongs to in `D` dimensions.
+    #[inline]
+    pub const fn node_in<const D: usize>(self) -> NodeId {
+        NodeId(self.0 / D)
+    }
+
+    /// Its component in `D` dimensions (0: `x`, 1: `y`, 2: `z`).
+    #[inline]
+    pub const fn component_in<const D: usize>(self) -> usize {
+        self.0 % D
+    }
+
+    /// The dof of `component` (0: `x`, 1: `y`) of `node` in 2D
+    /// ([`DofId::in_dim`] with `D = 2`).
     #[inline]
     pub const fn of(node: NodeId, component: usize) -> DofId {
-        DofId(2 * node.0 + component)
+        DofId::in_dim::<2>(node, component)
     }
 
-    /// The node this dof belongs to.
+    /// The node this dof belongs to in 2D.
     #[inline]
     pub const fn node(self) -> NodeId {
-        NodeId(self.0 / 2)
+        self.node_in::<2>()
     }
 
-    /// Its component (0: `x`, 1: `y`).
+    /// Its component in 2D (0: `x`, 1: `y`).
     #[inline]
     pub const fn component(self) -> usize {
-        self.0 % 2
+        self.component_in::<2>()
     }
 }
 

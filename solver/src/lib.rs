@@ -45,6 +45,7 @@
 pub mod amplitude;
 pub mod assembly;
 pub mod contact;
+pub mod dim;
 pub mod element;
 mod error;
 pub mod ids;
@@ -67,6 +68,7 @@ mod tests;
 mod testutil;
 
 pub use contact_kernels::{ApproxType, Formulation, KernelError};
+pub use dim::{Dim, SpaceDim};
 pub use error::SolverError;
 pub use linear::LinearSolverKind;
 pub use material::{Kinematics, Material, PlaneModel};
@@ -91,8 +93,15 @@ pub fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution, SolverEr
     solve_monitored(scene, options, &monitor::Silent)
 }
 
-/// Solves a model (e.g. one built by hand from a [`Mesh`]).
-pub fn solve_model(model: &Model, options: &SolveOptions) -> Result<Solution, SolverError> {
+/// Solves a model (e.g. one built by hand from a [`Mesh`]) of 2 or 3
+/// dimensions.
+pub fn solve_model<const D: usize>(
+    model: &Model<D>,
+    options: &SolveOptions,
+) -> Result<Solution<D>, SolverError>
+where
+    Dim<D>: SpaceDim<D>,
+{
     solve_model_monitored(model, options, &monitor::Silent)
 }
 
@@ -109,11 +118,14 @@ pub fn solve_monitored(
 }
 
 /// [`solve_model`] with a [`monitor::Monitor`] (see [`solve_monitored`]).
-pub fn solve_model_monitored(
-    model: &Model,
+pub fn solve_model_monitored<const D: usize>(
+    model: &Model<D>,
     options: &SolveOptions,
     monitor: &dyn monitor::Monitor,
-) -> Result<Solution, SolverError> {
+) -> Result<Solution<D>, SolverError>
+where
+    Dim<D>: SpaceDim<D>,
+{
     memory::check_model(model, options.linear)?;
     newton::Run::new(model, options, monitor)?.execute()
 }

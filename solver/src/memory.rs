@@ -113,8 +113,11 @@ pub fn check(
 
 /// [`check`] on a built model (every body, Gmsh ones included), before
 /// the solve allocates its linear system.
-pub fn check_model(model: &Model, linear: LinearSolverKind) -> Result<(), MemoryError> {
-    let equations = (model.mesh.node_count() as u64).saturating_mul(2);
+pub fn check_model<const D: usize>(
+    model: &Model<D>,
+    linear: LinearSolverKind,
+) -> Result<(), MemoryError> {
+    let equations = (model.mesh.node_count() as u64).saturating_mul(D as u64);
     check(equations, linear, available())
 }
 

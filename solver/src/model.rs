@@ -22,8 +22,15 @@
 //! `prescribed`, every node with a free
 //! dof belongs to an element, and every contact pair has non-empty slave and
 //! master faces of non-degenerate segments that share no node. Nodes are
-//! [`NodeId`]s and dofs [`DofId`]s (`2 node + component`); the error
+//! [`NodeId`]s and dofs [`DofId`]s (`D node + component`); the error
 //! variants carry their plain numbers.
+//!
+//! A model lives in the dimension of its mesh (`Model<D>`, 2 by default;
+//! one type and one solver for both). Contact is 2D for now: a 3D model
+//! with a contact pair is refused by [`Model::check`]
+//! ([`ModelError::ContactIn3d`]), and so is a 3D body whose material is
+//! not admissible in 3D ([`ModelError::Material`]: Poisson's ratio must be
+//! below 1/2; a 2D model's materials are checked where they are read).
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
@@ -130,7 +137,8 @@ impl std::fmt::Debug for ContactPair {
 /// of a model without curves is the one recorded before curves existed).
 #[derive(Clone, Copy, PartialEq)]
 pub struct Prescribed {
-    /// Global degree of freedom (`2 node + component`).
+    /// Global degree of freedom (`D node + component`,
+    /// [`DofId::in_dim`]).
     pub dof: DofId,
     /// Its value at load factor one (zero for a fixed support), or the
     /// value its curve scales.
@@ -144,7 +152,8 @@ pub struct Prescribed {
 /// `Debug` as for [`Prescribed`].
 #[derive(Clone, Copy, PartialEq)]
 pub struct PointLoad {
-    /// Global degree of freedom (`2 node + component`).
+    /// Global degree of freedom (`D node + component`,
+    /// [`DofId::in_dim`]).
     pub dof: DofId,
     /// Its value at load factor one, or the value its curve scales.
     pub value: f64,
@@ -168,9 +177,9 @@ pub struct SupportGroup {
 /// without curves, and the fingerprints recorded from it, stay as they
 /// were.
 #[derive(Clone)]
-pub struct Model {
+pub struct Model<const D: usize = 2> {
     /// The mesh with materials.
-    pub mesh: Mesh,
+    pub mesh: Mesh<D>,
     /// Prescribed degrees of freedom (each at most once).
     pub prescribed: Vec<Prescribed>,
     /// Reference point loads (a dof may appear several times; they add).
@@ -209,7 +218,7 @@ impl std::fmt::Debug for PointLoad {
     }
 }
 
-impl std::fmt::Debug for Model {
+impl<const D: usize> std::fmt::Debug for Model<D> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let mut d = f.debug_struct("Model");
         d.field("mesh", &self.mesh)
@@ -304,9 +313,27 @@ pub enum ModelError {
         /// What.
         what: &'static str,
     },
+    /// A body of a 3D model whose material is not admissible for a 3D
+    /// solid ([`crate::material::Material::check_3d`]: `nu` below 1/2).
+    #[error("body `{body}`: {error}")]
+    Material {
+        /// The body.
+        body: String,
+        /// Why.
+        error: crate::material::MaterialError,
+    },
+    /// A contact pair in a model of another dimension than 2 (contact is
+    /// 2D only for now).
+    #[error("contact pair `{pair}`: contact is not available in {dim}D models yet (2D only)")]
+    ContactIn3d {
+        /// The first pair's name.
+        pair: String,
+        /// The model's dimension.
+        dim: usize,
+    },
 }
 
-impl Model {
+impl<const D: usize> Model<D> {
     /// The factor of an item with load curve `amplitude` at load factor
     /// `load_factor`: `load_factor` itself without a curve (so the item's
     /// value is `load_factor * value`, as for proportional loading), else
@@ -318,9 +345,14 @@ impl Model {
         }
     }
 
-    /// Checks indices, duplicates and contact pairs.
+    /// The number of displacement dofs, `D` per node.
+    pub fn dof_count(&self) -> usize {
+        D * self.mesh.node_count()
+    }
+
+    /// Checks indices, duplicates and contact pairs (refused in 3D).
     pub fn check(&self) -> Result<(), ModelError> {
-        let ndof = 2 * self.mesh.node_count();
+        let ndof = self.dof_count();
         if !self.load_factor_end.is_finite() {
             return Err(ModelError::NonFinite {
                 what: "the final load factor",
@@ -403,10 +435,27 @@ impl Model {
         }
         if let Some(node) = self.mesh.node_ids().find(|&n| {
             !in_element[n.index()]
-                && (prescribed[DofId::of(n, 0).index()].is_none()
-                    || prescribed[DofId::of(n, 1).index()].is_none())
+                && (0..D).any(|c| prescribed[DofId::in_dim::<D>(n, c).index()].is_none())
         }) {
             return Err(ModelError::OrphanNode { node: node.index() });
+        }
+        if D == 3 {
+            for b in &self.mesh.bodies {
+                b.material
+                    .check_3d()
+                    .map_err(|error| ModelError::Material {
+                        body: b.name.clone(),
+                        error,
+                    })?;
+            }
+        }
+        if let Some(pair) = self.contacts.first()
+            && D != 2
+        {
+            return Err(ModelError::ContactIn3d {
+                pair: pair.name.clone(),
+                dim: D,
+            });
         }
         for pair in &self.contacts {
             let err = |message: String| ModelError::Contact {
@@ -432,7 +481,8 @@ impl Model {
                     return Err(err(format!("segment {raw:?} refers to a missing node")));
                 }
                 let (a, b) = (self.mesh.node_ref(seg[0]), self.mesh.node_ref(seg[1]));
-                if !((a[0] - b[0]).hypot(a[1] - b[1]) > tolerance) {
+                let d: [f64; D] = std::array::from_fn(|c| a[c] - b[c]);
+                if !(crate::mesh::length(&d) > tolerance) {
                     return Err(err(format!("segment {raw:?} has zero length")));
                 }
             }

@@ -15,7 +15,7 @@ use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
-use crate::element::Stress;
+use crate::element::{ElementStress, Stress};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
@@ -133,7 +133,7 @@ pub struct Cutback {
 
 /// One converged (sub)step.
 #[derive(Debug, Clone, PartialEq)]
-pub struct StepRecord {
+pub struct StepRecord<const D: usize = 2> {
     /// The scheduled step (1-based) it belongs to.
     pub step: usize,
     /// The load factor reached.
@@ -162,11 +162,12 @@ pub struct StepRecord {
     /// Accepted at the round-off floor (see [`crate::newton`]) rather than
     /// below the tolerance.
     pub roundoff_floor: bool,
-    /// The reaction `[x, y]` of each support group at the converged state,
+    /// The reaction `[x, y]` (3D: `[x, y, z]`) of each support group at
+    /// the converged state,
     /// in [`Solution::support_groups`] order: the force the supports exert
     /// on the body, summed over the group's prescribed dofs (internal plus
     /// contact force, minus loads applied there; see `newton/reactions.rs`).
-    pub reactions: Vec<[f64; 2]>,
+    pub reactions: Vec<[f64; D]>,
     /// Types 1–6: times the step was solved again because integration
     /// points ended on other master segments than their Taylor expansion's
     /// (see [`crate::newton`], "Re-pairing at the step end"); 0 for the
@@ -225,11 +226,11 @@ pub struct Timings {
 
 /// Displacements and multipliers at one load factor.
 #[derive(Debug, Clone, PartialEq)]
-pub struct State {
+pub struct State<const D: usize = 2> {
     /// The load factor.
     pub load_factor: f64,
-    /// Nodal displacements (reference frame).
-    pub displacements: Vec<[f64; 2]>,
+    /// Nodal displacements (reference frame, `D` components).
+    pub displacements: Vec<[f64; D]>,
     /// Multipliers in [`Solution::multiplier_dofs`] order (`p = -lambda`).
     pub multipliers: Vec<f64>,
 }
@@ -283,7 +284,7 @@ pub struct ContactPairInfo {
 
 impl ContactPairInfo {
     /// The contact pairs of `model`, in model order.
-    pub fn of_model(model: &Model) -> Vec<ContactPairInfo> {
+    pub fn of_model<const D: usize>(model: &Model<D>) -> Vec<ContactPairInfo> {
         model
             .contacts
             .iter()
@@ -300,9 +301,9 @@ impl ContactPairInfo {
 /// Kernel-call counts.
 pub use crate::contact::KernelCounts;
 
-/// The result of [`crate::solve`].
+/// The result of [`crate::solve`] (`D`: the model's dimension).
 #[derive(Debug, Clone)]
-pub struct Solution {
+pub struct Solution<const D: usize = 2> {
     /// Complete or an approximation type.
     pub method: Method,
     /// The formulation of each contact pair.
@@ -330,7 +331,7 @@ pub struct Solution {
     /// Types 1–6 with a `taylor_tolerance`: the steps halved for accuracy.
     pub accuracy_halvings: Vec<AccuracyHalving>,
     /// Every converged (sub)step.
-    pub step_records: Vec<StepRecord>,
+    pub step_records: Vec<StepRecord<D>>,
     /// Every cut-back, in order.
     pub cutbacks: Vec<Cutback>,
     /// Timings.
@@ -351,13 +352,13 @@ pub struct Solution {
     /// Number of equations (free dofs plus multipliers).
     pub equations: usize,
     /// The mesh (reference coordinates, connectivity, bodies, materials).
-    pub mesh: Mesh,
+    pub mesh: Mesh<D>,
     /// The multiplier dofs.
     pub multiplier_dofs: Vec<MultiplierDofInfo>,
     /// The final state.
-    pub final_state: State,
+    pub final_state: State<D>,
     /// The state after every converged (sub)step, when requested.
-    pub snapshots: Vec<State>,
+    pub snapshots: Vec<State<D>>,
     /// Slave integration points at the final state.
     pub contact_points: Vec<ContactPointReport>,
     /// The contact pairs, in model order (see [`crate::report::nodal`]).
@@ -368,11 +369,54 @@ pub struct Solution {
     pub support_groups: Vec<String>,
 }
 
-impl Solution {
+impl Solution<2> {
     /// The stresses at every integration point of every element of the
     /// final state, element after element (four per quadrilateral, one per
     /// triangle).
     pub fn point_stresses(&self) -> Vec<Stress> {
+        // a 2D mesh holds 2D elements only (Mesh::add_body), so every
+        // stress is a plane one
+        self.element_point_stresses()
+            .into_iter()
+            .filter_map(ElementStress::plane)
+            .collect()
+    }
+
+    /// Element stresses (averaged over the Gauss points) in `state`.
+    pub fn element_stresses(&self, state: &State) -> Vec<Stress> {
+        self.element_mean_stresses(state)
+            .into_iter()
+            .filter_map(ElementStress::plane)
+            .collect()
+    }
+}
+
+impl Solution<3> {
+    /// The stresses at every integration point of every element of the
+    /// final state, element after element (eight per hexahedron, one per
+    /// tetrahedron).
+    pub fn point_stresses(&self) -> Vec<Stress<6>> {
+        // a 3D mesh holds 3D elements only (Mesh::add_body)
+        self.element_point_stresses()
+            .into_iter()
+            .filter_map(ElementStress::solid)
+            .collect()
+    }
+
+    /// Element stresses (averaged over the Gauss points) in `state`.
+    pub fn element_stresses(&self, state: &State<3>) -> Vec<Stress<6>> {
+        self.element_mean_stresses(state)
+            .into_iter()
+            .filter_map(ElementStress::solid)
+            .collect()
+    }
+}
+
+impl<const D: usize> Solution<D> {
+    /// The stresses at every integration point of every element of the
+    /// final state, element after element, each in its element's
+    /// dimension.
+    pub fn element_point_stresses(&self) -> Vec<ElementStress> {
         let u: Vec<f64> = self
             .final_state
             .displacements
@@ -391,6 +435,20 @@ impl Solution {
         points
     }
 
+    /// Element stresses (averaged over the Gauss points) in `state`, each
+    /// in its element's dimension.
+    pub fn element_mean_stresses(&self, state: &State<D>) -> Vec<ElementStress> {
+        let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
+        self.mesh
+            .element_ids()
+            .map(|e| {
+                let mat = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
+                self.mesh.geometry[e.index()]
+                    .mean_stress(&self.mesh.element_displacements(e, &u), mat)
+            })
+            .collect()
+    }
+
     /// Newton iterations per scheduled step (sub-steps added up).
     pub fn iterations_per_step(&self) -> Vec<usize> {
         let mut out = vec![0; self.steps];
@@ -403,17 +461,17 @@ impl Solution {
     }
 
     /// The final displacement of node `node`.
-    pub fn displacement(&self, node: NodeId) -> [f64; 2] {
+    pub fn displacement(&self, node: NodeId) -> [f64; D] {
         self.final_state.displacements[node.index()]
     }
 
     /// The node of body `body` nearest to the reference point `at`.
-    pub fn node_at(&self, body: &str, at: [f64; 2]) -> Option<NodeId> {
+    pub fn node_at(&self, body: &str, at: [f64; D]) -> Option<NodeId> {
         let b = self.mesh.bodies.iter().find(|b| b.name == body)?;
         b.node_ids().min_by(|&i, &j| {
             let d = |n: NodeId| {
                 let p = self.mesh.node_ref(n);
-                (p[0] - at[0]).hypot(p[1] - at[1])
+                crate::mesh::length(&std::array::from_fn::<f64, D, _>(|c| p[c] - at[c]))
             };
             d(i).total_cmp(&d(j))
         })
@@ -448,19 +506,6 @@ impl Solution {
                 slave_segment: p.slave_segment,
                 gauss: p.gauss,
                 master_segment: None,
-            })
-            .collect()
-    }
-
-    /// Element stresses (averaged over the Gauss points) in `state`.
-    pub fn element_stresses(&self, state: &State) -> Vec<Stress> {
-        let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
-        self.mesh
-            .element_ids()
-            .map(|e| {
-                let mat = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
-                self.mesh.geometry[e.index()]
-                    .mean_stress(&self.mesh.element_displacements(e, &u), mat)
             })
             .collect()
     }

@@ -10,6 +10,7 @@ use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, No
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Block, Mesh};
 use crate::model::{Model, PointLoad, Prescribed};
+use crate::scene::Coords;
 use crate::testutil::Lcg;
 use crate::{Method, Scene, SolveOptions, SolverError, solve, solve_model};
 
@@ -790,10 +791,15 @@ fn paper_scene_file_is_the_design_scene() {
     for (b, y0) in scene.bodies.iter().zip([0.0, 0.5]) {
         assert_eq!(
             (b.nx, b.ny, b.origin, b.size),
-            (Some(7), Some(1), Some([0.0, y0]), Some([7.0, 0.5]))
+            (
+                Some(7),
+                Some(1),
+                Some(Coords::Xy([0.0, y0])),
+                Some(Coords::Xy([7.0, 0.5]))
+            )
         );
     }
-    let mat = scene.material.unwrap();
+    let mat = scene.material.unwrap().material();
     assert_eq!(
         (mat.young, mat.poisson, mat.model),
         (1000.0, 0.3, PlaneModel::PlaneStress)

@@ -28,6 +28,7 @@ use std::path::PathBuf;
 use clap::Args;
 use contact_kernels::Formulation;
 use solver::ids::NodeId;
+use solver::scene::Dimension;
 use solver::{LinearSolverKind, Method, Scene, SolveOptions};
 
 use solver::monitor::{Monitor, StepProgress};
@@ -147,54 +148,18 @@ pub fn run(args: &RunArgs) -> CommandResult {
         interrupt: &interrupt,
         steps: options.steps,
     };
+    if scene.dimension()? == Dimension::Three {
+        return run_solid(args, &scene, &options, out.as_ref(), &interrupt, &progress);
+    }
     let sol = match solver::solve_monitored(&scene, &options, &progress) {
         Err(SolverError::Interrupted { load_factor }) => {
-            let kept = match &args.out {
-                Some(dir) => format!(", {} left as it was", dir.display()),
-                None => String::new(),
-            };
-            return Err(format!(
-                "interrupted at load factor {load_factor} (the last converged state): \
-                 no solution, nothing written{kept}"
-            )
-            .into());
+            return Err(interrupted(args, load_factor));
         }
         result => result?,
     };
 
     let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
-    let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
-    println!("scene           {name}");
-    println!(
-        "method          {} ({} load steps, formulation {})",
-        sol.method,
-        sol.steps,
-        forms.join(", ")
-    );
-    println!(
-        "equations       {} (free dofs and multipliers)",
-        sol.equations
-    );
-    println!("load factor     {}", sol.load_factor);
-    println!("strain energy   {:.10}", sol.strain_energy);
-    println!(
-        "Newton          {} iterations ({:?} per step)",
-        sol.newton_iterations,
-        sol.iterations_per_step()
-    );
-    if !sol.cutbacks.is_empty() {
-        println!("cut-backs       {}", sol.cutbacks.len());
-        for c in &sol.cutbacks {
-            println!(
-                "  step {}: {} -> {} failed: {}",
-                c.step, c.from_load_factor, c.attempted_load_factor, c.reason
-            );
-        }
-        println!(
-            "                ({} iterations spent in failed attempts)",
-            sol.failed_iterations
-        );
-    }
+    print_header(&name, &sol);
     for r in &sol.step_records {
         for p in &r.node_ties {
             println!(
@@ -239,7 +204,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     for load in &scene.loads {
         // a load on a physical group has no position to report
-        let Some(at) = load.at else { continue };
+        let Some(at) = load.at.and_then(|c| c.xy()) else {
+            continue;
+        };
         let bodies: Vec<&str> = match &load.body {
             Some(b) => vec![b.as_str()],
             None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
@@ -260,51 +227,7 @@ pub fn run(args: &RunArgs) -> CommandResult {
             );
         }
     }
-    let t = &sol.timings;
-    println!(
-        "time            {:.2} ms (solid {:.2}, contact {:.2}, linear solve {:.2})",
-        1e3 * t.total.as_secs_f64(),
-        1e3 * t.solid_assembly.as_secs_f64(),
-        1e3 * t.contact_evaluation.as_secs_f64(),
-        1e3 * t.linear_solve.as_secs_f64()
-    );
-    println!(
-        "factorisation   {} (symbolic {:.2} ms in {} analyses, numeric + solve {:.2} ms)",
-        options.linear,
-        1e3 * t.symbolic_factorisation.as_secs_f64(),
-        sol.symbolic_factorisations,
-        1e3 * t
-            .linear_solve
-            .saturating_sub(t.symbolic_factorisation)
-            .as_secs_f64()
-    );
-    match sol.factor_nonzeros {
-        Some(nnz) => println!(
-            "fill            {nnz} nonzeros in L ({:.1} per equation, {} equations)",
-            nnz as f64 / sol.equations.max(1) as f64,
-            sol.equations
-        ),
-        None => println!(
-            "fill            not reported for {} (faer's sparse LU does not expose its factors)",
-            options.linear
-        ),
-    }
-    if options.linear != LinearSolverKind::Lu {
-        println!(
-            "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
-            options.linear, sol.symbolic_factorisations, sol.linear_fallbacks
-        );
-    }
-    println!(
-        "kernel calls    {} evaluations, {} projections",
-        sol.kernel_counts.evaluate, sol.kernel_counts.project
-    );
-    if sol.step_end_projections > 0 {
-        println!(
-            "                (+ {} projections in the step-end checks)",
-            sol.step_end_projections
-        );
-    }
+    print_costs(&sol, &options);
 
     if let Some(out) = &out {
         let dir = out.path();
@@ -342,6 +265,101 @@ pub fn run(args: &RunArgs) -> CommandResult {
             wrote.push(format!("wrote           {}", shown.display()));
         }
         staging.commit(Some(&interrupt))?;
+        for line in wrote {
+            println!("{line}");
+        }
+    }
+    Ok(())
+}
+
+/// The error of a solve stopped by Ctrl-C at `load_factor`.
+fn interrupted(args: &RunArgs, load_factor: f64) -> Box<dyn std::error::Error + Send + Sync> {
+    let kept = match &args.out {
+        Some(dir) => format!(", {} left as it was", dir.display()),
+        None => String::new(),
+    };
+    format!(
+        "interrupted at load factor {load_factor} (the last converged state): \
+         no solution, nothing written{kept}"
+    )
+    .into()
+}
+
+/// `gapsim run` on a 3D scene: its model (`Scene::build_model_3d`), the
+/// summary (as in 2D, without contact: a 3D scene has none yet), each
+/// loaded node's displacement, and with `--out` the `.vtu` files and
+/// `reactions.csv`.
+fn run_solid(
+    args: &RunArgs,
+    scene: &Scene,
+    options: &SolveOptions,
+    out: Option<&OutDir>,
+    interrupt: &Interrupt,
+    progress: &Progress,
+) -> CommandResult {
+    let model = scene.build_model_3d()?;
+    let sol = match solver::solve_model_monitored(&model, options, progress) {
+        Err(SolverError::Interrupted { load_factor }) => {
+            return Err(interrupted(args, load_factor));
+        }
+        result => result?,
+    };
+    let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
+    print_header(&name, &sol);
+    for load in &scene.loads {
+        // a load on a physical group has no position to report
+        let Some(at) = load.at.and_then(|c| c.xyz()) else {
+            continue;
+        };
+        let bodies: Vec<&str> = match &load.body {
+            Some(b) => vec![b.as_str()],
+            None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
+        };
+        let distance = |n: NodeId| {
+            let p = sol.mesh.node_ref(n);
+            (0..3).map(|c| (p[c] - at[c]).powi(2)).sum::<f64>()
+        };
+        let nearest = bodies
+            .iter()
+            .filter_map(|b| sol.node_at(b, at))
+            .min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
+        if let Some(node) = nearest {
+            let [ux, uy, uz] = sol.displacement(node);
+            println!(
+                "loaded node     ({}, {}, {}) moves by ({ux:.6}, {uy:.6}, {uz:.6})",
+                at[0], at[1], at[2]
+            );
+        }
+    }
+    print_costs(&sol, options);
+    if let Some(out) = out {
+        let dir = out.path();
+        let staging = out.stage()?;
+        let at = |name: &str| (staging.path().join(name), dir.join(name));
+        let mut vtu_files = 0;
+        if args.every_step {
+            for (i, state) in sol.snapshots.iter().enumerate() {
+                let (path, shown) = at(&format!("step-{i:04}.vtu"));
+                solver::report::write_vtu_state(&path, &sol, state)
+                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+                vtu_files += 1;
+            }
+        }
+        let (path, shown) = at("final.vtu");
+        solver::report::write_vtu(&path, &sol)
+            .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+        vtu_files += 1;
+        let mut wrote = vec![format!(
+            "wrote           {vtu_files} .vtu file(s) to {}",
+            dir.display()
+        )];
+        if !sol.support_groups.is_empty() {
+            let (path, shown) = at("reactions.csv");
+            solver::report::write_atomic(&path, reactions_csv(&sol))
+                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+            wrote.push(format!("wrote           {}", shown.display()));
+        }
+        staging.commit(Some(interrupt))?;
         for line in wrote {
             println!("{line}");
         }
@@ -440,5 +458,92 @@ fn taylor_summary(sol: &solver::Solution, every_step: bool) {
                 );
             }
         }
+    }
+}
+
+/// The summary's first lines: the scene, the method, the size, the result
+/// and Newton's effort (cut-backs included).
+fn print_header<const D: usize>(name: &str, sol: &solver::Solution<D>) {
+    let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
+    println!("scene           {name}");
+    println!(
+        "method          {} ({} load steps, formulation {})",
+        sol.method,
+        sol.steps,
+        forms.join(", ")
+    );
+    println!(
+        "equations       {} (free dofs and multipliers)",
+        sol.equations
+    );
+    println!("load factor     {}", sol.load_factor);
+    println!("strain energy   {:.10}", sol.strain_energy);
+    println!(
+        "Newton          {} iterations ({:?} per step)",
+        sol.newton_iterations,
+        sol.iterations_per_step()
+    );
+    if !sol.cutbacks.is_empty() {
+        println!("cut-backs       {}", sol.cutbacks.len());
+        for c in &sol.cutbacks {
+            println!(
+                "  step {}: {} -> {} failed: {}",
+                c.step, c.from_load_factor, c.attempted_load_factor, c.reason
+            );
+        }
+        println!(
+            "                ({} iterations spent in failed attempts)",
+            sol.failed_iterations
+        );
+    }
+}
+
+/// The summary's cost lines: time, factorisation, fill, the linear
+/// solver's fallbacks, kernel calls.
+fn print_costs<const D: usize>(sol: &solver::Solution<D>, options: &SolveOptions) {
+    let t = &sol.timings;
+    println!(
+        "time            {:.2} ms (solid {:.2}, contact {:.2}, linear solve {:.2})",
+        1e3 * t.total.as_secs_f64(),
+        1e3 * t.solid_assembly.as_secs_f64(),
+        1e3 * t.contact_evaluation.as_secs_f64(),
+        1e3 * t.linear_solve.as_secs_f64()
+    );
+    println!(
+        "factorisation   {} (symbolic {:.2} ms in {} analyses, numeric + solve {:.2} ms)",
+        options.linear,
+        1e3 * t.symbolic_factorisation.as_secs_f64(),
+        sol.symbolic_factorisations,
+        1e3 * t
+            .linear_solve
+            .saturating_sub(t.symbolic_factorisation)
+            .as_secs_f64()
+    );
+    match sol.factor_nonzeros {
+        Some(nnz) => println!(
+            "fill            {nnz} nonzeros in L ({:.1} per equation, {} equations)",
+            nnz as f64 / sol.equations.max(1) as f64,
+            sol.equations
+        ),
+        None => println!(
+            "fill            not reported for {} (faer's sparse LU does not expose its factors)",
+            options.linear
+        ),
+    }
+    if options.linear != LinearSolverKind::Lu {
+        println!(
+            "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
+            options.linear, sol.symbolic_factorisations, sol.linear_fallbacks
+        );
+    }
+    println!(
+        "kernel calls    {} evaluations, {} projections",
+        sol.kernel_counts.evaluate, sol.kernel_counts.project
+    );
+    if sol.step_end_projections > 0 {
+        println!(
+            "                (+ {} projections in the step-end checks)",
+            sol.step_end_projections
+        );
     }
 }

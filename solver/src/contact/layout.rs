@@ -137,6 +137,20 @@ impl ContactLayout {
         }
     }
 
+    /// The layout of a model without contact pairs (no points, no
+    /// multipliers).
+    pub fn empty() -> ContactLayout {
+        ContactLayout {
+            points: Vec::new(),
+            multipliers: Vec::new(),
+            formulations: Vec::new(),
+            modes: Vec::new(),
+            masters: Vec::new(),
+            adjacency: Vec::new(),
+            complementarity: Vec::new(),
+        }
+    }
+
     /// Current coordinates `q` of four nodes.
     pub(super) fn q(mesh: &Mesh, u: &[f64], nodes: [NodeId; 4]) -> [f64; 8] {
         std::array::from_fn(|k| {

@@ -13,16 +13,20 @@
 //! point, exact; in 3D H8 ([`hex`]): trilinear, 2x2x2 Gauss; T4 ([`tet`]):
 //! linear, one point, exact). The material is [`material`], the stress
 //! measures [`Stress`]. Every element type implements [`SolidElement`],
-//! one interface for 2D and 3D; the mesh holds 2D elements, and the 3D
-//! ones ([`ElementKind::Hex8`], [`ElementKind::Tet4`]) join [`Element`],
-//! [`ElementGeometry`] and [`ElementResponse`] as variants calling their
-//! [`SolidElement`] methods once the mesh has three coordinates.
-//! A 2D element with `n` nodes has `2n` dofs, ordered
-//! `[u1x, u1y, u2x, u2y, ...]`; the seam's element buffers are sized for
-//! the largest 2D element (8 dofs) and a triangle uses their first 6
-//! entries.
+//! one interface for 2D and 3D; the variants of [`Element`],
+//! [`ElementGeometry`] and [`ElementResponse`] call their
+//! [`SolidElement`] methods (2D: [`ElementKind::Quad4`],
+//! [`ElementKind::Tri3`]; 3D: [`ElementKind::Hex8`], [`ElementKind::Tet4`]).
+//! An element with `n` nodes in `D` dimensions has `D n` dofs, ordered
+//! `[u1x, u1y, (u1z,) u2x, ...]`; the seam's element buffers are sized for
+//! the largest element (the hexahedron's 24 dofs) and every other kind
+//! uses their first `D n` entries. The hexahedron's geometry and the 3D
+//! responses are boxed in the enums, so that a 2D mesh's dense vectors of
+//! geometries (and an assembly's of responses) keep the size of their 2D
+//! variants.
 //!
-//! Invariants: an [`Element`]'s nodes run counter-clockwise; an
+//! Invariants: an [`Element`]'s nodes run counter-clockwise (2D) or in
+//! Gmsh's order with a positive Jacobian (3D); an
 //! [`ElementGeometry`] exists only for a positive reference Jacobian (see
 //! [`QuadGeometry::new`], [`TriGeometry::new`]); dispatching a quadrilateral
 //! through this seam performs exactly the operations of
@@ -43,12 +47,14 @@ mod stress;
 pub mod tet;
 pub mod tri;
 
+use hex::{HexGeometry, HexResponse};
 use material::Material;
 use quad::{
     QuadGeometry, QuadResponse, quad_energy, quad_mean_stress, quad_point_stresses, quad_response,
 };
 use solid::SolidResponse;
 pub use stress::Stress;
+use tet::{TetGeometry, TetResponse};
 use tri::{
     TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_point_stresses, tri_response,
 };
@@ -77,9 +83,26 @@ pub struct InvalidElement {
     pub det_j0: f64,
 }
 
-/// The largest number of dofs of a 2D element (the quadrilateral's 8): the
+/// The largest number of dofs of an element (the hexahedron's 24): the
 /// size of the seam's element buffers.
-pub const MAX_ELEMENT_DOFS: usize = 8;
+pub const MAX_ELEMENT_DOFS: usize = 24;
+
+/// Why [`ElementGeometry::new`] refused an element.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum ElementError {
+    /// Its reference Jacobian is not positive.
+    #[error(transparent)]
+    Invalid(#[from] InvalidElement),
+    /// The element's kind lives in another dimension than the coordinates
+    /// given (a 2D element in a 3D mesh or the reverse).
+    #[error("a {kind} is a {}D element, the mesh has {dim} coordinates", kind.dim())]
+    WrongDimension {
+        /// The element's kind.
+        kind: ElementKind,
+        /// The number of coordinates per node given.
+        dim: usize,
+    },
+}
 
 /// The kind of a solid element.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -171,7 +194,8 @@ pub trait SolidElement<const D: usize, const N: usize, const M: usize, const V: 
     fn mean_stress(&self, u: &[f64; M], material: &Material) -> Stress<V>;
 }
 
-/// The connectivity of one element: its nodes, counter-clockwise. `N` is
+/// The connectivity of one element: its nodes, counter-clockwise (2D) or in
+/// Gmsh's order (3D). `N` is
 /// the node index: [`NodeId`] in a [`crate::mesh::Mesh`], a body-local
 /// `usize` when a body is added. Dereferences to the slice of its nodes.
 /// Its `Debug` is the node list alone (the kind is its length), as the
@@ -182,6 +206,10 @@ pub enum Element<N = NodeId> {
     Quad4([N; 4]),
     /// A 3-node triangle.
     Tri3([N; 3]),
+    /// An 8-node hexahedron.
+    Hex8([N; 8]),
+    /// A 4-node tetrahedron.
+    Tet4([N; 4]),
 }
 
 impl<N> Element<N> {
@@ -190,6 +218,8 @@ impl<N> Element<N> {
         match self {
             Element::Quad4(_) => ElementKind::Quad4,
             Element::Tri3(_) => ElementKind::Tri3,
+            Element::Hex8(_) => ElementKind::Hex8,
+            Element::Tet4(_) => ElementKind::Tet4,
         }
     }
 
@@ -198,6 +228,8 @@ impl<N> Element<N> {
         match self {
             Element::Quad4(n) => n,
             Element::Tri3(n) => n,
+            Element::Hex8(n) => n,
+            Element::Tet4(n) => n,
         }
     }
 
@@ -206,6 +238,8 @@ impl<N> Element<N> {
         match self {
             Element::Quad4(n) => Element::Quad4(n.map(f)),
             Element::Tri3(n) => Element::Tri3(n.map(f)),
+            Element::Hex8(n) => Element::Hex8(n.map(f)),
+            Element::Tet4(n) => Element::Tet4(n.map(f)),
         }
     }
 }
@@ -243,21 +277,51 @@ impl<N> From<[N; 3]> for Element<N> {
     }
 }
 
+impl<N> From<[N; 8]> for Element<N> {
+    fn from(nodes: [N; 8]) -> Self {
+        Element::Hex8(nodes)
+    }
+}
+
+/// The coordinates `x` (`D` per node) as `E` per node, when `D == E`.
+fn coordinates<const D: usize, const E: usize, const N: usize>(
+    x: &[[f64; D]; N],
+    kind: ElementKind,
+) -> Result<[[f64; E]; N], ElementError> {
+    let mut out = [[0.0; E]; N];
+    for (o, p) in out.iter_mut().zip(x) {
+        *o = <[f64; E]>::try_from(&p[..])
+            .map_err(|_| ElementError::WrongDimension { kind, dim: D })?;
+    }
+    Ok(out)
+}
+
+/// The first `M` entries of an element buffer.
+fn first<const M: usize>(u: &[f64; MAX_ELEMENT_DOFS]) -> &[f64; M] {
+    const { assert!(M <= MAX_ELEMENT_DOFS) };
+    u.first_chunk::<M>()
+        .unwrap_or_else(|| unreachable!("M <= MAX_ELEMENT_DOFS"))
+}
+
 /// The reference geometry of one element, computed once per mesh. Its
 /// `Debug` is the element's own (`QuadGeometry { .. }`, `TriGeometry { ..
 /// }`), which names the kind.
 ///
-/// The variants differ in size (a triangle's is smaller); they stay
+/// The 2D variants differ in size (a triangle's is smaller); they stay
 /// unboxed: geometries live in one dense vector indexed by element, read
 /// in every iteration, and a box per element would cost an indirection
-/// for every quadrilateral.
-#[allow(clippy::large_enum_variant)]
-#[derive(Clone, Copy, PartialEq)]
+/// for every quadrilateral. The hexahedron's (1.6 kB) is boxed, so that
+/// the vector of a 2D mesh keeps the quadrilateral's size.
+#[derive(Clone, PartialEq)]
 pub enum ElementGeometry {
     /// A quadrilateral's (per Gauss point).
     Quad4(QuadGeometry),
     /// A triangle's (constant).
     Tri3(TriGeometry),
+    /// A hexahedron's (per Gauss point).
+    Hex8(Box<HexGeometry>),
+    /// A tetrahedron's (constant).
+    Tet4(TetGeometry),
 }
 
 impl fmt::Debug for ElementGeometry {
@@ -265,18 +329,27 @@ impl fmt::Debug for ElementGeometry {
         match self {
             ElementGeometry::Quad4(g) => fmt::Debug::fmt(g, f),
             ElementGeometry::Tri3(g) => fmt::Debug::fmt(g, f),
+            ElementGeometry::Hex8(g) => fmt::Debug::fmt(g, f),
+            ElementGeometry::Tet4(g) => fmt::Debug::fmt(g, f),
         }
     }
 }
 
 impl ElementGeometry {
     /// The geometry of the element whose reference node coordinates are
-    /// `x_ref` (counter-clockwise); fails for a non-positive (or, for a
-    /// triangle, degenerate or non-finite) reference Jacobian.
-    pub fn new(x_ref: &Element<[f64; 2]>) -> Result<ElementGeometry, InvalidElement> {
+    /// `x_ref` (`D` per node: counter-clockwise in 2D, Gmsh's order in 3D);
+    /// fails for a kind of another dimension than `D` and for a
+    /// non-positive (or, for a triangle or a 3D element, degenerate or
+    /// non-finite) reference Jacobian.
+    pub fn new<const D: usize>(x_ref: &Element<[f64; D]>) -> Result<ElementGeometry, ElementError> {
+        let kind = x_ref.kind();
         Ok(match x_ref {
-            Element::Quad4(x) => ElementGeometry::Quad4(QuadGeometry::new(x)?),
-            Element::Tri3(x) => ElementGeometry::Tri3(TriGeometry::new(x)?),
+            Element::Quad4(x) => ElementGeometry::Quad4(QuadGeometry::new(&coordinates(x, kind)?)?),
+            Element::Tri3(x) => ElementGeometry::Tri3(TriGeometry::new(&coordinates(x, kind)?)?),
+            Element::Hex8(x) => {
+                ElementGeometry::Hex8(Box::new(HexGeometry::new(&coordinates(x, kind)?)?))
+            }
+            Element::Tet4(x) => ElementGeometry::Tet4(TetGeometry::new(&coordinates(x, kind)?)?),
         })
     }
 
@@ -285,24 +358,34 @@ impl ElementGeometry {
         match self {
             ElementGeometry::Quad4(_) => ElementKind::Quad4,
             ElementGeometry::Tri3(_) => ElementKind::Tri3,
+            ElementGeometry::Hex8(_) => ElementKind::Hex8,
+            ElementGeometry::Tet4(_) => ElementKind::Tet4,
         }
     }
 
-    /// The reference area.
+    /// The reference area (2D, unit thickness) or volume (3D).
     pub fn area_ref(&self) -> f64 {
         match self {
             ElementGeometry::Quad4(g) => g.area_ref(),
             ElementGeometry::Tri3(g) => g.area_ref(),
+            ElementGeometry::Hex8(g) => g.measure_ref(),
+            ElementGeometry::Tet4(g) => g.measure_ref(),
         }
     }
 
     /// Internal force, tangent and energy at the element displacements `u`
-    /// (the first `2 n` entries are used).
+    /// (the first `D n` entries are used).
     pub fn response(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> ElementResponse {
         match self {
-            ElementGeometry::Quad4(g) => ElementResponse::Quad4(quad_response(g, u, material)),
-            ElementGeometry::Tri3(g) => {
-                ElementResponse::Tri3(tri_response(g, &tri_dofs(u), material))
+            ElementGeometry::Quad4(g) => {
+                ElementResponse::Quad4(quad_response(g, first(u), material))
+            }
+            ElementGeometry::Tri3(g) => ElementResponse::Tri3(tri_response(g, first(u), material)),
+            ElementGeometry::Hex8(g) => {
+                ElementResponse::Hex8(Box::new(g.as_ref().response(first(u), material)))
+            }
+            ElementGeometry::Tet4(g) => {
+                ElementResponse::Tet4(Box::new(g.response(first(u), material)))
             }
         }
     }
@@ -310,60 +393,147 @@ impl ElementGeometry {
     /// The strain energy at the element displacements `u`.
     pub fn energy(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> f64 {
         match self {
-            ElementGeometry::Quad4(g) => quad_energy(g, u, material),
-            ElementGeometry::Tri3(g) => tri_energy(g, &tri_dofs(u), material),
+            ElementGeometry::Quad4(g) => quad_energy(g, first(u), material),
+            ElementGeometry::Tri3(g) => tri_energy(g, first(u), material),
+            ElementGeometry::Hex8(g) => g.as_ref().energy(first(u), material),
+            ElementGeometry::Tet4(g) => g.energy(first(u), material),
         }
     }
 
     /// The stresses at each of its integration points (four for a
-    /// quadrilateral, one for a triangle).
-    pub fn point_stresses(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> Vec<Stress> {
+    /// quadrilateral, eight for a hexahedron, one for a triangle or a
+    /// tetrahedron).
+    pub fn point_stresses(
+        &self,
+        u: &[f64; MAX_ELEMENT_DOFS],
+        material: &Material,
+    ) -> Vec<ElementStress> {
         match self {
-            ElementGeometry::Quad4(g) => quad_point_stresses(g, u, material).to_vec(),
-            ElementGeometry::Tri3(g) => tri_point_stresses(g, &tri_dofs(u), material).to_vec(),
+            ElementGeometry::Quad4(g) => quad_point_stresses(g, first(u), material)
+                .map(ElementStress::Plane)
+                .to_vec(),
+            ElementGeometry::Tri3(g) => tri_point_stresses(g, first(u), material)
+                .map(ElementStress::Plane)
+                .to_vec(),
+            ElementGeometry::Hex8(g) => g
+                .as_ref()
+                .point_stresses(first(u), material)
+                .into_iter()
+                .map(ElementStress::Solid)
+                .collect(),
+            ElementGeometry::Tet4(g) => g
+                .point_stresses(first(u), material)
+                .into_iter()
+                .map(ElementStress::Solid)
+                .collect(),
         }
     }
 
     /// The element's stresses averaged over its integration points.
-    pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> Stress {
+    pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> ElementStress {
         match self {
-            ElementGeometry::Quad4(g) => quad_mean_stress(g, u, material),
-            ElementGeometry::Tri3(g) => tri_mean_stress(g, &tri_dofs(u), material),
+            ElementGeometry::Quad4(g) => {
+                ElementStress::Plane(quad_mean_stress(g, first(u), material))
+            }
+            ElementGeometry::Tri3(g) => {
+                ElementStress::Plane(tri_mean_stress(g, first(u), material))
+            }
+            ElementGeometry::Hex8(g) => {
+                ElementStress::Solid(g.as_ref().mean_stress(first(u), material))
+            }
+            ElementGeometry::Tet4(g) => ElementStress::Solid(g.mean_stress(first(u), material)),
         }
     }
 }
 
-/// The triangle's 6 dofs of an element buffer.
-fn tri_dofs(u: &[f64; MAX_ELEMENT_DOFS]) -> [f64; 6] {
-    std::array::from_fn(|k| u[k])
+/// The stresses of one element or point in its own dimension: the three
+/// in-plane components of a 2D element, the six of a 3D one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ElementStress {
+    /// A 2D element's (`[xx, yy, xy]`).
+    Plane(Stress<3>),
+    /// A 3D element's (`[xx, yy, zz, yz, xz, xy]`).
+    Solid(Stress<6>),
+}
+
+impl ElementStress {
+    /// The 2D stresses (`None` for a 3D element's).
+    pub fn plane(self) -> Option<Stress<3>> {
+        match self {
+            ElementStress::Plane(s) => Some(s),
+            ElementStress::Solid(_) => None,
+        }
+    }
+
+    /// The 3D stresses (`None` for a 2D element's).
+    pub fn solid(self) -> Option<Stress<6>> {
+        match self {
+            ElementStress::Solid(s) => Some(s),
+            ElementStress::Plane(_) => None,
+        }
+    }
+
+    /// The second Piola–Kirchhoff stress in Voigt order.
+    pub fn pk2(&self) -> &[f64] {
+        match self {
+            ElementStress::Plane(s) => &s.pk2,
+            ElementStress::Solid(s) => &s.pk2,
+        }
+    }
+
+    /// The Cauchy stress in Voigt order.
+    pub fn cauchy(&self) -> &[f64] {
+        match self {
+            ElementStress::Plane(s) => &s.cauchy,
+            ElementStress::Solid(s) => &s.cauchy,
+        }
+    }
+
+    /// The Green–Lagrange strain (tensor shear) in Voigt order.
+    pub fn green(&self) -> &[f64] {
+        match self {
+            ElementStress::Plane(s) => &s.green,
+            ElementStress::Solid(s) => &s.green,
+        }
+    }
 }
 
 /// What one element contributes: internal force, tangent and energy.
-/// Unboxed (see [`ElementGeometry`]): responses are computed per element
-/// and iteration, and boxing would add an allocation to each.
+/// The 2D variants are unboxed (see [`ElementGeometry`]): responses are
+/// computed per element and iteration, and boxing would add an allocation
+/// to each; the 3D ones (4.6 kB and 1.2 kB) are boxed, so that a 2D
+/// assembly's vector of responses keeps the quadrilateral's size.
 #[allow(clippy::large_enum_variant)]
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum ElementResponse {
     /// A quadrilateral's.
     Quad4(QuadResponse),
     /// A triangle's.
     Tri3(TriResponse),
+    /// A hexahedron's.
+    Hex8(Box<HexResponse>),
+    /// A tetrahedron's.
+    Tet4(Box<TetResponse>),
 }
 
 impl ElementResponse {
-    /// `f_int` (`2 n` entries, in the element's dof order).
+    /// `f_int` (`D n` entries, in the element's dof order).
     pub fn f_int(&self) -> &[f64] {
         match self {
             ElementResponse::Quad4(r) => &r.f_int,
             ElementResponse::Tri3(r) => &r.f_int,
+            ElementResponse::Hex8(r) => &r.f_int,
+            ElementResponse::Tet4(r) => &r.f_int,
         }
     }
 
-    /// Row `p` of the tangent `d f_int / d u` (`2 n` entries).
+    /// Row `p` of the tangent `d f_int / d u` (`D n` entries).
     pub fn k_row(&self, p: usize) -> &[f64] {
         match self {
             ElementResponse::Quad4(r) => &r.k[p],
             ElementResponse::Tri3(r) => &r.k[p],
+            ElementResponse::Hex8(r) => &r.k[p],
+            ElementResponse::Tet4(r) => &r.k[p],
         }
     }
 
@@ -372,6 +542,8 @@ impl ElementResponse {
         match self {
             ElementResponse::Quad4(r) => r.energy,
             ElementResponse::Tri3(r) => r.energy,
+            ElementResponse::Hex8(r) => r.energy,
+            ElementResponse::Tet4(r) => r.energy,
         }
     }
 }

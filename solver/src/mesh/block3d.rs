@@ -260,6 +260,28 @@ impl Block3d {
     }
 }
 
+impl super::Mesh<3> {
+    /// Appends a structured block of hexahedra (see the module docs; the
+    /// body's nodes and elements in the order of [`Block3d::nodes`] and
+    /// [`Block3d::cells`], so that [`Block3d::side`]'s body-local nodes
+    /// plus the body's first node are its mesh nodes). Returns the body's
+    /// index.
+    pub fn add_block3d(
+        &mut self,
+        name: &str,
+        material: crate::material::Material,
+        block: Block3d,
+    ) -> Result<usize, super::MeshError> {
+        let err = |error| super::MeshError::Block3d {
+            body: name.to_owned(),
+            error,
+        };
+        let nodes = block.nodes().map_err(err)?;
+        let cells = block.cells().map_err(err)?;
+        self.push_body(name, material, &nodes, &cells, None)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::collections::HashSet;

@@ -1,11 +1,16 @@
-//! Meshes of 4-node quadrilaterals and 3-node triangles (mixed freely)
-//! made of several bodies that share no nodes.
+//! Meshes in `D = 2` or `3` dimensions, made of several bodies that share
+//! no nodes: of 4-node quadrilaterals and 3-node triangles (mixed freely)
+//! in 2D ([`Mesh`], `D = 2` by default), of 8-node hexahedra and 4-node
+//! tetrahedra (mixed freely) in 3D (`Mesh<3>`). One type and one code path
+//! for both; a body's elements must be of the mesh's dimension
+//! ([`MeshError::WrongDimension`]).
 //!
-//! Node `n` ([`NodeId`]) has reference coordinates `nodes_ref[n]` and the
-//! displacement degrees of freedom `2n` (x) and `2n + 1` (y)
-//! ([`crate::ids::DofId::of`]); element `e` ([`ElementId`]) has the
-//! connectivity `elements[e]` (an [`Element`]: its kind and its nodes,
-//! counter-clockwise) and the geometry `geometry[e]` (an
+//! Node `n` ([`NodeId`]) has reference coordinates `nodes_ref[n]` (`D`
+//! numbers) and the displacement degrees of freedom `D n + c`, `c` the
+//! component (0: x, 1: y, 2: z; [`crate::ids::DofId::in_dim`]); element
+//! `e` ([`ElementId`]) has the connectivity `elements[e]` (an [`Element`]:
+//! its kind and its nodes, counter-clockwise in 2D, in Gmsh's order in 3D)
+//! and the geometry `geometry[e]` (an
 //! [`ElementGeometry`]; the element kinds and their dispatch are in
 //! [`crate::element`]). Each body owns a contiguous range of nodes and of
 //! elements.
@@ -26,18 +31,20 @@
 //! chains). A reader of an unstructured mesh file is another generator that
 //! ends in [`Mesh::add_body`].
 //!
-//! The 3D data layer, not yet part of [`Mesh`]: volume cells and their
-//! outward faces ([`volume`]), boundary-face extraction ([`faces`]),
-//! structured hexahedral blocks with their six sides ([`block3d`]) and the
-//! 3D Gmsh reader ([`gmsh::MshVolumeMesh`]).
+//! The 3D generators and readers: volume cells and their outward faces
+//! ([`volume`]; a [`volume::Cell`] converts into an [`Element`]),
+//! boundary-face extraction ([`faces`]), structured hexahedral blocks with
+//! their six sides ([`block3d`]; [`Mesh::add_block3d`]) and the 3D Gmsh
+//! reader ([`gmsh::MshVolumeMesh`]); their cells go into a `Mesh<3>`
+//! through [`Mesh::add_body`].
 
 use std::ops::Range;
 
 use serde::Serialize;
 
-use crate::element::InvalidElement;
 use crate::element::MAX_ELEMENT_DOFS;
 pub use crate::element::{Element, ElementGeometry, ElementKind};
+use crate::element::{ElementError, InvalidElement};
 use crate::ids::{DofId, ElementId, NodeId};
 use crate::material::Material;
 
@@ -161,14 +168,40 @@ pub enum MeshError {
         /// The body.
         body: String,
     },
+    /// A 3D block that cannot be generated.
+    #[error("block of body `{body}`: {error}")]
+    Block3d {
+        /// The body.
+        body: String,
+        /// Why.
+        error: block3d::Block3dError,
+    },
+    /// An element of another dimension than the mesh (a 2D element in a
+    /// 3D mesh or the reverse).
+    #[error(
+        "element {element} of body `{body}` is a {kind} ({}D), the mesh is {dim}D",
+        kind.dim()
+    )]
+    WrongDimension {
+        /// The body.
+        body: String,
+        /// Element index within the body.
+        element: usize,
+        /// Its kind.
+        kind: ElementKind,
+        /// The mesh's dimension.
+        dim: usize,
+    },
 }
 
-/// Nodes, elements and bodies, with the element geometry precomputed.
-#[derive(Debug, Clone, Default)]
-pub struct Mesh {
+/// Nodes, elements and bodies in `D` dimensions (2 by default), with the
+/// element geometry precomputed.
+#[derive(Debug, Clone)]
+pub struct Mesh<const D: usize = 2> {
     /// Reference coordinates of all nodes (indexed by [`NodeId`]).
-    pub nodes_ref: Vec<[f64; 2]>,
-    /// Element connectivity (counter-clockwise; indexed by [`ElementId`]).
+    pub nodes_ref: Vec<[f64; D]>,
+    /// Element connectivity (counter-clockwise in 2D, Gmsh's order in 3D;
+    /// indexed by [`ElementId`]).
     pub elements: Vec<Element>,
     /// The body of each element.
     pub element_body: Vec<usize>,
@@ -178,20 +211,40 @@ pub struct Mesh {
     pub geometry: Vec<ElementGeometry>,
 }
 
-impl Mesh {
+impl<const D: usize> Default for Mesh<D> {
+    fn default() -> Self {
+        Mesh::EMPTY
+    }
+}
+
+impl<const D: usize> Mesh<D> {
+    /// The mesh without nodes, elements or bodies.
+    pub const EMPTY: Mesh<D> = Mesh {
+        nodes_ref: Vec::new(),
+        elements: Vec::new(),
+        element_body: Vec::new(),
+        bodies: Vec::new(),
+        geometry: Vec::new(),
+    };
+
     /// An empty mesh.
-    pub fn new() -> Mesh {
-        Mesh::default()
+    pub fn new() -> Mesh<D> {
+        Mesh::EMPTY
     }
 
-    /// Appends a body from explicit nodes and body-local connectivity:
-    /// quadrilaterals (`[usize; 4]`), triangles (`[usize; 3]`) or a mix
-    /// ([`Element<usize>`]), counter-clockwise. Returns the body's index.
+    /// Appends a body from explicit nodes (`D` coordinates each) and
+    /// body-local connectivity: in 2D quadrilaterals (`[usize; 4]`),
+    /// triangles (`[usize; 3]`) or a mix ([`Element<usize>`]),
+    /// counter-clockwise; in 3D hexahedra (`[usize; 8]`), tetrahedra
+    /// ([`Element::Tet4`]) or a mix (elements, or the
+    /// [`volume::Cell`]s of a 3D generator or reader), in Gmsh's order. An
+    /// element of the other dimension is [`MeshError::WrongDimension`].
+    /// Returns the body's index.
     pub fn add_body<E: Copy + Into<Element<usize>>>(
         &mut self,
         name: &str,
         material: Material,
-        nodes_ref: &[[f64; 2]],
+        nodes_ref: &[[f64; D]],
         elements: &[E],
     ) -> Result<usize, MeshError> {
         self.push_body(name, material, nodes_ref, elements, None)
@@ -201,7 +254,7 @@ impl Mesh {
         &mut self,
         name: &str,
         material: Material,
-        nodes_ref: &[[f64; 2]],
+        nodes_ref: &[[f64; D]],
         elements: &[E],
         block: Option<Block>,
     ) -> Result<usize, MeshError> {
@@ -225,13 +278,19 @@ impl Mesh {
                 });
             }
             let x = el.map_nodes(|n| nodes_ref[n]);
-            let geom = ElementGeometry::new(&x).map_err(|InvalidElement { det_j0 }| {
-                MeshError::InvalidElement {
+            let geom = ElementGeometry::new(&x).map_err(|err| match err {
+                ElementError::Invalid(InvalidElement { det_j0 }) => MeshError::InvalidElement {
                     body: name.to_owned(),
                     element: elem0 + e,
                     kind: el.kind(),
                     det_j0,
-                }
+                },
+                ElementError::WrongDimension { kind, dim } => MeshError::WrongDimension {
+                    body: name.to_owned(),
+                    element: e,
+                    kind,
+                    dim,
+                },
             })?;
             geometry.push(geom);
             conn.push(el.map_nodes(|n| NodeId::new(n + node0)));
@@ -275,13 +334,13 @@ impl Mesh {
     }
 
     /// All nodes, in increasing order.
-    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + use<> {
+    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + use<D> {
         (0..self.nodes_ref.len()).map(NodeId::new)
     }
 
     /// The reference coordinates of `node`.
     #[inline]
-    pub fn node_ref(&self, node: NodeId) -> [f64; 2] {
+    pub fn node_ref(&self, node: NodeId) -> [f64; D] {
         self.nodes_ref[node.index()]
     }
 
@@ -291,7 +350,7 @@ impl Mesh {
     }
 
     /// All elements, in increasing order.
-    pub fn element_ids(&self) -> impl Iterator<Item = ElementId> + use<> {
+    pub fn element_ids(&self) -> impl Iterator<Item = ElementId> + use<D> {
         (0..self.elements.len()).map(ElementId::new)
     }
 
@@ -308,12 +367,13 @@ impl Mesh {
     }
 
     /// The length of the diagonal of the bounding box of all nodes (a
-    /// length scale for tolerances).
+    /// length scale for tolerances): the extents along the `D` axes
+    /// combined by `hypot`, axis after axis.
     pub fn size(&self) -> f64 {
-        let mut lo = [f64::INFINITY; 2];
-        let mut hi = [f64::NEG_INFINITY; 2];
+        let mut lo = [f64::INFINITY; D];
+        let mut hi = [f64::NEG_INFINITY; D];
         for p in &self.nodes_ref {
-            for c in 0..2 {
+            for c in 0..D {
                 lo[c] = lo[c].min(p[c]);
                 hi[c] = hi[c].max(p[c]);
             }
@@ -321,7 +381,7 @@ impl Mesh {
         if self.nodes_ref.is_empty() {
             0.0
         } else {
-            (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+            length(&std::array::from_fn::<f64, D, _>(|c| hi[c] - lo[c]))
         }
     }
 
@@ -330,38 +390,60 @@ impl Mesh {
         1e-9 * self.size().max(1e-300)
     }
 
-    /// Nodes (optionally only of `body`) whose reference coordinates match
-    /// every given coordinate within [`Mesh::coordinate_tolerance`].
+    /// Nodes (optionally only of `body`) whose reference `x` and `y` match
+    /// the given ones within [`Mesh::coordinate_tolerance`] (any `z` in
+    /// 3D; [`Mesh::select_nodes_at`] with `z` free).
     pub fn select_nodes(&self, body: Option<usize>, x: Option<f64>, y: Option<f64>) -> Vec<NodeId> {
+        self.select_nodes_at(body, &[x, y])
+    }
+
+    /// Nodes (optionally only of `body`) whose reference coordinates match
+    /// every given one within [`Mesh::coordinate_tolerance`]: `at[c]` is
+    /// coordinate `c` (x, y, z), `None` or missing (`at` shorter than `D`)
+    /// matches any; entries beyond `D` must be `None` (a `z` in a 2D mesh
+    /// matches no node).
+    pub fn select_nodes_at(&self, body: Option<usize>, at: &[Option<f64>]) -> Vec<NodeId> {
         let tol = self.coordinate_tolerance();
         let range = match body {
             Some(b) => self.bodies[b].nodes.clone(),
             None => 0..self.nodes_ref.len(),
         };
+        if at.iter().skip(D).any(Option::is_some) {
+            return Vec::new();
+        }
         range
             .filter(|&n| {
                 let p = self.nodes_ref[n];
-                x.is_none_or(|x| (p[0] - x).abs() <= tol)
-                    && y.is_none_or(|y| (p[1] - y).abs() <= tol)
+                at.iter()
+                    .zip(&p)
+                    .all(|(c, &v)| c.is_none_or(|c| (v - c).abs() <= tol))
             })
             .map(NodeId::new)
             .collect()
     }
 
-    /// The element displacement vector `[u1x, u1y, u2x, ...]` of element
-    /// `e` from the global displacement vector: `2 n` values for its `n`
-    /// nodes, then zeros (a triangle fills 6 of the 8 entries).
+    /// The element displacement vector `[u1x, u1y, (u1z,) u2x, ...]` of
+    /// element `e` from the global displacement vector: `D n` values for
+    /// its `n` nodes, then zeros (a triangle fills 6 of the
+    /// [`MAX_ELEMENT_DOFS`] entries, a quadrilateral 8, a tetrahedron 12).
     pub fn element_displacements(&self, e: ElementId, u: &[f64]) -> [f64; MAX_ELEMENT_DOFS] {
         let el = self.element(e);
-        let n = 2 * el.len();
+        let n = D * el.len();
         std::array::from_fn(|k| {
             if k < n {
-                u[DofId::of(el[k / 2], k % 2).index()]
+                u[DofId::in_dim::<D>(el[k / D], k % D).index()]
             } else {
                 0.0
             }
         })
     }
+}
+
+/// The Euclidean length of `d`, by `hypot` axis after axis (in 2D the bits
+/// of `d[0].hypot(d[1])`).
+pub fn length<const D: usize>(d: &[f64; D]) -> f64 {
+    // 0.hypot(a) is |a| and hypot ignores signs: in 2D a.hypot(b) exactly
+    d.iter().fold(0.0, |l: f64, &c| l.hypot(c))
 }
 
 #[cfg(test)]

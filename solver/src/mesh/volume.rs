@@ -92,6 +92,16 @@ pub enum Cell<N = usize> {
     Tet4([N; 4]),
 }
 
+impl<N> From<Cell<N>> for crate::element::Element<N> {
+    /// The solid element of a cell (the same nodes, in the same order).
+    fn from(cell: Cell<N>) -> Self {
+        match cell {
+            Cell::Hex8(n) => crate::element::Element::Hex8(n),
+            Cell::Tet4(n) => crate::element::Element::Tet4(n),
+        }
+    }
+}
+
 /// The kind of a face.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum FaceKind {

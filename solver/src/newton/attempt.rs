@@ -36,10 +36,16 @@ use super::outcome::{AttemptOutcome, Converged, PointsReport};
 use super::treatment::{ContactTreatment, Context, Settling, SolveEnd, StepStart};
 use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
 
-impl<'a> Run<'a> {
+impl<'a, const D: usize> Run<'a, D> {
     /// The contact treatment with what it works on: the solve's context and
     /// the run's converged state.
-    fn split_treatment(&mut self) -> (&mut dyn ContactTreatment, Context<'_, 'a>, StepStart<'_>) {
+    fn split_treatment(
+        &mut self,
+    ) -> (
+        &mut dyn ContactTreatment<D>,
+        Context<'_, 'a, D>,
+        StepStart<'_>,
+    ) {
         (
             &mut *self.treatment,
             Context {
@@ -59,7 +65,7 @@ impl<'a> Run<'a> {
 
     /// One attempt from the converged state to load factor `to` (module
     /// docs): Newton solves until the treatment accepts one.
-    pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome, SolverError> {
+    pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome<D>, SolverError> {
         let (treatment, mut cx, start) = self.split_treatment();
         treatment.begin_attempt(&mut cx, start)?;
         let mut warm = None;
@@ -86,7 +92,7 @@ impl<'a> Run<'a> {
         &mut self,
         to: f64,
         warm: Option<(Vec<f64>, Vec<f64>)>,
-    ) -> Result<AttemptOutcome, SolverError> {
+    ) -> Result<AttemptOutcome<D>, SolverError> {
         let (u, lambda) = warm.unwrap_or_else(|| (self.u.clone(), self.lambda.clone()));
         let mut x = Iterate {
             u,

@@ -39,10 +39,10 @@ pub(super) struct Complete {
     guard: PairingGuard,
 }
 
-impl ContactTreatment for Complete {
+impl<const D: usize> ContactTreatment<D> for Complete {
     fn begin_attempt(
         &mut self,
-        _cx: &mut Context<'_, '_>,
+        _cx: &mut Context<'_, '_, D>,
         _start: StepStart<'_>,
     ) -> Result<(), SolverError> {
         self.guard = PairingGuard::default();
@@ -54,7 +54,7 @@ impl ContactTreatment for Complete {
     /// with.
     fn evaluate(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         x: &mut Iterate,
         at_once: bool,
     ) -> Result<Evaluations, CutbackReason> {
@@ -74,7 +74,7 @@ impl ContactTreatment for Complete {
     /// point or a kernel failure asks for a cut-back.
     fn settle(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         x: &mut Iterate,
         evals: &[Option<PointEval>],
     ) -> Result<Settling, CutbackReason> {
@@ -112,10 +112,10 @@ impl ContactTreatment for Complete {
 
     fn end_solve(
         &mut self,
-        _cx: &mut Context<'_, '_>,
+        _cx: &mut Context<'_, '_, D>,
         _start: StepStart<'_>,
-        c: Converged,
-    ) -> Result<SolveEnd, SolverError> {
+        c: Converged<D>,
+    ) -> Result<SolveEnd<D>, SolverError> {
         Ok(SolveEnd::Done(Box::new(AttemptOutcome::Converged(c))))
     }
 
@@ -136,15 +136,15 @@ impl ContactTreatment for Complete {
 /// evaluations' master segments. Kernel calls are added to `counts_out`
 /// (on failure only those of the first pass). Shared by the solve and
 /// [`super::IterationProbe`].
-pub(super) fn evaluate(
-    setup: &Setup<'_>,
+pub(super) fn evaluate<const D: usize>(
+    setup: &Setup<'_, D>,
     u: &[f64],
     pairing: &[Option<MasterSegmentIndex>],
     ties: &[NodeTie],
     at_once: bool,
     counts_out: &mut KernelCounts,
 ) -> Result<Evaluations, PointFailure> {
-    let mesh = &setup.model.mesh;
+    let mesh = setup.contact_mesh;
     let layout = &setup.layout;
     let (mut evals, counts) = if at_once {
         layout.evaluate_all(mesh, u, pairing, DERIVATIVES)?

@@ -82,9 +82,9 @@ impl Frozen {
     /// Builds the expansions at the converged state, re-pairing every
     /// point; the converged state's ties are dropped (a tie of Types 1–6
     /// lasts one step, `repair.rs`).
-    fn build(
+    fn build<const D: usize>(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         start: &mut StepStart<'_>,
     ) -> Result<(), SolverError> {
         start.ties.clear();
@@ -93,7 +93,7 @@ impl Frozen {
         let (evals, counts) = cx
             .setup
             .layout
-            .evaluate_all(&cx.setup.model.mesh, start.u, start.pairing, self.ty)
+            .evaluate_all(cx.setup.contact_mesh, start.u, start.pairing, self.ty)
             .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
         *cx.counts += counts;
         *start.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
@@ -107,12 +107,12 @@ impl Frozen {
     }
 }
 
-impl ContactTreatment for Frozen {
+impl<const D: usize> ContactTreatment<D> for Frozen {
     /// Builds the expansions if the converged state has none yet, and
     /// starts the attempt's step-end check.
     fn begin_attempt(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         mut start: StepStart<'_>,
     ) -> Result<(), SolverError> {
         if !self.current {
@@ -132,7 +132,7 @@ impl ContactTreatment for Frozen {
     /// Every point's expansion and every tie's second one at `x`.
     fn evaluate(
         &mut self,
-        _cx: &mut Context<'_, '_>,
+        _cx: &mut Context<'_, '_, D>,
         x: &mut Iterate,
         _at_once: bool,
     ) -> Result<Evaluations, CutbackReason> {
@@ -148,7 +148,7 @@ impl ContactTreatment for Frozen {
     /// The pairing of a frozen step stands until its end.
     fn settle(
         &mut self,
-        _cx: &mut Context<'_, '_>,
+        _cx: &mut Context<'_, '_, D>,
         _x: &mut Iterate,
         _evals: &[Option<PointEval>],
     ) -> Result<Settling, CutbackReason> {
@@ -158,10 +158,10 @@ impl ContactTreatment for Frozen {
     /// The step-end check (`repair.rs`).
     fn end_solve(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         start: StepStart<'_>,
-        c: Converged,
-    ) -> Result<SolveEnd, SolverError> {
+        c: Converged<D>,
+    ) -> Result<SolveEnd<D>, SolverError> {
         self.check_end(cx, start, c)
     }
 

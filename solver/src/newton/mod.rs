@@ -212,6 +212,7 @@ mod treatment;
 use std::time::Instant;
 
 use crate::contact::{KernelCounts, NodeTie};
+use crate::dim::{Dim, SpaceDim};
 use crate::error::SolverError;
 use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
@@ -254,12 +255,12 @@ pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 pub const MAX_REPAIR_REPEATS: usize = 4;
 
 /// The solve in progress.
-pub(crate) struct Run<'a> {
+pub(crate) struct Run<'a, const D: usize = 2> {
     opts: &'a SolveOptions,
     /// Told of every finished step and cut-back; asked before every
     /// attempt and iteration whether to stop.
     monitor: &'a dyn Monitor,
-    setup: Setup<'a>,
+    setup: Setup<'a, D>,
     timings: Timings,
     counts: KernelCounts,
     // converged state
@@ -271,26 +272,29 @@ pub(crate) struct Run<'a> {
     energy: f64,
     /// How contact is treated: the complete formulation, or Types 1–6's
     /// frozen expansions (`treatment.rs`).
-    treatment: Box<dyn ContactTreatment>,
+    treatment: Box<dyn ContactTreatment<D>>,
     /// The converged displacements before the last commit (the secant
     /// predictor's, "Prescribed increments").
     previous_u: Option<Vec<f64>>,
     // history
-    records: Vec<StepRecord>,
+    records: Vec<StepRecord<D>>,
     cutbacks: Vec<Cutback>,
-    snapshots: Vec<State>,
+    snapshots: Vec<State<D>>,
     iterations: usize,
     failed_iterations: usize,
     repeated_iterations: usize,
     accuracy_halvings: Vec<AccuracyHalving>,
 }
 
-impl<'a> Run<'a> {
+impl<'a, const D: usize> Run<'a, D> {
     pub(crate) fn new(
-        model: &'a Model,
+        model: &'a Model<D>,
         opts: &'a SolveOptions,
         monitor: &'a dyn Monitor,
-    ) -> Result<Run<'a>, SolverError> {
+    ) -> Result<Run<'a, D>, SolverError>
+    where
+        Dim<D>: SpaceDim<D>,
+    {
         if opts.steps == 0 {
             return Err(SolverError::Options("steps must be at least 1".into()));
         }
@@ -316,7 +320,7 @@ impl<'a> Run<'a> {
         let setup = Setup::new(model, opts)?;
         let n_points = setup.layout.points.len();
         // the one place that matches on the method
-        let treatment: Box<dyn ContactTreatment> = match opts.method {
+        let treatment: Box<dyn ContactTreatment<D>> = match opts.method {
             Method::Complete => Box::new(Complete::default()),
             Method::Approx(ty) => Box::new(Frozen::new(ty)),
         };
@@ -325,7 +329,7 @@ impl<'a> Run<'a> {
             monitor,
             timings: Timings::default(),
             counts: KernelCounts::default(),
-            u: vec![0.0; 2 * model.mesh.node_count()],
+            u: vec![0.0; model.dof_count()],
             lambda: vec![0.0; setup.layout.multipliers.len()],
             pairing: vec![None; n_points],
             ties: Vec::new(),
@@ -344,16 +348,20 @@ impl<'a> Run<'a> {
         })
     }
 
-    fn state(&self) -> State {
+    fn state(&self) -> State<D> {
         State {
             load_factor: self.load_factor,
-            displacements: self.u.chunks(2).map(|c| [c[0], c[1]]).collect(),
+            displacements: self
+                .u
+                .chunks(D)
+                .map(|c| std::array::from_fn(|i| c[i]))
+                .collect(),
             multipliers: self.lambda.clone(),
         }
     }
 
     /// Runs the whole schedule.
-    pub(crate) fn execute(mut self) -> Result<Solution, SolverError> {
+    pub(crate) fn execute(mut self) -> Result<Solution<D>, SolverError> {
         let start = Instant::now();
         // initial pairing in the reference configuration
         let t = Instant::now();
@@ -441,7 +449,7 @@ impl<'a> Run<'a> {
     }
 
     /// Makes a converged attempt towards `to` the converged state.
-    fn commit(&mut self, step: usize, to: f64, c: Converged) {
+    fn commit(&mut self, step: usize, to: f64, c: Converged<D>) {
         self.previous_u = Some(std::mem::replace(&mut self.u, c.state.u));
         self.lambda = c.state.lambda;
         self.pairing = c.state.pairing;
@@ -472,10 +480,10 @@ impl<'a> Run<'a> {
         }
     }
 
-    fn finish(self, start: Instant) -> Result<Solution, SolverError> {
+    fn finish(self, start: Instant) -> Result<Solution<D>, SolverError> {
         let layout = &self.setup.layout;
         let (projections, _) = layout
-            .project_all(&self.setup.model.mesh, &self.u, &self.pairing)
+            .project_all(self.setup.contact_mesh, &self.u, &self.pairing)
             .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
         let contact_points = layout
             .points

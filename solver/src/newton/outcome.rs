@@ -13,7 +13,7 @@ use crate::solution::{ContactPointId, CutbackReason};
 use super::iterate::Iterate;
 
 /// A converged attempt.
-pub(super) struct Converged {
+pub(super) struct Converged<const D: usize = 2> {
     /// The converged iterate (inactive multipliers exactly zero).
     pub(super) state: Iterate,
     /// Linear solves spent.
@@ -28,7 +28,7 @@ pub(super) struct Converged {
     pub(super) points: PointsReport,
     /// The support groups' reactions at the converged iterate (see
     /// `reactions.rs`).
-    pub(super) reactions: Vec<[f64; 2]>,
+    pub(super) reactions: Vec<[f64; D]>,
     /// Which multipliers carry a constraint row at the converged iterate.
     pub(super) active: Vec<bool>,
     /// Types 1–6: what the step-end check found (`repair.rs`); `None` for
@@ -59,23 +59,23 @@ pub(super) struct Failed {
 }
 
 /// How an attempt ended.
-pub(super) enum AttemptOutcome {
+pub(super) enum AttemptOutcome<const D: usize = 2> {
     /// Converged: the new converged state.
-    Converged(Converged),
+    Converged(Converged<D>),
     /// Failed: cut back.
     CutBack(Failed),
     /// Types 1–6 with a `taylor_tolerance`: converged, but the Taylor
     /// remainder exceeds the tolerance; halve the increment if the
     /// schedule allows, else accept it.
-    TooCoarse(Converged),
+    TooCoarse(Converged<D>),
 }
 
-impl AttemptOutcome {
+impl<const D: usize> AttemptOutcome<D> {
     pub(super) fn cut_back(
         reason: CutbackReason,
         residuals: Vec<f64>,
         iterations: usize,
-    ) -> AttemptOutcome {
+    ) -> AttemptOutcome<D> {
         AttemptOutcome::CutBack(Failed {
             reason,
             residuals,

@@ -126,9 +126,9 @@ impl PairingGuard {
     /// projection left their segment, tying those that cycle.
     ///
     /// Returns the outcome with the kernel calls made.
-    pub(super) fn update(
+    pub(super) fn update<const D: usize>(
         &mut self,
-        setup: &Setup<'_>,
+        setup: &Setup<'_, D>,
         u: &[f64],
         lambda: &[f64],
         evals: &[Option<PointEval>],
@@ -136,7 +136,7 @@ impl PairingGuard {
         ties: &mut Vec<NodeTie>,
     ) -> Result<(GuardOutcome, KernelCounts), PointFailure> {
         let layout = &setup.layout;
-        let (updates, counts) = layout.pairing_updates(&setup.model.mesh, u, evals)?;
+        let (updates, counts) = layout.pairing_updates(setup.contact_mesh, u, evals)?;
         let updates: Vec<_> = updates
             .into_iter()
             .filter(|(i, _)| ties.iter().all(|t| t.point != *i))

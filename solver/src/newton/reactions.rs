@@ -38,8 +38,8 @@ use crate::par;
 
 use super::setup::Setup;
 
-impl Setup<'_> {
-    /// The reaction `[x, y]` of every support group of the model at the
+impl<const D: usize> Setup<'_, D> {
+    /// The reaction `[x, y(, z)]` of every support group of the model at the
     /// converged state `(u, lambda, ties)` of load factor `to`, with the
     /// contact evaluations `evals` (`others`: the ties' second evaluations)
     /// and active set `active` it converged with (module docs). Empty when
@@ -54,7 +54,7 @@ impl Setup<'_> {
         others: &[PointEval],
         active: &[bool],
         to: f64,
-    ) -> Vec<[f64; 2]> {
+    ) -> Vec<[f64; D]> {
         let model = self.model;
         if model.supports.is_empty() {
             return Vec::new();
@@ -69,9 +69,9 @@ impl Setup<'_> {
             .supports
             .iter()
             .map(|g| {
-                let mut r = [0.0; 2];
+                let mut r = [0.0; D];
                 for p in &model.prescribed[g.prescribed.clone()] {
-                    r[p.dof.component()] += sys.residual[p.dof.index()];
+                    r[p.dof.component_in::<D>()] += sys.residual[p.dof.index()];
                 }
                 r
             })
@@ -82,7 +82,12 @@ impl Setup<'_> {
 /// Adds the internal forces of the elements with a prescribed dof to
 /// `residual`, in element order (module docs: the prescribed entries equal
 /// the full solid assembly's).
-fn add_supported_element_forces(model: &Model, all: &DofMap, u: &[f64], residual: &mut [f64]) {
+fn add_supported_element_forces<const D: usize>(
+    model: &Model<D>,
+    all: &DofMap,
+    u: &[f64],
+    residual: &mut [f64],
+) {
     let mesh = &model.mesh;
     let mut prescribed = vec![false; u.len()];
     for p in &model.prescribed {
@@ -90,7 +95,7 @@ fn add_supported_element_forces(model: &Model, all: &DofMap, u: &[f64], residual
     }
     let supported: Vec<usize> = (0..mesh.element_count())
         .filter(|&e| {
-            let eqs = all.element_eqs(&mesh.elements[e]);
+            let eqs = all.element_eqs::<D>(&mesh.elements[e]);
             eqs.iter().flatten().any(|eq| prescribed[eq.index()])
         })
         .collect();
@@ -102,7 +107,7 @@ fn add_supported_element_forces(model: &Model, all: &DofMap, u: &[f64], residual
         response.f_int().to_vec()
     });
     for (&e, f_int) in supported.iter().zip(&forces) {
-        let eqs = all.element_eqs(&mesh.elements[e]);
+        let eqs = all.element_eqs::<D>(&mesh.elements[e]);
         for (eq, f) in eqs.iter().zip(f_int) {
             if let Some(eq) = eq {
                 residual[eq.index()] += f;

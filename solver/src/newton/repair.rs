@@ -111,12 +111,12 @@ impl Frozen {
     /// The step-end check of the converged solve `c` (module docs): the
     /// attempt's outcome, or a repeat of the step with new expansions
     /// while the pairing changes.
-    pub(super) fn check_end(
+    pub(super) fn check_end<const D: usize>(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         mut start: StepStart<'_>,
-        mut c: Converged,
-    ) -> Result<SolveEnd, SolverError> {
+        mut c: Converged<D>,
+    ) -> Result<SolveEnd<D>, SolverError> {
         let found = match self.project_end(cx, start.pairing, &c.state.u) {
             Ok(f) => f,
             Err(reason) => {
@@ -227,11 +227,11 @@ impl Frozen {
     /// (its expansion becomes the point's) for `theta > 1`, as the
     /// complete formulation does; records them in the check's
     /// `released`. Returns whether any was released.
-    fn release_ties(
+    fn release_ties<const D: usize>(
         &mut self,
-        setup: &Setup<'_>,
+        setup: &Setup<'_, D>,
         start: &mut StepStart<'_>,
-        c: &Converged,
+        c: &Converged<D>,
     ) -> bool {
         let layout = &setup.layout;
         let mut keep = Vec::with_capacity(start.ties.len());
@@ -259,14 +259,14 @@ impl Frozen {
     /// Ties each point of `tie` (`(point, paired, other)`) to the node
     /// between its two segments, with both segments' expansions taken at
     /// `anchor` (module docs, "Points cycling at a node").
-    fn tie_points(
+    fn tie_points<const D: usize>(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         start: &mut StepStart<'_>,
         tie: &[(ContactPointIndex, MasterSegmentIndex, MasterSegmentIndex)],
         anchor: &[f64],
     ) -> Result<(), SolverError> {
-        let mesh = &cx.setup.model.mesh;
+        let mesh = cx.setup.contact_mesh;
         let layout = &cx.setup.layout;
         for &(i, p, o) in tie {
             let (Ok(on_p), Ok(on_o)) = (
@@ -291,14 +291,14 @@ impl Frozen {
     /// Re-takes both expansions of every tied point at the end of `c`
     /// when either misses that segment's gap there by more than
     /// [`ANCHOR_TOLERANCE`] (relative); returns whether any was re-taken.
-    fn reanchor_ties(
+    fn reanchor_ties<const D: usize>(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         ties: &[NodeTie],
-        c: &Converged,
+        c: &Converged<D>,
     ) -> Result<bool, SolverError> {
         let setup = cx.setup;
-        let mesh = &setup.model.mesh;
+        let mesh = setup.contact_mesh;
         let layout = &setup.layout;
         let u = &c.state.u;
         let mut changed = false;
@@ -328,9 +328,9 @@ impl Frozen {
     /// Re-pairs every point at the end state `u` by projection, searching
     /// from its expansion's segment (`pairing`; counted in
     /// `step_end_projections`).
-    fn project_end(
+    fn project_end<const D: usize>(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         pairing: &[Option<MasterSegmentIndex>],
         u: &[f64],
     ) -> Result<Vec<Option<Paired>>, CutbackReason> {
@@ -338,7 +338,7 @@ impl Frozen {
         let result = cx
             .setup
             .layout
-            .project_all(&cx.setup.model.mesh, u, pairing);
+            .project_all(cx.setup.contact_mesh, u, pairing);
         cx.timings.contact_evaluation += t.elapsed();
         match result {
             Ok((found, counts)) => {
@@ -356,11 +356,11 @@ impl Frozen {
     /// that end active on the segment of their expansion with a relative
     /// remainder above [`ANCHOR_TOLERANCE`], each with that segment: their
     /// expansion is to be re-taken at this end (module docs).
-    fn unconverged_anchors(
+    fn unconverged_anchors<const D: usize>(
         &self,
-        setup: &Setup<'_>,
+        setup: &Setup<'_, D>,
         ties: &[NodeTie],
-        c: &Converged,
+        c: &Converged<D>,
         found: &[Option<Paired>],
     ) -> Vec<(ContactPointIndex, Option<MasterSegmentIndex>)> {
         let mut again = Vec::new();
@@ -384,15 +384,15 @@ impl Frozen {
     /// that found it; `None`: no expansion, the point is inactive); a
     /// point whose new segment the kernel cannot evaluate there keeps its
     /// expansion. Records every new pairing in the check's `tried`.
-    fn switch_expansions(
+    fn switch_expansions<const D: usize>(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         pairing: &mut [Option<MasterSegmentIndex>],
         switch: &[(ContactPointIndex, Option<MasterSegmentIndex>)],
         anchor: &[f64],
     ) -> Result<(), SolverError> {
         let t = Instant::now();
-        let mesh = &cx.setup.model.mesh;
+        let mesh = cx.setup.contact_mesh;
         let u0 = anchor;
         for &(i, now) in switch {
             let tried = &mut self.check.tried[i.index()];
@@ -422,7 +422,12 @@ impl Frozen {
     /// The largest relative Taylor remainder of the converged attempt `c`
     /// over its active points, with `found` the re-projection at its end
     /// (module docs).
-    fn remainder(&self, setup: &Setup<'_>, c: &Converged, found: &[Option<Paired>]) -> Option<f64> {
+    fn remainder<const D: usize>(
+        &self,
+        setup: &Setup<'_, D>,
+        c: &Converged<D>,
+        found: &[Option<Paired>],
+    ) -> Option<f64> {
         let mut worst: Option<f64> = None;
         for (i, (t, f)) in self.points.iter().zip(found).enumerate() {
             let (Some(t), Some((_, p))) = (t, f) else {
@@ -439,9 +444,9 @@ impl Frozen {
 /// The relative Taylor remainder `|g - g~| / L_s` of point `i` with
 /// expansion `t` and re-projected gap `gap` at the end of `c`; `None`
 /// when none of its multipliers carries a constraint row.
-fn point_remainder(
-    setup: &Setup<'_>,
-    c: &Converged,
+fn point_remainder<const D: usize>(
+    setup: &Setup<'_, D>,
+    c: &Converged<D>,
     i: ContactPointIndex,
     t: &Taylor,
     gap: f64,
@@ -450,7 +455,7 @@ fn point_remainder(
     if !pt.multipliers.iter().any(|m| c.active[m.index()]) {
         return None;
     }
-    let mesh = &setup.model.mesh;
+    let mesh = setup.contact_mesh;
     let [a, b] = pt.slave_nodes.map(|n| mesh.node_ref(n));
     let length = (b[0] - a[0]).hypot(b[1] - a[1]);
     Some((gap - t.expand(&c.state.u).gap).abs() / length)

@@ -27,9 +27,11 @@ use crate::assembly::{
     DofMap, System, add_external, assemble_contact, assemble_solid_lifted, assemble_ties,
 };
 use crate::contact::{ContactLayout, KernelCounts, NodeTie, PointEval, PointFailure};
+use crate::dim::{Dim, SpaceDim};
 use crate::error::SolverError;
 use crate::ids::{ContactPointIndex, MasterSegmentIndex};
 use crate::linear::{LinearError, LinearSolver};
+use crate::mesh::Mesh;
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::ContactPointId;
@@ -37,9 +39,13 @@ use crate::solution::ContactPointId;
 use super::regularize::regularize;
 
 /// The discretised problem of one solve (module docs).
-pub(super) struct Setup<'a> {
+pub(super) struct Setup<'a, const D: usize = 2> {
     /// The model solved.
-    pub(super) model: &'a Model,
+    pub(super) model: &'a Model<D>,
+    /// The 2D mesh the contact layer works on: the model's own in 2D;
+    /// in 3D, where a model has no contact pairs ([`Model::check`]), the
+    /// empty mesh (the empty layout never reads it; see [`SpaceDim`]).
+    pub(super) contact_mesh: &'a Mesh,
     /// Integration points, multipliers and master chains.
     pub(super) layout: ContactLayout,
     /// Equation numbers of the free dofs and the multipliers.
@@ -56,17 +62,33 @@ pub(super) struct Setup<'a> {
     spare: Cell<Option<System>>,
 }
 
-impl<'a> Setup<'a> {
+impl<'a, const D: usize> Setup<'a, D> {
     /// Checks `model` and lays out its contact pairs and equations with
     /// `options.formulation` and `options.linear`.
-    pub(super) fn new(model: &'a Model, options: &SolveOptions) -> Result<Setup<'a>, SolverError> {
+    pub(super) fn new(
+        model: &'a Model<D>,
+        options: &SolveOptions,
+    ) -> Result<Setup<'a, D>, SolverError>
+    where
+        Dim<D>: SpaceDim<D>,
+    {
         model.check()?;
-        let layout = ContactLayout::new(model, options.formulation);
+        let (layout, contact_mesh) = match Dim::<D>::planar(model) {
+            Some(planar) => (
+                ContactLayout::new(planar, options.formulation),
+                &planar.mesh,
+            ),
+            None => {
+                static NO_CONTACT: Mesh = Mesh::EMPTY;
+                (ContactLayout::empty(), &NO_CONTACT)
+            }
+        };
         let dofs = DofMap::new(model, layout.multipliers.len());
         let mut linear = options.linear.build();
         linear.set_constraints_from(dofs.n_free);
         Ok(Setup {
             model,
+            contact_mesh,
             layout,
             dofs,
             linear,
@@ -124,7 +146,7 @@ impl<'a> Setup<'a> {
         &self,
         u: &[f64],
     ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
-        self.layout.initial_pairing(&self.model.mesh, u)
+        self.layout.initial_pairing(self.contact_mesh, u)
     }
 
     /// The integration point of a kernel failure.

@@ -64,9 +64,9 @@ pub(super) type Evaluations = (Vec<Option<PointEval>>, Vec<PointEval>);
 
 /// What a treatment works with: the discretised problem, the options and
 /// the run's counters.
-pub(super) struct Context<'r, 'a> {
+pub(super) struct Context<'r, 'a, const D: usize = 2> {
     /// The discretised problem (layout, equation numbering).
-    pub(super) setup: &'r Setup<'a>,
+    pub(super) setup: &'r Setup<'a, D>,
     /// The solve's options (`repair`, `taylor_tolerance`).
     pub(super) opts: &'r SolveOptions,
     /// The run's kernel calls.
@@ -98,10 +98,10 @@ pub(super) enum Settling {
 }
 
 /// The treatment's decision at the end of a converged Newton solve.
-pub(super) enum SolveEnd {
+pub(super) enum SolveEnd<const D: usize = 2> {
     /// The attempt ends with this outcome (boxed: an outcome carries the
     /// converged state's report, ten times the size of `Again`).
-    Done(Box<AttemptOutcome>),
+    Done(Box<AttemptOutcome<D>>),
     /// Solve the step again (same target), Newton starting from `warm`
     /// (the displacements and multipliers of the discarded solve's end),
     /// which spent `spent` linear solves.
@@ -115,13 +115,13 @@ pub(super) enum SolveEnd {
 
 /// How contact is treated (module docs): its evaluation at an iterate and
 /// its logic at the step's start and end.
-pub(super) trait ContactTreatment {
+pub(super) trait ContactTreatment<const D: usize = 2> {
     /// Before an attempt from the converged state `start`; an error stops
     /// the solve (a kernel failure at a converged state, which no smaller
     /// increment cures).
     fn begin_attempt(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         start: StepStart<'_>,
     ) -> Result<(), SolverError>;
 
@@ -131,7 +131,7 @@ pub(super) trait ContactTreatment {
     /// A kernel failure asks for a cut-back.
     fn evaluate(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         x: &mut Iterate,
         at_once: bool,
     ) -> Result<Evaluations, CutbackReason>;
@@ -140,7 +140,7 @@ pub(super) trait ContactTreatment {
     /// whether its pairing stands (then the iterate is accepted).
     fn settle(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         x: &mut Iterate,
         evals: &[Option<PointEval>],
     ) -> Result<Settling, CutbackReason>;
@@ -149,10 +149,10 @@ pub(super) trait ContactTreatment {
     /// outcome, or the request to solve the step again.
     fn end_solve(
         &mut self,
-        cx: &mut Context<'_, '_>,
+        cx: &mut Context<'_, '_, D>,
         start: StepStart<'_>,
-        c: Converged,
-    ) -> Result<SolveEnd, SolverError>;
+        c: Converged<D>,
+    ) -> Result<SolveEnd<D>, SolverError>;
 
     /// A converged attempt became the run's converged state.
     fn committed(&mut self);

@@ -1,11 +1,11 @@
 //! ASCII VTK XML unstructured-grid (`.vtu`) output, written by hand.
 //!
-//! One file per state: the points are the **reference** coordinates (z = 0)
-//! and the point field `displacement` (3 components, z = 0) moves them to the
-//! deformed configuration (ParaView: *Warp By Vector*). Cells are the
-//! mesh's elements, each with its kind's cell type
+//! One file per state: the points are the **reference** coordinates (z = 0
+//! in 2D) and the point field `displacement` (3 components, z = 0 in 2D)
+//! moves them to the deformed configuration (ParaView: *Warp By Vector*).
+//! Cells are the mesh's elements, each with its kind's cell type
 //! ([`crate::element::ElementKind::vtk_cell_type`]: quadrilaterals 9,
-//! triangles 5), in element order. Fields:
+//! triangles 5, hexahedra 12, tetrahedra 10), in element order. Fields:
 //!
 //! * point data: `displacement`, `multiplier` (the Lagrange multiplier at
 //!   slave nodes, summed over pairs, zero elsewhere), `contact_pressure`
@@ -23,8 +23,12 @@
 //!   `node_number_from_mesh_file` (1 where `node_number` is a mesh file's
 //!   tag, 0 where it is the internal index); see [`crate::Mesh::node_number`];
 //! * cell data: `cauchy_stress` and `pk2_stress` (components
-//!   `[xx, yy, xy]`, averaged over the element's Gauss points) and `body`
-//!   (the body index).
+//!   `[xx, yy, xy]` in 2D, `[xx, yy, zz, yz, xz, xy]` in 3D, averaged over
+//!   the element's Gauss points) and `body` (the body index).
+//!
+//! The contact point data come from the 2D nodal contact table; a 3D
+//! solution has no contact (see [`crate::dim`]), so its contact fields are
+//! zero.
 //!
 //! A state whose nodal contact table does not exist (a
 //! [`super::nodal::NodalContactError`]: e.g. a collapsed slave
@@ -35,6 +39,7 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
+use crate::dim::{Dim, SpaceDim};
 use crate::mesh::NodeNumbering;
 use crate::solution::{Solution, State};
 
@@ -42,16 +47,25 @@ use super::atomic::write_atomic;
 use super::nodal::{NodalContactError, nodal_contact};
 
 /// Writes the final state of `solution` to `path`.
-pub fn write_vtu(path: impl AsRef<Path>, solution: &Solution) -> std::io::Result<()> {
+pub fn write_vtu<const D: usize>(
+    path: impl AsRef<Path>,
+    solution: &Solution<D>,
+) -> std::io::Result<()>
+where
+    Dim<D>: SpaceDim<D>,
+{
     write_vtu_state(path, solution, &solution.final_state)
 }
 
 /// Writes `state` (e.g. one of [`Solution::snapshots`]) to `path`.
-pub fn write_vtu_state(
+pub fn write_vtu_state<const D: usize>(
     path: impl AsRef<Path>,
-    solution: &Solution,
-    state: &State,
-) -> std::io::Result<()> {
+    solution: &Solution<D>,
+    state: &State<D>,
+) -> std::io::Result<()>
+where
+    Dim<D>: SpaceDim<D>,
+{
     let text = vtu_string(solution, state)
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))?;
     write_atomic(path, text)
@@ -89,6 +103,11 @@ fn array(
     out.push_str("        </DataArray>\n");
 }
 
+/// A point or vector of `D` components as VTK's three (z = 0 in 2D).
+fn padded<const D: usize>(v: &[f64; D]) -> [f64; 3] {
+    std::array::from_fn(|c| v.get(c).copied().unwrap_or(0.0))
+}
+
 fn num(v: f64) -> String {
     if v.is_finite() {
         format!("{v:e}")
@@ -99,7 +118,13 @@ fn num(v: f64) -> String {
 
 /// The `.vtu` document of `state`; an error when its nodal contact table
 /// cannot be computed (see the module docs).
-pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalContactError> {
+pub fn vtu_string<const D: usize>(
+    solution: &Solution<D>,
+    state: &State<D>,
+) -> Result<String, NodalContactError>
+where
+    Dim<D>: SpaceDim<D>,
+{
     let mesh = &solution.mesh;
     let n = mesh.node_count();
     let m = mesh.elements.len();
@@ -109,7 +134,11 @@ pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalCon
     }
     let mut slave = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
-    for row in nodal_contact(solution, state)? {
+    let rows = match Dim::<D>::planar_solution(solution, state) {
+        Some((solution, state)) => nodal_contact(solution, state)?,
+        None => Vec::new(),
+    };
+    for row in rows {
         slave[row.node] = 1;
         if let Some(pr) = row.projection
             && gap[row.node].is_none_or(|g| pr.gap.abs() < g.abs())
@@ -117,7 +146,8 @@ pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalCon
             gap[row.node] = Some(pr.gap);
         }
     }
-    let stresses = solution.element_stresses(state);
+    let stresses = solution.element_mean_stresses(state);
+    let voigt = if D == 2 { 3 } else { 6 };
     let mut out = String::with_capacity(200 * (n + m) + 1024);
     out.push_str("<?xml version=\"1.0\"?>\n");
     out.push_str(
@@ -134,10 +164,7 @@ pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalCon
         "Float64",
         "displacement",
         3,
-        state
-            .displacements
-            .iter()
-            .flat_map(|d| [num(d[0]), num(d[1]), num(0.0)]),
+        state.displacements.iter().flat_map(|d| padded(d).map(num)),
     );
     array(
         &mut out,
@@ -197,15 +224,19 @@ pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalCon
         &mut out,
         "Float64",
         "cauchy_stress",
-        3,
-        stresses.iter().flat_map(|s| s.cauchy.map(num)),
+        voigt,
+        stresses
+            .iter()
+            .flat_map(|s| s.cauchy().iter().map(|&v| num(v))),
     );
     array(
         &mut out,
         "Float64",
         "pk2_stress",
-        3,
-        stresses.iter().flat_map(|s| s.pk2.map(num)),
+        voigt,
+        stresses
+            .iter()
+            .flat_map(|s| s.pk2().iter().map(|&v| num(v))),
     );
     array(
         &mut out,
@@ -221,9 +252,7 @@ pub fn vtu_string(solution: &Solution, state: &State) -> Result<String, NodalCon
         "Float64",
         "reference_coordinates",
         3,
-        mesh.nodes_ref
-            .iter()
-            .flat_map(|p| [num(p[0]), num(p[1]), num(0.0)]),
+        mesh.nodes_ref.iter().flat_map(|p| padded(p).map(num)),
     );
     out.push_str("      </Points>\n");
     out.push_str("      <Cells>\n");

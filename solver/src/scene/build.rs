@@ -26,149 +26,103 @@
 //!   reference geometry checked (`initial_contact`: faces that face each
 //!   other, no initial penetration, unless the `[[contact]]` allows it).
 
+use super::dimension::Dimension;
 use super::initial_contact::check_initial_contact;
 use super::source::Sources;
-use super::{Scene, SceneError};
-use crate::amplitude::Amplitude;
-use crate::ids::{AmplitudeId, DofId};
+use super::supports::{Curves, Prescriptions};
+use super::{Dofs, Scene, SceneError};
+use crate::ids::DofId;
 use crate::mesh::Mesh;
-use crate::model::{ContactPair, Model, PointLoad, Prescribed, SupportGroup};
-
-/// The load curves of a model, each stored once (equal tables share an
-/// index, so that two entries prescribing a dof with equal curves agree).
-#[derive(Default)]
-struct Curves(Vec<Amplitude>);
-
-impl Curves {
-    /// The index of `curve` (`None` for none), adding it if new.
-    fn intern(&mut self, curve: Option<Amplitude>) -> Option<AmplitudeId> {
-        let curve = curve?;
-        let i = match self.0.iter().position(|c| *c == curve) {
-            Some(i) => i,
-            None => {
-                self.0.push(curve);
-                self.0.len() - 1
-            }
-        };
-        Some(AmplitudeId::new(i))
-    }
-}
+use crate::mesh::gmsh::AnyMsh;
+use crate::model::{ContactPair, Model, PointLoad, SupportGroup};
 
 impl Scene {
-    /// Builds the finite-element model.
-    pub fn build_model(&self) -> Result<Model, SceneError> {
+    /// The checks before any body is made: `[refine]`, the memory
+    /// estimate, the `[mesh] file` (read), the scene's dimension and the
+    /// keys it has (`dimension.rs`).
+    pub(super) fn prepare(&self) -> Result<(Option<AnyMsh>, Dimension), SceneError> {
         self.check_refine()?;
         super::memory::check_scene(self).map_err(|e| self.invalid("body", e.to_string()))?;
-        let mut sources = Sources::of(self)?;
+        let file = self.read_mesh_file()?;
+        let dim = self.dimension_with(file.as_ref())?;
+        self.check_dimension(dim)?;
+        Ok((file, dim))
+    }
+
+    /// Builds the finite-element model of a 2D scene (a 3D scene is an
+    /// error naming its first body).
+    pub fn build_model(&self) -> Result<Model, SceneError> {
+        let (file, dim) = self.prepare()?;
+        self.build_planar(file, dim)
+    }
+
+    /// [`Scene::build_model`] after [`Scene::prepare`].
+    pub(super) fn build_planar(
+        &self,
+        file: Option<AnyMsh>,
+        dim: Dimension,
+    ) -> Result<Model, SceneError> {
+        let planar = match file {
+            None => None,
+            Some(AnyMsh::Planar(msh)) => Some(msh),
+            Some(AnyMsh::Volume(_)) => {
+                return Err(self.invalid(
+                    "mesh.file",
+                    "is a 3D mesh: a 3D scene's model is built by `Scene::build_model_3d`",
+                ));
+            }
+        };
+        if dim == Dimension::Three {
+            return Err(self.invalid(
+                "body[0]",
+                "is a 3D body: a 3D scene's model is built by `Scene::build_model_3d`",
+            ));
+        }
+        let mut sources = Sources::of(self, planar);
         let mut mesh = Mesh::new();
         for i in 0..self.bodies.len() {
-            let material = self.check_body(i)?;
+            let material = self.check_body(i, dim)?;
             sources.add_body(&mut mesh, i, material)?;
         }
         if mesh.bodies.is_empty() {
             return Err(self.invalid("body", "at least one [[body]] is needed"));
         }
         let mut curves = Curves::default();
-        let mut prescribed: Vec<Prescribed> = Vec::new();
-        let add_prescribed = |prescribed: &mut Vec<Prescribed>,
-                              field: &str,
-                              dof: DofId,
-                              value: f64,
-                              amplitude: Option<AmplitudeId>|
-         -> Result<(), SceneError> {
-            match prescribed.iter().find(|p| p.dof == dof) {
-                Some(p) if p.value != value => Err(self.invalid(
-                    field,
-                    format!(
-                        "node {} component {} is already prescribed to {}",
-                        dof.node(),
-                        dof.component(),
-                        p.value
-                    ),
-                )),
-                Some(p) if value != 0.0 && p.amplitude != amplitude => Err(self.invalid(
-                    field,
-                    format!(
-                        "node {} component {} is already prescribed with another load curve",
-                        dof.node(),
-                        dof.component(),
-                    ),
-                )),
-                Some(_) => Ok(()),
-                None => {
-                    prescribed.push(Prescribed {
-                        dof,
-                        value,
-                        amplitude,
-                    });
-                    Ok(())
-                }
-            }
-        };
-        // a support group's name: its `name`, else its `group` unless
-        // another item has it, else its field
-        let group_name = |name: &Option<String>, group: &Option<String>, f: &str| match group {
-            _ if name.is_some() => name.clone().unwrap_or_default(),
-            Some(g)
-                if self
-                    .fixes
-                    .iter()
-                    .map(|x| &x.group)
-                    .chain(self.prescribes.iter().map(|p| &p.group))
-                    .filter(|o| o.as_ref() == Some(g))
-                    .count()
-                    == 1 =>
-            {
-                g.clone()
-            }
-            _ => f.to_owned(),
-        };
+        let mut prescribed = Prescriptions::default();
         let mut supports = Vec::new();
         for (i, fx) in self.fixes.iter().enumerate() {
             let f = format!("fix[{i}]");
-            let start = prescribed.len();
-            for n in self.select_in(&mesh, &sources, &f, &fx.body, &fx.group, fx.x, fx.y, fx.at)? {
-                for &c in fx.dofs.components() {
-                    add_prescribed(&mut prescribed, &f, DofId::of(n, c), 0.0, None)?;
+            let start = prescribed.list.len();
+            let at = fx.at.and_then(|c| c.xy());
+            for n in self.select_in(&mesh, &sources, &f, &fx.body, &fx.group, fx.x, fx.y, at)? {
+                for c in fx.dofs.unwrap_or(Dofs::XY).components() {
+                    prescribed.add(self, &f, n, c, DofId::of(n, c), 0.0, None)?;
                 }
             }
             supports.push(SupportGroup {
-                name: group_name(&fx.name, &fx.group, &f),
-                prescribed: start..prescribed.len(),
+                name: self.support_name(&fx.name, &fx.group, &f),
+                prescribed: start..prescribed.list.len(),
             });
         }
         for (i, p) in self.prescribes.iter().enumerate() {
             let f = format!("prescribe[{i}]");
-            self.check_prescribe(&f, p)?;
+            self.check_prescribe(&f, p, dim)?;
             let amplitude = curves.intern(self.check_amplitude(&f, &p.amplitude)?);
-            let start = prescribed.len();
-            for n in self.select_in(&mesh, &sources, &f, &p.body, &p.group, p.x, p.y, p.at)? {
+            let start = prescribed.list.len();
+            let at = p.at.and_then(|c| c.xy());
+            for n in self.select_in(&mesh, &sources, &f, &p.body, &p.group, p.x, p.y, at)? {
                 for (c, v) in [(0, p.ux), (1, p.uy)] {
                     if let Some(v) = v {
-                        add_prescribed(&mut prescribed, &f, DofId::of(n, c), v, amplitude)?;
+                        prescribed.add(self, &f, n, c, DofId::of(n, c), v, amplitude)?;
                     }
                 }
             }
             supports.push(SupportGroup {
-                name: group_name(&p.name, &p.group, &f),
-                prescribed: start..prescribed.len(),
+                name: self.support_name(&p.name, &p.group, &f),
+                prescribed: start..prescribed.list.len(),
             });
         }
-        for (k, g) in supports.iter().enumerate() {
-            if supports[..k].iter().any(|o| o.name == g.name) {
-                let f = match k.checked_sub(self.fixes.len()) {
-                    None => format!("fix[{k}]"),
-                    Some(i) => format!("prescribe[{i}]"),
-                };
-                return Err(self.invalid(
-                    format!("{f}.name"),
-                    format!(
-                        "support group name `{}` is already used (name each [[fix]] and [[prescribe]] uniquely)",
-                        g.name
-                    ),
-                ));
-            }
-        }
+        self.check_support_names(&supports)?;
         let mut loads = Vec::new();
         for (i, l) in self.loads.iter().enumerate() {
             let f = format!("load[{i}]");
@@ -177,7 +131,12 @@ impl Scene {
             if l.at.is_none() && l.group.is_none() {
                 return Err(self.invalid(&f, "give `at` or `group`"));
             }
-            let nodes = self.select_in(&mesh, &sources, &f, &l.body, &l.group, None, None, l.at)?;
+            let at = l.at.and_then(|c| c.xy());
+            let force = l
+                .force
+                .xy()
+                .ok_or_else(|| self.invalid(format!("{f}.force"), "needs two numbers [x, y]"))?;
+            let nodes = self.select_in(&mesh, &sources, &f, &l.body, &l.group, None, None, at)?;
             if nodes.len() > 1 {
                 return Err(match (&l.group, l.at) {
                     (Some(g), _) => self.invalid(
@@ -187,7 +146,7 @@ impl Scene {
                             nodes.len()
                         ),
                     ),
-                    (None, at) => self.invalid(
+                    (None, _) => self.invalid(
                         format!("{f}.at"),
                         format!(
                             "{} nodes sit at {:?} (bodies share no nodes); name the `body`",
@@ -200,7 +159,7 @@ impl Scene {
             for c in 0..2 {
                 loads.push(PointLoad {
                     dof: DofId::of(nodes[0], c),
-                    value: l.force[c],
+                    value: force[c],
                     amplitude,
                 });
             }
@@ -208,6 +167,9 @@ impl Scene {
         for (i, t) in self.tractions.iter().enumerate() {
             let f = format!("traction[{i}]");
             self.check_traction(&f, t)?;
+            let force_per_length = t
+                .force_per_length
+                .ok_or_else(|| self.invalid(&f, "give `force_per_length = [tx, ty]`"))?;
             let amplitude = curves.intern(self.check_amplitude(&f, &t.amplitude)?);
             let segments = self.traction_segments(&mesh, &sources, &f, t)?;
             for seg in segments {
@@ -217,7 +179,7 @@ impl Scene {
                     for c in 0..2 {
                         loads.push(PointLoad {
                             dof: DofId::of(n, c),
-                            value: t.force_per_length[c] * half,
+                            value: force_per_length[c] * half,
                             amplitude,
                         });
                     }
@@ -255,7 +217,7 @@ impl Scene {
         self.check_newton()?;
         let model = Model {
             mesh,
-            prescribed,
+            prescribed: prescribed.list,
             loads,
             contacts,
             load_factor_end: self.loading.load_factor_end,

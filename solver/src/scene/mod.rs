@@ -158,12 +158,17 @@ use std::path::Path;
 use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
 
 mod build;
+mod build3d;
+mod dimension;
 mod error;
 mod initial_contact;
 mod memory;
 mod select;
+mod select3d;
 mod source;
 mod spec;
+mod supports;
+pub mod traction;
 
 pub(crate) use source::MAX_BLOCK_ELEMENTS;
 mod validate;
@@ -174,22 +179,41 @@ mod proptests;
 #[cfg(test)]
 mod bad_input_tests;
 
+#[cfg(test)]
+mod tests3d;
+
+pub use dimension::Dimension;
 pub use error::SceneError;
 pub use initial_contact::{FACING_TOL, PENETRATION_FRACTION};
 pub use memory::{check_scene, scene_equations};
 pub use spec::{
-    BodySpec, ContactSpec, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MeshSpec, NewtonSpec,
-    PrescribeSpec, RefineSpec, Scene, TractionSpec,
+    BodySpec, ContactSpec, Coords, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MaterialSpec,
+    MeshSpec, NewtonSpec, PrescribeSpec, RefineSpec, Scene, SideName, TractionSpec,
 };
 
 impl Scene {
     /// Parses and validates a scene; `origin` names the text in error
-    /// messages (usually the file name).
+    /// messages (usually the file name). Validating builds the scene's
+    /// model once (2D or 3D); a scene that asks for what the solver does
+    /// not have yet ([`SceneError::Unsupported`]: contact between 3D
+    /// bodies) is read, everything else checked, and fails when its model
+    /// is built.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
         let mut scene = error::parse(text, origin)?;
         scene.origin = origin.to_owned();
-        scene.build_model()?;
-        Ok(scene)
+        match scene.validate() {
+            Ok(()) | Err(SceneError::Unsupported { .. }) => Ok(scene),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Builds the model of the scene's dimension, to check the scene.
+    fn validate(&self) -> Result<(), SceneError> {
+        let (file, dim) = self.prepare()?;
+        match dim {
+            Dimension::Two => self.build_planar(file, dim).map(drop),
+            Dimension::Three => self.build_solid(file).map(drop),
+        }
     }
 
     /// Reads a scene file.
@@ -423,26 +447,50 @@ steps = [2]
         assert!(matches!(e, SceneError::Syntax { line: 10, .. }), "{e:?}");
     }
 
+    /// A 2D scene's coordinates and vectors take exactly two numbers: a
+    /// count other than two or three is a syntax error, three an error
+    /// naming the key (they belong to 3D scenes).
     #[test]
     fn coordinate_pairs_take_exactly_two_numbers() {
         for (from, to, field) in [
-            (
-                "origin = [0.0, 0.0]",
-                "origin = [0.0, 0.0, 5.0]",
-                "body[0].origin",
-            ),
             ("size = [2.0, 1.0]", "size = [2.0]", "body[0].size"),
-            ("at = [2.0, 1.0]", "at = [2.0, 1.0, 0.0]", "load[0].at"),
             (
                 "force = [0.0, -1.0]",
-                "force = [0.0, -1.0, 3.0]",
+                "force = [0.0, -1.0, 3.0, 4.0]",
                 "load[0].force",
             ),
         ] {
             let e = err(&GOOD.replace(from, to));
             assert!(
                 matches!(&e, SceneError::Syntax { field: f, message, .. }
-                    if f == field && message.starts_with("needs exactly two numbers [x, y], got ")),
+                    if f == field && message.starts_with("needs two numbers [x, y] (2D) or three [x, y, z] (3D), got ")),
+                "{to}: {e:?}"
+            );
+        }
+        for (from, to, field, says) in [
+            (
+                "origin = [0.0, 0.0]",
+                "origin = [0.0, 0.0, 5.0]",
+                "body[0].size",
+                "has 2 numbers but `origin` has 3",
+            ),
+            (
+                "at = [2.0, 1.0]",
+                "at = [2.0, 1.0, 0.0]",
+                "load[0].at",
+                "needs two numbers [x, y] in a 2D scene, got 3 numbers",
+            ),
+            (
+                "force = [0.0, -1.0]",
+                "force = [0.0, -1.0, 3.0]",
+                "load[0].force",
+                "needs two numbers [x, y] in a 2D scene, got 3 numbers",
+            ),
+        ] {
+            let e = err(&GOOD.replace(from, to));
+            assert!(
+                matches!(&e, SceneError::Invalid { field: f, message, .. }
+                    if f == field && message.starts_with(says)),
                 "{to}: {e:?}"
             );
         }

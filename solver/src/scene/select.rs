@@ -10,9 +10,9 @@
 //! [`Sources::group_segments`]). A traction loads a face of either kind.
 
 use super::source::Sources;
-use super::{FaceSpec, Scene, SceneError, TractionSpec};
+use super::{FaceSpec, Scene, SceneError, SideName, TractionSpec};
 use crate::ids::NodeId;
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Side};
 
 impl Scene {
     /// The index of the body named `body`, if one is named; an error for
@@ -123,6 +123,7 @@ impl Scene {
                 let b = b.ok_or_else(|| {
                     self.invalid(format!("{f}.body"), "a `side` needs its `body`")
                 })?;
+                let side = self.side_2d(format!("{f}.side"), side)?;
                 let segments = sources
                     .face(mesh, b, side)
                     .ok_or_else(|| self.invalid(f, "not a block body"))?;
@@ -165,6 +166,7 @@ impl Scene {
                 let b = b.ok_or_else(|| {
                     self.invalid(format!("{field}.body"), "a `side` needs its `body`")
                 })?;
+                let side = self.side_2d(format!("{field}.side"), side)?;
                 sources.face(mesh, b, side).ok_or_else(|| {
                     self.invalid(
                         format!("{field}.side"),
@@ -197,6 +199,17 @@ impl Scene {
                 Ok(segments)
             }
         }
+    }
+}
+
+impl Scene {
+    /// The 2D side `side` names (the item `field`'s); `front` and `back`
+    /// are refused (already by `check_dimension`, before any face is
+    /// resolved).
+    fn side_2d(&self, field: String, side: SideName) -> Result<Side, SceneError> {
+        side.side_2d().ok_or_else(|| {
+            self.invalid(field, format!("`{}` is a side of a 3D block", side.name()))
+        })
     }
 }
 

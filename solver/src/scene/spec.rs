@@ -13,8 +13,9 @@ use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::linear::LinearSolverKind;
-use crate::material::Material;
+use crate::material::{Kinematics, Material, PlaneModel};
 use crate::mesh::Side;
+use crate::mesh::block3d::Side3d;
 use crate::model::{ContactMode, Integration};
 use crate::options::{
     DEFAULT_MAX_CUTBACKS, DEFAULT_MAX_ITERATIONS, DEFAULT_REPAIR, DEFAULT_TOLERANCE, Method,
@@ -32,11 +33,11 @@ pub struct Scene {
     pub description: Option<String>,
     /// `[material]`: the material of every body without its own
     /// (`young`, `poisson`, `model` = `plane-stress` (default) or
-    /// `plane-strain`).
+    /// `plane-strain` in 2D, refused in 3D; `kinematics`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<Material>,
-    /// `[mesh]`: a mesh file whose physical surfaces are bodies (default
-    /// none).
+    pub material: Option<MaterialSpec>,
+    /// `[mesh]`: a mesh file whose physical surfaces (2D) or volumes (3D)
+    /// are bodies (default none).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mesh: Option<MeshSpec>,
     /// The bodies (`[[body]]`, at least one), in mesh order.
@@ -60,8 +61,8 @@ pub struct Scene {
     pub contacts: Vec<ContactSpec>,
     /// `[loading]`: the load schedule (required).
     pub loading: LoadingSpec,
-    /// `[refine]`: refinement factors of the block bodies (default 1 and
-    /// 1).
+    /// `[refine]`: refinement factors of the block bodies (default 1 on
+    /// every axis).
     #[serde(default)]
     pub refine: RefineSpec,
     /// `[newton]`: Newton settings (defaults as in [`NewtonSpec`]).
@@ -78,81 +79,270 @@ pub struct Scene {
 #[serde(deny_unknown_fields)]
 pub struct MeshSpec {
     /// `file`: a Gmsh MSH 4.1 file (ASCII or binary), relative to the
-    /// scene file's directory.
+    /// scene file's directory: a 2D mesh (physical surfaces are bodies)
+    /// or, when it holds tetrahedra or hexahedra, a 3D one (physical
+    /// volumes are bodies).
     pub file: String,
 }
 
-/// A body (`[[body]]`): either a structured rectangular block of `nx` by
-/// `ny` 4-node quadrilaterals (see [`crate::mesh::block`]; `origin`,
-/// `size`, `nx` and `ny` all given), or, without any of those four, the
-/// physical surface `group` (default: `name`) of the `[mesh]` file: its
-/// 3-node triangles and 4-node quadrangles, mixed freely, as drawn
-/// (counter-clockwise; an inverted element is an error naming it).
+/// A material as written (`[material]`, `[[body]] material`): the
+/// [`Material`]'s constants, with `model` kept as given or not, since a
+/// 3D scene refuses it ([`MaterialSpec::material`] gives the material,
+/// plane stress when `model` is left out).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// `young`: Young's modulus `E` (positive, finite).
+    pub young: f64,
+    /// `poisson`: Poisson's ratio `nu` (in (-1, 1) in plane stress, in
+    /// (-1, 1/2) in plane strain and in 3D).
+    pub poisson: f64,
+    /// `model`: `plane-stress` (the default) or `plane-strain`; 2D only.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<PlaneModel>,
+    /// `kinematics`: `finite` (the default) or `small`.
+    #[serde(default, skip_serializing_if = "is_finite_kinematics")]
+    pub kinematics: Kinematics,
+}
+
+fn is_finite_kinematics(k: &Kinematics) -> bool {
+    *k == Kinematics::Finite
+}
+
+impl MaterialSpec {
+    /// The material (plane stress when `model` is left out).
+    pub fn material(&self) -> Material {
+        Material {
+            young: self.young,
+            poisson: self.poisson,
+            model: self.model.unwrap_or_default(),
+            kinematics: self.kinematics,
+        }
+    }
+}
+
+impl From<Material> for MaterialSpec {
+    fn from(m: Material) -> MaterialSpec {
+        MaterialSpec {
+            young: m.young,
+            poisson: m.poisson,
+            model: Some(m.model),
+            kinematics: m.kinematics,
+        }
+    }
+}
+
+/// A point or a vector as written: two numbers `[x, y]` in a 2D scene,
+/// three `[x, y, z]` in a 3D one (any other count is a syntax error; which
+/// of the two a scene takes is checked with its dimension).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Coords {
+    /// `[x, y]`.
+    Xy([f64; 2]),
+    /// `[x, y, z]`.
+    Xyz([f64; 3]),
+}
+
+impl Coords {
+    /// How many numbers were written (2 or 3).
+    pub fn len(&self) -> usize {
+        self.as_slice().len()
+    }
+
+    /// Never empty (for clippy's `len` rule).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The numbers, as written.
+    pub fn as_slice(&self) -> &[f64] {
+        match self {
+            Coords::Xy(v) => v,
+            Coords::Xyz(v) => v,
+        }
+    }
+
+    /// `[x, y]`, if two numbers were written.
+    pub fn xy(&self) -> Option<[f64; 2]> {
+        match *self {
+            Coords::Xy(v) => Some(v),
+            Coords::Xyz(_) => None,
+        }
+    }
+
+    /// `[x, y, z]`, if three numbers were written.
+    pub fn xyz(&self) -> Option<[f64; 3]> {
+        match *self {
+            Coords::Xy(_) => None,
+            Coords::Xyz(v) => Some(v),
+        }
+    }
+}
+
+impl Serialize for Coords {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        self.as_slice().serialize(s)
+    }
+}
+
+impl<'de> Deserialize<'de> for Coords {
+    /// Exactly two or three numbers: a plain array would take the first
+    /// ones of a longer list silently.
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Coords, D::Error> {
+        let v = Vec::<f64>::deserialize(d)?;
+        match *v.as_slice() {
+            [x, y] => Ok(Coords::Xy([x, y])),
+            [x, y, z] => Ok(Coords::Xyz([x, y, z])),
+            _ => Err(serde::de::Error::custom(format!(
+                "needs two numbers [x, y] (2D) or three [x, y, z] (3D), got {}",
+                v.len()
+            ))),
+        }
+    }
+}
+
+/// A body (`[[body]]`): either a structured block (see
+/// [`crate::mesh::block`] and [`crate::mesh::block3d`]; `origin`, `size`,
+/// `nx` and `ny` all given, and `nz` with three numbers in `origin` and
+/// `size`: `nx` by `ny` 4-node quadrilaterals in 2D, `nx` by `ny` by `nz`
+/// 8-node hexahedra in 3D), or, without any of those fields, the physical
+/// group `group` (default: `name`) of the `[mesh]` file: a physical
+/// surface of a 2D file (its 3-node triangles and 4-node quadrangles,
+/// mixed freely, as drawn: counter-clockwise; an inverted element is an
+/// error naming it) or a physical volume of a 3D file (its 4-node
+/// tetrahedra and 8-node hexahedra, mixed freely).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BodySpec {
     /// `name`: unique among the bodies; selections and faces refer to it.
     pub name: String,
-    /// `origin`: the lower-left corner `[x, y]` of a block (reference
-    /// frame, finite).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "de_opt_pair"
-    )]
-    pub origin: Option<[f64; 2]>,
-    /// `size`: a block's width and height (positive, finite).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "de_opt_pair"
-    )]
-    pub size: Option<[f64; 2]>,
+    /// `origin`: the corner of smallest coordinates of a block, `[x, y]`
+    /// or `[x, y, z]` (reference frame, finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub origin: Option<Coords>,
+    /// `size`: a block's extents along x, y (and z) (positive, finite).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub size: Option<Coords>,
     /// `nx`: a block's elements along x (at least 1; times `[refine] x`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub nx: Option<usize>,
     /// `ny`: a block's elements along y (at least 1; times `[refine] y`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ny: Option<usize>,
-    /// `group`: the physical surface of the `[mesh]` file that is this
-    /// body (default: `name`; not with the block fields).
+    /// `nz`: a 3D block's elements along z (at least 1; times
+    /// `[refine] z`; refused in 2D).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nz: Option<usize>,
+    /// `group`: the physical surface (2D) or volume (3D) of the `[mesh]`
+    /// file that is this body (default: `name`; not with the block
+    /// fields).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
     /// Material (default: the scene's `[material]`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub material: Option<Material>,
+    pub material: Option<MaterialSpec>,
 }
 
-/// Which displacement components (`dofs = "x" | "y" | "xy"`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-pub enum Dofs {
-    /// x only.
-    #[serde(rename = "x")]
-    X,
-    /// y only.
-    #[serde(rename = "y")]
-    Y,
-    /// Both.
-    #[default]
-    #[serde(rename = "xy")]
-    XY,
+/// Which displacement components (`dofs`: any non-empty set of the
+/// letters `x`, `y` and, in 3D, `z`, each at most once, in any order:
+/// `"x"`, `"yz"`, `"xyz"`, ...). Written back in the order x, y, z.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Dofs {
+    /// Whether x, y, z are in the set.
+    axes: [bool; 3],
 }
 
 impl Dofs {
-    /// The displacement components (0 = x, 1 = y) fixed.
-    pub(super) fn components(self) -> &'static [usize] {
-        match self {
-            Dofs::X => &[0],
-            Dofs::Y => &[1],
-            Dofs::XY => &[0, 1],
+    /// x only.
+    pub const X: Dofs = Dofs {
+        axes: [true, false, false],
+    };
+    /// y only.
+    pub const Y: Dofs = Dofs {
+        axes: [false, true, false],
+    };
+    /// z only.
+    pub const Z: Dofs = Dofs {
+        axes: [false, false, true],
+    };
+    /// x and y (every component in 2D).
+    pub const XY: Dofs = Dofs {
+        axes: [true, true, false],
+    };
+    /// x, y and z (every component in 3D).
+    pub const XYZ: Dofs = Dofs {
+        axes: [true, true, true],
+    };
+
+    /// Every component of a scene of dimension `dim` (2 or 3): what a
+    /// `[[fix]]` without `dofs` fixes.
+    pub fn all(dim: usize) -> Dofs {
+        if dim == 3 { Dofs::XYZ } else { Dofs::XY }
+    }
+
+    /// The displacement components (0 = x, 1 = y, 2 = z), ascending.
+    pub fn components(self) -> impl Iterator<Item = usize> {
+        (0..3).filter(move |&c| self.axes[c])
+    }
+
+    /// Whether z is in the set.
+    pub fn has_z(self) -> bool {
+        self.axes[2]
+    }
+
+    /// The set as written back: its letters in the order x, y, z.
+    pub fn name(self) -> String {
+        self.components().map(|c| ['x', 'y', 'z'][c]).collect()
+    }
+}
+
+impl std::str::FromStr for Dofs {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Dofs, String> {
+        let bad = || {
+            format!(
+                "`dofs` is a non-empty set of the letters x, y, z, each at most once (\"x\", \"xy\", \"xyz\", ...), got \"{s}\""
+            )
+        };
+        let mut axes = [false; 3];
+        for ch in s.chars() {
+            let c = match ch {
+                'x' => 0,
+                'y' => 1,
+                'z' => 2,
+                _ => return Err(bad()),
+            };
+            if axes[c] {
+                return Err(bad());
+            }
+            axes[c] = true;
         }
+        if axes == [false; 3] {
+            return Err(bad());
+        }
+        Ok(Dofs { axes })
+    }
+}
+
+impl Serialize for Dofs {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.name())
+    }
+}
+
+impl<'de> Deserialize<'de> for Dofs {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Dofs, D::Error> {
+        String::deserialize(d)?
+            .parse()
+            .map_err(serde::de::Error::custom)
     }
 }
 
 /// Supports (`[[fix]]`): zero displacement of the selected nodes. Select
-/// with `at`, or with `x` and/or `y` (every node on that line), or with a
-/// physical `group` of the mesh file; `body` restricts the selection to one
-/// body. At least one node must match.
+/// with `at`, or with `x`, `y` and/or `z` (every node on that line or
+/// plane), or with a physical `group` of the mesh file; `body` restricts
+/// the selection to one body. At least one node must match.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FixSpec {
@@ -164,8 +354,9 @@ pub struct FixSpec {
     /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// `group`: the nodes of this physical curve or point of the `[mesh]`
-    /// file (instead of `x`/`y`/`at`).
+    /// `group`: the nodes of this physical group of the `[mesh]` file (a
+    /// point or curve in 2D, also a surface in 3D; instead of
+    /// `x`/`y`/`z`/`at`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
     /// `x`: the nodes with this reference x.
@@ -174,16 +365,16 @@ pub struct FixSpec {
     /// `y`: the nodes with this reference y.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y: Option<f64>,
-    /// `at`: the node(s) at this reference point (not with `x`/`y`).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "de_opt_pair"
-    )]
-    pub at: Option<[f64; 2]>,
-    /// `dofs`: the components fixed (default `"xy"`).
-    #[serde(default)]
-    pub dofs: Dofs,
+    /// `z`: the nodes with this reference z (3D only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
+    /// `at`: the node(s) at this reference point (not with `x`/`y`/`z`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<Coords>,
+    /// `dofs`: the components fixed (default: every component, `"xy"` in
+    /// 2D, `"xyz"` in 3D; see [`Dofs`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub dofs: Option<Dofs>,
 }
 
 /// A point force on one node (`[[load]]`): `lambda_L force`, or
@@ -197,19 +388,15 @@ pub struct LoadSpec {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// `at`: the node's reference position (or `group`).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "de_opt_pair"
-    )]
-    pub at: Option<[f64; 2]>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<Coords>,
     /// `group`: a physical point (or curve) of the `[mesh]` file with
     /// exactly one node (instead of `at`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
-    /// `force`: `[fx, fy]` at load factor one (finite).
-    #[serde(deserialize_with = "de_pair")]
-    pub force: [f64; 2],
+    /// `force`: `[fx, fy]` (2D) or `[fx, fy, fz]` (3D) at load factor one
+    /// (finite).
+    pub force: Coords,
     /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
     /// two points, load factors strictly increasing, all finite): at load
     /// factor `L` the force is `a(L)` times the value above, `a` piecewise
@@ -224,8 +411,8 @@ pub struct LoadSpec {
     pub amplitude: Option<Vec<[f64; 2]>>,
 }
 
-/// Prescribed displacements (`[[prescribe]]`): `lambda_L (ux, uy)`, or
-/// `a(lambda_L) (ux, uy)` with a load curve `amplitude`, on the nodes
+/// Prescribed displacements (`[[prescribe]]`): `lambda_L (ux, uy, uz)`, or
+/// `a(lambda_L) (ux, uy, uz)` with a load curve `amplitude`, on the nodes
 /// selected as in [`FixSpec`]. A component left out is free; a node's
 /// component prescribed twice must agree (the same value and, unless the
 /// value is zero, the same curve), and its reaction is reported with the
@@ -241,8 +428,8 @@ pub struct PrescribeSpec {
     /// `body`: restrict the selection to this body.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// `group`: the nodes of this physical curve or point of the `[mesh]`
-    /// file (instead of `x`/`y`/`at`).
+    /// `group`: the nodes of this physical group of the `[mesh]` file (as
+    /// in [`FixSpec`]; instead of `x`/`y`/`z`/`at`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
     /// `x`: the nodes with this reference x.
@@ -251,19 +438,21 @@ pub struct PrescribeSpec {
     /// `y`: the nodes with this reference y.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub y: Option<f64>,
-    /// `at`: the node(s) at this reference point (not with `x`/`y`).
-    #[serde(
-        default,
-        skip_serializing_if = "Option::is_none",
-        deserialize_with = "de_opt_pair"
-    )]
-    pub at: Option<[f64; 2]>,
+    /// `z`: the nodes with this reference z (3D only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<f64>,
+    /// `at`: the node(s) at this reference point (not with `x`/`y`/`z`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<Coords>,
     /// `ux`: the x displacement at load factor one (finite).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub ux: Option<f64>,
     /// `uy`: the y displacement at load factor one (finite).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub uy: Option<f64>,
+    /// `uz`: the z displacement at load factor one (finite; 3D only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uz: Option<f64>,
     /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
     /// two points, load factors strictly increasing, all finite): at load
     /// factor `L` the displacement is `a(L)` times the value above, `a` piecewise
@@ -278,53 +467,137 @@ pub struct PrescribeSpec {
     pub amplitude: Option<Vec<[f64; 2]>>,
 }
 
+/// A side of a block as written (`side`): `bottom`, `right`, `top` or
+/// `left` of a 2D block ([`Side`]: bottom and top at the smallest and
+/// largest y); of a 3D block also `front` and `back` ([`Side3d`]: left and
+/// right at the smallest and largest x, front and back y, bottom and top
+/// z).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SideName {
+    /// 2D: the smallest y; 3D: the smallest z.
+    Bottom,
+    /// The largest x.
+    Right,
+    /// 2D: the largest y; 3D: the largest z.
+    Top,
+    /// The smallest x.
+    Left,
+    /// The smallest y (3D only).
+    Front,
+    /// The largest y (3D only).
+    Back,
+}
+
+impl SideName {
+    /// The side of a 2D block; `None` for `front` and `back`.
+    pub fn side_2d(self) -> Option<Side> {
+        match self {
+            SideName::Bottom => Some(Side::Bottom),
+            SideName::Right => Some(Side::Right),
+            SideName::Top => Some(Side::Top),
+            SideName::Left => Some(Side::Left),
+            SideName::Front | SideName::Back => None,
+        }
+    }
+
+    /// The side of a 3D block.
+    pub fn side_3d(self) -> Side3d {
+        match self {
+            SideName::Bottom => Side3d::Bottom,
+            SideName::Right => Side3d::Right,
+            SideName::Top => Side3d::Top,
+            SideName::Left => Side3d::Left,
+            SideName::Front => Side3d::Front,
+            SideName::Back => Side3d::Back,
+        }
+    }
+
+    /// The name as written.
+    pub fn name(self) -> &'static str {
+        self.side_3d().name()
+    }
+}
+
+impl From<Side> for SideName {
+    fn from(side: Side) -> SideName {
+        match side {
+            Side::Bottom => SideName::Bottom,
+            Side::Right => SideName::Right,
+            Side::Top => SideName::Top,
+            Side::Left => SideName::Left,
+        }
+    }
+}
+
 /// A face (`{ body = .., side = .. }` or `{ group = .. }`): one side of a
-/// block body, or a physical curve of the `[mesh]` file on the boundary of
-/// one body, as a chain of segments counter-clockwise around the body
-/// (resolved by the body's mesh source; a curve's segments are oriented by
-/// the element owning each, however the curve was drawn).
+/// block body, or a physical group of the `[mesh]` file on the boundary of
+/// one body: in 2D a physical curve, as a chain of segments
+/// counter-clockwise around the body (resolved by the body's mesh source;
+/// a curve's segments are oriented by the element owning each, however the
+/// curve was drawn); in 3D a physical surface, its faces oriented outward
+/// by their owning elements.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FaceSpec {
     /// `body`: the body's name (with `side`; optional with `group`, where
-    /// it must name the curve's body).
+    /// it must name the group's body).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// `side`: `bottom`, `right`, `top` or `left` (a block's side).
+    /// `side`: a block's side ([`SideName`]: `bottom`, `right`, `top`,
+    /// `left`; in 3D also `front`, `back`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub side: Option<Side>,
-    /// `group`: a physical curve of the `[mesh]` file (instead of `side`).
+    pub side: Option<SideName>,
+    /// `group`: a physical curve (2D) or surface (3D) of the `[mesh]`
+    /// file (instead of `side`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
 }
 
 /// A distributed dead load (`[[traction]]`) on a side of a block body
-/// (`body` and `side`, as a [`FaceSpec`] names it) or on a physical curve
-/// of the `[mesh]` file (`group`, optionally with its `body`):
-/// `lambda_L force_per_length` (or `a(lambda_L) force_per_length` with a
-/// load curve `amplitude`) per unit reference length, applied as
-/// consistent nodal forces (`t L / 2` to both nodes of each segment, `L`
-/// its reference length).
+/// (`body` and `side`, as a [`FaceSpec`] names it) or on a physical group
+/// of the `[mesh]` file (`group`, optionally with its `body`), applied as
+/// consistent nodal forces, times the load factor `lambda_L` (or a load
+/// curve's `a(lambda_L)` with `amplitude`):
+///
+/// * 2D: `force_per_length` per unit reference length on a side or a
+///   physical curve (`t L / 2` to both nodes of each segment, `L` its
+///   reference length);
+/// * 3D: `force_per_area` per unit reference area on a side or a physical
+///   surface (`t` times the integral of each node's shape function over
+///   each face: 2 x 2 Gauss points on a quad4, exactly `t A / 3` per
+///   node on a tri3; see [`super::traction`]).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TractionSpec {
     /// `body`: the block body whose `side` is loaded (with `side`), or the
-    /// body every node of the curve `group` must belong to (optional with
+    /// body every node of the group must belong to (optional with
     /// `group`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// `side`: `bottom`, `right`, `top` or `left` of the block `body`
-    /// (instead of `group`).
+    /// `side`: a side of the block `body` (instead of `group`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub side: Option<Side>,
-    /// `group`: the physical curve of the `[mesh]` file loaded (instead of
-    /// `side`).
+    pub side: Option<SideName>,
+    /// `group`: the physical curve (2D) or surface (3D) of the `[mesh]`
+    /// file loaded (instead of `side`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub group: Option<String>,
     /// `force_per_length`: `[tx, ty]` per unit reference length at load
-    /// factor one (finite).
-    #[serde(deserialize_with = "de_pair")]
-    pub force_per_length: [f64; 2],
+    /// factor one (finite; 2D only).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_pair"
+    )]
+    pub force_per_length: Option<[f64; 2]>,
+    /// `force_per_area`: `[tx, ty, tz]` per unit reference area at load
+    /// factor one (finite; 3D only).
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "de_opt_triple"
+    )]
+    pub force_per_area: Option<[f64; 3]>,
     /// `amplitude`: a load curve `[[load_factor, value], ...]` (at least
     /// two points, load factors strictly increasing, all finite): at load
     /// factor `L` the load is `a(L)` times the value above, `a` piecewise
@@ -433,8 +706,8 @@ pub struct LoadingSpec {
     pub method: Method,
 }
 
-/// Refinement factors for every body's `nx` and `ny` (`[refine]`);
-/// [`Scene::refined`] multiplies them further.
+/// Refinement factors for every block body's `nx`, `ny` and `nz`
+/// (`[refine]`); [`Scene::refined`] multiplies them further.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RefineSpec {
@@ -444,11 +717,25 @@ pub struct RefineSpec {
     /// `y`: the factor on `ny` (at least 1, default 1).
     #[serde(default = "one")]
     pub y: usize,
+    /// `z`: the factor on `nz` (at least 1, default 1; 3D only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub z: Option<usize>,
+}
+
+impl RefineSpec {
+    /// The factor on `nz` (1 unless given).
+    pub fn z_factor(&self) -> usize {
+        self.z.unwrap_or(1)
+    }
 }
 
 impl Default for RefineSpec {
     fn default() -> Self {
-        RefineSpec { x: 1, y: 1 }
+        RefineSpec {
+            x: 1,
+            y: 1,
+            z: None,
+        }
     }
 }
 
@@ -556,12 +843,19 @@ fn pair_from<E: serde::de::Error>(v: &[f64]) -> Result<[f64; 2], E> {
         .map_err(|_| E::custom(format!("needs exactly two numbers [x, y], got {}", v.len())))
 }
 
-fn de_pair<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
-    pair_from(&Vec::<f64>::deserialize(d)?)
-}
-
 fn de_opt_pair<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 2]>, D::Error> {
     pair_from(&Vec::<f64>::deserialize(d)?).map(Some)
+}
+
+/// Exactly three numbers, as [`pair_from`] two.
+fn de_opt_triple<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 3]>, D::Error> {
+    let v = Vec::<f64>::deserialize(d)?;
+    <[f64; 3]>::try_from(v.as_slice()).map(Some).map_err(|_| {
+        serde::de::Error::custom(format!(
+            "needs exactly three numbers [x, y, z], got {}",
+            v.len()
+        ))
+    })
 }
 
 /// A load curve's points, each exactly two numbers (a `[f64; 2]` alone

@@ -15,6 +15,7 @@
 //! depend on how a body was made belong to its mesh source, and checks that
 //! need the mesh (a selection that finds no node) to `select.rs`.
 
+use super::dimension::Dimension;
 use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError, TractionSpec};
 use crate::amplitude::Amplitude;
 use crate::material::Material;
@@ -33,17 +34,18 @@ impl Scene {
         }
     }
 
-    /// `[refine]`: both factors at least 1.
+    /// `[refine]`: every factor at least 1.
     pub(super) fn check_refine(&self) -> Result<(), SceneError> {
-        if self.refine.x == 0 || self.refine.y == 0 {
+        if self.refine.x == 0 || self.refine.y == 0 || self.refine.z == Some(0) {
             return Err(self.invalid("refine", "factors must be at least 1"));
         }
         Ok(())
     }
 
     /// `body[i]`: a name no earlier body has, and a valid material (its own
-    /// or the scene's default), which it returns.
-    pub(super) fn check_body(&self, i: usize) -> Result<Material, SceneError> {
+    /// or the scene's default) for a body of dimension `dim` (in 3D,
+    /// Poisson's ratio below 1/2), which it returns.
+    pub(super) fn check_body(&self, i: usize, dim: Dimension) -> Result<Material, SceneError> {
         let b = &self.bodies[i];
         let f = format!("body[{i}]");
         if self.bodies[..i].iter().any(|o| o.name == b.name) {
@@ -58,7 +60,12 @@ impl Scene {
                 "no material (and no default [material])",
             )
         })?;
-        material.check().map_err(|m| {
+        let material = material.material();
+        let checked = match dim {
+            Dimension::Two => material.check(),
+            Dimension::Three => material.check_3d().map_err(|e| e.to_string()),
+        };
+        checked.map_err(|m| {
             let field = if b.material.is_some() {
                 format!("{f}.material")
             } else {
@@ -69,14 +76,26 @@ impl Scene {
         Ok(material)
     }
 
-    /// `prescribe[i]` (named `f`): at least one component, each finite.
-    pub(super) fn check_prescribe(&self, f: &str, p: &PrescribeSpec) -> Result<(), SceneError> {
-        if p.ux.is_none() && p.uy.is_none() {
-            return Err(self.invalid(f, "give `ux` and/or `uy`"));
+    /// `prescribe[i]` (named `f`) of a scene of dimension `dim`: at least
+    /// one component, each finite.
+    pub(super) fn check_prescribe(
+        &self,
+        f: &str,
+        p: &PrescribeSpec,
+        dim: Dimension,
+    ) -> Result<(), SceneError> {
+        if p.ux.is_none() && p.uy.is_none() && p.uz.is_none() {
+            let which = match dim {
+                Dimension::Two => "give `ux` and/or `uy`",
+                Dimension::Three => "give `ux`, `uy` and/or `uz`",
+            };
+            return Err(self.invalid(f, which));
         }
-        for (c, v) in [(0, p.ux), (1, p.uy)] {
+        for (c, v) in [(0, p.ux), (1, p.uy), (2, p.uz)] {
             if v.is_some_and(|v| !v.is_finite()) {
-                return Err(self.invalid(format!("{f}.{}", ["ux", "uy"][c]), "must be finite"));
+                return Err(
+                    self.invalid(format!("{f}.{}", ["ux", "uy", "uz"][c]), "must be finite")
+                );
             }
         }
         Ok(())
@@ -111,7 +130,7 @@ impl Scene {
 
     /// `load[i]` (named `f`): a finite force.
     pub(super) fn check_load(&self, f: &str, l: &LoadSpec) -> Result<(), SceneError> {
-        if !l.force.iter().all(|v| v.is_finite()) {
+        if !l.force.as_slice().iter().all(|v| v.is_finite()) {
             return Err(self.invalid(format!("{f}.force"), "must be finite"));
         }
         Ok(())
@@ -126,10 +145,19 @@ impl Scene {
         Ok(())
     }
 
-    /// `traction[i]` (named `f`): a finite force per length.
+    /// `traction[i]` (named `f`): a finite force per length (2D) or per
+    /// area (3D); that the scene's dimension has the key is checked by
+    /// `check_dimension`.
     pub(super) fn check_traction(&self, f: &str, t: &TractionSpec) -> Result<(), SceneError> {
-        if !t.force_per_length.iter().all(|v| v.is_finite()) {
+        if t.force_per_length
+            .is_some_and(|v| !v.iter().all(|v| v.is_finite()))
+        {
             return Err(self.invalid(format!("{f}.force_per_length"), "must be finite"));
+        }
+        if t.force_per_area
+            .is_some_and(|v| !v.iter().all(|v| v.is_finite()))
+        {
+            return Err(self.invalid(format!("{f}.force_per_area"), "must be finite"));
         }
         Ok(())
     }

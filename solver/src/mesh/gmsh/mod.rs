@@ -61,7 +61,7 @@ mod tests;
 mod tests3d;
 
 pub use error::{MshError, MshErrorKind};
-pub use volume::{MshVolumeMesh, SurfaceFace};
+pub use volume::{AnyMsh, MshVolumeMesh, SurfaceFace, read_any};
 
 /// The element types read; everything else is an error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]

@@ -31,7 +31,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use super::{
-    Expect, MshElement, MshError, MshErrorKind, PhysicalGroup, Tables, convert, read_file,
+    Expect, MshElement, MshError, MshErrorKind, MshMesh, PhysicalGroup, Tables, convert, read_file,
 };
 use crate::mesh::faces::{BoundaryFaces, FaceLookup, starting_at};
 use crate::mesh::volume::{Cell, Face};
@@ -81,10 +81,14 @@ impl MshVolumeMesh {
     /// name errors give. Never panics, whatever the bytes.
     pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<MshVolumeMesh, MshError> {
         let file = file.into();
-        let parts = match convert::read(bytes, convert::Dimension::Volume) {
-            Ok(parts) => parts,
-            Err(kind) => return Err(MshError { file, kind }),
-        };
+        match convert::read(bytes, convert::Dimension::Volume) {
+            Ok(parts) => MshVolumeMesh::from_parts(parts, file),
+            Err(kind) => Err(MshError { file, kind }),
+        }
+    }
+
+    /// The mesh of the parts of a file read as a volume mesh.
+    fn from_parts(parts: convert::Parts, file: PathBuf) -> Result<MshVolumeMesh, MshError> {
         let nodes = parts.nodes.clone();
         let tables = Tables::new(file, parts);
         let faces = orient(&nodes, &tables).map_err(|kind| tables.error(kind))?;
@@ -166,6 +170,30 @@ impl MshVolumeMesh {
     pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
         self.tables
             .nodes_of(name, &BELOW_VOLUME, "point, line or surface elements")
+    }
+}
+
+/// A Gmsh file read as what it holds ([`read_any`]).
+#[derive(Debug, Clone)]
+pub enum AnyMsh {
+    /// No tetrahedra or hexahedra: a 2D mesh, read by [`MshMesh::read`].
+    Planar(MshMesh),
+    /// Tetrahedra or hexahedra: a 3D mesh.
+    Volume(MshVolumeMesh),
+}
+
+/// Reads the `.msh` file at `path` as a 3D mesh when it holds tetrahedra
+/// or hexahedra, else as a 2D mesh, exactly as [`MshMesh::read`] reads it
+/// (so a file that cannot be read either way fails with the 2D reader's
+/// error). Errors name `path`.
+pub fn read_any(path: impl AsRef<Path>) -> Result<AnyMsh, MshError> {
+    let path = path.as_ref();
+    let bytes = read_file(path)?;
+    match convert::read(&bytes, convert::Dimension::Volume) {
+        Ok(parts) if parts.elements.iter().any(|e| e.cell().is_some()) => {
+            MshVolumeMesh::from_parts(parts, path.to_owned()).map(AnyMsh::Volume)
+        }
+        _ => MshMesh::from_bytes(&bytes, path).map(AnyMsh::Planar),
     }
 }
 

@@ -53,8 +53,15 @@ impl MeshSource for Blocks<'_> {
                 "a block body (`origin`, `size`, `nx`, `ny`) has no `group`",
             ));
         }
-        let origin = b.origin.ok_or_else(|| missing("origin"))?;
-        let size = b.size.ok_or_else(|| missing("size"))?;
+        // a 2D scene's blocks have two numbers in both (`check_dimension`)
+        let two = |c: Option<crate::scene::Coords>, k: &str| {
+            c.ok_or_else(|| missing(k))?.xy().ok_or_else(|| {
+                self.scene
+                    .invalid(format!("{f}.{k}"), "needs two numbers [x, y] in a 2D block")
+            })
+        };
+        let origin = two(b.origin, "origin")?;
+        let size = two(b.size, "size")?;
         let nx = b.nx.ok_or_else(|| missing("nx"))?;
         let ny = b.ny.ok_or_else(|| missing("ny"))?;
         for (k, v) in [("nx", nx), ("ny", ny)] {
@@ -108,7 +115,11 @@ impl MeshSource for Blocks<'_> {
 }
 
 /// Whether `body` gives any of the block fields (`origin`, `size`, `nx`,
-/// `ny`).
-pub(super) fn is_block(body: &BodySpec) -> bool {
-    body.origin.is_some() || body.size.is_some() || body.nx.is_some() || body.ny.is_some()
+/// `ny`, `nz`).
+pub(in crate::scene) fn is_block(body: &BodySpec) -> bool {
+    body.origin.is_some()
+        || body.size.is_some()
+        || body.nx.is_some()
+        || body.ny.is_some()
+        || body.nz.is_some()
 }

@@ -28,15 +28,13 @@
 //! types are refused by the reader, naming the type; errors name the file
 //! and the group or element, the scene field is added by the caller.
 
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-
 use super::{GroupFace, MeshSource, blocks::is_block};
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::gmsh::{MshElementType, MshMesh};
 use crate::mesh::{Element, Mesh, MeshError, Side};
 use crate::scene::{Scene, SceneError};
+use std::collections::HashMap;
 
 /// The bodies of a scene that come from its `[mesh]` file.
 pub(in crate::scene) struct Gmsh<'s> {
@@ -53,38 +51,18 @@ pub(in crate::scene) struct Gmsh<'s> {
     edges: HashMap<(usize, usize), u64>,
 }
 
-/// The path of the mesh file `file` of the scene read from `origin`:
-/// relative to the scene file's directory.
-fn resolve(origin: &str, file: &str) -> PathBuf {
-    let file = Path::new(file);
-    if file.is_absolute() {
-        return file.to_owned();
-    }
-    match Path::new(origin).parent() {
-        Some(dir) => dir.join(file),
-        None => file.to_owned(),
-    }
-}
-
 impl<'s> Gmsh<'s> {
-    /// The source of `scene`: reads its `[mesh] file`, if any (errors name
-    /// `mesh.file`).
-    pub(in crate::scene) fn new(scene: &'s Scene) -> Result<Gmsh<'s>, SceneError> {
-        let msh = match &scene.mesh {
-            None => None,
-            Some(spec) => Some(
-                MshMesh::read(resolve(&scene.origin, &spec.file))
-                    .map_err(|e| scene.invalid("mesh.file", e.to_string()))?,
-            ),
-        };
+    /// The source of `scene` and its `[mesh] file` `msh`, read (if it has
+    /// one).
+    pub(in crate::scene) fn new(scene: &'s Scene, msh: Option<MshMesh>) -> Gmsh<'s> {
         let n = msh.as_ref().map_or(0, |m| m.nodes().len());
-        Ok(Gmsh {
+        Gmsh {
             scene,
             msh,
             node_of: vec![None; n],
             body_of: vec![None; n],
             edges: HashMap::new(),
-        })
+        }
     }
 
     /// The file's tag of node `index` (for messages).

@@ -28,14 +28,33 @@
 use super::{Scene, SceneError};
 use crate::ids::NodeId;
 use crate::material::Material;
+use crate::mesh::gmsh::MshMesh;
 use crate::mesh::{Mesh, Side};
 
 mod blocks;
+mod blocks3d;
 mod gmsh;
+mod gmsh3d;
+mod solid;
 
 pub(super) use blocks::Blocks;
 pub(crate) use blocks::MAX_BLOCK_ELEMENTS;
+pub(super) use blocks::is_block;
 pub(super) use gmsh::Gmsh;
+pub(super) use solid::Solids;
+
+/// The path of the mesh file `file` of the scene read from `origin`:
+/// relative to the scene file's directory.
+pub(super) fn resolve(origin: &str, file: &str) -> std::path::PathBuf {
+    let file = std::path::Path::new(file);
+    if file.is_absolute() {
+        return file.to_owned();
+    }
+    match std::path::Path::new(origin).parent() {
+        Some(dir) => dir.join(file),
+        None => file.to_owned(),
+    }
+}
 
 /// A physical curve on the boundary of one body: the mesh body's index and
 /// its segments, counter-clockwise around the body.
@@ -96,14 +115,17 @@ pub(super) struct Sources<'s> {
 }
 
 impl<'s> Sources<'s> {
-    /// The sources of `scene`, in the order they are asked who owns a body
-    /// (this reads the `[mesh]` file, if any; its errors name `mesh.file`).
-    pub(super) fn of(scene: &'s Scene) -> Result<Sources<'s>, SceneError> {
-        Ok(Sources {
+    /// The sources of `scene`, in the order they are asked who owns a body;
+    /// `msh` is its `[mesh] file`, read (if it has one).
+    pub(super) fn of(scene: &'s Scene, msh: Option<MshMesh>) -> Sources<'s> {
+        Sources {
             scene,
-            sources: vec![Box::new(Blocks::new(scene)), Box::new(Gmsh::new(scene)?)],
+            sources: vec![
+                Box::new(Blocks::new(scene)),
+                Box::new(Gmsh::new(scene, msh)),
+            ],
             made_by: Vec::new(),
-        })
+        }
     }
 
     /// Appends the scene's `body[index]` through the first source that owns

@@ -10,6 +10,7 @@ use std::path::{Path, PathBuf};
 use super::*;
 use crate::ids::DofId;
 use crate::model::Model;
+use crate::scene::source::resolve;
 
 /// Surface `a`: two quadrangles on [0, 2] x [0, 1] (nodes 1..6); surface
 /// `b`: one quadrangle on [0, 2] x [1, 2] (nodes 7..10, its own nodes);
