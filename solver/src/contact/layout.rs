@@ -148,6 +148,7 @@ impl ContactLayout {
             masters: Vec::new(),
             adjacency: Vec::new(),
             complementarity: Vec::new(),
+            index_min_segments: super::INDEX_MIN_SEGMENTS,
         }
     }
 
