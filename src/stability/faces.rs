@@ -91,10 +91,10 @@ fn face_at(nodes: &[P3], [u, v]: [f64; 2]) -> (P3, P3, P3) {
             .collect()
     };
     for (p, w) in nodes.iter().zip(&weights) {
-        for k in 0..3 {
-            out.0[k] += w[0] * p[k];
-            out.1[k] += w[1] * p[k];
-            out.2[k] += w[2] * p[k];
+        for (k, &pk) in p.iter().enumerate() {
+            out.0[k] += w[0] * pk;
+            out.1[k] += w[1] * pk;
+            out.2[k] += w[2] * pk;
         }
     }
     out
@@ -274,7 +274,7 @@ pub(super) fn sweep_one_face(family: Family, value: f64, formulation: Formulatio
     let worse = |slot: &mut Option<f64>, e: f64| *slot = Some(slot.map_or(e, |m| m.max(e)));
     for _ in 0..CONFIGURATIONS {
         let (q, xi_s) = configuration(formulation, family, value, &mut rng);
-        if let Err(e) = kernel.eval(&q, &xi_s, &mut out) {
+        if let Err(e) = kernel.eval(&q, xi_s, &mut out) {
             row.refused += 1;
             row.refusal.get_or_insert_with(|| e.to_string());
             continue;
