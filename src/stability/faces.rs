@@ -310,6 +310,8 @@ mod tests {
             ] {
                 let mut rng = Lcg(7);
                 let mut probe = Lcg(7);
+                // `configuration` draws the tilt first, then the target.
+                probe.uniform(-10.0, 10.0);
                 let target = target_xi_m(family, value, nm, &mut probe);
                 let (q, xi_s) = configuration(f, family, value, &mut rng);
                 let r = face_reference(f, &q, xi_s, [0.0, 0.0]);
