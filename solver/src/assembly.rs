@@ -16,7 +16,7 @@
 //! only on the mesh, the prescribed set, the pairing and the presence of
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
-use crate::contact::{ContactLayout, NodeTie, PointEval, shape2};
+use crate::contact::{ContactLayout, GapTerm, NodeTie, PointEval, WeightedPoint};
 use crate::element::{ElementResponse, MAX_ELEMENT_DOFS};
 use crate::ids::{DofId, ElementId, EquationIndex, MultiplierIndex, NodeId};
 use crate::model::Model;
@@ -245,38 +245,57 @@ pub fn assemble_contact(
     dofs: &DofMap,
     sys: &mut System,
 ) {
-    for (pt, ev) in layout.points.iter().zip(evals) {
+    assemble_contact_terms(&layout.points, evals, lambda, active, dofs, sys);
+}
+
+/// [`assemble_contact`] for the points and evaluations of any dimension
+/// (see [`crate::contact::term`]): 2D segments (`N = 8`) or 3D faces
+/// (`N = 24`, padding coordinates skipped). Per point, in this order: the
+/// displacement residual `w J0 lambda g'`, the Hessian term
+/// `w J0 lambda g''`, then per multiplier `a` of the slave face the
+/// constraint residual `w J0 N_a g` (active) and the coupling
+/// `w J0 N_a g'` both ways (zero in the inactive row); then the
+/// multiplier rows' diagonals.
+pub fn assemble_contact_terms<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
+    points: &[P],
+    evals: &[Option<E>],
+    lambda: &[f64],
+    active: &[bool],
+    dofs: &DofMap,
+    sys: &mut System,
+) {
+    for (pt, ev) in points.iter().zip(evals) {
         let Some(ev) = ev else { continue };
-        let nsh = shape2(pt.xi_s);
-        let w = pt.weight_ref;
-        let lam =
-            nsh[0] * lambda[pt.multipliers[0].index()] + nsh[1] * lambda[pt.multipliers[1].index()];
-        let eqs = dofs.node_eqs(&ev.nodes);
-        for p in 0..8 {
+        let shape = pt.multiplier_shape();
+        let w = pt.weight_ref();
+        let lam = shape.lambda(lambda);
+        let eqs: [Option<EquationIndex>; N] =
+            std::array::from_fn(|k| ev.dof(k).and_then(|d| dofs.eq(d)));
+        let grad = ev.grad();
+        for p in 0..N {
             if let Some(ep) = eqs[p] {
-                sys.residual[ep.index()] += w * lam * ev.grad[p];
+                sys.residual[ep.index()] += w * lam * grad[p];
             }
         }
-        if let Some(h) = &ev.hess {
-            for p in 0..8 {
+        if let Some(h) = ev.hess() {
+            for p in 0..N {
                 let Some(ep) = eqs[p] else { continue };
-                for q in 0..8 {
+                for q in 0..N {
                     if let Some(eq) = eqs[q] {
                         sys.push(ep, eq, w * lam * h[(p, q)]);
                     }
                 }
             }
         }
-        for a in 0..2 {
-            let m = pt.multipliers[a];
+        for (m, n_a) in shape.iter() {
             let row = dofs.mult_eq(m);
             let on = active[m.index()];
             if on {
-                sys.residual[row.index()] += w * nsh[a] * ev.gap;
+                sys.residual[row.index()] += w * n_a * ev.gap();
             }
-            for p in 0..8 {
+            for p in 0..N {
                 if let Some(ep) = eqs[p] {
-                    let v = w * nsh[a] * ev.grad[p];
+                    let v = w * n_a * grad[p];
                     sys.push(ep, row, v);
                     sys.push(row, ep, if on { v } else { 0.0 });
                 }

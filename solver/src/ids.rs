@@ -14,6 +14,7 @@
 //! | [`ContactPointIndex`] | slave integration points | `ContactLayout::points`, pairings, evaluations |
 //! | [`PairId`] | contact pairs | `Model::contacts`, per-pair tables of the layout |
 //! | [`MasterSegmentIndex`] | master segments of one pair, along its chain | `ContactPair::master`, pairings |
+//! | [`MasterFaceIndex`] | master faces of one 3D pair | `FacePair::master`, 3D pairings |
 //! | [`AmplitudeId`] | load curves of a model | `Model::amplitudes` |
 //!
 //! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
@@ -139,6 +140,12 @@ index_type!(
     /// A master segment of one contact pair (index into its
     /// [`ContactPair::master`](crate::model::ContactPair::master) list).
     MasterSegmentIndex
+);
+
+index_type!(
+    /// A master face of one 3D contact pair (index into its
+    /// [`FacePair::master`](crate::model::FacePair::master) list).
+    MasterFaceIndex
 );
 
 index_type!(

@@ -40,6 +40,7 @@ use std::ops::Range;
 use crate::amplitude::Amplitude;
 use crate::ids::{AmplitudeId, DofId, NodeId};
 use crate::mesh::Mesh;
+use crate::mesh::volume::Face;
 
 /// How a contact pair integrates over its slave segments
 /// (`[[contact]] integration`).
@@ -129,6 +130,37 @@ impl std::fmt::Debug for ContactPair {
         }
         d.finish()
     }
+}
+
+/// One 3D contact pair: a slave surface and a master surface, each a list
+/// of tri3 and quad4 faces (global node indices) whose nodes run
+/// counter-clockwise seen from outside the body they bound
+/// (docs/conventions.md, "3D faces"). The solver picks the kernel of each
+/// (slave face, master face) pair from the pair's reading and the two
+/// faces' kinds ([`crate::contact::face_formulation`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FacePair {
+    /// A name for reports.
+    pub name: String,
+    /// Slave faces.
+    pub slave: Vec<Face<NodeId>>,
+    /// Master faces.
+    pub master: Vec<Face<NodeId>>,
+    /// The reading of the gap: [`Formulation::SlaveNormal`] or
+    /// [`Formulation::ClosestPoint`].
+    pub reading: Formulation,
+    /// Persistent or unilateral.
+    pub mode: ContactMode,
+    /// `gauss_points`: `n x n` points on a quad4, `n` on a tri3 (1, 3, 4,
+    /// 6 or 7); `None`: 2 x 2 on a quad4, 3 on a tri3
+    /// ([`crate::contact::face_rules::default_points`]). With segmented
+    /// integration the rule on each clipped triangle: 1, 3 or 7 points
+    /// (`None`: 7).
+    pub gauss_points: Option<usize>,
+    /// The rule on the slave faces: Gauss on every face, or segmented
+    /// (each slave face clipped against the master faces projected onto
+    /// it, see [`crate::contact::FaceLayout`]).
+    pub integration: Integration,
 }
 
 /// A prescribed displacement degree of freedom.

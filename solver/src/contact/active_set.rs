@@ -21,11 +21,17 @@
 //! (gaps zero: active by the primal–dual test) or pressed (non-zero
 //! multipliers) never meet this rule, so their iterations are unchanged.
 //!
+//! The rules work on any dimension's points and evaluations
+//! ([`ActiveSetView`], over [`WeightedPoint`] and [`GapTerm`]): 2D
+//! segments ([`ContactLayout`]) and 3D faces ([`super::FaceLayout`]), where
+//! the tributary length is a tributary area.
+//!
 //! Invariant: the nodal weights and weighted gaps are summed in point order.
 
 use crate::model::ContactMode;
 
-use super::{ContactLayout, PointEval, shape2};
+use super::term::{GapTerm, WeightedPoint};
+use super::{ContactLayout, MultiplierDof, PointEval};
 
 /// A node of a unilateral pair whose weighted gap is at most this times its
 /// tributary length `sum w J0 N_a` counts as touching at the start of an
@@ -39,32 +45,51 @@ pub const CLOSING_GAP: f64 = 1e-2;
 /// docs).
 pub const NEARLY_TOUCHING: f64 = 1e-1;
 
-impl ContactLayout {
-    /// Per multiplier: the tributary length `sum w J0 N_a` and the weighted
-    /// gap `sum w J0 N_a g` over the paired points, in point order.
-    fn nodal_sums(&self, evals: &[Option<PointEval>]) -> (Vec<f64>, Vec<f64>) {
+/// What the active set reads of a layout of any dimension: its points,
+/// multipliers, the pairs' modes and active-set constants.
+#[derive(Debug, Clone, Copy)]
+pub struct ActiveSetView<'a, P> {
+    /// The integration points, in point order.
+    pub points: &'a [P],
+    /// The multiplier dofs.
+    pub multipliers: &'a [MultiplierDof],
+    /// Each pair's mode.
+    pub modes: &'a [ContactMode],
+    /// Each pair's active-set constant `c`.
+    pub complementarity: &'a [f64],
+}
+
+impl<P: WeightedPoint> ActiveSetView<'_, P> {
+    /// Per multiplier: the tributary length (or area) `sum w J0 N_a` and
+    /// the weighted gap `sum w J0 N_a g` over the paired points, in point
+    /// order.
+    pub fn nodal_sums<E: GapTerm<N>, const N: usize>(
+        &self,
+        evals: &[Option<E>],
+    ) -> (Vec<f64>, Vec<f64>) {
         let n = self.multipliers.len();
         let mut weight = vec![0.0; n];
         let mut weighted_gap = vec![0.0; n];
         for (pt, ev) in self.points.iter().zip(evals) {
             if let Some(ev) = ev {
-                let nsh = shape2(pt.xi_s);
-                for a in 0..2 {
-                    let m = pt.multipliers[a].index();
-                    weight[m] += pt.weight_ref * nsh[a];
-                    weighted_gap[m] += pt.weight_ref * nsh[a] * ev.gap;
+                let w = pt.weight_ref();
+                for (m, n_a) in pt.multiplier_shape().iter() {
+                    let m = m.index();
+                    weight[m] += w * n_a;
+                    weighted_gap[m] += w * n_a * ev.gap();
                 }
             }
         }
         (weight, weighted_gap)
     }
 
-    /// First iteration of an attempt (module docs): in every unilateral
-    /// pair with all multipliers zero and none `active`, makes every node
-    /// active whose weighted gap is at most [`CLOSING_GAP`] times its
-    /// tributary length; if none does, its node with the smallest ratio
-    /// when that is at most [`NEARLY_TOUCHING`].
-    pub fn close_touching(&self, evals: &[Option<PointEval>], lambda: &[f64], active: &mut [bool]) {
+    /// See [`ContactLayout::close_touching`].
+    pub fn close_touching<E: GapTerm<N>, const N: usize>(
+        &self,
+        evals: &[Option<E>],
+        lambda: &[f64],
+        active: &mut [bool],
+    ) {
         let (weight, weighted_gap) = self.nodal_sums(evals);
         for (pair, &mode) in self.modes.iter().enumerate() {
             if mode != ContactMode::Unilateral {
@@ -97,12 +122,10 @@ impl ContactLayout {
         }
     }
 
-    /// Which multipliers carry a constraint row (see the module docs):
-    /// persistent pairs: those with an active integration point;
-    /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
-    pub fn active_multipliers(
+    /// See [`ContactLayout::active_multipliers`].
+    pub fn active_multipliers<E: GapTerm<N>, const N: usize>(
         &self,
-        evals: &[Option<PointEval>],
+        evals: &[Option<E>],
         lambda: &[f64],
         length_scale: f64,
     ) -> Vec<bool> {
@@ -124,5 +147,39 @@ impl ContactLayout {
                 }
             })
             .collect()
+    }
+}
+
+impl ContactLayout {
+    /// The layout as the active set reads it.
+    fn active_set_view(&self) -> ActiveSetView<'_, super::ContactPoint> {
+        ActiveSetView {
+            points: &self.points,
+            multipliers: &self.multipliers,
+            modes: &self.modes,
+            complementarity: &self.complementarity,
+        }
+    }
+
+    /// First iteration of an attempt (module docs): in every unilateral
+    /// pair with all multipliers zero and none `active`, makes every node
+    /// active whose weighted gap is at most [`CLOSING_GAP`] times its
+    /// tributary length; if none does, its node with the smallest ratio
+    /// when that is at most [`NEARLY_TOUCHING`].
+    pub fn close_touching(&self, evals: &[Option<PointEval>], lambda: &[f64], active: &mut [bool]) {
+        self.active_set_view().close_touching(evals, lambda, active);
+    }
+
+    /// Which multipliers carry a constraint row (see the module docs):
+    /// persistent pairs: those with an active integration point;
+    /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
+    pub fn active_multipliers(
+        &self,
+        evals: &[Option<PointEval>],
+        lambda: &[f64],
+        length_scale: f64,
+    ) -> Vec<bool> {
+        self.active_set_view()
+            .active_multipliers(evals, lambda, length_scale)
     }
 }

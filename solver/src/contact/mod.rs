@@ -214,7 +214,16 @@
 //!   quad4 and a tri3 slave face;
 //! * `evaluate`: the kernel evaluations at every point, in parallel;
 //! * `taylor`: the frozen Taylor expansion of Types 1–6 ([`Taylor`]);
-//! * `active_set`: which multipliers carry a constraint row.
+//! * `active_set`: which multipliers carry a constraint row;
+//! * `term`: what the assembly, the active set and the expansion read of
+//!   a point and its evaluation, in 2D and 3D ([`WeightedPoint`],
+//!   [`GapTerm`]);
+//! * `face_layout`, `face_pairing`: the 3D contact element between tri3
+//!   and quad4 faces ([`FaceLayout`], [`FaceEval`]): its points,
+//!   multipliers and kernels, evaluation and pairing through the spatial
+//!   index. It is verified on its own (`face_tests`: weights, gaps,
+//!   pairing against the scan, residual and tangent against finite
+//!   differences); Newton does not call it yet.
 //!
 //! Invariants: the point order (pair by pair, slave segment by slave
 //! segment, Gauss point by Gauss point) and the multiplier order (pair by
@@ -226,18 +235,25 @@ mod active_set;
 pub mod clip;
 mod evaluate;
 pub mod face_index;
+mod face_layout;
+mod face_pairing;
 pub mod face_rules;
+#[cfg(test)]
+mod face_tests;
 mod layout;
 pub mod master_search;
 mod search;
 mod segmented;
 mod taylor;
+pub mod term;
 
 use contact_kernels::{KernelError, Projection, Segment};
 use nalgebra::{SMatrix, SVector};
 
-use crate::ids::{ContactPointIndex, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
+use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
+pub use face_layout::{FaceLayout, FaceLayoutError, FacePoint, face_formulation};
+pub use face_pairing::{FACE_COORDS, FaceEval};
 pub use layout::ContactLayout;
 pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
 pub use search::PassIndexes;
@@ -245,6 +261,7 @@ pub use segmented::{
     SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
 };
 pub use taylor::Taylor;
+pub use term::{GapTerm, MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
 /// A projection with `|xi_m| <= 1 + XI_INSIDE_TOL` lies inside the master
 /// segment.
@@ -348,13 +365,14 @@ impl std::ops::AddAssign for KernelCounts {
     }
 }
 
-/// A kernel failure at one integration point.
+/// A kernel failure at one integration point (of a 2D pair; with
+/// `M = MasterFaceIndex`, of a 3D pair).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointFailure {
-    /// Index into [`ContactLayout::points`].
+pub struct PointFailure<M = MasterSegmentIndex> {
+    /// Index into [`ContactLayout::points`] (or [`FaceLayout::points`]).
     pub point: ContactPointIndex,
-    /// The master segment tried, if any.
-    pub master_segment: Option<MasterSegmentIndex>,
+    /// The master segment (or face) tried, if any.
+    pub master_segment: Option<M>,
     /// The kernel's error.
     pub error: KernelError,
 }
@@ -375,6 +393,48 @@ pub struct PointEval {
     pub grad: SVector<f64, 8>,
     /// `d2g/du2`, `None` when the type has none (Type 1).
     pub hess: Option<SMatrix<f64, 8, 8>>,
+}
+
+impl WeightedPoint for ContactPoint {
+    fn weight_ref(&self) -> f64 {
+        self.weight_ref
+    }
+
+    fn multiplier_shape(&self) -> MultiplierShape {
+        let n = shape2(self.xi_s);
+        MultiplierShape {
+            multipliers: [
+                self.multipliers[0],
+                self.multipliers[1],
+                self.multipliers[1],
+                self.multipliers[1],
+            ],
+            shape: [n[0], n[1], 0.0, 0.0],
+            count: 2,
+        }
+    }
+}
+
+impl GapTerm<8> for PointEval {
+    fn gap(&self) -> f64 {
+        self.gap
+    }
+
+    fn grad(&self) -> &SVector<f64, 8> {
+        &self.grad
+    }
+
+    fn hess(&self) -> Option<&SMatrix<f64, 8, 8>> {
+        self.hess.as_ref()
+    }
+
+    fn dof(&self, k: usize) -> Option<DofId> {
+        Some(DofId::of(self.nodes[k / 2], k % 2))
+    }
+
+    fn with_gap(&self, gap: f64, grad: SVector<f64, 8>) -> PointEval {
+        PointEval { gap, grad, ..*self }
+    }
 }
 
 /// Complete formulation: a slave integration point held at the master node
@@ -427,6 +487,16 @@ pub(crate) fn slave_side(e: &KernelError) -> bool {
                 segment: Segment::Slave,
                 ..
             }
+            | KernelError::DegenerateFace {
+                face: Segment::Slave,
+                ..
+            }
+            | KernelError::FoldedFace {
+                face: Segment::Slave,
+                ..
+            }
+            | KernelError::SlavePointOutside { .. }
+            | KernelError::ParamCount { .. }
     )
 }
 

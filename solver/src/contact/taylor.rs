@@ -13,47 +13,47 @@
 use nalgebra::SVector;
 
 use super::PointEval;
-use crate::ids::DofId;
+use super::term::GapTerm;
 
-/// Frozen Taylor coefficients of one integration point for one load step.
+/// Frozen Taylor coefficients of one integration point for one load step,
+/// on the `N` coordinates of its evaluation `E` (a 2D [`PointEval`] by
+/// default; a 3D [`super::FaceEval`] with `N = 24`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Taylor {
+pub struct Taylor<E = PointEval, const N: usize = 8> {
     /// The kernel output at the expansion point (the step start, or for a
     /// re-paired point an earlier attempt's end).
-    pub at_start: PointEval,
-    /// The nodal displacements `u0` of `at_start.nodes` at the expansion
-    /// point.
-    pub u0: SVector<f64, 8>,
+    pub at_start: E,
+    /// The nodal displacements `u0` of `at_start`'s coordinates at the
+    /// expansion point (zero on padding coordinates).
+    pub u0: SVector<f64, N>,
 }
 
-impl Taylor {
+/// The displacements of `e`'s coordinates in the global vector `u` (zero
+/// on padding coordinates).
+fn local<E: GapTerm<N>, const N: usize>(e: &E, u: &[f64]) -> SVector<f64, N> {
+    SVector::<f64, N>::from_fn(|k, _| e.dof(k).map_or(0.0, |d| u[d.index()]))
+}
+
+impl<E: GapTerm<N>, const N: usize> Taylor<E, N> {
     /// The expansion of `at`, the kernel output at the displacements `u`
-    /// (global vector): `u0` is `u` at `at`'s nodes.
-    pub fn at(at: PointEval, u: &[f64]) -> Taylor {
+    /// (global vector): `u0` is `u` at `at`'s coordinates.
+    pub fn at(at: E, u: &[f64]) -> Taylor<E, N> {
         Taylor {
-            u0: SVector::<f64, 8>::from_fn(|k, _| u[DofId::of(at.nodes[k / 2], k % 2).index()]),
+            u0: local(&at, u),
             at_start: at,
         }
     }
 
     /// The second-order expansion at displacements `u` (global vector).
-    pub fn expand(&self, u: &[f64]) -> PointEval {
+    pub fn expand(&self, u: &[f64]) -> E {
         let s = &self.at_start;
-        let d = SVector::<f64, 8>::from_fn(|k, _| u[DofId::of(s.nodes[k / 2], k % 2).index()])
-            - self.u0;
-        match &s.hess {
+        let d = local(s, u) - self.u0;
+        match s.hess() {
             Some(h) => {
                 let hd = h * d;
-                PointEval {
-                    gap: s.gap + s.grad.dot(&d) + 0.5 * d.dot(&hd),
-                    grad: s.grad + hd,
-                    ..*s
-                }
+                s.with_gap(s.gap() + s.grad().dot(&d) + 0.5 * d.dot(&hd), s.grad() + hd)
             }
-            None => PointEval {
-                gap: s.gap + s.grad.dot(&d),
-                ..*s
-            },
+            None => s.with_gap(s.gap() + s.grad().dot(&d), *s.grad()),
         }
     }
 }
@@ -78,7 +78,7 @@ mod tests {
             hess: Some(h),
         };
         let u0 = SVector::<f64, 8>::from_fn(|i, _| 0.01 * i as f64);
-        let t = Taylor { at_start, u0 };
+        let t: Taylor = Taylor { at_start, u0 };
         let u: Vec<f64> = (0..8)
             .map(|i| 0.01 * i as f64 + 0.02 * (i as f64).cos())
             .collect();

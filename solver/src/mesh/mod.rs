@@ -50,6 +50,7 @@ use crate::material::Material;
 
 pub mod block;
 pub mod block3d;
+pub mod face_shape;
 pub mod faces;
 pub mod gmsh;
 pub mod volume;

@@ -1,0 +1,422 @@
+//! [`FaceLayout`]: the integration points, multipliers and master faces of
+//! the 3D contact pairs of a model ([`FacePair`]), and the kernel each
+//! (slave face, master face) pair of kinds takes.
+//!
+//! # The 3D contact element
+//!
+//! A pair's slave and master surfaces are lists of tri3 and quad4 faces
+//! whose nodes run counter-clockwise seen from outside their bodies. Every
+//! slave face of kind `K` carries the rule `gauss_points` gives on `K`
+//! ([`face_rule`]: `n x n` Gauss–Legendre points on a quad4, 1, 3, 4, 6 or
+//! 7 symmetric points on a tri3; defaults 2 x 2 and 3), integrated in the
+//! **reference** configuration: a point `xi_s = (u, v)` with rule weight
+//! `w` has
+//!
+//! ```text
+//! w J0 = w |dX/du x dX/dv|(xi_s)
+//! ```
+//!
+//! (`X` the slave face's reference coordinates), so the weights of a face
+//! add up to its area (exactly on a flat face). Multipliers live at the
+//! slave nodes, one per node however many slave faces share it,
+//! `lambda(xi_s) = sum_a N_a(xi_s) l_a` with the slave face's shape
+//! functions ([`crate::mesh::face_shape`]), and the element's potential is
+//! `Pi_c = sum_points w J0 lambda g` as in 2D ([`super`]): the same
+//! residual and tangent, assembled by
+//! [`crate::assembly::assemble_contact_terms`].
+//!
+//! The gap `g` of a point paired with a master face is the kernel of the
+//! pair's reading for the two faces' kinds ([`face_formulation`]:
+//! `tri3-slave-normal`, `tri3-quad4-closest-point`, ...; docs/conventions.md,
+//! "3D faces"), on the current coordinates of the slave face's nodes then
+//! the master face's. Pairing is `face_pairing`'s.
+//!
+//! # Segmented integration
+//!
+//! With [`Integration::Segmented`] each slave face is clipped, in the
+//! reference configuration, against every master face that faces it
+//! (outward normals `t_1 x t_2` at the faces' centres against each other)
+//! and whose box meets the slave face's box inflated by the slave face's
+//! size, each projected onto the slave face's plane ([`SlaveFace`],
+//! `clip.rs`: Sutherland–Hodgman, triangulated); every triangle gets the
+//! triangle rule of `gauss_points` (1, 3 or 7 points; default 7, degree
+//! 5), mapped to the slave's `(u, v)`, with its weight in plane area as
+//! `w J0` (exact on a flat slave face). The integrand's kinks where the
+//! master shape functions change face are then integrated exactly: the
+//! consistent master nodal forces of a uniform pressure are exact on
+//! non-matching flat faces (the contact patch test, `face_tests`), where
+//! the Gauss rule on the slave face is not. As in 2D the split is taken
+//! once, so it is exact while the faces do not slide; a slave face that no
+//! master face overlaps gets no points.
+//!
+//! The active-set constant of a unilateral pair is `c = E / h`, the slave
+//! body's Young's modulus over the mean slave face size `h = sqrt(area)`
+//! (the 2D layout's `E / h` with `h` the mean segment length).
+//!
+//! Invariants: built once per solve and never changed; points pair by pair,
+//! slave face by slave face, rule point by rule point; multipliers pair by
+//! pair in the order their nodes first appear on the slave faces; every
+//! point's `w J0` is finite and positive.
+
+use std::collections::HashMap;
+
+use contact_kernels::Formulation;
+use thiserror::Error;
+
+use crate::ids::{ContactPointIndex, DofId, MultiplierIndex, NodeId, PairId};
+use crate::mesh::Mesh;
+use crate::mesh::face_shape::FaceShape;
+use crate::mesh::volume::{Face, FaceKind};
+use crate::model::{ContactMode, FacePair, Integration};
+
+use super::MultiplierDof;
+use super::clip::{ClipError, SlaveFace, TriangleRule};
+use super::face_index::{Aabb, FaceIndex};
+use super::face_rules::{self, RuleError, default_points, face_rule};
+use super::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
+
+/// Static data of one slave integration point of a 3D pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacePoint {
+    /// Contact pair.
+    pub pair: PairId,
+    /// Slave face index within the pair.
+    pub slave_face: usize,
+    /// Rule point index within the face.
+    pub gauss: usize,
+    /// Parametric coordinates on the slave face.
+    pub xi_s: [f64; 2],
+    /// `w J0` (reference area weight).
+    pub weight_ref: f64,
+    /// The slave face's nodes.
+    pub slave: Face<NodeId>,
+    /// Global multiplier indices of the slave face's nodes (node order;
+    /// a tri3 repeats its last one in the unused slot).
+    pub multipliers: [MultiplierIndex; MAX_POINT_MULTIPLIERS],
+}
+
+impl WeightedPoint for FacePoint {
+    fn weight_ref(&self) -> f64 {
+        self.weight_ref
+    }
+
+    fn multiplier_shape(&self) -> MultiplierShape {
+        let s = FaceShape::at(self.slave.kind(), self.xi_s);
+        MultiplierShape {
+            multipliers: self.multipliers,
+            shape: s.n,
+            count: s.count,
+        }
+    }
+}
+
+/// A 3D pair that cannot be laid out.
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum FaceLayoutError {
+    /// `gauss_points` has no rule on one of the pair's slave face kinds.
+    #[error("contact pair `{pair}`: {source}")]
+    Rule {
+        /// The pair's name.
+        pair: String,
+        /// The rule's error (the counts there are).
+        source: RuleError,
+    },
+    /// A slave face whose reference area element is not positive and
+    /// finite at an integration point.
+    #[error(
+        "contact pair `{pair}`: slave face {face} has area element {area_element:e} at its integration point {gauss}"
+    )]
+    DegenerateSlaveFace {
+        /// The pair's name.
+        pair: String,
+        /// The slave face's index in the pair.
+        face: usize,
+        /// The integration point.
+        gauss: usize,
+        /// `|dX/du x dX/dv|` there.
+        area_element: f64,
+    },
+    /// `gauss_points` is not a triangle rule's count (segmented
+    /// integration: 1, 3 or 7).
+    #[error(
+        "contact pair `{pair}`: segmented integration takes gauss_points = 1, 3 or 7 (points per triangle), got {requested}"
+    )]
+    TriangleRule {
+        /// The pair's name.
+        pair: String,
+        /// The count asked for.
+        requested: usize,
+    },
+    /// A slave face the clipping refuses (segmented integration).
+    #[error("contact pair `{pair}`: slave face {face} against master face {master}: {source}")]
+    Clip {
+        /// The pair's name.
+        pair: String,
+        /// The slave face's index in the pair.
+        face: usize,
+        /// The master face's index in the pair.
+        master: usize,
+        /// Why.
+        source: ClipError,
+    },
+    /// The pair's reading is not `slave-normal` or `closest-point`.
+    #[error(
+        "contact pair `{pair}`: `{reading}` is not a reading of 3D faces (slave-normal, closest-point)"
+    )]
+    Reading {
+        /// The pair's name.
+        pair: String,
+        /// The reading given.
+        reading: Formulation,
+    },
+}
+
+/// The kernel of `reading` (`slave-normal` or `closest-point`) for a slave
+/// face of kind `slave` on a master face of kind `master`: named
+/// `<slave>-<reading>` when both are of one kind, `<slave>-<master>-<reading>`
+/// otherwise (docs/conventions.md, "3D faces"). `None` for another reading.
+pub fn face_formulation(
+    reading: Formulation,
+    slave: FaceKind,
+    master: FaceKind,
+) -> Option<Formulation> {
+    if !matches!(
+        reading,
+        Formulation::SlaveNormal | Formulation::ClosestPoint
+    ) {
+        return None;
+    }
+    let kind = |k: FaceKind| match k {
+        FaceKind::Tri3 => "tri3",
+        FaceKind::Quad4 => "quad4",
+    };
+    let name = if slave == master {
+        format!("{}-{}", kind(slave), reading.name())
+    } else {
+        format!("{}-{}-{}", kind(slave), kind(master), reading.name())
+    };
+    name.parse().ok()
+}
+
+/// The rule's kind for a face kind.
+fn rule_kind(kind: FaceKind) -> face_rules::FaceKind {
+    match kind {
+        FaceKind::Tri3 => face_rules::FaceKind::Tri3,
+        FaceKind::Quad4 => face_rules::FaceKind::Quad4,
+    }
+}
+
+/// The integration points, multipliers and master faces of all 3D contact
+/// pairs of a model (module docs).
+#[derive(Debug, Clone)]
+pub struct FaceLayout {
+    /// All slave integration points, pair by pair, face by face.
+    pub points: Vec<FacePoint>,
+    /// All multiplier dofs, pair by pair.
+    pub multipliers: Vec<MultiplierDof>,
+    /// The reading of each pair (after an override).
+    pub readings: Vec<Formulation>,
+    /// The mode of each pair.
+    pub modes: Vec<ContactMode>,
+    /// Master faces of each pair.
+    pub masters: Vec<Vec<Face<NodeId>>>,
+    /// Active-set constant `c` per pair (unilateral mode).
+    pub complementarity: Vec<f64>,
+}
+
+/// Segmented integration of one pair (module docs): the master faces in
+/// the reference configuration with their index, and the triangle rule.
+struct Segmenter {
+    masters: Vec<Face<[f64; 3]>>,
+    index: Option<FaceIndex<3>>,
+    rule: TriangleRule,
+}
+
+impl Segmenter {
+    fn new(mesh: &Mesh<3>, pair: &FacePair) -> Result<Segmenter, FaceLayoutError> {
+        let rule = match pair.gauss_points.unwrap_or(7) {
+            1 => TriangleRule::Centroid,
+            3 => TriangleRule::Three,
+            7 => TriangleRule::Seven,
+            requested => {
+                return Err(FaceLayoutError::TriangleRule {
+                    pair: pair.name.clone(),
+                    requested,
+                });
+            }
+        };
+        let masters: Vec<Face<[f64; 3]>> = pair
+            .master
+            .iter()
+            .map(|f| f.map_nodes(|n| mesh.node_ref(n)))
+            .collect();
+        let nodes: Vec<&[[f64; 3]]> = masters.iter().map(|f| f.nodes()).collect();
+        Ok(Segmenter {
+            index: FaceIndex::from_faces(&nodes, 0.0).ok(),
+            masters,
+            rule,
+        })
+    }
+
+    /// The points `(xi_s, w J0)` of slave face `f` (reference coordinates
+    /// `x_ref`): every facing master face near it clipped and triangulated.
+    fn points(
+        &self,
+        pair: &FacePair,
+        f: usize,
+        x_ref: &Face<[f64; 3]>,
+    ) -> Result<Vec<([f64; 2], f64)>, FaceLayoutError> {
+        let clip_err = |master, source| FaceLayoutError::Clip {
+            pair: pair.name.clone(),
+            face: f,
+            master,
+            source,
+        };
+        let slave = SlaveFace::new(x_ref.nodes()).map_err(|e| clip_err(0, e))?;
+        let candidates: Vec<usize> = match Aabb::around(f, x_ref.nodes(), x_ref.size())
+            .ok()
+            .zip(self.index.as_ref())
+            .and_then(|(b, index)| index.query_box(&b).ok())
+        {
+            Some(c) => c,
+            None => (0..self.masters.len()).collect(),
+        };
+        let n_s = x_ref.normal();
+        let mut out = Vec::new();
+        for m in candidates {
+            let master = &self.masters[m];
+            if crate::mesh::volume::dot(n_s, master.normal()) >= 0.0 {
+                continue;
+            }
+            for p in slave
+                .integration_points(master.nodes(), self.rule)
+                .map_err(|e| clip_err(m, e))?
+            {
+                out.push((p.uv, p.weight));
+            }
+        }
+        Ok(out)
+    }
+}
+
+impl FaceLayout {
+    /// Lays out `pairs` on `mesh`, with every pair's reading replaced by
+    /// `reading` when given.
+    pub fn new(
+        mesh: &Mesh<3>,
+        pairs: &[FacePair],
+        reading: Option<Formulation>,
+    ) -> Result<FaceLayout, FaceLayoutError> {
+        let mut points = Vec::new();
+        let mut multipliers = Vec::new();
+        let mut complementarity = Vec::new();
+        let mut readings = Vec::new();
+        for (p, pair) in pairs.iter().enumerate() {
+            let pid = PairId::new(p);
+            let pair_reading = reading.unwrap_or(pair.reading);
+            if face_formulation(pair_reading, FaceKind::Tri3, FaceKind::Tri3).is_none() {
+                return Err(FaceLayoutError::Reading {
+                    pair: pair.name.clone(),
+                    reading: pair_reading,
+                });
+            }
+            readings.push(pair_reading);
+            let mut mult_of_node = HashMap::new();
+            for face in &pair.slave {
+                for &n in face.nodes() {
+                    mult_of_node.entry(n).or_insert_with(|| {
+                        multipliers.push(MultiplierDof { pair: pid, node: n });
+                        MultiplierIndex::new(multipliers.len() - 1)
+                    });
+                }
+            }
+            let segmented = match pair.integration {
+                Integration::Gauss => None,
+                Integration::Segmented => Some(Segmenter::new(mesh, pair)?),
+            };
+            let mut rules = HashMap::new();
+            let mut total_size = 0.0;
+            for (f, face) in pair.slave.iter().enumerate() {
+                let x_ref = face.map_nodes(|n| mesh.node_ref(n));
+                let nodes = face.nodes();
+                let mults = std::array::from_fn(|a| mult_of_node[&nodes[a.min(nodes.len() - 1)]]);
+                let face_points = match &segmented {
+                    Some(seg) => seg.points(pair, f, &x_ref)?,
+                    None => {
+                        let kind = face.kind();
+                        if let std::collections::hash_map::Entry::Vacant(e) = rules.entry(kind) {
+                            let rk = rule_kind(kind);
+                            let n = pair.gauss_points.unwrap_or_else(|| default_points(rk));
+                            e.insert(face_rule(rk, n).map_err(|source| FaceLayoutError::Rule {
+                                pair: pair.name.clone(),
+                                source,
+                            })?);
+                        }
+                        let mut out = Vec::new();
+                        for (g, &(xi, w)) in rules[&kind].points.iter().enumerate() {
+                            let j0 = x_ref.area_element(xi);
+                            if !(j0.is_finite() && j0 > 0.0) {
+                                return Err(FaceLayoutError::DegenerateSlaveFace {
+                                    pair: pair.name.clone(),
+                                    face: f,
+                                    gauss: g,
+                                    area_element: j0,
+                                });
+                            }
+                            out.push((xi, w * j0));
+                        }
+                        out
+                    }
+                };
+                for (g, (xi, weight_ref)) in face_points.into_iter().enumerate() {
+                    points.push(FacePoint {
+                        pair: pid,
+                        slave_face: f,
+                        gauss: g,
+                        xi_s: xi,
+                        weight_ref,
+                        slave: *face,
+                        multipliers: mults,
+                    });
+                }
+                total_size += x_ref.size();
+            }
+            let young = mesh
+                .bodies
+                .iter()
+                .find(|b| pair.slave.first().is_some_and(|f| b.has_node(f.nodes()[0])))
+                .map_or(1.0, |b| b.material.young);
+            let h = total_size / pair.slave.len().max(1) as f64;
+            complementarity.push(young / h);
+        }
+        Ok(FaceLayout {
+            points,
+            multipliers,
+            readings,
+            modes: pairs.iter().map(|c| c.mode).collect(),
+            masters: pairs.iter().map(|c| c.master.clone()).collect(),
+            complementarity,
+        })
+    }
+
+    /// The static data of point `i`.
+    pub fn point(&self, i: ContactPointIndex) -> &FacePoint {
+        &self.points[i.index()]
+    }
+
+    /// The master faces of `pair`.
+    pub fn masters_of(&self, pair: PairId) -> &[Face<NodeId>] {
+        &self.masters[pair.index()]
+    }
+
+    /// The current coordinates of `node` at displacements `u`.
+    pub fn current(mesh: &Mesh<3>, u: &[f64], node: NodeId) -> [f64; 3] {
+        let x = mesh.node_ref(node);
+        std::array::from_fn(|k| x[k] + u[DofId::in_dim::<3>(node, k).index()])
+    }
+
+    /// A face's current coordinates at displacements `u`.
+    pub fn current_face(mesh: &Mesh<3>, u: &[f64], face: &Face<NodeId>) -> Face<[f64; 3]> {
+        face.map_nodes(|n| Self::current(mesh, u, n))
+    }
+}

@@ -1,0 +1,414 @@
+//! The 3D contact element's evaluations ([`FaceEval`]) and pairing: which
+//! master face a slave integration point projects into.
+//!
+//! # Pairing
+//!
+//! A point is paired with its current master face if it projects into it
+//! (`xi_m` on the face within [`XI_INSIDE_TOL`]:
+//! [`crate::mesh::face_shape::inside`]) and the two faces **face** each
+//! other (`n_s . n_m < 0`, the outward normals `t_1 x t_2` of the slave
+//! face at `xi_s` and of the master face at `xi_m`, as the 2D rule).
+//! Otherwise it is paired with the master face, among all those it
+//! projects into and faces, of the smallest `|g|` (the first in master
+//! order on a tie), or with none (inactive).
+//!
+//! The search goes through a [`FaceIndex`] of the pair's master faces'
+//! current boxes. Both readings make `x_ms` parallel to the normal `n`
+//! (slave-normal: `x_ms` is orthogonal to the slave tangents;
+//! closest-point: to the master tangents), so `|x_ms| = |g|`: a point
+//! that projects into face `f` at gap `g` lies within `|g|` of a point of
+//! `f`, hence of `f`'s box. The faces whose box lies within `r` of `x_s`
+//! therefore include every face the point projects into with `|g| <= r`
+//! (the query radius is inflated by `1e-6 (r + h)` against the rounding of
+//! `x_m` and of the inside tolerance, `h` the mean master face size).
+//! Starting from `r = h`: if the best candidate has `|g| <= r` it is the
+//! best of all faces; if it has a larger `|g|`, the query is repeated with
+//! `r = |g|`, after which the answer is exact; if there is none, `r` grows
+//! fourfold until the query holds every face. So the index chooses what
+//! trying every face in order chooses (tested against that scan).
+//!
+//! Invariants: evaluations are in point order; a point is paired only with
+//! a face it projects into and faces; slave-side kernel failures
+//! ([`super::slave_side`]) are errors, master-side ones mean "not this
+//! face".
+
+use contact_kernels::{ApproxType, GapOut, Kernel, KernelError, Projector};
+use nalgebra::{SMatrix, SVector};
+
+use crate::ids::{ContactPointIndex, DofId, MasterFaceIndex, NodeId};
+use crate::mesh::Mesh;
+use crate::mesh::face_shape::inside;
+use crate::mesh::volume::{Face, dot};
+use crate::par;
+
+use super::face_index::FaceIndex;
+use super::face_layout::{FaceLayout, face_formulation};
+use super::term::GapTerm;
+use super::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, slave_side};
+
+/// The coordinates of the largest face pair (a quad4 on a quad4: 8 nodes
+/// of 3): the size of a [`FaceEval`]'s gradient and Hessian.
+pub const FACE_COORDS: usize = 24;
+
+/// The gap and its derivatives at one paired 3D integration point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceEval {
+    /// Master face index within the pair.
+    pub master: MasterFaceIndex,
+    /// The slave face's nodes then the master face's; `node_count` used.
+    pub nodes: [NodeId; 8],
+    /// How many of `nodes` are used (6 to 8).
+    pub node_count: usize,
+    /// Gap (exact or Taylor-approximated).
+    pub gap: f64,
+    /// The projection `xi_m = (u, v)` on the master face.
+    pub xi_m: [f64; 2],
+    /// `dg/du` on the `3 node_count` coordinates of `nodes` (zero beyond).
+    pub grad: SVector<f64, FACE_COORDS>,
+    /// `d2g/du2`, `None` when the type has none (Type 1).
+    pub hess: Option<SMatrix<f64, FACE_COORDS, FACE_COORDS>>,
+}
+
+impl GapTerm<FACE_COORDS> for FaceEval {
+    fn gap(&self) -> f64 {
+        self.gap
+    }
+
+    fn grad(&self) -> &SVector<f64, FACE_COORDS> {
+        &self.grad
+    }
+
+    fn hess(&self) -> Option<&SMatrix<f64, FACE_COORDS, FACE_COORDS>> {
+        self.hess.as_ref()
+    }
+
+    fn dof(&self, k: usize) -> Option<DofId> {
+        (k / 3 < self.node_count).then(|| DofId::in_dim::<3>(self.nodes[k / 3], k % 3))
+    }
+
+    fn with_gap(&self, gap: f64, grad: SVector<f64, FACE_COORDS>) -> FaceEval {
+        FaceEval { gap, grad, ..*self }
+    }
+}
+
+/// The master faces' index of one pair at one configuration, with the
+/// mean face size `h`.
+struct MasterFaces {
+    index: FaceIndex<3>,
+    size: f64,
+}
+
+impl FaceLayout {
+    /// The slave face's nodes then master face `master`'s of point `i`.
+    fn pair_nodes(&self, i: ContactPointIndex, master: MasterFaceIndex) -> ([NodeId; 8], usize) {
+        let pt = self.point(i);
+        let m = self.masters_of(pt.pair)[master.index()];
+        let mut nodes = [NodeId::new(0); 8];
+        let mut count = 0;
+        for &n in pt.slave.nodes().iter().chain(m.nodes()) {
+            nodes[count] = n;
+            count += 1;
+        }
+        (nodes, count)
+    }
+
+    /// The current coordinates `q` of `nodes` (3 per node).
+    fn q(mesh: &Mesh<3>, u: &[f64], nodes: &[NodeId]) -> Vec<f64> {
+        nodes
+            .iter()
+            .flat_map(|&n| Self::current(mesh, u, n))
+            .collect()
+    }
+
+    /// The kernel formulation of point `i` on master face `master`.
+    fn formulation_of(
+        &self,
+        i: ContactPointIndex,
+        master: MasterFaceIndex,
+    ) -> Result<contact_kernels::Formulation, KernelError> {
+        let pt = self.point(i);
+        let reading = self.readings[pt.pair.index()];
+        let m = self.masters_of(pt.pair)[master.index()];
+        face_formulation(reading, pt.slave.kind(), m.kind())
+            .ok_or(KernelError::NotCompiled(reading))
+    }
+
+    /// Evaluates the kernel of type `ty` for point `i` on master face
+    /// `master`, wherever on the face's surface the point projects.
+    pub fn evaluate_on(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        i: ContactPointIndex,
+        master: MasterFaceIndex,
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<FaceEval, KernelError> {
+        counts.evaluate += 1;
+        let kernel = Kernel::new(self.formulation_of(i, master)?, ty)?;
+        let (nodes, node_count) = self.pair_nodes(i, master);
+        let q = Self::q(mesh, u, &nodes[..node_count]);
+        let mut out = GapOut::new(&kernel);
+        kernel.eval(&q, self.point(i).xi_s, &mut out)?;
+        let n = q.len();
+        let g = out.grad();
+        let xi = out.xi_m_all();
+        Ok(FaceEval {
+            master,
+            nodes,
+            node_count,
+            gap: out.gap(),
+            xi_m: [xi[0], xi[1]],
+            grad: SVector::from_fn(|k, _| if k < n { g[k] } else { 0.0 }),
+            hess: out
+                .hess()
+                .map(|h| SMatrix::from_fn(|r, c| if r < n && c < n { h[r * n + c] } else { 0.0 })),
+        })
+    }
+
+    /// Whether point `i`'s slave face at `xi_s` and master face `master`
+    /// at `xi_m` face each other at displacements `u` (module docs).
+    pub fn faces_each_other(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        i: ContactPointIndex,
+        master: MasterFaceIndex,
+        xi_m: [f64; 2],
+    ) -> bool {
+        let pt = self.point(i);
+        let s = Self::current_face(mesh, u, &pt.slave);
+        let m = Self::current_face(mesh, u, &self.masters_of(pt.pair)[master.index()]);
+        dot(s.normal_at(pt.xi_s), m.normal_at(xi_m)) < 0.0
+    }
+
+    /// Projects point `i` onto master face `master`: `Ok(Some((g, xi_m)))`
+    /// when it projects into the face and the faces face each other,
+    /// `Ok(None)` when not (or on a master-side kernel failure), `Err` on a
+    /// slave-side failure.
+    fn project_into(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        i: ContactPointIndex,
+        master: MasterFaceIndex,
+        counts: &mut KernelCounts,
+    ) -> Result<Option<(f64, [f64; 2])>, PointFailure<MasterFaceIndex>> {
+        let fail = |error| PointFailure {
+            point: i,
+            master_segment: Some(master),
+            error,
+        };
+        let projector = self.formulation_of(i, master).and_then(Projector::new);
+        let projector = projector.map_err(fail)?;
+        let (nodes, node_count) = self.pair_nodes(i, master);
+        let q = Self::q(mesh, u, &nodes[..node_count]);
+        let mut scratch = vec![0.0; q.len()];
+        counts.project += 1;
+        match projector.project(&q, self.point(i).xi_s, &mut scratch) {
+            Ok(p) => {
+                let xi = p.xi_m_all();
+                let xi_m = [xi[0], xi[1]];
+                let kind = self.masters_of(self.point(i).pair)[master.index()].kind();
+                Ok((inside(kind, xi_m, XI_INSIDE_TOL)
+                    && self.faces_each_other(mesh, u, i, master, xi_m))
+                .then_some((p.gap, xi_m)))
+            }
+            Err(e) if slave_side(&e) => Err(fail(e)),
+            Err(_) => Ok(None),
+        }
+    }
+
+    /// The index of every pair's master faces at displacements `u`.
+    fn master_indexes(&self, mesh: &Mesh<3>, u: &[f64]) -> Vec<Option<MasterFaces>> {
+        self.masters
+            .iter()
+            .map(|faces| {
+                let coords: Vec<Face<[f64; 3]>> = faces
+                    .iter()
+                    .map(|f| Self::current_face(mesh, u, f))
+                    .collect();
+                let nodes: Vec<&[[f64; 3]]> = coords.iter().map(|f| f.nodes()).collect();
+                let size =
+                    coords.iter().map(|f| f.size()).sum::<f64>() / coords.len().max(1) as f64;
+                FaceIndex::from_faces(&nodes, 0.0)
+                    .ok()
+                    .map(|index| MasterFaces { index, size })
+            })
+            .collect()
+    }
+
+    /// The master face point `i` projects into with the smallest `|g|`
+    /// (module docs), through the pair's index (`None` in `indexes`: a
+    /// configuration the index refuses, e.g. non-finite, scanned face by
+    /// face).
+    fn find_master(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        i: ContactPointIndex,
+        indexes: &[Option<MasterFaces>],
+        counts: &mut KernelCounts,
+    ) -> Result<Option<MasterFaceIndex>, PointFailure<MasterFaceIndex>> {
+        let pt = self.point(i);
+        let n_faces = self.masters_of(pt.pair).len();
+        let best_of = |cands: &[usize],
+                       counts: &mut KernelCounts|
+         -> Result<Option<(usize, f64)>, PointFailure<MasterFaceIndex>> {
+            let mut best: Option<(usize, f64)> = None;
+            for &f in cands {
+                if let Some((g, _)) =
+                    self.project_into(mesh, u, i, MasterFaceIndex::new(f), counts)?
+                    && best.is_none_or(|(_, b)| g.abs() < b)
+                {
+                    best = Some((f, g.abs()));
+                }
+            }
+            Ok(best)
+        };
+        let Some(faces) = &indexes[pt.pair.index()] else {
+            let all: Vec<usize> = (0..n_faces).collect();
+            return Ok(best_of(&all, counts)?.map(|(f, _)| MasterFaceIndex::new(f)));
+        };
+        let x_s = Self::current_face(mesh, u, &pt.slave).point_and_tangents(pt.xi_s)[0];
+        let mut r = faces.size.max(f64::MIN_POSITIVE);
+        loop {
+            let slack = 1e-6 * (r + faces.size);
+            let cands = match faces.index.query_point(&x_s, r + slack) {
+                Ok(c) => c,
+                Err(_) => (0..n_faces).collect(),
+            };
+            match best_of(&cands, counts)? {
+                Some((f, g)) if g <= r => return Ok(Some(MasterFaceIndex::new(f))),
+                Some((_, g)) => r = g,
+                None if cands.len() == n_faces => return Ok(None),
+                None => r *= 4.0,
+            }
+        }
+    }
+
+    /// Pairs point `i` (from its current master `start`) and evaluates the
+    /// kernel of type `ty` there; `Ok(None)`: it projects into no master
+    /// face.
+    #[allow(clippy::too_many_arguments)] // the pass's state: mesh, u, indexes, counts
+    fn pair_and_evaluate(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        i: ContactPointIndex,
+        start: Option<MasterFaceIndex>,
+        ty: ApproxType,
+        indexes: &[Option<MasterFaces>],
+        counts: &mut KernelCounts,
+    ) -> Result<Option<FaceEval>, PointFailure<MasterFaceIndex>> {
+        let fail = |m, error| PointFailure {
+            point: i,
+            master_segment: Some(m),
+            error,
+        };
+        if let Some(m) = start {
+            let kind = self.masters_of(self.point(i).pair)[m.index()].kind();
+            match self.evaluate_on(mesh, u, i, m, ty, counts) {
+                Ok(e)
+                    if inside(kind, e.xi_m, XI_INSIDE_TOL)
+                        && self.faces_each_other(mesh, u, i, m, e.xi_m) =>
+                {
+                    return Ok(Some(e));
+                }
+                Ok(_) => {}
+                Err(e) if slave_side(&e) => return Err(fail(m, e)),
+                Err(_) => {}
+            }
+        }
+        match self.find_master(mesh, u, i, indexes, counts)? {
+            None => Ok(None),
+            Some(m) => self
+                .evaluate_on(mesh, u, i, m, ty, counts)
+                .map(Some)
+                .map_err(|e| fail(m, e)),
+        }
+    }
+
+    /// Pairs every point and evaluates type `ty` at displacements `u`, in
+    /// parallel; returns the evaluations (`None`: projects nowhere) and the
+    /// kernel-call counts. `pairing` gives each point's current master.
+    pub fn evaluate_all(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pairing: &[Option<MasterFaceIndex>],
+        ty: ApproxType,
+    ) -> Result<(Vec<Option<FaceEval>>, KernelCounts), PointFailure<MasterFaceIndex>> {
+        let indexes = self.master_indexes(mesh, u);
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
+            let i = ContactPointIndex::new(k);
+            self.pair_and_evaluate(mesh, u, i, pairing[k], ty, &indexes, c)
+        })
+    }
+
+    /// Evaluates type `ty` at every point on the master face `pairing`
+    /// gives it, without re-pairing (the projection may lie beyond the
+    /// face); `None` points stay inactive. A point whose kernel fails on
+    /// its face for a master-side reason is re-paired as by
+    /// [`evaluate_all`](Self::evaluate_all).
+    pub fn evaluate_paired(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pairing: &[Option<MasterFaceIndex>],
+        ty: ApproxType,
+    ) -> Result<(Vec<Option<FaceEval>>, KernelCounts), PointFailure<MasterFaceIndex>> {
+        let indexes = std::sync::OnceLock::new();
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
+            let i = ContactPointIndex::new(k);
+            match pairing[k] {
+                None => Ok(None),
+                Some(m) => match self.evaluate_on(mesh, u, i, m, ty, c) {
+                    Ok(e) => Ok(Some(e)),
+                    Err(error) if slave_side(&error) => Err(PointFailure {
+                        point: i,
+                        master_segment: Some(m),
+                        error,
+                    }),
+                    Err(_) => {
+                        let indexes = indexes.get_or_init(|| self.master_indexes(mesh, u));
+                        self.pair_and_evaluate(mesh, u, i, None, ty, indexes, c)
+                    }
+                },
+            }
+        })
+    }
+
+    /// Pairs every point from scratch at displacements `u`: each point's
+    /// master face (`None`: projects into none) and the projection calls.
+    pub fn initial_pairing(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+    ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
+        self.pair_all(mesh, u, &self.master_indexes(mesh, u))
+    }
+
+    /// [`Self::initial_pairing`] trying every master face in order (no
+    /// index): the reference the index's choices are tested against.
+    pub fn pairing_by_scan(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+    ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
+        let none: Vec<Option<MasterFaces>> = self.masters.iter().map(|_| None).collect();
+        self.pair_all(mesh, u, &none)
+    }
+
+    /// Every point's master face with `indexes` (in parallel).
+    fn pair_all(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        indexes: &[Option<MasterFaces>],
+    ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
+            self.find_master(mesh, u, ContactPointIndex::new(k), indexes, c)
+        })
+    }
+}

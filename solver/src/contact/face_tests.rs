@@ -1,0 +1,374 @@
+//! The 3D contact element on two stacked hexahedral blocks with
+//! non-matching faces: weights, gaps, pairing against the scan, the
+//! element's residual and tangent against finite differences of its
+//! potential, the frozen expansion and the active set.
+
+use contact_kernels::{ApproxType, Formulation};
+use nalgebra::{DMatrix, DVector};
+
+use crate::assembly::{DofMap, System, assemble_contact_terms};
+use crate::element::material::{Kinematics, Material, PlaneModel};
+use crate::ids::{ContactPointIndex, MasterFaceIndex, NodeId};
+use crate::mesh::Mesh;
+use crate::mesh::block3d::{Block3d, Side3d};
+use crate::mesh::volume::Face;
+use crate::model::{ContactMode, FacePair, Integration};
+
+use super::active_set::ActiveSetView;
+use super::term::{GapTerm, WeightedPoint};
+use super::{FaceEval, FaceLayout, KernelCounts, Taylor};
+
+const MATERIAL: Material = Material {
+    young: 200.0,
+    poisson: 0.3,
+    model: PlaneModel::PlaneStrain,
+    kinematics: Kinematics::Small,
+};
+
+/// A base `[0, 2]^2 x [0, 1]` of 2 x 2 x 1 hexahedra and a cap
+/// `[0.3, 1.7]^2 x [1 + gap, 1.5 + gap]` of 3 x 3 x 1 above it; the cap's
+/// bottom faces (split into triangles when `tri_slave`) are the slave
+/// faces, the base's top faces the master faces.
+fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, FacePair) {
+    let mut mesh = Mesh::<3>::new();
+    let base = Block3d {
+        origin: [0.0, 0.0, 0.0],
+        size: [2.0, 2.0, 1.0],
+        nx: 2,
+        ny: 2,
+        nz: 1,
+    };
+    let cap = Block3d {
+        origin: [0.3, 0.3, 1.0 + gap],
+        size: [1.4, 1.4, 0.5],
+        nx: 3,
+        ny: 3,
+        nz: 1,
+    };
+    let b = mesh.add_block3d("base", MATERIAL, base).unwrap();
+    let c = mesh.add_block3d("cap", MATERIAL, cap).unwrap();
+    let global = |body: usize, f: Face| {
+        let start = mesh.bodies[body].nodes.start;
+        f.map_nodes(|n| NodeId::new(start + n))
+    };
+    let master = base
+        .side(Side3d::Top)
+        .unwrap()
+        .into_iter()
+        .map(|f| global(b, f))
+        .collect();
+    let mut slave: Vec<Face<NodeId>> = cap
+        .side(Side3d::Bottom)
+        .unwrap()
+        .into_iter()
+        .map(|f| global(c, f))
+        .collect();
+    if tri_slave {
+        slave = slave
+            .into_iter()
+            .flat_map(|f| match f {
+                Face::Quad4([a, b, c, d]) => [Face::Tri3([a, b, c]), Face::Tri3([a, c, d])],
+                Face::Tri3(_) => unreachable!("a block's sides are quad4"),
+            })
+            .collect();
+    }
+    let pair = FacePair {
+        name: "cap-on-base".to_owned(),
+        slave,
+        master,
+        reading,
+        mode: ContactMode::Unilateral,
+        gauss_points: None,
+        integration: Integration::Gauss,
+    };
+    (mesh, pair)
+}
+
+/// A smooth displacement field that tilts and warps both surfaces a
+/// little (the cap's nodes more than the base's).
+fn warp(mesh: &Mesh<3>, scale: f64) -> Vec<f64> {
+    let mut u = vec![0.0; 3 * mesh.node_count()];
+    for n in mesh.node_ids() {
+        let x = mesh.node_ref(n);
+        let s = if x[2] > 1.0 { 1.0 } else { 0.4 };
+        let d = [
+            0.03 * (1.3 * x[1] + 0.4).sin() + 0.01 * x[2],
+            -0.02 * (0.9 * x[0]).cos() + 0.015 * x[0] * x[1],
+            0.02 * (1.1 * x[0] + 0.7 * x[1]).sin() - 0.01 * x[0] * x[0],
+        ];
+        for k in 0..3 {
+            u[3 * n.index() + k] = scale * s * d[k];
+        }
+    }
+    u
+}
+
+#[test]
+fn weights_add_up_to_the_slave_area_and_flat_gaps_are_the_offset() {
+    for tri in [false, true] {
+        for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+            let (mesh, pair) = stacked(0.05, tri, reading);
+            let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+            let per_face = if tri { 3 } else { 4 };
+            assert_eq!(layout.points.len(), pair.slave.len() * per_face);
+            let area: f64 = layout.points.iter().map(|p| p.weight_ref()).sum();
+            assert!((area - 1.96).abs() < 1e-13, "{area}");
+            // one multiplier per cap bottom node (4 x 4)
+            assert_eq!(layout.multipliers.len(), 16);
+            let u = vec![0.0; 3 * mesh.node_count()];
+            let (pairing, _) = layout.initial_pairing(&mesh, &u).unwrap();
+            assert!(pairing.iter().all(Option::is_some));
+            let (evals, counts) = layout
+                .evaluate_all(&mesh, &u, &pairing, ApproxType::Type6)
+                .unwrap();
+            assert_eq!(counts.evaluate as usize, layout.points.len());
+            for e in evals.iter().map(|e| e.unwrap()) {
+                assert!((e.gap - 0.05).abs() < 1e-14, "{}", e.gap);
+            }
+        }
+    }
+}
+
+#[test]
+fn the_index_pairs_as_the_scan_of_every_master_face() {
+    for tri in [false, true] {
+        for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+            let (mesh, pair) = stacked(0.02, tri, reading);
+            let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+            for scale in [0.0, 1.0, 3.0] {
+                let u = warp(&mesh, scale);
+                let (by_index, _) = layout.initial_pairing(&mesh, &u).unwrap();
+                let (by_scan, _) = layout.pairing_by_scan(&mesh, &u).unwrap();
+                assert_eq!(by_index, by_scan, "tri {tri}, {reading}, scale {scale}");
+                assert!(by_index.iter().all(Option::is_some));
+            }
+        }
+    }
+    // the cap moved off the base: points beyond the base's edge are unpaired
+    let (mesh, pair) = stacked(0.02, false, Formulation::SlaveNormal);
+    let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+    let mut u = vec![0.0; 3 * mesh.node_count()];
+    for n in mesh.node_ids().filter(|&n| mesh.node_ref(n)[2] > 1.0) {
+        u[3 * n.index()] = 1.0;
+    }
+    let (by_index, _) = layout.initial_pairing(&mesh, &u).unwrap();
+    let (by_scan, _) = layout.pairing_by_scan(&mesh, &u).unwrap();
+    assert_eq!(by_index, by_scan);
+    let paired = by_index.iter().filter(|p| p.is_some()).count();
+    assert!(paired > 0 && paired < by_index.len(), "{paired}");
+}
+
+/// The potential `Pi_c = sum w J0 lambda g` of `layout`'s points on the
+/// pairing `pairing`, and its assembled residual and tangent (every
+/// multiplier active).
+fn potential(
+    mesh: &Mesh<3>,
+    layout: &FaceLayout,
+    pairing: &[Option<MasterFaceIndex>],
+    u: &[f64],
+    lambda: &[f64],
+) -> (f64, DVector<f64>, DMatrix<f64>) {
+    let (evals, _) = layout
+        .evaluate_paired(mesh, u, pairing, ApproxType::Type6)
+        .unwrap();
+    let mut pi = 0.0;
+    for (pt, e) in layout.points.iter().zip(&evals) {
+        if let Some(e) = e {
+            pi += pt.weight_ref() * pt.multiplier_shape().lambda(lambda) * e.gap();
+        }
+    }
+    let n = u.len() + lambda.len();
+    let dofs = DofMap::all_free(u.len(), lambda.len());
+    let mut sys = System::new(n);
+    let active = vec![true; lambda.len()];
+    assemble_contact_terms(&layout.points, &evals, lambda, &active, &dofs, &mut sys);
+    let mut k = DMatrix::zeros(n, n);
+    for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+        k[(r, c)] += v;
+    }
+    (pi, DVector::from_vec(sys.residual.clone()), k)
+}
+
+#[test]
+fn residual_and_tangent_are_the_derivatives_of_the_potential() {
+    for (tri, reading) in [
+        (false, Formulation::SlaveNormal),
+        (true, Formulation::ClosestPoint),
+        (true, Formulation::SlaveNormal),
+    ] {
+        let (mesh, pair) = stacked(0.02, tri, reading);
+        let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+        let u0 = warp(&mesh, 1.0);
+        let (pairing, _) = layout.initial_pairing(&mesh, &u0).unwrap();
+        let lambda: Vec<f64> = (0..layout.multipliers.len())
+            .map(|m| -1.0 - 0.3 * (m as f64 * 0.7).sin())
+            .collect();
+        let (_, r, k) = potential(&mesh, &layout, &pairing, &u0, &lambda);
+        let nu = u0.len();
+        let h = 1e-6;
+        let mut worst_r: f64 = 0.0;
+        let mut worst_k: f64 = 0.0;
+        let scale_r = r.amax().max(1e-3);
+        let scale_k = k.amax().max(1e-3);
+        for j in 0..nu + lambda.len() {
+            let shifted = |s: f64| {
+                let (mut u, mut l) = (u0.clone(), lambda.clone());
+                if j < nu {
+                    u[j] += s;
+                } else {
+                    l[j - nu] += s;
+                }
+                potential(&mesh, &layout, &pairing, &u, &l)
+            };
+            let (pp, rp, _) = shifted(h);
+            let (pm, rm, _) = shifted(-h);
+            worst_r = worst_r.max(((pp - pm) / (2.0 * h) - r[j]).abs() / scale_r);
+            let column = (rp - rm) / (2.0 * h);
+            for i in 0..nu + lambda.len() {
+                // the inactive part of the system aside, K is the Jacobian
+                // of r; the multiplier-multiplier block is zero
+                worst_k = worst_k.max((column[i] - k[(i, j)]).abs() / scale_k);
+            }
+        }
+        assert!(worst_r < 1e-7, "tri {tri} {reading}: residual {worst_r:e}");
+        assert!(worst_k < 1e-6, "tri {tri} {reading}: tangent {worst_k:e}");
+    }
+}
+
+#[test]
+fn the_frozen_expansion_in_3d_is_exact_at_its_point_with_its_own_gradient() {
+    let (mesh, pair) = stacked(0.02, true, Formulation::SlaveNormal);
+    let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+    let u0 = warp(&mesh, 1.0);
+    let (pairing, _) = layout.initial_pairing(&mesh, &u0).unwrap();
+    let i = ContactPointIndex::new(5);
+    let m = pairing[5].unwrap();
+    for ty in [ApproxType::Type1, ApproxType::Type3, ApproxType::Type6] {
+        let at = layout
+            .evaluate_on(&mesh, &u0, i, m, ty, &mut KernelCounts::default())
+            .unwrap();
+        let t: Taylor<FaceEval, 24> = Taylor::at(at, &u0);
+        assert_eq!(t.expand(&u0).gap, at.gap);
+        let u1 = warp(&mesh, 1.3);
+        let e = t.expand(&u1);
+        let h = 1e-6;
+        for k in 0..24 {
+            let Some(d) = e.dof(k) else {
+                assert_eq!(e.grad[k], 0.0);
+                continue;
+            };
+            let (mut up, mut um) = (u1.clone(), u1.clone());
+            up[d.index()] += h;
+            um[d.index()] -= h;
+            let fd = (t.expand(&up).gap - t.expand(&um).gap) / (2.0 * h);
+            assert!(
+                (fd - e.grad[k]).abs() < 1e-8,
+                "{ty:?} {k}: {fd} {}",
+                e.grad[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn penetrating_nodes_are_active_and_open_ones_are_not() {
+    for (gap, expect) in [(-0.01, true), (0.01, false)] {
+        let (mesh, pair) = stacked(gap, false, Formulation::SlaveNormal);
+        let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+        let u = vec![0.0; 3 * mesh.node_count()];
+        let (pairing, _) = layout.initial_pairing(&mesh, &u).unwrap();
+        let (evals, _) = layout
+            .evaluate_all(&mesh, &u, &pairing, ApproxType::Type6)
+            .unwrap();
+        let view = ActiveSetView {
+            points: &layout.points,
+            multipliers: &layout.multipliers,
+            modes: &layout.modes,
+            complementarity: &layout.complementarity,
+        };
+        let lambda = vec![0.0; layout.multipliers.len()];
+        let active = view.active_multipliers(&evals, &lambda, 1.0);
+        assert!(active.iter().all(|&a| a == expect), "gap {gap}");
+    }
+}
+
+#[test]
+fn a_gauss_count_without_a_rule_and_a_segment_reading_are_refused() {
+    let (mesh, mut pair) = stacked(0.0, true, Formulation::SlaveNormal);
+    pair.gauss_points = Some(2);
+    let err = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap_err();
+    assert!(err.to_string().contains("tri3"), "{err}");
+    pair.gauss_points = None;
+    let err = FaceLayout::new(
+        &mesh,
+        std::slice::from_ref(&pair),
+        Some(Formulation::Tri3SlaveNormal),
+    )
+    .unwrap_err();
+    assert!(err.to_string().contains("not a reading"), "{err}");
+}
+
+/// The contact patch test of the element: a uniform pressure on the cap's
+/// flat bottom loads the base's top nodes with the consistent nodal forces
+/// `p int N_b dA` over the overlap `[0.3, 1.7]^2`, which are exact with
+/// segmented integration and not with the Gauss rule on the (non-matching)
+/// slave faces. With unit spacing the base's hat functions integrate to
+/// `a(x) a(y)`, `a = 0.91` at the middle node and `0.245` at an edge node.
+#[test]
+fn segmented_integration_gives_the_exact_master_forces_of_a_uniform_pressure() {
+    let a = |k: usize| if k == 1 { 0.91 } else { 0.245 };
+    let mut gauss_error: f64 = 0.0;
+    for tri in [false, true] {
+        for integration in [Integration::Segmented, Integration::Gauss] {
+            for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+                let (mesh, mut pair) = stacked(0.0, tri, reading);
+                pair.integration = integration;
+                let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+                let area: f64 = layout.points.iter().map(|p| p.weight_ref()).sum();
+                assert!((area - 1.96).abs() < 1e-12, "{area}");
+                let u = vec![0.0; 3 * mesh.node_count()];
+                let (pairing, _) = layout.initial_pairing(&mesh, &u).unwrap();
+                let (evals, _) = layout
+                    .evaluate_all(&mesh, &u, &pairing, ApproxType::Type6)
+                    .unwrap();
+                // the force on node dof d: sum w lambda dg/du_d with lambda = 1
+                let mut force = vec![0.0; u.len()];
+                for (pt, e) in layout.points.iter().zip(&evals) {
+                    let e = e.expect("every point is over the base");
+                    for k in 0..24 {
+                        if let Some(d) = e.dof(k) {
+                            force[d.index()] += pt.weight_ref() * e.grad[k];
+                        }
+                    }
+                }
+                let mut worst: f64 = 0.0;
+                for face in &pair.master {
+                    for &n in face.nodes() {
+                        let x = mesh.node_ref(n);
+                        let exact = -a(x[0].round() as usize) * a(x[1].round() as usize);
+                        let fz = force[3 * n.index() + 2];
+                        worst = worst.max((fz - exact).abs());
+                        assert!(force[3 * n.index()].abs() < 1e-12);
+                    }
+                }
+                match integration {
+                    Integration::Segmented => {
+                        assert!(worst < 1e-12, "tri {tri} {reading}: {worst:e}")
+                    }
+                    Integration::Gauss => gauss_error = gauss_error.max(worst),
+                }
+            }
+        }
+    }
+    // the Gauss rule on non-matching faces misses the master kinks
+    assert!(gauss_error > 1e-3, "{gauss_error:e}");
+}
+
+#[test]
+fn segmented_integration_refuses_a_count_without_a_triangle_rule() {
+    let (mesh, mut pair) = stacked(0.0, false, Formulation::SlaveNormal);
+    pair.integration = Integration::Segmented;
+    pair.gauss_points = Some(4);
+    let err = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap_err();
+    assert!(err.to_string().contains("1, 3 or 7"), "{err}");
+}

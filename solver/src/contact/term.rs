@@ -1,0 +1,81 @@
+//! What the assembly, the active set and the frozen Taylor expansion need
+//! of a contact integration point and of its evaluation, in any dimension.
+//!
+//! A point contributes `w J0 lambda(xi_s) g` to the potential, with
+//! `lambda(xi_s) = sum_a N_a(xi_s) l_a` over the multipliers at its slave
+//! face's nodes ([`WeightedPoint`]: `w J0` and the pairs `(l_a, N_a)`). Its
+//! evaluation gives `g`, `g'` and `g''` on the `N` coordinates of the
+//! point's slave and master nodes, each coordinate with its degree of
+//! freedom ([`GapTerm`]). 2D segments ([`super::ContactPoint`],
+//! [`super::PointEval`]: two slave multipliers, `N = 8`) and 3D faces
+//! ([`super::FacePoint`], [`super::FaceEval`]: three or four slave
+//! multipliers, `N = 24` with the coordinates a pair of smaller faces does
+//! not have as padding) implement both, so that one assembly, one active
+//! set and one expansion serve both dimensions.
+//!
+//! Invariants: `multiplier_shape` lists `count <= MAX_POINT_MULTIPLIERS`
+//! entries, in the slave face's node order; a padding coordinate has no
+//! dof and exactly zero gradient and Hessian entries; sums over the
+//! multipliers start with the first term (so two-node segments sum
+//! exactly as `N_1 l_1 + N_2 l_2`).
+
+use nalgebra::{SMatrix, SVector};
+
+use crate::ids::{DofId, MultiplierIndex};
+
+/// The most multipliers one point's slave face carries (a quad4's four
+/// nodes).
+pub const MAX_POINT_MULTIPLIERS: usize = 4;
+
+/// A point's slave face multipliers `l_a` with their shape values
+/// `N_a(xi_s)`: `count` entries (module docs).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MultiplierShape {
+    /// The multipliers at the slave face's nodes, in node order.
+    pub multipliers: [MultiplierIndex; MAX_POINT_MULTIPLIERS],
+    /// `N_a(xi_s)`, in the same order.
+    pub shape: [f64; MAX_POINT_MULTIPLIERS],
+    /// How many entries are used.
+    pub count: usize,
+}
+
+impl MultiplierShape {
+    /// `lambda(xi_s) = sum_a N_a l_a` (summed from the first entry).
+    pub fn lambda(&self, lambda: &[f64]) -> f64 {
+        let mut lam = self.shape[0] * lambda[self.multipliers[0].index()];
+        for a in 1..self.count {
+            lam += self.shape[a] * lambda[self.multipliers[a].index()];
+        }
+        lam
+    }
+
+    /// The used `(l_a, N_a)` pairs.
+    pub fn iter(&self) -> impl Iterator<Item = (MultiplierIndex, f64)> + '_ {
+        (0..self.count).map(|a| (self.multipliers[a], self.shape[a]))
+    }
+}
+
+/// An integration point as the assembly and the active set see it.
+pub trait WeightedPoint {
+    /// `w J0`: the rule's weight times the slave face's reference Jacobian.
+    fn weight_ref(&self) -> f64;
+    /// The multipliers of the point's slave face and their shape values
+    /// at the point.
+    fn multiplier_shape(&self) -> MultiplierShape;
+}
+
+/// A point's evaluation on `N` coordinates as the assembly and the Taylor
+/// expansion see it.
+pub trait GapTerm<const N: usize>: Clone {
+    /// The gap (exact or Taylor-approximated).
+    fn gap(&self) -> f64;
+    /// `dg/du` on the `N` coordinates.
+    fn grad(&self) -> &SVector<f64, N>;
+    /// `d2g/du2`, `None` when the type has none (Type 1).
+    fn hess(&self) -> Option<&SMatrix<f64, N, N>>;
+    /// The degree of freedom of coordinate `k`; `None` for a padding slot.
+    fn dof(&self, k: usize) -> Option<DofId>;
+    /// The same evaluation with gap `gap` and gradient `grad` (the Hessian
+    /// kept): the Taylor expansion's value at another displacement.
+    fn with_gap(&self, gap: f64, grad: SVector<f64, N>) -> Self;
+}
