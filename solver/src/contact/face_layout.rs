@@ -218,6 +218,8 @@ pub struct FaceLayout {
     pub readings: Vec<Formulation>,
     /// The mode of each pair.
     pub modes: Vec<ContactMode>,
+    /// Slave faces of each pair.
+    pub slaves: Vec<Vec<Face<NodeId>>>,
     /// Master faces of each pair.
     pub masters: Vec<Vec<Face<NodeId>>>,
     /// Active-set constant `c` per pair (unilateral mode).
@@ -394,6 +396,7 @@ impl FaceLayout {
             multipliers,
             readings,
             modes: pairs.iter().map(|c| c.mode).collect(),
+            slaves: pairs.iter().map(|c| c.slave.clone()).collect(),
             masters: pairs.iter().map(|c| c.master.clone()).collect(),
             complementarity,
         })

@@ -91,17 +91,42 @@ impl GapTerm<FACE_COORDS> for FaceEval {
     }
 }
 
+/// A point of a slave face to pair and evaluate: an integration point
+/// ([`FaceLayout::probe`]) or a slave node as a point of its first slave
+/// face (the nodal table).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Probe {
+    /// The contact pair.
+    pub pair: crate::ids::PairId,
+    /// The slave face.
+    pub slave: Face<NodeId>,
+    /// The point's parametric coordinates on it.
+    pub xi_s: [f64; 2],
+}
+
+/// A kernel failure on a master face (`None`: before any face was tried).
+pub(super) type Failure = (Option<MasterFaceIndex>, KernelError);
+
 /// The master faces' index of one pair at one configuration, with the
 /// mean face size `h`.
-struct MasterFaces {
+pub(super) struct MasterFaces {
     index: FaceIndex<3>,
     size: f64,
 }
 
 impl FaceLayout {
-    /// The slave face's nodes then master face `master`'s of point `i`.
-    fn pair_nodes(&self, i: ContactPointIndex, master: MasterFaceIndex) -> ([NodeId; 8], usize) {
+    /// Integration point `i` as a probe.
+    pub fn probe(&self, i: ContactPointIndex) -> Probe {
         let pt = self.point(i);
+        Probe {
+            pair: pt.pair,
+            slave: pt.slave,
+            xi_s: pt.xi_s,
+        }
+    }
+
+    /// The slave face's nodes then master face `master`'s of probe `pt`.
+    fn pair_nodes(&self, pt: &Probe, master: MasterFaceIndex) -> ([NodeId; 8], usize) {
         let m = self.masters_of(pt.pair)[master.index()];
         let mut nodes = [NodeId::new(0); 8];
         let mut count = 0;
@@ -120,13 +145,12 @@ impl FaceLayout {
             .collect()
     }
 
-    /// The kernel formulation of point `i` on master face `master`.
+    /// The kernel formulation of probe `pt` on master face `master`.
     fn formulation_of(
         &self,
-        i: ContactPointIndex,
+        pt: &Probe,
         master: MasterFaceIndex,
     ) -> Result<contact_kernels::Formulation, KernelError> {
-        let pt = self.point(i);
         let reading = self.readings[pt.pair.index()];
         let m = self.masters_of(pt.pair)[master.index()];
         face_formulation(reading, pt.slave.kind(), m.kind())
@@ -144,12 +168,25 @@ impl FaceLayout {
         ty: ApproxType,
         counts: &mut KernelCounts,
     ) -> Result<FaceEval, KernelError> {
+        self.evaluate_probe(mesh, u, &self.probe(i), master, ty, counts)
+    }
+
+    /// [`Self::evaluate_on`] for any probe.
+    pub(super) fn evaluate_probe(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pt: &Probe,
+        master: MasterFaceIndex,
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<FaceEval, KernelError> {
         counts.evaluate += 1;
-        let kernel = Kernel::new(self.formulation_of(i, master)?, ty)?;
-        let (nodes, node_count) = self.pair_nodes(i, master);
+        let kernel = Kernel::new(self.formulation_of(pt, master)?, ty)?;
+        let (nodes, node_count) = self.pair_nodes(pt, master);
         let q = Self::q(mesh, u, &nodes[..node_count]);
         let mut out = GapOut::new(&kernel);
-        kernel.eval(&q, self.point(i).xi_s, &mut out)?;
+        kernel.eval(&q, pt.xi_s, &mut out)?;
         let n = q.len();
         let g = out.grad();
         let xi = out.xi_m_all();
@@ -176,43 +213,51 @@ impl FaceLayout {
         master: MasterFaceIndex,
         xi_m: [f64; 2],
     ) -> bool {
-        let pt = self.point(i);
+        self.facing(mesh, u, &self.probe(i), master, xi_m)
+    }
+
+    /// [`Self::faces_each_other`] for any probe.
+    fn facing(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pt: &Probe,
+        master: MasterFaceIndex,
+        xi_m: [f64; 2],
+    ) -> bool {
         let s = Self::current_face(mesh, u, &pt.slave);
         let m = Self::current_face(mesh, u, &self.masters_of(pt.pair)[master.index()]);
         dot(s.normal_at(pt.xi_s), m.normal_at(xi_m)) < 0.0
     }
 
-    /// Projects point `i` onto master face `master`: `Ok(Some((g, xi_m)))`
+    /// Projects probe `pt` onto master face `master`: `Ok(Some((g, xi_m)))`
     /// when it projects into the face and the faces face each other,
     /// `Ok(None)` when not (or on a master-side kernel failure), `Err` on a
     /// slave-side failure.
-    fn project_into(
+    pub(super) fn project_into(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],
-        i: ContactPointIndex,
+        pt: &Probe,
         master: MasterFaceIndex,
         counts: &mut KernelCounts,
-    ) -> Result<Option<(f64, [f64; 2])>, PointFailure<MasterFaceIndex>> {
-        let fail = |error| PointFailure {
-            point: i,
-            master_segment: Some(master),
-            error,
-        };
-        let projector = self.formulation_of(i, master).and_then(Projector::new);
+    ) -> Result<Option<(f64, [f64; 2])>, Failure> {
+        let fail = |error| (Some(master), error);
+        let projector = self.formulation_of(pt, master).and_then(Projector::new);
         let projector = projector.map_err(fail)?;
-        let (nodes, node_count) = self.pair_nodes(i, master);
+        let (nodes, node_count) = self.pair_nodes(pt, master);
         let q = Self::q(mesh, u, &nodes[..node_count]);
         let mut scratch = vec![0.0; q.len()];
         counts.project += 1;
-        match projector.project(&q, self.point(i).xi_s, &mut scratch) {
+        match projector.project(&q, pt.xi_s, &mut scratch) {
             Ok(p) => {
                 let xi = p.xi_m_all();
                 let xi_m = [xi[0], xi[1]];
-                let kind = self.masters_of(self.point(i).pair)[master.index()].kind();
-                Ok((inside(kind, xi_m, XI_INSIDE_TOL)
-                    && self.faces_each_other(mesh, u, i, master, xi_m))
-                .then_some((p.gap, xi_m)))
+                let kind = self.masters_of(pt.pair)[master.index()].kind();
+                Ok(
+                    (inside(kind, xi_m, XI_INSIDE_TOL) && self.facing(mesh, u, pt, master, xi_m))
+                        .then_some((p.gap, xi_m)),
+                )
             }
             Err(e) if slave_side(&e) => Err(fail(e)),
             Err(_) => Ok(None),
@@ -220,7 +265,7 @@ impl FaceLayout {
     }
 
     /// The index of every pair's master faces at displacements `u`.
-    fn master_indexes(&self, mesh: &Mesh<3>, u: &[f64]) -> Vec<Option<MasterFaces>> {
+    pub(super) fn master_indexes(&self, mesh: &Mesh<3>, u: &[f64]) -> Vec<Option<MasterFaces>> {
         self.masters
             .iter()
             .map(|faces| {
@@ -238,37 +283,36 @@ impl FaceLayout {
             .collect()
     }
 
-    /// The master face point `i` projects into with the smallest `|g|`
-    /// (module docs), through the pair's index (`None` in `indexes`: a
-    /// configuration the index refuses, e.g. non-finite, scanned face by
-    /// face).
-    fn find_master(
+    /// The master face probe `pt` projects into with the smallest `|g|`
+    /// (module docs), with the gap and projection there, through the
+    /// pair's index (`None` in `indexes`: a configuration the index
+    /// refuses, e.g. non-finite, scanned face by face).
+    pub(super) fn find_master(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],
-        i: ContactPointIndex,
+        pt: &Probe,
         indexes: &[Option<MasterFaces>],
         counts: &mut KernelCounts,
-    ) -> Result<Option<MasterFaceIndex>, PointFailure<MasterFaceIndex>> {
-        let pt = self.point(i);
+    ) -> Result<Option<(MasterFaceIndex, f64, [f64; 2])>, Failure> {
         let n_faces = self.masters_of(pt.pair).len();
-        let best_of = |cands: &[usize],
-                       counts: &mut KernelCounts|
-         -> Result<Option<(usize, f64)>, PointFailure<MasterFaceIndex>> {
-            let mut best: Option<(usize, f64)> = None;
+        type Best = Option<(usize, f64, [f64; 2])>;
+        let best_of = |cands: &[usize], counts: &mut KernelCounts| -> Result<Best, Failure> {
+            let mut best: Best = None;
             for &f in cands {
-                if let Some((g, _)) =
-                    self.project_into(mesh, u, i, MasterFaceIndex::new(f), counts)?
-                    && best.is_none_or(|(_, b)| g.abs() < b)
+                if let Some((g, xi)) =
+                    self.project_into(mesh, u, pt, MasterFaceIndex::new(f), counts)?
+                    && best.is_none_or(|(_, b, _)| g.abs() < b.abs())
                 {
-                    best = Some((f, g.abs()));
+                    best = Some((f, g, xi));
                 }
             }
             Ok(best)
         };
+        let found = |b: Best| b.map(|(f, g, xi)| (MasterFaceIndex::new(f), g, xi));
         let Some(faces) = &indexes[pt.pair.index()] else {
             let all: Vec<usize> = (0..n_faces).collect();
-            return Ok(best_of(&all, counts)?.map(|(f, _)| MasterFaceIndex::new(f)));
+            return Ok(found(best_of(&all, counts)?));
         };
         let x_s = Self::current_face(mesh, u, &pt.slave).point_and_tangents(pt.xi_s)[0];
         let mut r = faces.size.max(f64::MIN_POSITIVE);
@@ -279,8 +323,8 @@ impl FaceLayout {
                 Err(_) => (0..n_faces).collect(),
             };
             match best_of(&cands, counts)? {
-                Some((f, g)) if g <= r => return Ok(Some(MasterFaceIndex::new(f))),
-                Some((_, g)) => r = g,
+                Some(b) if b.1.abs() <= r => return Ok(found(Some(b))),
+                Some(b) => r = b.1.abs(),
                 None if cands.len() == n_faces => return Ok(None),
                 None => r *= 4.0,
             }
@@ -303,7 +347,7 @@ impl FaceLayout {
     ) -> Result<Option<FaceEval>, PointFailure<MasterFaceIndex>> {
         let fail = |m, error| PointFailure {
             point: i,
-            master_segment: Some(m),
+            master_segment: m,
             error,
         };
         if let Some(m) = start {
@@ -316,16 +360,19 @@ impl FaceLayout {
                     return Ok(Some(e));
                 }
                 Ok(_) => {}
-                Err(e) if slave_side(&e) => return Err(fail(m, e)),
+                Err(e) if slave_side(&e) => return Err(fail(Some(m), e)),
                 Err(_) => {}
             }
         }
-        match self.find_master(mesh, u, i, indexes, counts)? {
+        let found = self
+            .find_master(mesh, u, &self.probe(i), indexes, counts)
+            .map_err(|(m, e)| fail(m, e))?;
+        match found {
             None => Ok(None),
-            Some(m) => self
+            Some((m, _, _)) => self
                 .evaluate_on(mesh, u, i, m, ty, counts)
                 .map(Some)
-                .map_err(|e| fail(m, e)),
+                .map_err(|e| fail(Some(m), e)),
         }
     }
 
@@ -408,7 +455,14 @@ impl FaceLayout {
         indexes: &[Option<MasterFaces>],
     ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
-            self.find_master(mesh, u, ContactPointIndex::new(k), indexes, c)
+            let i = ContactPointIndex::new(k);
+            self.find_master(mesh, u, &self.probe(i), indexes, c)
+                .map(|f| f.map(|(m, _, _)| m))
+                .map_err(|(m, error)| PointFailure {
+                    point: i,
+                    master_segment: m,
+                    error,
+                })
         })
     }
 }

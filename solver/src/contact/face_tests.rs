@@ -372,3 +372,42 @@ fn segmented_integration_refuses_a_count_without_a_triangle_rule() {
     let err = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap_err();
     assert!(err.to_string().contains("1, 3 or 7"), "{err}");
 }
+
+#[test]
+fn the_nodal_table_gives_each_slave_node_its_gap_pressure_and_area() {
+    let (mesh, pair) = stacked(0.05, false, Formulation::SlaveNormal);
+    let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+    let u = vec![0.0; 3 * mesh.node_count()];
+    let lambda: Vec<f64> = (0..layout.multipliers.len()).map(|m| -(m as f64)).collect();
+    let (rows, counts) = layout.nodal_table(&mesh, &u, &lambda).unwrap();
+    assert_eq!(rows.len(), 16);
+    assert!(counts.project > 0);
+    let h = 1.4 / 3.0;
+    let mut area = 0.0;
+    for (m, r) in rows.iter().enumerate() {
+        assert_eq!(r.node, layout.multipliers[m].node);
+        assert_eq!(r.pressure, m as f64);
+        assert!((r.gap.unwrap() - 0.05).abs() < 1e-14);
+        let (face, nodes) = r.master.unwrap();
+        assert!(nodes.nodes().len() == 4 && face.index() < 4);
+        // a corner node carries a quarter face, an edge node half of two,
+        // an inner node four quarters
+        let x = r.x;
+        let on_edge = |c: f64| (c - 0.3).abs() < 1e-12 || (c - 1.7).abs() < 1e-12;
+        let expect = match (on_edge(x[0]), on_edge(x[1])) {
+            (true, true) => h * h / 4.0,
+            (true, false) | (false, true) => h * h / 2.0,
+            (false, false) => h * h,
+        };
+        assert!((r.tributary_area - expect).abs() < 1e-13, "{x:?}");
+        area += r.tributary_area;
+    }
+    assert!((area - 1.96).abs() < 1e-13);
+    // off the base: no gap, never NaN
+    let mut moved = u.clone();
+    for n in mesh.node_ids().filter(|&n| mesh.node_ref(n)[2] > 1.0) {
+        moved[3 * n.index()] = 5.0;
+    }
+    let (rows, _) = layout.nodal_table(&mesh, &moved, &lambda).unwrap();
+    assert!(rows.iter().all(|r| r.gap.is_none() && r.master.is_none()));
+}

@@ -236,6 +236,7 @@ pub mod clip;
 mod evaluate;
 pub mod face_index;
 mod face_layout;
+mod face_nodal;
 mod face_pairing;
 pub mod face_rules;
 #[cfg(test)]
