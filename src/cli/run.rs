@@ -230,44 +230,68 @@ pub fn run(args: &RunArgs) -> CommandResult {
     print_costs(&sol, &options);
 
     if let Some(out) = &out {
-        let dir = out.path();
-        let staging = out.stage()?;
-        let at = |name: &str| (staging.path().join(name), dir.join(name));
-        let mut vtu_files = 0;
-        if args.every_step {
-            for (i, state) in sol.snapshots.iter().enumerate() {
-                let (path, shown) = at(&format!("step-{i:04}.vtu"));
-                solver::report::write_vtu_state(&path, &sol, state)
+        write_outputs(args, &sol, out, &interrupt, |at, wrote| {
+            if !sol.contact_pairs.is_empty() {
+                let (path, shown) = at("contact.csv");
+                let text = contact_csv(&sol, &sol.final_state)
                     .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-                vtu_files += 1;
+                solver::report::write_atomic(&path, text)
+                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+                wrote.push(format!("wrote           {}", shown.display()));
             }
+            Ok(())
+        })?;
+    }
+    Ok(())
+}
+
+/// Where a result file goes: its staging path and the path it will have.
+type At<'a> = &'a dyn Fn(&str) -> (PathBuf, PathBuf);
+
+/// With `--out`: the `.vtu` files (every step's with `--every-step`, and
+/// `final.vtu`), `reactions.csv` when the scene reports supports, then
+/// what `more` adds (2D: `contact.csv`), staged and committed at once; then
+/// the list of what was written.
+fn write_outputs<const D: usize>(
+    args: &RunArgs,
+    sol: &solver::Solution<D>,
+    out: &OutDir,
+    interrupt: &Interrupt,
+    more: impl FnOnce(At<'_>, &mut Vec<String>) -> Result<(), String>,
+) -> CommandResult
+where
+    solver::Dim<D>: solver::SpaceDim<D>,
+{
+    let dir = out.path();
+    let staging = out.stage()?;
+    let at = |name: &str| (staging.path().join(name), dir.join(name));
+    let mut vtu_files = 0;
+    if args.every_step {
+        for (i, state) in sol.snapshots.iter().enumerate() {
+            let (path, shown) = at(&format!("step-{i:04}.vtu"));
+            solver::report::write_vtu_state(&path, sol, state)
+                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+            vtu_files += 1;
         }
-        let (path, shown) = at("final.vtu");
-        solver::report::write_vtu(&path, &sol)
+    }
+    let (path, shown) = at("final.vtu");
+    solver::report::write_vtu(&path, sol)
+        .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+    vtu_files += 1;
+    let mut wrote = vec![format!(
+        "wrote           {vtu_files} .vtu file(s) to {}",
+        dir.display()
+    )];
+    if !sol.support_groups.is_empty() {
+        let (path, shown) = at("reactions.csv");
+        solver::report::write_atomic(&path, reactions_csv(sol))
             .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-        vtu_files += 1;
-        let mut wrote = vec![format!(
-            "wrote           {vtu_files} .vtu file(s) to {}",
-            dir.display()
-        )];
-        if !sol.support_groups.is_empty() {
-            let (path, shown) = at("reactions.csv");
-            solver::report::write_atomic(&path, reactions_csv(&sol))
-                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-            wrote.push(format!("wrote           {}", shown.display()));
-        }
-        if !sol.contact_pairs.is_empty() {
-            let (path, shown) = at("contact.csv");
-            let text = contact_csv(&sol, &sol.final_state)
-                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-            solver::report::write_atomic(&path, text)
-                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-            wrote.push(format!("wrote           {}", shown.display()));
-        }
-        staging.commit(Some(&interrupt))?;
-        for line in wrote {
-            println!("{line}");
-        }
+        wrote.push(format!("wrote           {}", shown.display()));
+    }
+    more(&at, &mut wrote)?;
+    staging.commit(Some(interrupt))?;
+    for line in wrote {
+        println!("{line}");
     }
     Ok(())
 }
@@ -333,36 +357,7 @@ fn run_solid(
     }
     print_costs(&sol, options);
     if let Some(out) = out {
-        let dir = out.path();
-        let staging = out.stage()?;
-        let at = |name: &str| (staging.path().join(name), dir.join(name));
-        let mut vtu_files = 0;
-        if args.every_step {
-            for (i, state) in sol.snapshots.iter().enumerate() {
-                let (path, shown) = at(&format!("step-{i:04}.vtu"));
-                solver::report::write_vtu_state(&path, &sol, state)
-                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-                vtu_files += 1;
-            }
-        }
-        let (path, shown) = at("final.vtu");
-        solver::report::write_vtu(&path, &sol)
-            .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-        vtu_files += 1;
-        let mut wrote = vec![format!(
-            "wrote           {vtu_files} .vtu file(s) to {}",
-            dir.display()
-        )];
-        if !sol.support_groups.is_empty() {
-            let (path, shown) = at("reactions.csv");
-            solver::report::write_atomic(&path, reactions_csv(&sol))
-                .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-            wrote.push(format!("wrote           {}", shown.display()));
-        }
-        staging.commit(Some(interrupt))?;
-        for line in wrote {
-            println!("{line}");
-        }
+        write_outputs(args, &sol, out, interrupt, |_, _| Ok(()))?;
     }
     Ok(())
 }

@@ -15,11 +15,12 @@ use crate::ids::NodeId;
 use crate::mesh::{Mesh, Side};
 
 impl Scene {
-    /// The index of the body named `body`, if one is named; an error for
-    /// `field` listing the scene's bodies if there is none of that name.
-    pub(super) fn body_index(
+    /// The index of the body named `body` (in a mesh of either dimension),
+    /// if one is named; an error for `field` listing the scene's bodies if
+    /// there is none of that name.
+    pub(super) fn body_index<const D: usize>(
         &self,
-        mesh: &Mesh,
+        mesh: &Mesh<D>,
         field: String,
         body: &Option<String>,
     ) -> Result<Option<usize>, SceneError> {

@@ -14,26 +14,6 @@ use crate::mesh::Mesh;
 use crate::mesh::volume::Face;
 
 impl Scene {
-    /// The index of the body named `body` in the 3D mesh, if one is named;
-    /// an error for `field` listing the scene's bodies otherwise.
-    fn body_index_3d(
-        &self,
-        mesh: &Mesh<3>,
-        field: String,
-        body: &Option<String>,
-    ) -> Result<Option<usize>, SceneError> {
-        match body {
-            None => Ok(None),
-            Some(name) => mesh.body_index(name).map(Some).ok_or_else(|| {
-                let names: Vec<&str> = self.bodies.iter().map(|b| b.name.as_str()).collect();
-                self.invalid(
-                    field,
-                    format!("no body named `{name}` (bodies: {})", names.join(", ")),
-                )
-            }),
-        }
-    }
-
     /// The nodes (optionally of one body) of the item `field` of a 3D
     /// scene: its physical `group` (then no coordinates), or those at the
     /// reference coordinates `at`, or on the planes/lines `xyz` (any of x,
@@ -49,7 +29,7 @@ impl Scene {
         xyz: [Option<f64>; 3],
         at: Option<[f64; 3]>,
     ) -> Result<Vec<NodeId>, SceneError> {
-        let b = self.body_index_3d(mesh, format!("{field}.body"), body)?;
+        let b = self.body_index(mesh, format!("{field}.body"), body)?;
         let in_body = || {
             body.as_ref()
                 .map(|b| format!(" in body `{b}`"))
@@ -113,7 +93,7 @@ impl Scene {
         side: Option<SideName>,
         group: &Option<String>,
     ) -> Result<(usize, Vec<Face<NodeId>>), SceneError> {
-        let b = self.body_index_3d(mesh, format!("{f}.body"), body)?;
+        let b = self.body_index(mesh, format!("{f}.body"), body)?;
         match (group, side) {
             (Some(_), Some(_)) => Err(self.invalid(f, "give either `side` or `group`, not both")),
             (None, None) => Err(self.invalid(f, "give `body` and `side`, or `group`")),
