@@ -361,6 +361,7 @@ fn segmented_integration_gives_the_exact_master_forces_of_a_uniform_pressure() {
         }
     }
     // the Gauss rule on non-matching faces misses the master kinks
+    eprintln!("plain Gauss: largest master nodal force error {gauss_error:e} (exact: 1.96 in all)");
     assert!(gauss_error > 1e-3, "{gauss_error:e}");
 }
 
