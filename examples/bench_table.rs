@@ -7,7 +7,9 @@
 //!
 //! With `--faces` it prints only the 3D face table (group
 //! `faces-tri3-slave-normal`, the README's `bench-faces` section), with
-//! the CPU model of `/proc/cpuinfo`.
+//! the CPU model of `/proc/cpuinfo` and the load average of
+//! `/proc/loadavg`; `scripts/splice-readme.sh bench-faces FILE` puts it
+//! into README.md (as `scripts/refresh-readme.sh` does).
 //!
 //! Reads criterion's results (`<criterion dir>/<formulation>/<id>/new/estimates.json`,
 //! the median's point estimate in ns) written by `benches/kernels.rs` (the
@@ -234,6 +236,19 @@ fn cpu() -> String {
     )
 }
 
+/// The load averages over 1, 5 and 15 minutes (`/proc/loadavg`), as
+/// "a / b / c"; "unknown" elsewhere. Printed with the table, which is made
+/// right after the benchmark run, so the 5-minute figure covers the run.
+fn load_average() -> String {
+    std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| {
+            let v: Vec<&str> = s.split_whitespace().take(3).collect();
+            (v.len() == 3).then(|| v.join(" / "))
+        })
+        .unwrap_or_else(|| "unknown".to_owned())
+}
+
 /// The `faces-tri3-slave-normal` table: 64 tri3-on-tri3 configurations
 /// per iteration, every row per point and against the sympy-cse 3D peer
 /// and num-dual, all from the same run; then the targets for Type 6
@@ -246,11 +261,13 @@ fn faces_table(dir: &Path) -> Result<String, String> {
     let dual = per_point("num-dual-hessian")?;
     let mut out = format!(
         "Per point over 64 tri3-on-tri3 configurations near the worked example (group `{GROUP}`, \
-         one criterion run, median; CPU: {}): gapsim's `tri3-slave-normal` kernels, the sympy-cse 3D \
+         one criterion run, median; CPU: {}; load average over 1 / 5 / 15 minutes when the table \
+         was made: {}): gapsim's `tri3-slave-normal` kernels, the sympy-cse 3D \
          peer of `benches/peer/sympy_kernel_3d.rs` and num-dual's `hessian` of the same gap \
          (18 coordinates).\n\n\
          | kernel (tri3-slave-normal) | ns/point | peer / this | num-dual / this |\n|---|---:|---:|---:|\n",
-        cpu()
+        cpu(),
+        load_average()
     );
     let mut row = |name: &str, t: f64| {
         out.push_str(&format!(

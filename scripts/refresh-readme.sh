@@ -10,12 +10,7 @@ cd "$(dirname "$0")/.."
 # Replaces the lines between <!-- NAME:begin --> and <!-- NAME:end --> of
 # README.md with the contents of FILE.
 splice() {
-  local name=$1 file=$2
-  awk -v b="<!-- $name:begin -->" -v e="<!-- $name:end -->" -v f="$file" '
-    $0 == b { print; while ((getline line < f) > 0) print line; skip = 1; next }
-    $0 == e { skip = 0 }
-    !skip { print }' README.md > README.md.tmp
-  mv README.md.tmp README.md
+  scripts/splice-readme.sh "$1" "$2" README.md
 }
 
 cargo bench --bench kernels
@@ -40,6 +35,7 @@ splice patch target/patch-table.md
 
 cargo run -q --release --example stability_sweep > target/stability-table.md
 splice stability target/stability-table.md
+splice stability-faces docs/stability/stability-faces.md
 
 cargo run -q --release --example sliding_curves -- --steps 20 --out docs/sliding
 cargo run -q --release --example adaptive_cost -- --out docs/adaptive
