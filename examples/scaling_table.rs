@@ -72,7 +72,9 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use solver::newton::{IterationProbe, IterationSample};
-use solver::{Dim, LinearSolverKind, Method, Model, Scene, SolveOptions, SpaceDim, State, solve_model};
+use solver::{
+    Dim, LinearSolverKind, Method, Model, Scene, SolveOptions, SpaceDim, State, solve_model,
+};
 
 /// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
 const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
@@ -235,7 +237,10 @@ struct FillRow {
 }
 
 /// `scenes/block3d.toml` refined `n`-fold in every direction.
-fn block_3d(base: &Scene, n: usize) -> Result<(Scene, Model<3>, String), Box<dyn std::error::Error>> {
+fn block_3d(
+    base: &Scene,
+    n: usize,
+) -> Result<(Scene, Model<3>, String), Box<dyn std::error::Error>> {
     let mut scene = base.clone();
     scene.refine.x *= n;
     scene.refine.y *= n;
@@ -537,7 +542,9 @@ fn run_3d(
             .into());
         }
         for n in pattern_only {
-            fills.push(measure_fill_3d(&base, n, linear[0]).map_err(|e| format!("refine {n}: {e}"))?);
+            fills.push(
+                measure_fill_3d(&base, n, linear[0]).map_err(|e| format!("refine {n}: {e}"))?,
+            );
         }
     }
     Ok((rows, fills))
@@ -629,7 +636,10 @@ fn print_3d_table(rows: &[Row], fills: &[FillRow], linear: &[LinearSolverKind]) 
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     let per_equation = |fill: Option<usize>, equations: usize| {
-        fill.map_or_else(|| "n/a".into(), |f| format!("{:.0}", f as f64 / equations as f64))
+        fill.map_or_else(
+            || "n/a".into(),
+            |f| format!("{:.0}", f as f64 / equations as f64),
+        )
     };
     for r in rows {
         println!(
@@ -753,20 +763,26 @@ fn print_3d_table(rows: &[Row], fills: &[FillRow], linear: &[LinearSolverKind]) 
     // the peak as the factor's values (8 bytes a nonzero) plus the rest
     // (model, assembled system, solver work), the rest grown linearly
     let factor_mib = |f: f64| f * 8.0 / (1024.0 * 1024.0);
-    let mib = last.peak_mib.zip(last.fill).zip(nonzeros).map(|((p, f), nz)| {
-        (p - factor_mib(f as f64)).max(0.0) * scale + factor_mib(nz)
-    });
+    let mib = last
+        .peak_mib
+        .zip(last.fill)
+        .zip(nonzeros)
+        .map(|((p, f), nz)| (p - factor_mib(f as f64)).max(0.0) * scale + factor_mib(nz));
     let gib = |m: f64| format!("{:.1}", m / 1024.0);
     println!(
         "Extrapolated, not measured: at {to} equations one iteration would take about {:.0} s with the total \
          time's exponent between the two largest timed sizes ({}; {} s with the factorisation's flops taken \
          as nonzeros^2 / equations, the dense-column estimate, from the {} fill), its symbolic analysis \
-         {:.1} s once{}; the factor {} nonzeros{}, {} GiB of values (8 bytes each); the iteration's \
+         {:.1} s once{}; the factor {} nonzeros{} ({} GiB of values, 8 bytes each); the iteration's \
          peak, those values plus the rest of the largest timed size's peak grown linearly, about {} GiB.",
         total / 1e3,
         format_args!("{:.2}", time_fit.1),
         by_flops.map_or_else(|| "n/a".into(), |t| format!("{:.0}", t / 1e3)),
-        if measured_fill.is_some() { "measured" } else { "extrapolated" },
+        if measured_fill.is_some() {
+            "measured"
+        } else {
+            "extrapolated"
+        },
         symbolic / 1e3,
         if measured_symbolic.is_some() {
             " (measured, pattern only)"
@@ -815,7 +831,8 @@ fn main() -> ExitCode {
             }
             continue;
         }
-        if arg == "--max-equations" || arg == "--lu-max-equations" || arg == "--fill-max-equations" {
+        if arg == "--max-equations" || arg == "--lu-max-equations" || arg == "--fill-max-equations"
+        {
             let value = args.next().unwrap_or_default();
             let Ok(n) = value.trim().replace('_', "").parse::<usize>() else {
                 eprintln!("{arg}: expected a number of equations, got `{value}`");
