@@ -21,6 +21,11 @@
 //! * `linear_solve/<n>`: regularisation, numeric LU with the symbolic
 //!   factorisation reused (computed once before measuring), and the solve.
 //!
+//! The group `solver_scaling_3d` times `solid_assembly/<n>` and
+//! `linear_solve/<n>` the same way on `scenes/block3d.toml` refined 9-fold
+//! (18 x 18 x 9 hexahedra, about 1e4 equations, no contact). `cargo run --release --example scaling_table -- --3d` gives
+//! the 3D sizes up to 3e5 equations.
+//!
 //! Each routine's input (the system after the previous phase) is cloned in
 //! an untimed setup. Flat sampling, 10 samples, 1 s warm-up and 2 s
 //! measurement, raised for the linear solve to 12 times one solve (the
@@ -33,7 +38,7 @@ use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, criterion_group, criterion_main};
 use solver::newton::IterationProbe;
-use solver::{Method, Model, Scene, SolveOptions, State, solve_model};
+use solver::{Dim, Method, Model, Scene, SolveOptions, SpaceDim, State, solve_model};
 
 /// Measurement time per benchmark (the linear solve's is raised to fit 10
 /// samples of one iteration at the larger sizes).
@@ -41,6 +46,16 @@ const MEASUREMENT: Duration = Duration::from_secs(2);
 
 /// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
 const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
+
+/// The 3D refine factor of `solver_scaling_3d` (every direction).
+const REFINE_3D: usize = 9;
+
+/// The `GAPSIM_LINEAR` solver (default LU).
+fn linear() -> solver::LinearSolverKind {
+    std::env::var("GAPSIM_LINEAR")
+        .map(|v| v.parse().expect("GAPSIM_LINEAR is `lu` or `ldlt`"))
+        .unwrap_or_default()
+}
 
 /// A refined model, its options, the converged state after the first load
 /// step and the load factor of the second.
@@ -52,12 +67,35 @@ fn setup(refine: (usize, usize)) -> (Model, SolveOptions, State, f64) {
     .expect("the paper scene parses")
     .refined(refine.0, refine.1);
     let model = scene.build_model().expect("the refined scene builds");
+    converged_first_step(&scene, model)
+}
+
+/// `scenes/block3d.toml` refined `n`-fold in every direction, as
+/// [`setup`].
+fn setup_3d(n: usize) -> (Model<3>, SolveOptions, State<3>, f64) {
+    let mut scene = Scene::from_toml_str(include_str!("../scenes/block3d.toml"), "block3d.toml")
+        .expect("the 3D block parses");
+    scene.refine.x *= n;
+    scene.refine.y *= n;
+    scene.refine.z = Some(scene.refine.z.unwrap_or(1) * n);
+    let model = scene.build_model_3d().expect("the refined block builds");
+    converged_first_step(&scene, model)
+}
+
+/// The model, the complete formulation's options with the scene's steps,
+/// the converged state after the first load step and the second's load
+/// factor.
+fn converged_first_step<const D: usize>(
+    scene: &Scene,
+    model: Model<D>,
+) -> (Model<D>, SolveOptions, State<D>, f64)
+where
+    Dim<D>: SpaceDim<D>,
+{
     let opts = SolveOptions {
         method: Method::Complete,
-        linear: std::env::var("GAPSIM_LINEAR")
-            .map(|v| v.parse().expect("GAPSIM_LINEAR is `lu` or `ldlt`"))
-            .unwrap_or_default(),
-        ..SolveOptions::from_scene(&scene)
+        linear: linear(),
+        ..SolveOptions::from_scene(scene)
     };
     let step = model.load_factor_end / opts.steps as f64;
     let mut first = model.clone();
@@ -131,5 +169,50 @@ fn solver_scaling(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, solver_scaling);
+/// The solid assembly and the linear solve of one 3D iteration (the
+/// contact phase is empty in 3D).
+fn solver_scaling_3d(c: &mut Criterion) {
+    let mut group = c.benchmark_group("solver_scaling_3d");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(MEASUREMENT);
+    let (model, opts, state, load_factor) = setup_3d(REFINE_3D);
+    let mut probe = IterationProbe::new(&model, &opts, &state, load_factor).expect("probe builds");
+    let n = probe.equations();
+    let empty = probe.contact().expect("contact evaluates");
+    let mut assembled = empty.clone();
+    probe.solid(&mut assembled.system);
+    probe
+        .linear_solve(assembled.clone())
+        .expect("the system solves");
+    let t = Instant::now();
+    probe
+        .linear_solve(assembled.clone())
+        .expect("the system solves");
+    let solve_time = t.elapsed();
+    group.bench_with_input(BenchmarkId::new("solid_assembly", n), &n, |b, _| {
+        b.iter_batched(
+            || empty.system.clone(),
+            |mut system| {
+                probe.solid(&mut system);
+                system
+            },
+            BatchSize::LargeInput,
+        )
+    });
+    group.measurement_time(MEASUREMENT.max(solve_time * 12));
+    group.bench_with_input(BenchmarkId::new("linear_solve", n), &n, |b, _| {
+        b.iter_batched(
+            || assembled.clone(),
+            |input| probe.linear_solve(input).expect("the system solves"),
+            BatchSize::LargeInput,
+        )
+    });
+    assert_eq!(probe.symbolic_factorisations(), 1);
+    group.finish();
+}
+
+criterion_group!(benches, solver_scaling, solver_scaling_3d);
 criterion_main!(benches);

@@ -44,13 +44,37 @@
 //! compares the solve and symbolic times of each with the first's (ratios
 //! `first / other`, so above 1 is faster), with the LU fallbacks counted.
 //!
+//! `--3d` measures the same iteration on `scenes/block3d.toml` instead: a
+//! 2 x 2 x 1 block of hexahedra (St Venant-Kirchhoff, finite strain),
+//! clamped at its bottom and pressed by a dead traction on its top, refined `n`-fold in
+//! every direction (`2n x 2n x n` elements; sizes are integers `n`, default
+//! [`SIZES_3D`], about 1e4 to 1e5 equations, and [`EXTRA_SIZES_3D`] up to
+//! `--max-equations`). A 3D model has no contact pairs, so the table has no
+//! contact columns; below it, the growth exponents over all sizes and
+//! between the two largest, and an extrapolation to [`EXTRAPOLATE_TO`]
+//! equations with the latter:
+//!
+//! `--fill-max-equations N` adds, above the timed sizes, the
+//! [`EXTRA_SIZES_3D`] of at most `N` equations as pattern-only rows: the
+//! system assembled at the reference state and its symbolic analysis (the
+//! factor's nonzeros, the analysis time and the peak memory, no numeric
+//! factorisation), so that the fill is measured beyond the sizes whose
+//! iterations take too long to time (the pattern-only fill of the largest
+//! timed size is checked against its probe's):
+//!
+//! ```text
+//! cargo run --release --example scaling_table -- --3d --linear ldlt --fill-max-equations 310000
+//! ```
+//!
 //! The benchmark with criterion is `cargo bench --bench solver_scaling`.
 
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use solver::newton::{IterationProbe, IterationSample};
-use solver::{LinearSolverKind, Method, Scene, SolveOptions, solve_model};
+use solver::{
+    Dim, LinearSolverKind, Method, Model, Scene, SolveOptions, SpaceDim, State, solve_model,
+};
 
 /// Refine factors giving about 1e3, 3e3, 1e4, 3e4 and 1e5 equations.
 const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42)];
@@ -59,13 +83,31 @@ const SIZES: [(usize, usize); 5] = [(8, 4), (14, 7), (26, 13), (46, 23), (84, 42
 /// of equations (measured: about 28.8 equations per unit of `x y`).
 const EXTRA_SIZES: [((usize, usize), usize); 2] = [((144, 72), 299_000), ((263, 132), 1_000_000)];
 
+/// The 3D block of `--3d`.
+const BLOCK_3D: &str = include_str!("../scenes/block3d.toml");
+
+/// `--3d` refine factors (in every direction) giving about 1e4, 3e4 and
+/// 1e5 equations (`n = 20`: 40 x 40 x 20 hexahedra).
+const SIZES_3D: [usize; 3] = [9, 13, 20];
+
+/// Larger `--3d` refine factors for `--max-equations`, with their nominal
+/// numbers of equations (`3 (2n + 1)^2 n`: every node above the clamped
+/// bottom free).
+const EXTRA_SIZES_3D: [(usize, usize); 2] = [(29, 303_000), (44, 1_046_000)];
+
+/// The size the `--3d` table extrapolates to.
+const EXTRAPOLATE_TO: usize = 1_000_000;
+
 /// Default of `--lu-max-equations`: the LU is measured up to about 1e5
 /// equations (826 MiB peak there).
 const LU_MAX_EQUATIONS: usize = 200_000;
 
-/// Timed iterations above [`HUGE`] equations.
+/// Timed iterations above [`HUGE`] equations, or when the first
+/// iteration took longer than [`SLOW`] (the 3D sizes from about 1e5
+/// equations).
 const REPS_HUGE: usize = 3;
 const HUGE: usize = 500_000;
+const SLOW: Duration = Duration::from_secs(10);
 
 /// Timed iterations per size (after the one building the symbolic LU);
 /// fewer for sizes above [`LARGE`] equations.
@@ -75,7 +117,8 @@ const LARGE: usize = 50_000;
 
 /// One measured size.
 struct Row {
-    refine: (usize, usize),
+    /// The refinement, as printed in the table's first column.
+    label: String,
     equations: usize,
     contact_points: usize,
     solid: f64,
@@ -165,7 +208,120 @@ fn measure(
 ) -> Result<Vec<Option<Row>>, Box<dyn std::error::Error>> {
     let scene = base.refined(refine.0, refine.1);
     let model = scene.build_model()?;
-    let free_dofs = model.mesh.node_count() * 2;
+    let label = format!("{} x {}", refine.0, refine.1);
+    measure_model(&scene, &model, label, linear, lu_max)
+}
+
+/// [`measure`] on the 3D block: `scenes/block3d.toml` refined `n`-fold in
+/// every direction.
+fn measure_3d(
+    base: &Scene,
+    n: usize,
+    linear: &[LinearSolverKind],
+    lu_max: usize,
+) -> Result<Vec<Option<Row>>, Box<dyn std::error::Error>> {
+    let (scene, model, label) = block_3d(base, n)?;
+    measure_model(&scene, &model, label, linear, lu_max)
+}
+
+/// A 3D size whose pattern alone is analysed (`--fill-max-equations`).
+struct FillRow {
+    label: String,
+    equations: usize,
+    /// The symbolic analysis, ms.
+    symbolic: f64,
+    fill: Option<usize>,
+    /// Peak resident memory of the model, its assembly and the analysis,
+    /// MiB.
+    peak_mib: Option<f64>,
+}
+
+/// `scenes/block3d.toml` refined `n`-fold in every direction.
+fn block_3d(
+    base: &Scene,
+    n: usize,
+) -> Result<(Scene, Model<3>, String), Box<dyn std::error::Error>> {
+    let mut scene = base.clone();
+    scene.refine.x *= n;
+    scene.refine.y *= n;
+    scene.refine.z = Some(scene.refine.z.unwrap_or(1) * n);
+    let model = scene.build_model_3d()?;
+    let body = &scene.bodies[0];
+    let (nx, ny, nz) = (
+        body.nx.unwrap_or(1) * scene.refine.x,
+        body.ny.unwrap_or(1) * scene.refine.y,
+        body.nz.unwrap_or(1) * scene.refine.z.unwrap_or(1),
+    );
+    if model.mesh.element_count() != nx * ny * nz {
+        return Err(format!(
+            "{} elements, expected {nx} x {ny} x {nz}",
+            model.mesh.element_count()
+        )
+        .into());
+    }
+    Ok((scene, model, format!("{nx} x {ny} x {nz}")))
+}
+
+/// The pattern of the 3D block refined `n`-fold (assembled at the
+/// reference state: the pattern does not depend on the state), analysed
+/// by a fresh `kind` solver as a solve's first iteration analyses it; no
+/// numeric factorisation.
+fn measure_fill_3d(
+    base: &Scene,
+    n: usize,
+    kind: LinearSolverKind,
+) -> Result<FillRow, Box<dyn std::error::Error>> {
+    let reset = reset_peak();
+    let (scene, model, label) = block_3d(base, n)?;
+    let opts = SolveOptions {
+        method: Method::Complete,
+        linear: kind,
+        ..SolveOptions::from_scene(&scene)
+    };
+    let zero = State::<3> {
+        load_factor: 0.0,
+        displacements: vec![[0.0; 3]; model.mesh.node_count()],
+        multipliers: Vec::new(),
+    };
+    let probe = IterationProbe::new(&model, &opts, &zero, model.load_factor_end)?;
+    let equations = probe.equations();
+    let mut phase = probe.contact()?;
+    probe.solid(&mut phase.system);
+    let mut solver = kind.build();
+    solver.set_constraints_from(equations);
+    let t = Instant::now();
+    solver.analyse(equations, &phase.system.rows, &phase.system.cols)?;
+    let row = FillRow {
+        label,
+        equations,
+        symbolic: ms(t.elapsed()),
+        fill: solver.factor_nonzeros(),
+        peak_mib: peak_mib().filter(|_| reset),
+    };
+    eprintln!(
+        "{}: {} equations, pattern only: symbolic {:.0} ms, factor nonzeros {}, peak {} MiB",
+        row.label,
+        row.equations,
+        row.symbolic,
+        fmt_fill(row.fill),
+        fmt_mib(row.peak_mib)
+    );
+    Ok(row)
+}
+
+/// The first load step of `model` (built from `scene`) solved with
+/// `linear[0]`, then one probed row per kind in `linear`.
+fn measure_model<const D: usize>(
+    scene: &Scene,
+    model: &Model<D>,
+    label: String,
+    linear: &[LinearSolverKind],
+    lu_max: usize,
+) -> Result<Vec<Option<Row>>, Box<dyn std::error::Error>>
+where
+    Dim<D>: SpaceDim<D>,
+{
+    let free_dofs = model.mesh.node_count() * D;
     if linear[0] == LinearSolverKind::Lu && free_dofs > lu_max {
         return Err(format!(
             "about {free_dofs} equations: above --lu-max-equations {lu_max}, LU must not solve \
@@ -176,7 +332,7 @@ fn measure(
     let opts = SolveOptions {
         method: Method::Complete,
         linear: linear[0],
-        ..SolveOptions::from_scene(&scene)
+        ..SolveOptions::from_scene(scene)
     };
     let steps = opts.steps;
     let step = model.load_factor_end / steps as f64;
@@ -192,9 +348,7 @@ fn measure(
         },
     )?;
     eprintln!(
-        "refine {}x{}: {} equations; step 1 of {steps} solved in {:.2} s ({} Newton iterations)",
-        refine.0,
-        refine.1,
+        "{label}: {} equations; step 1 of {steps} solved in {:.2} s ({} Newton iterations)",
         solution.equations,
         t.elapsed().as_secs_f64(),
         solution.newton_iterations
@@ -202,6 +356,7 @@ fn measure(
     let state = solution.final_state.clone();
     let equations = solution.equations;
     drop(solution);
+    drop(first);
     linear
         .iter()
         .map(|&kind| {
@@ -213,24 +368,27 @@ fn measure(
                 linear: kind,
                 ..opts.clone()
             };
-            probe_row(&model, &opts, &state, 2.0 * step, refine).map(Some)
+            probe_row(model, &opts, &state, 2.0 * step, label.clone()).map(Some)
         })
         .collect()
 }
 
 /// The first iteration of the second step from `state`, timed.
-fn probe_row(
-    model: &solver::Model,
+fn probe_row<const D: usize>(
+    model: &Model<D>,
     opts: &SolveOptions,
-    state: &solver::State,
+    state: &State<D>,
     to: f64,
-    refine: (usize, usize),
-) -> Result<Row, Box<dyn std::error::Error>> {
+    label: String,
+) -> Result<Row, Box<dyn std::error::Error>>
+where
+    Dim<D>: SpaceDim<D>,
+{
     let reset = reset_peak();
     let mut probe = IterationProbe::new(model, opts, state, to)?;
     let warm = probe.iteration()?;
     let symbolic = ms(probe.symbolic_time());
-    let reps = if probe.equations() > HUGE {
+    let reps = if probe.equations() > HUGE || warm.total() > SLOW {
         REPS_HUGE
     } else if probe.equations() > LARGE {
         REPS_LARGE
@@ -251,7 +409,7 @@ fn probe_row(
     let pick =
         |f: fn(&IterationSample) -> Duration| median(samples.iter().map(|s| ms(f(s))).collect());
     let row = Row {
-        refine,
+        label,
         equations: probe.equations(),
         contact_points: probe.contact_points(),
         solid: pick(|s| s.solid_assembly),
@@ -275,51 +433,42 @@ fn probe_row(
     Ok(row)
 }
 
-fn main() -> ExitCode {
-    let mut sizes: Vec<(usize, usize)> = Vec::new();
-    let mut linear = vec![LinearSolverKind::Lu];
-    let mut max_equations: Option<usize> = None;
-    let mut lu_max = LU_MAX_EQUATIONS;
-    let mut args = std::env::args().skip(1);
-    while let Some(arg) = args.next() {
-        if arg == "--linear" {
-            let parsed: Result<Vec<LinearSolverKind>, _> = args
-                .next()
-                .unwrap_or_default()
-                .split(',')
-                .map(str::parse)
-                .collect();
-            match parsed {
-                Ok(kinds) if !kinds.is_empty() => linear = kinds,
-                Ok(_) => unreachable!("split yields at least one item"),
-                Err(e) => {
-                    eprintln!("--linear: {e}");
-                    return ExitCode::FAILURE;
-                }
+/// The rows of the first solver and those of the others, per size.
+type Rows = (Vec<Row>, Vec<Vec<Option<Row>>>);
+
+/// Splits each size's rows into the first solver's and the others'.
+fn collect(
+    results: impl Iterator<Item = Result<Vec<Option<Row>>, Box<dyn std::error::Error>>>,
+) -> Result<Rows, Box<dyn std::error::Error>> {
+    let mut rows = Vec::new();
+    let mut others = Vec::new();
+    for r in results {
+        let mut r = r?;
+        match r.remove(0) {
+            Some(first) => {
+                rows.push(first);
+                others.push(r);
             }
-            continue;
-        }
-        if arg == "--max-equations" || arg == "--lu-max-equations" {
-            let value = args.next().unwrap_or_default();
-            let Ok(n) = value.trim().replace('_', "").parse::<usize>() else {
-                eprintln!("{arg}: expected a number of equations, got `{value}`");
-                return ExitCode::FAILURE;
-            };
-            if arg == "--max-equations" {
-                max_equations = Some(n);
-            } else {
-                lu_max = n;
-            }
-            continue;
-        }
-        match parse_size(&arg) {
-            Some(s) => sizes.push(s),
-            None => {
-                eprintln!("expected refine factors like `26x13`, got `{arg}`");
-                return ExitCode::FAILURE;
-            }
+            None => unreachable!("the first solver always runs"),
         }
     }
+    Ok((rows, others))
+}
+
+/// The paper scene at the refinements `raw` (default [`SIZES`], plus
+/// [`EXTRA_SIZES`] up to `max_equations`).
+fn run_2d(
+    raw: &[String],
+    max_equations: Option<usize>,
+    linear: &[LinearSolverKind],
+    lu_max: usize,
+) -> Result<Rows, Box<dyn std::error::Error>> {
+    let mut sizes = raw
+        .iter()
+        .map(|a| {
+            parse_size(a).ok_or_else(|| format!("expected refine factors like `26x13`, got `{a}`"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     if sizes.is_empty() {
         sizes = SIZES.to_vec();
     }
@@ -331,40 +480,83 @@ fn main() -> ExitCode {
                 .map(|&(size, _)| size),
         );
     }
-    let base = match Scene::from_toml_str(
+    let base = Scene::from_toml_str(
         solver::scenes::STACKED_CANTILEVER,
         "stacked-cantilever.toml",
-    ) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::FAILURE;
+    )?;
+    collect(sizes.iter().map(|&size| {
+        measure(&base, size, linear, lu_max)
+            .map_err(|e| format!("refine {}x{}: {e}", size.0, size.1).into())
+    }))
+}
+
+/// The 3D block at the refine factors `raw` (default [`SIZES_3D`], plus
+/// [`EXTRA_SIZES_3D`] up to `max_equations`), and the pattern alone of
+/// the [`EXTRA_SIZES_3D`] above those up to `fill_max` (checked against
+/// the largest timed size's fill).
+fn run_3d(
+    raw: &[String],
+    max_equations: Option<usize>,
+    fill_max: Option<usize>,
+    linear: &[LinearSolverKind],
+    lu_max: usize,
+) -> Result<(Rows, Vec<FillRow>), Box<dyn std::error::Error>> {
+    let mut sizes = raw
+        .iter()
+        .map(|a| {
+            a.parse::<usize>()
+                .ok()
+                .filter(|&n| n > 0)
+                .ok_or_else(|| format!("--3d: expected a refine factor like `13`, got `{a}`"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if sizes.is_empty() {
+        sizes = SIZES_3D.to_vec();
+    }
+    let timed_max = max_equations.unwrap_or(0);
+    sizes.extend(
+        EXTRA_SIZES_3D
+            .iter()
+            .filter(|&&(_, n)| n <= timed_max)
+            .map(|&(size, _)| size),
+    );
+    let base = Scene::from_toml_str(BLOCK_3D, "block3d.toml")?;
+    let rows = collect(sizes.iter().map(|&n| {
+        measure_3d(&base, n, linear, lu_max).map_err(|e| format!("refine {n}: {e}").into())
+    }))?;
+    let pattern_only: Vec<usize> = EXTRA_SIZES_3D
+        .iter()
+        .filter(|&&(_, n)| n > timed_max && n <= fill_max.unwrap_or(0))
+        .map(|&(size, _)| size)
+        .collect();
+    let mut fills = Vec::new();
+    if let (Some(&last), false) = (sizes.last(), pattern_only.is_empty()) {
+        // the pattern-only path gives the timed fill
+        let check = measure_fill_3d(&base, last, linear[0])?;
+        let timed = rows.0.last().and_then(|r| r.fill);
+        if check.fill != timed {
+            return Err(format!(
+                "refine {last}: pattern-only fill {:?}, the probe's {timed:?}",
+                check.fill
+            )
+            .into());
         }
-    };
-    let mut rows = Vec::new();
-    let mut others: Vec<Vec<Option<Row>>> = Vec::new();
-    for &size in &sizes {
-        match measure(&base, size, &linear, lu_max) {
-            Ok(mut r) => match r.remove(0) {
-                Some(first) => {
-                    rows.push(first);
-                    others.push(r);
-                }
-                None => unreachable!("the first solver always runs"),
-            },
-            Err(e) => {
-                eprintln!("refine {}x{}: {e}", size.0, size.1);
-                return ExitCode::FAILURE;
-            }
+        for n in pattern_only {
+            fills.push(
+                measure_fill_3d(&base, n, linear[0]).map_err(|e| format!("refine {n}: {e}"))?,
+            );
         }
     }
-    let peak = peak_mib();
+    Ok((rows, fills))
+}
 
+/// The 2D table: the paper scene, with the contact columns.
+fn print_2d_table(rows: &[Row], linear: &[LinearSolverKind]) {
     println!(
         "One Newton iteration, complete formulation, paper scene refined \
          (first iteration of load step 2 of {}; median of {REPS} runs, {REPS_LARGE} above {LARGE} equations, \
          {REPS_HUGE} above {HUGE}; {} rayon threads):\n",
-        base.default_steps(),
+        paper_steps(),
         rayon_threads()
     );
     if linear.len() > 1 || linear[0] != LinearSolverKind::Lu {
@@ -374,11 +566,10 @@ fn main() -> ExitCode {
         "| refine (x, y) | equations | contact points | assembly ms | contact ms | solve ms | total ms | symbolic ms (once) | factor nonzeros | peak MiB |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
-    for r in &rows {
+    for r in rows {
         println!(
-            "| {} x {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            r.refine.0,
-            r.refine.1,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.label,
             r.equations,
             r.contact_points,
             fmt_ms(r.solid),
@@ -411,6 +602,270 @@ fn main() -> ExitCode {
             println!("Factor nonzeros ∝ equations^{:.2}.", exponent(&n, &fill));
         }
         println!();
+    }
+}
+
+/// The paper scene's default step count.
+fn paper_steps() -> usize {
+    Scene::from_toml_str(
+        solver::scenes::STACKED_CANTILEVER,
+        "stacked-cantilever.toml",
+    )
+    .map_or(0, |s| s.default_steps())
+}
+
+/// The 3D table: the hexahedral block (no contact columns: a 3D model has
+/// no contact pairs yet), the growth exponents over all sizes and between
+/// the two largest, and the extrapolation to [`EXTRAPOLATE_TO`] equations
+/// with the latter (the peak memory as the extrapolated factor plus the
+/// rest of the largest size's peak grown linearly: below 1e5 equations the
+/// peak is mostly the model and the assembly, which grow linearly, and the
+/// factor grows faster).
+fn print_3d_table(rows: &[Row], fills: &[FillRow], linear: &[LinearSolverKind]) {
+    let steps = Scene::from_toml_str(BLOCK_3D, "block3d.toml").map_or(0, |s| s.default_steps());
+    println!(
+        "One Newton iteration, `scenes/block3d.toml` refined (hexahedra, St Venant-Kirchhoff, finite strain, \
+         no contact; first iteration of load step 2 of {steps}; median of {REPS} runs, {REPS_LARGE} above {LARGE} equations, \
+         {REPS_HUGE} above {HUGE} or when the first took over {} s; {} rayon threads):\n",
+        SLOW.as_secs(),
+        rayon_threads()
+    );
+    println!("Linear solver: {}.\n", linear[0]);
+    println!(
+        "| elements (x, y, z) | equations | assembly ms | solve ms | total ms | symbolic ms (once) | factor nonzeros | nonzeros / equation | peak MiB | LU fallbacks |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let per_equation = |fill: Option<usize>, equations: usize| {
+        fill.map_or_else(
+            || "n/a".into(),
+            |f| format!("{:.0}", f as f64 / equations as f64),
+        )
+    };
+    for r in rows {
+        println!(
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            r.label,
+            r.equations,
+            fmt_ms(r.solid),
+            fmt_ms(r.linear),
+            fmt_ms(r.total),
+            fmt_ms(r.symbolic),
+            fmt_fill(r.fill),
+            per_equation(r.fill, r.equations),
+            fmt_mib(r.peak_mib),
+            r.fallbacks
+        );
+    }
+    println!();
+    if !fills.is_empty() {
+        println!(
+            "Larger sizes, pattern only (assembled at the reference state, analysed by a fresh {} as a \
+             solve's first iteration; no numeric factorisation; peak: the model, its assembly and the analysis):\n",
+            linear[0]
+        );
+        println!(
+            "| elements (x, y, z) | equations | symbolic ms | factor nonzeros | nonzeros / equation | peak MiB |"
+        );
+        println!("|---|---:|---:|---:|---:|---:|");
+        for r in fills {
+            println!(
+                "| {} | {} | {} | {} | {} | {} |",
+                r.label,
+                r.equations,
+                fmt_ms(r.symbolic),
+                fmt_fill(r.fill),
+                per_equation(r.fill, r.equations),
+                fmt_mib(r.peak_mib)
+            );
+        }
+        println!();
+    }
+    if rows.len() < 2 {
+        return;
+    }
+    // (equations, value) series, and their exponents: least squares over
+    // all points and between the last two
+    let fit = |pts: &[(f64, f64)]| -> (f64, f64) {
+        let x: Vec<f64> = pts.iter().map(|p| p.0).collect();
+        let y: Vec<f64> = pts.iter().map(|p| p.1).collect();
+        let [.., (x0, y0), (x1, y1)] = pts else {
+            unreachable!("at least two points")
+        };
+        (exponent(&x, &y), (y1 / y0).ln() / (x1 / x0).ln())
+    };
+    let series = |f: &dyn Fn(&Row) -> f64| -> Vec<(f64, f64)> {
+        rows.iter().map(|r| (r.equations as f64, f(r))).collect()
+    };
+    let fmt_fit = |(all, local): (f64, f64)| format!("{all:.2} ({local:.2})");
+    let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+    let before = &rows[rows.len() - 2];
+    let time_fit = fit(&series(&|r| r.total));
+    println!(
+        "Growth from {} to {} equations, time ∝ equations^p (least squares on log-log; in brackets between \
+         the two largest sizes, {} and {}): assembly p = {}, solve p = {}, total p = {}, symbolic p = {}; \
+         peak memory ∝ equations^{}.",
+        first.equations,
+        last.equations,
+        before.equations,
+        last.equations,
+        fmt_fit(fit(&series(&|r| r.solid))),
+        fmt_fit(fit(&series(&|r| r.linear))),
+        fmt_fit(time_fit),
+        fmt_fit(fit(&series(&|r| r.symbolic))),
+        fmt_fit(fit(&series(&|r| r.peak_mib.unwrap_or(f64::NAN)))),
+    );
+    // the fill over the timed and the pattern-only sizes
+    let fill_pts: Vec<(f64, f64)> = rows
+        .iter()
+        .map(|r| (r.equations, r.fill))
+        .chain(fills.iter().map(|r| (r.equations, r.fill)))
+        .filter_map(|(n, f)| Some((n as f64, f? as f64)))
+        .collect();
+    let fill_fit = (fill_pts.len() >= 2).then(|| fit(&fill_pts));
+    if let (Some(ff), Some(&(n0, _)), Some(&(n1, _))) =
+        (fill_fit, fill_pts.first(), fill_pts.last())
+    {
+        println!(
+            "Factor nonzeros ∝ equations^{} from {n0} to {n1} equations{}.",
+            fmt_fit(ff),
+            if fills.is_empty() {
+                ""
+            } else {
+                " (timed and pattern-only sizes)"
+            }
+        );
+    }
+    println!();
+    // extrapolation with the exponents between the two largest sizes
+    // (the steeper ones: the growth steepens with the size in 3D), to the
+    // largest pattern-only size if there is one (its fill measured), else
+    // to EXTRAPOLATE_TO
+    let (to, measured_fill, measured_symbolic) = match fills.last() {
+        Some(r) if r.equations > last.equations => (r.equations, r.fill, Some(r.symbolic)),
+        _ => (EXTRAPOLATE_TO, None, None),
+    };
+    let scale = to as f64 / last.equations as f64;
+    let total = last.total * scale.powf(time_fit.1);
+    let symbolic_fit = fit(&series(&|r| r.symbolic));
+    let symbolic = measured_symbolic.unwrap_or(last.symbolic * scale.powf(symbolic_fit.1));
+    let nonzeros = match measured_fill {
+        Some(f) => Some(f as f64),
+        None => fill_fit
+            .zip(fill_pts.last())
+            .map(|(ff, &(n1, f1))| f1 * (to as f64 / n1).powf(ff.1)),
+    };
+    // the dense-column estimate of the factorisation's flops, sum of the
+    // squared column counts ~ nnz(L)^2 / n, scaled from the largest timed
+    // size's solve
+    let by_flops = nonzeros
+        .zip(last.fill)
+        .map(|(nz, f)| last.linear * (nz / f as f64).powi(2) / scale + last.solid * scale);
+    // the peak as the factor's values (8 bytes a nonzero) plus the rest
+    // (model, assembled system, solver work), the rest grown linearly
+    let factor_mib = |f: f64| f * 8.0 / (1024.0 * 1024.0);
+    let mib = last
+        .peak_mib
+        .zip(last.fill)
+        .zip(nonzeros)
+        .map(|((p, f), nz)| (p - factor_mib(f as f64)).max(0.0) * scale + factor_mib(nz));
+    let gib = |m: f64| format!("{:.1}", m / 1024.0);
+    println!(
+        "Extrapolated, not measured: at {to} equations one iteration would take about {:.0} s with the total \
+         time's exponent between the two largest timed sizes ({}; {} s with the factorisation's flops taken \
+         as nonzeros^2 / equations, the dense-column estimate, from the {} fill), its symbolic analysis \
+         {:.1} s once{}; the factor {} nonzeros{} ({} GiB of values, 8 bytes each); the iteration's \
+         peak, those values plus the rest of the largest timed size's peak grown linearly, about {} GiB.",
+        total / 1e3,
+        format_args!("{:.2}", time_fit.1),
+        by_flops.map_or_else(|| "n/a".into(), |t| format!("{:.0}", t / 1e3)),
+        if measured_fill.is_some() {
+            "measured"
+        } else {
+            "extrapolated"
+        },
+        symbolic / 1e3,
+        if measured_symbolic.is_some() {
+            " (measured, pattern only)"
+        } else {
+            " (extrapolated)"
+        },
+        nonzeros.map_or_else(|| "n/a".into(), |f| format!("{f:.2e}")),
+        if measured_fill.is_some() {
+            " (measured, pattern only)"
+        } else {
+            " (extrapolated with the fill's last exponent)"
+        },
+        nonzeros.map_or_else(|| "n/a".into(), |f| gib(factor_mib(f))),
+        mib.map_or_else(|| "n/a".into(), gib),
+    );
+    println!();
+}
+
+fn main() -> ExitCode {
+    let mut raw_sizes: Vec<String> = Vec::new();
+    let mut linear = vec![LinearSolverKind::Lu];
+    let mut max_equations: Option<usize> = None;
+    let mut lu_max = LU_MAX_EQUATIONS;
+    let mut three_d = false;
+    let mut fill_max: Option<usize> = None;
+    let mut args = std::env::args().skip(1);
+    while let Some(arg) = args.next() {
+        if arg == "--3d" {
+            three_d = true;
+            continue;
+        }
+        if arg == "--linear" {
+            let parsed: Result<Vec<LinearSolverKind>, _> = args
+                .next()
+                .unwrap_or_default()
+                .split(',')
+                .map(str::parse)
+                .collect();
+            match parsed {
+                Ok(kinds) if !kinds.is_empty() => linear = kinds,
+                Ok(_) => unreachable!("split yields at least one item"),
+                Err(e) => {
+                    eprintln!("--linear: {e}");
+                    return ExitCode::FAILURE;
+                }
+            }
+            continue;
+        }
+        if arg == "--max-equations" || arg == "--lu-max-equations" || arg == "--fill-max-equations"
+        {
+            let value = args.next().unwrap_or_default();
+            let Ok(n) = value.trim().replace('_', "").parse::<usize>() else {
+                eprintln!("{arg}: expected a number of equations, got `{value}`");
+                return ExitCode::FAILURE;
+            };
+            if arg == "--max-equations" {
+                max_equations = Some(n);
+            } else if arg == "--fill-max-equations" {
+                fill_max = Some(n);
+            } else {
+                lu_max = n;
+            }
+            continue;
+        }
+        raw_sizes.push(arg);
+    }
+    let run = if three_d {
+        run_3d(&raw_sizes, max_equations, fill_max, &linear, lu_max)
+    } else {
+        run_2d(&raw_sizes, max_equations, &linear, lu_max).map(|r| (r, Vec::new()))
+    };
+    let ((rows, others), fills) = match run {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("{e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let peak = peak_mib();
+    if three_d {
+        print_3d_table(&rows, &fills, &linear);
+    } else {
+        print_2d_table(&rows, &linear);
     }
     for (k, &kind) in linear.iter().enumerate().skip(1) {
         // LU in the first columns, so a ratio above 1 is the other's gain

@@ -151,7 +151,8 @@
 //! the solve at once, since a smaller increment cannot change that state.
 //!
 //! [`IterationProbe`] runs one iteration of the complete formulation at a
-//! given state, phase by phase, with the same code (for benchmarks).
+//! given state, phase by phase, with the same code (for benchmarks; in 2D
+//! and 3D, as the solve).
 //!
 //! # Parts
 //!

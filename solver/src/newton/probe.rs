@@ -10,6 +10,7 @@ use std::time::Instant;
 
 use crate::assembly::System;
 use crate::contact::KernelCounts;
+use crate::dim::{Dim, SpaceDim};
 use crate::error::SolverError;
 use crate::ids::MasterSegmentIndex;
 use crate::model::Model;
@@ -67,8 +68,12 @@ impl IterationSample {
 /// regularisation and solves with the probe's [`LinearSolver`](crate::linear::LinearSolver), whose
 /// symbolic factorisation is computed on the first call and reused after.
 /// The state is never updated, so every call repeats the same iteration.
-pub struct IterationProbe<'a> {
-    setup: Setup<'a>,
+///
+/// Generic over the dimension `D` as the solve is: a 3D model has no
+/// contact pairs (see [`SpaceDim`]), so its contact phase is an empty
+/// system and the probe times the solid assembly and the linear solve.
+pub struct IterationProbe<'a, const D: usize = 2> {
+    setup: Setup<'a, D>,
     regularization: f64,
     u: Vec<f64>,
     lambda: Vec<f64>,
@@ -76,7 +81,7 @@ pub struct IterationProbe<'a> {
     load_factor: f64,
 }
 
-impl<'a> IterationProbe<'a> {
+impl<'a, const D: usize> IterationProbe<'a, D> {
     /// The iteration from `state` (e.g. a converged
     /// [`Solution::final_state`](crate::Solution::final_state)) towards load factor `load_factor`: the
     /// prescribed dofs are set to `load_factor u_ref` and the external force
@@ -85,11 +90,14 @@ impl<'a> IterationProbe<'a> {
     /// `options.formulation` and `options.regularization`; `options.method`
     /// must be [`Method::Complete`].
     pub fn new(
-        model: &'a Model,
+        model: &'a Model<D>,
         options: &SolveOptions,
-        state: &State,
+        state: &State<D>,
         load_factor: f64,
-    ) -> Result<IterationProbe<'a>, SolverError> {
+    ) -> Result<IterationProbe<'a, D>, SolverError>
+    where
+        Dim<D>: SpaceDim<D>,
+    {
         if options.method != Method::Complete {
             return Err(SolverError::Options(format!(
                 "the iteration probe evaluates the complete formulation, not `{}`",
@@ -286,5 +294,57 @@ mod tests {
             ..opts.clone()
         };
         assert!(IterationProbe::new(&model, &approx, &zero, to).is_err());
+    }
+
+    /// In 3D (no contact) the probe's first residual is the solve's, its
+    /// contact phase is empty, and its correction gives the solve's second
+    /// residual.
+    #[test]
+    fn probe_matches_the_first_newton_iterations_in_3d() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/block3d.toml");
+        let scene = Scene::from_file(&path).unwrap();
+        let mut model = scene.build_model_3d().unwrap();
+        model.load_factor_end /= 2.0;
+        let opts = SolveOptions {
+            steps: 1,
+            ..SolveOptions::from_scene(&scene)
+        };
+        let solution = crate::solve_model(&model, &opts).unwrap();
+        let first = &solution.step_records[0];
+        let n = model.mesh.node_count();
+        let zero = State::<3> {
+            load_factor: 0.0,
+            displacements: vec![[0.0; 3]; n],
+            multipliers: Vec::new(),
+        };
+        let mut probe = IterationProbe::new(&model, &opts, &zero, first.load_factor).unwrap();
+        assert_eq!(probe.equations(), solution.equations);
+        assert_eq!(probe.contact_points(), 0);
+        let sample = probe.iteration().unwrap();
+        let r0 = first.residuals[0];
+        assert!((sample.residual_norm - r0).abs() <= 1e-12 * r0);
+        let mut phase = probe.contact().unwrap();
+        assert!(phase.system.vals.is_empty() && phase.active.is_empty());
+        probe.solid(&mut phase.system);
+        let dx = probe.linear_solve(phase).unwrap();
+        assert_eq!(probe.symbolic_factorisations(), 1);
+        assert_eq!(probe.linear_fallbacks(), 0);
+        let dofs = DofMap::new(&model, 0);
+        let mut u = vec![0.0; 3 * n];
+        for (dof, ud) in u.iter_mut().enumerate() {
+            if let Some(e) = dofs.eq(DofId::new(dof)) {
+                *ud -= dx[e.index()];
+            }
+        }
+        let next = State::<3> {
+            load_factor: 0.0,
+            displacements: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+            multipliers: Vec::new(),
+        };
+        let probe = IterationProbe::new(&model, &opts, &next, first.load_factor).unwrap();
+        let mut phase = probe.contact().unwrap();
+        probe.solid(&mut phase.system);
+        let r1 = first.residuals[1];
+        assert!((phase.system.residual_norm() - r1).abs() <= 1e-9 * r0);
     }
 }
