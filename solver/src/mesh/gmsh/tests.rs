@@ -588,7 +588,12 @@ fn mshio_panics_where_the_guard_rejects() {
         let caught = std::panic::catch_unwind(|| {
             let _ = mshio::parse_msh_bytes(text.as_bytes());
         });
-        assert!(caught.is_err(), "mshio no longer panics on `{to}`");
+        // a build without overflow checks (release) may overflow silently
+        // where a debug build panics; the guard rejects the input either way
+        assert!(
+            caught.is_err() || !cfg!(debug_assertions),
+            "mshio no longer panics on `{to}`"
+        );
         let e = kind(MshMesh::from_bytes(text.as_bytes(), "tiny.msh"));
         assert!(
             matches!(
@@ -605,7 +610,10 @@ fn mshio_panics_where_the_guard_rejects() {
     let caught = std::panic::catch_unwind(|| {
         let _ = mshio::parse_msh_bytes(&bytes);
     });
-    assert!(caught.is_err(), "mshio no longer panics on size_t = 3");
+    assert!(
+        caught.is_err() || !cfg!(debug_assertions),
+        "mshio no longer panics on size_t = 3"
+    );
     let e = MshMesh::from_bytes(&bytes, "b.msh").unwrap_err();
     assert!(matches!(e.kind, MshErrorKind::BadHeader(_)), "{e}");
 }
