@@ -70,6 +70,7 @@ use crate::mesh::volume::{Face, FaceKind};
 use crate::model::{ContactMode, FacePair, Integration};
 
 use super::MultiplierDof;
+use super::active_set::ActiveSetView;
 use super::clip::{ClipError, SlaveFace, TriangleRule};
 use super::face_index::{Aabb, FaceIndex};
 use super::face_rules::{self, RuleError, default_points, face_rule};
@@ -400,6 +401,16 @@ impl FaceLayout {
             masters: pairs.iter().map(|c| c.master.clone()).collect(),
             complementarity,
         })
+    }
+
+    /// The layout as the active set reads it.
+    pub fn active_set_view(&self) -> ActiveSetView<'_, FacePoint> {
+        ActiveSetView {
+            points: &self.points,
+            multipliers: &self.multipliers,
+            modes: &self.modes,
+            complementarity: &self.complementarity,
+        }
     }
 
     /// The static data of point `i`.

@@ -137,12 +137,14 @@ impl FaceLayout {
         (nodes, count)
     }
 
-    /// The current coordinates `q` of `nodes` (3 per node).
-    fn q(mesh: &Mesh<3>, u: &[f64], nodes: &[NodeId]) -> Vec<f64> {
-        nodes
-            .iter()
-            .flat_map(|&n| Self::current(mesh, u, n))
-            .collect()
+    /// The current coordinates `q` of `nodes` (3 per node, at most 8
+    /// nodes), in the first `3 nodes.len()` entries.
+    fn q(mesh: &Mesh<3>, u: &[f64], nodes: &[NodeId]) -> [f64; FACE_COORDS] {
+        let mut q = [0.0; FACE_COORDS];
+        for (k, &n) in nodes.iter().enumerate() {
+            q[3 * k..3 * k + 3].copy_from_slice(&Self::current(mesh, u, n));
+        }
+        q
     }
 
     /// The kernel formulation of probe `pt` on master face `master`.
@@ -184,10 +186,10 @@ impl FaceLayout {
         counts.evaluate += 1;
         let kernel = Kernel::new(self.formulation_of(pt, master)?, ty)?;
         let (nodes, node_count) = self.pair_nodes(pt, master);
+        let n = 3 * node_count;
         let q = Self::q(mesh, u, &nodes[..node_count]);
         let mut out = GapOut::new(&kernel);
-        kernel.eval(&q, pt.xi_s, &mut out)?;
-        let n = q.len();
+        kernel.eval(&q[..n], pt.xi_s, &mut out)?;
         let g = out.grad();
         let xi = out.xi_m_all();
         Ok(FaceEval {
@@ -246,10 +248,11 @@ impl FaceLayout {
         let projector = self.formulation_of(pt, master).and_then(Projector::new);
         let projector = projector.map_err(fail)?;
         let (nodes, node_count) = self.pair_nodes(pt, master);
+        let n = 3 * node_count;
         let q = Self::q(mesh, u, &nodes[..node_count]);
-        let mut scratch = vec![0.0; q.len()];
+        let mut scratch = [0.0; FACE_COORDS];
         counts.project += 1;
-        match projector.project(&q, pt.xi_s, &mut scratch) {
+        match projector.project(&q[..n], pt.xi_s, &mut scratch[..n]) {
             Ok(p) => {
                 let xi = p.xi_m_all();
                 let xi_m = [xi[0], xi[1]];

@@ -14,7 +14,6 @@ use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::volume::Face;
 use crate::model::{ContactMode, FacePair, Integration};
 
-use super::active_set::ActiveSetView;
 use super::term::{GapTerm, WeightedPoint};
 use super::{FaceEval, FaceLayout, KernelCounts, Taylor};
 
@@ -280,12 +279,7 @@ fn penetrating_nodes_are_active_and_open_ones_are_not() {
         let (evals, _) = layout
             .evaluate_all(&mesh, &u, &pairing, ApproxType::Type6)
             .unwrap();
-        let view = ActiveSetView {
-            points: &layout.points,
-            multipliers: &layout.multipliers,
-            modes: &layout.modes,
-            complementarity: &layout.complementarity,
-        };
+        let view = layout.active_set_view();
         let lambda = vec![0.0; layout.multipliers.len()];
         let active = view.active_multipliers(&evals, &lambda, 1.0);
         assert!(active.iter().all(|&a| a == expect), "gap {gap}");

@@ -21,13 +21,11 @@
 //! The weights add up to the face's area (the rule's area for a warped
 //! quad4), so the nodal forces add up to `t` times it.
 
-use crate::mesh::volume::Face;
+use crate::mesh::face_shape::FaceShape;
+use crate::mesh::volume::{Face, FaceKind, cross};
 
 /// `1/sqrt(3)`: the 2-point Gauss abscissa.
 const GAUSS: f64 = 0.577_350_269_189_625_8;
-
-/// The corners of the quad4's reference square, in Gmsh's node order.
-const QUAD_CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
 
 /// The weights `w_a = integral of N_a dA` of the face's nodes (module
 /// docs), node by node: the consistent nodal forces of a uniform traction
@@ -38,23 +36,14 @@ pub fn nodal_areas(face: &Face<[f64; 3]>) -> Face<f64> {
             let area = norm(cross(sub(x[1], x[0]), sub(x[2], x[0]))) / 2.0;
             Face::Tri3([area / 3.0; 3])
         }
-        Face::Quad4(x) => {
+        Face::Quad4(_) => {
             let mut w = [0.0; 4];
             for u in [-GAUSS, GAUSS] {
                 for v in [-GAUSS, GAUSS] {
-                    // dx/du, dx/dv of the bilinear map at (u, v)
-                    let mut du = [0.0; 3];
-                    let mut dv = [0.0; 3];
-                    for (a, [ua, va]) in QUAD_CORNERS.iter().enumerate() {
-                        let (nu, nv) = (ua * (1.0 + va * v) / 4.0, va * (1.0 + ua * u) / 4.0);
-                        for c in 0..3 {
-                            du[c] += nu * x[a][c];
-                            dv[c] += nv * x[a][c];
-                        }
-                    }
-                    let da = norm(cross(du, dv));
-                    for (a, [ua, va]) in QUAD_CORNERS.iter().enumerate() {
-                        w[a] += (1.0 + ua * u) * (1.0 + va * v) / 4.0 * da;
+                    let da = face.area_element([u, v]);
+                    let shape = FaceShape::at(FaceKind::Quad4, [u, v]);
+                    for (wa, na) in w.iter_mut().zip(shape.n) {
+                        *wa += na * da;
                     }
                 }
             }
@@ -71,14 +60,6 @@ pub fn nodal_forces(face: &Face<[f64; 3]>, t: [f64; 3]) -> Face<[f64; 3]> {
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn norm(a: [f64; 3]) -> f64 {
@@ -171,7 +152,7 @@ mod tests {
         let j2 = x[3] * y[2] - x[2] * y[3];
         let face = Face::Quad4(p.map(|q| place([q[0], q[1], 0.0])));
         let w = nodal_areas(&face);
-        for (a, [ua, va]) in QUAD_CORNERS.iter().enumerate() {
+        for (a, [ua, va]) in crate::mesh::face_shape::QUAD4_CORNERS.iter().enumerate() {
             let exact = j0 + (j1 * ua + j2 * va) / 3.0;
             assert!(
                 close(w.nodes()[a], exact),
