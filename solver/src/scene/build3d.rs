@@ -209,6 +209,7 @@ impl Scene {
             prescribed: prescribed.list,
             loads,
             contacts: Vec::new(),
+            face_contacts: Vec::new(),
             load_factor_end: self.loading.load_factor_end,
             amplitudes: curves.0,
             supports,
