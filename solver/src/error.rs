@@ -18,6 +18,10 @@ pub enum SolverError {
     /// The scene could not be read or is invalid.
     #[error(transparent)]
     Scene(#[from] SceneError),
+    /// The 3D contact pairs cannot be laid out (a `gauss_points` without a
+    /// rule, a degenerate slave face, a clipping failure).
+    #[error(transparent)]
+    FaceLayout(#[from] crate::contact::FaceLayoutError),
     /// The model built from the scene is inconsistent.
     #[error("invalid model: {0}")]
     Model(#[from] ModelError),

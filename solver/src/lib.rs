@@ -127,5 +127,5 @@ where
     Dim<D>: SpaceDim<D>,
 {
     memory::check_model(model, options.linear)?;
-    newton::Run::new(model, options, monitor)?.execute()
+    newton::Run::<D, <Dim<D> as SpaceDim<D>>::Contact>::new(model, options, monitor)?.execute()
 }

@@ -26,11 +26,13 @@
 //! variants carry their plain numbers.
 //!
 //! A model lives in the dimension of its mesh (`Model<D>`, 2 by default;
-//! one type and one solver for both). Contact is 2D for now: a 3D model
-//! with a contact pair is refused by [`Model::check`]
-//! ([`ModelError::ContactIn3d`]), and so is a 3D body whose material is
-//! not admissible in 3D ([`ModelError::Material`]: Poisson's ratio must be
-//! below 1/2; a 2D model's materials are checked where they are read).
+//! one type and one solver for both). A 2D model's contact pairs are
+//! pairs of segments (`contacts`), a 3D model's pairs of tri3/quad4 faces
+//! (`face_contacts`, [`FacePair`]); [`Model::check`] refuses a pair of the
+//! other dimension ([`ModelError::ContactIn3d`] for segments in 3D), and a
+//! 3D body whose material is not admissible in 3D
+//! ([`ModelError::Material`]: Poisson's ratio must be below 1/2; a 2D
+//! model's materials are checked where they are read).
 
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
@@ -359,9 +361,9 @@ pub enum ModelError {
         /// Why.
         error: crate::material::MaterialError,
     },
-    /// A contact pair in a model of another dimension than 2 (contact is
-    /// 2D only for now).
-    #[error("contact pair `{pair}`: contact is not available in {dim}D models yet (2D only)")]
+    /// A contact pair of 2D segments in a model of another dimension (a 3D
+    /// model's pairs are `face_contacts`).
+    #[error("contact pair `{pair}`: a pair of segments needs a 2D model, this one is {dim}D")]
     ContactIn3d {
         /// The first pair's name.
         pair: String,
@@ -494,12 +496,46 @@ impl<const D: usize> Model<D> {
                 dim: D,
             });
         }
-        // face pairs: 3D only, and not yet solved by Newton
-        if let Some(pair) = self.face_contacts.first() {
-            return Err(ModelError::ContactIn3d {
+        if let Some(pair) = self.face_contacts.first()
+            && D != 3
+        {
+            return Err(ModelError::Contact {
                 pair: pair.name.clone(),
-                dim: D,
+                message: format!("face pairs need a 3D model, this one is {D}D"),
             });
+        }
+        for pair in &self.face_contacts {
+            let err = |message: String| ModelError::Contact {
+                pair: pair.name.clone(),
+                message,
+            };
+            if pair.slave.is_empty() || pair.master.is_empty() {
+                return Err(err(
+                    "the slave and the master surface need at least one face each".into(),
+                ));
+            }
+            for face in pair.slave.iter().chain(&pair.master) {
+                if face
+                    .nodes()
+                    .iter()
+                    .any(|n| n.index() >= self.mesh.node_count())
+                {
+                    let raw: Vec<usize> = face.nodes().iter().map(|n| n.index()).collect();
+                    return Err(err(format!("face {raw:?} refers to a missing node")));
+                }
+            }
+            let slave_nodes: std::collections::HashSet<NodeId> = pair
+                .slave
+                .iter()
+                .flat_map(|f| f.nodes().iter().copied())
+                .collect();
+            if pair
+                .master
+                .iter()
+                .any(|f| f.nodes().iter().any(|n| slave_nodes.contains(n)))
+            {
+                return Err(err("the slave and the master surface share a node".into()));
+            }
         }
         for pair in &self.contacts {
             let err = |message: String| ModelError::Contact {

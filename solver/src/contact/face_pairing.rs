@@ -38,7 +38,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::ids::{ContactPointIndex, DofId, MasterFaceIndex, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::inside;
-use crate::mesh::volume::{Face, dot};
+use crate::mesh::volume::{Face, FaceKind, dot};
 use crate::par;
 
 use super::face_index::FaceIndex;
@@ -55,6 +55,8 @@ pub const FACE_COORDS: usize = 24;
 pub struct FaceEval {
     /// Master face index within the pair.
     pub master: MasterFaceIndex,
+    /// The master face's kind.
+    pub master_kind: FaceKind,
     /// The slave face's nodes then the master face's; `node_count` used.
     pub nodes: [NodeId; 8],
     /// How many of `nodes` are used (6 to 8).
@@ -89,6 +91,20 @@ impl GapTerm<FACE_COORDS> for FaceEval {
     fn with_gap(&self, gap: f64, grad: SVector<f64, FACE_COORDS>) -> FaceEval {
         FaceEval { gap, grad, ..*self }
     }
+}
+
+/// A 3D point's projection onto a master face (no derivatives): the step
+/// end's re-pairing and the pairing guard's updates.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceFound {
+    /// The master face within the pair.
+    pub master: MasterFaceIndex,
+    /// Its kind.
+    pub kind: FaceKind,
+    /// The exact gap.
+    pub gap: f64,
+    /// The projection `xi_m = (u, v)`.
+    pub xi_m: [f64; 2],
 }
 
 /// A point of a slave face to pair and evaluate: an integration point
@@ -194,6 +210,7 @@ impl FaceLayout {
         let xi = out.xi_m_all();
         Ok(FaceEval {
             master,
+            master_kind: self.masters_of(pt.pair)[master.index()].kind(),
             nodes,
             node_count,
             gap: out.gap(),
@@ -448,6 +465,101 @@ impl FaceLayout {
     ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
         let none: Vec<Option<MasterFaces>> = self.masters.iter().map(|_| None).collect();
         self.pair_all(mesh, u, &none)
+    }
+
+    /// Re-pairs every point by projection only (no derivatives), each
+    /// from its master face of `pairing`: kept where the point still
+    /// projects into it and the faces face each other, else searched for
+    /// through the index ([`Self::initial_pairing`]'s choice).
+    #[allow(clippy::type_complexity)] // as initial_pairing's
+    pub fn project_all(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pairing: &[Option<MasterFaceIndex>],
+    ) -> Result<(Vec<Option<FaceFound>>, KernelCounts), PointFailure<MasterFaceIndex>> {
+        let indexes = std::sync::OnceLock::new();
+        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
+            let i = ContactPointIndex::new(k);
+            let fail = |(m, error)| PointFailure {
+                point: i,
+                master_segment: m,
+                error,
+            };
+            let pt = self.probe(i);
+            if let Some(m) = pairing[k]
+                && let Some((gap, xi_m)) = self.project_into(mesh, u, &pt, m, c).map_err(fail)?
+            {
+                return Ok(Some(self.found(&pt, m, gap, xi_m)));
+            }
+            let indexes = indexes.get_or_init(|| self.master_indexes(mesh, u));
+            Ok(self
+                .find_master(mesh, u, &pt, indexes, c)
+                .map_err(fail)?
+                .map(|(m, gap, xi_m)| self.found(&pt, m, gap, xi_m)))
+        })
+    }
+
+    /// A projection of probe `pt` onto master face `m`.
+    fn found(&self, pt: &Probe, m: MasterFaceIndex, gap: f64, xi_m: [f64; 2]) -> FaceFound {
+        FaceFound {
+            master: m,
+            kind: self.masters_of(pt.pair)[m.index()].kind(),
+            gap,
+            xi_m,
+        }
+    }
+
+    /// The pairing changes due at a converged iterate of the complete
+    /// formulation, as in 2D: every point whose projection has left its
+    /// master face (beyond [`XI_INSIDE_TOL`]) or whose faces no longer face
+    /// each other is searched for, every unpaired point too; returns
+    /// `(point, new pairing)` for the points whose master face changes, in
+    /// point order.
+    #[allow(clippy::type_complexity)] // as initial_pairing's
+    pub fn pairing_updates(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        evals: &[Option<FaceEval>],
+    ) -> Result<
+        (Vec<(ContactPointIndex, Option<FaceFound>)>, KernelCounts),
+        PointFailure<MasterFaceIndex>,
+    > {
+        let mut counts = KernelCounts::default();
+        let mut indexes = None;
+        let mut out = Vec::new();
+        for (k, ev) in evals.iter().enumerate() {
+            let i = ContactPointIndex::new(k);
+            let pair = self.point(i).pair;
+            let current = match ev {
+                Some(e)
+                    if inside(
+                        self.masters_of(pair)[e.master.index()].kind(),
+                        e.xi_m,
+                        XI_INSIDE_TOL,
+                    ) && self.faces_each_other(mesh, u, i, e.master, e.xi_m) =>
+                {
+                    continue;
+                }
+                Some(e) => Some(e.master),
+                None => None,
+            };
+            let indexes = indexes.get_or_insert_with(|| self.master_indexes(mesh, u));
+            let pt = self.probe(i);
+            let found = self
+                .find_master(mesh, u, &pt, indexes, &mut counts)
+                .map_err(|(m, error)| PointFailure {
+                    point: i,
+                    master_segment: m,
+                    error,
+                })?
+                .map(|(m, gap, xi_m)| self.found(&pt, m, gap, xi_m));
+            if found.map(|f| f.master) != current {
+                out.push((i, found));
+            }
+        }
+        Ok((out, counts))
     }
 
     /// Every point's master face with `indexes` (in parallel).

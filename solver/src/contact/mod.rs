@@ -254,7 +254,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
 pub use face_layout::{FaceLayout, FaceLayoutError, FacePoint, face_formulation};
-pub use face_pairing::{FACE_COORDS, FaceEval};
+pub use face_pairing::{FACE_COORDS, FaceEval, FaceFound};
 pub use layout::ContactLayout;
 pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
 pub use search::PassIndexes;
@@ -442,15 +442,17 @@ impl GapTerm<8> for PointEval {
 /// shared by two adjacent master segments (module docs, "Points stuck at a
 /// master node"). The point's contact potential is
 /// `lambda w J0 g_p + mu (g_o - g_p)`, with `g_p` its gap on the `paired`
-/// segment and `g_o` on the `other` one.
+/// segment and `g_o` on the `other` one. Generic over the master's index
+/// so that the Newton loop names one type in 2D and 3D; only 2D segments
+/// are ever tied ([`crate::dim::ContactSpace::can_tie`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct NodeTie {
+pub struct NodeTie<M = MasterSegmentIndex> {
     /// Index into [`ContactLayout::points`].
     pub point: ContactPointIndex,
     /// The master segment the point is paired with (its regular term).
-    pub paired: MasterSegmentIndex,
+    pub paired: M,
     /// The adjacent master segment beyond the node.
-    pub other: MasterSegmentIndex,
+    pub other: M,
     /// The tie's multiplier `mu`.
     pub mu: f64,
 }

@@ -107,6 +107,18 @@ pub fn inside(kind: FaceKind, [u, v]: [f64; 2], tol: f64) -> bool {
     }
 }
 
+/// How far `xi` lies from the centre of a face of `kind`, 1 on its
+/// boundary (the reach of a projection, [`crate::dim::ContactSpace`]):
+/// quad4 `max(|u|, |v|)`, tri3 `1 + max(-u, -v, u + v - 1)`; a point is
+/// [`inside`] with tolerance `tol` exactly when its reach is at most
+/// `1 + tol` (up to rounding).
+pub fn reach(kind: FaceKind, [u, v]: [f64; 2]) -> f64 {
+    match kind {
+        FaceKind::Tri3 => 1.0 + (-u).max(-v).max(u + v - 1.0),
+        FaceKind::Quad4 => u.abs().max(v.abs()),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,25 +26,26 @@
 
 use std::time::Instant;
 
-use crate::contact::PointEval;
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, MasterSegmentIndex};
-use crate::solution::{ContactPointId, CutbackReason};
+use crate::ids::ContactPointIndex;
+use crate::solution::CutbackReason;
 
 use super::iterate::Iterate;
 use super::outcome::{AttemptOutcome, Converged, PointsReport};
 use super::treatment::{ContactTreatment, Context, Settling, SolveEnd, StepStart};
 use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
 
-impl<'a, const D: usize> Run<'a, D> {
+impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S> {
     /// The contact treatment with what it works on: the solve's context and
     /// the run's converged state.
+    #[allow(clippy::type_complexity)] // the three borrows of the run
     fn split_treatment(
         &mut self,
     ) -> (
-        &mut dyn ContactTreatment<D>,
-        Context<'_, 'a, D>,
-        StepStart<'_>,
+        &mut dyn ContactTreatment<D, S>,
+        Context<'_, 'a, D, S>,
+        StepStart<'_, S::Master>,
     ) {
         (
             &mut *self.treatment,
@@ -65,7 +66,7 @@ impl<'a, const D: usize> Run<'a, D> {
 
     /// One attempt from the converged state to load factor `to` (module
     /// docs): Newton solves until the treatment accepts one.
-    pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome<D>, SolverError> {
+    pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome<D, S::Master>, SolverError> {
         let (treatment, mut cx, start) = self.split_treatment();
         treatment.begin_attempt(&mut cx, start)?;
         let mut warm = None;
@@ -92,7 +93,7 @@ impl<'a, const D: usize> Run<'a, D> {
         &mut self,
         to: f64,
         warm: Option<(Vec<f64>, Vec<f64>)>,
-    ) -> Result<AttemptOutcome<D>, SolverError> {
+    ) -> Result<AttemptOutcome<D, S::Master>, SolverError> {
         let (u, lambda) = warm.unwrap_or_else(|| (self.u.clone(), self.lambda.clone()));
         let mut x = Iterate {
             u,
@@ -236,24 +237,16 @@ impl<'a, const D: usize> Run<'a, D> {
     /// the points `kept` outside their segment: the points' report.
     fn accept(
         &self,
-        x: &mut Iterate,
-        evals: &[Option<PointEval>],
+        x: &mut Iterate<S::Master>,
+        evals: &[Option<S::Eval>],
         active: &[bool],
         kept: Vec<ContactPointIndex>,
     ) -> PointsReport {
-        let unpaired = self
-            .setup
-            .layout
-            .points
+        let unpaired = evals
             .iter()
-            .zip(evals)
+            .enumerate()
             .filter(|(_, e)| e.is_none())
-            .map(|(p, _)| ContactPointId {
-                pair: p.pair.index(),
-                slave_segment: p.slave_segment,
-                gauss: p.gauss,
-                master_segment: None,
-            })
+            .map(|(i, _)| self.setup.point_id(ContactPointIndex::new(i)))
             .collect();
         // inactive rows read l_a = 0 (satisfied to round-off): make it exact
         for (l, &on) in x.lambda.iter_mut().zip(active) {
@@ -262,10 +255,7 @@ impl<'a, const D: usize> Run<'a, D> {
             }
         }
         let pairing = &x.pairing;
-        let with_master = |i: ContactPointIndex| ContactPointId {
-            master_segment: pairing[i.index()].map(MasterSegmentIndex::index),
-            ..self.setup.point_id(i)
-        };
+        let with_master = |i: ContactPointIndex| self.setup.layout.point_id(i, pairing[i.index()]);
         let node_ties = x.ties.iter().map(|t| with_master(t.point)).collect();
         let kept_outside = kept.into_iter().map(with_master).collect();
         PointsReport {

@@ -16,9 +16,9 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
-use crate::contact::{KernelCounts, NodeTie, PointEval, PointFailure};
+use crate::contact::{KernelCounts, NodeTie, PointFailure};
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::MasterSegmentIndex;
 use crate::solution::{ContactPointId, CutbackReason};
 
 use super::iterate::Iterate;
@@ -33,17 +33,24 @@ pub(super) const DERIVATIVES: ApproxType = ApproxType::Type6;
 
 /// The complete formulation (module docs); its state is the current
 /// attempt's pairing guard.
-#[derive(Debug, Default)]
-pub(super) struct Complete {
+pub(super) struct Complete<M> {
     /// The pairing changes of the current attempt.
-    guard: PairingGuard,
+    guard: PairingGuard<M>,
 }
 
-impl<const D: usize> ContactTreatment<D> for Complete {
+impl<M> Default for Complete<M> {
+    fn default() -> Self {
+        Complete {
+            guard: PairingGuard::default(),
+        }
+    }
+}
+
+impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Complete<S::Master> {
     fn begin_attempt(
         &mut self,
-        _cx: &mut Context<'_, '_, D>,
-        _start: StepStart<'_>,
+        _cx: &mut Context<'_, '_, D, S>,
+        _start: StepStart<'_, S::Master>,
     ) -> Result<(), SolverError> {
         self.guard = PairingGuard::default();
         Ok(())
@@ -54,13 +61,13 @@ impl<const D: usize> ContactTreatment<D> for Complete {
     /// with.
     fn evaluate(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        x: &mut Iterate,
+        cx: &mut Context<'_, '_, D, S>,
+        x: &mut Iterate<S::Master>,
         at_once: bool,
-    ) -> Result<Evaluations, CutbackReason> {
+    ) -> Result<Evaluations<D, S>, CutbackReason> {
         match evaluate(cx.setup, &x.u, &x.pairing, &x.ties, at_once, cx.counts) {
             Ok((evals, others)) => {
-                x.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+                x.pairing = evals.iter().map(|e| e.as_ref().map(S::master)).collect();
                 Ok((evals, others))
             }
             Err(f) => Err(CutbackReason::Kernel {
@@ -74,9 +81,9 @@ impl<const D: usize> ContactTreatment<D> for Complete {
     /// point or a kernel failure asks for a cut-back.
     fn settle(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        x: &mut Iterate,
-        evals: &[Option<PointEval>],
+        cx: &mut Context<'_, '_, D, S>,
+        x: &mut Iterate<S::Master>,
+        evals: &[Option<S::Eval>],
     ) -> Result<Settling, CutbackReason> {
         let t = Instant::now();
         let outcome = self.guard.update(
@@ -95,10 +102,8 @@ impl<const D: usize> ContactTreatment<D> for Complete {
                     GuardOutcome::Changed => Ok(Settling::Changed),
                     GuardOutcome::Settled(k) => Ok(Settling::Settled(k)),
                     GuardOutcome::Stuck { point, xi_m } => {
-                        let point = ContactPointId {
-                            master_segment: x.pairing[point.index()].map(MasterSegmentIndex::index),
-                            ..cx.setup.point_id(point)
-                        };
+                        let point: ContactPointId =
+                            cx.setup.layout.point_id(point, x.pairing[point.index()]);
                         Err(CutbackReason::StuckAtMasterNode { point, xi_m })
                     }
                 }
@@ -112,10 +117,10 @@ impl<const D: usize> ContactTreatment<D> for Complete {
 
     fn end_solve(
         &mut self,
-        _cx: &mut Context<'_, '_, D>,
-        _start: StepStart<'_>,
-        c: Converged<D>,
-    ) -> Result<SolveEnd<D>, SolverError> {
+        _cx: &mut Context<'_, '_, D, S>,
+        _start: StepStart<'_, S::Master>,
+        c: Converged<D, S::Master>,
+    ) -> Result<SolveEnd<D, S::Master>, SolverError> {
         Ok(SolveEnd::Done(Box::new(AttemptOutcome::Converged(c))))
     }
 
@@ -136,15 +141,15 @@ impl<const D: usize> ContactTreatment<D> for Complete {
 /// evaluations' master segments. Kernel calls are added to `counts_out`
 /// (on failure only those of the first pass). Shared by the solve and
 /// [`super::IterationProbe`].
-pub(super) fn evaluate<const D: usize>(
-    setup: &Setup<'_, D>,
+pub(super) fn evaluate<const D: usize, S: ContactSpace<D>>(
+    setup: &Setup<'_, D, S>,
     u: &[f64],
-    pairing: &[Option<MasterSegmentIndex>],
-    ties: &[NodeTie],
+    pairing: &[Option<S::Master>],
+    ties: &[NodeTie<S::Master>],
     at_once: bool,
     counts_out: &mut KernelCounts,
-) -> Result<Evaluations, PointFailure> {
-    let mesh = setup.contact_mesh;
+) -> Result<Evaluations<D, S>, PointFailure<S::Master>> {
+    let mesh = &setup.model.mesh;
     let layout = &setup.layout;
     let (mut evals, counts) = if at_once {
         layout.evaluate_all(mesh, u, pairing, DERIVATIVES)?
@@ -154,7 +159,10 @@ pub(super) fn evaluate<const D: usize>(
     *counts_out += counts;
     let mut counts = KernelCounts::default();
     for t in ties {
-        if evals[t.point.index()].is_none_or(|e| e.master != t.paired) {
+        if evals[t.point.index()]
+            .as_ref()
+            .is_none_or(|e| S::master(e) != t.paired)
+        {
             evals[t.point.index()] = Some(
                 layout
                     .evaluate_on(mesh, u, t.point, t.paired, DERIVATIVES, &mut counts)

@@ -20,9 +20,9 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
-use crate::contact::{PointEval, Taylor};
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, MasterSegmentIndex};
+use crate::ids::ContactPointIndex;
 use crate::solution::CutbackReason;
 
 use super::iterate::Iterate;
@@ -30,29 +30,28 @@ use super::outcome::{Converged, StepEnd};
 use super::treatment::{ContactTreatment, Context, Evaluations, Settling, SolveEnd, StepStart};
 
 /// The frozen expansions of one type (module docs).
-#[derive(Debug)]
-pub(super) struct Frozen {
+pub(super) struct Frozen<const D: usize, S: ContactSpace<D>> {
     /// The approximation type whose kernel gives the expansions.
     pub(super) ty: ApproxType,
     /// Each point's expansion (`None`: the point is unpaired).
-    pub(super) points: Vec<Option<Taylor>>,
+    pub(super) points: Vec<Option<S::Expansion>>,
     /// The expansion on the other segment of each tie of the run's
     /// converged state (`repair.rs`).
-    pub(super) ties: Vec<Taylor>,
+    pub(super) ties: Vec<S::Expansion>,
     /// Whether the expansions belong to the run's converged state (false
     /// before the first attempt and after a commit).
     current: bool,
     /// The step-end check's state within the current attempt.
-    pub(super) check: Check,
+    pub(super) check: Check<S::Master>,
     /// Projection and kernel calls of the step-end checks.
     pub(super) step_end_projections: u64,
 }
 
 /// The step-end check's state within one attempt (`repair.rs`).
-#[derive(Debug, Default)]
-pub(super) struct Check {
-    /// Per point, the pairings its expansion has had in the attempt.
-    pub(super) tried: Vec<Vec<Option<MasterSegmentIndex>>>,
+#[derive(Debug)]
+/// Per point, the pairings its expansion has had in the attempt.
+pub(super) struct Check<M> {
+    pub(super) tried: Vec<Vec<Option<M>>>,
     /// What the check has found so far (the repeats).
     pub(super) end: StepEnd,
     /// Per point: whether its expansion is not the step start's (taken at
@@ -66,9 +65,22 @@ pub(super) struct Check {
     pub(super) updates: usize,
 }
 
-impl Frozen {
+impl<M> Default for Check<M> {
+    fn default() -> Self {
+        Check {
+            tried: Vec::new(),
+            end: StepEnd::default(),
+            moved: Vec::new(),
+            released: Vec::new(),
+            switches: 0,
+            updates: 0,
+        }
+    }
+}
+
+impl<const D: usize, S: ContactSpace<D>> Frozen<D, S> {
     /// The expansions of type `ty`, built at the first attempt.
-    pub(super) fn new(ty: ApproxType) -> Frozen {
+    pub(super) fn new(ty: ApproxType) -> Frozen<D, S> {
         Frozen {
             ty,
             points: Vec::new(),
@@ -82,10 +94,10 @@ impl Frozen {
     /// Builds the expansions at the converged state, re-pairing every
     /// point; the converged state's ties are dropped (a tie of Types 1–6
     /// lasts one step, `repair.rs`).
-    fn build<const D: usize>(
+    fn build(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        start: &mut StepStart<'_>,
+        cx: &mut Context<'_, '_, D, S>,
+        start: &mut StepStart<'_, S::Master>,
     ) -> Result<(), SolverError> {
         start.ties.clear();
         self.ties.clear();
@@ -93,13 +105,13 @@ impl Frozen {
         let (evals, counts) = cx
             .setup
             .layout
-            .evaluate_all(cx.setup.contact_mesh, start.u, start.pairing, self.ty)
+            .evaluate_all(&cx.setup.model.mesh, start.u, start.pairing, self.ty)
             .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
         *cx.counts += counts;
-        *start.pairing = evals.iter().map(|e| e.map(|e| e.master)).collect();
+        *start.pairing = evals.iter().map(|e| e.as_ref().map(S::master)).collect();
         self.points = evals
             .into_iter()
-            .map(|e| e.map(|at_start| Taylor::at(at_start, start.u)))
+            .map(|e| e.map(|at_start| S::expand_at(at_start, start.u)))
             .collect();
         self.current = true;
         cx.timings.contact_evaluation += t.elapsed();
@@ -107,13 +119,13 @@ impl Frozen {
     }
 }
 
-impl<const D: usize> ContactTreatment<D> for Frozen {
+impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Frozen<D, S> {
     /// Builds the expansions if the converged state has none yet, and
     /// starts the attempt's step-end check.
     fn begin_attempt(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        mut start: StepStart<'_>,
+        cx: &mut Context<'_, '_, D, S>,
+        mut start: StepStart<'_, S::Master>,
     ) -> Result<(), SolverError> {
         if !self.current {
             self.build(cx, &mut start)?;
@@ -132,25 +144,25 @@ impl<const D: usize> ContactTreatment<D> for Frozen {
     /// Every point's expansion and every tie's second one at `x`.
     fn evaluate(
         &mut self,
-        _cx: &mut Context<'_, '_, D>,
-        x: &mut Iterate,
+        _cx: &mut Context<'_, '_, D, S>,
+        x: &mut Iterate<S::Master>,
         _at_once: bool,
-    ) -> Result<Evaluations, CutbackReason> {
-        let evals: Vec<Option<PointEval>> = self
+    ) -> Result<Evaluations<D, S>, CutbackReason> {
+        let evals: Vec<Option<S::Eval>> = self
             .points
             .iter()
-            .map(|t| t.map(|t| t.expand(&x.u)))
+            .map(|t| t.as_ref().map(|t| S::expand(t, &x.u)))
             .collect();
-        let others = self.ties.iter().map(|t| t.expand(&x.u)).collect();
+        let others = self.ties.iter().map(|t| S::expand(t, &x.u)).collect();
         Ok((evals, others))
     }
 
     /// The pairing of a frozen step stands until its end.
     fn settle(
         &mut self,
-        _cx: &mut Context<'_, '_, D>,
-        _x: &mut Iterate,
-        _evals: &[Option<PointEval>],
+        _cx: &mut Context<'_, '_, D, S>,
+        _x: &mut Iterate<S::Master>,
+        _evals: &[Option<S::Eval>],
     ) -> Result<Settling, CutbackReason> {
         Ok(Settling::Settled(Vec::new()))
     }
@@ -158,10 +170,10 @@ impl<const D: usize> ContactTreatment<D> for Frozen {
     /// The step-end check (`repair.rs`).
     fn end_solve(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        start: StepStart<'_>,
-        c: Converged<D>,
-    ) -> Result<SolveEnd<D>, SolverError> {
+        cx: &mut Context<'_, '_, D, S>,
+        start: StepStart<'_, S::Master>,
+        c: Converged<D, S::Master>,
+    ) -> Result<SolveEnd<D, S::Master>, SolverError> {
         self.check_end(cx, start, c)
     }
 

@@ -6,22 +6,22 @@
 
 use crate::assembly::DofMap;
 use crate::contact::NodeTie;
-use crate::ids::{DofId, MasterSegmentIndex, MultiplierIndex};
+use crate::ids::{DofId, MultiplierIndex};
 
 /// The unknowns of an attempt's current iterate (copies of the converged
 /// state at the start).
-pub(super) struct Iterate {
+pub(super) struct Iterate<M> {
     /// Displacements (all dofs).
     pub(super) u: Vec<f64>,
     /// Multipliers.
     pub(super) lambda: Vec<f64>,
     /// Each point's master segment.
-    pub(super) pairing: Vec<Option<MasterSegmentIndex>>,
+    pub(super) pairing: Vec<Option<M>>,
     /// Node ties (points held at a master node, [`NodeTie`]).
-    pub(super) ties: Vec<NodeTie>,
+    pub(super) ties: Vec<NodeTie<M>>,
 }
 
-impl Iterate {
+impl<M> Iterate<M> {
     /// Applies the Newton correction: `x -= dx` on the free dofs, the
     /// multipliers and the ties' multipliers.
     pub(super) fn correct(&mut self, dofs: &DofMap, dx: &[f64]) {

@@ -213,16 +213,12 @@ mod treatment;
 use std::time::Instant;
 
 use crate::contact::{KernelCounts, NodeTie};
-use crate::dim::{Dim, SpaceDim};
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::{MasterSegmentIndex, NodeId};
 use crate::model::Model;
 use crate::monitor::{Monitor, StepProgress};
 use crate::options::{Method, SolveOptions};
-use crate::solution::{
-    AccuracyHalving, ContactPointReport, Cutback, MultiplierDofInfo, Solution, State, StepRecord,
-    Timings,
-};
+use crate::solution::{AccuracyHalving, Cutback, Solution, State, StepRecord, Timings};
 
 use complete::Complete;
 use frozen::Frozen;
@@ -256,24 +252,24 @@ pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 pub const MAX_REPAIR_REPEATS: usize = 4;
 
 /// The solve in progress.
-pub(crate) struct Run<'a, const D: usize = 2> {
+pub(crate) struct Run<'a, const D: usize, S: ContactSpace<D>> {
     opts: &'a SolveOptions,
     /// Told of every finished step and cut-back; asked before every
     /// attempt and iteration whether to stop.
     monitor: &'a dyn Monitor,
-    setup: Setup<'a, D>,
+    setup: Setup<'a, D, S>,
     timings: Timings,
     counts: KernelCounts,
     // converged state
     u: Vec<f64>,
     lambda: Vec<f64>,
-    pairing: Vec<Option<MasterSegmentIndex>>,
-    ties: Vec<NodeTie>,
+    pairing: Vec<Option<S::Master>>,
+    ties: Vec<NodeTie<S::Master>>,
     load_factor: f64,
     energy: f64,
     /// How contact is treated: the complete formulation, or Types 1–6's
     /// frozen expansions (`treatment.rs`).
-    treatment: Box<dyn ContactTreatment<D>>,
+    treatment: Box<dyn ContactTreatment<D, S>>,
     /// The converged displacements before the last commit (the secant
     /// predictor's, "Prescribed increments").
     previous_u: Option<Vec<f64>>,
@@ -287,15 +283,12 @@ pub(crate) struct Run<'a, const D: usize = 2> {
     accuracy_halvings: Vec<AccuracyHalving>,
 }
 
-impl<'a, const D: usize> Run<'a, D> {
+impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S> {
     pub(crate) fn new(
         model: &'a Model<D>,
         opts: &'a SolveOptions,
         monitor: &'a dyn Monitor,
-    ) -> Result<Run<'a, D>, SolverError>
-    where
-        Dim<D>: SpaceDim<D>,
-    {
+    ) -> Result<Run<'a, D, S>, SolverError> {
         if opts.steps == 0 {
             return Err(SolverError::Options("steps must be at least 1".into()));
         }
@@ -318,12 +311,12 @@ impl<'a, const D: usize> Run<'a, D> {
         {
             return Err(SolverError::Options(why));
         }
-        let setup = Setup::new(model, opts)?;
-        let n_points = setup.layout.points.len();
+        let setup = Setup::<D, S>::new(model, opts)?;
+        let n_points = setup.layout.point_count();
         // the one place that matches on the method
-        let treatment: Box<dyn ContactTreatment<D>> = match opts.method {
-            Method::Complete => Box::new(Complete::default()),
-            Method::Approx(ty) => Box::new(Frozen::new(ty)),
+        let treatment: Box<dyn ContactTreatment<D, S>> = match opts.method {
+            Method::Complete => Box::new(Complete::<S::Master>::default()),
+            Method::Approx(ty) => Box::new(Frozen::<D, S>::new(ty)),
         };
         Ok(Run {
             opts,
@@ -331,7 +324,7 @@ impl<'a, const D: usize> Run<'a, D> {
             timings: Timings::default(),
             counts: KernelCounts::default(),
             u: vec![0.0; model.dof_count()],
-            lambda: vec![0.0; setup.layout.multipliers.len()],
+            lambda: vec![0.0; setup.layout.multiplier_count()],
             pairing: vec![None; n_points],
             ties: Vec::new(),
             setup,
@@ -450,7 +443,7 @@ impl<'a, const D: usize> Run<'a, D> {
     }
 
     /// Makes a converged attempt towards `to` the converged state.
-    fn commit(&mut self, step: usize, to: f64, c: Converged<D>) {
+    fn commit(&mut self, step: usize, to: f64, c: Converged<D, S::Master>) {
         self.previous_u = Some(std::mem::replace(&mut self.u, c.state.u));
         self.lambda = c.state.lambda;
         self.pairing = c.state.pairing;
@@ -484,31 +477,15 @@ impl<'a, const D: usize> Run<'a, D> {
     fn finish(self, start: Instant) -> Result<Solution<D>, SolverError> {
         let layout = &self.setup.layout;
         let (projections, _) = layout
-            .project_all(self.setup.contact_mesh, &self.u, &self.pairing)
+            .project_all(&self.setup.model.mesh, &self.u, &self.pairing)
             .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
-        let contact_points = layout
-            .points
-            .iter()
-            .zip(&projections)
-            .map(|(p, proj)| ContactPointReport {
-                pair: p.pair.index(),
-                slave_segment: p.slave_segment,
-                gauss: p.gauss,
-                xi_s: p.xi_s,
-                slave_nodes: p.slave_nodes.map(NodeId::index),
-                master_segment: proj.map(|(m, _)| m.index()),
-                master_nodes: proj
-                    .map(|(m, _)| layout.masters_of(p.pair)[m.index()].map(NodeId::index)),
-                xi_m: proj.map(|(_, pr)| pr.xi_m),
-                gap: proj.map(|(_, pr)| pr.gap),
-            })
-            .collect();
+        let contact_points = layout.reports(&projections);
         let mut timings = self.timings;
         timings.symbolic_factorisation = self.setup.linear.symbolic_time();
         timings.total = start.elapsed();
         Ok(Solution {
             method: self.opts.method,
-            formulations: layout.formulations.clone(),
+            formulations: layout.formulations(),
             steps: self.opts.steps,
             load_factor: self.load_factor,
             strain_energy: self.energy,
@@ -527,14 +504,7 @@ impl<'a, const D: usize> Run<'a, D> {
             factor_nonzeros: self.setup.linear.factor_nonzeros(),
             equations: self.setup.dofs.n_eq(),
             mesh: self.setup.model.mesh.clone(),
-            multiplier_dofs: layout
-                .multipliers
-                .iter()
-                .map(|m| MultiplierDofInfo {
-                    pair: m.pair.index(),
-                    node: m.node.index(),
-                })
-                .collect(),
+            multiplier_dofs: layout.multiplier_dofs(),
             final_state: self.state(),
             snapshots: self.snapshots.clone(),
             contact_points,

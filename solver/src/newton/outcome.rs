@@ -13,9 +13,9 @@ use crate::solution::{ContactPointId, CutbackReason};
 use super::iterate::Iterate;
 
 /// A converged attempt.
-pub(super) struct Converged<const D: usize = 2> {
+pub(super) struct Converged<const D: usize, M> {
     /// The converged iterate (inactive multipliers exactly zero).
-    pub(super) state: Iterate,
+    pub(super) state: Iterate<M>,
     /// Linear solves spent.
     pub(super) iterations: usize,
     /// The residual norms of the evaluated iterates.
@@ -59,23 +59,23 @@ pub(super) struct Failed {
 }
 
 /// How an attempt ended.
-pub(super) enum AttemptOutcome<const D: usize = 2> {
+pub(super) enum AttemptOutcome<const D: usize, M> {
     /// Converged: the new converged state.
-    Converged(Converged<D>),
+    Converged(Converged<D, M>),
     /// Failed: cut back.
     CutBack(Failed),
     /// Types 1–6 with a `taylor_tolerance`: converged, but the Taylor
     /// remainder exceeds the tolerance; halve the increment if the
     /// schedule allows, else accept it.
-    TooCoarse(Converged<D>),
+    TooCoarse(Converged<D, M>),
 }
 
-impl<const D: usize> AttemptOutcome<D> {
+impl<const D: usize, M> AttemptOutcome<D, M> {
     pub(super) fn cut_back(
         reason: CutbackReason,
         residuals: Vec<f64>,
         iterations: usize,
-    ) -> AttemptOutcome<D> {
+    ) -> AttemptOutcome<D, M> {
         AttemptOutcome::CutBack(Failed {
             reason,
             residuals,

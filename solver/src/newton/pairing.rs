@@ -9,11 +9,10 @@
 //! (it is kept within [`XI_STUCK_BAND`] or the attempt fails as stuck).
 //! Updates are applied in point order.
 
-use crate::contact::{
-    ContactLayout, KernelCounts, NodeTie, PairingUpdate, PointEval, PointFailure, XI_STUCK_BAND,
-};
+use crate::contact::{KernelCounts, NodeTie, PointFailure};
+use crate::dim::{ContactSpace, Update};
 
-use crate::ids::{ContactPointIndex, MasterSegmentIndex};
+use crate::ids::ContactPointIndex;
 
 use super::setup::Setup;
 
@@ -39,10 +38,10 @@ pub(super) enum GuardOutcome {
 /// The pairing changes of one attempt of the complete formulation (module
 /// docs of [`crate::contact`], "Pairing in the complete formulation" and
 /// "Points stuck at a master node").
-#[derive(Debug, Default)]
-pub(super) struct PairingGuard {
-    /// `(point, pairing)` the point has been switched away from.
-    left: Vec<(ContactPointIndex, Option<MasterSegmentIndex>)>,
+#[derive(Debug)]
+/// `(point, pairing)` the point has been switched away from.
+pub(super) struct PairingGuard<M> {
+    left: Vec<(ContactPointIndex, Option<M>)>,
     /// Points released from a tie in this attempt: one more switch (the
     /// side `theta` chose may be wrong when other points moved meanwhile).
     released: Vec<ContactPointIndex>,
@@ -50,29 +49,39 @@ pub(super) struct PairingGuard {
     settled: Vec<ContactPointIndex>,
 }
 
-impl PairingGuard {
+impl<M> Default for PairingGuard<M> {
+    fn default() -> Self {
+        PairingGuard {
+            left: Vec::new(),
+            released: Vec::new(),
+            settled: Vec::new(),
+        }
+    }
+}
+
+impl<M: Copy + PartialEq> PairingGuard<M> {
     /// Applies the pairing `updates` due at a converged iterate with
     /// contact evaluations `evals` (see
-    /// [`ContactLayout::pairing_updates`]; tied points excluded) to
+    /// [`ContactSpace::pairing_updates`]; tied points excluded) to
     /// `pairing`, tying a point whose pairing cycles between two adjacent
     /// master segments (appended to `ties`).
-    fn apply(
+    fn apply<const D: usize, S: ContactSpace<D, Master = M>>(
         &mut self,
-        layout: &ContactLayout,
-        updates: &[PairingUpdate],
-        evals: &[Option<PointEval>],
-        pairing: &mut [Option<MasterSegmentIndex>],
-        ties: &mut Vec<NodeTie>,
+        layout: &S,
+        updates: &[Update<S, D>],
+        evals: &[Option<S::Eval>],
+        pairing: &mut [Option<M>],
+        ties: &mut Vec<NodeTie<M>>,
     ) -> GuardOutcome {
         let mut changed = false;
         let mut kept = Vec::new();
         for &(i, target) in updates {
             let current = pairing[i.index()];
-            let to = target.map(|(m, _)| m);
+            let to = target.as_ref().map(S::found_master);
             // how far the projection misses the current pairing
-            let (xi_m, within) = match (&evals[i.index()], target) {
-                (Some(e), _) => (e.xi_m, e.xi_m.abs() <= 1.0 + XI_STUCK_BAND),
-                (None, Some((_, p))) => (p.xi_m, p.xi_m.abs() >= 1.0 - XI_STUCK_BAND),
+            let (xi_m, within) = match (&evals[i.index()], &target) {
+                (Some(e), _) => (layout.stuck_xi(e), layout.within_band(e)),
+                (None, Some(p)) => (layout.found_stuck_xi(p), layout.found_at_boundary(p)),
                 (None, None) => (f64::NAN, true),
             };
             if self.settled.contains(&i) {
@@ -88,9 +97,8 @@ impl PairingGuard {
             } else if self.left.contains(&(i, to)) {
                 // back to a pairing the point has left: stuck at the node
                 // between the two (or at the chain's end)
-                let pair = layout.point(i).pair;
                 if let (Some(p), Some(o)) = (current, to)
-                    && layout.shared_node(pair, p, o).is_some()
+                    && layout.can_tie(i, p, o)
                 {
                     ties.push(NodeTie {
                         point: i,
@@ -126,29 +134,29 @@ impl PairingGuard {
     /// projection left their segment, tying those that cycle.
     ///
     /// Returns the outcome with the kernel calls made.
-    pub(super) fn update<const D: usize>(
+    #[allow(clippy::type_complexity)] // the layouts' own signature
+    pub(super) fn update<const D: usize, S: ContactSpace<D, Master = M>>(
         &mut self,
-        setup: &Setup<'_, D>,
+        setup: &Setup<'_, D, S>,
         u: &[f64],
         lambda: &[f64],
-        evals: &[Option<PointEval>],
-        pairing: &mut [Option<MasterSegmentIndex>],
-        ties: &mut Vec<NodeTie>,
-    ) -> Result<(GuardOutcome, KernelCounts), PointFailure> {
+        evals: &[Option<S::Eval>],
+        pairing: &mut [Option<M>],
+        ties: &mut Vec<NodeTie<M>>,
+    ) -> Result<(GuardOutcome, KernelCounts), PointFailure<M>> {
         let layout = &setup.layout;
-        let (updates, counts) = layout.pairing_updates(setup.contact_mesh, u, evals)?;
+        let (updates, counts) = layout.pairing_updates(&setup.model.mesh, u, evals)?;
         let updates: Vec<_> = updates
             .into_iter()
             .filter(|(i, _)| ties.iter().all(|t| t.point != *i))
             .collect();
         let mut released = false;
         ties.retain(|t| {
-            let theta = t.theta(layout, lambda).unwrap_or(-1.0);
+            let theta = layout.tie_theta(t, lambda).unwrap_or(-1.0);
             // where the two segments' lines (nearly) coincide, `g_o = g_p`
             // does not hold the point at the node: it may slide away with
             // the tie; a point that left the node is released
-            let at_node =
-                evals[t.point.index()].is_none_or(|e| (e.xi_m.abs() - 1.0).abs() <= XI_STUCK_BAND);
+            let at_node = evals[t.point.index()].as_ref().is_none_or(S::at_node);
             if at_node && (0.0..=1.0).contains(&theta) {
                 return true;
             }

@@ -10,9 +10,8 @@ use std::time::Instant;
 
 use crate::assembly::System;
 use crate::contact::KernelCounts;
-use crate::dim::{Dim, SpaceDim};
+use crate::dim::{ContactSpace, Dim, SpaceDim};
 use crate::error::SolverError;
-use crate::ids::MasterSegmentIndex;
 use crate::model::Model;
 use crate::options::{Method, SolveOptions};
 use crate::solution::State;
@@ -69,19 +68,29 @@ impl IterationSample {
 /// symbolic factorisation is computed on the first call and reused after.
 /// The state is never updated, so every call repeats the same iteration.
 ///
-/// Generic over the dimension `D` as the solve is: a 3D model has no
-/// contact pairs (see [`SpaceDim`]), so its contact phase is an empty
-/// system and the probe times the solid assembly and the linear solve.
-pub struct IterationProbe<'a, const D: usize = 2> {
-    setup: Setup<'a, D>,
+/// Generic over the dimension `D` as the solve is, with the dimension's
+/// contact element ([`SpaceDim::Contact`]); a 3D model without face pairs
+/// has an empty contact phase, and the probe times the solid assembly and
+/// the linear solve.
+pub struct IterationProbe<'a, const D: usize = 2>
+where
+    Dim<D>: SpaceDim<D>,
+{
+    setup: Setup<'a, D, ContactOf<D>>,
     regularization: f64,
     u: Vec<f64>,
     lambda: Vec<f64>,
-    pairing: Vec<Option<MasterSegmentIndex>>,
+    pairing: Vec<Option<<ContactOf<D> as ContactSpace<D>>::Master>>,
     load_factor: f64,
 }
 
-impl<'a, const D: usize> IterationProbe<'a, D> {
+/// The contact element of dimension `D`.
+type ContactOf<const D: usize> = <Dim<D> as SpaceDim<D>>::Contact;
+
+impl<'a, const D: usize> IterationProbe<'a, D>
+where
+    Dim<D>: SpaceDim<D>,
+{
     /// The iteration from `state` (e.g. a converged
     /// [`Solution::final_state`](crate::Solution::final_state)) towards load factor `load_factor`: the
     /// prescribed dofs are set to `load_factor u_ref` and the external force
@@ -94,10 +103,7 @@ impl<'a, const D: usize> IterationProbe<'a, D> {
         options: &SolveOptions,
         state: &State<D>,
         load_factor: f64,
-    ) -> Result<IterationProbe<'a, D>, SolverError>
-    where
-        Dim<D>: SpaceDim<D>,
-    {
+    ) -> Result<IterationProbe<'a, D>, SolverError> {
         if options.method != Method::Complete {
             return Err(SolverError::Options(format!(
                 "the iteration probe evaluates the complete formulation, not `{}`",
@@ -138,7 +144,7 @@ impl<'a, const D: usize> IterationProbe<'a, D> {
 
     /// Number of slave integration points.
     pub fn contact_points(&self) -> usize {
-        self.setup.layout.points.len()
+        self.setup.layout.point_count()
     }
 
     /// Symbolic factorisations computed so far (1 after the first

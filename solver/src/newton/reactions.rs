@@ -30,15 +30,16 @@
 //! the kept ones add in the same order as in the full assembly, so the
 //! reactions are the full residual's entries to the bit.
 
-use crate::assembly::{DofMap, PAR_MIN_LEN, System, add_external, assemble_contact, assemble_ties};
-use crate::contact::{NodeTie, PointEval};
+use crate::assembly::{DofMap, PAR_MIN_LEN, System, add_external};
+use crate::contact::NodeTie;
+use crate::dim::ContactSpace;
 use crate::ids::ElementId;
 use crate::model::Model;
 use crate::par;
 
 use super::setup::Setup;
 
-impl<const D: usize> Setup<'_, D> {
+impl<const D: usize, S: ContactSpace<D>> Setup<'_, D, S> {
     /// The reaction `[x, y(, z)]` of every support group of the model at the
     /// converged state `(u, lambda, ties)` of load factor `to`, with the
     /// contact evaluations `evals` (`others`: the ties' second evaluations)
@@ -49,9 +50,9 @@ impl<const D: usize> Setup<'_, D> {
         &self,
         u: &[f64],
         lambda: &[f64],
-        ties: &[NodeTie],
-        evals: &[Option<PointEval>],
-        others: &[PointEval],
+        ties: &[NodeTie<S::Master>],
+        evals: &[Option<S::Eval>],
+        others: &[S::Eval],
         active: &[bool],
         to: f64,
     ) -> Vec<[f64; D]> {
@@ -61,8 +62,8 @@ impl<const D: usize> Setup<'_, D> {
         }
         let all = DofMap::all_free(u.len(), self.dofs.n_mult);
         let mut sys = System::new(all.n_eq() + ties.len());
-        assemble_contact(&self.layout, evals, lambda, active, &all, &mut sys);
-        assemble_ties(ties, evals, others, &all, &mut sys);
+        self.layout.assemble(evals, lambda, active, &all, &mut sys);
+        S::assemble_ties(ties, evals, others, &all, &mut sys);
         add_supported_element_forces(model, &all, u, &mut sys.residual);
         add_external(model, &all, to, &mut sys);
         model

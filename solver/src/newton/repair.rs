@@ -84,10 +84,11 @@
 
 use std::time::Instant;
 
-use crate::contact::{NodeTie, Paired, Taylor};
+use crate::contact::NodeTie;
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex};
-use crate::solution::{ContactPointId, CutbackReason};
+use crate::ids::ContactPointIndex;
+use crate::solution::CutbackReason;
 
 use super::MAX_REPAIR_REPEATS;
 use super::frozen::Frozen;
@@ -107,16 +108,16 @@ pub(super) const ANCHOR_TOLERANCE: f64 = 1e-8;
 /// step's Taylor remainder.
 pub(super) const MAX_ANCHOR_UPDATES: usize = 4;
 
-impl Frozen {
+impl<const D: usize, S: ContactSpace<D>> Frozen<D, S> {
     /// The step-end check of the converged solve `c` (module docs): the
     /// attempt's outcome, or a repeat of the step with new expansions
     /// while the pairing changes.
-    pub(super) fn check_end<const D: usize>(
+    pub(super) fn check_end(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        mut start: StepStart<'_>,
-        mut c: Converged<D>,
-    ) -> Result<SolveEnd<D>, SolverError> {
+        cx: &mut Context<'_, '_, D, S>,
+        mut start: StepStart<'_, S::Master>,
+        mut c: Converged<D, S::Master>,
+    ) -> Result<SolveEnd<D, S::Master>, SolverError> {
         let found = match self.project_end(cx, start.pairing, &c.state.u) {
             Ok(f) => f,
             Err(reason) => {
@@ -131,8 +132,8 @@ impl Frozen {
         let mut tie = Vec::new();
         let mut unsettled = Vec::new();
         for (i, (t, f)) in self.points.iter().zip(&found).enumerate() {
-            let built = t.map(|t| t.at_start.master);
-            let now = f.map(|(m, _)| m);
+            let built = t.as_ref().map(|t| S::master(S::expanded(t)));
+            let now = f.as_ref().map(S::found_master);
             let i = ContactPointIndex::new(i);
             if now == built || start.ties.iter().any(|t| t.point == i) {
                 continue;
@@ -144,16 +145,13 @@ impl Frozen {
                 continue;
             } else if let (Some(p), Some(o)) = (built, now)
                 && !self.check.released.contains(&i)
-                && layout.shared_node(layout.point(i).pair, p, o).is_some()
+                && layout.can_tie(i, p, o)
             {
                 // cycling at the node between two segments: tie it
                 tie.push((i, p, o));
                 continue;
             }
-            unsettled.push(ContactPointId {
-                master_segment: built.map(MasterSegmentIndex::index),
-                ..cx.setup.point_id(i)
-            });
+            unsettled.push(layout.point_id(i, built));
         }
         if !switch.is_empty() || !tie.is_empty() {
             self.check.switches += 1;
@@ -204,17 +202,11 @@ impl Frozen {
     /// Per point: whether its expansion was taken elsewhere than at the
     /// converged state `start` (its anchor's nodal displacements differ
     /// from the step start's), or the point is tied.
-    pub(super) fn anchored_elsewhere(&self, start: &StepStart<'_>) -> Vec<bool> {
+    pub(super) fn anchored_elsewhere(&self, start: &StepStart<'_, S::Master>) -> Vec<bool> {
         let mut moved: Vec<bool> = self
             .points
             .iter()
-            .map(|t| {
-                t.is_some_and(|t| {
-                    (0..8).any(|k| {
-                        t.u0[k] != start.u[DofId::of(t.at_start.nodes[k / 2], k % 2).index()]
-                    })
-                })
-            })
+            .map(|t| t.as_ref().is_some_and(|t| S::moved(t, start.u)))
             .collect();
         for tie in start.ties.iter() {
             moved[tie.point.index()] = true;
@@ -227,17 +219,17 @@ impl Frozen {
     /// (its expansion becomes the point's) for `theta > 1`, as the
     /// complete formulation does; records them in the check's
     /// `released`. Returns whether any was released.
-    fn release_ties<const D: usize>(
+    fn release_ties(
         &mut self,
-        setup: &Setup<'_, D>,
-        start: &mut StepStart<'_>,
-        c: &Converged<D>,
+        setup: &Setup<'_, D, S>,
+        start: &mut StepStart<'_, S::Master>,
+        c: &Converged<D, S::Master>,
     ) -> bool {
         let layout = &setup.layout;
         let mut keep = Vec::with_capacity(start.ties.len());
         let mut changed = false;
         for (k, tie) in c.state.ties.iter().enumerate() {
-            let theta = tie.theta(layout, &c.state.lambda).unwrap_or(-1.0);
+            let theta = layout.tie_theta(tie, &c.state.lambda).unwrap_or(-1.0);
             if (0.0..=1.0).contains(&theta) {
                 keep.push(k);
                 continue;
@@ -259,14 +251,14 @@ impl Frozen {
     /// Ties each point of `tie` (`(point, paired, other)`) to the node
     /// between its two segments, with both segments' expansions taken at
     /// `anchor` (module docs, "Points cycling at a node").
-    fn tie_points<const D: usize>(
+    fn tie_points(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        start: &mut StepStart<'_>,
-        tie: &[(ContactPointIndex, MasterSegmentIndex, MasterSegmentIndex)],
+        cx: &mut Context<'_, '_, D, S>,
+        start: &mut StepStart<'_, S::Master>,
+        tie: &[(ContactPointIndex, S::Master, S::Master)],
         anchor: &[f64],
     ) -> Result<(), SolverError> {
-        let mesh = cx.setup.contact_mesh;
+        let mesh = &cx.setup.model.mesh;
         let layout = &cx.setup.layout;
         for &(i, p, o) in tie {
             let (Ok(on_p), Ok(on_o)) = (
@@ -275,7 +267,7 @@ impl Frozen {
             ) else {
                 continue;
             };
-            self.points[i.index()] = Some(Taylor::at(on_p, anchor));
+            self.points[i.index()] = Some(S::expand_at(on_p, anchor));
             start.pairing[i.index()] = Some(p);
             start.ties.push(NodeTie {
                 point: i,
@@ -283,7 +275,7 @@ impl Frozen {
                 other: o,
                 mu: 0.0,
             });
-            self.ties.push(Taylor::at(on_o, anchor));
+            self.ties.push(S::expand_at(on_o, anchor));
         }
         Ok(())
     }
@@ -291,14 +283,14 @@ impl Frozen {
     /// Re-takes both expansions of every tied point at the end of `c`
     /// when either misses that segment's gap there by more than
     /// [`ANCHOR_TOLERANCE`] (relative); returns whether any was re-taken.
-    fn reanchor_ties<const D: usize>(
+    fn reanchor_ties(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        ties: &[NodeTie],
-        c: &Converged<D>,
+        cx: &mut Context<'_, '_, D, S>,
+        ties: &[NodeTie<S::Master>],
+        c: &Converged<D, S::Master>,
     ) -> Result<bool, SolverError> {
         let setup = cx.setup;
-        let mesh = setup.contact_mesh;
+        let mesh = &setup.model.mesh;
         let layout = &setup.layout;
         let u = &c.state.u;
         let mut changed = false;
@@ -313,12 +305,12 @@ impl Frozen {
             ) else {
                 continue;
             };
-            let off = |t: &Taylor, gap: f64| {
+            let off = |t: &S::Expansion, gap: f64| {
                 point_remainder(setup, c, i, t, gap).is_some_and(|r| r > ANCHOR_TOLERANCE)
             };
-            if off(&on_p_taylor, on_p.gap) || off(&self.ties[k], on_o.gap) {
-                self.points[i.index()] = Some(Taylor::at(on_p, u));
-                self.ties[k] = Taylor::at(on_o, u);
+            if off(&on_p_taylor, S::gap(&on_p)) || off(&self.ties[k], S::gap(&on_o)) {
+                self.points[i.index()] = Some(S::expand_at(on_p, u));
+                self.ties[k] = S::expand_at(on_o, u);
                 changed = true;
             }
         }
@@ -328,17 +320,17 @@ impl Frozen {
     /// Re-pairs every point at the end state `u` by projection, searching
     /// from its expansion's segment (`pairing`; counted in
     /// `step_end_projections`).
-    fn project_end<const D: usize>(
+    fn project_end(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        pairing: &[Option<MasterSegmentIndex>],
+        cx: &mut Context<'_, '_, D, S>,
+        pairing: &[Option<S::Master>],
         u: &[f64],
-    ) -> Result<Vec<Option<Paired>>, CutbackReason> {
+    ) -> Result<Vec<Option<S::Found>>, CutbackReason> {
         let t = Instant::now();
         let result = cx
             .setup
             .layout
-            .project_all(cx.setup.contact_mesh, u, pairing);
+            .project_all(&cx.setup.model.mesh, u, pairing);
         cx.timings.contact_evaluation += t.elapsed();
         match result {
             Ok((found, counts)) => {
@@ -356,24 +348,26 @@ impl Frozen {
     /// that end active on the segment of their expansion with a relative
     /// remainder above [`ANCHOR_TOLERANCE`], each with that segment: their
     /// expansion is to be re-taken at this end (module docs).
-    fn unconverged_anchors<const D: usize>(
+    fn unconverged_anchors(
         &self,
-        setup: &Setup<'_, D>,
-        ties: &[NodeTie],
-        c: &Converged<D>,
-        found: &[Option<Paired>],
-    ) -> Vec<(ContactPointIndex, Option<MasterSegmentIndex>)> {
+        setup: &Setup<'_, D, S>,
+        ties: &[NodeTie<S::Master>],
+        c: &Converged<D, S::Master>,
+        found: &[Option<S::Found>],
+    ) -> Vec<(ContactPointIndex, Option<S::Master>)> {
         let mut again = Vec::new();
         for (i, (t, f)) in self.points.iter().zip(found).enumerate() {
-            let (true, Some(t), Some((m, p))) = (self.check.moved[i], t, f) else {
+            let (true, Some(t), Some(f)) = (self.check.moved[i], t, f) else {
                 continue;
             };
             let i = ContactPointIndex::new(i);
-            if *m == t.at_start.master
+            let m = S::found_master(f);
+            if m == S::master(S::expanded(t))
                 && ties.iter().all(|t| t.point != i)
-                && point_remainder(setup, c, i, t, p.gap).is_some_and(|r| r > ANCHOR_TOLERANCE)
+                && point_remainder(setup, c, i, t, S::found_gap(f))
+                    .is_some_and(|r| r > ANCHOR_TOLERANCE)
             {
-                again.push((i, Some(*m)));
+                again.push((i, Some(m)));
             }
         }
         again
@@ -384,15 +378,15 @@ impl Frozen {
     /// that found it; `None`: no expansion, the point is inactive); a
     /// point whose new segment the kernel cannot evaluate there keeps its
     /// expansion. Records every new pairing in the check's `tried`.
-    fn switch_expansions<const D: usize>(
+    fn switch_expansions(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        pairing: &mut [Option<MasterSegmentIndex>],
-        switch: &[(ContactPointIndex, Option<MasterSegmentIndex>)],
+        cx: &mut Context<'_, '_, D, S>,
+        pairing: &mut [Option<S::Master>],
+        switch: &[(ContactPointIndex, Option<S::Master>)],
         anchor: &[f64],
     ) -> Result<(), SolverError> {
         let t = Instant::now();
-        let mesh = cx.setup.contact_mesh;
+        let mesh = &cx.setup.model.mesh;
         let u0 = anchor;
         for &(i, now) in switch {
             let tried = &mut self.check.tried[i.index()];
@@ -407,7 +401,7 @@ impl Frozen {
                         .layout
                         .evaluate_on(mesh, u0, i, m, self.ty, cx.counts)
                     {
-                        Ok(at_start) => Some(Taylor::at(at_start, u0)),
+                        Ok(at_start) => Some(S::expand_at(at_start, u0)),
                         Err(_) => continue,
                     }
                 }
@@ -422,18 +416,19 @@ impl Frozen {
     /// The largest relative Taylor remainder of the converged attempt `c`
     /// over its active points, with `found` the re-projection at its end
     /// (module docs).
-    fn remainder<const D: usize>(
+    fn remainder(
         &self,
-        setup: &Setup<'_, D>,
-        c: &Converged<D>,
-        found: &[Option<Paired>],
+        setup: &Setup<'_, D, S>,
+        c: &Converged<D, S::Master>,
+        found: &[Option<S::Found>],
     ) -> Option<f64> {
         let mut worst: Option<f64> = None;
         for (i, (t, f)) in self.points.iter().zip(found).enumerate() {
-            let (Some(t), Some((_, p))) = (t, f) else {
+            let (Some(t), Some(f)) = (t, f) else {
                 continue;
             };
-            if let Some(r) = point_remainder(setup, c, ContactPointIndex::new(i), t, p.gap) {
+            let gap = S::found_gap(f);
+            if let Some(r) = point_remainder(setup, c, ContactPointIndex::new(i), t, gap) {
                 worst = Some(worst.map_or(r, |w| w.max(r)));
             }
         }
@@ -444,19 +439,15 @@ impl Frozen {
 /// The relative Taylor remainder `|g - g~| / L_s` of point `i` with
 /// expansion `t` and re-projected gap `gap` at the end of `c`; `None`
 /// when none of its multipliers carries a constraint row.
-fn point_remainder<const D: usize>(
-    setup: &Setup<'_, D>,
-    c: &Converged<D>,
+fn point_remainder<const D: usize, S: ContactSpace<D>>(
+    setup: &Setup<'_, D, S>,
+    c: &Converged<D, S::Master>,
     i: ContactPointIndex,
-    t: &Taylor,
+    t: &S::Expansion,
     gap: f64,
 ) -> Option<f64> {
-    let pt = setup.layout.point(i);
-    if !pt.multipliers.iter().any(|m| c.active[m.index()]) {
-        return None;
-    }
-    let mesh = setup.contact_mesh;
-    let [a, b] = pt.slave_nodes.map(|n| mesh.node_ref(n));
-    let length = (b[0] - a[0]).hypot(b[1] - a[1]);
-    Some((gap - t.expand(&c.state.u).gap).abs() / length)
+    let length = setup
+        .layout
+        .remainder_length(&setup.model.mesh, i, &c.active)?;
+    Some((gap - S::gap(&S::expand(t, &c.state.u))).abs() / length)
 }

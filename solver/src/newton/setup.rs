@@ -23,15 +23,12 @@
 
 use std::cell::Cell;
 
-use crate::assembly::{
-    DofMap, System, add_external, assemble_contact, assemble_solid_lifted, assemble_ties,
-};
-use crate::contact::{ContactLayout, KernelCounts, NodeTie, PointEval, PointFailure};
-use crate::dim::{Dim, SpaceDim};
+use crate::assembly::{DofMap, System, add_external, assemble_solid_lifted};
+use crate::contact::{KernelCounts, NodeTie, PointFailure};
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, MasterSegmentIndex};
+use crate::ids::ContactPointIndex;
 use crate::linear::{LinearError, LinearSolver};
-use crate::mesh::Mesh;
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::ContactPointId;
@@ -39,15 +36,12 @@ use crate::solution::ContactPointId;
 use super::regularize::regularize;
 
 /// The discretised problem of one solve (module docs).
-pub(super) struct Setup<'a, const D: usize = 2> {
+pub(super) struct Setup<'a, const D: usize, S> {
     /// The model solved.
     pub(super) model: &'a Model<D>,
-    /// The 2D mesh the contact layer works on: the model's own in 2D;
-    /// in 3D, where a model has no contact pairs ([`Model::check`]), the
-    /// empty mesh (the empty layout never reads it; see [`SpaceDim`]).
-    pub(super) contact_mesh: &'a Mesh,
-    /// Integration points, multipliers and master chains.
-    pub(super) layout: ContactLayout,
+    /// The contact element: integration points, multipliers and masters
+    /// (2D segments or 3D faces, [`ContactSpace`]).
+    pub(super) layout: S,
     /// Equation numbers of the free dofs and the multipliers.
     pub(super) dofs: DofMap,
     /// The linear solver, with its cached symbolic analysis.
@@ -62,33 +56,20 @@ pub(super) struct Setup<'a, const D: usize = 2> {
     spare: Cell<Option<System>>,
 }
 
-impl<'a, const D: usize> Setup<'a, D> {
+impl<'a, const D: usize, S: ContactSpace<D>> Setup<'a, D, S> {
     /// Checks `model` and lays out its contact pairs and equations with
     /// `options.formulation` and `options.linear`.
     pub(super) fn new(
         model: &'a Model<D>,
         options: &SolveOptions,
-    ) -> Result<Setup<'a, D>, SolverError>
-    where
-        Dim<D>: SpaceDim<D>,
-    {
+    ) -> Result<Setup<'a, D, S>, SolverError> {
         model.check()?;
-        let (layout, contact_mesh) = match Dim::<D>::planar(model) {
-            Some(planar) => (
-                ContactLayout::new(planar, options.formulation),
-                &planar.mesh,
-            ),
-            None => {
-                static NO_CONTACT: Mesh = Mesh::EMPTY;
-                (ContactLayout::empty(), &NO_CONTACT)
-            }
-        };
-        let dofs = DofMap::new(model, layout.multipliers.len());
+        let layout = S::build(model, options.formulation)?;
+        let dofs = DofMap::new(model, layout.multiplier_count());
         let mut linear = options.linear.build();
         linear.set_constraints_from(dofs.n_free);
         Ok(Setup {
             model,
-            contact_mesh,
             layout,
             dofs,
             linear,
@@ -141,39 +122,32 @@ impl<'a, const D: usize> Setup<'a, D> {
     }
 
     /// Pairs every point from scratch at displacements `u` (see
-    /// [`ContactLayout::initial_pairing`]).
+    /// [`ContactSpace::initial_pairing`]).
+    #[allow(clippy::type_complexity)] // the layouts' own signature
     pub(super) fn initial_pairing(
         &self,
         u: &[f64],
-    ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
-        self.layout.initial_pairing(self.contact_mesh, u)
+    ) -> Result<(Vec<Option<S::Master>>, KernelCounts), PointFailure<S::Master>> {
+        self.layout.initial_pairing(&self.model.mesh, u)
     }
 
     /// The integration point of a kernel failure.
-    pub(super) fn failure_point(&self, f: &PointFailure) -> ContactPointId {
-        let p = self.layout.point(f.point);
-        ContactPointId {
-            pair: p.pair.index(),
-            slave_segment: p.slave_segment,
-            gauss: p.gauss,
-            master_segment: f.master_segment.map(MasterSegmentIndex::index),
-        }
+    pub(super) fn failure_point(&self, f: &PointFailure<S::Master>) -> ContactPointId {
+        self.layout.point_id(f.point, f.master_segment)
     }
 
     /// Integration point `i` (no master segment).
     pub(super) fn point_id(&self, i: ContactPointIndex) -> ContactPointId {
-        let p = self.layout.point(i);
-        ContactPointId {
-            pair: p.pair.index(),
-            slave_segment: p.slave_segment,
-            gauss: p.gauss,
-            master_segment: None,
-        }
+        self.layout.point_id(i, None)
     }
 
     /// A kernel failure at a state of load factor `load_factor` as the
     /// solve's error.
-    pub(super) fn kernel_error(&self, f: &PointFailure, load_factor: f64) -> SolverError {
+    pub(super) fn kernel_error(
+        &self,
+        f: &PointFailure<S::Master>,
+        load_factor: f64,
+    ) -> SolverError {
         SolverError::Kernel {
             point: self.failure_point(f),
             load_factor,
@@ -183,25 +157,20 @@ impl<'a, const D: usize> Setup<'a, D> {
 
     /// The active multipliers at `(evals, lambda)` (in the `first`
     /// iteration of an attempt also the touching nodes of unilateral pairs
-    /// without contact, [`ContactLayout::close_touching`]) and a fresh
+    /// without contact, [`ContactSpace::active`]) and a fresh
     /// system (one equation per free dof, multiplier and tie; in the buffers
     /// [`Setup::recycle`] kept, if any) holding the
     /// contact contributions of `evals` and then those of the `ties` (with
     /// `others`, their evaluations on the other segment).
     pub(super) fn contact_system(
         &self,
-        evals: &[Option<PointEval>],
-        others: &[PointEval],
+        evals: &[Option<S::Eval>],
+        others: &[S::Eval],
         lambda: &[f64],
-        ties: &[NodeTie],
+        ties: &[NodeTie<S::Master>],
         first: bool,
     ) -> (System, Vec<bool>) {
-        let mut active = self
-            .layout
-            .active_multipliers(evals, lambda, self.length_scale);
-        if first {
-            self.layout.close_touching(evals, lambda, &mut active);
-        }
+        let active = self.layout.active(evals, lambda, self.length_scale, first);
         let n_sys = self.dofs.n_eq() + ties.len();
         let mut sys = match self.spare.take() {
             Some(mut sys) => {
@@ -210,8 +179,9 @@ impl<'a, const D: usize> Setup<'a, D> {
             }
             None => System::new(n_sys),
         };
-        assemble_contact(&self.layout, evals, lambda, &active, &self.dofs, &mut sys);
-        assemble_ties(ties, evals, others, &self.dofs, &mut sys);
+        self.layout
+            .assemble(evals, lambda, &active, &self.dofs, &mut sys);
+        S::assemble_ties(ties, evals, others, &self.dofs, &mut sys);
         (sys, active)
     }
 

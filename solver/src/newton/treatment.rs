@@ -47,9 +47,10 @@
 //! evaluations are in point order and add their kernel calls to
 //! [`Context::counts`].
 
-use crate::contact::{KernelCounts, NodeTie, PointEval};
+use crate::contact::{KernelCounts, NodeTie};
+use crate::dim::ContactSpace;
 use crate::error::SolverError;
-use crate::ids::{ContactPointIndex, MasterSegmentIndex};
+use crate::ids::ContactPointIndex;
 use crate::options::SolveOptions;
 use crate::solution::{CutbackReason, Timings};
 
@@ -60,13 +61,16 @@ use super::setup::Setup;
 /// The contact evaluations of one iterate: one per point (`None`: the point
 /// is unpaired) and, for each node tie, the tied point's evaluation on the
 /// tie's other segment.
-pub(super) type Evaluations = (Vec<Option<PointEval>>, Vec<PointEval>);
+pub(super) type Evaluations<const D: usize, S> = (
+    Vec<Option<<S as ContactSpace<D>>::Eval>>,
+    Vec<<S as ContactSpace<D>>::Eval>,
+);
 
 /// What a treatment works with: the discretised problem, the options and
 /// the run's counters.
-pub(super) struct Context<'r, 'a, const D: usize = 2> {
+pub(super) struct Context<'r, 'a, const D: usize, S> {
     /// The discretised problem (layout, equation numbering).
-    pub(super) setup: &'r Setup<'a, D>,
+    pub(super) setup: &'r Setup<'a, D, S>,
     /// The solve's options (`repair`, `taylor_tolerance`).
     pub(super) opts: &'r SolveOptions,
     /// The run's kernel calls.
@@ -77,13 +81,13 @@ pub(super) struct Context<'r, 'a, const D: usize = 2> {
 
 /// The run's converged state, where the step starts: what a treatment may
 /// read, and the pairing and ties it may change (module docs).
-pub(super) struct StepStart<'r> {
+pub(super) struct StepStart<'r, M> {
     /// The converged displacements.
     pub(super) u: &'r [f64],
-    /// Each point's master segment.
-    pub(super) pairing: &'r mut Vec<Option<MasterSegmentIndex>>,
+    /// Each point's master segment (or face).
+    pub(super) pairing: &'r mut Vec<Option<M>>,
     /// The points held at a master node.
-    pub(super) ties: &'r mut Vec<NodeTie>,
+    pub(super) ties: &'r mut Vec<NodeTie<M>>,
     /// The converged load factor (named by a step-start kernel failure).
     pub(super) load_factor: f64,
 }
@@ -98,10 +102,10 @@ pub(super) enum Settling {
 }
 
 /// The treatment's decision at the end of a converged Newton solve.
-pub(super) enum SolveEnd<const D: usize = 2> {
+pub(super) enum SolveEnd<const D: usize, M> {
     /// The attempt ends with this outcome (boxed: an outcome carries the
     /// converged state's report, ten times the size of `Again`).
-    Done(Box<AttemptOutcome<D>>),
+    Done(Box<AttemptOutcome<D, M>>),
     /// Solve the step again (same target), Newton starting from `warm`
     /// (the displacements and multipliers of the discarded solve's end),
     /// which spent `spent` linear solves.
@@ -115,14 +119,14 @@ pub(super) enum SolveEnd<const D: usize = 2> {
 
 /// How contact is treated (module docs): its evaluation at an iterate and
 /// its logic at the step's start and end.
-pub(super) trait ContactTreatment<const D: usize = 2> {
+pub(super) trait ContactTreatment<const D: usize, S: ContactSpace<D>> {
     /// Before an attempt from the converged state `start`; an error stops
     /// the solve (a kernel failure at a converged state, which no smaller
     /// increment cures).
     fn begin_attempt(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        start: StepStart<'_>,
+        cx: &mut Context<'_, '_, D, S>,
+        start: StepStart<'_, S::Master>,
     ) -> Result<(), SolverError>;
 
     /// The contact evaluations at iterate `x` (which may re-pair `x`);
@@ -131,28 +135,28 @@ pub(super) trait ContactTreatment<const D: usize = 2> {
     /// A kernel failure asks for a cut-back.
     fn evaluate(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        x: &mut Iterate,
+        cx: &mut Context<'_, '_, D, S>,
+        x: &mut Iterate<S::Master>,
         at_once: bool,
-    ) -> Result<Evaluations, CutbackReason>;
+    ) -> Result<Evaluations<D, S>, CutbackReason>;
 
     /// At an iterate `x` that meets the tolerance, evaluated as `evals`:
     /// whether its pairing stands (then the iterate is accepted).
     fn settle(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        x: &mut Iterate,
-        evals: &[Option<PointEval>],
+        cx: &mut Context<'_, '_, D, S>,
+        x: &mut Iterate<S::Master>,
+        evals: &[Option<S::Eval>],
     ) -> Result<Settling, CutbackReason>;
 
     /// At the end of a converged Newton solve `c` of the attempt: its
     /// outcome, or the request to solve the step again.
     fn end_solve(
         &mut self,
-        cx: &mut Context<'_, '_, D>,
-        start: StepStart<'_>,
-        c: Converged<D>,
-    ) -> Result<SolveEnd<D>, SolverError>;
+        cx: &mut Context<'_, '_, D, S>,
+        start: StepStart<'_, S::Master>,
+        c: Converged<D, S::Master>,
+    ) -> Result<SolveEnd<D, S::Master>, SolverError>;
 
     /// A converged attempt became the run's converged state.
     fn committed(&mut self);

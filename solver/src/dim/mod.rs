@@ -4,14 +4,23 @@
 //! The solver's core (mesh, model, dofs, elements, assembly, Newton,
 //! solution, output) is one code path generic over a `const D: usize`.
 //! What exists only in some dimensions goes through this trait, so that
-//! the generic code names it without branching on `D`: today contact,
-//! whose layout, kernels and pairing work on 2D segments. A generic
+//! the generic code names it without branching on `D`: the axis names, and
+//! contact, whose element is 2D segments in 2D and tri3/quad4 faces in 3D
+//! ([`ContactSpace`], `space.rs`: the trait the Newton loop reads,
+//! implemented for the 2D [`ContactLayout`] in `planar.rs` and the 3D
+//! [`FaceLayout`] in `faces.rs`). A generic
 //! function that builds a solve (Newton's `Setup`, [`crate::solve_model`])
 //! carries the bound `where Dim<D>: SpaceDim<D>`, which also restricts `D`
 //! to 2 and 3; the functions it calls need no bound.
 
-use crate::model::Model;
+mod faces;
+mod planar;
+mod space;
+
+use crate::contact::{ContactLayout, FaceLayout};
 use crate::solution::{Solution, State};
+
+pub use space::{ContactSpace, EvalsResult, FoundResult, Update};
 
 /// The spatial dimension `D` as a type (see [`SpaceDim`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -22,11 +31,9 @@ pub trait SpaceDim<const D: usize> {
     /// The names of the coordinates, `x`, `y` (and `z`).
     const AXES: [&'static str; D];
 
-    /// The model as the 2D contact layer sees it: the model itself in 2D;
-    /// `None` in 3D, where contact is not available yet (a 3D model with
-    /// a contact pair is refused by [`Model::check`], so Newton treats a
-    /// 3D model as one without contact).
-    fn planar(model: &Model<D>) -> Option<&Model<2>>;
+    /// The contact element of the dimension: [`ContactLayout`] in 2D,
+    /// [`FaceLayout`] in 3D.
+    type Contact: ContactSpace<D>;
 
     /// A solution and one of its states as the 2D contact report sees
     /// them (the nodal contact table): themselves in 2D, `None` in 3D
@@ -39,10 +46,7 @@ pub trait SpaceDim<const D: usize> {
 
 impl SpaceDim<2> for Dim<2> {
     const AXES: [&'static str; 2] = ["x", "y"];
-
-    fn planar(model: &Model<2>) -> Option<&Model<2>> {
-        Some(model)
-    }
+    type Contact = ContactLayout;
 
     fn planar_solution<'s>(
         solution: &'s Solution<2>,
@@ -54,10 +58,7 @@ impl SpaceDim<2> for Dim<2> {
 
 impl SpaceDim<3> for Dim<3> {
     const AXES: [&'static str; 3] = ["x", "y", "z"];
-
-    fn planar(_: &Model<3>) -> Option<&Model<2>> {
-        None
-    }
+    type Contact = FaceLayout;
 
     fn planar_solution<'s>(
         _: &'s Solution<3>,

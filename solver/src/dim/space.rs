@@ -1,0 +1,210 @@
+//! [`ContactSpace`]: what the Newton loop reads of the contact element of
+//! one dimension: 2D segments ([`ContactLayout`](crate::contact::ContactLayout),
+//! `planar.rs`) or 3D faces ([`FaceLayout`](crate::contact::FaceLayout),
+//! `faces.rs`).
+//!
+//! The element's mathematics is the same in both (see [`crate::contact`]
+//! and [`crate::contact::face_layout`]): integration points on the slave
+//! side, each paired with a master segment or face (`Master`), whose
+//! evaluation (`Eval`: gap, gradient, Hessian) the assembly adds as
+//! `w J0 lambda g`; the frozen Taylor expansions of Types 1–6
+//! (`Expansion`) over the evaluation's coordinates; a projection without
+//! derivatives (`Found`) for the step-end checks and reports.
+//!
+//! The projection's *reach* is how far a master parameter lies from its
+//! face's centre, 1 on the boundary: `|xi_m|` on a segment, `max(|u|, |v|)`
+//! on a quad4, `1 + max(-u, -v, u + v - 1)` on a tri3. The pairing guard
+//! reads it against [`crate::contact::XI_STUCK_BAND`].
+//!
+//! Node ties (a point held at the node between two master segments,
+//! `crate::contact`, "Points stuck at a master node") exist in 2D only:
+//! in 3D [`ContactSpace::can_tie`] is false, so no tie is ever made and
+//! the tie hooks are never reached.
+//!
+//! Invariant: the 2D implementation calls exactly the functions the
+//! Newton loop called before this seam, in the same order, so 2D results
+//! are unchanged to the bit.
+
+use contact_kernels::{ApproxType, Formulation, KernelError};
+
+use crate::assembly::{DofMap, System};
+use crate::contact::{FaceLayoutError, KernelCounts, NodeTie, PointFailure};
+use crate::ids::ContactPointIndex;
+use crate::mesh::Mesh;
+use crate::model::Model;
+use crate::solution::{ContactPointId, ContactPointReport, MultiplierDofInfo};
+
+/// Every point's evaluation (`None`: unpaired) and the kernel calls.
+pub type EvalsResult<S, const D: usize> = Result<
+    (Vec<Option<<S as ContactSpace<D>>::Eval>>, KernelCounts),
+    PointFailure<<S as ContactSpace<D>>::Master>,
+>;
+
+/// Every point's projection (`None`: projects nowhere) and the calls.
+pub type FoundResult<S, const D: usize> = Result<
+    (Vec<Option<<S as ContactSpace<D>>::Found>>, KernelCounts),
+    PointFailure<<S as ContactSpace<D>>::Master>,
+>;
+
+/// A due pairing change: the point and its new master with the
+/// projection onto it (`None`: it projects nowhere).
+pub type Update<S, const D: usize> = (ContactPointIndex, Option<<S as ContactSpace<D>>::Found>);
+
+/// The contact element of dimension `D` as the Newton loop sees it
+/// (module docs).
+pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
+    /// A master segment or face of one pair.
+    type Master: Copy + PartialEq + std::fmt::Debug + Send + Sync;
+    /// One point's kernel evaluation on its master.
+    type Eval: Copy + std::fmt::Debug + Send + Sync;
+    /// One point's projection onto a master (no derivatives).
+    type Found: Copy + std::fmt::Debug + Send + Sync;
+    /// A point's frozen Taylor expansion (Types 1–6).
+    type Expansion: Copy + std::fmt::Debug;
+
+    /// Lays out the contact pairs of `model`, every pair's formulation
+    /// (reading) replaced by `formulation` when given.
+    fn build(model: &Model<D>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError>;
+    /// The number of integration points.
+    fn point_count(&self) -> usize;
+    /// The number of multiplier dofs.
+    fn multiplier_count(&self) -> usize;
+    /// The slave node and pair of every multiplier.
+    fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo>;
+    /// Each pair's formulation.
+    fn formulations(&self) -> Vec<Formulation>;
+    /// Point `i` for reports, with `master` (in 3D the slave "segment" is
+    /// the slave face, the Gauss point the point's index on it, the master
+    /// segment the master face).
+    fn point_id(&self, i: ContactPointIndex, master: Option<Self::Master>) -> ContactPointId;
+
+    /// The master of an evaluation.
+    fn master(e: &Self::Eval) -> Self::Master;
+    /// The gap of an evaluation.
+    fn gap(e: &Self::Eval) -> f64;
+    /// The master of a projection.
+    fn found_master(f: &Self::Found) -> Self::Master;
+    /// The gap of a projection.
+    fn found_gap(f: &Self::Found) -> f64;
+
+    /// Pairs every point from scratch at displacements `u`.
+    #[allow(clippy::type_complexity)] // the layouts' own signature
+    fn initial_pairing(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+    ) -> Result<(Vec<Option<Self::Master>>, KernelCounts), PointFailure<Self::Master>>;
+    /// Pairs every point (from `pairing`) and evaluates type `ty`.
+    fn evaluate_all(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        pairing: &[Option<Self::Master>],
+        ty: ApproxType,
+    ) -> EvalsResult<Self, D>;
+    /// Evaluates type `ty` on each point's master of `pairing`.
+    fn evaluate_paired(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        pairing: &[Option<Self::Master>],
+        ty: ApproxType,
+    ) -> EvalsResult<Self, D>;
+    /// Evaluates type `ty` for point `i` on `master`.
+    fn evaluate_on(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        i: ContactPointIndex,
+        master: Self::Master,
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<Self::Eval, KernelError>;
+    /// Re-pairs every point by projection only (from `pairing`).
+    fn project_all(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        pairing: &[Option<Self::Master>],
+    ) -> FoundResult<Self, D>;
+    /// The pairing changes due at a converged iterate of the complete
+    /// formulation evaluated as `evals`, in point order.
+    #[allow(clippy::type_complexity)] // the layouts' own signature
+    fn pairing_updates(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        evals: &[Option<Self::Eval>],
+    ) -> Result<(Vec<Update<Self, D>>, KernelCounts), PointFailure<Self::Master>>;
+    /// The report of every point at its projection `found`.
+    fn reports(&self, found: &[Option<Self::Found>]) -> Vec<ContactPointReport>;
+
+    /// The parameter a point stuck beyond its master reports: `xi_m` on a
+    /// segment, the reach on a face (module docs).
+    fn stuck_xi(&self, e: &Self::Eval) -> f64;
+    /// The same of a projection.
+    fn found_stuck_xi(&self, f: &Self::Found) -> f64;
+    /// Whether an evaluation's projection lies within the stuck band of
+    /// its master (`reach <= 1 + XI_STUCK_BAND`, in 2D exactly the
+    /// earlier `|xi_m| <= 1 + XI_STUCK_BAND`).
+    fn within_band(&self, e: &Self::Eval) -> bool;
+    /// Whether a projection lies within the stuck band of its master's
+    /// boundary (`reach >= 1 - XI_STUCK_BAND`).
+    fn found_at_boundary(&self, f: &Self::Found) -> bool;
+
+    /// The active multipliers at `(evals, lambda)`; in the `first`
+    /// iteration of an attempt also the touching nodes of unilateral pairs
+    /// without contact.
+    fn active(
+        &self,
+        evals: &[Option<Self::Eval>],
+        lambda: &[f64],
+        length_scale: f64,
+        first: bool,
+    ) -> Vec<bool>;
+    /// Adds the contact element at `evals` to `sys`.
+    fn assemble(
+        &self,
+        evals: &[Option<Self::Eval>],
+        lambda: &[f64],
+        active: &[bool],
+        dofs: &DofMap,
+        sys: &mut System,
+    );
+    /// Adds the node ties (with `others`, their evaluations on the other
+    /// master) to `sys`.
+    fn assemble_ties(
+        ties: &[NodeTie<Self::Master>],
+        evals: &[Option<Self::Eval>],
+        others: &[Self::Eval],
+        dofs: &DofMap,
+        sys: &mut System,
+    );
+
+    /// The expansion of `e`, evaluated at displacements `u`.
+    fn expand_at(e: Self::Eval, u: &[f64]) -> Self::Expansion;
+    /// The expansion's value at displacements `u`.
+    fn expand(x: &Self::Expansion, u: &[f64]) -> Self::Eval;
+    /// The evaluation an expansion was taken of.
+    fn expanded(x: &Self::Expansion) -> &Self::Eval;
+    /// Whether `u` differs from the expansion's point on its coordinates.
+    fn moved(x: &Self::Expansion, u: &[f64]) -> bool;
+    /// The length a step-end Taylor remainder of point `i` is measured in
+    /// (the slave segment's length, the slave face's size), `None` when
+    /// none of its multipliers is `active`.
+    fn remainder_length(
+        &self,
+        mesh: &Mesh<D>,
+        i: ContactPointIndex,
+        active: &[bool],
+    ) -> Option<f64>;
+
+    /// Whether point `i` may be tied between masters `p` and `o` (they
+    /// share a node; never in 3D).
+    fn can_tie(&self, i: ContactPointIndex, p: Self::Master, o: Self::Master) -> bool;
+    /// A tie's weight `theta` at multipliers `lambda` (2D only).
+    fn tie_theta(&self, tie: &NodeTie<Self::Master>, lambda: &[f64]) -> Option<f64>;
+    /// Whether a tied point's evaluation is at its master's node (2D
+    /// only).
+    fn at_node(e: &Self::Eval) -> bool;
+}
