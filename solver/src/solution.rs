@@ -363,6 +363,11 @@ pub struct Solution<const D: usize = 2> {
     pub contact_points: Vec<ContactPointReport>,
     /// The contact pairs, in model order (see [`crate::report::nodal`]).
     pub contact_pairs: Vec<ContactPairInfo>,
+    /// The 3D contact pairs of faces, in model order, each with the
+    /// reading it was solved with ([`Solution::formulations`]): what the 3D
+    /// nodal contact table is taken on ([`crate::report::contact_csv_3d`]);
+    /// empty in 2D.
+    pub face_pairs: Vec<crate::model::FacePair>,
     /// The support groups whose reactions each [`StepRecord::reactions`]
     /// holds (a scene's `[[fix]]` and `[[prescribe]]` items: their `group`,
     /// or `fix[i]` / `prescribe[i]`).

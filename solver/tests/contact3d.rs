@@ -225,3 +225,43 @@ fn a_pressed_cap_converges_balances_and_every_type_matches_the_complete_formulat
         }
     }
 }
+
+/// The 3D `contact.csv`: its header, one row per slave node with 15
+/// fields, every node projected onto a quad4 master face (four master
+/// nodes), the pressures' resultant the base's reaction.
+#[test]
+fn the_3d_contact_csv_has_a_row_per_slave_node() {
+    for tri in [false, true] {
+        let model = pressed(0.002, tri, Formulation::SlaveNormal);
+        let sol = solve(&model, Method::Complete, 1);
+        assert_eq!(sol.face_pairs.len(), 1);
+        let text = solver::report::contact_csv_3d(&sol, &sol.final_state).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some(solver::report::HEADER_3D));
+        assert_eq!(
+            solver::report::HEADER_3D,
+            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area"
+        );
+        let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        assert_eq!(rows.len(), 16, "{text}");
+        let mut resultant = 0.0;
+        for r in &rows {
+            assert_eq!(r.len(), 15, "{r:?}");
+            assert_eq!(r[0], "cap-on-base");
+            let z: f64 = r[4].parse().unwrap();
+            // the cap's bottom moved down, by less than the press
+            assert!(z < 1.0 && z > 1.0 - 0.002, "{r:?}");
+            for k in [5, 6, 7, 8, 9, 10, 11, 12, 13, 14] {
+                assert!(!r[k].is_empty(), "field {k} of {r:?}");
+            }
+            let p: f64 = r[6].parse().unwrap();
+            let area: f64 = r[14].parse().unwrap();
+            resultant += p * area;
+        }
+        let bottom = z_reactions(&sol).0;
+        assert!(
+            (resultant - bottom).abs() <= 1e-3 * bottom,
+            "{resultant} {bottom}"
+        );
+    }
+}

@@ -250,7 +250,7 @@ type At<'a> = &'a dyn Fn(&str) -> (PathBuf, PathBuf);
 
 /// With `--out`: the `.vtu` files (every step's with `--every-step`, and
 /// `final.vtu`), `reactions.csv` when the scene reports supports, then
-/// what `more` adds (2D: `contact.csv`), staged and committed at once; then
+/// what `more` adds (`contact.csv`), staged and committed at once; then
 /// the list of what was written.
 fn write_outputs<const D: usize>(
     args: &RunArgs,
@@ -310,9 +310,9 @@ fn interrupted(args: &RunArgs, load_factor: f64) -> Box<dyn std::error::Error + 
 }
 
 /// `gapsim run` on a 3D scene: its model (`Scene::build_model_3d`), the
-/// summary (as in 2D, without contact: a 3D scene has none yet), each
-/// loaded node's displacement, and with `--out` the `.vtu` files and
-/// `reactions.csv`.
+/// summary (as in 2D), each loaded node's displacement, and with `--out`
+/// the `.vtu` files, `reactions.csv` and, with face pairs, the 3D
+/// `contact.csv` (`solver::report::contact_csv_3d`).
 fn run_solid(
     args: &RunArgs,
     scene: &Scene,
@@ -357,7 +357,17 @@ fn run_solid(
     }
     print_costs(&sol, options);
     if let Some(out) = out {
-        write_outputs(args, &sol, out, interrupt, |_, _| Ok(()))?;
+        write_outputs(args, &sol, out, interrupt, |at, wrote| {
+            if !sol.face_pairs.is_empty() {
+                let (path, shown) = at("contact.csv");
+                let text = solver::report::contact_csv_3d(&sol, &sol.final_state)
+                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+                solver::report::write_atomic(&path, text)
+                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+                wrote.push(format!("wrote           {}", shown.display()));
+            }
+            Ok(())
+        })?;
     }
     Ok(())
 }

@@ -254,6 +254,7 @@ use nalgebra::{SMatrix, SVector};
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
 pub use face_layout::{FaceLayout, FaceLayoutError, FacePoint, face_formulation};
+pub use face_nodal::{FaceNodalError, FaceNodalRow};
 pub use face_pairing::{FACE_COORDS, FaceEval, FaceFound};
 pub use layout::ContactLayout;
 pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};

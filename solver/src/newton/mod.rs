@@ -509,6 +509,17 @@ impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S> {
             snapshots: self.snapshots.clone(),
             contact_points,
             contact_pairs: crate::solution::ContactPairInfo::of_model(self.setup.model),
+            face_pairs: self
+                .setup
+                .model
+                .face_contacts
+                .iter()
+                .zip(layout.formulations())
+                .map(|(p, reading)| crate::model::FacePair {
+                    reading,
+                    ..p.clone()
+                })
+                .collect(),
             support_groups: self
                 .setup
                 .model

@@ -43,7 +43,7 @@ pub const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_
 
 /// `v` in Rust's shortest round-trip form: positional, or with an
 /// exponent where that is shorter (below 1e-4 and from 1e15 on).
-fn num(v: f64) -> String {
+pub(super) fn num(v: f64) -> String {
     if v != 0.0 && !(1e-4..1e15).contains(&v.abs()) {
         format!("{v:e}")
     } else {

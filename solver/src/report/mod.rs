@@ -19,6 +19,7 @@
 
 pub mod atomic;
 pub mod contact_csv;
+pub mod contact_csv3d;
 pub mod csv;
 pub mod nodal;
 pub mod reactions_csv;
@@ -26,6 +27,7 @@ pub mod vtu;
 
 pub use atomic::{replace_with, write_atomic};
 pub use contact_csv::contact_csv;
+pub use contact_csv3d::{FaceContactError, HEADER_3D, contact_csv_3d};
 pub use nodal::{NodalContactError, NodalContactRow, NodalProjection, nodal_contact};
 pub use reactions_csv::reactions_csv;
 pub use vtu::{vtu_string, write_vtu, write_vtu_state};
