@@ -228,7 +228,8 @@ fn a_pressed_cap_converges_balances_and_every_type_matches_the_complete_formulat
 
 /// The 3D `contact.csv`: its header, one row per slave node with 15
 /// fields, every node projected onto a quad4 master face (four master
-/// nodes), the pressures' resultant the base's reaction.
+/// nodes), the pressures' resultant the base's reaction; the `.vtu`
+/// contact fields of the same table.
 #[test]
 fn the_3d_contact_csv_has_a_row_per_slave_node() {
     for tri in [false, true] {
@@ -263,5 +264,16 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
             (resultant - bottom).abs() <= 1e-3 * bottom,
             "{resultant} {bottom}"
         );
+        // the .vtu contact fields come from the same table: 16 slave nodes,
+        // each paired
+        let vtu = solver::report::vtu_string(&sol, &sol.final_state).unwrap();
+        let ones = |name: &str| {
+            let start = vtu.find(&format!("Name=\"{name}\"")).unwrap();
+            let body = &vtu[start..];
+            let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+            body.split_whitespace().filter(|v| *v == "1").count()
+        };
+        assert_eq!(ones("contact_slave"), 16);
+        assert_eq!(ones("contact_paired"), 16);
     }
 }

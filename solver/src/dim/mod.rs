@@ -42,6 +42,13 @@ pub trait SpaceDim<const D: usize> {
         solution: &'s Solution<D>,
         state: &'s State<D>,
     ) -> Option<(&'s Solution<2>, &'s State<2>)>;
+
+    /// The same as the 3D contact report sees them (the face pairs'
+    /// nodal table): themselves in 3D, `None` in 2D.
+    fn solid_solution<'s>(
+        solution: &'s Solution<D>,
+        state: &'s State<D>,
+    ) -> Option<(&'s Solution<3>, &'s State<3>)>;
 }
 
 impl SpaceDim<2> for Dim<2> {
@@ -54,6 +61,13 @@ impl SpaceDim<2> for Dim<2> {
     ) -> Option<(&'s Solution<2>, &'s State<2>)> {
         Some((solution, state))
     }
+
+    fn solid_solution<'s>(
+        _: &'s Solution<2>,
+        _: &'s State<2>,
+    ) -> Option<(&'s Solution<3>, &'s State<3>)> {
+        None
+    }
 }
 
 impl SpaceDim<3> for Dim<3> {
@@ -65,5 +79,12 @@ impl SpaceDim<3> for Dim<3> {
         _: &'s State<3>,
     ) -> Option<(&'s Solution<2>, &'s State<2>)> {
         None
+    }
+
+    fn solid_solution<'s>(
+        solution: &'s Solution<3>,
+        state: &'s State<3>,
+    ) -> Option<(&'s Solution<3>, &'s State<3>)> {
+        Some((solution, state))
     }
 }

@@ -25,7 +25,7 @@
 
 use thiserror::Error;
 
-use crate::contact::{FaceLayout, FaceLayoutError, FaceNodalError};
+use crate::contact::{FaceLayout, FaceLayoutError, FaceNodalError, FaceNodalRow};
 use crate::solution::{Solution, State};
 
 use super::csv::field;
@@ -50,15 +50,26 @@ fn num(v: f64) -> String {
     super::contact_csv::num(v)
 }
 
+/// The nodal contact table of `state` (one of `solution`'s states) on
+/// the solution's face pairs: the rows of the 3D `contact.csv` and the
+/// `.vtu` contact fields.
+pub fn face_nodal_rows(
+    solution: &Solution<3>,
+    state: &State<3>,
+) -> Result<Vec<FaceNodalRow>, FaceContactError> {
+    let mesh = &solution.mesh;
+    let layout = FaceLayout::new(mesh, &solution.face_pairs, None)?;
+    let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
+    Ok(layout.nodal_table(mesh, &u, &state.multipliers)?.0)
+}
+
 /// The 3D `contact.csv` text of `state` (one of `solution`'s states).
 pub fn contact_csv_3d(
     solution: &Solution<3>,
     state: &State<3>,
 ) -> Result<String, FaceContactError> {
     let mesh = &solution.mesh;
-    let layout = FaceLayout::new(mesh, &solution.face_pairs, None)?;
-    let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
-    let (rows, _) = layout.nodal_table(mesh, &u, &state.multipliers)?;
+    let rows = face_nodal_rows(solution, state)?;
     let number = |n: usize| mesh.node_number(n).0.to_string();
     let mut out = format!("{HEADER_3D}\n");
     for row in rows {

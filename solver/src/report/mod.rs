@@ -27,7 +27,7 @@ pub mod vtu;
 
 pub use atomic::{replace_with, write_atomic};
 pub use contact_csv::contact_csv;
-pub use contact_csv3d::{FaceContactError, HEADER_3D, contact_csv_3d};
+pub use contact_csv3d::{FaceContactError, HEADER_3D, contact_csv_3d, face_nodal_rows};
 pub use nodal::{NodalContactError, NodalContactRow, NodalProjection, nodal_contact};
 pub use reactions_csv::reactions_csv;
-pub use vtu::{vtu_string, write_vtu, write_vtu_state};
+pub use vtu::{ContactTableError, vtu_string, write_vtu, write_vtu_state};

@@ -419,7 +419,7 @@ mod tests {
             "{msg}"
         );
         let vtu = crate::report::vtu_string(&sol, &sol.final_state).unwrap_err();
-        assert_eq!(vtu, e);
+        assert_eq!(vtu, e.into());
     }
 
     /// A master segment collapsed to a point is that segment's problem

@@ -26,12 +26,13 @@
 //!   `[xx, yy, xy]` in 2D, `[xx, yy, zz, yz, xz, xy]` in 3D, averaged over
 //!   the element's Gauss points) and `body` (the body index).
 //!
-//! The contact point data come from the 2D nodal contact table; a 3D
-//! solution has no contact (see [`crate::dim`]), so its contact fields are
-//! zero.
+//! The contact point data come from the nodal contact table: the 2D one
+//! of segment pairs, or in 3D that of the face pairs
+//! ([`super::contact_csv3d::face_nodal_rows`]: the node as a point of its
+//! first slave face).
 //!
 //! A state whose nodal contact table does not exist (a
-//! [`super::nodal::NodalContactError`]: e.g. a collapsed slave
+//! [`ContactTableError`]: e.g. a collapsed slave
 //! segment) has no `.vtu` document: [`vtu_string`] returns the error and
 //! [`write_vtu_state`] reports it as an `InvalidData` I/O error, writing
 //! nothing.
@@ -44,7 +45,20 @@ use crate::mesh::NodeNumbering;
 use crate::solution::{Solution, State};
 
 use super::atomic::write_atomic;
+use super::contact_csv3d::{FaceContactError, face_nodal_rows};
 use super::nodal::{NodalContactError, nodal_contact};
+
+/// Why a state has no `.vtu` document: its nodal contact table (2D
+/// segments or 3D faces) does not exist.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ContactTableError {
+    /// The 2D table ([`super::nodal`]).
+    #[error(transparent)]
+    Segments(#[from] NodalContactError),
+    /// The 3D table ([`super::contact_csv3d`]).
+    #[error(transparent)]
+    Faces(#[from] FaceContactError),
+}
 
 /// Writes the final state of `solution` to `path`.
 pub fn write_vtu<const D: usize>(
@@ -121,7 +135,7 @@ fn num(v: f64) -> String {
 pub fn vtu_string<const D: usize>(
     solution: &Solution<D>,
     state: &State<D>,
-) -> Result<String, NodalContactError>
+) -> Result<String, ContactTableError>
 where
     Dim<D>: SpaceDim<D>,
 {
@@ -134,16 +148,27 @@ where
     }
     let mut slave = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
-    let rows = match Dim::<D>::planar_solution(solution, state) {
-        Some((solution, state)) => nodal_contact(solution, state)?,
-        None => Vec::new(),
-    };
-    for row in rows {
-        slave[row.node] = 1;
-        if let Some(pr) = row.projection
-            && gap[row.node].is_none_or(|g| pr.gap.abs() < g.abs())
+    // (node, gap) of every row of the nodal contact table
+    let rows: Vec<(usize, Option<f64>)> =
+        if let Some((solution, state)) = Dim::<D>::planar_solution(solution, state) {
+            nodal_contact(solution, state)?
+                .into_iter()
+                .map(|row| (row.node, row.projection.map(|pr| pr.gap)))
+                .collect()
+        } else if let Some((solution, state)) = Dim::<D>::solid_solution(solution, state) {
+            face_nodal_rows(solution, state)?
+                .into_iter()
+                .map(|row| (row.node.index(), row.gap))
+                .collect()
+        } else {
+            Vec::new()
+        };
+    for (node, g) in rows {
+        slave[node] = 1;
+        if let Some(g) = g
+            && gap[node].is_none_or(|old| g.abs() < old.abs())
         {
-            gap[row.node] = Some(pr.gap);
+            gap[node] = Some(g);
         }
     }
     let stresses = solution.element_mean_stresses(state);
