@@ -452,6 +452,16 @@ fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
             err.to_string().contains("contact pair `contact[0]`"),
             "{err}"
         );
+        // segmented integration clips every slave face: the layout the
+        // build makes of it succeeds
+        let text = HERTZ3D.replace("hertz3d-hex.msh", mesh).replace(
+            "mode = \"unilateral\"",
+            "mode = \"unilateral\"\nintegration = \"segmented\"",
+        );
+        let segmented = Scene::from_toml_str(&text, &scenes_dir("hertz3d.toml"))
+            .unwrap_or_else(|e| panic!("{mesh} segmented: {e}"));
+        let model = segmented.build_model_3d().unwrap();
+        assert_eq!(model.face_contacts[0].integration, Integration::Segmented);
     }
     // nor is it a 2D model
     let scene = Scene::from_file(scenes_dir("hertz3d.toml")).unwrap();
