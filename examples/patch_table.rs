@@ -83,7 +83,7 @@ fn run(
     for c in &mut s.contacts {
         c.formulation = formulation;
         c.integration = integration;
-        c.gauss_points = gauss_points;
+        c.gauss_points = Some(gauss_points);
     }
     let options = SolveOptions {
         method: Method::Complete,

@@ -138,3 +138,30 @@ fn a_scene_without_contact_writes_no_contact_csv() {
     assert_eq!(entries(&out_dir), ["final.vtu", "reactions.csv"]);
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A 3D scene with a `[[contact]]` pair (`scenes/hertz3d.toml`) is read
+/// and built, but Newton does not solve 3D contact yet: the run fails,
+/// naming the pair, and writes nothing.
+#[test]
+fn a_3d_scene_with_contact_fails_naming_the_pair() {
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hertz3d.toml");
+    let dir = std::env::temp_dir().join(format!("gapsim-cli-run-3d-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&dir)
+        .output()
+        .expect("run gapsim");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains(
+            "contact pair `contact[0]`: contact is not available in 3D models yet (2D only)"
+        ),
+        "{stderr}"
+    );
+    assert!(!dir.join("final.vtu").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

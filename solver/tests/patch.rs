@@ -53,7 +53,7 @@ fn variant(
     let c = &mut s.contacts[0];
     c.formulation = formulation;
     c.integration = integration;
-    c.gauss_points = gauss_points;
+    c.gauss_points = Some(gauss_points);
     if swap {
         std::mem::swap(&mut c.slave, &mut c.master);
     }

@@ -18,6 +18,7 @@
 
 use std::path::{Path, PathBuf};
 
+use solver::contact::face_rules::{FaceKind, default_points};
 use solver::scene::Dimension;
 use solver::{Formulation, LinearSolverKind, Scene, SceneError, SolveOptions, solve, solve_model};
 
@@ -397,6 +398,16 @@ steps = [3, 5]
     .unwrap();
     let material = scene.material.unwrap().material();
     let contact = &scene.contacts[0];
+    // absent `gauss_points` is the face kind's default: the 2D pair's
+    // count, and face_rules' for the 3D faces
+    assert_eq!(contact.gauss_points, None);
+    let segment = scene.build_model().unwrap().contacts[0].gauss_points;
+    let (quad4, tri3) = (
+        default_points(FaceKind::Quad4),
+        default_points(FaceKind::Tri3),
+    );
+    let gauss_points_default =
+        format!("{segment} on a segment, {quad4} x {quad4} on a quad4, {tri3} on a tri3");
     let n = &scene.newton;
     let cases: Vec<(&str, &str, String)> = vec![
         ("`[material]`", "model", quoted(&material.model)),
@@ -409,11 +420,7 @@ steps = [3, 5]
         ),
         ("`[[contact]]`", "mode", quoted(&contact.mode)),
         ("`[[contact]]`", "integration", quoted(&contact.integration)),
-        (
-            "`[[contact]]`",
-            "gauss_points",
-            contact.gauss_points.to_string(),
-        ),
+        ("`[[contact]]`", "gauss_points", gauss_points_default),
         (
             "`[loading]`",
             "method",

@@ -235,7 +235,7 @@ pub struct StudyResults {
 pub fn contact_heavy_variant(scene: &Scene, refine: usize, gauss_points: usize) -> Scene {
     let mut s = scene.refined(refine, 1);
     for c in &mut s.contacts {
-        c.gauss_points = gauss_points;
+        c.gauss_points = Some(gauss_points);
     }
     s.name = Some(format!(
         "{} (contact-heavy: x{refine} along the interface, {gauss_points} Gauss points per segment)",

@@ -196,12 +196,12 @@ impl Scene {
             }
             self.check_contact(&f, c)?;
             let pair = ContactPair {
-                name: c.name.clone().unwrap_or_else(|| f.clone()),
+                name: c.pair_name(&f),
                 slave,
                 master,
                 formulation: c.formulation,
                 mode: c.mode,
-                gauss_points: c.gauss_points,
+                gauss_points: c.segment_gauss_points(),
                 integration: c.integration,
             };
             check_initial_contact(

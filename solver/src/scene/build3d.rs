@@ -17,22 +17,41 @@
 //!   `[[traction]]` order: the faces of a block side in the side's order
 //!   ([`crate::mesh::block3d`]), of a physical surface in file order; each
 //!   face's nodes in its order, each node's components x, y, z, with the
-//!   consistent nodal force of [`super::traction::nodal_forces`].
+//!   consistent nodal force of [`super::traction::nodal_forces`];
+//! * contact pairs in `[[contact]]` order, each a [`FacePair`] of
+//!   [`Model::face_contacts`] named as in 2D (`name`, else `contact[i]`):
+//!   its slave and master faces (a block side's in the side's order, a
+//!   physical surface's in file order; each counter-clockwise seen from
+//!   outside its body), on two different bodies; its reading the
+//!   `formulation` (`slave-normal` or `closest-point`: any other is
+//!   refused naming `contact[i].formulation`); `gauss_points` as given
+//!   (absent: `None`, the face kind's default, 2 x 2 on a quad4, 3 on a
+//!   tri3, 7 per clipped triangle with segmented integration), checked
+//!   against the kinds of the slave faces ([`face_rule`]) or the
+//!   clipped triangles' rules (1, 3, 7), and every pair laid out once
+//!   ([`FaceLayout::new`]) so that what the solve's layout refuses is a
+//!   scene error naming `contact[i]`.
 //!
-//! Contact between 3D bodies is not supported yet: each `[[contact]]`'s
-//! faces are resolved (a side or a physical surface, on two different
-//! bodies), then the build fails with [`SceneError::Unsupported`] naming
-//! the pair.
+//! The pairs become [`Model::face_contacts`]; [`Model::check`] refuses
+//! them ([`ModelError::ContactIn3d`]) until Newton solves 3D contact, so
+//! the scene builds (and loads) and its solve fails naming the first pair.
+//! The 2D reference checks of a pair (faces facing each other, no initial
+//! penetration: `initial_contact.rs`) are not made in 3D.
+
+use contact_kernels::Formulation;
 
 use super::dimension::Dimension;
 use super::source::Solids;
 use super::supports::{Curves, Prescriptions};
 use super::traction::nodal_forces;
-use super::{Dofs, Scene, SceneError};
-use crate::ids::DofId;
+use super::{ContactSpec, Dofs, FaceSpec, Scene, SceneError};
+use crate::contact::FaceLayout;
+use crate::contact::face_rules::{FaceKind as RuleKind, face_rule};
+use crate::ids::{DofId, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::AnyMsh;
-use crate::model::{Model, PointLoad, SupportGroup};
+use crate::mesh::volume::{Face, FaceKind};
+use crate::model::{FacePair, Integration, Model, ModelError, PointLoad, SupportGroup};
 
 /// The dof of component `c` of `node` in 3D.
 fn dof(node: crate::ids::NodeId, c: usize) -> DofId {
@@ -41,8 +60,9 @@ fn dof(node: crate::ids::NodeId, c: usize) -> DofId {
 
 impl Scene {
     /// Builds the finite-element model of a 3D scene (a 2D scene is an
-    /// error naming its first body; a 3D scene with contact pairs is
-    /// [`SceneError::Unsupported`]).
+    /// error naming its first body). Its contact pairs are
+    /// [`Model::face_contacts`], which the solve refuses until Newton
+    /// solves 3D contact ([`ModelError::ContactIn3d`]).
     pub fn build_model_3d(&self) -> Result<Model<3>, SceneError> {
         let (file, dim) = self.prepare()?;
         if dim == Dimension::Two {
@@ -177,30 +197,10 @@ impl Scene {
                 }
             }
         }
-        // the first pair is named (each is refused the same way)
-        if let Some(c) = self.contacts.first() {
-            let f = "contact[0]".to_owned();
-            let face = |which: &str, spec: &super::FaceSpec| {
-                let field = format!("{f}.{which}");
-                self.faces_3d(&mesh, &sources, &field, &spec.body, spec.side, &spec.group)
-            };
-            let (slave_body, slave) = face("slave", &c.slave)?;
-            let (master_body, master) = face("master", &c.master)?;
-            if slave_body == master_body {
-                return Err(self.invalid(&f, "slave and master must be different bodies"));
-            }
-            self.check_contact(&f, c)?;
-            return Err(SceneError::Unsupported {
-                origin: self.origin.clone(),
-                field: f,
-                message: format!(
-                    "contact between 3D bodies is not supported yet (the pair's faces were found: {} slave faces on `{}`, {} master faces on `{}`); without its [[contact]] tables the scene builds and solves",
-                    slave.len(),
-                    mesh.bodies[slave_body].name,
-                    master.len(),
-                    mesh.bodies[master_body].name
-                ),
-            });
+        let mut face_contacts = Vec::with_capacity(self.contacts.len());
+        for (i, c) in self.contacts.iter().enumerate() {
+            let f = format!("contact[{i}]");
+            face_contacts.push(self.face_pair(&mesh, &sources, &f, c)?);
         }
         self.check_loading()?;
         self.check_newton()?;
@@ -209,14 +209,131 @@ impl Scene {
             prescribed: prescribed.list,
             loads,
             contacts: Vec::new(),
-            face_contacts: Vec::new(),
+            face_contacts,
             load_factor_end: self.loading.load_factor_end,
             amplitudes: curves.0,
             supports,
         };
-        model
-            .check()
-            .map_err(|e| self.invalid("(model)", e.to_string()))?;
+        match model.check() {
+            // The refusal of face pairs (until Newton solves 3D contact)
+            // is the solve's: it comes after every other check of a 3D
+            // model, which have all passed.
+            Ok(()) | Err(ModelError::ContactIn3d { .. }) => {}
+            Err(e) => return Err(self.invalid("(model)", e.to_string())),
+        }
+        // what the solve's layout of the pairs refuses (a clipping that
+        // fails, a degenerate slave face) is refused here, by pair
+        for (i, pair) in model.face_contacts.iter().enumerate() {
+            FaceLayout::new(&model.mesh, std::slice::from_ref(pair), None)
+                .map_err(|e| self.invalid(format!("contact[{i}]"), e.to_string()))?;
+        }
         Ok(model)
     }
+
+    /// The [`FacePair`] of `contact[i]` (named `f`, `c`): its two faces
+    /// resolved (a block side's faces in the side's order, a physical
+    /// surface's in file order), on two different bodies, each with at
+    /// least one face; its `formulation` a reading of 3D faces; its
+    /// `gauss_points` a rule on each kind of its slave faces (or, with
+    /// segmented integration, on the clipped triangles). Named, and its
+    /// mode and integration taken, as a 2D pair (`build.rs`).
+    fn face_pair(
+        &self,
+        mesh: &Mesh<3>,
+        sources: &Solids,
+        f: &str,
+        c: &ContactSpec,
+    ) -> Result<FacePair, SceneError> {
+        let faces = |which: &str, spec: &FaceSpec| {
+            let field = format!("{f}.{which}");
+            let (body, faces) =
+                self.faces_3d(mesh, sources, &field, &spec.body, spec.side, &spec.group)?;
+            if faces.is_empty() {
+                return Err(self.invalid(field, "has no faces"));
+            }
+            Ok((body, faces))
+        };
+        let (slave_body, slave) = faces("slave", &c.slave)?;
+        let (master_body, master) = faces("master", &c.master)?;
+        if slave_body == master_body {
+            return Err(self.invalid(f, "slave and master must be different bodies"));
+        }
+        if !matches!(
+            c.formulation,
+            Formulation::SlaveNormal | Formulation::ClosestPoint
+        ) {
+            return Err(self.invalid(
+                format!("{f}.formulation"),
+                format!(
+                    "`{}` is not a reading of 3D faces: a 3D pair takes `slave-normal` or `closest-point` (the kernel of each slave face on a master face is the reading's for the two faces' kinds)",
+                    c.formulation
+                ),
+            ));
+        }
+        self.check_face_gauss_points(f, c, &slave)?;
+        Ok(FacePair {
+            name: c.pair_name(f),
+            slave,
+            master,
+            reading: c.formulation,
+            mode: c.mode,
+            gauss_points: c.gauss_points,
+            integration: c.integration,
+        })
+    }
+
+    /// `gauss_points` of the 3D pair `f` (`c`), if given: with Gauss
+    /// integration a rule on every kind of its `slave` faces
+    /// ([`face_rule`]: 1..=8 per direction on a quad4, 1, 3, 4, 6 or 7 on
+    /// a tri3), with segmented integration a rule on the clipped triangles
+    /// (1, 3 or 7); an error names `{f}.gauss_points` and the counts
+    /// there are.
+    fn check_face_gauss_points(
+        &self,
+        f: &str,
+        c: &ContactSpec,
+        slave: &[Face<NodeId>],
+    ) -> Result<(), SceneError> {
+        let Some(n) = c.gauss_points else {
+            return Ok(());
+        };
+        let field = format!("{f}.gauss_points");
+        match c.integration {
+            Integration::Segmented => {
+                if !SEGMENTED_POINTS.contains(&n) {
+                    return Err(self.invalid(
+                        field,
+                        format!(
+                            "segmented integration takes a rule of 1, 3 or 7 points on each clipped triangle, got {n}"
+                        ),
+                    ));
+                }
+            }
+            Integration::Gauss => {
+                let mut kinds: Vec<FaceKind> = Vec::new();
+                for face in slave {
+                    if !kinds.contains(&face.kind()) {
+                        kinds.push(face.kind());
+                    }
+                }
+                for kind in kinds {
+                    let (rule, per) = match kind {
+                        FaceKind::Quad4 => (RuleKind::Quad4, " per direction (n x n points)"),
+                        FaceKind::Tri3 => (RuleKind::Tri3, ""),
+                    };
+                    face_rule(rule, n).map_err(|e| {
+                        self.invalid(
+                            &field,
+                            format!("{e}{per}, for the pair's {rule} slave faces"),
+                        )
+                    })?;
+                }
+            }
+        }
+        Ok(())
+    }
 }
+
+/// The point counts of the triangle rules of segmented integration
+/// (`contact::clip::TriangleRule`: centroid, three points, Radon's seven).
+const SEGMENTED_POINTS: [usize; 3] = [1, 3, 7];

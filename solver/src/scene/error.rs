@@ -32,9 +32,10 @@ pub enum SceneError {
         /// What is wrong.
         message: String,
     },
-    /// A feature the scene asks for that the solver does not have yet
-    /// (contact between 3D bodies): the scene is read and checked, but no
-    /// model is built.
+    /// A feature the scene asks for that the solver does not have yet: the
+    /// scene is read and checked, but no model is built. (No scene key
+    /// gives it now: 3D contact pairs are built, and refused by the solve,
+    /// [`crate::model::ModelError::ContactIn3d`].)
     #[error("{origin}: {field}: {message}")]
     Unsupported {
         /// The file.

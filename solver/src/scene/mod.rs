@@ -49,7 +49,8 @@
 //! master = { body = "master", side = "top" }
 //! formulation = "slave-normal"   # or "closest-point" (default slave-normal)
 //! mode = "persistent"            # or "unilateral" (default persistent)
-//! gauss_points = 2               # per slave segment, 1..=8 (default 2)
+//! gauss_points = 2               # per slave segment, 1..=8 (default 2;
+//!                                # in 3D per face kind, see docs/scenes.md)
 //! integration = "gauss"          # or "segmented": split at the master nodes'
 //!                                # projections, gauss_points per piece
 //!
@@ -195,9 +196,10 @@ impl Scene {
     /// Parses and validates a scene; `origin` names the text in error
     /// messages (usually the file name). Validating builds the scene's
     /// model once (2D or 3D); a scene that asks for what the solver does
-    /// not have yet ([`SceneError::Unsupported`]: contact between 3D
-    /// bodies) is read, everything else checked, and fails when its model
-    /// is built.
+    /// not have yet ([`SceneError::Unsupported`]) would be read, everything
+    /// else checked, and fail when its model is built. (A 3D scene's
+    /// contact pairs are built, as [`crate::model::Model::face_contacts`]:
+    /// its solve refuses them until Newton solves 3D contact.)
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
         let mut scene = error::parse(text, origin)?;
         scene.origin = origin.to_owned();

@@ -626,7 +626,10 @@ pub struct ContactSpec {
     pub master: FaceSpec,
     /// `formulation`: the gap formulation, `slave-normal` (default) or
     /// `closest-point`. (`quadratic-slave-normal`, for 3-node segments, is
-    /// refused: the solver's contact faces are two-node segments.)
+    /// refused: the solver's contact faces are two-node segments.) In 3D
+    /// it is the pair's reading ([`crate::model::FacePair::reading`]): the
+    /// kernel of each slave face on a master face is that reading's for
+    /// the two faces' kinds.
     #[serde(
         default = "default_formulation",
         deserialize_with = "de_formulation",
@@ -636,10 +639,16 @@ pub struct ContactSpec {
     /// `mode`: `persistent` (default) or `unilateral`.
     #[serde(default)]
     pub mode: ContactMode,
-    /// `gauss_points`: Gauss points per slave segment, 1..=8 (default 2);
-    /// per piece of a slave segment with `integration = "segmented"`.
-    #[serde(default = "default_gauss_points")]
-    pub gauss_points: usize,
+    /// `gauss_points`: the rule on each slave face. In 2D, Gauss points
+    /// per slave segment, 1..=8, per piece of a slave segment with
+    /// `integration = "segmented"`. In 3D, `n x n` points on a quad4 slave
+    /// face (1..=8), `n` on a tri3 (1, 3, 4, 6 or 7), and with segmented
+    /// integration the rule on each clipped triangle (1, 3 or 7). `None`
+    /// (absent, not written): the default of the face kind, 2 on a
+    /// segment, 2 x 2 on a quad4, 3 on a tri3 (segmented in 3D: 7), see
+    /// [`crate::contact::face_rules::default_points`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gauss_points: Option<usize>,
     /// `integration`: the rule on the slave segments, `"gauss"` (default:
     /// `gauss_points` Gauss points per slave segment) or `"segmented"`:
     /// each slave segment is split at the slave points whose projection
@@ -677,6 +686,22 @@ pub struct ContactSpec {
     /// `false`.
     #[serde(default, skip_serializing_if = "is_false")]
     pub allow_initial_penetration: bool,
+}
+
+impl ContactSpec {
+    /// The pair's name in the model: its `name`, else its field
+    /// `contact[i]` (`field`); the one naming of 2D and 3D pairs.
+    pub(super) fn pair_name(&self, field: &str) -> String {
+        self.name.clone().unwrap_or_else(|| field.to_owned())
+    }
+
+    /// The Gauss points per slave segment of a 2D pair: `gauss_points`,
+    /// else the segment's default (2).
+    pub(super) fn segment_gauss_points(&self) -> usize {
+        use crate::contact::face_rules::{FaceKind, default_points};
+        self.gauss_points
+            .unwrap_or_else(|| default_points(FaceKind::Segment))
+    }
 }
 
 fn is_default_integration(i: &Integration) -> bool {
@@ -825,9 +850,6 @@ fn default_max_iterations() -> usize {
 }
 fn default_max_cutbacks() -> usize {
     DEFAULT_MAX_CUTBACKS
-}
-fn default_gauss_points() -> usize {
-    2
 }
 fn default_formulation() -> Formulation {
     Formulation::SlaveNormal

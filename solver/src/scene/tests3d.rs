@@ -6,6 +6,7 @@
 use std::path::PathBuf;
 
 use super::{Coords, Dimension, Dofs, Scene, SceneError, SideName};
+use crate::ids::NodeId;
 
 /// A 3D block cantilever: 4 x 1 x 1 hexahedra, clamped at x = 0, a
 /// traction on its free end.
@@ -384,25 +385,354 @@ fn hertz3d_without_contact(mesh: &str) -> String {
 }
 
 #[test]
-fn the_3d_hertz_scene_fails_to_build_naming_3d_contact() {
-    let scene = Scene::from_file(scenes_dir("hertz3d.toml")).unwrap();
-    match scene.build_model_3d() {
-        Err(SceneError::Unsupported { field, message, .. }) => {
-            assert_eq!(field, "contact[0]");
+fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
+    use crate::mesh::gmsh::MshVolumeMesh;
+    use crate::mesh::volume::{FaceKind, dot};
+    use crate::model::{ContactMode, Integration, ModelError};
+    use contact_kernels::Formulation;
+    for (mesh, kind) in [
+        ("hertz3d-hex.msh", FaceKind::Quad4),
+        ("hertz3d-tet.msh", FaceKind::Tri3),
+    ] {
+        let scene = Scene::from_toml_str(
+            &HERTZ3D.replace("hertz3d-hex.msh", mesh),
+            &scenes_dir("hertz3d.toml"),
+        )
+        .unwrap_or_else(|e| panic!("{mesh}: {e}"));
+        let model = scene
+            .build_model_3d()
+            .unwrap_or_else(|e| panic!("{mesh}: {e}"));
+        assert!(model.contacts.is_empty());
+        assert_eq!(model.face_contacts.len(), 1);
+        let pair = &model.face_contacts[0];
+        assert_eq!(pair.name, "contact[0]");
+        assert_eq!(
+            (pair.reading, pair.mode, pair.gauss_points, pair.integration),
+            (
+                Formulation::SlaveNormal,
+                ContactMode::Unilateral,
+                None,
+                Integration::Gauss
+            )
+        );
+        // the file's faces of each surface, on the indenter and the block
+        let msh = MshVolumeMesh::read(scenes_dir(mesh)).unwrap();
+        let (indenter, block) = (&model.mesh.bodies[0], &model.mesh.bodies[1]);
+        for (faces, group, body) in [
+            (&pair.slave, "indenter_surface", indenter),
+            (&pair.master, "block_top", block),
+        ] {
+            assert_eq!(
+                faces.len(),
+                msh.surface_faces(group).unwrap().len(),
+                "{mesh}"
+            );
             assert!(
-                message.contains("contact between 3D bodies is not supported yet")
-                    && message.contains("slave faces on `indenter`")
-                    && message.contains("master faces on `block`"),
-                "{message}"
+                faces
+                    .iter()
+                    .all(|f| f.kind() == kind && f.nodes().iter().all(|&n| body.has_node(n))),
+                "{mesh} {group}"
             );
         }
-        other => panic!("{:?}", other.map(|m| m.mesh.node_count())),
+        // the block's top faces look up, out of the block
+        for f in &pair.master {
+            let n = f.map_nodes(|n| model.mesh.node_ref(n)).normal();
+            assert!(dot(n, [0.0, 0.0, 1.0]) > 0.0, "{mesh}: {n:?}");
+        }
+        // the solve refuses it, naming the pair
+        let err = crate::solve_model(&model, &crate::SolveOptions::from_scene(&scene)).unwrap_err();
+        assert!(
+            matches!(
+                &err,
+                crate::SolverError::Model(ModelError::ContactIn3d { pair, dim: 3 }) if pair == "contact[0]"
+            ),
+            "{mesh}: {err:?}"
+        );
+        assert!(
+            err.to_string().contains("contact pair `contact[0]`"),
+            "{err}"
+        );
+        // segmented integration clips every slave face: the layout the
+        // build makes of it succeeds
+        let text = HERTZ3D.replace("hertz3d-hex.msh", mesh).replace(
+            "mode = \"unilateral\"",
+            "mode = \"unilateral\"\nintegration = \"segmented\"",
+        );
+        let segmented = Scene::from_toml_str(&text, &scenes_dir("hertz3d.toml"))
+            .unwrap_or_else(|e| panic!("{mesh} segmented: {e}"));
+        let model = segmented.build_model_3d().unwrap();
+        assert_eq!(model.face_contacts[0].integration, Integration::Segmented);
     }
     // nor is it a 2D model
+    let scene = Scene::from_file(scenes_dir("hertz3d.toml")).unwrap();
     assert!(matches!(
         scene.build_model(),
         Err(SceneError::Invalid { field, .. }) if field == "mesh.file"
     ));
+}
+
+/// A tri3 slave surface (the tetrahedral Hertz mesh) takes the tri3
+/// rules' counts.
+#[test]
+fn a_tri3_pair_refuses_a_count_without_a_triangle_rule() {
+    let origin = scenes_dir("hertz3d.toml");
+    let tet = HERTZ3D.replace("hertz3d-hex.msh", "hertz3d-tet.msh");
+    let with = |extra: &str| {
+        tet.replace(
+            "mode = \"unilateral\"",
+            &format!("mode = \"unilateral\"\n{extra}"),
+        )
+    };
+    for n in [1, 3, 4, 6, 7] {
+        let scene = Scene::from_toml_str(&with(&format!("gauss_points = {n}")), &origin)
+            .unwrap_or_else(|e| panic!("{n}: {e}"));
+        let model = scene.build_model_3d().unwrap();
+        assert_eq!(model.face_contacts[0].gauss_points, Some(n));
+    }
+    for n in [0, 2, 5, 8] {
+        match Scene::from_toml_str(&with(&format!("gauss_points = {n}")), &origin) {
+            Err(SceneError::Invalid { field, message, .. }) => {
+                assert_eq!(field, "contact[0].gauss_points");
+                assert!(
+                    message.contains(&format!("no Gauss rule of {n} points on a tri3"))
+                        && message.contains("available are 1, 3, 4, 6, 7"),
+                    "{message}"
+                );
+            }
+            other => panic!("{n}: {other:?}"),
+        }
+    }
+}
+
+/// Two 3D blocks, one on the other: the base 2 x 1 x 1 hexahedra under
+/// the block's 3 x 2 x 1, both 0.5 thick; two pairs on the interface.
+const BLOCKS3D: &str = r#"
+[material]
+young = 100.0
+poisson = 0.3
+
+[[body]]
+name = "base"
+origin = [0.0, 0.0, 0.0]
+size = [2.0, 1.0, 0.5]
+nx = 2
+ny = 1
+nz = 1
+
+[[body]]
+name = "block"
+origin = [0.0, 0.0, 0.5]
+size = [2.0, 1.0, 0.5]
+nx = 3
+ny = 2
+nz = 1
+
+[[fix]]
+body = "base"
+z = 0.0
+
+[[prescribe]]
+body = "block"
+z = 1.0
+uz = -0.01
+
+[[contact]]
+slave = { body = "block", side = "bottom" }
+master = { body = "base", side = "top" }
+
+[[contact]]
+name = "swapped"
+slave = { body = "base", side = "top" }
+master = { body = "block", side = "bottom" }
+formulation = "closest-point"
+mode = "unilateral"
+gauss_points = 3
+integration = "segmented"
+
+[loading]
+load_factor_end = 1.0
+steps = [1]
+"#;
+
+#[test]
+fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
+    use crate::mesh::block3d::{Block3d, Side3d};
+    use crate::mesh::volume::{Face, dot};
+    use crate::model::{ContactMode, Integration};
+    use contact_kernels::Formulation;
+    let model = error_free(BLOCKS3D).build_model_3d().unwrap();
+    assert_eq!(model.face_contacts.len(), 2);
+    // each block's side, its nodes offset by the body's first node
+    let side = |b: usize, size: [usize; 3], z: f64, s: Side3d| -> Vec<Face<NodeId>> {
+        let block = Block3d {
+            origin: [0.0, 0.0, z],
+            size: [2.0, 1.0, 0.5],
+            nx: size[0],
+            ny: size[1],
+            nz: size[2],
+        };
+        let first = model.mesh.bodies[b].nodes.start;
+        block
+            .side(s)
+            .unwrap()
+            .into_iter()
+            .map(|f| f.map_nodes(|n| NodeId::new(first + n)))
+            .collect()
+    };
+    let base_top = side(0, [2, 1, 1], 0.0, Side3d::Top);
+    let block_bottom = side(1, [3, 2, 1], 0.5, Side3d::Bottom);
+    assert_eq!((base_top.len(), block_bottom.len()), (2, 6));
+    let [first, second] = &model.face_contacts[..] else {
+        unreachable!()
+    };
+    assert_eq!(first.name, "contact[0]");
+    assert_eq!((&first.slave, &first.master), (&block_bottom, &base_top));
+    assert_eq!(
+        (
+            first.reading,
+            first.mode,
+            first.gauss_points,
+            first.integration
+        ),
+        (
+            Formulation::SlaveNormal,
+            ContactMode::Persistent,
+            None,
+            Integration::Gauss
+        )
+    );
+    assert_eq!(second.name, "swapped");
+    assert_eq!((&second.slave, &second.master), (&base_top, &block_bottom));
+    assert_eq!(
+        (
+            second.reading,
+            second.mode,
+            second.gauss_points,
+            second.integration
+        ),
+        (
+            Formulation::ClosestPoint,
+            ContactMode::Unilateral,
+            Some(3),
+            Integration::Segmented
+        )
+    );
+    // outward: the block's bottom faces look down, the base's top up; on
+    // the plane z = 0.5
+    for (faces, out) in [(&block_bottom, -1.0), (&base_top, 1.0)] {
+        for f in faces {
+            let x = f.map_nodes(|n| model.mesh.node_ref(n));
+            let n = x.normal();
+            assert!(dot(n, [0.0, 0.0, out]) > 0.0, "{n:?}");
+            assert!(n[0] == 0.0 && n[1] == 0.0, "{n:?}");
+            assert!(x.nodes().iter().all(|p| p[2] == 0.5));
+        }
+    }
+    // the solve refuses them, naming the first
+    let err = crate::solve_model(&model, &crate::SolveOptions::default()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "invalid model: contact pair `contact[0]`: contact is not available in 3D models yet (2D only)"
+    );
+}
+
+#[test]
+fn a_3d_pair_refuses_counts_readings_and_faces_by_key() {
+    // quad4 slave faces: 1..=8 per direction
+    let first = "slave = { body = \"block\", side = \"bottom\" }\n";
+    let pair = |extra: &str| BLOCKS3D.replacen(first, &format!("{first}{extra}\n"), 1);
+    for n in 1..=8 {
+        let model = error_free(&pair(&format!("gauss_points = {n}")))
+            .build_model_3d()
+            .unwrap();
+        assert_eq!(model.face_contacts[0].gauss_points, Some(n));
+    }
+    for n in [0, 9] {
+        let (field, message) = invalid(&pair(&format!("gauss_points = {n}")));
+        assert_eq!(field, "contact[0].gauss_points");
+        assert!(
+            message.contains(&format!("no Gauss rule of {n} points on a quad4"))
+                && message.contains("available are 1, 2, 3, 4, 5, 6, 7, 8")
+                && message.contains("per direction"),
+            "{message}"
+        );
+    }
+    // segmented: the clipped triangles' rules
+    for n in [2, 4, 8] {
+        let (field, message) =
+            invalid(&BLOCKS3D.replace("gauss_points = 3", &format!("gauss_points = {n}")));
+        assert_eq!(field, "contact[1].gauss_points");
+        assert!(
+            message.contains("1, 3 or 7 points on each clipped triangle, got"),
+            "{message}"
+        );
+    }
+    for n in [1, 7] {
+        error_free(&BLOCKS3D.replace("gauss_points = 3", &format!("gauss_points = {n}")));
+    }
+    // a formulation that is no reading of 3D faces: refused by the parser
+    // when its kernels are compiled in, else by the 3D build; by key either way
+    for f in [
+        "quadratic-slave-normal",
+        "quad4-slave-normal",
+        "tri3-closest-point",
+    ] {
+        match Scene::from_toml_str(&pair(&format!("formulation = \"{f}\"")), "bad.toml") {
+            Err(SceneError::Syntax { field, .. } | SceneError::Invalid { field, .. }) => {
+                assert_eq!(field, "contact[0].formulation", "{f}");
+            }
+            other => panic!("{f}: {other:?}"),
+        }
+    }
+    let mut scene = error_free(BLOCKS3D);
+    scene.contacts[1].formulation = contact_kernels::Formulation::QuadraticSlaveNormal;
+    match scene.build_model_3d() {
+        Err(SceneError::Invalid { field, message, .. }) => {
+            assert_eq!(field, "contact[1].formulation");
+            assert!(
+                message.contains("`quadratic-slave-normal` is not a reading of 3D faces")
+                    && message.contains("`slave-normal` or `closest-point`"),
+                "{message}"
+            );
+        }
+        other => panic!("{:?}", other.map(|m| m.face_contacts.len())),
+    }
+    // both faces on one body
+    let (field, message) = invalid(&BLOCKS3D.replacen(
+        "master = { body = \"base\", side = \"top\" }",
+        "master = { body = \"block\", side = \"top\" }",
+        1,
+    ));
+    assert_eq!(field, "contact[0]");
+    assert!(message.contains("different bodies"), "{message}");
+}
+
+/// 2D pairs are as before: absent `gauss_points` is 2 (the model bit for
+/// bit that `gauss_points = 2` gives, not written back), 1..=8 checked.
+#[test]
+fn a_2d_pair_keeps_its_gauss_points() {
+    let text = crate::scenes::STACKED_CANTILEVER;
+    assert!(text.contains("gauss_points = 2\n"));
+    let given = error_free(text);
+    let absent = error_free(&text.replace("gauss_points = 2\n", ""));
+    assert_eq!(
+        (
+            given.contacts[0].gauss_points,
+            absent.contacts[0].gauss_points
+        ),
+        (Some(2), None)
+    );
+    let (a, b) = (given.build_model().unwrap(), absent.build_model().unwrap());
+    assert_eq!(format!("{a:?}"), format!("{b:?}"));
+    assert_eq!(b.contacts[0].gauss_points, 2);
+    assert!(!absent.to_toml_string().contains("gauss_points"));
+    assert!(given.to_toml_string().contains("gauss_points = 2"));
+    for n in [0, 9] {
+        let (field, message) =
+            invalid(&text.replace("gauss_points = 2", &format!("gauss_points = {n}")));
+        assert_eq!(field, "contact[0].gauss_points");
+        assert_eq!(message, "must be in 1..=8");
+    }
 }
 
 #[test]
