@@ -139,29 +139,87 @@ fn a_scene_without_contact_writes_no_contact_csv() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// A 3D scene with a `[[contact]]` pair (`scenes/hertz3d.toml`) is read
-/// and built, but Newton does not solve 3D contact yet: the run fails,
-/// naming the pair, and writes nothing.
+/// A 3D scene with a `[[contact]]` pair: a block pressed onto a base
+/// (non-matching faces) is solved, and `--out` writes `contact.csv` with
+/// the 3D header and a row per slave node (the block's 4 x 3 bottom
+/// nodes), beside `final.vtu` and `reactions.csv`.
 #[test]
-fn a_3d_scene_with_contact_fails_naming_the_pair() {
-    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/hertz3d.toml");
+fn a_3d_scene_with_contact_writes_the_3d_contact_csv() {
     let dir = std::env::temp_dir().join(format!("gapsim-cli-run-3d-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("press3d.toml");
+    std::fs::write(
+        &scene,
+        r#"name = "press3d"
+[material]
+young = 100.0
+poisson = 0.3
+kinematics = "small"
+
+[[body]]
+name = "base"
+origin = [0.0, 0.0, 0.0]
+size = [2.0, 1.0, 0.5]
+nx = 2
+ny = 1
+nz = 1
+
+[[body]]
+name = "block"
+origin = [0.0, 0.0, 0.5]
+size = [2.0, 1.0, 0.5]
+nx = 3
+ny = 2
+nz = 1
+
+[[fix]]
+name = "bottom"
+body = "base"
+z = 0.0
+
+[[prescribe]]
+name = "top"
+body = "block"
+z = 1.0
+ux = 0.0
+uy = 0.0
+uz = -0.01
+
+[[contact]]
+slave = { body = "block", side = "bottom" }
+master = { body = "base", side = "top" }
+mode = "unilateral"
+
+[loading]
+load_factor_end = 1.0
+steps = [2]
+"#,
+    )
+    .unwrap();
+    let out_dir = dir.join("out");
     let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
         .arg("run")
         .arg(&scene)
         .arg("--out")
-        .arg(&dir)
+        .arg(&out_dir)
         .output()
         .expect("run gapsim");
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success(), "{stderr}");
-    assert!(
-        stderr.contains(
-            "contact pair `contact[0]`: contact is not available in 3D models yet (2D only)"
-        ),
-        "{stderr}"
+    assert!(out.status.success(), "{stderr}");
+    assert_eq!(
+        entries(&out_dir),
+        ["contact.csv", "final.vtu", "reactions.csv"]
     );
-    assert!(!dir.join("final.vtu").exists());
-    let _ = std::fs::remove_dir_all(&dir);
+    let csv = std::fs::read_to_string(out_dir.join("contact.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some(solver::report::HEADER_3D));
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 12, "{csv}");
+    for r in &rows {
+        assert_eq!(r.len(), 15, "{r:?}");
+        let pressure: f64 = r[6].parse().unwrap();
+        assert!(pressure > 0.0, "{r:?}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
 }

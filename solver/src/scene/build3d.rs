@@ -32,10 +32,8 @@
 //!   ([`FaceLayout::new`]) so that what the solve's layout refuses is a
 //!   scene error naming `contact[i]`.
 //!
-//! The pairs become [`Model::face_contacts`]; [`Model::check`] refuses
-//! them ([`ModelError::ContactIn3d`]) until Newton solves 3D contact, so
-//! the scene builds (and loads) and its solve fails naming the first pair.
-//! The 2D reference checks of a pair (faces facing each other, no initial
+//! The pairs become [`Model::face_contacts`], which Newton solves with the
+//! 3D contact element ([`crate::dim::ContactSpace`]). The 2D reference checks of a pair (faces facing each other, no initial
 //! penetration: `initial_contact.rs`) are not made in 3D.
 
 use contact_kernels::Formulation;
@@ -51,7 +49,7 @@ use crate::ids::{DofId, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::AnyMsh;
 use crate::mesh::volume::{Face, FaceKind};
-use crate::model::{FacePair, Integration, Model, ModelError, PointLoad, SupportGroup};
+use crate::model::{FacePair, Integration, Model, PointLoad, SupportGroup};
 
 /// The dof of component `c` of `node` in 3D.
 fn dof(node: crate::ids::NodeId, c: usize) -> DofId {
@@ -61,8 +59,7 @@ fn dof(node: crate::ids::NodeId, c: usize) -> DofId {
 impl Scene {
     /// Builds the finite-element model of a 3D scene (a 2D scene is an
     /// error naming its first body). Its contact pairs are
-    /// [`Model::face_contacts`], which the solve refuses until Newton
-    /// solves 3D contact ([`ModelError::ContactIn3d`]).
+    /// [`Model::face_contacts`].
     pub fn build_model_3d(&self) -> Result<Model<3>, SceneError> {
         let (file, dim) = self.prepare()?;
         if dim == Dimension::Two {
@@ -214,12 +211,8 @@ impl Scene {
             amplitudes: curves.0,
             supports,
         };
-        match model.check() {
-            // The refusal of face pairs (until Newton solves 3D contact)
-            // is the solve's: it comes after every other check of a 3D
-            // model, which have all passed.
-            Ok(()) | Err(ModelError::ContactIn3d { .. }) => {}
-            Err(e) => return Err(self.invalid("(model)", e.to_string())),
+        if let Err(e) = model.check() {
+            return Err(self.invalid("(model)", e.to_string()));
         }
         // what the solve's layout of the pairs refuses (a clipping that
         // fails, a degenerate slave face) is refused here, by pair

@@ -34,8 +34,7 @@ pub enum SceneError {
     },
     /// A feature the scene asks for that the solver does not have yet: the
     /// scene is read and checked, but no model is built. (No scene key
-    /// gives it now: 3D contact pairs are built, and refused by the solve,
-    /// [`crate::model::ModelError::ContactIn3d`].)
+    /// gives it now: 3D contact pairs are built and solved.)
     #[error("{origin}: {field}: {message}")]
     Unsupported {
         /// The file.

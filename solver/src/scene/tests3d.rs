@@ -388,7 +388,7 @@ fn hertz3d_without_contact(mesh: &str) -> String {
 fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
     use crate::mesh::gmsh::MshVolumeMesh;
     use crate::mesh::volume::{FaceKind, dot};
-    use crate::model::{ContactMode, Integration, ModelError};
+    use crate::model::{ContactMode, Integration};
     use contact_kernels::Formulation;
     for (mesh, kind) in [
         ("hertz3d-hex.msh", FaceKind::Quad4),
@@ -439,19 +439,6 @@ fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
             let n = f.map_nodes(|n| model.mesh.node_ref(n)).normal();
             assert!(dot(n, [0.0, 0.0, 1.0]) > 0.0, "{mesh}: {n:?}");
         }
-        // the solve refuses it, naming the pair
-        let err = crate::solve_model(&model, &crate::SolveOptions::from_scene(&scene)).unwrap_err();
-        assert!(
-            matches!(
-                &err,
-                crate::SolverError::Model(ModelError::ContactIn3d { pair, dim: 3 }) if pair == "contact[0]"
-            ),
-            "{mesh}: {err:?}"
-        );
-        assert!(
-            err.to_string().contains("contact pair `contact[0]`"),
-            "{err}"
-        );
         // segmented integration clips every slave face: the layout the
         // build makes of it succeeds
         let text = HERTZ3D.replace("hertz3d-hex.msh", mesh).replace(
@@ -628,12 +615,6 @@ fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
             assert!(x.nodes().iter().all(|p| p[2] == 0.5));
         }
     }
-    // the solve refuses them, naming the first
-    let err = crate::solve_model(&model, &crate::SolveOptions::default()).unwrap_err();
-    assert_eq!(
-        err.to_string(),
-        "invalid model: contact pair `contact[0]`: contact is not available in 3D models yet (2D only)"
-    );
 }
 
 #[test]
