@@ -213,6 +213,10 @@ fn a_pressed_cap_converges_balances_and_every_type_matches_the_complete_formulat
                 // expansion's gap) converge with the square of the step,
                 // Types 3-6 with its cube (measured: 1.4e-4 -> 3.5e-5 and
                 // 4.8e-8 -> 6e-9 from one step to two)
+                eprintln!(
+                    "tri3 slaves {tri}, {reading}, {ty:?}: energy error {:.2e} at 1 step, {:.2e} at 2",
+                    errors[0], errors[1]
+                );
                 let (bound, order) = match ty {
                     ApproxType::Type1 | ApproxType::Type2 => (3e-4, 3.0),
                     _ => (1e-7, 6.0),
