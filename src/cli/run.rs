@@ -488,6 +488,16 @@ fn print_header<const D: usize>(name: &str, sol: &solver::Solution<D>) {
         sol.newton_iterations,
         sol.iterations_per_step()
     );
+    if sol.repeated_iterations > 0 {
+        // a repeated step's accepted solve starts at the end of the
+        // discarded one and may need no iteration: the work is here
+        println!(
+            "                (+ {} iterations of discarded solves: {} step repeats after re-pairing, {} accuracy halvings)",
+            sol.repeated_iterations,
+            sol.repeats,
+            sol.accuracy_halvings.len()
+        );
+    }
     if !sol.cutbacks.is_empty() {
         println!("cut-backs       {}", sol.cutbacks.len());
         for c in &sol.cutbacks {
