@@ -329,9 +329,10 @@ fn the_paper_scene_in_3d_lies_between_plane_stress_and_plane_strain() {
 /// integration every slave node's pressure is the applied 10 to 1e-8
 /// (relative), quad4 on quad4, both readings, the complete formulation and
 /// every type; plain Gauss's error is printed (and is not small). (Tri3
-/// slave faces need a tetrahedral cap: splitting a hexahedron's bilinear
-/// faces into triangles is not a consistent discretisation of its
-/// uniform stress, and its pressures are not uniform.)
+/// slave faces need a tetrahedral cap, the next test: splitting a
+/// hexahedron's bilinear faces into triangles is not a consistent
+/// discretisation of its uniform stress, and its pressures are not
+/// uniform.)
 #[test]
 fn the_3d_patch_test_is_exact_with_segmented_integration() {
     use solver::Scene;
@@ -410,5 +411,182 @@ fn a_block_dragged_diagonally_in_3d_re_pairs_across_master_faces() {
         let error = (e - complete).abs() / complete;
         eprintln!("{ty:?} at 20 steps: {e:.10}, energy error {error:.2e}");
         assert!(error < 5e-3, "{ty:?}: {error:e}");
+    }
+}
+
+/// The six tetrahedra (Kuhn's split along the diagonal 0-6) of a
+/// hexahedron of `x`, each oriented positive.
+fn kuhn(x: &[[f64; 3]], h: [usize; 8]) -> Vec<solver::mesh::volume::Cell> {
+    let volume6 = |t: [usize; 4]| {
+        let d = |k: usize| -> [f64; 3] { std::array::from_fn(|i| x[t[k]][i] - x[t[0]][i]) };
+        let (a, b, c) = (d(1), d(2), d(3));
+        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0])
+    };
+    [
+        [0, 1, 2, 6],
+        [0, 2, 3, 6],
+        [0, 3, 7, 6],
+        [0, 7, 4, 6],
+        [0, 4, 5, 6],
+        [0, 5, 1, 6],
+    ]
+    .iter()
+    .map(|l| {
+        let mut t = l.map(|k| h[k]);
+        if volume6(t) < 0.0 {
+            t.swap(1, 2);
+        }
+        solver::mesh::volume::Cell::Tet4(t)
+    })
+    .collect()
+}
+
+/// The patch test with tri3 slave faces on quad4 master faces: the scene's
+/// geometry and supports, its upper block of 3 x 3 x 1 hexahedra split into
+/// tetrahedra (so its bottom is 18 tri3 faces of tetrahedra), loaded by the
+/// consistent nodal forces `p A / 3` of its top triangles. With segmented
+/// integration every slave node's pressure is `p` to 1e-8, both readings,
+/// the complete formulation and every type; plain Gauss's error printed.
+#[test]
+fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration() {
+    use solver::mesh::faces::BoundaryFaces;
+    use solver::mesh::volume::Cell;
+    use solver::model::{Integration, PointLoad};
+    let p = 10.0;
+    let material = Material {
+        young: 1000.0,
+        ..MATERIAL
+    };
+    let mut mesh = Mesh::<3>::new();
+    let lower = Block3d {
+        origin: [0.0, 0.0, 0.0],
+        size: [1.0, 1.0, 0.5],
+        nx: 4,
+        ny: 4,
+        nz: 1,
+    };
+    let upper = Block3d {
+        origin: [0.0, 0.0, 0.5],
+        size: [1.0, 1.0, 0.5],
+        nx: 3,
+        ny: 3,
+        nz: 1,
+    };
+    mesh.add_block3d("lower", material, lower).unwrap();
+    let x = upper.nodes().unwrap();
+    let tets: Vec<Cell> = upper
+        .cells()
+        .unwrap()
+        .into_iter()
+        .flat_map(|c| match c {
+            Cell::Hex8(h) => kuhn(&x, h),
+            Cell::Tet4(_) => unreachable!("a block has hexahedra"),
+        })
+        .collect();
+    let cap = mesh.add_body("upper", material, &x, &tets).unwrap();
+    let first = mesh.bodies[cap].nodes.start;
+    let boundary = BoundaryFaces::of(&tets);
+    let on_plane = |f: &Face, z: f64| f.nodes().iter().all(|&n| (x[n][2] - z).abs() < 1e-12);
+    let slave: Vec<Face<NodeId>> = boundary
+        .faces()
+        .iter()
+        .filter(|b| on_plane(&b.face, 0.5))
+        .map(|b| b.face.map_nodes(|n| NodeId::new(first + n)))
+        .collect();
+    assert_eq!(slave.len(), 18);
+    let master: Vec<Face<NodeId>> = lower
+        .side(Side3d::Top)
+        .unwrap()
+        .into_iter()
+        .map(|f| f.map_nodes(NodeId::new))
+        .collect();
+    let mut loads = Vec::new();
+    for b in boundary.faces().iter().filter(|b| on_plane(&b.face, 1.0)) {
+        let area = b
+            .face
+            .map_nodes(|n| x[n])
+            .area_element([1.0 / 3.0, 1.0 / 3.0])
+            / 2.0;
+        for &n in b.face.nodes() {
+            loads.push(PointLoad {
+                dof: DofId::in_dim::<3>(NodeId::new(first + n), 2),
+                value: -p * area / 3.0,
+                amplitude: None,
+            });
+        }
+    }
+    let mut prescribed = Vec::new();
+    for n in mesh.node_ids() {
+        let at = mesh.node_ref(n);
+        let lower_body = n.index() < first;
+        for (k, fixed) in [at[0] == 0.0, at[1] == 0.0, lower_body && at[2] == 0.0]
+            .into_iter()
+            .enumerate()
+        {
+            if fixed {
+                prescribed.push(Prescribed {
+                    dof: DofId::in_dim::<3>(n, k),
+                    value: 0.0,
+                    amplitude: None,
+                });
+            }
+        }
+    }
+    let base = Model {
+        mesh,
+        prescribed,
+        loads,
+        contacts: Vec::new(),
+        face_contacts: vec![FacePair {
+            name: "interface".into(),
+            slave,
+            master,
+            reading: Formulation::SlaveNormal,
+            mode: ContactMode::Persistent,
+            gauss_points: None,
+            integration: Integration::Segmented,
+        }],
+        load_factor_end: 1.0,
+        amplitudes: Vec::new(),
+        supports: Vec::new(),
+    };
+    let mut methods = vec![Method::Complete];
+    methods.extend(ApproxType::ALL.map(Method::Approx));
+    for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+        for integration in [Integration::Segmented, Integration::Gauss] {
+            let mut model = base.clone();
+            model.face_contacts[0].reading = reading;
+            model.face_contacts[0].integration = integration;
+            for &method in &methods {
+                let options = SolveOptions {
+                    method,
+                    steps: 1,
+                    ..SolveOptions::default()
+                };
+                let sol = solver::solve_model(&model, &options)
+                    .unwrap_or_else(|e| panic!("{reading} {method}: {e}"));
+                let rows = solver::report::face_nodal_rows(&sol, &sol.final_state).unwrap();
+                assert_eq!(rows.len(), 16);
+                let error = rows
+                    .iter()
+                    .map(|r| (r.pressure / p - 1.0).abs())
+                    .fold(0.0, f64::max);
+                if integration == Integration::Segmented {
+                    eprintln!(
+                        "tri3 on quad4, segmented, {reading}, {method}: largest nodal pressure error {error:.3e}"
+                    );
+                    assert!(
+                        error <= 1e-8,
+                        "{reading}, {method}: pressure error {error:e}"
+                    );
+                } else if method == Method::Complete {
+                    eprintln!(
+                        "tri3 on quad4, plain Gauss, {reading}: largest nodal pressure error {error:.3e}"
+                    );
+                    assert!(error > 1e-6, "{error:e}");
+                }
+            }
+        }
     }
 }
