@@ -28,6 +28,7 @@
 use solver::Solution;
 
 pub mod refinement;
+pub mod three;
 
 /// A plane-strain Hertz problem of two bodies of the same material.
 #[derive(Debug, Clone, Copy, PartialEq)]

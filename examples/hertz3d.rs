@@ -1,0 +1,90 @@
+//! The 3D Hertz benchmark on both meshes: solves `scenes/hertz3d.toml` as
+//! written (hexahedra) and with `file` naming `hertz3d-tet.msh`
+//! (tetrahedra), complete formulation, one load step, the LDLᵀ; prints the
+//! measurement against Hertz (`gapsim::hertz::three`) as a Markdown table
+//! and writes the pressure pictures.
+//!
+//! ```text
+//! cargo run --release --example hertz3d -- [--out docs/hertz3d]
+//! ```
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use gapsim::hertz::three::{measure_3d, plot_3d};
+use solver::scene::MeshSpec;
+use solver::{LinearSolverKind, Scene, SolveOptions, solve_model};
+
+/// The element size near the contact (`scripts/make-hertz3d-mesh.py`).
+const H: f64 = 0.1;
+/// The indenter's radius.
+const RADIUS: f64 = 10.0;
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let out = match args.as_slice() {
+        [] => PathBuf::from("docs/hertz3d"),
+        [flag, dir] if flag == "--out" => PathBuf::from(dir),
+        _ => {
+            eprintln!("usage: hertz3d [--out DIR]");
+            return ExitCode::from(2);
+        }
+    };
+    match run(&out) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("hertz3d: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run(out: &Path) -> Result<(), String> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let base = Scene::from_file(root.join("scenes/hertz3d.toml")).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
+    println!(
+        "| mesh | equations | Newton iterations | time (s) | P | p0 | peak pressure | error | a | contact radius | difference | nodes without a projection |"
+    );
+    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
+    for (name, file) in [
+        ("hexahedra", "hertz3d-hex.msh"),
+        ("tetrahedra", "hertz3d-tet.msh"),
+    ] {
+        let mut scene = base.clone();
+        scene.mesh = Some(MeshSpec {
+            file: file.to_string(),
+        });
+        let model = scene.build_model_3d().map_err(|e| e.to_string())?;
+        let material = model.mesh.bodies[0].material;
+        let options = SolveOptions {
+            linear: LinearSolverKind::Ldlt,
+            ..SolveOptions::from_scene(&scene)
+        };
+        let start = Instant::now();
+        let sol = solve_model(&model, &options).map_err(|e| format!("{file}: {e}"))?;
+        let seconds = start.elapsed().as_secs_f64();
+        let m = measure_3d(&sol, material.young, material.poisson, RADIUS)?;
+        println!(
+            "| {name} (`{file}`) | {} | {} | {seconds:.1} | {:.5} | {:.5} | {:.5} | {:+.2} % | {:.4} | {:.4} | {:+.2} h | {} of {} |",
+            sol.equations,
+            sol.newton_iterations,
+            m.load,
+            m.p0,
+            m.peak,
+            100.0 * m.peak_error(),
+            m.a,
+            m.radius,
+            m.radius_error(H),
+            m.without_projection,
+            m.points.len()
+        );
+        let title = format!("3D Hertz, {name} (h = {H} at the contact): contact pressure");
+        for ext in ["png", "svg"] {
+            let path = out.join(format!("pressure-{name}.{ext}"));
+            plot_3d(&m, &title, &path)?;
+        }
+    }
+    Ok(())
+}
