@@ -2,7 +2,8 @@
 //! written (hexahedra) and with `file` naming `hertz3d-tet.msh`
 //! (tetrahedra), complete formulation, one load step, the LDLᵀ; prints the
 //! measurement against Hertz (`gapsim::hertz::three`) as a Markdown table
-//! and writes the pressure pictures.
+//! (also `hertz3d.md`) and writes the pressure pictures
+//! (`pressure-hexahedra.png`, `pressure-tetrahedra.png`, and SVG).
 //!
 //! ```text
 //! cargo run --release --example hertz3d -- [--out docs/hertz3d]
@@ -44,10 +45,9 @@ fn run(out: &Path) -> Result<(), String> {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let base = Scene::from_file(root.join("scenes/hertz3d.toml")).map_err(|e| e.to_string())?;
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
-    println!(
-        "| mesh | equations | Newton iterations | time (s) | P | p0 | peak pressure | error | a | contact radius | difference | nodes without a projection |"
+    let mut table = String::from(
+        "| mesh | equations | Newton iterations | time (s) | P | p0 | peak pressure | error | a | contact radius | difference | nodes without a projection |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
-    println!("|---|---|---|---|---|---|---|---|---|---|---|---|");
     for (name, file) in [
         ("hexahedra", "hertz3d-hex.msh"),
         ("tetrahedra", "hertz3d-tet.msh"),
@@ -66,8 +66,8 @@ fn run(out: &Path) -> Result<(), String> {
         let sol = solve_model(&model, &options).map_err(|e| format!("{file}: {e}"))?;
         let seconds = start.elapsed().as_secs_f64();
         let m = measure_3d(&sol, material.young, material.poisson, RADIUS)?;
-        println!(
-            "| {name} (`{file}`) | {} | {} | {seconds:.1} | {:.5} | {:.5} | {:.5} | {:+.2} % | {:.4} | {:.4} | {:+.2} h | {} of {} |",
+        table.push_str(&format!(
+            "| {name} (`{file}`) | {} | {} | {seconds:.1} | {:.5} | {:.5} | {:.5} | {:+.2} % | {:.4} | {:.4} | {:+.2} h | {} of {} |\n",
             sol.equations,
             sol.newton_iterations,
             m.load,
@@ -79,12 +79,15 @@ fn run(out: &Path) -> Result<(), String> {
             m.radius_error(H),
             m.without_projection,
             m.points.len()
-        );
+        ));
         let title = format!("3D Hertz, {name} (h = {H} at the contact): contact pressure");
         for ext in ["png", "svg"] {
             let path = out.join(format!("pressure-{name}.{ext}"));
             plot_3d(&m, &title, &path)?;
         }
     }
+    print!("{table}");
+    let path = out.join("hertz3d.md");
+    solver::report::write_atomic(&path, table).map_err(|e| format!("{}: {e}", path.display()))?;
     Ok(())
 }

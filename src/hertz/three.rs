@@ -170,6 +170,7 @@ fn draw<DB: DrawingBackend>(
         .legend(move |(x, y)| Circle::new((x + 10, y), 3, blue.filled()));
     chart
         .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
         .background_style(WHITE.mix(0.8))
         .border_style(RGBColor(150, 150, 150))
         .label_font(("sans-serif", 14))
