@@ -198,8 +198,7 @@ impl Scene {
     /// model once (2D or 3D); a scene that asks for what the solver does
     /// not have yet ([`SceneError::Unsupported`]) would be read, everything
     /// else checked, and fail when its model is built. (A 3D scene's
-    /// contact pairs are built, as [`crate::model::Model::face_contacts`]:
-    /// its solve refuses them until Newton solves 3D contact.)
+    /// contact pairs are built as [`crate::model::Model::face_contacts`].)
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
         let mut scene = error::parse(text, origin)?;
         scene.origin = origin.to_owned();
