@@ -41,7 +41,61 @@ pub mod safety_map;
 use std::time::Duration;
 
 use contact_kernels::{ApproxType, Formulation};
-use solver::{Method, Scene, Solution, SolveOptions, SolverError};
+use solver::scene::Dimension;
+use solver::{Dim, Method, Scene, Solution, SolveOptions, SolverError, SpaceDim};
+
+/// How the study solves a scene of dimension `D` (the one place that
+/// knows 2D from 3D: a 2D scene's model is `Scene::build_model`'s, a 3D
+/// one's `Scene::build_model_3d`'s).
+pub trait StudyDim<const D: usize> {
+    /// Solves `scene` with `options`.
+    fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution<D>, SolverError>;
+    /// The largest `|gap|` over the paired integration points (`None`
+    /// where the solution has no per-point report: 3D).
+    fn max_abs_gap(solution: &Solution<D>) -> Option<f64>;
+    /// The contact-heavy variant's size: solid elements and slave
+    /// integration points.
+    fn size(scene: &Scene) -> Result<(usize, usize), SolverError>;
+}
+
+impl StudyDim<2> for Dim<2> {
+    fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution, SolverError> {
+        solver::solve(scene, options)
+    }
+
+    fn max_abs_gap(solution: &Solution) -> Option<f64> {
+        Some(solution.max_abs_gap())
+    }
+
+    fn size(scene: &Scene) -> Result<(usize, usize), SolverError> {
+        let model = scene.build_model()?;
+        Ok((
+            model.mesh.elements.len(),
+            model
+                .contacts
+                .iter()
+                .map(|c| c.slave.len() * c.gauss_points)
+                .sum(),
+        ))
+    }
+}
+
+impl StudyDim<3> for Dim<3> {
+    fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution<3>, SolverError> {
+        let model = scene.build_model_3d()?;
+        solver::solve_model(&model, options)
+    }
+
+    fn max_abs_gap(_: &Solution<3>) -> Option<f64> {
+        None
+    }
+
+    fn size(scene: &Scene) -> Result<(usize, usize), SolverError> {
+        let model = scene.build_model_3d()?;
+        let layout = solver::contact::FaceLayout::new(&model.mesh, &model.face_contacts, None)?;
+        Ok((model.mesh.elements.len(), layout.points.len()))
+    }
+}
 
 /// Settings of a study.
 #[derive(Debug, Clone)]
@@ -224,8 +278,9 @@ pub struct StudyResults {
     /// its complete formulation failed (the study goes on without it).
     pub heavy_failure: Option<String>,
     /// The complete solution at the scene's default step count (for the
-    /// deformed-configuration plot).
-    pub deformed: Solution,
+    /// deformed-configuration plot; `None` for a 3D scene, which has no
+    /// such plot).
+    pub deformed: Option<Solution>,
 }
 
 /// The contact-heavy variant of a scene: every body refined `refine` times
@@ -302,13 +357,16 @@ impl Progress for Silent {
 }
 
 /// Solves `scene` with `method` `repeats` times.
-fn measure(
+fn measure<const D: usize>(
     scene: &Scene,
     formulation: Formulation,
     method: Method,
     steps: usize,
     repeats: usize,
-) -> Result<(Solution, [f64; 4]), SolverError> {
+) -> Result<(Solution<D>, [f64; 4]), SolverError>
+where
+    Dim<D>: StudyDim<D> + SpaceDim<D>,
+{
     let mut options = SolveOptions::from_scene(scene);
     options.method = method;
     options.steps = steps;
@@ -316,7 +374,7 @@ fn measure(
     let mut times: [Vec<f64>; 4] = Default::default();
     let mut first = None;
     for _ in 0..repeats.max(1) {
-        let sol = solver::solve(scene, &options)?;
+        let sol = Dim::<D>::solve(scene, &options)?;
         let t = &sol.timings;
         for (v, d) in times.iter_mut().zip([
             t.total,
@@ -344,7 +402,8 @@ pub(crate) enum OnReferenceFailure {
 }
 
 /// Runs the complete formulation and every type at every step count of
-/// `steps` (in that order), with their energy and reaction errors.
+/// `steps` (in that order), with their energy and reaction errors (a 2D
+/// scene: the safety map's).
 pub(crate) fn study_formulation(
     scene: &Scene,
     formulation: Formulation,
@@ -353,13 +412,35 @@ pub(crate) fn study_formulation(
     progress: &dyn Progress,
     on_reference_failure: OnReferenceFailure,
 ) -> Result<FormulationStudy, StudyError> {
+    study_formulation_in::<2>(
+        scene,
+        formulation,
+        steps,
+        repeats,
+        progress,
+        on_reference_failure,
+    )
+}
+
+/// [`study_formulation`] of a scene of dimension `D`.
+fn study_formulation_in<const D: usize>(
+    scene: &Scene,
+    formulation: Formulation,
+    steps: &[usize],
+    repeats: usize,
+    progress: &dyn Progress,
+    on_reference_failure: OnReferenceFailure,
+) -> Result<FormulationStudy, StudyError>
+where
+    Dim<D>: StudyDim<D> + SpaceDim<D>,
+{
     let mut runs = Vec::new();
     for &n in steps {
         let mut reference: Option<f64> = None;
-        let mut reference_reactions: Option<Vec<Vec<[f64; 2]>>> = None;
+        let mut reference_reactions: Option<Vec<Vec<[f64; D]>>> = None;
         for method in Method::ALL {
             let label = format!("{formulation}, {n} steps, {method}");
-            let result = measure(scene, formulation, method, n, repeats);
+            let result = measure::<D>(scene, formulation, method, n, repeats);
             progress.advance(&label);
             let run = match result {
                 Ok((sol, [wall, contact, solid, solve])) => {
@@ -394,7 +475,7 @@ pub(crate) fn study_formulation(
                         solve_seconds: solve,
                         kernel_evaluations: sol.kernel_counts.evaluate,
                         projections: sol.kernel_counts.project,
-                        max_abs_gap: Some(sol.max_abs_gap()),
+                        max_abs_gap: Dim::<D>::max_abs_gap(&sol),
                         kernel_ops: kernel_ops(formulation, method),
                         failure: None,
                         reaction_error_percent,
@@ -439,12 +520,33 @@ pub(crate) fn study_formulation(
     Ok(FormulationStudy { formulation, runs })
 }
 
-/// Runs the study on `scene`.
+/// Runs the study on `scene` (2D or 3D).
 pub fn run_study(
     scene: &Scene,
     options: &StudyOptions,
     progress: &dyn Progress,
 ) -> Result<StudyResults, StudyError> {
+    let three = scene.dimension().is_ok_and(|d| d == Dimension::Three);
+    if three {
+        run_study_in::<3>(scene, options, progress, |_, _| Ok(None))
+    } else {
+        run_study_in::<2>(scene, options, progress, |scene, options| {
+            solver::solve(scene, options).map(Some)
+        })
+    }
+}
+
+/// [`run_study`] on a scene of dimension `D`; `deformed` solves the
+/// deformed configuration's reference (2D) or gives none (3D).
+fn run_study_in<const D: usize>(
+    scene: &Scene,
+    options: &StudyOptions,
+    progress: &dyn Progress,
+    deformed: impl Fn(&Scene, &SolveOptions) -> Result<Option<Solution>, SolverError>,
+) -> Result<StudyResults, StudyError>
+where
+    Dim<D>: StudyDim<D> + SpaceDim<D>,
+{
     let name = scene_name(scene);
     let first = scene
         .contacts
@@ -472,7 +574,7 @@ pub fn run_study(
 
     let mut studies = Vec::new();
     for &f in &formulations {
-        studies.push(study_formulation(
+        studies.push(study_formulation_in::<D>(
             scene,
             f,
             &steps,
@@ -487,7 +589,7 @@ pub fn run_study(
     } else {
         let variant =
             contact_heavy_variant(scene, options.heavy_refine, options.heavy_gauss_points);
-        let heavy = study_formulation(
+        let heavy = study_formulation_in::<D>(
             &variant,
             first,
             &options.heavy_steps,
@@ -496,18 +598,15 @@ pub fn run_study(
             OnReferenceFailure::Abort,
         )
         .and_then(|study| {
-            let model = variant.build_model().map_err(|e| StudyError::Reference {
-                formulation: first,
-                steps: options.heavy_steps[0],
-                source: e.into(),
-            })?;
+            let (solid_elements, contact_points) =
+                Dim::<D>::size(&variant).map_err(|source| StudyError::Reference {
+                    formulation: first,
+                    steps: options.heavy_steps[0],
+                    source,
+                })?;
             Ok(HeavyStudy {
-                solid_elements: model.mesh.elements.len(),
-                contact_points: model
-                    .contacts
-                    .iter()
-                    .map(|c| c.slave.len() * c.gauss_points)
-                    .sum(),
+                solid_elements,
+                contact_points,
                 study,
             })
         });
@@ -523,7 +622,7 @@ pub fn run_study(
     let mut options_def = SolveOptions::from_scene(scene);
     options_def.method = Method::Complete;
     options_def.formulation = Some(first);
-    let deformed = solver::solve(scene, &options_def).map_err(|source| StudyError::Reference {
+    let deformed = deformed(scene, &options_def).map_err(|source| StudyError::Reference {
         formulation: first,
         steps: options_def.steps,
         source,

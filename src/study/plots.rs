@@ -472,10 +472,11 @@ pub fn write_all(results: &StudyResults, dir: &Path) -> Result<(), StudyError> {
             draw_error_vs_time(&root, &h.study, "contact-heavy variant")
         });
     }
-    both!(dir, "deformed", (1300, 520), |root| draw_deformed(
-        &root,
-        &results.deformed
-    ));
+    if let Some(deformed) = &results.deformed {
+        both!(dir, "deformed", (1300, 520), |root| draw_deformed(
+            &root, deformed
+        ));
+    }
     Ok(())
 }
 

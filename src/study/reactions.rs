@@ -35,7 +35,7 @@ use solver::Solution;
 /// `k = 0..solution.steps` and `g` over [`Solution::support_groups`]. A
 /// scheduled step without a converged record (cannot happen in a returned
 /// solution) is left out.
-pub fn scheduled_reactions(solution: &Solution) -> Vec<Vec<[f64; 2]>> {
+pub fn scheduled_reactions<const D: usize>(solution: &Solution<D>) -> Vec<Vec<[f64; D]>> {
     (1..=solution.steps)
         .filter_map(|k| {
             solution
@@ -48,21 +48,22 @@ pub fn scheduled_reactions(solution: &Solution) -> Vec<Vec<[f64; 2]>> {
         .collect()
 }
 
-fn norm(v: [f64; 2]) -> f64 {
-    v[0].hypot(v[1])
+/// `|v|`, `hypot` axis after axis (in 2D `v[0].hypot(v[1])` to the bit).
+fn norm<const D: usize>(v: [f64; D]) -> f64 {
+    v[1..].iter().fold(v[0].abs(), |n, x| n.hypot(*x))
 }
 
 /// The largest reaction `max_{k,g} |R(k,g)|` of a history (`None` when it
 /// has no reaction).
-pub fn max_reaction(history: &[Vec<[f64; 2]>]) -> Option<f64> {
+pub fn max_reaction<const D: usize>(history: &[Vec<[f64; D]>]) -> Option<f64> {
     history.iter().flatten().map(|r| norm(*r)).reduce(f64::max)
 }
 
 /// The reaction error `e_R` in percent of `history` against `reference`
 /// (module docs); `None` when undefined.
-pub fn reaction_error_percent(
-    history: &[Vec<[f64; 2]>],
-    reference: &[Vec<[f64; 2]>],
+pub fn reaction_error_percent<const D: usize>(
+    history: &[Vec<[f64; D]>],
+    reference: &[Vec<[f64; D]>],
 ) -> Option<f64> {
     if history.len() != reference.len()
         || history
@@ -80,7 +81,7 @@ pub fn reaction_error_percent(
         .iter()
         .flatten()
         .zip(reference.iter().flatten())
-        .map(|(a, b)| norm([a[0] - b[0], a[1] - b[1]]))
+        .map(|(a, b)| norm::<D>(std::array::from_fn(|c| a[c] - b[c])))
         .reduce(f64::max)?;
     deviation.is_finite().then(|| 100.0 * deviation / scale)
 }
@@ -102,7 +103,7 @@ mod tests {
     #[test]
     fn undefined_without_groups_zero_reference_or_mismatch() {
         assert_eq!(
-            reaction_error_percent(&[vec![], vec![]], &[vec![], vec![]]),
+            reaction_error_percent::<2>(&[vec![], vec![]], &[vec![], vec![]]),
             None
         );
         let zero = vec![vec![[0.0, 0.0]]];

@@ -351,10 +351,12 @@ pub fn plot_files(results: &StudyResults) -> Vec<(String, String)> {
             "error-vs-time-contact-heavy.png".into(),
         ));
     }
-    v.push((
-        "Deformed configuration at the final load factor".into(),
-        "deformed.png".into(),
-    ));
+    if results.deformed.is_some() {
+        v.push((
+            "Deformed configuration at the final load factor".into(),
+            "deformed.png".into(),
+        ));
+    }
     v
 }
 
