@@ -223,7 +223,8 @@
 //!   multipliers and kernels, evaluation and pairing through the spatial
 //!   index. It is verified on its own (`face_tests`: weights, gaps,
 //!   pairing against the scan, residual and tangent against finite
-//!   differences); Newton does not call it yet.
+//!   differences) and through Newton (`crate::dim::ContactSpace`,
+//!   `solver/tests/contact3d.rs`).
 //!
 //! Invariants: the point order (pair by pair, slave segment by slave
 //! segment, Gauss point by Gauss point) and the multiplier order (pair by
