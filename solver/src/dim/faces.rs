@@ -41,13 +41,7 @@ impl ContactSpace<3> for FaceLayout {
     }
 
     fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {
-        self.multipliers
-            .iter()
-            .map(|m| MultiplierDofInfo {
-                pair: m.pair.index(),
-                node: m.node.index(),
-            })
-            .collect()
+        super::space::multiplier_dofs(&self.multipliers)
     }
 
     fn formulations(&self) -> Vec<Formulation> {

@@ -28,7 +28,7 @@
 use contact_kernels::{ApproxType, Formulation, KernelError};
 
 use crate::assembly::{DofMap, System};
-use crate::contact::{FaceLayoutError, KernelCounts, NodeTie, PointFailure};
+use crate::contact::{FaceLayoutError, KernelCounts, MultiplierDof, NodeTie, PointFailure};
 use crate::ids::ContactPointIndex;
 use crate::mesh::Mesh;
 use crate::model::Model;
@@ -207,4 +207,16 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     /// Whether a tied point's evaluation is at its master's node (2D
     /// only).
     fn at_node(e: &Self::Eval) -> bool;
+}
+
+/// The report of multiplier dofs `multipliers` (pair and slave node of
+/// each), for either layout's [`ContactSpace::multiplier_dofs`].
+pub(super) fn multiplier_dofs(multipliers: &[MultiplierDof]) -> Vec<MultiplierDofInfo> {
+    multipliers
+        .iter()
+        .map(|m| MultiplierDofInfo {
+            pair: m.pair.index(),
+            node: m.node.index(),
+        })
+        .collect()
 }

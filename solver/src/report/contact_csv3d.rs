@@ -28,6 +28,7 @@ use thiserror::Error;
 use crate::contact::{FaceLayout, FaceLayoutError, FaceNodalError, FaceNodalRow};
 use crate::solution::{Solution, State};
 
+use super::contact_csv::num;
 use super::csv::field;
 
 /// The header line of the 3D `contact.csv` (without the line break).
@@ -43,11 +44,6 @@ pub enum FaceContactError {
     /// A slave-side kernel failure at a node.
     #[error(transparent)]
     Node(#[from] FaceNodalError),
-}
-
-/// `v` as the 2D `contact.csv` writes it.
-fn num(v: f64) -> String {
-    super::contact_csv::num(v)
 }
 
 /// The nodal contact table of `state` (one of `solution`'s states) on
