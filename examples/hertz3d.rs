@@ -11,11 +11,9 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
 
-use gapsim::hertz::three::{measure_3d, plot_3d};
-use solver::scene::MeshSpec;
-use solver::{LinearSolverKind, Scene, SolveOptions, solve_model};
+use gapsim::hertz::three::{plot_3d, solve_3d};
+use solver::Scene;
 
 /// The element size near the contact (`scripts/make-hertz3d-mesh.py`).
 const H: f64 = 0.1;
@@ -52,24 +50,13 @@ fn run(out: &Path) -> Result<(), String> {
         ("hexahedra", "hertz3d-hex.msh"),
         ("tetrahedra", "hertz3d-tet.msh"),
     ] {
-        let mut scene = base.clone();
-        scene.mesh = Some(MeshSpec {
-            file: file.to_string(),
-        });
-        let model = scene.build_model_3d().map_err(|e| e.to_string())?;
-        let material = model.mesh.bodies[0].material;
-        let options = SolveOptions {
-            linear: LinearSolverKind::Ldlt,
-            ..SolveOptions::from_scene(&scene)
-        };
-        let start = Instant::now();
-        let sol = solve_model(&model, &options).map_err(|e| format!("{file}: {e}"))?;
-        let seconds = start.elapsed().as_secs_f64();
-        let m = measure_3d(&sol, material.young, material.poisson, RADIUS)?;
+        let solved = solve_3d(&base, file, RADIUS)?;
+        let m = &solved.measured;
         table.push_str(&format!(
-            "| {name} (`{file}`) | {} | {} | {seconds:.1} | {:.5} | {:.5} | {:.5} | {:+.2} % | {:.4} | {:.4} | {:+.2} h | {} of {} |\n",
-            sol.equations,
-            sol.newton_iterations,
+            "| {name} (`{file}`) | {} | {} | {:.1} | {:.5} | {:.5} | {:.5} | {:+.2} % | {:.4} | {:.4} | {:+.2} h | {} of {} |\n",
+            solved.equations,
+            solved.newton_iterations,
+            solved.seconds,
             m.load,
             m.p0,
             m.peak,
@@ -83,7 +70,7 @@ fn run(out: &Path) -> Result<(), String> {
         let title = format!("3D Hertz, {name} (h = {H} at the contact): contact pressure");
         for ext in ["png", "svg"] {
             let path = out.join(format!("pressure-{name}.{ext}"));
-            plot_3d(&m, &title, &path)?;
+            plot_3d(m, &title, &path)?;
         }
     }
     print!("{table}");

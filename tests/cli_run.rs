@@ -221,5 +221,33 @@ steps = [2]
         let pressure: f64 = r[6].parse().unwrap();
         assert!(pressure > 0.0, "{r:?}");
     }
+    // Types 1-6 in 3D: the step-end summary, with adaptive stepping
+    let approx = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_gapsim"))
+            .arg("run")
+            .arg(&scene)
+            .args(["--type", "3"])
+            .args(args)
+            .output()
+            .expect("run gapsim")
+    };
+    let out = approx(&["--taylor-tolerance", "1e-3"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(stdout.contains("step repeats    0"), "{stdout}");
+    assert!(stdout.contains("Taylor remainder max"), "{stdout}");
+    for bad in ["0", "-1e-3", "inf", "x"] {
+        let out = approx(&[&format!("--taylor-tolerance={bad}")]);
+        assert!(!out.status.success(), "--taylor-tolerance {bad} accepted");
+        assert!(
+            String::from_utf8_lossy(&out.stderr).contains("--taylor-tolerance"),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
     std::fs::remove_dir_all(&dir).unwrap();
 }

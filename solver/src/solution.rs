@@ -21,28 +21,37 @@ use crate::mesh::Mesh;
 use crate::model::{ContactMode, Model};
 use crate::options::Method;
 
-/// Identifies one slave integration point.
+/// Identifies one slave integration point: of a slave segment and a
+/// master segment in 2D, of a slave face and a master face in 3D
+/// (`on_faces`; the fields keep their 2D names).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ContactPointId {
     /// Contact pair index.
     pub pair: usize,
-    /// Slave segment index within the pair.
+    /// Slave segment (face) index within the pair.
     pub slave_segment: usize,
-    /// Gauss point index within the segment.
+    /// Gauss point (rule point) index within the segment (face).
     pub gauss: usize,
-    /// The master segment involved, if any.
+    /// The master segment (face) involved, if any.
     pub master_segment: Option<usize>,
+    /// A point of a 3D face pair.
+    pub on_faces: bool,
 }
 
 impl std::fmt::Display for ContactPointId {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let (element, point) = if self.on_faces {
+            ("face", "point")
+        } else {
+            ("segment", "Gauss point")
+        };
         write!(
             f,
-            "pair {}, slave segment {}, Gauss point {}",
+            "pair {}, slave {element} {}, {point} {}",
             self.pair, self.slave_segment, self.gauss
         )?;
         if let Some(m) = self.master_segment {
-            write!(f, ", master segment {m}")?;
+            write!(f, ", master {element} {m}")?;
         }
         Ok(())
     }
@@ -511,7 +520,35 @@ impl<const D: usize> Solution<D> {
                 slave_segment: p.slave_segment,
                 gauss: p.gauss,
                 master_segment: None,
+                on_faces: false,
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ContactPointId;
+
+    #[test]
+    fn a_contact_point_is_named_by_its_segments_in_2d_and_its_faces_in_3d() {
+        let mut p = ContactPointId {
+            pair: 0,
+            slave_segment: 4,
+            gauss: 1,
+            master_segment: Some(38),
+            on_faces: false,
+        };
+        assert_eq!(
+            p.to_string(),
+            "pair 0, slave segment 4, Gauss point 1, master segment 38"
+        );
+        p.on_faces = true;
+        assert_eq!(
+            p.to_string(),
+            "pair 0, slave face 4, point 1, master face 38"
+        );
+        p.master_segment = None;
+        assert_eq!(p.to_string(), "pair 0, slave face 4, point 1");
     }
 }

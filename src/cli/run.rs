@@ -104,6 +104,12 @@ pub struct RunArgs {
     #[arg(long, value_name = "lu|ldlt")]
     pub linear: Option<LinearSolverKind>,
 
+    /// Types 1-6: halve a step whose largest Taylor remainder (over the
+    /// slave segment's or face's size) exceeds this (default: the scene's
+    /// `[newton] taylor_tolerance`, none unless set).
+    #[arg(long, value_name = "TOL", value_parser = parse_tolerance)]
+    pub taylor_tolerance: Option<f64>,
+
     /// Write `.vtu` files of the result into this directory.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
@@ -124,6 +130,15 @@ pub fn load_scene(path: Option<&PathBuf>) -> Result<Scene, solver::SceneError> {
     }
 }
 
+/// A `--taylor-tolerance`: a positive finite number.
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        Ok(_) => Err(format!("{s}: must be positive and finite")),
+        Err(e) => Err(format!("{s}: {e}")),
+    }
+}
+
 /// Runs `gapsim run`.
 pub fn run(args: &RunArgs) -> CommandResult {
     let scene = load_scene(args.scene.as_ref())?;
@@ -136,6 +151,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     if let Some(k) = args.linear {
         options.linear = k;
+    }
+    if let Some(t) = args.taylor_tolerance {
+        options.taylor_tolerance = Some(t);
     }
     options.formulation = args.formulation;
     options.record_steps = args.every_step;
@@ -330,6 +348,11 @@ fn run_solid(
     };
     let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
     print_header(&name, &sol);
+    if let Method::Approx(_) = sol.method
+        && !sol.face_pairs.is_empty()
+    {
+        taylor_summary(&sol, args.every_step);
+    }
     for load in &scene.loads {
         // a load on a physical group has no position to report
         let Some(at) = load.at.and_then(|c| c.xyz()) else {
@@ -421,7 +444,8 @@ fn active_penetration(sol: &solver::Solution) -> Option<ActivePenetration> {
 /// Types 1–6: the step-end checks (see `solver::newton`, "Re-pairing at
 /// the step end"): step repeats, unsettled points, accuracy halvings and
 /// the largest Taylor remainder (every step's with `every_step`).
-fn taylor_summary(sol: &solver::Solution, every_step: bool) {
+fn taylor_summary<const D: usize>(sol: &solver::Solution<D>, every_step: bool) {
+    let master = if D == 3 { "face" } else { "segment" };
     println!(
         "step repeats    {} (steps solved again with re-paired expansions; {} iterations discarded)",
         sol.repeats, sol.repeated_iterations
@@ -429,7 +453,7 @@ fn taylor_summary(sol: &solver::Solution, every_step: bool) {
     for r in &sol.step_records {
         for p in &r.unsettled {
             println!(
-                "unsettled       load factor {}: {p} ends on another master segment",
+                "unsettled       load factor {}: {p} ends on another master {master}",
                 r.load_factor
             );
         }

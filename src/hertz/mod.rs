@@ -150,20 +150,28 @@ impl HertzMeasured {
     }
 }
 
+/// The least-squares fit of `p^2 = A + B r^2` over the points `(r, p)`
+/// (the nodes in contact): `(p0, a) = (sqrt(A), sqrt(-A / B))`, the peak
+/// and the radius of the half ellipse (2D) or half ellipsoid (3D) that
+/// Hertz's pressure is. `None` with fewer than three points or when the
+/// fit is no such curve (`A <= 0` or `B >= 0`).
+pub fn fit_half_ellipse(points: impl Iterator<Item = (f64, f64)>) -> Option<(f64, f64)> {
+    let (count, sx, sy, sxx, sxy) = points.fold((0usize, 0.0, 0.0, 0.0, 0.0), |s, (r, p)| {
+        let (u, v) = (r * r, p * p);
+        (s.0 + 1, s.1 + u, s.2 + v, s.3 + u * u, s.4 + u * v)
+    });
+    let n = count as f64;
+    let b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+    let a0 = (sy - b * sx) / n;
+    (count >= 3 && a0 > 0.0 && b < 0.0).then(|| (a0.sqrt(), (-a0 / b).sqrt()))
+}
+
 /// Measures a solution of a Hertz scene against `problem`.
 pub fn measure(sol: &Solution, problem: &HertzProblem) -> HertzMeasured {
     let a = problem.half_width();
     let nodes = pressure_profile(sol);
     let contact: Vec<&NodalPressure> = nodes.iter().filter(|n| n.pressure > 0.0).collect();
-    // least squares p^2 = A + B x^2
-    let n = contact.len() as f64;
-    let (sx, sy, sxx, sxy) = contact.iter().fold((0.0, 0.0, 0.0, 0.0), |s, node| {
-        let (u, v) = (node.x * node.x, node.pressure * node.pressure);
-        (s.0 + u, s.1 + v, s.2 + u * u, s.3 + u * v)
-    });
-    let b = (n * sxy - sx * sy) / (n * sxx - sx * sx);
-    let a0 = (sy - b * sx) / n;
-    let fitted = contact.len() >= 3 && a0 > 0.0 && b < 0.0;
+    let fit = fit_half_ellipse(contact.iter().map(|node| (node.x, node.pressure)));
     let (num, den) = nodes
         .iter()
         .filter(|node| node.x < 1.5 * a)
@@ -187,8 +195,8 @@ pub fn measure(sol: &Solution, problem: &HertzProblem) -> HertzMeasured {
         peak: contact
             .iter()
             .fold(0.0, |m, node| f64::max(m, node.pressure)),
-        p0_fit: fitted.then(|| a0.sqrt()),
-        a_fit: fitted.then(|| (-a0 / b).sqrt()),
+        p0_fit: fit.map(|f| f.0),
+        a_fit: fit.map(|f| f.1),
         profile: (num / den).sqrt(),
         in_contact: contact.len(),
         element_size,

@@ -45,8 +45,8 @@ pub enum RefinementError {
         mesh: String,
         /// The kinematics.
         kinematics: Kinematics,
-        /// The solver's error.
-        source: SolverError,
+        /// The solver's error (boxed: it is large).
+        source: Box<SolverError>,
     },
     /// Writing an output file.
     #[error("{path}: {message}")]
@@ -100,7 +100,7 @@ pub fn run(
             let sol = solve(&scene, &options).map_err(|source| RefinementError::Solve {
                 mesh: mesh.to_string(),
                 kinematics,
-                source,
+                source: Box::new(source),
             })?;
             let row = RefinementRow {
                 mesh,

@@ -35,6 +35,10 @@ pub struct Hertz3d {
     pub peak: f64,
     /// The contact radius measured.
     pub radius: f64,
+    /// `(p0, a)` of the least-squares fit of `p^2 = A + B r^2` over the
+    /// nodes with positive pressure ([`super::fit_half_ellipse`]), less
+    /// sensitive than the peak to the scatter of single nodes.
+    pub fit: Option<(f64, f64)>,
     /// Slave nodes whose own projection finds no master face (their
     /// pressure counts; their gap is empty in `contact.csv`).
     pub without_projection: usize,
@@ -94,6 +98,7 @@ pub fn measure_3d(
         p0,
         peak,
         radius,
+        fit: super::fit_half_ellipse(points.iter().copied().filter(|p| p.1 > 0.0)),
         without_projection: rows.iter().filter(|r| r.gap.is_none()).count(),
         points,
     })
@@ -176,4 +181,44 @@ fn draw<DB: DrawingBackend>(
         .label_font(("sans-serif", 14))
         .draw()?;
     root.present()
+}
+
+/// One solve of the 3D Hertz scene and its measurement.
+#[derive(Debug, Clone)]
+pub struct Solved3d {
+    /// The solver's equation count.
+    pub equations: usize,
+    /// Newton iterations of the accepted solves.
+    pub newton_iterations: usize,
+    /// Wall time of the solve (not the mesh's reading).
+    pub seconds: f64,
+    /// The measurement against Hertz.
+    pub measured: Hertz3d,
+}
+
+/// Solves `scene` (the 3D Hertz scene, `scenes/hertz3d.toml` or a copy of
+/// it) with its `mesh.file` replaced by `file` (relative to the scene's
+/// folder, or absolute): the complete formulation as the scene says, the
+/// LDLᵀ, then [`measure_3d`] with the sphere's radius `sphere_radius`.
+pub fn solve_3d(scene: &solver::Scene, file: &str, sphere_radius: f64) -> Result<Solved3d, String> {
+    let mut scene = scene.clone();
+    scene.mesh = Some(solver::scene::MeshSpec {
+        file: file.to_string(),
+    });
+    let model = scene.build_model_3d().map_err(|e| e.to_string())?;
+    let material = model.mesh.bodies[0].material;
+    let options = solver::SolveOptions {
+        linear: solver::LinearSolverKind::Ldlt,
+        ..solver::SolveOptions::from_scene(&scene)
+    };
+    let start = std::time::Instant::now();
+    let sol = solver::solve_model(&model, &options).map_err(|e| format!("{file}: {e}"))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let measured = measure_3d(&sol, material.young, material.poisson, sphere_radius)?;
+    Ok(Solved3d {
+        equations: sol.equations,
+        newton_iterations: sol.newton_iterations,
+        seconds,
+        measured,
+    })
 }

@@ -55,6 +55,7 @@ impl ContactSpace<3> for FaceLayout {
             slave_segment: p.slave_face,
             gauss: p.gauss,
             master_segment: master.map(MasterFaceIndex::index),
+            on_faces: true,
         }
     }
 

@@ -49,6 +49,7 @@ impl ContactSpace<2> for ContactLayout {
             slave_segment: p.slave_segment,
             gauss: p.gauss,
             master_segment: master.map(MasterSegmentIndex::index),
+            on_faces: false,
         }
     }
 

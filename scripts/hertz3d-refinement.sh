@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# The 3D Hertz refinement table (issue #17 §4): makes the hexahedral and
+# tetrahedral meshes of scenes/hertz3d.toml at element sizes h = 0.4 ... 0.05
+# with scripts/make-hertz3d-mesh.py into target/hertz3d-refinement/, then
+# solves the scene on each (examples/hertz3d_refinement.rs) and writes
+# docs/hertz3d/hertz3d-refinement.{md,csv}.
+#
+#   scripts/hertz3d-refinement.sh [--max-equations N]
+#
+# Needs the `gmsh` Python package (pip install gmsh; the tetrahedral meshes
+# depend on its version: 4.15.2 wrote the checked-in scenes/hertz3d-tet.msh,
+# the same file as tet-0.1.msh here). A benchmark, never part of the test
+# suite: the meshes are up to 14 MB each and not checked in.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+dir=target/hertz3d-refinement
+mkdir -p "$dir"
+for h in 0.4 0.2 0.1 0.05; do
+  python3 scripts/make-hertz3d-mesh.py hex "$h" -o "$dir/hex-$h.msh"
+done
+for h in 0.4 0.2 0.1 0.07 0.05; do
+  python3 scripts/make-hertz3d-mesh.py tet "$h" -o "$dir/tet-$h.msh"
+done
+cmp -s "$dir/hex-0.1.msh" scenes/hertz3d-hex.msh || echo "hertz3d-refinement: hex-0.1.msh differs from scenes/hertz3d-hex.msh" >&2
+cmp -s "$dir/tet-0.1.msh" scenes/hertz3d-tet.msh || echo "hertz3d-refinement: tet-0.1.msh differs from scenes/hertz3d-tet.msh (another gmsh version?)" >&2
+cargo build -q --release --example hertz3d_refinement
+RAYON_NUM_THREADS=2 target/release/examples/hertz3d_refinement "$dir" --out docs/hertz3d "$@"
+scripts/splice-readme.sh hertz3d-refinement docs/hertz3d/hertz3d-refinement.md
