@@ -207,6 +207,19 @@ steps = [2]
         .expect("run gapsim");
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{stderr}");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("max penetration"))
+        .unwrap_or_else(|| panic!("no penetration line: {stdout}"));
+    let p: f64 = line.split_whitespace().nth(2).unwrap().parse().unwrap();
+    // the mortar gap is zero on average, not node by node: small against
+    // the press of 0.01
+    assert!(p.abs() < 1e-4, "{line}");
+    assert!(
+        line.contains("over the 12 slave nodes with pressure"),
+        "{line}"
+    );
     assert_eq!(
         entries(&out_dir),
         ["contact.csv", "final.vtu", "reactions.csv"]

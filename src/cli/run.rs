@@ -353,6 +353,9 @@ fn run_solid(
     {
         taylor_summary(&sol, args.every_step);
     }
+    if !sol.face_pairs.is_empty() {
+        face_contact_summary(&sol)?;
+    }
     for load in &scene.loads {
         // a load on a physical group has no position to report
         let Some(at) = load.at.and_then(|c| c.xyz()) else {
@@ -391,6 +394,39 @@ fn run_solid(
             }
             Ok(())
         })?;
+    }
+    Ok(())
+}
+
+/// 3D face contact at the end of a solve, from the nodal contact table
+/// (`contact.csv`'s rows: each slave node taken as a point of its first
+/// slave face): the largest penetration over the nodes with pressure, and
+/// the nodes whose own projection finds no master face.
+fn face_contact_summary(sol: &solver::Solution<3>) -> CommandResult {
+    let rows = solver::report::face_nodal_rows(sol, &sol.final_state)
+        .map_err(|e| format!("cannot tabulate the contact nodes: {e}"))?;
+    let pressed: Vec<_> = rows.iter().filter(|r| r.pressure != 0.0).collect();
+    let penetration = pressed
+        .iter()
+        .filter_map(|r| r.gap)
+        .fold(None, |m: Option<f64>, g| Some(m.map_or(-g, |m| m.max(-g))));
+    match penetration {
+        Some(p) => println!(
+            "max penetration {p:.3e} (largest -gap over the {} slave nodes with pressure, \
+             each a point of its first slave face; {} nodes without pressure)",
+            pressed.len(),
+            rows.len() - pressed.len()
+        ),
+        None => println!(
+            "max penetration none (no slave node with pressure and a projection; {} slave nodes)",
+            rows.len()
+        ),
+    }
+    let unprojected = rows.iter().filter(|r| r.gap.is_none()).count();
+    if unprojected > 0 {
+        println!(
+            "unprojected     {unprojected} slave node(s) project into no master face (their gap is empty in contact.csv)"
+        );
     }
     Ok(())
 }
