@@ -5,6 +5,7 @@
 //!
 //! ```text
 //! cargo run --release --example hertz3d_refinement -- MESH_DIR [--out docs/hertz3d] [--max-equations N]
+//!     [--kind hex|tet] [--segmented] [--gauss-points N]
 //! ```
 //!
 //! `MESH_DIR` holds `hex-{h}.msh` and `tet-{h}.msh` as
@@ -13,6 +14,10 @@
 //! one whose next-coarser mesh of its kind had more than `--max-equations`
 //! / 4 equations (default 300000: the LDLᵀ of the next, about 4 times larger, would need over 10 GiB). Writes
 //! `hertz3d-refinement.{md,csv}` to the output folder and prints the table.
+//! `--kind` keeps one mesh kind; `--segmented` and `--gauss-points N`
+//! change the scene's contact rule (`integration = "segmented"`,
+//! `gauss_points`), and the files are then named after the variant
+//! (`hertz3d-refinement-segmented.md`, `hertz3d-refinement-gauss7.md`).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -20,6 +25,7 @@ use std::process::ExitCode;
 
 use gapsim::hertz::three::{Solved3d, solve_3d};
 use solver::Scene;
+use solver::model::Integration;
 
 /// The indenter's radius.
 const RADIUS: f64 = 10.0;
@@ -30,40 +36,72 @@ const MESHES: [(&str, &str, &[&str]); 2] = [
     ("tet", "tetrahedra", &["0.4", "0.2", "0.1", "0.07", "0.05"]),
 ];
 
-fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+/// What the command line asks for.
+struct Args {
+    meshes: PathBuf,
+    out: PathBuf,
+    max_equations: usize,
+    kind: Option<String>,
+    segmented: bool,
+    gauss_points: Option<usize>,
+}
+
+const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet] [--segmented] [--gauss-points N]";
+
+fn parse(args: &[String]) -> Result<Args, String> {
     let mut meshes = None;
-    let mut out = PathBuf::from("docs/hertz3d");
-    let mut max_equations = 300_000usize;
+    let mut parsed = Args {
+        meshes: PathBuf::new(),
+        out: PathBuf::from("docs/hertz3d"),
+        max_equations: 300_000,
+        kind: None,
+        segmented: false,
+        gauss_points: None,
+    };
     let mut it = args.iter();
     while let Some(a) = it.next() {
-        match (a.as_str(), it.clone().next()) {
-            ("--out", Some(v)) => {
-                out = PathBuf::from(v);
-                it.next();
+        let mut value = || it.next().ok_or_else(|| format!("{a}: needs a value"));
+        match a.as_str() {
+            "--out" => parsed.out = PathBuf::from(value()?),
+            "--max-equations" => {
+                let v = value()?;
+                parsed.max_equations = v
+                    .parse()
+                    .map_err(|_| format!("--max-equations {v}: not a count"))?;
             }
-            ("--max-equations", Some(v)) => {
-                let Ok(n) = v.parse() else {
-                    eprintln!("hertz3d_refinement: --max-equations {v}: not a count");
-                    return ExitCode::from(2);
-                };
-                max_equations = n;
-                it.next();
+            "--kind" => {
+                let v = value()?;
+                if !MESHES.iter().any(|m| m.0 == v) {
+                    return Err(format!("--kind {v}: hex or tet"));
+                }
+                parsed.kind = Some(v.clone());
             }
-            (dir, _) if meshes.is_none() && !dir.starts_with("--") => {
-                meshes = Some(PathBuf::from(dir));
+            "--segmented" => parsed.segmented = true,
+            "--gauss-points" => {
+                let v = value()?;
+                parsed.gauss_points = Some(
+                    v.parse()
+                        .map_err(|_| format!("--gauss-points {v}: not a count"))?,
+                );
             }
-            _ => {
-                eprintln!("usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N]");
-                return ExitCode::from(2);
-            }
+            dir if meshes.is_none() && !dir.starts_with("--") => meshes = Some(PathBuf::from(dir)),
+            other => return Err(format!("{other}: unexpected")),
         }
     }
-    let Some(meshes) = meshes else {
-        eprintln!("usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N]");
-        return ExitCode::from(2);
+    parsed.meshes = meshes.ok_or("no MESH_DIR")?;
+    Ok(parsed)
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let args = match parse(&args) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("hertz3d_refinement: {e}\n{USAGE}");
+            return ExitCode::from(2);
+        }
     };
-    match run(&meshes, &out, max_equations) {
+    match run(&args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("hertz3d_refinement: {e}");
@@ -79,11 +117,28 @@ struct Row {
     solved: Solved3d,
 }
 
-fn run(meshes: &Path, out: &Path, max_equations: usize) -> Result<(), String> {
+fn run(args: &Args) -> Result<(), String> {
+    let (meshes, out, max_equations) = (&args.meshes, &args.out, args.max_equations);
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let base = Scene::from_file(root.join("scenes/hertz3d.toml")).map_err(|e| e.to_string())?;
+    let mut base = Scene::from_file(root.join("scenes/hertz3d.toml")).map_err(|e| e.to_string())?;
+    let mut variant = String::new();
+    for contact in &mut base.contacts {
+        if args.segmented {
+            contact.integration = Integration::Segmented;
+        }
+        contact.gauss_points = args.gauss_points.or(contact.gauss_points);
+    }
+    if args.segmented {
+        variant.push_str("-segmented");
+    }
+    if let Some(n) = args.gauss_points {
+        variant.push_str(&format!("-gauss{n}"));
+    }
     let mut rows = Vec::new();
     for (prefix, kind, sizes) in MESHES {
+        if args.kind.as_deref().is_some_and(|k| k != prefix) {
+            continue;
+        }
         let mut coarser: Option<usize> = None;
         for size in sizes {
             let path = meshes.join(format!("{prefix}-{size}.msh"));
@@ -121,11 +176,8 @@ fn run(meshes: &Path, out: &Path, max_equations: usize) -> Result<(), String> {
     std::fs::create_dir_all(out).map_err(|e| format!("{}: {e}", out.display()))?;
     let md = markdown(&rows);
     print!("{md}");
-    for (name, text) in [
-        ("hertz3d-refinement.md", md),
-        ("hertz3d-refinement.csv", csv(&rows)),
-    ] {
-        let path = out.join(name);
+    for (name, text) in [("md", md), ("csv", csv(&rows))] {
+        let path = out.join(format!("hertz3d-refinement{variant}.{name}"));
         solver::report::write_atomic(&path, text)
             .map_err(|e| format!("{}: {e}", path.display()))?;
     }

@@ -6,6 +6,10 @@
 # docs/hertz3d/hertz3d-refinement.{md,csv}.
 #
 #   scripts/hertz3d-refinement.sh [--max-equations N]
+#   scripts/hertz3d-refinement.sh --kind tet --segmented    # a variant: its own files
+#
+# Options go to examples/hertz3d_refinement.rs; without any, the table is
+# also spliced into README.md.
 #
 # Needs the `gmsh` Python package (pip install gmsh; the tetrahedral meshes
 # depend on its version: 4.15.2 wrote the checked-in scenes/hertz3d-tet.msh,
@@ -16,13 +20,15 @@ cd "$(dirname "$0")/.."
 dir=target/hertz3d-refinement
 mkdir -p "$dir"
 for h in 0.4 0.2 0.1 0.05; do
-  python3 scripts/make-hertz3d-mesh.py hex "$h" -o "$dir/hex-$h.msh"
+  [ -e "$dir/hex-$h.msh" ] || python3 scripts/make-hertz3d-mesh.py hex "$h" -o "$dir/hex-$h.msh"
 done
 for h in 0.4 0.2 0.1 0.07 0.05; do
-  python3 scripts/make-hertz3d-mesh.py tet "$h" -o "$dir/tet-$h.msh"
+  [ -e "$dir/tet-$h.msh" ] || python3 scripts/make-hertz3d-mesh.py tet "$h" -o "$dir/tet-$h.msh"
 done
 cmp -s "$dir/hex-0.1.msh" scenes/hertz3d-hex.msh || echo "hertz3d-refinement: hex-0.1.msh differs from scenes/hertz3d-hex.msh" >&2
 cmp -s "$dir/tet-0.1.msh" scenes/hertz3d-tet.msh || echo "hertz3d-refinement: tet-0.1.msh differs from scenes/hertz3d-tet.msh (another gmsh version?)" >&2
 cargo build -q --release --example hertz3d_refinement
 RAYON_NUM_THREADS=2 target/release/examples/hertz3d_refinement "$dir" --out docs/hertz3d "$@"
-scripts/splice-readme.sh hertz3d-refinement docs/hertz3d/hertz3d-refinement.md
+if [ $# -eq 0 ]; then
+  scripts/splice-readme.sh hertz3d-refinement docs/hertz3d/hertz3d-refinement.md
+fi
