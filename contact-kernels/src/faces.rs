@@ -120,18 +120,21 @@ fn check_face(face: Segment, p: &[f64]) -> Result<(), KernelError> {
     let threshold = DEGENERATE_LENGTH * size * size;
     // t_1 x t_2 at each corner (quad4: the tangents halved, as dx/du and
     // dx/dv are on [-1, 1]^2).
-    let corners: Vec<[f64; 3]> = if nodes == 3 {
-        vec![cross(sub(node(1), node(0)), sub(node(2), node(0)))]
+    let mut all = [[0.0; 3]; 4];
+    let corners: &[[f64; 3]] = if nodes == 3 {
+        all[0] = cross(sub(node(1), node(0)), sub(node(2), node(0)));
+        &all[..1]
     } else {
         let h = |a: [f64; 3]| a.map(|c| 0.5 * c);
         let (e12, e43) = (h(sub(node(1), node(0))), h(sub(node(2), node(3))));
         let (e14, e23) = (h(sub(node(3), node(0))), h(sub(node(2), node(1))));
-        vec![
+        all = [
             cross(e12, e14),
             cross(e12, e23),
             cross(e43, e23),
             cross(e43, e14),
-        ]
+        ];
+        &all
     };
     for (corner, c) in corners.iter().enumerate() {
         let area2 = dot(*c, *c);
