@@ -26,6 +26,8 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use gapsim::timing::{load_average, median, process_cpu_seconds};
+
 use gapsim::hertz::{HertzMeasured, SCENES, measure, pressure_profile};
 use solver::{LinearSolverKind, Scene, SolveOptions, solve};
 
@@ -73,17 +75,6 @@ struct CalculixRow {
     increments: u64,
     iterations: u64,
     nodes: u64,
-}
-
-fn median(v: &[f64]) -> f64 {
-    let mut s = v.to_vec();
-    s.sort_by(f64::total_cmp);
-    let n = s.len();
-    if n % 2 == 1 {
-        s[n / 2]
-    } else {
-        0.5 * (s[n / 2 - 1] + s[n / 2])
-    }
 }
 
 fn read_calculix(path: &Path) -> Result<CalculixRow, Box<dyn Error>> {
@@ -170,17 +161,6 @@ fn run(
     })
 }
 
-/// CPU time (user plus system) of this process so far, all threads: fields
-/// 14 and 15 of `/proc/self/stat`, in USER_HZ = 100 ticks per second (Linux);
-/// `None` elsewhere.
-fn process_cpu_seconds() -> Option<f64> {
-    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
-    // the fields after the command name in parentheses start at field 3
-    let fields: Vec<&str> = stat.rsplit_once(')')?.1.split_whitespace().collect();
-    let ticks = |i: usize| fields.get(i - 3)?.parse::<u64>().ok();
-    Some((ticks(14)? + ticks(15)?) as f64 / 100.0)
-}
-
 fn seconds_cell(v: &Option<Vec<f64>>) -> String {
     v.as_deref()
         .map_or_else(|| "-".to_string(), |v| format!("{:.2}", median(v)))
@@ -192,13 +172,6 @@ fn percent(v: Option<f64>) -> String {
 
 fn csv_opt(v: Option<f64>) -> String {
     v.map_or_else(String::new, |v| format!("{v:.6e}"))
-}
-
-fn load_average() -> String {
-    std::fs::read_to_string("/proc/loadavg")
-        .ok()
-        .and_then(|s| s.split_whitespace().next().map(str::to_string))
-        .unwrap_or_else(|| "?".to_string())
 }
 
 fn main() -> Result<(), Box<dyn Error>> {

@@ -33,4 +33,5 @@ pub use solver;
 pub mod hertz;
 pub mod stability;
 pub mod study;
+pub mod timing;
 pub mod verify;

@@ -313,19 +313,6 @@ pub fn kernel_ops(formulation: Formulation, method: Method) -> Option<u32> {
     contact_kernels::op_count(formulation, Some(ty)).map(|o| o.total())
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n == 0 {
-        return f64::NAN;
-    }
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
 fn secs(d: Duration) -> f64 {
     d.as_secs_f64()
 }
@@ -386,7 +373,7 @@ where
         }
         first.get_or_insert(sol);
     }
-    let med = times.map(median);
+    let med = times.map(|v| crate::timing::median(&v));
     Ok((first.expect("at least one repeat"), med))
 }
 
