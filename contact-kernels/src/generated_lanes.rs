@@ -12,12 +12,16 @@
 //! The kernels of 3D faces take `xi_s` and `xi_m` as two [`Lanes`] each
 //! (`face_lane_set`, [`FaceLaneKernel`]).
 //!
-//! Each kernel exists twice: portable, and on x86-64 compiled for AVX2
-//! (no FMA). [`select`] picks the AVX2 copy when the CPU has it
+//! Each kernel's body is generic over its value type ([`LaneValue`]) and
+//! exists twice: portable, over [`Lanes`], and on x86-64 compiled for AVX2
+//! (no FMA) over `Avx4`, one 256-bit register per value, so that every
+//! operation is one vector instruction however large the kernel. [`select`] picks the AVX2 copy when the CPU has it
 //! (`is_x86_feature_detected!`), once, when a `Kernel` is made.
 
 use crate::generated::Formulation;
-use crate::lanes::Lanes;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::Avx4;
+use crate::lanes::{LaneValue, Lanes};
 
 /// `(d, xi_s, xi_m, grad) -> g` over lanes.
 ///

@@ -3,21 +3,25 @@
 //! that it vectorises, for the contact-kernels crate's batched evaluation.
 //!
 //! It reads the same instruction lists as [`super::RustEmitter`]; each
-//! register becomes a `Lanes` value (one `f64` per point, `L` points, the
-//! run-time crate's SIMD value type, whose operators act lane by lane), and
-//! each instruction the same operation with the same operands in the same
-//! order. Rust never contracts `a * b + c` into a fused multiply-add, so
+//! register becomes a value of the body's type parameter `L: LaneValue`
+//! (one `f64` per point, 4 points: the run-time crate's SIMD value types,
+//! whose operators act lane by lane), and each instruction the same
+//! operation with the same operands in the same order. Rust never contracts `a * b + c` into a fused multiply-add, so
 //! lane `l` of every register holds exactly the bits the scalar kernel
 //! computes for point `l`.
 //!
 //! ## The emitted module (`kernels_lanes.rs`)
 //!
 //! * per compiled formulation and approximation type, the body
-//!   `{ident}_type{t}_lanes` (`#[inline(always)]`) and two entry points
-//!   compiled from it: `{ident}_type{t}_x4` (portable: the target's baseline
-//!   vector instructions) and, on x86-64, `{ident}_type{t}_x4_avx2`
-//!   (`#[target_feature(enable = "avx2")]`: 4 lanes per instruction; never
-//!   FMA, so the bits stay those of the scalar kernel). The caller picks one
+//!   `{ident}_type{t}_lanes::<L>` (`#[inline(always)]`) and two entry
+//!   points compiled from it: `{ident}_type{t}_x4` (portable, `L = Lanes`:
+//!   four scalar operations per instruction, which the compiler vectorises
+//!   where it can) and, on x86-64, `{ident}_type{t}_x4_avx2`
+//!   (`#[target_feature(enable = "avx2")]`, `L = Avx4`: one 256-bit
+//!   register per value, so one instruction per operation whatever the
+//!   kernel's size; never FMA, so the bits stay those of the scalar
+//!   kernel). Both take `Lanes` buffers; the AVX2 one views them as `Avx4`
+//!   (the same layout). The caller picks one
 //!   at run time (`is_x86_feature_detected!`);
 //! * per compiled formulation one `static` `LaneSet` and `lane_set`, which
 //!   maps a `Formulation` to it (`None` when not compiled in, and for
@@ -169,9 +173,10 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
     let body_name = format_ident!("{}_lanes", f.name);
     let portable = format_ident!("{}_x4", f.name);
     let avx2 = format_ident!("{}_x4_avx2", f.name);
-    let mut params = Vec::new();
-    let mut args = Vec::new();
-    let mut names = Vec::new();
+    // Each parameter as (name, kind): the entry points take `Lanes`, the
+    // body any `L: LaneValue`, and the AVX2 entry point passes `Avx4`
+    // views of the same buffers.
+    let mut params: Vec<(Ident, Param)> = Vec::new();
     let mut prologue = Vec::new();
     let mut coords = ident("d");
     let mut scalar_params = Vec::new();
@@ -186,12 +191,12 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         match input.kind {
             InputKind::Coords => {
                 let len = idx(input.len);
-                params.push(quote!(#x: &[Lanes]));
+                params.push((x.clone(), Param::Slice));
                 prologue.push(quote!(let #x = &#x[..#len];));
                 coords = x.clone();
             }
             InputKind::Param(_) if input.len > 1 => {
-                params.push(quote!(#x: &[Lanes]));
+                params.push((x.clone(), Param::Slice));
                 for k in 0..input.len {
                     let (c, kk) = (component(&x, k), idx(k));
                     prologue.push(quote!(let #c = #x[#kk];));
@@ -199,25 +204,23 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
                 }
             }
             InputKind::ImplicitInOut if input.len > 1 => {
-                params.push(quote!(#x: &mut [Lanes]));
+                params.push((x.clone(), Param::SliceMut));
                 implicit_ref = Some(x.clone());
                 implicit_len = input.len;
             }
             InputKind::Param(_) => {
-                params.push(quote!(#x: Lanes));
+                params.push((x.clone(), Param::Value));
                 scalar_params.push(x.clone());
             }
             InputKind::Implicit => {
-                params.push(quote!(#x: Lanes));
+                params.push((x.clone(), Param::Value));
                 implicit = x.clone();
             }
             InputKind::ImplicitInOut => {
-                params.push(quote!(#x: &mut Lanes));
+                params.push((x.clone(), Param::ValueMut));
                 implicit_ref = Some(x.clone());
             }
         }
-        args.push(quote!(#x));
-        names.push(x);
     }
     let mut stores = Vec::new();
     let mut returns = Vec::new();
@@ -245,8 +248,7 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
                     Layout::PackedSymmetric { n } => n * n,
                     _ => out.len,
                 });
-                params.push(quote!(#x: &mut [Lanes]));
-                args.push(quote!(#x));
+                params.push((x.clone(), Param::SliceMut));
                 prologue.push(quote!(let #x = &mut #x[..#len];));
                 stores.push(store(&f.program, out, &x));
             }
@@ -274,10 +276,29 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         " `{}` over 4 lanes, compiled for AVX2 (no FMA).\n\n # Safety\n The CPU must support AVX2.",
         f.name
     );
+    let lanes_ty = quote!(Lanes);
+    let generic_ty = quote!(L);
+    let decl = |ty: &TokenStream| {
+        let ps = params.iter().map(|(x, k)| match k {
+            Param::Slice => quote!(#x: &[#ty]),
+            Param::SliceMut => quote!(#x: &mut [#ty]),
+            Param::Value => quote!(#x: #ty),
+            Param::ValueMut => quote!(#x: &mut #ty),
+        });
+        quote!(#(#ps),*)
+    };
+    let (entry_params, body_params) = (decl(&lanes_ty), decl(&generic_ty));
+    let args = params.iter().map(|(x, _)| quote!(#x));
+    let avx_args = params.iter().map(|(x, k)| match k {
+        Param::Slice => quote!(Avx4::slice(#x)),
+        Param::SliceMut => quote!(Avx4::slice_mut(#x)),
+        Param::Value => quote!(Avx4::from_lanes(#x)),
+        Param::ValueMut => quote!(Avx4::one_mut(#x)),
+    });
     quote! {
         #[doc = #doc]
         #[inline(always)]
-        fn #body_name(#(#params),*) -> Lanes {
+        fn #body_name<L: LaneValue>(#body_params) -> L {
             #(#prologue)*
             #read
             #body
@@ -287,17 +308,27 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         }
 
         #[doc = #portable_doc]
-        fn #portable(#(#params),*) -> Lanes {
-            #body_name(#(#args),*)
+        fn #portable(#entry_params) -> Lanes {
+            #body_name::<Lanes>(#(#args),*)
         }
 
         #[doc = #avx2_doc]
         #[cfg(target_arch = "x86_64")]
         #[target_feature(enable = "avx2")]
-        unsafe fn #avx2(#(#params),*) -> Lanes {
-            #body_name(#(#args),*)
+        unsafe fn #avx2(#entry_params) -> Lanes {
+            #body_name::<Avx4>(#(#avx_args),*).to_lanes()
         }
     }
+}
+
+/// How a kernel parameter is passed: lanes by value or by reference, or
+/// a buffer of lanes.
+#[derive(Clone, Copy)]
+enum Param {
+    Slice,
+    SliceMut,
+    Value,
+    ValueMut,
 }
 
 /// Assignments of a stored output: a vector entry by entry, a packed
@@ -344,10 +375,11 @@ fn idx(i: usize) -> proc_macro2::Literal {
 /// A constant broadcast to every lane (written so that it round-trips).
 fn constant(c: f64) -> TokenStream {
     let lit = float_literal(c);
-    quote!(Lanes::splat(#lit))
+    quote!(L::splat(#lit))
 }
 
-/// Lanes: constants broadcast with `Lanes::splat`, `a.recip()`.
+/// Lanes (a body generic over `L: LaneValue`): constants broadcast with
+/// `L::splat`, `a.recip()`.
 const LANES: Spelling = Spelling {
     constant,
     recip: |a| quote!(#a.recip()),
@@ -359,7 +391,7 @@ fn operand(o: Operand) -> TokenStream {
 
 /// An output expression: the operand, or zero for a structural zero.
 fn output(o: Option<Operand>) -> TokenStream {
-    o.map_or_else(|| quote!(Lanes::ZERO), operand)
+    o.map_or_else(|| quote!(L::ZERO), operand)
 }
 
 /// The `let` bindings of a program's instructions over lanes, one per
@@ -394,7 +426,7 @@ mod tests {
         let code = LanesEmitter.source(&plan);
         let set = plan.formulations[0].kernels.as_ref().unwrap();
         for k in &set.kernels {
-            for suffix in ["_lanes(", "_x4(", "_x4_avx2("] {
+            for suffix in ["_lanes<L: LaneValue>(", "_x4(", "_x4_avx2("] {
                 assert!(
                     code.contains(&format!("fn {}{suffix}", k.name)),
                     "{}",
