@@ -338,7 +338,17 @@ mod tests {
         let r = unsafe { all(x, y) };
         for l in 0..LANES {
             let (a, b) = (x.0[l], y.0[l]);
-            let want = [a + b, a - b, a * b, -a, 1.0 / a, b.sqrt(), a.powi(3), 0.5, 0.0];
+            let want = [
+                a + b,
+                a - b,
+                a * b,
+                -a,
+                1.0 / a,
+                b.sqrt(),
+                a.powi(3),
+                0.5,
+                0.0,
+            ];
             for (got, want) in r.iter().zip(want) {
                 assert_eq!(got.0[l].to_bits(), want.to_bits(), "lane {l}");
             }
