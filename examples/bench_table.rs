@@ -341,8 +341,11 @@ fn main() -> ExitCode {
             }
             println!(
                 "Per point over 64 configurations near the worked example (group `points64`, \
-                 one run): gapsim's kernels, the sympy-cse peer of `benches/peer/` (what Kratos \
-                 and IPC Toolkit generate) and num-dual.\n"
+                 one run; CPU: {}; load average over 1 / 5 / 15 minutes when the table was \
+                 made: {}): gapsim's kernels, the sympy-cse peer of `benches/peer/` (what \
+                 Kratos and IPC Toolkit generate) and num-dual.\n",
+                cpu(),
+                load_average()
             );
             print!("{p}");
             ExitCode::SUCCESS
