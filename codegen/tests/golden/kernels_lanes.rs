@@ -10,12 +10,12 @@ pub(crate) fn lane_set(f: Formulation) -> Option<&'static LaneSet> {
 }
 /// Lanes of `closest_point_type1`: `closest-point`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1 sqrt, 5 neg).
 #[inline(always)]
-fn closest_point_type1_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-) -> Lanes {
+fn closest_point_type1_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let v0 = d[2];
@@ -25,10 +25,10 @@ fn closest_point_type1_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v2 - v4;
@@ -40,9 +40,9 @@ fn closest_point_type1_lanes(
     let v19 = v18.recip();
     let v20 = v14 * v19;
     let v21 = v13 * v19;
-    let v22 = Lanes::splat(0.5) * v13;
+    let v22 = L::splat(0.5) * v13;
     let v23 = v13 * v22;
-    let v24 = Lanes::splat(0.5) * v14;
+    let v24 = L::splat(0.5) * v14;
     let v25 = v14 * v24;
     let v26 = v23 + v25;
     let v27 = v26.recip();
@@ -53,9 +53,9 @@ fn closest_point_type1_lanes(
     let v32 = v8 * v21;
     let v33 = v10 * v21;
     let v34 = v2 + v4;
-    let v35 = Lanes::splat(0.5) * v34;
+    let v35 = L::splat(0.5) * v34;
     let v36 = v3 + v5;
-    let v37 = Lanes::splat(0.5) * v36;
+    let v37 = L::splat(0.5) * v36;
     let v38 = v11 - v35;
     let v39 = v12 - v37;
     let v40 = v13 * v38;
@@ -63,10 +63,10 @@ fn closest_point_type1_lanes(
     let v42 = v40 + v41;
     let v43 = v27 * v42;
     let v44 = -v43;
-    let v45 = Lanes::splat(1.0) + v43;
-    let v46 = Lanes::splat(0.5) * v45;
-    let v47 = Lanes::splat(1.0) - v43;
-    let v48 = Lanes::splat(0.5) * v47;
+    let v45 = L::splat(1.0) + v43;
+    let v46 = L::splat(0.5) * v45;
+    let v47 = L::splat(1.0) - v43;
+    let v48 = L::splat(0.5) * v47;
     let v49 = v2 * v46;
     let v50 = v4 * v48;
     let v51 = v49 + v50;
@@ -102,7 +102,7 @@ fn closest_point_type1_x4(
     xi_m: &mut Lanes,
     grad: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type1_lanes(d, xi_s, xi_m, grad)
+    closest_point_type1_lanes::<Lanes>(d, xi_s, xi_m, grad)
 }
 /** `closest_point_type1` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -116,17 +116,20 @@ unsafe fn closest_point_type1_x4_avx2(
     xi_m: &mut Lanes,
     grad: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type1_lanes(d, xi_s, xi_m, grad)
+    closest_point_type1_lanes::<
+        Avx4,
+    >(Avx4::slice(d), Avx4::from_lanes(xi_s), Avx4::one_mut(xi_m), Avx4::slice_mut(grad))
+        .to_lanes()
 }
 /// Lanes of `closest_point_type2`: `closest-point`, type 2 (xi_m, x_ms, n: linear, linear, linear): gap, gradient and Hessian. Cost: 204 ops (81 add, 115 mul, 2 div, 1 sqrt, 5 neg).
 #[inline(always)]
-fn closest_point_type2_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn closest_point_type2_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -137,10 +140,10 @@ fn closest_point_type2_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v2 - v4;
@@ -152,9 +155,9 @@ fn closest_point_type2_lanes(
     let v19 = v18.recip();
     let v20 = v14 * v19;
     let v21 = v13 * v19;
-    let v22 = Lanes::splat(0.5) * v13;
+    let v22 = L::splat(0.5) * v13;
     let v23 = v13 * v22;
-    let v24 = Lanes::splat(0.5) * v14;
+    let v24 = L::splat(0.5) * v14;
     let v25 = v14 * v24;
     let v26 = v23 + v25;
     let v27 = v26.recip();
@@ -166,9 +169,9 @@ fn closest_point_type2_lanes(
     let v33 = v27 * v32;
     let v34 = v10 * v14;
     let v35 = v27 * v34;
-    let v36 = Lanes::splat(2.0) * v13;
-    let v37 = Lanes::splat(2.0) * v14;
-    let v38 = Lanes::splat(0.5) * v19;
+    let v36 = L::splat(2.0) * v13;
+    let v37 = L::splat(2.0) * v14;
+    let v38 = L::splat(0.5) * v19;
     let v39 = v19 * v19;
     let v40 = v36 * v38;
     let v41 = v39 * v40;
@@ -224,9 +227,9 @@ fn closest_point_type2_lanes(
     let v91 = v35 * v70;
     let v92 = v65 - v91;
     let v93 = v2 + v4;
-    let v94 = Lanes::splat(0.5) * v93;
+    let v94 = L::splat(0.5) * v93;
     let v95 = v3 + v5;
-    let v96 = Lanes::splat(0.5) * v95;
+    let v96 = L::splat(0.5) * v95;
     let v97 = v11 - v94;
     let v98 = v12 - v96;
     let v99 = v13 * v97;
@@ -234,10 +237,10 @@ fn closest_point_type2_lanes(
     let v101 = v99 + v100;
     let v102 = v27 * v101;
     let v103 = -v102;
-    let v104 = Lanes::splat(1.0) + v102;
-    let v105 = Lanes::splat(0.5) * v104;
-    let v106 = Lanes::splat(1.0) - v102;
-    let v107 = Lanes::splat(0.5) * v106;
+    let v104 = L::splat(1.0) + v102;
+    let v105 = L::splat(0.5) * v104;
+    let v106 = L::splat(1.0) - v102;
+    let v107 = L::splat(0.5) * v106;
     let v108 = v2 * v105;
     let v109 = v4 * v107;
     let v110 = v108 + v109;
@@ -313,7 +316,7 @@ fn closest_point_type2_lanes(
     let v180 = -v179;
     let v181 = v70 * v121;
     let v182 = v146 + v181;
-    let v183 = Lanes::splat(2.0) * v182;
+    let v183 = L::splat(2.0) * v182;
     let v184 = v70 * v124;
     let v185 = v170 - v184;
     let v186 = v158 + v185;
@@ -322,7 +325,7 @@ fn closest_point_type2_lanes(
     let v189 = v148 + v188;
     let v190 = -v189;
     let v191 = v134 - v174;
-    let v192 = Lanes::splat(2.0) * v191;
+    let v192 = L::splat(2.0) * v191;
     let v193 = v177 - v184;
     let v194 = v159 + v193;
     let v195 = -v194;
@@ -339,8 +342,8 @@ fn closest_point_type2_lanes(
     let v206 = v85 - v55;
     let v207 = v91 - v65;
     let v208 = v89 - v64;
-    let v209 = Lanes::splat((-2.0)) * v169;
-    let v210 = Lanes::splat((-2.0)) * v196;
+    let v209 = L::splat((-2.0)) * v169;
+    let v210 = L::splat((-2.0)) * v196;
     grad[0] = v198;
     grad[1] = v73;
     grad[2] = v199;
@@ -349,13 +352,13 @@ fn closest_point_type2_lanes(
     grad[5] = v200;
     grad[6] = v165;
     grad[7] = v167;
-    hess[0] = Lanes::ZERO;
-    hess[1] = Lanes::ZERO;
-    hess[8] = Lanes::ZERO;
-    hess[2] = Lanes::ZERO;
-    hess[16] = Lanes::ZERO;
-    hess[3] = Lanes::ZERO;
-    hess[24] = Lanes::ZERO;
+    hess[0] = L::ZERO;
+    hess[1] = L::ZERO;
+    hess[8] = L::ZERO;
+    hess[2] = L::ZERO;
+    hess[16] = L::ZERO;
+    hess[3] = L::ZERO;
+    hess[24] = L::ZERO;
     hess[4] = v78;
     hess[32] = v78;
     hess[5] = v201;
@@ -364,11 +367,11 @@ fn closest_point_type2_lanes(
     hess[48] = v202;
     hess[7] = v80;
     hess[56] = v80;
-    hess[9] = Lanes::ZERO;
-    hess[10] = Lanes::ZERO;
-    hess[17] = Lanes::ZERO;
-    hess[11] = Lanes::ZERO;
-    hess[25] = Lanes::ZERO;
+    hess[9] = L::ZERO;
+    hess[10] = L::ZERO;
+    hess[17] = L::ZERO;
+    hess[11] = L::ZERO;
+    hess[25] = L::ZERO;
     hess[12] = v82;
     hess[33] = v82;
     hess[13] = v203;
@@ -377,9 +380,9 @@ fn closest_point_type2_lanes(
     hess[49] = v204;
     hess[15] = v84;
     hess[57] = v84;
-    hess[18] = Lanes::ZERO;
-    hess[19] = Lanes::ZERO;
-    hess[26] = Lanes::ZERO;
+    hess[18] = L::ZERO;
+    hess[19] = L::ZERO;
+    hess[26] = L::ZERO;
     hess[20] = v86;
     hess[34] = v86;
     hess[21] = v205;
@@ -388,7 +391,7 @@ fn closest_point_type2_lanes(
     hess[50] = v206;
     hess[23] = v88;
     hess[58] = v88;
-    hess[27] = Lanes::ZERO;
+    hess[27] = L::ZERO;
     hess[28] = v90;
     hess[35] = v90;
     hess[29] = v207;
@@ -424,7 +427,7 @@ fn closest_point_type2_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type2_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type2_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `closest_point_type2` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -439,17 +442,26 @@ unsafe fn closest_point_type2_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type2_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type2_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `closest_point_type3`: `closest-point`, type 3 (xi_m, x_ms, n: linear, quadratic, linear): gap, gradient and Hessian. Cost: 207 ops (79 add, 117 mul, 2 div, 1 sqrt, 8 neg).
 #[inline(always)]
-fn closest_point_type3_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn closest_point_type3_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -460,10 +472,10 @@ fn closest_point_type3_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v2 - v4;
@@ -475,9 +487,9 @@ fn closest_point_type3_lanes(
     let v19 = v18.recip();
     let v20 = v14 * v19;
     let v21 = v13 * v19;
-    let v22 = Lanes::splat(0.5) * v13;
+    let v22 = L::splat(0.5) * v13;
     let v23 = v13 * v22;
-    let v24 = Lanes::splat(0.5) * v14;
+    let v24 = L::splat(0.5) * v14;
     let v25 = v14 * v24;
     let v26 = v23 + v25;
     let v27 = v26.recip();
@@ -489,9 +501,9 @@ fn closest_point_type3_lanes(
     let v33 = v27 * v32;
     let v34 = v10 * v14;
     let v35 = v27 * v34;
-    let v36 = Lanes::splat(2.0) * v13;
-    let v37 = Lanes::splat(2.0) * v14;
-    let v38 = Lanes::splat(0.5) * v19;
+    let v36 = L::splat(2.0) * v13;
+    let v37 = L::splat(2.0) * v14;
+    let v38 = L::splat(0.5) * v19;
     let v39 = v19 * v19;
     let v40 = v36 * v38;
     let v41 = v39 * v40;
@@ -506,7 +518,7 @@ fn closest_point_type3_lanes(
     let v50 = v8 * v20;
     let v51 = v10 * v20;
     let v52 = v20 * v22;
-    let v53 = Lanes::splat(0.5) * v20;
+    let v53 = L::splat(0.5) * v20;
     let v54 = v8 * v42;
     let v55 = v8 * v46;
     let v56 = v10 * v42;
@@ -517,7 +529,7 @@ fn closest_point_type3_lanes(
     let v61 = v8 * v21;
     let v62 = v10 * v21;
     let v63 = v21 * v24;
-    let v64 = Lanes::splat(0.5) * v21;
+    let v64 = L::splat(0.5) * v21;
     let v65 = v8 * v48;
     let v66 = v8 * v49;
     let v67 = v10 * v48;
@@ -555,9 +567,9 @@ fn closest_point_type3_lanes(
     let v99 = v68 - v98;
     let v100 = -v97;
     let v101 = v2 + v4;
-    let v102 = Lanes::splat(0.5) * v101;
+    let v102 = L::splat(0.5) * v101;
     let v103 = v3 + v5;
-    let v104 = Lanes::splat(0.5) * v103;
+    let v104 = L::splat(0.5) * v103;
     let v105 = v11 - v102;
     let v106 = v12 - v104;
     let v107 = v13 * v105;
@@ -565,10 +577,10 @@ fn closest_point_type3_lanes(
     let v109 = v107 + v108;
     let v110 = v27 * v109;
     let v111 = -v110;
-    let v112 = Lanes::splat(1.0) + v110;
-    let v113 = Lanes::splat(0.5) * v112;
-    let v114 = Lanes::splat(1.0) - v110;
-    let v115 = Lanes::splat(0.5) * v114;
+    let v112 = L::splat(1.0) + v110;
+    let v113 = L::splat(0.5) * v112;
+    let v114 = L::splat(1.0) - v110;
+    let v115 = L::splat(0.5) * v114;
     let v116 = v2 * v113;
     let v117 = v4 * v115;
     let v118 = v116 + v117;
@@ -644,7 +656,7 @@ fn closest_point_type3_lanes(
     let v188 = -v187;
     let v189 = v74 * v129;
     let v190 = v154 + v189;
-    let v191 = Lanes::splat(2.0) * v190;
+    let v191 = L::splat(2.0) * v190;
     let v192 = v74 * v132;
     let v193 = v178 + v192;
     let v194 = v166 - v193;
@@ -653,7 +665,7 @@ fn closest_point_type3_lanes(
     let v197 = v156 + v196;
     let v198 = -v197;
     let v199 = v142 + v182;
-    let v200 = Lanes::splat(2.0) * v199;
+    let v200 = L::splat(2.0) * v199;
     let v201 = v185 + v192;
     let v202 = v155 - v195;
     let v203 = v159 - v147;
@@ -664,9 +676,9 @@ fn closest_point_type3_lanes(
     let v208 = v88 - v66;
     let v209 = v93 - v57;
     let v210 = v98 - v68;
-    let v211 = Lanes::splat((-2.0)) * v177;
+    let v211 = L::splat((-2.0)) * v177;
     let v212 = v201 - v167;
-    let v213 = Lanes::splat((-2.0)) * v202;
+    let v213 = L::splat((-2.0)) * v202;
     grad[0] = v204;
     grad[1] = v77;
     grad[2] = v205;
@@ -675,13 +687,13 @@ fn closest_point_type3_lanes(
     grad[5] = v206;
     grad[6] = v173;
     grad[7] = v175;
-    hess[0] = Lanes::ZERO;
-    hess[1] = Lanes::ZERO;
-    hess[8] = Lanes::ZERO;
-    hess[2] = Lanes::ZERO;
-    hess[16] = Lanes::ZERO;
-    hess[3] = Lanes::ZERO;
-    hess[24] = Lanes::ZERO;
+    hess[0] = L::ZERO;
+    hess[1] = L::ZERO;
+    hess[8] = L::ZERO;
+    hess[2] = L::ZERO;
+    hess[16] = L::ZERO;
+    hess[3] = L::ZERO;
+    hess[24] = L::ZERO;
     hess[4] = v82;
     hess[32] = v82;
     hess[5] = v207;
@@ -690,11 +702,11 @@ fn closest_point_type3_lanes(
     hess[48] = v85;
     hess[7] = v84;
     hess[56] = v84;
-    hess[9] = Lanes::ZERO;
-    hess[10] = Lanes::ZERO;
-    hess[17] = Lanes::ZERO;
-    hess[11] = Lanes::ZERO;
-    hess[25] = Lanes::ZERO;
+    hess[9] = L::ZERO;
+    hess[10] = L::ZERO;
+    hess[17] = L::ZERO;
+    hess[11] = L::ZERO;
+    hess[25] = L::ZERO;
     hess[12] = v87;
     hess[33] = v87;
     hess[13] = v208;
@@ -703,9 +715,9 @@ fn closest_point_type3_lanes(
     hess[49] = v90;
     hess[15] = v89;
     hess[57] = v89;
-    hess[18] = Lanes::ZERO;
-    hess[19] = Lanes::ZERO;
-    hess[26] = Lanes::ZERO;
+    hess[18] = L::ZERO;
+    hess[19] = L::ZERO;
+    hess[26] = L::ZERO;
     hess[20] = v92;
     hess[34] = v92;
     hess[21] = v209;
@@ -714,7 +726,7 @@ fn closest_point_type3_lanes(
     hess[50] = v95;
     hess[23] = v94;
     hess[58] = v94;
-    hess[27] = Lanes::ZERO;
+    hess[27] = L::ZERO;
     hess[28] = v97;
     hess[35] = v97;
     hess[29] = v210;
@@ -750,7 +762,7 @@ fn closest_point_type3_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type3_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type3_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `closest_point_type3` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -765,17 +777,26 @@ unsafe fn closest_point_type3_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type3_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type3_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `closest_point_type4`: `closest-point`, type 4 (xi_m, x_ms, n: quadratic, quadratic, linear): gap, gradient and Hessian. Cost: 275 ops (105 add, 155 mul, 2 div, 1 sqrt, 12 neg).
 #[inline(always)]
-fn closest_point_type4_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn closest_point_type4_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -786,10 +807,10 @@ fn closest_point_type4_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v2 - v4;
@@ -801,9 +822,9 @@ fn closest_point_type4_lanes(
     let v19 = v18.recip();
     let v20 = v14 * v19;
     let v21 = v13 * v19;
-    let v22 = Lanes::splat(0.5) * v13;
+    let v22 = L::splat(0.5) * v13;
     let v23 = v13 * v22;
-    let v24 = Lanes::splat(0.5) * v14;
+    let v24 = L::splat(0.5) * v14;
     let v25 = v14 * v24;
     let v26 = v23 + v25;
     let v27 = v26.recip();
@@ -818,16 +839,16 @@ fn closest_point_type4_lanes(
     let v36 = v22 * v27;
     let v37 = v13 * v36;
     let v38 = v14 * v36;
-    let v39 = Lanes::splat((-0.5)) + v37;
-    let v40 = Lanes::splat(0.5) - v37;
+    let v39 = L::splat((-0.5)) + v37;
+    let v40 = L::splat(0.5) - v37;
     let v41 = v24 * v27;
     let v42 = v13 * v41;
     let v43 = v14 * v41;
-    let v44 = Lanes::splat((-0.5)) + v43;
-    let v45 = Lanes::splat(0.5) - v43;
-    let v46 = Lanes::splat(2.0) * v13;
-    let v47 = Lanes::splat(2.0) * v14;
-    let v48 = Lanes::splat(0.5) * v19;
+    let v44 = L::splat((-0.5)) + v43;
+    let v45 = L::splat(0.5) - v43;
+    let v46 = L::splat(2.0) * v13;
+    let v47 = L::splat(2.0) * v14;
+    let v48 = L::splat(0.5) * v19;
     let v49 = v19 * v19;
     let v50 = v46 * v48;
     let v51 = v49 * v50;
@@ -930,9 +951,9 @@ fn closest_point_type4_lanes(
     let v148 = v35 * v97;
     let v149 = v109 + v148;
     let v150 = v2 + v4;
-    let v151 = Lanes::splat(0.5) * v150;
+    let v151 = L::splat(0.5) * v150;
     let v152 = v3 + v5;
-    let v153 = Lanes::splat(0.5) * v152;
+    let v153 = L::splat(0.5) * v152;
     let v154 = v11 - v151;
     let v155 = v12 - v153;
     let v156 = v13 * v154;
@@ -940,10 +961,10 @@ fn closest_point_type4_lanes(
     let v158 = v156 + v157;
     let v159 = v27 * v158;
     let v160 = -v159;
-    let v161 = Lanes::splat(1.0) + v159;
-    let v162 = Lanes::splat(0.5) * v161;
-    let v163 = Lanes::splat(1.0) - v159;
-    let v164 = Lanes::splat(0.5) * v163;
+    let v161 = L::splat(1.0) + v159;
+    let v162 = L::splat(0.5) * v161;
+    let v163 = L::splat(1.0) - v159;
+    let v164 = L::splat(0.5) * v163;
     let v165 = v2 * v162;
     let v166 = v4 * v164;
     let v167 = v165 + v166;
@@ -965,18 +986,18 @@ fn closest_point_type4_lanes(
     let v183 = v172 + v182;
     let v184 = v27 * v183;
     let v185 = v161 - v163;
-    let v186 = Lanes::splat(0.5) * v185;
+    let v186 = L::splat(0.5) * v185;
     let v187 = v52 * v171;
     let v188 = v56 * v171;
     let v189 = v20 * v162;
     let v190 = v20 * v164;
     let v191 = v52 * v162;
-    let v192 = Lanes::splat(2.0) * v191;
+    let v192 = L::splat(2.0) * v191;
     let v193 = v56 * v162;
     let v194 = v52 * v164;
     let v195 = v191 - v194;
     let v196 = v56 * v164;
-    let v197 = Lanes::splat(2.0) * v194;
+    let v197 = L::splat(2.0) * v194;
     let v198 = v187 + v189;
     let v199 = v187 - v190;
     let v200 = v20 * v171;
@@ -987,10 +1008,10 @@ fn closest_point_type4_lanes(
     let v205 = v58 * v162;
     let v206 = v58 * v164;
     let v207 = v59 * v162;
-    let v208 = Lanes::splat(2.0) * v207;
+    let v208 = L::splat(2.0) * v207;
     let v209 = v59 * v164;
     let v210 = v207 - v209;
-    let v211 = Lanes::splat(2.0) * v209;
+    let v211 = L::splat(2.0) * v209;
     let v212 = v202 + v203;
     let v213 = v202 - v204;
     let v214 = v21 * v172;
@@ -1020,7 +1041,7 @@ fn closest_point_type4_lanes(
     let v238 = v197 + v237;
     let v239 = v211 - v237;
     let v240 = v94 * v175;
-    let v241 = Lanes::splat(2.0) * v240;
+    let v241 = L::splat(2.0) * v240;
     let v242 = v232 + v241;
     let v243 = -v242;
     let v244 = v94 * v178;
@@ -1035,7 +1056,7 @@ fn closest_point_type4_lanes(
     let v253 = v97 * v175;
     let v254 = v252 + v253;
     let v255 = v95 * v178;
-    let v256 = Lanes::splat(2.0) * v255;
+    let v256 = L::splat(2.0) * v255;
     let v257 = v235 - v256;
     let v258 = v95 * v181;
     let v259 = v96 * v178;
@@ -1045,13 +1066,13 @@ fn closest_point_type4_lanes(
     let v263 = v97 * v178;
     let v264 = v262 + v263;
     let v265 = v96 * v181;
-    let v266 = Lanes::splat(2.0) * v265;
+    let v266 = L::splat(2.0) * v265;
     let v267 = v238 + v266;
     let v268 = v96 * v184;
     let v269 = v97 * v181;
     let v270 = v268 - v269;
     let v271 = v97 * v184;
-    let v272 = Lanes::splat(2.0) * v271;
+    let v272 = L::splat(2.0) * v271;
     let v273 = v239 + v272;
     let v274 = -v273;
     let v275 = v214 - v200;
@@ -1069,13 +1090,13 @@ fn closest_point_type4_lanes(
     grad[5] = v278;
     grad[6] = v228;
     grad[7] = v230;
-    hess[0] = Lanes::ZERO;
-    hess[1] = Lanes::ZERO;
-    hess[8] = Lanes::ZERO;
-    hess[2] = Lanes::ZERO;
-    hess[16] = Lanes::ZERO;
-    hess[3] = Lanes::ZERO;
-    hess[24] = Lanes::ZERO;
+    hess[0] = L::ZERO;
+    hess[1] = L::ZERO;
+    hess[8] = L::ZERO;
+    hess[2] = L::ZERO;
+    hess[16] = L::ZERO;
+    hess[3] = L::ZERO;
+    hess[24] = L::ZERO;
     hess[4] = v111;
     hess[32] = v111;
     hess[5] = v114;
@@ -1084,11 +1105,11 @@ fn closest_point_type4_lanes(
     hess[48] = v117;
     hess[7] = v119;
     hess[56] = v119;
-    hess[9] = Lanes::ZERO;
-    hess[10] = Lanes::ZERO;
-    hess[17] = Lanes::ZERO;
-    hess[11] = Lanes::ZERO;
-    hess[25] = Lanes::ZERO;
+    hess[9] = L::ZERO;
+    hess[10] = L::ZERO;
+    hess[17] = L::ZERO;
+    hess[11] = L::ZERO;
+    hess[25] = L::ZERO;
     hess[12] = v121;
     hess[33] = v121;
     hess[13] = v124;
@@ -1097,9 +1118,9 @@ fn closest_point_type4_lanes(
     hess[49] = v127;
     hess[15] = v129;
     hess[57] = v129;
-    hess[18] = Lanes::ZERO;
-    hess[19] = Lanes::ZERO;
-    hess[26] = Lanes::ZERO;
+    hess[18] = L::ZERO;
+    hess[19] = L::ZERO;
+    hess[26] = L::ZERO;
     hess[20] = v131;
     hess[34] = v131;
     hess[21] = v134;
@@ -1108,7 +1129,7 @@ fn closest_point_type4_lanes(
     hess[50] = v137;
     hess[23] = v139;
     hess[58] = v139;
-    hess[27] = Lanes::ZERO;
+    hess[27] = L::ZERO;
     hess[28] = v141;
     hess[35] = v141;
     hess[29] = v144;
@@ -1144,7 +1165,7 @@ fn closest_point_type4_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type4_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type4_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `closest_point_type4` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -1159,17 +1180,26 @@ unsafe fn closest_point_type4_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type4_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type4_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `closest_point_type5`: `closest-point`, type 5 (xi_m, x_ms, n: linear, quadratic, quadratic): gap, gradient and Hessian. Cost: 277 ops (111 add, 154 mul, 2 div, 1 sqrt, 9 neg).
 #[inline(always)]
-fn closest_point_type5_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn closest_point_type5_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -1180,10 +1210,10 @@ fn closest_point_type5_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v2 - v4;
@@ -1195,9 +1225,9 @@ fn closest_point_type5_lanes(
     let v19 = v18.recip();
     let v20 = v14 * v19;
     let v21 = v13 * v19;
-    let v22 = Lanes::splat(0.5) * v13;
+    let v22 = L::splat(0.5) * v13;
     let v23 = v13 * v22;
-    let v24 = Lanes::splat(0.5) * v14;
+    let v24 = L::splat(0.5) * v14;
     let v25 = v14 * v24;
     let v26 = v23 + v25;
     let v27 = v26.recip();
@@ -1209,9 +1239,9 @@ fn closest_point_type5_lanes(
     let v33 = v27 * v32;
     let v34 = v10 * v14;
     let v35 = v27 * v34;
-    let v36 = Lanes::splat(2.0) * v13;
-    let v37 = Lanes::splat(2.0) * v14;
-    let v38 = Lanes::splat(0.5) * v19;
+    let v36 = L::splat(2.0) * v13;
+    let v37 = L::splat(2.0) * v14;
+    let v38 = L::splat(0.5) * v19;
     let v39 = v19 * v19;
     let v40 = v36 * v38;
     let v41 = v39 * v40;
@@ -1220,9 +1250,9 @@ fn closest_point_type5_lanes(
     let v44 = v39 * v43;
     let v45 = v14 * v44;
     let v46 = v19 - v45;
-    let v47 = Lanes::splat(2.0) * v19;
+    let v47 = L::splat(2.0) * v19;
     let v48 = v41 * v47;
-    let v49 = Lanes::splat(0.5) * v41;
+    let v49 = L::splat(0.5) * v41;
     let v50 = v36 * v49;
     let v51 = v19 - v50;
     let v52 = v40 * v48;
@@ -1230,7 +1260,7 @@ fn closest_point_type5_lanes(
     let v54 = v52 - v53;
     let v55 = v14 * v54;
     let v56 = v44 * v47;
-    let v57 = Lanes::splat(0.5) * v44;
+    let v57 = L::splat(0.5) * v44;
     let v58 = v36 * v57;
     let v59 = v40 * v56;
     let v60 = v39 * v58;
@@ -1265,7 +1295,7 @@ fn closest_point_type5_lanes(
     let v89 = v8 * v20;
     let v90 = v10 * v20;
     let v91 = v20 * v22;
-    let v92 = Lanes::splat(0.5) * v20;
+    let v92 = L::splat(0.5) * v20;
     let v93 = v8 * v42;
     let v94 = v8 * v46;
     let v95 = v10 * v42;
@@ -1276,7 +1306,7 @@ fn closest_point_type5_lanes(
     let v100 = v8 * v21;
     let v101 = v10 * v21;
     let v102 = v21 * v24;
-    let v103 = Lanes::splat(0.5) * v21;
+    let v103 = L::splat(0.5) * v21;
     let v104 = v8 * v79;
     let v105 = v8 * v80;
     let v106 = v10 * v79;
@@ -1314,9 +1344,9 @@ fn closest_point_type5_lanes(
     let v138 = v107 - v137;
     let v139 = -v136;
     let v140 = v2 + v4;
-    let v141 = Lanes::splat(0.5) * v140;
+    let v141 = L::splat(0.5) * v140;
     let v142 = v3 + v5;
-    let v143 = Lanes::splat(0.5) * v142;
+    let v143 = L::splat(0.5) * v142;
     let v144 = v11 - v141;
     let v145 = v12 - v143;
     let v146 = v13 * v144;
@@ -1324,10 +1354,10 @@ fn closest_point_type5_lanes(
     let v148 = v146 + v147;
     let v149 = v27 * v148;
     let v150 = -v149;
-    let v151 = Lanes::splat(1.0) + v149;
-    let v152 = Lanes::splat(0.5) * v151;
-    let v153 = Lanes::splat(1.0) - v149;
-    let v154 = Lanes::splat(0.5) * v153;
+    let v151 = L::splat(1.0) + v149;
+    let v152 = L::splat(0.5) * v151;
+    let v153 = L::splat(1.0) - v149;
+    let v154 = L::splat(0.5) * v153;
     let v155 = v2 * v152;
     let v156 = v4 * v154;
     let v157 = v155 + v156;
@@ -1357,12 +1387,12 @@ fn closest_point_type5_lanes(
     let v181 = v71 * v161;
     let v182 = v77 * v161;
     let v183 = v42 * v152;
-    let v184 = Lanes::splat(2.0) * v183;
+    let v184 = L::splat(2.0) * v183;
     let v185 = v46 * v152;
     let v186 = v42 * v154;
     let v187 = v183 - v186;
     let v188 = v46 * v154;
-    let v189 = Lanes::splat(2.0) * v186;
+    let v189 = L::splat(2.0) * v186;
     let v190 = v175 + v177;
     let v191 = v175 - v178;
     let v192 = v179 + v184;
@@ -1383,10 +1413,10 @@ fn closest_point_type5_lanes(
     let v207 = v79 * v152;
     let v208 = v79 * v154;
     let v209 = v80 * v152;
-    let v210 = Lanes::splat(2.0) * v209;
+    let v210 = L::splat(2.0) * v209;
     let v211 = v80 * v154;
     let v212 = v209 - v211;
-    let v213 = Lanes::splat(2.0) * v211;
+    let v213 = L::splat(2.0) * v211;
     let v214 = v200 + v201;
     let v215 = v200 - v202;
     let v216 = v204 + v207;
@@ -1419,7 +1449,7 @@ fn closest_point_type5_lanes(
     let v243 = v111 * v174;
     let v244 = v226 - v243;
     let v245 = v112 * v165;
-    let v246 = Lanes::splat(2.0) * v245;
+    let v246 = L::splat(2.0) * v245;
     let v247 = v112 * v168;
     let v248 = v113 * v165;
     let v249 = v247 + v248;
@@ -1432,7 +1462,7 @@ fn closest_point_type5_lanes(
     let v256 = v230 + v255;
     let v257 = -v256;
     let v258 = v113 * v168;
-    let v259 = Lanes::splat(2.0) * v258;
+    let v259 = L::splat(2.0) * v258;
     let v260 = v231 + v259;
     let v261 = v113 * v171;
     let v262 = v247 + v261;
@@ -1442,10 +1472,10 @@ fn closest_point_type5_lanes(
     let v266 = v258 + v265;
     let v267 = v233 + v266;
     let v268 = -v267;
-    let v269 = Lanes::splat(2.0) * v251;
+    let v269 = L::splat(2.0) * v251;
     let v270 = v254 + v261;
     let v271 = v235 + v270;
-    let v272 = Lanes::splat(2.0) * v265;
+    let v272 = L::splat(2.0) * v265;
     let v273 = v236 + v272;
     let v274 = v222 - v198;
     let v275 = v114 - v89;
@@ -1465,13 +1495,13 @@ fn closest_point_type5_lanes(
     grad[5] = v277;
     grad[6] = v242;
     grad[7] = v244;
-    hess[0] = Lanes::ZERO;
-    hess[1] = Lanes::ZERO;
-    hess[8] = Lanes::ZERO;
-    hess[2] = Lanes::ZERO;
-    hess[16] = Lanes::ZERO;
-    hess[3] = Lanes::ZERO;
-    hess[24] = Lanes::ZERO;
+    hess[0] = L::ZERO;
+    hess[1] = L::ZERO;
+    hess[8] = L::ZERO;
+    hess[2] = L::ZERO;
+    hess[16] = L::ZERO;
+    hess[3] = L::ZERO;
+    hess[24] = L::ZERO;
     hess[4] = v121;
     hess[32] = v121;
     hess[5] = v278;
@@ -1480,11 +1510,11 @@ fn closest_point_type5_lanes(
     hess[48] = v124;
     hess[7] = v123;
     hess[56] = v123;
-    hess[9] = Lanes::ZERO;
-    hess[10] = Lanes::ZERO;
-    hess[17] = Lanes::ZERO;
-    hess[11] = Lanes::ZERO;
-    hess[25] = Lanes::ZERO;
+    hess[9] = L::ZERO;
+    hess[10] = L::ZERO;
+    hess[17] = L::ZERO;
+    hess[11] = L::ZERO;
+    hess[25] = L::ZERO;
     hess[12] = v126;
     hess[33] = v126;
     hess[13] = v279;
@@ -1493,9 +1523,9 @@ fn closest_point_type5_lanes(
     hess[49] = v129;
     hess[15] = v128;
     hess[57] = v128;
-    hess[18] = Lanes::ZERO;
-    hess[19] = Lanes::ZERO;
-    hess[26] = Lanes::ZERO;
+    hess[18] = L::ZERO;
+    hess[19] = L::ZERO;
+    hess[26] = L::ZERO;
     hess[20] = v131;
     hess[34] = v131;
     hess[21] = v280;
@@ -1504,7 +1534,7 @@ fn closest_point_type5_lanes(
     hess[50] = v134;
     hess[23] = v133;
     hess[58] = v133;
-    hess[27] = Lanes::ZERO;
+    hess[27] = L::ZERO;
     hess[28] = v136;
     hess[35] = v136;
     hess[29] = v281;
@@ -1540,7 +1570,7 @@ fn closest_point_type5_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type5_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type5_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `closest_point_type5` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -1555,17 +1585,26 @@ unsafe fn closest_point_type5_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type5_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type5_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `closest_point_type6`: `closest-point`, type 6 (xi_m, x_ms, n: quadratic, quadratic, quadratic): gap, gradient and Hessian. Cost: 339 ops (137 add, 188 mul, 2 div, 1 sqrt, 11 neg).
 #[inline(always)]
-fn closest_point_type6_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn closest_point_type6_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -1576,10 +1615,10 @@ fn closest_point_type6_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v2 - v4;
@@ -1591,9 +1630,9 @@ fn closest_point_type6_lanes(
     let v19 = v18.recip();
     let v20 = v14 * v19;
     let v21 = v13 * v19;
-    let v22 = Lanes::splat(0.5) * v13;
+    let v22 = L::splat(0.5) * v13;
     let v23 = v13 * v22;
-    let v24 = Lanes::splat(0.5) * v14;
+    let v24 = L::splat(0.5) * v14;
     let v25 = v14 * v24;
     let v26 = v23 + v25;
     let v27 = v26.recip();
@@ -1608,16 +1647,16 @@ fn closest_point_type6_lanes(
     let v36 = v22 * v27;
     let v37 = v13 * v36;
     let v38 = v14 * v36;
-    let v39 = Lanes::splat((-0.5)) + v37;
-    let v40 = Lanes::splat(0.5) - v37;
+    let v39 = L::splat((-0.5)) + v37;
+    let v40 = L::splat(0.5) - v37;
     let v41 = v24 * v27;
     let v42 = v13 * v41;
     let v43 = v14 * v41;
-    let v44 = Lanes::splat((-0.5)) + v43;
-    let v45 = Lanes::splat(0.5) - v43;
-    let v46 = Lanes::splat(2.0) * v13;
-    let v47 = Lanes::splat(2.0) * v14;
-    let v48 = Lanes::splat(0.5) * v19;
+    let v44 = L::splat((-0.5)) + v43;
+    let v45 = L::splat(0.5) - v43;
+    let v46 = L::splat(2.0) * v13;
+    let v47 = L::splat(2.0) * v14;
+    let v48 = L::splat(0.5) * v19;
     let v49 = v19 * v19;
     let v50 = v46 * v48;
     let v51 = v49 * v50;
@@ -1626,9 +1665,9 @@ fn closest_point_type6_lanes(
     let v54 = v49 * v53;
     let v55 = v14 * v54;
     let v56 = v19 - v55;
-    let v57 = Lanes::splat(2.0) * v19;
+    let v57 = L::splat(2.0) * v19;
     let v58 = v51 * v57;
-    let v59 = Lanes::splat(0.5) * v51;
+    let v59 = L::splat(0.5) * v51;
     let v60 = v46 * v59;
     let v61 = v19 - v60;
     let v62 = v50 * v58;
@@ -1636,7 +1675,7 @@ fn closest_point_type6_lanes(
     let v64 = v62 - v63;
     let v65 = v14 * v64;
     let v66 = v54 * v57;
-    let v67 = Lanes::splat(0.5) * v54;
+    let v67 = L::splat(0.5) * v54;
     let v68 = v46 * v67;
     let v69 = v50 * v66;
     let v70 = v49 * v68;
@@ -1759,9 +1798,9 @@ fn closest_point_type6_lanes(
     let v187 = v35 * v136;
     let v188 = v148 + v187;
     let v189 = v2 + v4;
-    let v190 = Lanes::splat(0.5) * v189;
+    let v190 = L::splat(0.5) * v189;
     let v191 = v3 + v5;
-    let v192 = Lanes::splat(0.5) * v191;
+    let v192 = L::splat(0.5) * v191;
     let v193 = v11 - v190;
     let v194 = v12 - v192;
     let v195 = v13 * v193;
@@ -1769,10 +1808,10 @@ fn closest_point_type6_lanes(
     let v197 = v195 + v196;
     let v198 = v27 * v197;
     let v199 = -v198;
-    let v200 = Lanes::splat(1.0) + v198;
-    let v201 = Lanes::splat(0.5) * v200;
-    let v202 = Lanes::splat(1.0) - v198;
-    let v203 = Lanes::splat(0.5) * v202;
+    let v200 = L::splat(1.0) + v198;
+    let v201 = L::splat(0.5) * v200;
+    let v202 = L::splat(1.0) - v198;
+    let v203 = L::splat(0.5) * v202;
     let v204 = v2 * v201;
     let v205 = v4 * v203;
     let v206 = v204 + v205;
@@ -1794,7 +1833,7 @@ fn closest_point_type6_lanes(
     let v222 = v211 + v221;
     let v223 = v27 * v222;
     let v224 = v200 - v202;
-    let v225 = Lanes::splat(0.5) * v224;
+    let v225 = L::splat(0.5) * v224;
     let v226 = v52 * v210;
     let v227 = v56 * v210;
     let v228 = v20 * v201;
@@ -1804,12 +1843,12 @@ fn closest_point_type6_lanes(
     let v232 = v81 * v210;
     let v233 = v87 * v210;
     let v234 = v52 * v201;
-    let v235 = Lanes::splat(2.0) * v234;
+    let v235 = L::splat(2.0) * v234;
     let v236 = v56 * v201;
     let v237 = v52 * v203;
     let v238 = v234 - v237;
     let v239 = v56 * v203;
-    let v240 = Lanes::splat(2.0) * v237;
+    let v240 = L::splat(2.0) * v237;
     let v241 = v226 + v228;
     let v242 = v226 - v229;
     let v243 = v230 + v235;
@@ -1830,10 +1869,10 @@ fn closest_point_type6_lanes(
     let v258 = v89 * v201;
     let v259 = v89 * v203;
     let v260 = v90 * v201;
-    let v261 = Lanes::splat(2.0) * v260;
+    let v261 = L::splat(2.0) * v260;
     let v262 = v90 * v203;
     let v263 = v260 - v262;
-    let v264 = Lanes::splat(2.0) * v262;
+    let v264 = L::splat(2.0) * v262;
     let v265 = v251 + v252;
     let v266 = v251 - v253;
     let v267 = v255 + v258;
@@ -1875,7 +1914,7 @@ fn closest_point_type6_lanes(
     let v303 = v285 - v302;
     let v304 = v287 + v302;
     let v305 = v133 * v214;
-    let v306 = Lanes::splat(2.0) * v305;
+    let v306 = L::splat(2.0) * v305;
     let v307 = v297 + v306;
     let v308 = -v307;
     let v309 = v133 * v217;
@@ -1890,7 +1929,7 @@ fn closest_point_type6_lanes(
     let v318 = v136 * v214;
     let v319 = v317 + v318;
     let v320 = v134 * v217;
-    let v321 = Lanes::splat(2.0) * v320;
+    let v321 = L::splat(2.0) * v320;
     let v322 = v300 - v321;
     let v323 = v134 * v220;
     let v324 = v135 * v217;
@@ -1899,13 +1938,13 @@ fn closest_point_type6_lanes(
     let v327 = v136 * v217;
     let v328 = v326 + v327;
     let v329 = v135 * v220;
-    let v330 = Lanes::splat(2.0) * v329;
+    let v330 = L::splat(2.0) * v329;
     let v331 = v135 * v223;
     let v332 = v136 * v220;
     let v333 = v331 - v332;
     let v334 = v286 + v333;
     let v335 = v136 * v223;
-    let v336 = Lanes::splat(2.0) * v335;
+    let v336 = L::splat(2.0) * v335;
     let v337 = v304 - v336;
     let v338 = v273 - v249;
     let v339 = v137 - v99;
@@ -1923,13 +1962,13 @@ fn closest_point_type6_lanes(
     grad[5] = v341;
     grad[6] = v293;
     grad[7] = v295;
-    hess[0] = Lanes::ZERO;
-    hess[1] = Lanes::ZERO;
-    hess[8] = Lanes::ZERO;
-    hess[2] = Lanes::ZERO;
-    hess[16] = Lanes::ZERO;
-    hess[3] = Lanes::ZERO;
-    hess[24] = Lanes::ZERO;
+    hess[0] = L::ZERO;
+    hess[1] = L::ZERO;
+    hess[8] = L::ZERO;
+    hess[2] = L::ZERO;
+    hess[16] = L::ZERO;
+    hess[3] = L::ZERO;
+    hess[24] = L::ZERO;
     hess[4] = v150;
     hess[32] = v150;
     hess[5] = v153;
@@ -1938,11 +1977,11 @@ fn closest_point_type6_lanes(
     hess[48] = v156;
     hess[7] = v158;
     hess[56] = v158;
-    hess[9] = Lanes::ZERO;
-    hess[10] = Lanes::ZERO;
-    hess[17] = Lanes::ZERO;
-    hess[11] = Lanes::ZERO;
-    hess[25] = Lanes::ZERO;
+    hess[9] = L::ZERO;
+    hess[10] = L::ZERO;
+    hess[17] = L::ZERO;
+    hess[11] = L::ZERO;
+    hess[25] = L::ZERO;
     hess[12] = v160;
     hess[33] = v160;
     hess[13] = v163;
@@ -1951,9 +1990,9 @@ fn closest_point_type6_lanes(
     hess[49] = v166;
     hess[15] = v168;
     hess[57] = v168;
-    hess[18] = Lanes::ZERO;
-    hess[19] = Lanes::ZERO;
-    hess[26] = Lanes::ZERO;
+    hess[18] = L::ZERO;
+    hess[19] = L::ZERO;
+    hess[26] = L::ZERO;
     hess[20] = v170;
     hess[34] = v170;
     hess[21] = v173;
@@ -1962,7 +2001,7 @@ fn closest_point_type6_lanes(
     hess[50] = v176;
     hess[23] = v178;
     hess[58] = v178;
-    hess[27] = Lanes::ZERO;
+    hess[27] = L::ZERO;
     hess[28] = v180;
     hess[35] = v180;
     hess[29] = v183;
@@ -1998,7 +2037,7 @@ fn closest_point_type6_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type6_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type6_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `closest_point_type6` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -2013,7 +2052,16 @@ unsafe fn closest_point_type6_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    closest_point_type6_lanes(d, xi_s, xi_m, grad, hess)
+    closest_point_type6_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// The lane kernels of `closest_point`.
 static CLOSEST_POINT_LANES: LaneSet = LaneSet {
@@ -2037,12 +2085,12 @@ static CLOSEST_POINT_LANES: LaneSet = LaneSet {
 };
 /// Lanes of `quadratic_slave_normal_type1`: `quadratic-slave-normal`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 68 ops (19 add, 41 mul, 1 div, 1 sqrt, 6 neg).
 #[inline(always)]
-fn quadratic_slave_normal_type1_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-) -> Lanes {
+fn quadratic_slave_normal_type1_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+) -> L {
     let d = &d[..12];
     let grad = &mut grad[..12];
     let xi_in = *xi_m;
@@ -2057,41 +2105,41 @@ fn quadratic_slave_normal_type1_lanes(
     let v8 = d[10];
     let v9 = d[11];
     let v10 = xi_s;
-    let v11 = Lanes::splat(0.5) * v10;
-    let v12 = v10 - Lanes::splat(1.0);
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
     let v13 = v11 * v12;
-    let v14 = Lanes::splat(1.0) + v10;
+    let v14 = L::splat(1.0) + v10;
     let v15 = v11 * v14;
     let v16 = v0 * v15;
     let v17 = v1 * v15;
     let v18 = v10 * v10;
-    let v19 = Lanes::splat(1.0) - v18;
+    let v19 = L::splat(1.0) - v18;
     let v20 = v2 * v19;
     let v21 = v3 * v19;
     let v22 = v16 + v20;
     let v23 = v17 + v21;
-    let v24 = Lanes::splat(0.5) + v10;
+    let v24 = L::splat(0.5) + v10;
     let v25 = v0 * v24;
     let v26 = v1 * v24;
-    let v27 = Lanes::splat(2.0) * v10;
+    let v27 = L::splat(2.0) * v10;
     let v28 = v2 * v27;
     let v29 = v3 * v27;
     let v30 = v25 - v28;
     let v31 = v26 - v29;
     let v32 = xi_in;
-    let v33 = Lanes::splat(0.5) * v32;
-    let v34 = v32 - Lanes::splat(1.0);
+    let v33 = L::splat(0.5) * v32;
+    let v34 = v32 - L::splat(1.0);
     let v35 = v33 * v34;
     let v36 = v4 * v35;
     let v37 = v5 * v35;
-    let v38 = Lanes::splat(1.0) + v32;
+    let v38 = L::splat(1.0) + v32;
     let v39 = v33 * v38;
     let v40 = v6 * v39;
     let v41 = v7 * v39;
     let v42 = v36 + v40;
     let v43 = v37 + v41;
     let v44 = v32 * v32;
-    let v45 = Lanes::splat(1.0) - v44;
+    let v45 = L::splat(1.0) - v44;
     let v46 = v8 * v45;
     let v47 = v9 * v45;
     let v48 = v42 + v46;
@@ -2147,7 +2195,7 @@ fn quadratic_slave_normal_type1_x4(
     xi_m: &mut Lanes,
     grad: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type1_lanes(d, xi_s, xi_m, grad)
+    quadratic_slave_normal_type1_lanes::<Lanes>(d, xi_s, xi_m, grad)
 }
 /** `quadratic_slave_normal_type1` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -2161,17 +2209,20 @@ unsafe fn quadratic_slave_normal_type1_x4_avx2(
     xi_m: &mut Lanes,
     grad: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type1_lanes(d, xi_s, xi_m, grad)
+    quadratic_slave_normal_type1_lanes::<
+        Avx4,
+    >(Avx4::slice(d), Avx4::from_lanes(xi_s), Avx4::one_mut(xi_m), Avx4::slice_mut(grad))
+        .to_lanes()
 }
 /// Lanes of `quadratic_slave_normal_type2`: `quadratic-slave-normal`, type 2 (xi_m, x_ms, n: linear, linear, linear): gap, gradient and Hessian. Cost: 478 ops (157 add, 307 mul, 2 div, 1 sqrt, 11 neg).
 #[inline(always)]
-fn quadratic_slave_normal_type2_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn quadratic_slave_normal_type2_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..12];
     let grad = &mut grad[..12];
     let hess = &mut hess[..144];
@@ -2187,42 +2238,42 @@ fn quadratic_slave_normal_type2_lanes(
     let v8 = d[10];
     let v9 = d[11];
     let v10 = xi_s;
-    let v11 = Lanes::splat(0.5) * v10;
-    let v12 = v10 - Lanes::splat(1.0);
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
     let v13 = v11 * v12;
-    let v14 = Lanes::splat(1.0) + v10;
+    let v14 = L::splat(1.0) + v10;
     let v15 = v11 * v14;
     let v16 = v0 * v15;
     let v17 = v1 * v15;
     let v18 = v10 * v10;
-    let v19 = Lanes::splat(1.0) - v18;
+    let v19 = L::splat(1.0) - v18;
     let v20 = v2 * v19;
     let v21 = v3 * v19;
     let v22 = v16 + v20;
     let v23 = v17 + v21;
-    let v24 = v10 - Lanes::splat(0.5);
-    let v25 = Lanes::splat(0.5) + v10;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
     let v26 = v0 * v25;
     let v27 = v1 * v25;
-    let v28 = Lanes::splat(2.0) * v10;
+    let v28 = L::splat(2.0) * v10;
     let v29 = v2 * v28;
     let v30 = v3 * v28;
     let v31 = v26 - v29;
     let v32 = v27 - v30;
     let v33 = xi_in;
-    let v34 = Lanes::splat(0.5) * v33;
-    let v35 = v33 - Lanes::splat(1.0);
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
     let v36 = v34 * v35;
     let v37 = v4 * v36;
     let v38 = v5 * v36;
-    let v39 = Lanes::splat(1.0) + v33;
+    let v39 = L::splat(1.0) + v33;
     let v40 = v34 * v39;
     let v41 = v6 * v40;
     let v42 = v7 * v40;
     let v43 = v37 + v41;
     let v44 = v38 + v42;
     let v45 = v33 * v33;
-    let v46 = Lanes::splat(1.0) - v45;
+    let v46 = L::splat(1.0) - v45;
     let v47 = v8 * v46;
     let v48 = v9 * v46;
     let v49 = v43 + v47;
@@ -2237,13 +2288,13 @@ fn quadratic_slave_normal_type2_lanes(
     let v58 = v32 * v57;
     let v59 = v31 * v57;
     let v60 = v33 + v35;
-    let v61 = Lanes::splat(0.5) * v60;
+    let v61 = L::splat(0.5) * v60;
     let v62 = v4 * v61;
     let v63 = v33 + v39;
-    let v64 = Lanes::splat(0.5) * v63;
+    let v64 = L::splat(0.5) * v63;
     let v65 = v6 * v64;
     let v66 = v62 + v65;
-    let v67 = Lanes::splat(2.0) * v33;
+    let v67 = L::splat(2.0) * v33;
     let v68 = v8 * v67;
     let v69 = v66 - v68;
     let v70 = v31 * v69;
@@ -2291,9 +2342,9 @@ fn quadratic_slave_normal_type2_lanes(
     let v112 = v78 * v111;
     let v113 = v32 * v46;
     let v114 = v78 * v113;
-    let v115 = Lanes::splat(2.0) * v31;
-    let v116 = Lanes::splat(2.0) * v32;
-    let v117 = Lanes::splat(0.5) * v57;
+    let v115 = L::splat(2.0) * v31;
+    let v116 = L::splat(2.0) * v32;
+    let v117 = L::splat(0.5) * v57;
     let v118 = v57 * v57;
     let v119 = v24 * v115;
     let v120 = v117 * v119;
@@ -2508,7 +2559,7 @@ fn quadratic_slave_normal_type2_lanes(
     let v329 = -v328;
     let v330 = v82 * v298;
     let v331 = v171 - v330;
-    let v332 = Lanes::splat(2.0) * v331;
+    let v332 = L::splat(2.0) * v331;
     let v333 = v86 * v298;
     let v334 = v82 * v299;
     let v335 = v333 - v334;
@@ -2569,7 +2620,7 @@ fn quadratic_slave_normal_type2_lanes(
     let v390 = v250 - v389;
     let v391 = v90 * v300;
     let v392 = v189 - v391;
-    let v393 = Lanes::splat(2.0) * v392;
+    let v393 = L::splat(2.0) * v392;
     let v394 = v94 * v300;
     let v395 = v90 * v301;
     let v396 = v394 - v395;
@@ -2633,7 +2684,7 @@ fn quadratic_slave_normal_type2_lanes(
     let v454 = v267 - v453;
     let v455 = v102 * v303;
     let v456 = v268 + v455;
-    let v457 = Lanes::splat(2.0) * v456;
+    let v457 = L::splat(2.0) * v456;
     let v458 = v104 * v303;
     let v459 = v106 * v303;
     let v460 = v108 * v303;
@@ -2649,7 +2700,7 @@ fn quadratic_slave_normal_type2_lanes(
     let v470 = v358 - v237;
     let v471 = v359 - v183;
     let v472 = v360 - v238;
-    let v473 = Lanes::splat((-2.0)) * v362;
+    let v473 = L::splat((-2.0)) * v362;
     let v474 = v365 - v292;
     let v475 = v368 - v243;
     let v476 = v407 - v195;
@@ -2658,8 +2709,8 @@ fn quadratic_slave_normal_type2_lanes(
     let v479 = v410 - v254;
     let v480 = v411 - v197;
     let v481 = v412 - v255;
-    let v482 = Lanes::splat((-2.0)) * v414;
-    let v483 = Lanes::splat((-2.0)) * v438;
+    let v482 = L::splat((-2.0)) * v414;
+    let v483 = L::splat((-2.0)) * v438;
     let v484 = v458 - v207;
     let v485 = v459 - v269;
     let v486 = v460 - v208;
@@ -2786,42 +2837,42 @@ fn quadratic_slave_normal_type2_lanes(
     hess[125] = v488;
     hess[71] = v489;
     hess[137] = v489;
-    hess[78] = Lanes::ZERO;
-    hess[79] = Lanes::ZERO;
-    hess[90] = Lanes::ZERO;
-    hess[80] = Lanes::ZERO;
-    hess[102] = Lanes::ZERO;
-    hess[81] = Lanes::ZERO;
-    hess[114] = Lanes::ZERO;
-    hess[82] = Lanes::ZERO;
-    hess[126] = Lanes::ZERO;
-    hess[83] = Lanes::ZERO;
-    hess[138] = Lanes::ZERO;
-    hess[91] = Lanes::ZERO;
-    hess[92] = Lanes::ZERO;
-    hess[103] = Lanes::ZERO;
-    hess[93] = Lanes::ZERO;
-    hess[115] = Lanes::ZERO;
-    hess[94] = Lanes::ZERO;
-    hess[127] = Lanes::ZERO;
-    hess[95] = Lanes::ZERO;
-    hess[139] = Lanes::ZERO;
-    hess[104] = Lanes::ZERO;
-    hess[105] = Lanes::ZERO;
-    hess[116] = Lanes::ZERO;
-    hess[106] = Lanes::ZERO;
-    hess[128] = Lanes::ZERO;
-    hess[107] = Lanes::ZERO;
-    hess[140] = Lanes::ZERO;
-    hess[117] = Lanes::ZERO;
-    hess[118] = Lanes::ZERO;
-    hess[129] = Lanes::ZERO;
-    hess[119] = Lanes::ZERO;
-    hess[141] = Lanes::ZERO;
-    hess[130] = Lanes::ZERO;
-    hess[131] = Lanes::ZERO;
-    hess[142] = Lanes::ZERO;
-    hess[143] = Lanes::ZERO;
+    hess[78] = L::ZERO;
+    hess[79] = L::ZERO;
+    hess[90] = L::ZERO;
+    hess[80] = L::ZERO;
+    hess[102] = L::ZERO;
+    hess[81] = L::ZERO;
+    hess[114] = L::ZERO;
+    hess[82] = L::ZERO;
+    hess[126] = L::ZERO;
+    hess[83] = L::ZERO;
+    hess[138] = L::ZERO;
+    hess[91] = L::ZERO;
+    hess[92] = L::ZERO;
+    hess[103] = L::ZERO;
+    hess[93] = L::ZERO;
+    hess[115] = L::ZERO;
+    hess[94] = L::ZERO;
+    hess[127] = L::ZERO;
+    hess[95] = L::ZERO;
+    hess[139] = L::ZERO;
+    hess[104] = L::ZERO;
+    hess[105] = L::ZERO;
+    hess[116] = L::ZERO;
+    hess[106] = L::ZERO;
+    hess[128] = L::ZERO;
+    hess[107] = L::ZERO;
+    hess[140] = L::ZERO;
+    hess[117] = L::ZERO;
+    hess[118] = L::ZERO;
+    hess[129] = L::ZERO;
+    hess[119] = L::ZERO;
+    hess[141] = L::ZERO;
+    hess[130] = L::ZERO;
+    hess[131] = L::ZERO;
+    hess[142] = L::ZERO;
+    hess[143] = L::ZERO;
     v464
 }
 /// `quadratic_slave_normal_type2` over 4 lanes (portable build).
@@ -2832,7 +2883,7 @@ fn quadratic_slave_normal_type2_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type2_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type2_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `quadratic_slave_normal_type2` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -2847,17 +2898,26 @@ unsafe fn quadratic_slave_normal_type2_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type2_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type2_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `quadratic_slave_normal_type3`: `quadratic-slave-normal`, type 3 (xi_m, x_ms, n: linear, quadratic, linear): gap, gradient and Hessian. Cost: 651 ops (225 add, 409 mul, 2 div, 1 sqrt, 14 neg).
 #[inline(always)]
-fn quadratic_slave_normal_type3_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn quadratic_slave_normal_type3_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..12];
     let grad = &mut grad[..12];
     let hess = &mut hess[..144];
@@ -2873,42 +2933,42 @@ fn quadratic_slave_normal_type3_lanes(
     let v8 = d[10];
     let v9 = d[11];
     let v10 = xi_s;
-    let v11 = Lanes::splat(0.5) * v10;
-    let v12 = v10 - Lanes::splat(1.0);
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
     let v13 = v11 * v12;
-    let v14 = Lanes::splat(1.0) + v10;
+    let v14 = L::splat(1.0) + v10;
     let v15 = v11 * v14;
     let v16 = v0 * v15;
     let v17 = v1 * v15;
     let v18 = v10 * v10;
-    let v19 = Lanes::splat(1.0) - v18;
+    let v19 = L::splat(1.0) - v18;
     let v20 = v2 * v19;
     let v21 = v3 * v19;
     let v22 = v16 + v20;
     let v23 = v17 + v21;
-    let v24 = v10 - Lanes::splat(0.5);
-    let v25 = Lanes::splat(0.5) + v10;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
     let v26 = v0 * v25;
     let v27 = v1 * v25;
-    let v28 = Lanes::splat(2.0) * v10;
+    let v28 = L::splat(2.0) * v10;
     let v29 = v2 * v28;
     let v30 = v3 * v28;
     let v31 = v26 - v29;
     let v32 = v27 - v30;
     let v33 = xi_in;
-    let v34 = Lanes::splat(0.5) * v33;
-    let v35 = v33 - Lanes::splat(1.0);
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
     let v36 = v34 * v35;
     let v37 = v4 * v36;
     let v38 = v5 * v36;
-    let v39 = Lanes::splat(1.0) + v33;
+    let v39 = L::splat(1.0) + v33;
     let v40 = v34 * v39;
     let v41 = v6 * v40;
     let v42 = v7 * v40;
     let v43 = v37 + v41;
     let v44 = v38 + v42;
     let v45 = v33 * v33;
-    let v46 = Lanes::splat(1.0) - v45;
+    let v46 = L::splat(1.0) - v45;
     let v47 = v8 * v46;
     let v48 = v9 * v46;
     let v49 = v43 + v47;
@@ -2923,13 +2983,13 @@ fn quadratic_slave_normal_type3_lanes(
     let v58 = v32 * v57;
     let v59 = v31 * v57;
     let v60 = v33 + v35;
-    let v61 = Lanes::splat(0.5) * v60;
+    let v61 = L::splat(0.5) * v60;
     let v62 = v4 * v61;
     let v63 = v33 + v39;
-    let v64 = Lanes::splat(0.5) * v63;
+    let v64 = L::splat(0.5) * v63;
     let v65 = v6 * v64;
     let v66 = v62 + v65;
-    let v67 = Lanes::splat(2.0) * v33;
+    let v67 = L::splat(2.0) * v33;
     let v68 = v8 * v67;
     let v69 = v66 - v68;
     let v70 = v31 * v69;
@@ -2978,16 +3038,16 @@ fn quadratic_slave_normal_type3_lanes(
     let v113 = v32 * v46;
     let v114 = v78 * v113;
     let v115 = v4 + v6;
-    let v116 = Lanes::splat(2.0) * v8;
+    let v116 = L::splat(2.0) * v8;
     let v117 = v115 - v116;
-    let v118 = Lanes::splat(0.5) * v117;
+    let v118 = L::splat(0.5) * v117;
     let v119 = v5 + v7;
-    let v120 = Lanes::splat(2.0) * v9;
+    let v120 = L::splat(2.0) * v9;
     let v121 = v119 - v120;
-    let v122 = Lanes::splat(0.5) * v121;
-    let v123 = Lanes::splat(2.0) * v31;
-    let v124 = Lanes::splat(2.0) * v32;
-    let v125 = Lanes::splat(0.5) * v57;
+    let v122 = L::splat(0.5) * v121;
+    let v123 = L::splat(2.0) * v31;
+    let v124 = L::splat(2.0) * v32;
+    let v125 = L::splat(0.5) * v57;
     let v126 = v57 * v57;
     let v127 = v24 * v123;
     let v128 = v125 * v127;
@@ -3235,7 +3295,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v370 = v247 - v358;
     let v371 = v82 * v359;
     let v372 = v183 - v371;
-    let v373 = Lanes::splat(2.0) * v372;
+    let v373 = L::splat(2.0) * v372;
     let v374 = v86 * v359;
     let v375 = v82 * v360;
     let v376 = v374 - v375;
@@ -3320,7 +3380,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v455 = v266 - v454;
     let v456 = v90 * v361;
     let v457 = v201 - v456;
-    let v458 = Lanes::splat(2.0) * v457;
+    let v458 = L::splat(2.0) * v457;
     let v459 = v94 * v361;
     let v460 = v90 * v362;
     let v461 = v459 - v460;
@@ -3420,7 +3480,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v555 = v283 - v554;
     let v556 = v102 * v364;
     let v557 = v284 + v556;
-    let v558 = Lanes::splat(2.0) * v557;
+    let v558 = L::splat(2.0) * v557;
     let v559 = v104 * v364;
     let v560 = v102 * v365;
     let v561 = v559 - v560;
@@ -3455,7 +3515,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v590 = v588 + v589;
     let v591 = -v590;
     let v592 = v106 * v366;
-    let v593 = Lanes::splat(2.0) * v592;
+    let v593 = L::splat(2.0) * v592;
     let v594 = v108 * v366;
     let v595 = v106 * v367;
     let v596 = v594 - v595;
@@ -3478,7 +3538,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v613 = v611 + v612;
     let v614 = -v613;
     let v615 = v110 * v368;
-    let v616 = Lanes::splat(2.0) * v615;
+    let v616 = L::splat(2.0) * v615;
     let v617 = v112 * v368;
     let v618 = v110 * v369;
     let v619 = v617 + v618;
@@ -3486,7 +3546,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v621 = v110 * v370;
     let v622 = v620 - v621;
     let v623 = v112 * v369;
-    let v624 = Lanes::splat(2.0) * v623;
+    let v624 = L::splat(2.0) * v623;
     let v625 = v114 * v369;
     let v626 = v112 * v370;
     let v627 = v625 - v626;
@@ -3500,7 +3560,7 @@ fn quadratic_slave_normal_type3_lanes(
     let v635 = v407 - v253;
     let v636 = v410 - v195;
     let v637 = v413 - v254;
-    let v638 = Lanes::splat((-2.0)) * v415;
+    let v638 = L::splat((-2.0)) * v415;
     let v639 = v418 - v308;
     let v640 = v421 - v259;
     let v641 = v474 - v207;
@@ -3509,22 +3569,22 @@ fn quadratic_slave_normal_type3_lanes(
     let v644 = v483 - v270;
     let v645 = v486 - v209;
     let v646 = v489 - v271;
-    let v647 = Lanes::splat((-2.0)) * v491;
-    let v648 = Lanes::splat((-2.0)) * v527;
+    let v647 = L::splat((-2.0)) * v491;
+    let v648 = L::splat((-2.0)) * v527;
     let v649 = v561 - v219;
     let v650 = v564 - v285;
     let v651 = v567 - v220;
     let v652 = v570 - v286;
     let v653 = v573 - v221;
     let v654 = v576 - v287;
-    let v655 = Lanes::splat((-2.0)) * v577;
+    let v655 = L::splat((-2.0)) * v577;
     let v656 = v579 - v578;
     let v657 = v585 - v584;
     let v658 = v587 - v586;
-    let v659 = Lanes::splat((-2.0)) * v606;
+    let v659 = L::splat((-2.0)) * v606;
     let v660 = v608 - v607;
     let v661 = v610 - v609;
-    let v662 = Lanes::splat((-2.0)) * v628;
+    let v662 = L::splat((-2.0)) * v628;
     grad[0] = v322;
     grad[1] = v630;
     grad[2] = v325;
@@ -3691,7 +3751,7 @@ fn quadratic_slave_normal_type3_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type3_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type3_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `quadratic_slave_normal_type3` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -3706,17 +3766,26 @@ unsafe fn quadratic_slave_normal_type3_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type3_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type3_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `quadratic_slave_normal_type4`: `quadratic-slave-normal`, type 4 (xi_m, x_ms, n: quadratic, quadratic, linear): gap, gradient and Hessian. Cost: 824 ops (286 add, 514 mul, 2 div, 1 sqrt, 21 neg).
 #[inline(always)]
-fn quadratic_slave_normal_type4_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn quadratic_slave_normal_type4_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..12];
     let grad = &mut grad[..12];
     let hess = &mut hess[..144];
@@ -3732,42 +3801,42 @@ fn quadratic_slave_normal_type4_lanes(
     let v8 = d[10];
     let v9 = d[11];
     let v10 = xi_s;
-    let v11 = Lanes::splat(0.5) * v10;
-    let v12 = v10 - Lanes::splat(1.0);
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
     let v13 = v11 * v12;
-    let v14 = Lanes::splat(1.0) + v10;
+    let v14 = L::splat(1.0) + v10;
     let v15 = v11 * v14;
     let v16 = v0 * v15;
     let v17 = v1 * v15;
     let v18 = v10 * v10;
-    let v19 = Lanes::splat(1.0) - v18;
+    let v19 = L::splat(1.0) - v18;
     let v20 = v2 * v19;
     let v21 = v3 * v19;
     let v22 = v16 + v20;
     let v23 = v17 + v21;
-    let v24 = v10 - Lanes::splat(0.5);
-    let v25 = Lanes::splat(0.5) + v10;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
     let v26 = v0 * v25;
     let v27 = v1 * v25;
-    let v28 = Lanes::splat(2.0) * v10;
+    let v28 = L::splat(2.0) * v10;
     let v29 = v2 * v28;
     let v30 = v3 * v28;
     let v31 = v26 - v29;
     let v32 = v27 - v30;
     let v33 = xi_in;
-    let v34 = Lanes::splat(0.5) * v33;
-    let v35 = v33 - Lanes::splat(1.0);
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
     let v36 = v34 * v35;
     let v37 = v4 * v36;
     let v38 = v5 * v36;
-    let v39 = Lanes::splat(1.0) + v33;
+    let v39 = L::splat(1.0) + v33;
     let v40 = v34 * v39;
     let v41 = v6 * v40;
     let v42 = v7 * v40;
     let v43 = v37 + v41;
     let v44 = v38 + v42;
     let v45 = v33 * v33;
-    let v46 = Lanes::splat(1.0) - v45;
+    let v46 = L::splat(1.0) - v45;
     let v47 = v8 * v46;
     let v48 = v9 * v46;
     let v49 = v43 + v47;
@@ -3782,13 +3851,13 @@ fn quadratic_slave_normal_type4_lanes(
     let v58 = v32 * v57;
     let v59 = v31 * v57;
     let v60 = v33 + v35;
-    let v61 = Lanes::splat(0.5) * v60;
+    let v61 = L::splat(0.5) * v60;
     let v62 = v4 * v61;
     let v63 = v33 + v39;
-    let v64 = Lanes::splat(0.5) * v63;
+    let v64 = L::splat(0.5) * v63;
     let v65 = v6 * v64;
     let v66 = v62 + v65;
-    let v67 = Lanes::splat(2.0) * v33;
+    let v67 = L::splat(2.0) * v33;
     let v68 = v8 * v67;
     let v69 = v66 - v68;
     let v70 = v31 * v69;
@@ -3837,7 +3906,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v113 = v32 * v46;
     let v114 = v78 * v113;
     let v115 = v13 * v24;
-    let v116 = Lanes::splat(2.0) * v115;
+    let v116 = L::splat(2.0) * v115;
     let v117 = v15 * v24;
     let v118 = v13 * v25;
     let v119 = v117 + v118;
@@ -3850,7 +3919,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v126 = v24 * v69;
     let v127 = v24 * v75;
     let v128 = v15 * v25;
-    let v129 = Lanes::splat(2.0) * v128;
+    let v129 = L::splat(2.0) * v128;
     let v130 = v19 * v25;
     let v131 = v15 * v28;
     let v132 = v130 - v131;
@@ -3860,7 +3929,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v136 = v25 * v69;
     let v137 = v25 * v75;
     let v138 = v19 * v28;
-    let v139 = Lanes::splat(2.0) * v138;
+    let v139 = L::splat(2.0) * v138;
     let v140 = v28 * v36;
     let v141 = v28 * v40;
     let v142 = v28 * v46;
@@ -3873,16 +3942,16 @@ fn quadratic_slave_normal_type4_lanes(
     let v149 = v31 * v67;
     let v150 = v32 * v67;
     let v151 = v4 + v6;
-    let v152 = Lanes::splat(2.0) * v8;
+    let v152 = L::splat(2.0) * v8;
     let v153 = v151 - v152;
     let v154 = v31 * v153;
     let v155 = v5 + v7;
-    let v156 = Lanes::splat(2.0) * v9;
+    let v156 = L::splat(2.0) * v9;
     let v157 = v155 - v156;
     let v158 = v32 * v157;
     let v159 = v154 + v158;
-    let v160 = Lanes::splat(0.5) * v159;
-    let v161 = Lanes::splat(0.5) * v153;
+    let v160 = L::splat(0.5) * v159;
+    let v161 = L::splat(0.5) * v153;
     let v162 = v69 * v78;
     let v163 = v126 * v162;
     let v164 = v127 * v162;
@@ -3901,7 +3970,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v177 = v67 - v173;
     let v178 = v160 * v162;
     let v179 = v161 - v178;
-    let v180 = Lanes::splat(0.5) * v157;
+    let v180 = L::splat(0.5) * v157;
     let v181 = v75 * v78;
     let v182 = v126 * v181;
     let v183 = v127 * v181;
@@ -3920,9 +3989,9 @@ fn quadratic_slave_normal_type4_lanes(
     let v196 = v67 - v193;
     let v197 = v160 * v181;
     let v198 = v180 - v197;
-    let v199 = Lanes::splat(2.0) * v31;
-    let v200 = Lanes::splat(2.0) * v32;
-    let v201 = Lanes::splat(0.5) * v57;
+    let v199 = L::splat(2.0) * v31;
+    let v200 = L::splat(2.0) * v32;
+    let v201 = L::splat(0.5) * v57;
     let v202 = v57 * v57;
     let v203 = v24 * v199;
     let v204 = v201 * v203;
@@ -3991,7 +4060,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v267 = v58 * v174;
     let v268 = v58 * v179;
     let v269 = v13 * v206;
-    let v270 = Lanes::splat(2.0) * v269;
+    let v270 = L::splat(2.0) * v269;
     let v271 = v13 * v212;
     let v272 = v15 * v206;
     let v273 = v13 * v216;
@@ -4010,7 +4079,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v286 = v40 * v212;
     let v287 = v46 * v212;
     let v288 = v15 * v216;
-    let v289 = Lanes::splat(2.0) * v288;
+    let v289 = L::splat(2.0) * v288;
     let v290 = v15 * v222;
     let v291 = v19 * v216;
     let v292 = v15 * v226;
@@ -4024,7 +4093,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v300 = v40 * v222;
     let v301 = v46 * v222;
     let v302 = v19 * v226;
-    let v303 = Lanes::splat(2.0) * v302;
+    let v303 = L::splat(2.0) * v302;
     let v304 = v19 * v232;
     let v305 = v36 * v226;
     let v306 = v40 * v226;
@@ -4082,7 +4151,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v358 = v40 * v234;
     let v359 = v46 * v234;
     let v360 = v13 * v235;
-    let v361 = Lanes::splat(2.0) * v360;
+    let v361 = L::splat(2.0) * v360;
     let v362 = v13 * v237;
     let v363 = v15 * v235;
     let v364 = v13 * v238;
@@ -4100,7 +4169,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v376 = v40 * v237;
     let v377 = v46 * v237;
     let v378 = v15 * v238;
-    let v379 = Lanes::splat(2.0) * v378;
+    let v379 = L::splat(2.0) * v378;
     let v380 = v15 * v240;
     let v381 = v19 * v238;
     let v382 = v15 * v241;
@@ -4113,7 +4182,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v389 = v40 * v240;
     let v390 = v46 * v240;
     let v391 = v19 * v241;
-    let v392 = Lanes::splat(2.0) * v391;
+    let v392 = L::splat(2.0) * v391;
     let v393 = v36 * v241;
     let v394 = v40 * v241;
     let v395 = v46 * v241;
@@ -4259,7 +4328,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v535 = v439 + v523;
     let v536 = v440 - v524;
     let v537 = v82 * v525;
-    let v538 = Lanes::splat(2.0) * v537;
+    let v538 = L::splat(2.0) * v537;
     let v539 = v469 - v538;
     let v540 = v86 * v525;
     let v541 = v82 * v526;
@@ -4302,7 +4371,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v578 = v82 * v536;
     let v579 = v577 + v578;
     let v580 = v86 * v526;
-    let v581 = Lanes::splat(2.0) * v580;
+    let v581 = L::splat(2.0) * v580;
     let v582 = v480 + v581;
     let v583 = -v582;
     let v584 = v90 * v526;
@@ -4346,7 +4415,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v622 = v620 + v621;
     let v623 = v485 + v622;
     let v624 = v90 * v527;
-    let v625 = Lanes::splat(2.0) * v624;
+    let v625 = L::splat(2.0) * v624;
     let v626 = v487 - v625;
     let v627 = v94 * v527;
     let v628 = v90 * v528;
@@ -4380,7 +4449,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v656 = v90 * v536;
     let v657 = v655 + v656;
     let v658 = v94 * v528;
-    let v659 = Lanes::splat(2.0) * v658;
+    let v659 = L::splat(2.0) * v658;
     let v660 = v496 + v659;
     let v661 = -v660;
     let v662 = v98 * v528;
@@ -4414,7 +4483,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v690 = v688 + v689;
     let v691 = v500 + v690;
     let v692 = v98 * v529;
-    let v693 = Lanes::splat(2.0) * v692;
+    let v693 = L::splat(2.0) * v692;
     let v694 = v502 + v693;
     let v695 = -v694;
     let v696 = v102 * v529;
@@ -4446,7 +4515,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v722 = v720 + v721;
     let v723 = v390 - v722;
     let v724 = v102 * v530;
-    let v725 = Lanes::splat(2.0) * v724;
+    let v725 = L::splat(2.0) * v724;
     let v726 = v509 - v725;
     let v727 = v104 * v530;
     let v728 = v102 * v531;
@@ -4494,7 +4563,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v770 = v768 + v769;
     let v771 = -v770;
     let v772 = v106 * v532;
-    let v773 = Lanes::splat(2.0) * v772;
+    let v773 = L::splat(2.0) * v772;
     let v774 = v108 * v532;
     let v775 = v106 * v533;
     let v776 = v774 - v775;
@@ -4517,7 +4586,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v793 = v791 + v792;
     let v794 = -v793;
     let v795 = v110 * v534;
-    let v796 = Lanes::splat(2.0) * v795;
+    let v796 = L::splat(2.0) * v795;
     let v797 = v112 * v534;
     let v798 = v110 * v535;
     let v799 = v797 + v798;
@@ -4525,7 +4594,7 @@ fn quadratic_slave_normal_type4_lanes(
     let v801 = v110 * v536;
     let v802 = v800 - v801;
     let v803 = v112 * v535;
-    let v804 = Lanes::splat(2.0) * v803;
+    let v804 = L::splat(2.0) * v803;
     let v805 = v114 * v535;
     let v806 = v112 * v536;
     let v807 = v805 - v806;
@@ -4549,14 +4618,14 @@ fn quadratic_slave_normal_type4_lanes(
     let v825 = v657 - v377;
     let v826 = v664 - v426;
     let v827 = v667 - v497;
-    let v828 = Lanes::splat((-2.0)) * v757;
+    let v828 = L::splat((-2.0)) * v757;
     let v829 = v759 - v758;
     let v830 = v765 - v764;
     let v831 = v767 - v766;
-    let v832 = Lanes::splat((-2.0)) * v786;
+    let v832 = L::splat((-2.0)) * v786;
     let v833 = v788 - v787;
     let v834 = v790 - v789;
-    let v835 = Lanes::splat((-2.0)) * v808;
+    let v835 = L::splat((-2.0)) * v808;
     grad[0] = v443;
     grad[1] = v810;
     grad[2] = v446;
@@ -4723,7 +4792,7 @@ fn quadratic_slave_normal_type4_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type4_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type4_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `quadratic_slave_normal_type4` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -4738,17 +4807,26 @@ unsafe fn quadratic_slave_normal_type4_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type4_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type4_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `quadratic_slave_normal_type5`: `quadratic-slave-normal`, type 5 (xi_m, x_ms, n: linear, quadratic, quadratic): gap, gradient and Hessian. Cost: 968 ops (342 add, 608 mul, 2 div, 1 sqrt, 15 neg).
 #[inline(always)]
-fn quadratic_slave_normal_type5_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn quadratic_slave_normal_type5_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..12];
     let grad = &mut grad[..12];
     let hess = &mut hess[..144];
@@ -4764,42 +4842,42 @@ fn quadratic_slave_normal_type5_lanes(
     let v8 = d[10];
     let v9 = d[11];
     let v10 = xi_s;
-    let v11 = Lanes::splat(0.5) * v10;
-    let v12 = v10 - Lanes::splat(1.0);
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
     let v13 = v11 * v12;
-    let v14 = Lanes::splat(1.0) + v10;
+    let v14 = L::splat(1.0) + v10;
     let v15 = v11 * v14;
     let v16 = v0 * v15;
     let v17 = v1 * v15;
     let v18 = v10 * v10;
-    let v19 = Lanes::splat(1.0) - v18;
+    let v19 = L::splat(1.0) - v18;
     let v20 = v2 * v19;
     let v21 = v3 * v19;
     let v22 = v16 + v20;
     let v23 = v17 + v21;
-    let v24 = v10 - Lanes::splat(0.5);
-    let v25 = Lanes::splat(0.5) + v10;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
     let v26 = v0 * v25;
     let v27 = v1 * v25;
-    let v28 = Lanes::splat(2.0) * v10;
+    let v28 = L::splat(2.0) * v10;
     let v29 = v2 * v28;
     let v30 = v3 * v28;
     let v31 = v26 - v29;
     let v32 = v27 - v30;
     let v33 = xi_in;
-    let v34 = Lanes::splat(0.5) * v33;
-    let v35 = v33 - Lanes::splat(1.0);
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
     let v36 = v34 * v35;
     let v37 = v4 * v36;
     let v38 = v5 * v36;
-    let v39 = Lanes::splat(1.0) + v33;
+    let v39 = L::splat(1.0) + v33;
     let v40 = v34 * v39;
     let v41 = v6 * v40;
     let v42 = v7 * v40;
     let v43 = v37 + v41;
     let v44 = v38 + v42;
     let v45 = v33 * v33;
-    let v46 = Lanes::splat(1.0) - v45;
+    let v46 = L::splat(1.0) - v45;
     let v47 = v8 * v46;
     let v48 = v9 * v46;
     let v49 = v43 + v47;
@@ -4814,13 +4892,13 @@ fn quadratic_slave_normal_type5_lanes(
     let v58 = v32 * v57;
     let v59 = v31 * v57;
     let v60 = v33 + v35;
-    let v61 = Lanes::splat(0.5) * v60;
+    let v61 = L::splat(0.5) * v60;
     let v62 = v4 * v61;
     let v63 = v33 + v39;
-    let v64 = Lanes::splat(0.5) * v63;
+    let v64 = L::splat(0.5) * v63;
     let v65 = v6 * v64;
     let v66 = v62 + v65;
-    let v67 = Lanes::splat(2.0) * v33;
+    let v67 = L::splat(2.0) * v33;
     let v68 = v8 * v67;
     let v69 = v66 - v68;
     let v70 = v31 * v69;
@@ -4869,16 +4947,16 @@ fn quadratic_slave_normal_type5_lanes(
     let v113 = v32 * v46;
     let v114 = v78 * v113;
     let v115 = v4 + v6;
-    let v116 = Lanes::splat(2.0) * v8;
+    let v116 = L::splat(2.0) * v8;
     let v117 = v115 - v116;
-    let v118 = Lanes::splat(0.5) * v117;
+    let v118 = L::splat(0.5) * v117;
     let v119 = v5 + v7;
-    let v120 = Lanes::splat(2.0) * v9;
+    let v120 = L::splat(2.0) * v9;
     let v121 = v119 - v120;
-    let v122 = Lanes::splat(0.5) * v121;
-    let v123 = Lanes::splat(2.0) * v31;
-    let v124 = Lanes::splat(2.0) * v32;
-    let v125 = Lanes::splat(0.5) * v57;
+    let v122 = L::splat(0.5) * v121;
+    let v123 = L::splat(2.0) * v31;
+    let v124 = L::splat(2.0) * v32;
+    let v125 = L::splat(0.5) * v57;
     let v126 = v57 * v57;
     let v127 = v24 * v123;
     let v128 = v125 * v127;
@@ -4910,10 +4988,10 @@ fn quadratic_slave_normal_type5_lanes(
     let v154 = v28 * v57;
     let v155 = v32 * v153;
     let v156 = v154 - v155;
-    let v157 = Lanes::splat(2.0) * v57;
+    let v157 = L::splat(2.0) * v57;
     let v158 = v129 * v157;
-    let v159 = Lanes::splat(0.5) * v129;
-    let v160 = Lanes::splat(2.0) * v24;
+    let v159 = L::splat(0.5) * v129;
+    let v160 = L::splat(2.0) * v24;
     let v161 = v24 * v160;
     let v162 = v127 * v159;
     let v163 = v125 * v161;
@@ -4923,7 +5001,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v167 = v165 + v166;
     let v168 = v32 * v167;
     let v169 = v133 * v157;
-    let v170 = Lanes::splat(0.5) * v133;
+    let v170 = L::splat(0.5) * v133;
     let v171 = v127 * v170;
     let v172 = v128 * v169;
     let v173 = v126 * v171;
@@ -4932,8 +5010,8 @@ fn quadratic_slave_normal_type5_lanes(
     let v176 = v32 * v174;
     let v177 = v175 - v176;
     let v178 = v139 * v157;
-    let v179 = Lanes::splat(0.5) * v139;
-    let v180 = Lanes::splat(2.0) * v25;
+    let v179 = L::splat(0.5) * v139;
+    let v180 = L::splat(2.0) * v25;
     let v181 = v24 * v180;
     let v182 = v127 * v179;
     let v183 = v125 * v181;
@@ -4943,7 +5021,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v187 = v185 + v186;
     let v188 = v32 * v187;
     let v189 = v143 * v157;
-    let v190 = Lanes::splat(0.5) * v143;
+    let v190 = L::splat(0.5) * v143;
     let v191 = v127 * v190;
     let v192 = v128 * v189;
     let v193 = v126 * v191;
@@ -4952,8 +5030,8 @@ fn quadratic_slave_normal_type5_lanes(
     let v196 = v32 * v194;
     let v197 = v195 - v196;
     let v198 = v149 * v157;
-    let v199 = Lanes::splat(0.5) * v149;
-    let v200 = Lanes::splat(4.0) * v10;
+    let v199 = L::splat(0.5) * v149;
+    let v200 = L::splat(4.0) * v10;
     let v201 = v24 * v200;
     let v202 = v127 * v199;
     let v203 = v125 * v201;
@@ -4963,7 +5041,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v207 = v205 + v206;
     let v208 = v32 * v207;
     let v209 = v153 * v157;
-    let v210 = Lanes::splat(0.5) * v153;
+    let v210 = L::splat(0.5) * v153;
     let v211 = v127 * v210;
     let v212 = v128 * v209;
     let v213 = v126 * v211;
@@ -5184,7 +5262,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v428 = v58 * v67;
     let v429 = v58 * v118;
     let v430 = v13 * v130;
-    let v431 = Lanes::splat(2.0) * v430;
+    let v431 = L::splat(2.0) * v430;
     let v432 = v13 * v136;
     let v433 = v15 * v130;
     let v434 = v13 * v140;
@@ -5203,7 +5281,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v447 = v40 * v136;
     let v448 = v46 * v136;
     let v449 = v15 * v140;
-    let v450 = Lanes::splat(2.0) * v449;
+    let v450 = L::splat(2.0) * v449;
     let v451 = v15 * v146;
     let v452 = v19 * v140;
     let v453 = v15 * v150;
@@ -5217,7 +5295,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v461 = v40 * v146;
     let v462 = v46 * v146;
     let v463 = v19 * v150;
-    let v464 = Lanes::splat(2.0) * v463;
+    let v464 = L::splat(2.0) * v463;
     let v465 = v19 * v156;
     let v466 = v36 * v150;
     let v467 = v40 * v150;
@@ -5295,7 +5373,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v539 = v40 * v342;
     let v540 = v46 * v342;
     let v541 = v13 * v343;
-    let v542 = Lanes::splat(2.0) * v541;
+    let v542 = L::splat(2.0) * v541;
     let v543 = v13 * v345;
     let v544 = v15 * v343;
     let v545 = v13 * v346;
@@ -5313,7 +5391,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v557 = v40 * v345;
     let v558 = v46 * v345;
     let v559 = v15 * v346;
-    let v560 = Lanes::splat(2.0) * v559;
+    let v560 = L::splat(2.0) * v559;
     let v561 = v15 * v348;
     let v562 = v19 * v346;
     let v563 = v15 * v349;
@@ -5326,7 +5404,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v570 = v40 * v348;
     let v571 = v46 * v348;
     let v572 = v19 * v349;
-    let v573 = Lanes::splat(2.0) * v572;
+    let v573 = L::splat(2.0) * v572;
     let v574 = v36 * v349;
     let v575 = v40 * v349;
     let v576 = v46 * v349;
@@ -5441,7 +5519,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v685 = v428 + v673;
     let v686 = v533 - v674;
     let v687 = v82 * v675;
-    let v688 = Lanes::splat(2.0) * v687;
+    let v688 = L::splat(2.0) * v687;
     let v689 = v609 + v688;
     let v690 = -v689;
     let v691 = v86 * v675;
@@ -5483,7 +5561,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v727 = v82 * v686;
     let v728 = v726 + v727;
     let v729 = v86 * v676;
-    let v730 = Lanes::splat(2.0) * v729;
+    let v730 = L::splat(2.0) * v729;
     let v731 = v615 + v730;
     let v732 = v90 * v676;
     let v733 = v86 * v677;
@@ -5528,7 +5606,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v772 = v770 - v771;
     let v773 = v553 - v772;
     let v774 = v90 * v677;
-    let v775 = Lanes::splat(2.0) * v774;
+    let v775 = L::splat(2.0) * v774;
     let v776 = v620 + v775;
     let v777 = -v776;
     let v778 = v94 * v677;
@@ -5561,7 +5639,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v805 = v90 * v686;
     let v806 = v804 + v805;
     let v807 = v94 * v678;
-    let v808 = Lanes::splat(2.0) * v807;
+    let v808 = L::splat(2.0) * v807;
     let v809 = v624 + v808;
     let v810 = v98 * v678;
     let v811 = v94 * v679;
@@ -5598,7 +5676,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v842 = v840 - v841;
     let v843 = v567 - v842;
     let v844 = v98 * v679;
-    let v845 = Lanes::splat(2.0) * v844;
+    let v845 = L::splat(2.0) * v844;
     let v846 = v627 + v845;
     let v847 = -v846;
     let v848 = v102 * v679;
@@ -5630,7 +5708,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v874 = v872 + v873;
     let v875 = v571 - v874;
     let v876 = v102 * v680;
-    let v877 = Lanes::splat(2.0) * v876;
+    let v877 = L::splat(2.0) * v876;
     let v878 = v629 + v877;
     let v879 = v104 * v680;
     let v880 = v102 * v681;
@@ -5666,7 +5744,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v910 = v908 + v909;
     let v911 = -v910;
     let v912 = v106 * v682;
-    let v913 = Lanes::splat(2.0) * v912;
+    let v913 = L::splat(2.0) * v912;
     let v914 = v108 * v682;
     let v915 = v106 * v683;
     let v916 = v914 - v915;
@@ -5689,7 +5767,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v933 = v931 + v932;
     let v934 = -v933;
     let v935 = v110 * v684;
-    let v936 = Lanes::splat(2.0) * v935;
+    let v936 = L::splat(2.0) * v935;
     let v937 = v112 * v684;
     let v938 = v110 * v685;
     let v939 = v937 + v938;
@@ -5697,7 +5775,7 @@ fn quadratic_slave_normal_type5_lanes(
     let v941 = v110 * v686;
     let v942 = v940 - v941;
     let v943 = v112 * v685;
-    let v944 = Lanes::splat(2.0) * v943;
+    let v944 = L::splat(2.0) * v943;
     let v945 = v114 * v685;
     let v946 = v112 * v686;
     let v947 = v945 - v946;
@@ -5725,14 +5803,14 @@ fn quadratic_slave_normal_type5_lanes(
     let v969 = v890 - v575;
     let v970 = v893 - v471;
     let v971 = v896 - v576;
-    let v972 = Lanes::splat((-2.0)) * v897;
+    let v972 = L::splat((-2.0)) * v897;
     let v973 = v899 - v898;
     let v974 = v905 - v904;
     let v975 = v907 - v906;
-    let v976 = Lanes::splat((-2.0)) * v926;
+    let v976 = L::splat((-2.0)) * v926;
     let v977 = v928 - v927;
     let v978 = v930 - v929;
-    let v979 = Lanes::splat((-2.0)) * v948;
+    let v979 = L::splat((-2.0)) * v948;
     grad[0] = v638;
     grad[1] = v950;
     grad[2] = v641;
@@ -5899,7 +5977,7 @@ fn quadratic_slave_normal_type5_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type5_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type5_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `quadratic_slave_normal_type5` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -5914,17 +5992,26 @@ unsafe fn quadratic_slave_normal_type5_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type5_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type5_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `quadratic_slave_normal_type6`: `quadratic-slave-normal`, type 6 (xi_m, x_ms, n: quadratic, quadratic, quadratic): gap, gradient and Hessian. Cost: 1130 ops (403 add, 707 mul, 2 div, 1 sqrt, 17 neg).
 #[inline(always)]
-fn quadratic_slave_normal_type6_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn quadratic_slave_normal_type6_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..12];
     let grad = &mut grad[..12];
     let hess = &mut hess[..144];
@@ -5940,42 +6027,42 @@ fn quadratic_slave_normal_type6_lanes(
     let v8 = d[10];
     let v9 = d[11];
     let v10 = xi_s;
-    let v11 = Lanes::splat(0.5) * v10;
-    let v12 = v10 - Lanes::splat(1.0);
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
     let v13 = v11 * v12;
-    let v14 = Lanes::splat(1.0) + v10;
+    let v14 = L::splat(1.0) + v10;
     let v15 = v11 * v14;
     let v16 = v0 * v15;
     let v17 = v1 * v15;
     let v18 = v10 * v10;
-    let v19 = Lanes::splat(1.0) - v18;
+    let v19 = L::splat(1.0) - v18;
     let v20 = v2 * v19;
     let v21 = v3 * v19;
     let v22 = v16 + v20;
     let v23 = v17 + v21;
-    let v24 = v10 - Lanes::splat(0.5);
-    let v25 = Lanes::splat(0.5) + v10;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
     let v26 = v0 * v25;
     let v27 = v1 * v25;
-    let v28 = Lanes::splat(2.0) * v10;
+    let v28 = L::splat(2.0) * v10;
     let v29 = v2 * v28;
     let v30 = v3 * v28;
     let v31 = v26 - v29;
     let v32 = v27 - v30;
     let v33 = xi_in;
-    let v34 = Lanes::splat(0.5) * v33;
-    let v35 = v33 - Lanes::splat(1.0);
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
     let v36 = v34 * v35;
     let v37 = v4 * v36;
     let v38 = v5 * v36;
-    let v39 = Lanes::splat(1.0) + v33;
+    let v39 = L::splat(1.0) + v33;
     let v40 = v34 * v39;
     let v41 = v6 * v40;
     let v42 = v7 * v40;
     let v43 = v37 + v41;
     let v44 = v38 + v42;
     let v45 = v33 * v33;
-    let v46 = Lanes::splat(1.0) - v45;
+    let v46 = L::splat(1.0) - v45;
     let v47 = v8 * v46;
     let v48 = v9 * v46;
     let v49 = v43 + v47;
@@ -5990,13 +6077,13 @@ fn quadratic_slave_normal_type6_lanes(
     let v58 = v32 * v57;
     let v59 = v31 * v57;
     let v60 = v33 + v35;
-    let v61 = Lanes::splat(0.5) * v60;
+    let v61 = L::splat(0.5) * v60;
     let v62 = v4 * v61;
     let v63 = v33 + v39;
-    let v64 = Lanes::splat(0.5) * v63;
+    let v64 = L::splat(0.5) * v63;
     let v65 = v6 * v64;
     let v66 = v62 + v65;
-    let v67 = Lanes::splat(2.0) * v33;
+    let v67 = L::splat(2.0) * v33;
     let v68 = v8 * v67;
     let v69 = v66 - v68;
     let v70 = v31 * v69;
@@ -6045,7 +6132,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v113 = v32 * v46;
     let v114 = v78 * v113;
     let v115 = v13 * v24;
-    let v116 = Lanes::splat(2.0) * v115;
+    let v116 = L::splat(2.0) * v115;
     let v117 = v15 * v24;
     let v118 = v13 * v25;
     let v119 = v117 + v118;
@@ -6058,7 +6145,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v126 = v24 * v69;
     let v127 = v24 * v75;
     let v128 = v15 * v25;
-    let v129 = Lanes::splat(2.0) * v128;
+    let v129 = L::splat(2.0) * v128;
     let v130 = v19 * v25;
     let v131 = v15 * v28;
     let v132 = v130 - v131;
@@ -6068,7 +6155,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v136 = v25 * v69;
     let v137 = v25 * v75;
     let v138 = v19 * v28;
-    let v139 = Lanes::splat(2.0) * v138;
+    let v139 = L::splat(2.0) * v138;
     let v140 = v28 * v36;
     let v141 = v28 * v40;
     let v142 = v28 * v46;
@@ -6081,16 +6168,16 @@ fn quadratic_slave_normal_type6_lanes(
     let v149 = v31 * v67;
     let v150 = v32 * v67;
     let v151 = v4 + v6;
-    let v152 = Lanes::splat(2.0) * v8;
+    let v152 = L::splat(2.0) * v8;
     let v153 = v151 - v152;
     let v154 = v31 * v153;
     let v155 = v5 + v7;
-    let v156 = Lanes::splat(2.0) * v9;
+    let v156 = L::splat(2.0) * v9;
     let v157 = v155 - v156;
     let v158 = v32 * v157;
     let v159 = v154 + v158;
-    let v160 = Lanes::splat(0.5) * v159;
-    let v161 = Lanes::splat(0.5) * v153;
+    let v160 = L::splat(0.5) * v159;
+    let v161 = L::splat(0.5) * v153;
     let v162 = v69 * v78;
     let v163 = v126 * v162;
     let v164 = v127 * v162;
@@ -6109,7 +6196,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v177 = v67 - v173;
     let v178 = v160 * v162;
     let v179 = v161 - v178;
-    let v180 = Lanes::splat(0.5) * v157;
+    let v180 = L::splat(0.5) * v157;
     let v181 = v75 * v78;
     let v182 = v126 * v181;
     let v183 = v127 * v181;
@@ -6128,9 +6215,9 @@ fn quadratic_slave_normal_type6_lanes(
     let v196 = v67 - v193;
     let v197 = v160 * v181;
     let v198 = v180 - v197;
-    let v199 = Lanes::splat(2.0) * v31;
-    let v200 = Lanes::splat(2.0) * v32;
-    let v201 = Lanes::splat(0.5) * v57;
+    let v199 = L::splat(2.0) * v31;
+    let v200 = L::splat(2.0) * v32;
+    let v201 = L::splat(0.5) * v57;
     let v202 = v57 * v57;
     let v203 = v24 * v199;
     let v204 = v201 * v203;
@@ -6162,10 +6249,10 @@ fn quadratic_slave_normal_type6_lanes(
     let v230 = v28 * v57;
     let v231 = v32 * v229;
     let v232 = v230 - v231;
-    let v233 = Lanes::splat(2.0) * v57;
+    let v233 = L::splat(2.0) * v57;
     let v234 = v205 * v233;
-    let v235 = Lanes::splat(0.5) * v205;
-    let v236 = Lanes::splat(2.0) * v24;
+    let v235 = L::splat(0.5) * v205;
+    let v236 = L::splat(2.0) * v24;
     let v237 = v24 * v236;
     let v238 = v203 * v235;
     let v239 = v201 * v237;
@@ -6175,7 +6262,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v243 = v241 + v242;
     let v244 = v32 * v243;
     let v245 = v209 * v233;
-    let v246 = Lanes::splat(0.5) * v209;
+    let v246 = L::splat(0.5) * v209;
     let v247 = v203 * v246;
     let v248 = v204 * v245;
     let v249 = v202 * v247;
@@ -6184,8 +6271,8 @@ fn quadratic_slave_normal_type6_lanes(
     let v252 = v32 * v250;
     let v253 = v251 - v252;
     let v254 = v215 * v233;
-    let v255 = Lanes::splat(0.5) * v215;
-    let v256 = Lanes::splat(2.0) * v25;
+    let v255 = L::splat(0.5) * v215;
+    let v256 = L::splat(2.0) * v25;
     let v257 = v24 * v256;
     let v258 = v203 * v255;
     let v259 = v201 * v257;
@@ -6195,7 +6282,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v263 = v261 + v262;
     let v264 = v32 * v263;
     let v265 = v219 * v233;
-    let v266 = Lanes::splat(0.5) * v219;
+    let v266 = L::splat(0.5) * v219;
     let v267 = v203 * v266;
     let v268 = v204 * v265;
     let v269 = v202 * v267;
@@ -6204,8 +6291,8 @@ fn quadratic_slave_normal_type6_lanes(
     let v272 = v32 * v270;
     let v273 = v271 - v272;
     let v274 = v225 * v233;
-    let v275 = Lanes::splat(0.5) * v225;
-    let v276 = Lanes::splat(4.0) * v10;
+    let v275 = L::splat(0.5) * v225;
+    let v276 = L::splat(4.0) * v10;
     let v277 = v24 * v276;
     let v278 = v203 * v275;
     let v279 = v201 * v277;
@@ -6215,7 +6302,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v283 = v281 + v282;
     let v284 = v32 * v283;
     let v285 = v229 * v233;
-    let v286 = Lanes::splat(0.5) * v229;
+    let v286 = L::splat(0.5) * v229;
     let v287 = v203 * v286;
     let v288 = v204 * v285;
     let v289 = v202 * v287;
@@ -6446,7 +6533,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v514 = v58 * v174;
     let v515 = v58 * v179;
     let v516 = v13 * v206;
-    let v517 = Lanes::splat(2.0) * v516;
+    let v517 = L::splat(2.0) * v516;
     let v518 = v13 * v212;
     let v519 = v15 * v206;
     let v520 = v13 * v216;
@@ -6465,7 +6552,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v533 = v40 * v212;
     let v534 = v46 * v212;
     let v535 = v15 * v216;
-    let v536 = Lanes::splat(2.0) * v535;
+    let v536 = L::splat(2.0) * v535;
     let v537 = v15 * v222;
     let v538 = v19 * v216;
     let v539 = v15 * v226;
@@ -6479,7 +6566,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v547 = v40 * v222;
     let v548 = v46 * v222;
     let v549 = v19 * v226;
-    let v550 = Lanes::splat(2.0) * v549;
+    let v550 = L::splat(2.0) * v549;
     let v551 = v19 * v232;
     let v552 = v36 * v226;
     let v553 = v40 * v226;
@@ -6573,7 +6660,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v641 = v40 * v418;
     let v642 = v46 * v418;
     let v643 = v13 * v419;
-    let v644 = Lanes::splat(2.0) * v643;
+    let v644 = L::splat(2.0) * v643;
     let v645 = v13 * v421;
     let v646 = v15 * v419;
     let v647 = v13 * v422;
@@ -6591,7 +6678,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v659 = v40 * v421;
     let v660 = v46 * v421;
     let v661 = v15 * v422;
-    let v662 = Lanes::splat(2.0) * v661;
+    let v662 = L::splat(2.0) * v661;
     let v663 = v15 * v424;
     let v664 = v19 * v422;
     let v665 = v15 * v425;
@@ -6604,7 +6691,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v672 = v40 * v424;
     let v673 = v46 * v424;
     let v674 = v19 * v425;
-    let v675 = Lanes::splat(2.0) * v674;
+    let v675 = L::splat(2.0) * v674;
     let v676 = v36 * v425;
     let v677 = v40 * v425;
     let v678 = v46 * v425;
@@ -6777,7 +6864,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v845 = v749 + v833;
     let v846 = v750 - v834;
     let v847 = v82 * v835;
-    let v848 = Lanes::splat(2.0) * v847;
+    let v848 = L::splat(2.0) * v847;
     let v849 = v779 + v848;
     let v850 = -v849;
     let v851 = v86 * v835;
@@ -6819,7 +6906,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v887 = v82 * v846;
     let v888 = v886 + v887;
     let v889 = v86 * v836;
-    let v890 = Lanes::splat(2.0) * v889;
+    let v890 = L::splat(2.0) * v889;
     let v891 = v790 - v890;
     let v892 = v90 * v836;
     let v893 = v86 * v837;
@@ -6860,7 +6947,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v928 = v926 + v927;
     let v929 = v795 + v928;
     let v930 = v90 * v837;
-    let v931 = Lanes::splat(2.0) * v930;
+    let v931 = L::splat(2.0) * v930;
     let v932 = v797 + v931;
     let v933 = -v932;
     let v934 = v94 * v837;
@@ -6893,7 +6980,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v961 = v90 * v846;
     let v962 = v960 + v961;
     let v963 = v94 * v838;
-    let v964 = Lanes::splat(2.0) * v963;
+    let v964 = L::splat(2.0) * v963;
     let v965 = v806 - v964;
     let v966 = v98 * v838;
     let v967 = v94 * v839;
@@ -6926,7 +7013,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v994 = v992 + v993;
     let v995 = v810 + v994;
     let v996 = v98 * v839;
-    let v997 = Lanes::splat(2.0) * v996;
+    let v997 = L::splat(2.0) * v996;
     let v998 = v812 + v997;
     let v999 = -v998;
     let v1000 = v102 * v839;
@@ -6958,7 +7045,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v1026 = v1024 + v1025;
     let v1027 = v673 - v1026;
     let v1028 = v102 * v840;
-    let v1029 = Lanes::splat(2.0) * v1028;
+    let v1029 = L::splat(2.0) * v1028;
     let v1030 = v819 - v1029;
     let v1031 = v104 * v840;
     let v1032 = v102 * v841;
@@ -7006,7 +7093,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v1074 = v1072 + v1073;
     let v1075 = -v1074;
     let v1076 = v106 * v842;
-    let v1077 = Lanes::splat(2.0) * v1076;
+    let v1077 = L::splat(2.0) * v1076;
     let v1078 = v108 * v842;
     let v1079 = v106 * v843;
     let v1080 = v1078 - v1079;
@@ -7029,7 +7116,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v1097 = v1095 + v1096;
     let v1098 = -v1097;
     let v1099 = v110 * v844;
-    let v1100 = Lanes::splat(2.0) * v1099;
+    let v1100 = L::splat(2.0) * v1099;
     let v1101 = v112 * v844;
     let v1102 = v110 * v845;
     let v1103 = v1101 + v1102;
@@ -7037,7 +7124,7 @@ fn quadratic_slave_normal_type6_lanes(
     let v1105 = v110 * v846;
     let v1106 = v1104 - v1105;
     let v1107 = v112 * v845;
-    let v1108 = Lanes::splat(2.0) * v1107;
+    let v1108 = L::splat(2.0) * v1107;
     let v1109 = v114 * v845;
     let v1110 = v112 * v846;
     let v1111 = v1109 - v1110;
@@ -7063,14 +7150,14 @@ fn quadratic_slave_normal_type6_lanes(
     let v1131 = v962 - v660;
     let v1132 = v968 - v733;
     let v1133 = v971 - v807;
-    let v1134 = Lanes::splat((-2.0)) * v1061;
+    let v1134 = L::splat((-2.0)) * v1061;
     let v1135 = v1063 - v1062;
     let v1136 = v1069 - v1068;
     let v1137 = v1071 - v1070;
-    let v1138 = Lanes::splat((-2.0)) * v1090;
+    let v1138 = L::splat((-2.0)) * v1090;
     let v1139 = v1092 - v1091;
     let v1140 = v1094 - v1093;
-    let v1141 = Lanes::splat((-2.0)) * v1112;
+    let v1141 = L::splat((-2.0)) * v1112;
     grad[0] = v753;
     grad[1] = v1114;
     grad[2] = v756;
@@ -7237,7 +7324,7 @@ fn quadratic_slave_normal_type6_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type6_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type6_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `quadratic_slave_normal_type6` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -7252,7 +7339,16 @@ unsafe fn quadratic_slave_normal_type6_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    quadratic_slave_normal_type6_lanes(d, xi_s, xi_m, grad, hess)
+    quadratic_slave_normal_type6_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// The lane kernels of `quadratic_slave_normal`.
 static QUADRATIC_SLAVE_NORMAL_LANES: LaneSet = LaneSet {
@@ -7276,12 +7372,12 @@ static QUADRATIC_SLAVE_NORMAL_LANES: LaneSet = LaneSet {
 };
 /// Lanes of `slave_normal_type1`: `slave-normal`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1 sqrt, 5 neg).
 #[inline(always)]
-fn slave_normal_type1_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-) -> Lanes {
+fn slave_normal_type1_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let v0 = d[2];
@@ -7291,10 +7387,10 @@ fn slave_normal_type1_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v0 * v0;
@@ -7305,10 +7401,10 @@ fn slave_normal_type1_lanes(
     let v18 = v1 * v17;
     let v19 = v0 * v17;
     let v20 = v2 - v4;
-    let v21 = Lanes::splat(0.5) * v20;
+    let v21 = L::splat(0.5) * v20;
     let v22 = v0 * v21;
     let v23 = v3 - v5;
-    let v24 = Lanes::splat(0.5) * v23;
+    let v24 = L::splat(0.5) * v23;
     let v25 = v1 * v24;
     let v26 = v22 + v25;
     let v27 = v26.recip();
@@ -7319,9 +7415,9 @@ fn slave_normal_type1_lanes(
     let v32 = v8 * v19;
     let v33 = v10 * v19;
     let v34 = v2 + v4;
-    let v35 = Lanes::splat(0.5) * v34;
+    let v35 = L::splat(0.5) * v34;
     let v36 = v3 + v5;
-    let v37 = Lanes::splat(0.5) * v36;
+    let v37 = L::splat(0.5) * v36;
     let v38 = v11 - v35;
     let v39 = v12 - v37;
     let v40 = v0 * v38;
@@ -7329,10 +7425,10 @@ fn slave_normal_type1_lanes(
     let v42 = v40 + v41;
     let v43 = v27 * v42;
     let v44 = -v43;
-    let v45 = Lanes::splat(1.0) + v43;
-    let v46 = Lanes::splat(0.5) * v45;
-    let v47 = Lanes::splat(1.0) - v43;
-    let v48 = Lanes::splat(0.5) * v47;
+    let v45 = L::splat(1.0) + v43;
+    let v46 = L::splat(0.5) * v45;
+    let v47 = L::splat(1.0) - v43;
+    let v48 = L::splat(0.5) * v47;
     let v49 = v2 * v46;
     let v50 = v4 * v48;
     let v51 = v49 + v50;
@@ -7368,7 +7464,7 @@ fn slave_normal_type1_x4(
     xi_m: &mut Lanes,
     grad: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type1_lanes(d, xi_s, xi_m, grad)
+    slave_normal_type1_lanes::<Lanes>(d, xi_s, xi_m, grad)
 }
 /** `slave_normal_type1` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -7382,17 +7478,20 @@ unsafe fn slave_normal_type1_x4_avx2(
     xi_m: &mut Lanes,
     grad: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type1_lanes(d, xi_s, xi_m, grad)
+    slave_normal_type1_lanes::<
+        Avx4,
+    >(Avx4::slice(d), Avx4::from_lanes(xi_s), Avx4::one_mut(xi_m), Avx4::slice_mut(grad))
+        .to_lanes()
 }
 /// Lanes of `slave_normal_type2`: `slave-normal`, type 2 (xi_m, x_ms, n: linear, linear, linear): gap, gradient and Hessian. Cost: 201 ops (81 add, 113 mul, 2 div, 1 sqrt, 4 neg).
 #[inline(always)]
-fn slave_normal_type2_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn slave_normal_type2_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -7403,10 +7502,10 @@ fn slave_normal_type2_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v0 * v0;
@@ -7417,18 +7516,18 @@ fn slave_normal_type2_lanes(
     let v18 = v1 * v17;
     let v19 = v0 * v17;
     let v20 = v2 - v4;
-    let v21 = Lanes::splat(0.5) * v20;
+    let v21 = L::splat(0.5) * v20;
     let v22 = v0 * v21;
     let v23 = v3 - v5;
-    let v24 = Lanes::splat(0.5) * v23;
+    let v24 = L::splat(0.5) * v23;
     let v25 = v1 * v24;
     let v26 = v22 + v25;
     let v27 = v26.recip();
     let v28 = v0 * v8;
     let v29 = v1 * v8;
-    let v30 = Lanes::splat(2.0) * v0;
-    let v31 = Lanes::splat(2.0) * v1;
-    let v32 = Lanes::splat(0.5) * v17;
+    let v30 = L::splat(2.0) * v0;
+    let v31 = L::splat(2.0) * v1;
+    let v32 = L::splat(0.5) * v17;
     let v33 = v17 * v17;
     let v34 = v30 * v32;
     let v35 = v33 * v34;
@@ -7468,9 +7567,9 @@ fn slave_normal_type2_lanes(
     let v69 = v52 + v62;
     let v70 = v53 + v63;
     let v71 = v2 + v4;
-    let v72 = Lanes::splat(0.5) * v71;
+    let v72 = L::splat(0.5) * v71;
     let v73 = v3 + v5;
-    let v74 = Lanes::splat(0.5) * v73;
+    let v74 = L::splat(0.5) * v73;
     let v75 = v11 - v72;
     let v76 = v12 - v74;
     let v77 = v0 * v75;
@@ -7478,10 +7577,10 @@ fn slave_normal_type2_lanes(
     let v79 = v77 + v78;
     let v80 = v27 * v79;
     let v81 = -v80;
-    let v82 = Lanes::splat(1.0) + v80;
-    let v83 = Lanes::splat(0.5) * v82;
-    let v84 = Lanes::splat(1.0) - v80;
-    let v85 = Lanes::splat(0.5) * v84;
+    let v82 = L::splat(1.0) + v80;
+    let v83 = L::splat(0.5) * v82;
+    let v84 = L::splat(1.0) - v80;
+    let v85 = L::splat(0.5) * v84;
     let v86 = v2 * v83;
     let v87 = v4 * v85;
     let v88 = v86 + v87;
@@ -7568,7 +7667,7 @@ fn slave_normal_type2_lanes(
     let v169 = v126 - v168;
     let v170 = v70 * v97;
     let v171 = v59 - v170;
-    let v172 = Lanes::splat(2.0) * v171;
+    let v172 = L::splat(2.0) * v171;
     let v173 = v70 * v99;
     let v174 = v153 + v173;
     let v175 = v67 - v174;
@@ -7583,7 +7682,7 @@ fn slave_normal_type2_lanes(
     let v184 = v70 * v109;
     let v185 = v128 - v184;
     let v186 = v49 - v157;
-    let v187 = Lanes::splat(2.0) * v186;
+    let v187 = L::splat(2.0) * v186;
     let v188 = v160 - v173;
     let v189 = v68 + v188;
     let v190 = -v189;
@@ -7592,7 +7691,7 @@ fn slave_normal_type2_lanes(
     let v193 = v136 - v132;
     let v194 = v139 - v134;
     let v195 = v140 - v135;
-    let v196 = Lanes::splat((-2.0)) * v152;
+    let v196 = L::splat((-2.0)) * v152;
     let v197 = v161 - v66;
     let v198 = v177 - v61;
     let v199 = v178 - v116;
@@ -7603,7 +7702,7 @@ fn slave_normal_type2_lanes(
     let v204 = v164 - v125;
     let v205 = v166 - v115;
     let v206 = v168 - v126;
-    let v207 = Lanes::splat((-2.0)) * v191;
+    let v207 = L::splat((-2.0)) * v191;
     grad[0] = v193;
     grad[1] = v138;
     grad[2] = v194;
@@ -7660,22 +7759,22 @@ fn slave_normal_type2_lanes(
     hess[51] = v183;
     hess[31] = v185;
     hess[59] = v185;
-    hess[36] = Lanes::ZERO;
-    hess[37] = Lanes::ZERO;
-    hess[44] = Lanes::ZERO;
-    hess[38] = Lanes::ZERO;
-    hess[52] = Lanes::ZERO;
-    hess[39] = Lanes::ZERO;
-    hess[60] = Lanes::ZERO;
-    hess[45] = Lanes::ZERO;
-    hess[46] = Lanes::ZERO;
-    hess[53] = Lanes::ZERO;
-    hess[47] = Lanes::ZERO;
-    hess[61] = Lanes::ZERO;
-    hess[54] = Lanes::ZERO;
-    hess[55] = Lanes::ZERO;
-    hess[62] = Lanes::ZERO;
-    hess[63] = Lanes::ZERO;
+    hess[36] = L::ZERO;
+    hess[37] = L::ZERO;
+    hess[44] = L::ZERO;
+    hess[38] = L::ZERO;
+    hess[52] = L::ZERO;
+    hess[39] = L::ZERO;
+    hess[60] = L::ZERO;
+    hess[45] = L::ZERO;
+    hess[46] = L::ZERO;
+    hess[53] = L::ZERO;
+    hess[47] = L::ZERO;
+    hess[61] = L::ZERO;
+    hess[54] = L::ZERO;
+    hess[55] = L::ZERO;
+    hess[62] = L::ZERO;
+    hess[63] = L::ZERO;
     *xi_m = v81;
     v192
 }
@@ -7687,7 +7786,7 @@ fn slave_normal_type2_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type2_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type2_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `slave_normal_type2` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -7702,17 +7801,26 @@ unsafe fn slave_normal_type2_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type2_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type2_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `slave_normal_type3`: `slave-normal`, type 3 (xi_m, x_ms, n: linear, quadratic, linear): gap, gradient and Hessian. Cost: 247 ops (103 add, 135 mul, 2 div, 1 sqrt, 6 neg).
 #[inline(always)]
-fn slave_normal_type3_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn slave_normal_type3_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -7723,10 +7831,10 @@ fn slave_normal_type3_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v0 * v0;
@@ -7737,18 +7845,18 @@ fn slave_normal_type3_lanes(
     let v18 = v1 * v17;
     let v19 = v0 * v17;
     let v20 = v2 - v4;
-    let v21 = Lanes::splat(0.5) * v20;
+    let v21 = L::splat(0.5) * v20;
     let v22 = v0 * v21;
     let v23 = v3 - v5;
-    let v24 = Lanes::splat(0.5) * v23;
+    let v24 = L::splat(0.5) * v23;
     let v25 = v1 * v24;
     let v26 = v22 + v25;
     let v27 = v26.recip();
     let v28 = v0 * v8;
     let v29 = v1 * v8;
-    let v30 = Lanes::splat(2.0) * v0;
-    let v31 = Lanes::splat(2.0) * v1;
-    let v32 = Lanes::splat(0.5) * v17;
+    let v30 = L::splat(2.0) * v0;
+    let v31 = L::splat(2.0) * v1;
+    let v32 = L::splat(0.5) * v17;
     let v33 = v17 * v17;
     let v34 = v30 * v32;
     let v35 = v33 * v34;
@@ -7763,7 +7871,7 @@ fn slave_normal_type3_lanes(
     let v44 = v8 * v18;
     let v45 = v10 * v18;
     let v46 = v18 * v21;
-    let v47 = Lanes::splat(0.5) * v18;
+    let v47 = L::splat(0.5) * v18;
     let v48 = v8 * v36;
     let v49 = v8 * v40;
     let v50 = v10 * v36;
@@ -7774,7 +7882,7 @@ fn slave_normal_type3_lanes(
     let v55 = v8 * v19;
     let v56 = v10 * v19;
     let v57 = v19 * v24;
-    let v58 = Lanes::splat(0.5) * v19;
+    let v58 = L::splat(0.5) * v19;
     let v59 = v8 * v42;
     let v60 = v10 * v42;
     let v61 = v8 * v43;
@@ -7790,9 +7898,9 @@ fn slave_normal_type3_lanes(
     let v71 = v53 + v64;
     let v72 = v54 + v65;
     let v73 = v2 + v4;
-    let v74 = Lanes::splat(0.5) * v73;
+    let v74 = L::splat(0.5) * v73;
     let v75 = v3 + v5;
-    let v76 = Lanes::splat(0.5) * v75;
+    let v76 = L::splat(0.5) * v75;
     let v77 = v11 - v74;
     let v78 = v12 - v76;
     let v79 = v0 * v77;
@@ -7800,10 +7908,10 @@ fn slave_normal_type3_lanes(
     let v81 = v79 + v80;
     let v82 = v27 * v81;
     let v83 = -v82;
-    let v84 = Lanes::splat(1.0) + v82;
-    let v85 = Lanes::splat(0.5) * v84;
-    let v86 = Lanes::splat(1.0) - v82;
-    let v87 = Lanes::splat(0.5) * v86;
+    let v84 = L::splat(1.0) + v82;
+    let v85 = L::splat(0.5) * v84;
+    let v86 = L::splat(1.0) - v82;
+    let v87 = L::splat(0.5) * v86;
     let v88 = v2 * v85;
     let v89 = v4 * v87;
     let v90 = v88 + v89;
@@ -7896,7 +8004,7 @@ fn slave_normal_type3_lanes(
     let v177 = v128 + v176;
     let v178 = v72 * v99;
     let v179 = v61 - v178;
-    let v180 = Lanes::splat(2.0) * v179;
+    let v180 = L::splat(2.0) * v179;
     let v181 = v72 * v101;
     let v182 = v155 + v181;
     let v183 = v69 - v182;
@@ -7915,7 +8023,7 @@ fn slave_normal_type3_lanes(
     let v196 = v72 * v111;
     let v197 = v190 + v196;
     let v198 = v50 - v159;
-    let v199 = Lanes::splat(2.0) * v198;
+    let v199 = L::splat(2.0) * v198;
     let v200 = v162 - v181;
     let v201 = v70 + v200;
     let v202 = -v201;
@@ -7945,17 +8053,17 @@ fn slave_normal_type3_lanes(
     let v226 = v222 + v225;
     let v227 = -v226;
     let v228 = v58 * v107;
-    let v229 = Lanes::splat(2.0) * v228;
+    let v229 = L::splat(2.0) * v228;
     let v230 = v58 * v109;
     let v231 = v221 + v230;
     let v232 = v58 * v111;
-    let v233 = Lanes::splat(2.0) * v223;
+    let v233 = L::splat(2.0) * v223;
     let v234 = v225 - v230;
     let v235 = v133 - v122;
     let v236 = v138 - v134;
     let v237 = v141 - v136;
     let v238 = v142 - v137;
-    let v239 = Lanes::splat((-2.0)) * v154;
+    let v239 = L::splat((-2.0)) * v154;
     let v240 = v163 - v68;
     let v241 = v185 - v63;
     let v242 = v188 - v118;
@@ -7965,11 +8073,11 @@ fn slave_normal_type3_lanes(
     let v246 = v206 - v127;
     let v247 = v207 - v117;
     let v248 = v208 - v128;
-    let v249 = Lanes::splat((-2.0)) * v209;
-    let v250 = Lanes::splat((-2.0)) * v220;
+    let v249 = L::splat((-2.0)) * v209;
+    let v250 = L::splat((-2.0)) * v220;
     let v251 = v222 - v221;
     let v252 = v232 - v228;
-    let v253 = Lanes::splat((-2.0)) * v232;
+    let v253 = L::splat((-2.0)) * v232;
     grad[0] = v236;
     grad[1] = v140;
     grad[2] = v237;
@@ -8053,7 +8161,7 @@ fn slave_normal_type3_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type3_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type3_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `slave_normal_type3` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -8068,17 +8176,26 @@ unsafe fn slave_normal_type3_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type3_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type3_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `slave_normal_type4`: `slave-normal`, type 4 (xi_m, x_ms, n: quadratic, quadratic, linear): gap, gradient and Hessian. Cost: 324 ops (127 add, 183 mul, 2 div, 1 sqrt, 11 neg).
 #[inline(always)]
-fn slave_normal_type4_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn slave_normal_type4_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -8089,10 +8206,10 @@ fn slave_normal_type4_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v0 * v0;
@@ -8103,36 +8220,36 @@ fn slave_normal_type4_lanes(
     let v18 = v1 * v17;
     let v19 = v0 * v17;
     let v20 = v2 - v4;
-    let v21 = Lanes::splat(0.5) * v20;
+    let v21 = L::splat(0.5) * v20;
     let v22 = v0 * v21;
     let v23 = v3 - v5;
-    let v24 = Lanes::splat(0.5) * v23;
+    let v24 = L::splat(0.5) * v23;
     let v25 = v1 * v24;
     let v26 = v22 + v25;
     let v27 = v26.recip();
     let v28 = v0 * v8;
     let v29 = v1 * v8;
     let v30 = v7 - v9;
-    let v31 = Lanes::splat(0.5) * v30;
-    let v32 = Lanes::splat(0.5) * v0;
-    let v33 = Lanes::splat(0.5) * v1;
+    let v31 = L::splat(0.5) * v30;
+    let v32 = L::splat(0.5) * v0;
+    let v33 = L::splat(0.5) * v1;
     let v34 = v21 * v27;
     let v35 = v24 * v27;
     let v36 = v21 * v34;
     let v37 = v24 * v34;
     let v38 = v32 * v34;
     let v39 = v33 * v34;
-    let v40 = Lanes::splat((-0.5)) + v38;
-    let v41 = Lanes::splat(0.5) - v38;
+    let v40 = L::splat((-0.5)) + v38;
+    let v41 = L::splat(0.5) - v38;
     let v42 = v21 * v35;
     let v43 = v24 * v35;
     let v44 = v32 * v35;
     let v45 = v33 * v35;
-    let v46 = Lanes::splat((-0.5)) + v45;
-    let v47 = Lanes::splat(0.5) - v45;
-    let v48 = Lanes::splat(2.0) * v0;
-    let v49 = Lanes::splat(2.0) * v1;
-    let v50 = Lanes::splat(0.5) * v17;
+    let v46 = L::splat((-0.5)) + v45;
+    let v47 = L::splat(0.5) - v45;
+    let v48 = L::splat(2.0) * v0;
+    let v49 = L::splat(2.0) * v1;
+    let v50 = L::splat(0.5) * v17;
     let v51 = v17 * v17;
     let v52 = v48 * v50;
     let v53 = v51 * v52;
@@ -8154,12 +8271,12 @@ fn slave_normal_type4_lanes(
     let v69 = v18 * v39;
     let v70 = v18 * v41;
     let v71 = v8 * v54;
-    let v72 = Lanes::splat(2.0) * v71;
+    let v72 = L::splat(2.0) * v71;
     let v73 = v8 * v58;
     let v74 = v10 * v54;
     let v75 = v71 - v74;
     let v76 = v10 * v58;
-    let v77 = Lanes::splat(2.0) * v74;
+    let v77 = L::splat(2.0) * v74;
     let v78 = v21 * v54;
     let v79 = v21 * v58;
     let v80 = v66 + v78;
@@ -8176,10 +8293,10 @@ fn slave_normal_type4_lanes(
     let v91 = v8 * v60;
     let v92 = v10 * v60;
     let v93 = v8 * v61;
-    let v94 = Lanes::splat(2.0) * v93;
+    let v94 = L::splat(2.0) * v93;
     let v95 = v10 * v61;
     let v96 = v93 - v95;
-    let v97 = Lanes::splat(2.0) * v95;
+    let v97 = L::splat(2.0) * v95;
     let v98 = v24 * v60;
     let v99 = v24 * v61;
     let v100 = v86 - v98;
@@ -8206,9 +8323,9 @@ fn slave_normal_type4_lanes(
     let v121 = v77 + v120;
     let v122 = v97 - v120;
     let v123 = v2 + v4;
-    let v124 = Lanes::splat(0.5) * v123;
+    let v124 = L::splat(0.5) * v123;
     let v125 = v3 + v5;
-    let v126 = Lanes::splat(0.5) * v125;
+    let v126 = L::splat(0.5) * v125;
     let v127 = v11 - v124;
     let v128 = v12 - v126;
     let v129 = v0 * v127;
@@ -8216,10 +8333,10 @@ fn slave_normal_type4_lanes(
     let v131 = v129 + v130;
     let v132 = v27 * v131;
     let v133 = -v132;
-    let v134 = Lanes::splat(1.0) + v132;
-    let v135 = Lanes::splat(0.5) * v134;
-    let v136 = Lanes::splat(1.0) - v132;
-    let v137 = Lanes::splat(0.5) * v136;
+    let v134 = L::splat(1.0) + v132;
+    let v135 = L::splat(0.5) * v134;
+    let v136 = L::splat(1.0) - v132;
+    let v137 = L::splat(0.5) * v136;
     let v138 = v2 * v135;
     let v139 = v4 * v137;
     let v140 = v138 + v139;
@@ -8292,7 +8409,7 @@ fn slave_normal_type4_lanes(
     let v207 = v179 - v203;
     let v208 = v180 - v205;
     let v209 = v108 * v147;
-    let v210 = Lanes::splat(2.0) * v209;
+    let v210 = L::splat(2.0) * v209;
     let v211 = v108 * v149;
     let v212 = v109 * v147;
     let v213 = v211 + v212;
@@ -8321,7 +8438,7 @@ fn slave_normal_type4_lanes(
     let v236 = v234 - v235;
     let v237 = v178 - v236;
     let v238 = v109 * v149;
-    let v239 = Lanes::splat(2.0) * v238;
+    let v239 = L::splat(2.0) * v238;
     let v240 = v118 + v239;
     let v241 = v109 * v151;
     let v242 = v211 - v241;
@@ -8350,7 +8467,7 @@ fn slave_normal_type4_lanes(
     let v265 = v263 - v264;
     let v266 = v208 + v265;
     let v267 = -v266;
-    let v268 = Lanes::splat(2.0) * v215;
+    let v268 = L::splat(2.0) * v215;
     let v269 = v121 - v268;
     let v270 = v218 + v241;
     let v271 = v106 + v270;
@@ -8363,7 +8480,7 @@ fn slave_normal_type4_lanes(
     let v278 = v230 - v277;
     let v279 = v113 * v151;
     let v280 = v234 + v279;
-    let v281 = Lanes::splat(2.0) * v244;
+    let v281 = L::splat(2.0) * v244;
     let v282 = v122 + v281;
     let v283 = -v282;
     let v284 = v110 * v153;
@@ -8379,7 +8496,7 @@ fn slave_normal_type4_lanes(
     let v294 = v263 + v293;
     let v295 = v208 + v294;
     let v296 = v110 * v155;
-    let v297 = Lanes::splat(2.0) * v296;
+    let v297 = L::splat(2.0) * v296;
     let v298 = v110 * v157;
     let v299 = v111 * v155;
     let v300 = v298 + v299;
@@ -8390,7 +8507,7 @@ fn slave_normal_type4_lanes(
     let v305 = v113 * v155;
     let v306 = v304 - v305;
     let v307 = v111 * v157;
-    let v308 = Lanes::splat(2.0) * v307;
+    let v308 = L::splat(2.0) * v307;
     let v309 = v111 * v159;
     let v310 = v112 * v157;
     let v311 = v309 + v310;
@@ -8398,7 +8515,7 @@ fn slave_normal_type4_lanes(
     let v313 = v113 * v157;
     let v314 = v312 - v313;
     let v315 = v112 * v159;
-    let v316 = Lanes::splat(2.0) * v315;
+    let v316 = L::splat(2.0) * v315;
     let v317 = v112 * v161;
     let v318 = v113 * v159;
     let v319 = v317 - v318;
@@ -8412,7 +8529,7 @@ fn slave_normal_type4_lanes(
     let v327 = v276 - v177;
     let v328 = v278 - v206;
     let v329 = v280 - v178;
-    let v330 = Lanes::splat((-2.0)) * v320;
+    let v330 = L::splat((-2.0)) * v320;
     grad[0] = v322;
     grad[1] = v190;
     grad[2] = v323;
@@ -8496,7 +8613,7 @@ fn slave_normal_type4_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type4_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type4_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `slave_normal_type4` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -8511,17 +8628,26 @@ unsafe fn slave_normal_type4_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type4_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type4_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `slave_normal_type5`: `slave-normal`, type 5 (xi_m, x_ms, n: linear, quadratic, quadratic): gap, gradient and Hessian. Cost: 316 ops (135 add, 172 mul, 2 div, 1 sqrt, 6 neg).
 #[inline(always)]
-fn slave_normal_type5_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn slave_normal_type5_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -8532,10 +8658,10 @@ fn slave_normal_type5_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v0 * v0;
@@ -8546,18 +8672,18 @@ fn slave_normal_type5_lanes(
     let v18 = v1 * v17;
     let v19 = v0 * v17;
     let v20 = v2 - v4;
-    let v21 = Lanes::splat(0.5) * v20;
+    let v21 = L::splat(0.5) * v20;
     let v22 = v0 * v21;
     let v23 = v3 - v5;
-    let v24 = Lanes::splat(0.5) * v23;
+    let v24 = L::splat(0.5) * v23;
     let v25 = v1 * v24;
     let v26 = v22 + v25;
     let v27 = v26.recip();
     let v28 = v0 * v8;
     let v29 = v1 * v8;
-    let v30 = Lanes::splat(2.0) * v0;
-    let v31 = Lanes::splat(2.0) * v1;
-    let v32 = Lanes::splat(0.5) * v17;
+    let v30 = L::splat(2.0) * v0;
+    let v31 = L::splat(2.0) * v1;
+    let v32 = L::splat(0.5) * v17;
     let v33 = v17 * v17;
     let v34 = v30 * v32;
     let v35 = v33 * v34;
@@ -8566,9 +8692,9 @@ fn slave_normal_type5_lanes(
     let v38 = v33 * v37;
     let v39 = v1 * v38;
     let v40 = v17 - v39;
-    let v41 = Lanes::splat(2.0) * v17;
+    let v41 = L::splat(2.0) * v17;
     let v42 = v35 * v41;
-    let v43 = Lanes::splat(0.5) * v35;
+    let v43 = L::splat(0.5) * v35;
     let v44 = v30 * v43;
     let v45 = v17 - v44;
     let v46 = v34 * v42;
@@ -8576,7 +8702,7 @@ fn slave_normal_type5_lanes(
     let v48 = v46 - v47;
     let v49 = v1 * v48;
     let v50 = v38 * v41;
-    let v51 = Lanes::splat(0.5) * v38;
+    let v51 = L::splat(0.5) * v38;
     let v52 = v30 * v51;
     let v53 = v34 * v50;
     let v54 = v33 * v52;
@@ -8611,36 +8737,36 @@ fn slave_normal_type5_lanes(
     let v83 = v8 * v18;
     let v84 = v10 * v18;
     let v85 = v18 * v21;
-    let v86 = Lanes::splat(0.5) * v18;
+    let v86 = L::splat(0.5) * v18;
     let v87 = v8 * v36;
-    let v88 = Lanes::splat(2.0) * v87;
+    let v88 = L::splat(2.0) * v87;
     let v89 = v8 * v40;
     let v90 = v10 * v36;
     let v91 = v87 - v90;
     let v92 = v10 * v40;
-    let v93 = Lanes::splat(2.0) * v90;
+    let v93 = L::splat(2.0) * v90;
     let v94 = v21 * v36;
     let v95 = v21 * v40;
     let v96 = v8 * v19;
     let v97 = v10 * v19;
     let v98 = v19 * v24;
-    let v99 = Lanes::splat(0.5) * v19;
+    let v99 = L::splat(0.5) * v19;
     let v100 = v8 * v73;
     let v101 = v10 * v73;
     let v102 = v8 * v74;
-    let v103 = Lanes::splat(2.0) * v102;
+    let v103 = L::splat(2.0) * v102;
     let v104 = v10 * v74;
     let v105 = v102 - v104;
-    let v106 = Lanes::splat(2.0) * v104;
+    let v106 = L::splat(2.0) * v104;
     let v107 = v24 * v73;
     let v108 = v24 * v74;
     let v109 = v85 - v98;
     let v110 = v94 + v107;
     let v111 = v95 + v108;
     let v112 = v2 + v4;
-    let v113 = Lanes::splat(0.5) * v112;
+    let v113 = L::splat(0.5) * v112;
     let v114 = v3 + v5;
-    let v115 = Lanes::splat(0.5) * v114;
+    let v115 = L::splat(0.5) * v114;
     let v116 = v11 - v113;
     let v117 = v12 - v115;
     let v118 = v0 * v116;
@@ -8648,10 +8774,10 @@ fn slave_normal_type5_lanes(
     let v120 = v118 + v119;
     let v121 = v27 * v120;
     let v122 = -v121;
-    let v123 = Lanes::splat(1.0) + v121;
-    let v124 = Lanes::splat(0.5) * v123;
-    let v125 = Lanes::splat(1.0) - v121;
-    let v126 = Lanes::splat(0.5) * v125;
+    let v123 = L::splat(1.0) + v121;
+    let v124 = L::splat(0.5) * v123;
+    let v125 = L::splat(1.0) - v121;
+    let v126 = L::splat(0.5) * v125;
     let v127 = v2 * v124;
     let v128 = v4 * v126;
     let v129 = v127 + v128;
@@ -8748,7 +8874,7 @@ fn slave_normal_type5_lanes(
     let v220 = v175 + v219;
     let v221 = -v220;
     let v222 = v110 * v136;
-    let v223 = Lanes::splat(2.0) * v222;
+    let v223 = L::splat(2.0) * v222;
     let v224 = v110 * v138;
     let v225 = v111 * v136;
     let v226 = v224 - v225;
@@ -8773,7 +8899,7 @@ fn slave_normal_type5_lanes(
     let v245 = v238 - v244;
     let v246 = v181 + v245;
     let v247 = v111 * v138;
-    let v248 = Lanes::splat(2.0) * v247;
+    let v248 = L::splat(2.0) * v247;
     let v249 = v201 - v248;
     let v250 = v111 * v140;
     let v251 = v224 + v250;
@@ -8792,7 +8918,7 @@ fn slave_normal_type5_lanes(
     let v264 = -v263;
     let v265 = v111 * v150;
     let v266 = v259 + v265;
-    let v267 = Lanes::splat(2.0) * v228;
+    let v267 = L::splat(2.0) * v228;
     let v268 = v204 - v267;
     let v269 = v231 - v250;
     let v270 = v205 + v269;
@@ -8803,7 +8929,7 @@ fn slave_normal_type5_lanes(
     let v275 = v237 - v274;
     let v276 = v241 - v272;
     let v277 = v244 + v274;
-    let v278 = Lanes::splat(2.0) * v253;
+    let v278 = L::splat(2.0) * v253;
     let v279 = v206 + v278;
     let v280 = v86 * v142;
     let v281 = v255 - v280;
@@ -8824,11 +8950,11 @@ fn slave_normal_type5_lanes(
     let v296 = v292 + v295;
     let v297 = -v296;
     let v298 = v99 * v146;
-    let v299 = Lanes::splat(2.0) * v298;
+    let v299 = L::splat(2.0) * v298;
     let v300 = v99 * v148;
     let v301 = v291 + v300;
     let v302 = v99 * v150;
-    let v303 = Lanes::splat(2.0) * v293;
+    let v303 = L::splat(2.0) * v293;
     let v304 = v295 - v300;
     let v305 = v192 - v171;
     let v306 = v207 - v193;
@@ -8844,10 +8970,10 @@ fn slave_normal_type5_lanes(
     let v316 = v275 - v180;
     let v317 = v276 - v160;
     let v318 = v277 - v181;
-    let v319 = Lanes::splat((-2.0)) * v290;
+    let v319 = L::splat((-2.0)) * v290;
     let v320 = v292 - v291;
     let v321 = v302 - v298;
-    let v322 = Lanes::splat((-2.0)) * v302;
+    let v322 = L::splat((-2.0)) * v302;
     grad[0] = v306;
     grad[1] = v209;
     grad[2] = v307;
@@ -8931,7 +9057,7 @@ fn slave_normal_type5_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type5_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type5_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `slave_normal_type5` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -8946,17 +9072,26 @@ unsafe fn slave_normal_type5_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type5_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type5_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// Lanes of `slave_normal_type6`: `slave-normal`, type 6 (xi_m, x_ms, n: quadratic, quadratic, quadratic): gap, gradient and Hessian. Cost: 387 ops (159 add, 216 mul, 2 div, 1 sqrt, 9 neg).
 #[inline(always)]
-fn slave_normal_type6_lanes(
-    d: &[Lanes],
-    xi_s: Lanes,
-    xi_m: &mut Lanes,
-    grad: &mut [Lanes],
-    hess: &mut [Lanes],
-) -> Lanes {
+fn slave_normal_type6_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m: &mut L,
+    grad: &mut [L],
+    hess: &mut [L],
+) -> L {
     let d = &d[..8];
     let grad = &mut grad[..8];
     let hess = &mut hess[..64];
@@ -8967,10 +9102,10 @@ fn slave_normal_type6_lanes(
     let v4 = d[6];
     let v5 = d[7];
     let v6 = xi_s;
-    let v7 = Lanes::splat(1.0) - v6;
-    let v8 = Lanes::splat(0.5) * v7;
-    let v9 = Lanes::splat(1.0) + v6;
-    let v10 = Lanes::splat(0.5) * v9;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
     let v11 = v0 * v10;
     let v12 = v1 * v10;
     let v13 = v0 * v0;
@@ -8981,36 +9116,36 @@ fn slave_normal_type6_lanes(
     let v18 = v1 * v17;
     let v19 = v0 * v17;
     let v20 = v2 - v4;
-    let v21 = Lanes::splat(0.5) * v20;
+    let v21 = L::splat(0.5) * v20;
     let v22 = v0 * v21;
     let v23 = v3 - v5;
-    let v24 = Lanes::splat(0.5) * v23;
+    let v24 = L::splat(0.5) * v23;
     let v25 = v1 * v24;
     let v26 = v22 + v25;
     let v27 = v26.recip();
     let v28 = v0 * v8;
     let v29 = v1 * v8;
     let v30 = v7 - v9;
-    let v31 = Lanes::splat(0.5) * v30;
-    let v32 = Lanes::splat(0.5) * v0;
-    let v33 = Lanes::splat(0.5) * v1;
+    let v31 = L::splat(0.5) * v30;
+    let v32 = L::splat(0.5) * v0;
+    let v33 = L::splat(0.5) * v1;
     let v34 = v21 * v27;
     let v35 = v24 * v27;
     let v36 = v21 * v34;
     let v37 = v24 * v34;
     let v38 = v32 * v34;
     let v39 = v33 * v34;
-    let v40 = Lanes::splat((-0.5)) + v38;
-    let v41 = Lanes::splat(0.5) - v38;
+    let v40 = L::splat((-0.5)) + v38;
+    let v41 = L::splat(0.5) - v38;
     let v42 = v21 * v35;
     let v43 = v24 * v35;
     let v44 = v32 * v35;
     let v45 = v33 * v35;
-    let v46 = Lanes::splat((-0.5)) + v45;
-    let v47 = Lanes::splat(0.5) - v45;
-    let v48 = Lanes::splat(2.0) * v0;
-    let v49 = Lanes::splat(2.0) * v1;
-    let v50 = Lanes::splat(0.5) * v17;
+    let v46 = L::splat((-0.5)) + v45;
+    let v47 = L::splat(0.5) - v45;
+    let v48 = L::splat(2.0) * v0;
+    let v49 = L::splat(2.0) * v1;
+    let v50 = L::splat(0.5) * v17;
     let v51 = v17 * v17;
     let v52 = v48 * v50;
     let v53 = v51 * v52;
@@ -9019,9 +9154,9 @@ fn slave_normal_type6_lanes(
     let v56 = v51 * v55;
     let v57 = v1 * v56;
     let v58 = v17 - v57;
-    let v59 = Lanes::splat(2.0) * v17;
+    let v59 = L::splat(2.0) * v17;
     let v60 = v53 * v59;
-    let v61 = Lanes::splat(0.5) * v53;
+    let v61 = L::splat(0.5) * v53;
     let v62 = v48 * v61;
     let v63 = v17 - v62;
     let v64 = v52 * v60;
@@ -9029,7 +9164,7 @@ fn slave_normal_type6_lanes(
     let v66 = v64 - v65;
     let v67 = v1 * v66;
     let v68 = v56 * v59;
-    let v69 = Lanes::splat(0.5) * v56;
+    let v69 = L::splat(0.5) * v56;
     let v70 = v48 * v69;
     let v71 = v52 * v68;
     let v72 = v51 * v70;
@@ -9071,12 +9206,12 @@ fn slave_normal_type6_lanes(
     let v108 = v18 * v39;
     let v109 = v18 * v41;
     let v110 = v8 * v54;
-    let v111 = Lanes::splat(2.0) * v110;
+    let v111 = L::splat(2.0) * v110;
     let v112 = v8 * v58;
     let v113 = v10 * v54;
     let v114 = v110 - v113;
     let v115 = v10 * v58;
-    let v116 = Lanes::splat(2.0) * v113;
+    let v116 = L::splat(2.0) * v113;
     let v117 = v21 * v54;
     let v118 = v21 * v58;
     let v119 = v105 + v117;
@@ -9093,10 +9228,10 @@ fn slave_normal_type6_lanes(
     let v130 = v8 * v91;
     let v131 = v10 * v91;
     let v132 = v8 * v92;
-    let v133 = Lanes::splat(2.0) * v132;
+    let v133 = L::splat(2.0) * v132;
     let v134 = v10 * v92;
     let v135 = v132 - v134;
-    let v136 = Lanes::splat(2.0) * v134;
+    let v136 = L::splat(2.0) * v134;
     let v137 = v24 * v91;
     let v138 = v24 * v92;
     let v139 = v125 - v137;
@@ -9113,9 +9248,9 @@ fn slave_normal_type6_lanes(
     let v150 = v31 * v142;
     let v151 = v9 * v142;
     let v152 = v2 + v4;
-    let v153 = Lanes::splat(0.5) * v152;
+    let v153 = L::splat(0.5) * v152;
     let v154 = v3 + v5;
-    let v155 = Lanes::splat(0.5) * v154;
+    let v155 = L::splat(0.5) * v154;
     let v156 = v11 - v153;
     let v157 = v12 - v155;
     let v158 = v0 * v156;
@@ -9123,10 +9258,10 @@ fn slave_normal_type6_lanes(
     let v160 = v158 + v159;
     let v161 = v27 * v160;
     let v162 = -v161;
-    let v163 = Lanes::splat(1.0) + v161;
-    let v164 = Lanes::splat(0.5) * v163;
-    let v165 = Lanes::splat(1.0) - v161;
-    let v166 = Lanes::splat(0.5) * v165;
+    let v163 = L::splat(1.0) + v161;
+    let v164 = L::splat(0.5) * v163;
+    let v165 = L::splat(1.0) - v161;
+    let v166 = L::splat(0.5) * v165;
     let v167 = v2 * v164;
     let v168 = v4 * v166;
     let v169 = v167 + v168;
@@ -9235,7 +9370,7 @@ fn slave_normal_type6_lanes(
     let v272 = v151 + v244;
     let v273 = v151 + v246;
     let v274 = v143 * v176;
-    let v275 = Lanes::splat(2.0) * v274;
+    let v275 = L::splat(2.0) * v274;
     let v276 = v143 * v178;
     let v277 = v144 * v176;
     let v278 = v276 + v277;
@@ -9264,7 +9399,7 @@ fn slave_normal_type6_lanes(
     let v301 = v299 - v300;
     let v302 = v221 - v301;
     let v303 = v144 * v178;
-    let v304 = Lanes::splat(2.0) * v303;
+    let v304 = L::splat(2.0) * v303;
     let v305 = v144 * v180;
     let v306 = v276 - v305;
     let v307 = v242 - v306;
@@ -9291,7 +9426,7 @@ fn slave_normal_type6_lanes(
     let v328 = v326 - v327;
     let v329 = v271 + v328;
     let v330 = -v329;
-    let v331 = Lanes::splat(2.0) * v280;
+    let v331 = L::splat(2.0) * v280;
     let v332 = v272 - v331;
     let v333 = v283 + v305;
     let v334 = v245 + v333;
@@ -9304,7 +9439,7 @@ fn slave_normal_type6_lanes(
     let v341 = v295 - v340;
     let v342 = v148 * v180;
     let v343 = v299 + v342;
-    let v344 = Lanes::splat(2.0) * v308;
+    let v344 = L::splat(2.0) * v308;
     let v345 = v273 - v344;
     let v346 = v145 * v182;
     let v347 = v311 - v346;
@@ -9319,7 +9454,7 @@ fn slave_normal_type6_lanes(
     let v356 = v326 + v355;
     let v357 = v271 + v356;
     let v358 = v145 * v184;
-    let v359 = Lanes::splat(2.0) * v358;
+    let v359 = L::splat(2.0) * v358;
     let v360 = v145 * v186;
     let v361 = v146 * v184;
     let v362 = v360 + v361;
@@ -9330,7 +9465,7 @@ fn slave_normal_type6_lanes(
     let v367 = v148 * v184;
     let v368 = v366 - v367;
     let v369 = v146 * v186;
-    let v370 = Lanes::splat(2.0) * v369;
+    let v370 = L::splat(2.0) * v369;
     let v371 = v146 * v188;
     let v372 = v147 * v186;
     let v373 = v371 + v372;
@@ -9338,7 +9473,7 @@ fn slave_normal_type6_lanes(
     let v375 = v148 * v186;
     let v376 = v374 - v375;
     let v377 = v147 * v188;
-    let v378 = Lanes::splat(2.0) * v377;
+    let v378 = L::splat(2.0) * v377;
     let v379 = v147 * v190;
     let v380 = v148 * v188;
     let v381 = v379 - v380;
@@ -9353,7 +9488,7 @@ fn slave_normal_type6_lanes(
     let v390 = v339 - v220;
     let v391 = v341 - v267;
     let v392 = v343 - v221;
-    let v393 = Lanes::splat((-2.0)) * v382;
+    let v393 = L::splat((-2.0)) * v382;
     grad[0] = v384;
     grad[1] = v249;
     grad[2] = v385;
@@ -9437,7 +9572,7 @@ fn slave_normal_type6_x4(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type6_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type6_lanes::<Lanes>(d, xi_s, xi_m, grad, hess)
 }
 /** `slave_normal_type6` over 4 lanes, compiled for AVX2 (no FMA).
 
@@ -9452,7 +9587,16 @@ unsafe fn slave_normal_type6_x4_avx2(
     grad: &mut [Lanes],
     hess: &mut [Lanes],
 ) -> Lanes {
-    slave_normal_type6_lanes(d, xi_s, xi_m, grad, hess)
+    slave_normal_type6_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad),
+            Avx4::slice_mut(hess),
+        )
+        .to_lanes()
 }
 /// The lane kernels of `slave_normal`.
 static SLAVE_NORMAL_LANES: LaneSet = LaneSet {
