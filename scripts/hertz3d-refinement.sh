@@ -9,7 +9,7 @@
 #   scripts/hertz3d-refinement.sh --kind tet --segmented    # a variant: its own files
 #
 # Options go to examples/hertz3d_refinement.rs; without any, the table is
-# also spliced into README.md.
+# also spliced into docs/benchmarks.md.
 #
 # Needs the `gmsh` Python package (pip install gmsh; the tetrahedral meshes
 # depend on its version: 4.15.2 wrote the checked-in scenes/hertz3d-tet.msh,
@@ -30,5 +30,5 @@ cmp -s "$dir/tet-0.1.msh" scenes/hertz3d-tet.msh || echo "hertz3d-refinement: te
 cargo build -q --release --example hertz3d_refinement
 RAYON_NUM_THREADS=2 target/release/examples/hertz3d_refinement "$dir" --out docs/hertz3d "$@"
 if [ $# -eq 0 ]; then
-  scripts/splice-readme.sh hertz3d-refinement docs/hertz3d/hertz3d-refinement.md
+  scripts/splice-docs.sh hertz3d-refinement docs/hertz3d/hertz3d-refinement.md docs/benchmarks.md
 fi

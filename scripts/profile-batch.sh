@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Where the per-point batch spends its time: `perf record` of one criterion
-# benchmark (default `points64/type6-batch$`, the README's 2D profile) in
-# the release bench binary, then the symbols with the most samples.
+# benchmark (default `points64/type6-batch$`, the 2D profile quoted in
+# docs/kernels.md, "Kernel cost") in the release bench binary, then the
+# symbols with the most samples.
 # Needs Linux `perf`; a benchmark tool, not part of the tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
