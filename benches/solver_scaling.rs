@@ -78,7 +78,7 @@ fn setup_3d(n: usize) -> (Model<3>, SolveOptions, State<3>, f64) {
     scene.refine.x *= n;
     scene.refine.y *= n;
     scene.refine.z = Some(scene.refine.z.unwrap_or(1) * n);
-    let model = scene.build_model_3d().expect("the refined block builds");
+    let model = scene.build_model::<3>().expect("the refined block builds");
     converged_first_step(&scene, model)
 }
 

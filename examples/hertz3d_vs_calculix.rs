@@ -142,7 +142,7 @@ fn run(
         let cpu_start = process_cpu_seconds();
         let start = Instant::now();
         let s = Scene::from_file(scenes.join(SCENE))?;
-        let model = s.build_model_3d()?;
+        let model = s.build_model::<3>()?;
         let mut options = SolveOptions::from_scene(&s);
         options.linear = linear;
         let sol = solve_model(&model, &options).map_err(|e| format!("{SCENE} ({linear}): {e}"))?;

@@ -207,7 +207,7 @@ fn measure(
     lu_max: usize,
 ) -> Result<Vec<Option<Row>>, Box<dyn std::error::Error>> {
     let scene = base.refined(refine.0, refine.1);
-    let model = scene.build_model()?;
+    let model = scene.build_model::<2>()?;
     let label = format!("{} x {}", refine.0, refine.1);
     measure_model(&scene, &model, label, linear, lu_max)
 }
@@ -245,7 +245,7 @@ fn block_3d(
     scene.refine.x *= n;
     scene.refine.y *= n;
     scene.refine.z = Some(scene.refine.z.unwrap_or(1) * n);
-    let model = scene.build_model_3d()?;
+    let model = scene.build_model::<3>()?;
     let body = &scene.bodies[0];
     let (nx, ny, nz) = (
         body.nx.unwrap_or(1) * scene.refine.x,

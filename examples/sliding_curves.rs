@@ -133,7 +133,7 @@ fn main() -> ExitCode {
 fn run() -> Result<(), String> {
     let args = parse_args()?;
     let scene = Scene::from_file(&args.scene).map_err(|e| e.to_string())?;
-    let model = scene.build_model().map_err(|e| e.to_string())?;
+    let model = scene.build_model::<2>().map_err(|e| e.to_string())?;
     let group = |name: &str| {
         model
             .supports

@@ -226,7 +226,10 @@ steps = [2]
     );
     let csv = std::fs::read_to_string(out_dir.join("contact.csv")).unwrap();
     let mut lines = csv.lines();
-    assert_eq!(lines.next(), Some(solver::report::HEADER_3D));
+    assert_eq!(
+        lines.next(),
+        Some(<solver::Dim<3> as solver::report::ContactTable<3>>::HEADER)
+    );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 12, "{csv}");
     for r in &rows {

@@ -38,7 +38,7 @@ fn the_solve_option_is_refused() {
         formulation: Some(Formulation::QuadraticSlaveNormal),
         ..solver::SolveOptions::default()
     };
-    let e = solver::solve(&scene, &options)
+    let e = solver::solve::<2>(&scene, &options)
         .expect_err("refused")
         .to_string();
     assert!(
@@ -94,7 +94,7 @@ fn the_face_formulations_are_refused_as_faces() {
             formulation: Some(f),
             ..solver::SolveOptions::default()
         };
-        let e = solver::solve(&scene, &options)
+        let e = solver::solve::<2>(&scene, &options)
             .expect_err("refused")
             .to_string();
         assert!(e.contains("3D faces") && e.contains(kind), "{e}");

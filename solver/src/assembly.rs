@@ -20,6 +20,7 @@ use crate::contact::{ContactLayout, GapTerm, NodeTie, PointEval, WeightedPoint};
 use crate::element::{ElementResponse, MAX_ELEMENT_DOFS};
 use crate::ids::{DofId, ElementId, EquationIndex, MultiplierIndex, NodeId};
 use crate::model::Model;
+use crate::model::{Dim, SurfaceDim};
 use crate::par;
 
 /// Marks a prescribed dof in [`DofMap::eq`].
@@ -45,7 +46,10 @@ pub struct DofMap {
 impl DofMap {
     /// Numbers the free dofs of `model` (`D` per node) and `n_mult`
     /// multipliers.
-    pub fn new<const D: usize>(model: &Model<D>, n_mult: usize) -> DofMap {
+    pub fn new<const D: usize>(model: &Model<D>, n_mult: usize) -> DofMap
+    where
+        Dim<D>: SurfaceDim<D>,
+    {
         let ndof = model.dof_count();
         let mut eq = vec![0; ndof];
         for p in &model.prescribed {
@@ -169,12 +173,10 @@ impl System {
 /// ([`crate::element::ElementGeometry::response`]): for an element of `n`
 /// nodes in `D` dimensions, its `D n` rows in dof order, each row's `D n`
 /// columns in order.
-pub fn assemble_solid<const D: usize>(
-    model: &Model<D>,
-    dofs: &DofMap,
-    u: &[f64],
-    sys: &mut System,
-) {
+pub fn assemble_solid<const D: usize>(model: &Model<D>, dofs: &DofMap, u: &[f64], sys: &mut System)
+where
+    Dim<D>: SurfaceDim<D>,
+{
     assemble_solid_lifted(model, dofs, u, None, sys);
 }
 
@@ -191,7 +193,9 @@ pub fn assemble_solid_lifted<const D: usize>(
     u: &[f64],
     lift: Option<&[f64]>,
     sys: &mut System,
-) {
+) where
+    Dim<D>: SurfaceDim<D>,
+{
     let mesh = &model.mesh;
     let responses: Vec<ElementResponse> = par::map(mesh.element_count(), PAR_MIN_LEN, |e| {
         let e = ElementId::new(e);
@@ -370,7 +374,10 @@ pub fn add_external<const D: usize>(
     dofs: &DofMap,
     load_factor: f64,
     sys: &mut System,
-) -> f64 {
+) -> f64
+where
+    Dim<D>: SurfaceDim<D>,
+{
     let mut f = vec![0.0; model.dof_count()];
     for l in &model.loads {
         f[l.dof.index()] += model.factor(l.amplitude, load_factor) * l.value;

@@ -14,7 +14,7 @@
 //! | [`ContactPointIndex`] | slave integration points | `ContactLayout::points`, pairings, evaluations |
 //! | [`PairId`] | contact pairs | `Model::contacts`, per-pair tables of the layout |
 //! | [`MasterSegmentIndex`] | master segments of one pair, along its chain | `ContactPair::master`, pairings |
-//! | [`MasterFaceIndex`] | master faces of one 3D pair | `FacePair::master`, 3D pairings |
+//! | [`MasterFaceIndex`] | master faces of one 3D pair | `ContactPair::master`, 3D pairings |
 //! | [`AmplitudeId`] | load curves of a model | `Model::amplitudes` |
 //!
 //! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
@@ -144,7 +144,7 @@ index_type!(
 
 index_type!(
     /// A master face of one 3D contact pair (index into its
-    /// [`FacePair::master`](crate::model::FacePair::master) list).
+    /// [`ContactPair::master`](crate::model::ContactPair::master) list).
     MasterFaceIndex
 );
 

@@ -33,7 +33,7 @@
 //! use solver::{Scene, SolveOptions, solve};
 //!
 //! let scene = Scene::from_toml_str(solver::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml")?;
-//! let solution = solve(&scene, &SolveOptions::from_scene(&scene))?;
+//! let solution = solve::<2>(&scene, &SolveOptions::from_scene(&scene))?;
 //! println!("strain energy {:.6}", solution.strain_energy);
 //! # Ok::<(), solver::SolverError>(())
 //! ```
@@ -68,14 +68,15 @@ mod tests;
 mod testutil;
 
 pub use contact_kernels::{ApproxType, Formulation, KernelError};
-pub use dim::{Dim, SpaceDim};
+pub use dim::SpaceDim;
 pub use error::SolverError;
 pub use linear::LinearSolverKind;
 pub use material::{Kinematics, Material, PlaneModel};
 pub use mesh::{Mesh, Side};
 pub use model::{ContactMode, Model};
+pub use model::{Dim, SurfaceDim};
 pub use options::{DEFAULT_REGULARIZATION, Method, ParseMethodError, SolveOptions};
-pub use scene::{Scene, SceneError};
+pub use scene::{Scene, SceneDim, SceneError};
 pub use solution::{
     AccuracyHalving, ContactPointId, ContactPointReport, Cutback, CutbackReason, KernelCounts,
     Solution, State, StepRecord, Timings,
@@ -88,8 +89,16 @@ pub mod scenes {
     pub const STACKED_CANTILEVER: &str = include_str!("../../scenes/stacked-cantilever.toml");
 }
 
-/// Solves a scene.
-pub fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution, SolverError> {
+/// Solves a scene of dimension `D` (`solve::<2>` of a 2D scene,
+/// `solve::<3>` of a 3D one; the other dimension is an error naming the
+/// scene's first body).
+pub fn solve<const D: usize>(
+    scene: &Scene,
+    options: &SolveOptions,
+) -> Result<Solution<D>, SolverError>
+where
+    Dim<D>: SceneDim<D>,
+{
     solve_monitored(scene, options, &monitor::Silent)
 }
 
@@ -108,12 +117,15 @@ where
 /// [`solve`], reporting to `monitor` and stopping when it asks
 /// ([`monitor`]). A model and first factorisation that cannot fit in the
 /// available memory are refused before they are allocated ([`memory`]).
-pub fn solve_monitored(
+pub fn solve_monitored<const D: usize>(
     scene: &Scene,
     options: &SolveOptions,
     monitor: &dyn monitor::Monitor,
-) -> Result<Solution, SolverError> {
-    let model = scene.build_model()?;
+) -> Result<Solution<D>, SolverError>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let model = scene.build_model::<D>()?;
     solve_model_monitored(&model, options, monitor)
 }
 

@@ -32,6 +32,7 @@
 
 use crate::linear::LinearSolverKind;
 use crate::model::Model;
+use crate::model::{Dim, SurfaceDim};
 
 /// LU: the bytes per equation of the model and the first factorisation
 /// (module docs: half of the smallest measured 7.3 KiB).
@@ -116,7 +117,10 @@ pub fn check(
 pub fn check_model<const D: usize>(
     model: &Model<D>,
     linear: LinearSolverKind,
-) -> Result<(), MemoryError> {
+) -> Result<(), MemoryError>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     let equations = (model.mesh.node_count() as u64).saturating_mul(D as u64);
     check(equations, linear, available())
 }

@@ -94,8 +94,8 @@ mod tests {
             steps: Mutex::new(Vec::new()),
             stop_after: usize::MAX,
         };
-        let watched = solve_monitored(&scene, &options, &recorder).unwrap();
-        let plain = solve(&scene, &options).unwrap();
+        let watched = solve_monitored::<2>(&scene, &options, &recorder).unwrap();
+        let plain = solve::<2>(&scene, &options).unwrap();
         assert_eq!(
             watched.strain_energy.to_bits(),
             plain.strain_energy.to_bits()
@@ -119,8 +119,8 @@ mod tests {
             steps: Mutex::new(Vec::new()),
             stop_after: 1,
         };
-        let err = solve_monitored(&scene, &options, &recorder).unwrap_err();
-        let first = solve(&scene, &options).unwrap().step_records[0].load_factor;
+        let err = solve_monitored::<2>(&scene, &options, &recorder).unwrap_err();
+        let first = solve::<2>(&scene, &options).unwrap().step_records[0].load_factor;
         assert_eq!(err, SolverError::Interrupted { load_factor: first });
         assert_eq!(recorder.steps.into_inner().unwrap().len(), 1);
     }

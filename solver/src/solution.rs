@@ -18,7 +18,7 @@ use contact_kernels::{Formulation, KernelError};
 use crate::element::{ElementStress, Stress};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
-use crate::model::{ContactMode, Model};
+use crate::model::{ContactPair, Dim, SurfaceDim};
 use crate::options::Method;
 
 /// Identifies one slave integration point: of a slave segment and a
@@ -277,42 +277,15 @@ pub struct ContactPointReport {
     pub gap: Option<f64>,
 }
 
-/// One contact pair as solved: its name, faces and mode (the formulation
-/// used is [`Solution::formulations`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct ContactPairInfo {
-    /// The pair's name.
-    pub name: String,
-    /// Slave segments (global nodes), counter-clockwise around their body.
-    pub slave: Vec<[usize; 2]>,
-    /// Master segments (global nodes), counter-clockwise around their body.
-    pub master: Vec<[usize; 2]>,
-    /// Persistent or unilateral.
-    pub mode: ContactMode,
-}
-
-impl ContactPairInfo {
-    /// The contact pairs of `model`, in model order.
-    pub fn of_model<const D: usize>(model: &Model<D>) -> Vec<ContactPairInfo> {
-        model
-            .contacts
-            .iter()
-            .map(|c| ContactPairInfo {
-                name: c.name.clone(),
-                slave: c.slave.iter().map(|s| s.map(NodeId::index)).collect(),
-                master: c.master.iter().map(|s| s.map(NodeId::index)).collect(),
-                mode: c.mode,
-            })
-            .collect()
-    }
-}
-
 /// Kernel-call counts.
 pub use crate::contact::KernelCounts;
 
 /// The result of [`crate::solve`] (`D`: the model's dimension).
 #[derive(Debug, Clone)]
-pub struct Solution<const D: usize = 2> {
+pub struct Solution<const D: usize = 2>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// Complete or an approximation type.
     pub method: Method,
     /// The formulation of each contact pair.
@@ -370,13 +343,10 @@ pub struct Solution<const D: usize = 2> {
     pub snapshots: Vec<State<D>>,
     /// Slave integration points at the final state.
     pub contact_points: Vec<ContactPointReport>,
-    /// The contact pairs, in model order (see [`crate::report::nodal`]).
-    pub contact_pairs: Vec<ContactPairInfo>,
-    /// The 3D contact pairs of faces, in model order, each with the
-    /// reading it was solved with ([`Solution::formulations`]): what the 3D
-    /// nodal contact table is taken on ([`crate::report::contact_csv_3d`]);
-    /// empty in 2D.
-    pub face_pairs: Vec<crate::model::FacePair>,
+    /// The contact pairs, in model order, each with the formulation it
+    /// was solved with ([`Solution::formulations`]): what the nodal
+    /// contact table is taken on ([`crate::report::nodal`]).
+    pub contact_pairs: Vec<ContactPair<D>>,
     /// The support groups whose reactions each [`StepRecord::reactions`]
     /// holds (a scene's `[[fix]]` and `[[prescribe]]` items: their `group`,
     /// or `fix[i]` / `prescribe[i]`).
@@ -426,7 +396,10 @@ impl Solution<3> {
     }
 }
 
-impl<const D: usize> Solution<D> {
+impl<const D: usize> Solution<D>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The stresses at every integration point of every element of the
     /// final state, element after element, each in its element's
     /// dimension.

@@ -114,7 +114,6 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
         prescribed,
         loads: Vec::new(),
         contacts: Vec::new(),
-        face_contacts: Vec::new(),
         load_factor_end: 1.0,
         amplitudes: Vec::new(),
         supports: Vec::new(),
@@ -191,7 +190,6 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         prescribed,
         loads: Vec::new(),
         contacts: Vec::new(),
-        face_contacts: Vec::new(),
         load_factor_end: 1.0,
         amplitudes: Vec::new(),
         supports: Vec::new(),
@@ -615,12 +613,12 @@ fn closest_point_formulation_solves_the_paper_scene() {
         formulation: Some(crate::Formulation::ClosestPoint),
         ..SolveOptions::from_scene(&scene)
     };
-    let a = solve(&scene, &opts(Method::Complete, 4)).unwrap();
-    let b = solve(&scene, &opts(Method::Complete, 20)).unwrap();
+    let a = solve::<2>(&scene, &opts(Method::Complete, 4)).unwrap();
+    let b = solve::<2>(&scene, &opts(Method::Complete, 20)).unwrap();
     assert!((a.strain_energy / b.strain_energy - 1.0).abs() < 1e-8);
     assert_eq!(a.formulations, vec![crate::Formulation::ClosestPoint]);
     for ty in ApproxType::ALL {
-        let s = solve(&scene, &opts(Method::Approx(ty), 4)).unwrap();
+        let s = solve::<2>(&scene, &opts(Method::Approx(ty), 4)).unwrap();
         assert!((s.strain_energy / b.strain_energy - 1.0).abs() < 1e-2);
     }
 }
@@ -788,7 +786,7 @@ fn vtu_output_is_consistent() {
 #[test]
 fn paper_scene_file_is_the_design_scene() {
     let scene = paper_scene();
-    let model = scene.build_model().unwrap();
+    let model = scene.build_model::<2>().unwrap();
     assert_eq!(scene.bodies.len(), 2);
     for (b, y0) in scene.bodies.iter().zip([0.0, 0.5]) {
         assert_eq!(
@@ -837,7 +835,7 @@ fn paper_scene_file_is_the_design_scene() {
         (
             crate::Formulation::SlaveNormal,
             crate::ContactMode::Persistent,
-            2
+            Some(2)
         )
     );
     // slave: bottom of the slave layer left to right; master: top of the master layer right to left
@@ -969,7 +967,7 @@ fn refined_paper_scene_converges_across_master_nodes() {
     assert!(four.unpaired_points().is_empty());
 
     for ty in ApproxType::ALL {
-        let sol = solve(&scene, &opts(Method::Approx(ty), 4)).unwrap();
+        let sol = solve::<2>(&scene, &opts(Method::Approx(ty), 4)).unwrap();
         assert!(sol.cutbacks.is_empty(), "type {ty}: {:?}", sol.cutbacks);
         let err = sol.strain_energy / four.strain_energy - 1.0;
         assert!(err.abs() < 3e-2, "type {ty}: error {err:e}");

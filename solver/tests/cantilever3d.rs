@@ -21,10 +21,10 @@ use solver::{Scene, SolveOptions, solve_model};
 fn the_3d_cantilever_bends_as_beam_theory_says() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/cantilever3d.toml");
     let scene = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
-    let model = scene.build_model_3d().unwrap_or_else(|e| panic!("{e}"));
+    let model = scene.build_model::<3>().unwrap_or_else(|e| panic!("{e}"));
     let material = scene.material.unwrap().material();
     let (e, nu) = (material.young, material.poisson);
-    let size = scene.bodies[0].size.unwrap().xyz().unwrap();
+    let size = scene.bodies[0].size.unwrap().point::<3>().unwrap();
     let (l, b, h) = (size[0], size[1], size[2]);
     let t = scene.tractions[0].force_per_area.unwrap();
     let p = -t[2] * b * h;

@@ -14,9 +14,9 @@ use solver::ids::{DofId, NodeId};
 use solver::mesh::Mesh;
 use solver::mesh::block3d::{Block3d, Side3d};
 use solver::mesh::volume::Face;
-use solver::model::{FacePair, Integration, Prescribed, SupportGroup};
+use solver::model::{ContactPair, Integration, Prescribed, SupportGroup};
 use solver::{
-    ApproxType, ContactMode, Formulation, Kinematics, Material, Method, Model, PlaneModel,
+    ApproxType, ContactMode, Dim, Formulation, Kinematics, Material, Method, Model, PlaneModel,
     Solution, SolveOptions,
 };
 
@@ -115,12 +115,11 @@ fn pressed(press: f64, tri_slave: bool, reading: Formulation) -> Model<3> {
         mesh,
         prescribed,
         loads: Vec::new(),
-        contacts: Vec::new(),
-        face_contacts: vec![FacePair {
+        contacts: vec![ContactPair {
             name: "cap-on-base".into(),
             slave,
             master,
-            reading,
+            formulation: reading,
             mode: ContactMode::Unilateral,
             gauss_points: None,
             integration: Integration::Gauss,
@@ -164,7 +163,7 @@ fn a_pressed_cap_converges_balances_and_every_type_matches_the_complete_formulat
             // the force the multipliers carry is the press: the nodal
             // table's pressures times their tributary areas add up to the
             // base's reaction (the interface stays flat to 1e-3)
-            let layout = FaceLayout::new(&model.mesh, &model.face_contacts, None).unwrap();
+            let layout = FaceLayout::new(&model.mesh, &model.contacts, None).unwrap();
             let u: Vec<f64> = complete
                 .final_state
                 .displacements
@@ -239,12 +238,15 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
     for tri in [false, true] {
         let model = pressed(0.002, tri, Formulation::SlaveNormal);
         let sol = solve(&model, Method::Complete, 1);
-        assert_eq!(sol.face_pairs.len(), 1);
-        let text = solver::report::contact_csv_3d(&sol, &sol.final_state).unwrap();
+        assert_eq!(sol.contact_pairs.len(), 1);
+        let text = solver::report::contact_csv(&sol, &sol.final_state).unwrap();
         let mut lines = text.lines();
-        assert_eq!(lines.next(), Some(solver::report::HEADER_3D));
         assert_eq!(
-            solver::report::HEADER_3D,
+            lines.next(),
+            Some(<Dim<3> as solver::report::ContactTable<3>>::HEADER)
+        );
+        assert_eq!(
+            <Dim<3> as solver::report::ContactTable<3>>::HEADER,
             "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area"
         );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
@@ -292,13 +294,13 @@ fn the_paper_scene_in_3d_lies_between_plane_stress_and_plane_strain() {
     use solver::{Scene, solve};
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let plates = Scene::from_file(root.join("scenes/stacked-plates.toml")).unwrap();
-    let model = plates.build_model_3d().unwrap();
+    let model = plates.build_model::<3>().unwrap();
     let options = SolveOptions::from_scene(&plates);
     let complete = solver::solve_model(&model, &options).unwrap();
     let energy_2d = |m: PlaneModel| {
         let mut scene = Scene::from_file(root.join("scenes/stacked-cantilever.toml")).unwrap();
         scene.material.as_mut().unwrap().model = Some(m);
-        solve(&scene, &SolveOptions::from_scene(&scene))
+        solve::<2>(&scene, &SolveOptions::from_scene(&scene))
             .unwrap()
             .strain_energy
     };
@@ -339,15 +341,15 @@ fn the_3d_patch_test_is_exact_with_segmented_integration() {
     use solver::model::Integration;
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let scene = Scene::from_file(root.join("scenes/patch-test3d.toml")).unwrap();
-    let base = scene.build_model_3d().unwrap();
+    let base = scene.build_model::<3>().unwrap();
     let p = 10.0;
     let mut methods = vec![Method::Complete];
     methods.extend(ApproxType::ALL.map(Method::Approx));
     for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         for integration in [Integration::Segmented, Integration::Gauss] {
             let mut model = base.clone();
-            let pair = &mut model.face_contacts[0];
-            pair.reading = reading;
+            let pair = &mut model.contacts[0];
+            pair.formulation = reading;
             pair.integration = integration;
             for &method in &methods {
                 let options = SolveOptions {
@@ -356,7 +358,9 @@ fn the_3d_patch_test_is_exact_with_segmented_integration() {
                 };
                 let sol = solver::solve_model(&model, &options)
                     .unwrap_or_else(|e| panic!("{method}: {e}"));
-                let rows = solver::report::face_nodal_rows(&sol, &sol.final_state).unwrap();
+                let rows =
+                    <Dim<3> as solver::report::ContactTable<3>>::rows(&sol, &sol.final_state)
+                        .unwrap();
                 assert_eq!(rows.len(), 16);
                 let error = rows
                     .iter()
@@ -390,7 +394,7 @@ fn a_block_dragged_diagonally_in_3d_re_pairs_across_master_faces() {
     use solver::Scene;
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let scene = Scene::from_file(root.join("scenes/sliding3d.toml")).unwrap();
-    let model = scene.build_model_3d().unwrap();
+    let model = scene.build_model::<3>().unwrap();
     let run = |method: Method, steps: usize| {
         let options = SolveOptions {
             method,
@@ -537,12 +541,11 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
         mesh,
         prescribed,
         loads,
-        contacts: Vec::new(),
-        face_contacts: vec![FacePair {
+        contacts: vec![ContactPair {
             name: "interface".into(),
             slave,
             master,
-            reading: Formulation::SlaveNormal,
+            formulation: Formulation::SlaveNormal,
             mode: ContactMode::Persistent,
             gauss_points: None,
             integration: Integration::Segmented,
@@ -556,8 +559,8 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
     for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
         for integration in [Integration::Segmented, Integration::Gauss] {
             let mut model = base.clone();
-            model.face_contacts[0].reading = reading;
-            model.face_contacts[0].integration = integration;
+            model.contacts[0].formulation = reading;
+            model.contacts[0].integration = integration;
             for &method in &methods {
                 let options = SolveOptions {
                     method,
@@ -566,7 +569,9 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
                 };
                 let sol = solver::solve_model(&model, &options)
                     .unwrap_or_else(|e| panic!("{reading} {method}: {e}"));
-                let rows = solver::report::face_nodal_rows(&sol, &sol.final_state).unwrap();
+                let rows =
+                    <Dim<3> as solver::report::ContactTable<3>>::rows(&sol, &sol.final_state)
+                        .unwrap();
                 assert_eq!(rows.len(), 16);
                 let error = rows
                     .iter()

@@ -346,11 +346,11 @@ fn traction_curve_scales_every_nodal_load() {
     assert_ne!(with, text, "the scene's traction line changed");
     let plain = Scene::from_toml_str(&text, path)
         .unwrap()
-        .build_model()
+        .build_model::<2>()
         .unwrap();
     let curved = Scene::from_toml_str(&with, path)
         .unwrap()
-        .build_model()
+        .build_model::<2>()
         .unwrap();
     assert_eq!(curved.amplitudes.len(), 1);
     assert!(plain.amplitudes.is_empty());
@@ -374,7 +374,7 @@ fn traction_curve_scales_every_nodal_load() {
     );
     let model = Scene::from_toml_str(&twice, path)
         .unwrap()
-        .build_model()
+        .build_model::<2>()
         .unwrap();
     let names: Vec<&str> = model.supports.iter().map(|g| g.name.as_str()).collect();
     assert_eq!(names, ["symmetry", "fix[1]", "fix[2]"]);
@@ -450,7 +450,7 @@ fn a_shared_dof_belongs_to_the_first_group() {
     );
     let model = Scene::from_toml_str(&text, "shared.toml")
         .unwrap()
-        .build_model()
+        .build_model::<2>()
         .unwrap();
     let groups: Vec<(&str, std::ops::Range<usize>)> = model
         .supports

@@ -73,14 +73,16 @@ fn every_example_parses_builds_and_runs() {
         let (load_factor, energy) = match scene.dimension().unwrap_or_else(|e| panic!("{at}: {e}"))
         {
             Dimension::Two => {
-                let model = scene.build_model().unwrap_or_else(|e| panic!("{at}: {e}"));
+                let model = scene
+                    .build_model::<2>()
+                    .unwrap_or_else(|e| panic!("{at}: {e}"));
                 assert!(model.mesh.node_count() > 0, "{at}");
-                let s = solve(&scene, &options).unwrap_or_else(|e| panic!("{at}: {e}"));
+                let s = solve::<2>(&scene, &options).unwrap_or_else(|e| panic!("{at}: {e}"));
                 (s.load_factor, s.strain_energy)
             }
             Dimension::Three => {
                 let model = scene
-                    .build_model_3d()
+                    .build_model::<3>()
                     .unwrap_or_else(|e| panic!("{at}: {e}"));
                 assert!(model.mesh.node_count() > 0, "{at}");
                 let s = solve_model(&model, &options).unwrap_or_else(|e| panic!("{at}: {e}"));
@@ -401,7 +403,12 @@ steps = [3, 5]
     // absent `gauss_points` is the face kind's default: the 2D pair's
     // count, and face_rules' for the 3D faces
     assert_eq!(contact.gauss_points, None);
-    let segment = scene.build_model().unwrap().contacts[0].gauss_points;
+    // the model keeps it absent; the layout takes the segment's default
+    assert_eq!(
+        scene.build_model::<2>().unwrap().contacts[0].gauss_points,
+        None
+    );
+    let segment = default_points(FaceKind::Segment);
     let (quad4, tri3) = (
         default_points(FaceKind::Quad4),
         default_points(FaceKind::Tri3),

@@ -38,7 +38,7 @@ steps = [2]
 /// The model's external force vector at load factor one: every point load
 /// added into its dof in model order, as the solver assembles them.
 fn nodal_forces(scene: &Scene) -> Vec<f64> {
-    let model = scene.build_model().unwrap();
+    let model = scene.build_model::<2>().unwrap();
     let mut f = vec![0.0; 2 * model.mesh.node_count()];
     for l in &model.loads {
         assert!(l.amplitude.is_none());
@@ -82,8 +82,8 @@ fn a_side_traction_is_the_equivalent_nodal_loads_to_the_bit() {
     // the force vector is not trivially zero: the top nodes carry t
     assert_eq!(fl[2 * 5 + 1], t[1]);
     let (st, sl) = (
-        solve(&traction, &SolveOptions::from_scene(&traction)).unwrap(),
-        solve(&loaded, &SolveOptions::from_scene(&loaded)).unwrap(),
+        solve::<2>(&traction, &SolveOptions::from_scene(&traction)).unwrap(),
+        solve::<2>(&loaded, &SolveOptions::from_scene(&loaded)).unwrap(),
     );
     assert!(st.strain_energy > 0.0);
     assert_eq!(st.strain_energy.to_bits(), sl.strain_energy.to_bits());
@@ -353,8 +353,8 @@ fn the_pressed_blocks_loads_are_one_side_traction() {
     let bits = |f: Vec<f64>| f.into_iter().map(f64::to_bits).collect::<Vec<_>>();
     assert_eq!(bits(nodal_forces(&loads)), bits(nodal_forces(&traction)));
     let (sl, st) = (
-        solve(&loads, &SolveOptions::from_scene(&loads)).unwrap(),
-        solve(&traction, &SolveOptions::from_scene(&traction)).unwrap(),
+        solve::<2>(&loads, &SolveOptions::from_scene(&loads)).unwrap(),
+        solve::<2>(&traction, &SolveOptions::from_scene(&traction)).unwrap(),
     );
     assert!(sl.strain_energy > 0.0);
     assert_eq!(sl.strain_energy.to_bits(), st.strain_energy.to_bits());

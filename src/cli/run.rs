@@ -28,11 +28,12 @@ use std::path::PathBuf;
 use clap::Args;
 use contact_kernels::Formulation;
 use solver::ids::NodeId;
+use solver::model::{Facet, FacetOf};
 use solver::scene::Dimension;
-use solver::{LinearSolverKind, Method, Scene, SolveOptions};
+use solver::{Dim, LinearSolverKind, Method, Scene, SceneDim, Solution, SolveOptions, SurfaceDim};
 
 use solver::monitor::{Monitor, StepProgress};
-use solver::report::{contact_csv, reactions_csv};
+use solver::report::{ContactTable, contact_csv, reactions_csv};
 use solver::{Cutback, SolverError};
 
 use super::CommandResult;
@@ -166,18 +167,116 @@ pub fn run(args: &RunArgs) -> CommandResult {
         interrupt: &interrupt,
         steps: options.steps,
     };
-    if scene.dimension()? == Dimension::Three {
-        return run_solid(args, &scene, &options, out.as_ref(), &interrupt, &progress);
+    match scene.dimension()? {
+        Dimension::Two => run_in::<2>(args, &scene, &options, out.as_ref(), &interrupt, &progress),
+        Dimension::Three => {
+            run_in::<3>(args, &scene, &options, out.as_ref(), &interrupt, &progress)
+        }
     }
-    let sol = match solver::solve_monitored(&scene, &options, &progress) {
+}
+
+/// What `gapsim run` reports of the contact of dimension `D` beyond what
+/// every dimension has: the summary lines of the contact state at the end
+/// of a solve with contact pairs.
+trait RunDim<const D: usize>: SceneDim<D> + ContactTable<D> {
+    /// Prints the contact state at the end of `sol` (a solve with contact
+    /// pairs): the largest penetration and what projects nowhere.
+    fn contact_summary(sol: &Solution<D>) -> CommandResult
+    where
+        Dim<D>: SurfaceDim<D>;
+}
+
+/// 2D: over the integration points (see [`active_penetration`]), with the
+/// range of `xi_m` and the unpaired points.
+impl RunDim<2> for Dim<2> {
+    fn contact_summary(sol: &Solution) -> CommandResult {
+        match active_penetration(sol) {
+            Some(a) => println!(
+                "max penetration {:.3e} (largest -gap over the {} integration points in contact: \
+                 paired, on a slave segment with pressure; {} open or unpaired points left out)",
+                a.penetration, a.active, a.others
+            ),
+            None if !sol.contact_points.is_empty() => println!(
+                "max penetration none (no integration point in contact: \
+                 no slave segment carries pressure)"
+            ),
+            None => {}
+        }
+        if let Some((lo, hi)) = sol.xi_m_range() {
+            println!("xi_m range      [{lo:.6}, {hi:.6}]");
+        }
+        let unpaired = sol.unpaired_points();
+        if !unpaired.is_empty() {
+            println!(
+                "unpaired        {} integration point(s) project into no master segment:",
+                unpaired.len()
+            );
+            for p in &unpaired {
+                println!("  {p}");
+            }
+        }
+        Ok(())
+    }
+}
+
+/// 3D: from the nodal contact table (`contact.csv`'s rows: each slave node
+/// taken as a point of its first slave face): the largest penetration over
+/// the nodes with pressure, and the nodes whose own projection finds no
+/// master face.
+impl RunDim<3> for Dim<3> {
+    fn contact_summary(sol: &Solution<3>) -> CommandResult {
+        let rows = <Dim<3> as ContactTable<3>>::rows(sol, &sol.final_state)
+            .map_err(|e| format!("cannot tabulate the contact nodes: {e}"))?;
+        let pressed: Vec<_> = rows.iter().filter(|r| r.pressure != 0.0).collect();
+        let penetration = pressed
+            .iter()
+            .filter_map(|r| r.gap)
+            .fold(None, |m: Option<f64>, g| Some(m.map_or(-g, |m| m.max(-g))));
+        match penetration {
+            Some(p) => println!(
+                "max penetration {p:.3e} (largest -gap over the {} slave nodes with pressure, \
+                 each a point of its first slave face; {} nodes without pressure)",
+                pressed.len(),
+                rows.len() - pressed.len()
+            ),
+            None => println!(
+                "max penetration none (no slave node with pressure and a projection; {} slave nodes)",
+                rows.len()
+            ),
+        }
+        let unprojected = rows.iter().filter(|r| r.gap.is_none()).count();
+        if unprojected > 0 {
+            println!(
+                "unprojected     {unprojected} slave node(s) project into no master face (their gap is empty in contact.csv)"
+            );
+        }
+        Ok(())
+    }
+}
+
+/// `gapsim run` on a scene of dimension `D`: the solve, the summary, each
+/// loaded node's displacement, and with `--out` the `.vtu` files,
+/// `reactions.csv` and, with contact pairs, `contact.csv`.
+fn run_in<const D: usize>(
+    args: &RunArgs,
+    scene: &Scene,
+    options: &SolveOptions,
+    out: Option<&OutDir>,
+    interrupt: &Interrupt,
+    progress: &Progress,
+) -> CommandResult
+where
+    Dim<D>: RunDim<D>,
+{
+    let sol = match solver::solve_monitored::<D>(scene, options, progress) {
         Err(SolverError::Interrupted { load_factor }) => {
             return Err(interrupted(args, load_factor));
         }
         result => result?,
     };
-
     let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
     print_header(&name, &sol);
+    let facet = FacetOf::<D>::NAME;
     for r in &sol.step_records {
         for p in &r.node_ties {
             println!(
@@ -187,42 +286,23 @@ pub fn run(args: &RunArgs) -> CommandResult {
         }
         for p in &r.kept_outside {
             println!(
-                "kept outside    load factor {}: {p} misses its master segment slightly",
+                "kept outside    load factor {}: {p} misses its master {facet} slightly",
                 r.load_factor
             );
         }
     }
-    if let Method::Approx(_) = sol.method {
+    let contact = !sol.contact_pairs.is_empty();
+    if let Method::Approx(_) = sol.method
+        && contact
+    {
         taylor_summary(&sol, args.every_step);
     }
-    match active_penetration(&sol) {
-        Some(a) => println!(
-            "max penetration {:.3e} (largest -gap over the {} integration points in contact: \
-             paired, on a slave segment with pressure; {} open or unpaired points left out)",
-            a.penetration, a.active, a.others
-        ),
-        None if !sol.contact_points.is_empty() => println!(
-            "max penetration none (no integration point in contact: \
-             no slave segment carries pressure)"
-        ),
-        None => {}
-    }
-    if let Some((lo, hi)) = sol.xi_m_range() {
-        println!("xi_m range      [{lo:.6}, {hi:.6}]");
-    }
-    let unpaired = sol.unpaired_points();
-    if !unpaired.is_empty() {
-        println!(
-            "unpaired        {} integration point(s) project into no master segment:",
-            unpaired.len()
-        );
-        for p in &unpaired {
-            println!("  {p}");
-        }
+    if contact {
+        Dim::<D>::contact_summary(&sol)?;
     }
     for load in &scene.loads {
         // a load on a physical group has no position to report
-        let Some(at) = load.at.and_then(|c| c.xy()) else {
+        let Some(at) = load.at.and_then(|c| c.point::<D>()) else {
             continue;
         };
         let bodies: Vec<&str> = match &load.body {
@@ -231,25 +311,27 @@ pub fn run(args: &RunArgs) -> CommandResult {
         };
         let distance = |n: NodeId| {
             let p = sol.mesh.node_ref(n);
-            (p[0] - at[0]).hypot(p[1] - at[1])
+            solver::mesh::length(&std::array::from_fn::<f64, D, _>(|c| p[c] - at[c]))
         };
         let nearest = bodies
             .iter()
             .filter_map(|b| sol.node_at(b, at))
             .min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
         if let Some(node) = nearest {
-            let [ux, uy] = sol.displacement(node);
+            let u = sol.displacement(node);
+            let at: Vec<String> = at.iter().map(|v| v.to_string()).collect();
+            let u: Vec<String> = u.iter().map(|v| format!("{v:.6}")).collect();
             println!(
-                "loaded node     ({}, {}) moves by ({ux:.6}, {uy:.6})",
-                at[0], at[1]
+                "loaded node     ({}) moves by ({})",
+                at.join(", "),
+                u.join(", ")
             );
         }
     }
-    print_costs(&sol, &options);
-
-    if let Some(out) = &out {
-        write_outputs(args, &sol, out, &interrupt, |at, wrote| {
-            if !sol.contact_pairs.is_empty() {
+    print_costs(&sol, options);
+    if let Some(out) = out {
+        write_outputs(args, &sol, out, interrupt, |at, wrote| {
+            if contact {
                 let (path, shown) = at("contact.csv");
                 let text = contact_csv(&sol, &sol.final_state)
                     .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
@@ -278,7 +360,7 @@ fn write_outputs<const D: usize>(
     more: impl FnOnce(At<'_>, &mut Vec<String>) -> Result<(), String>,
 ) -> CommandResult
 where
-    solver::Dim<D>: solver::SpaceDim<D>,
+    Dim<D>: ContactTable<D>,
 {
     let dir = out.path();
     let staging = out.stage()?;
@@ -325,110 +407,6 @@ fn interrupted(args: &RunArgs, load_factor: f64) -> Box<dyn std::error::Error + 
          no solution, nothing written{kept}"
     )
     .into()
-}
-
-/// `gapsim run` on a 3D scene: its model (`Scene::build_model_3d`), the
-/// summary (as in 2D), each loaded node's displacement, and with `--out`
-/// the `.vtu` files, `reactions.csv` and, with face pairs, the 3D
-/// `contact.csv` (`solver::report::contact_csv_3d`).
-fn run_solid(
-    args: &RunArgs,
-    scene: &Scene,
-    options: &SolveOptions,
-    out: Option<&OutDir>,
-    interrupt: &Interrupt,
-    progress: &Progress,
-) -> CommandResult {
-    let model = scene.build_model_3d()?;
-    let sol = match solver::solve_model_monitored(&model, options, progress) {
-        Err(SolverError::Interrupted { load_factor }) => {
-            return Err(interrupted(args, load_factor));
-        }
-        result => result?,
-    };
-    let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
-    print_header(&name, &sol);
-    if let Method::Approx(_) = sol.method
-        && !sol.face_pairs.is_empty()
-    {
-        taylor_summary(&sol, args.every_step);
-    }
-    if !sol.face_pairs.is_empty() {
-        face_contact_summary(&sol)?;
-    }
-    for load in &scene.loads {
-        // a load on a physical group has no position to report
-        let Some(at) = load.at.and_then(|c| c.xyz()) else {
-            continue;
-        };
-        let bodies: Vec<&str> = match &load.body {
-            Some(b) => vec![b.as_str()],
-            None => sol.mesh.bodies.iter().map(|b| b.name.as_str()).collect(),
-        };
-        let distance = |n: NodeId| {
-            let p = sol.mesh.node_ref(n);
-            (0..3).map(|c| (p[c] - at[c]).powi(2)).sum::<f64>()
-        };
-        let nearest = bodies
-            .iter()
-            .filter_map(|b| sol.node_at(b, at))
-            .min_by(|a, b| distance(*a).total_cmp(&distance(*b)));
-        if let Some(node) = nearest {
-            let [ux, uy, uz] = sol.displacement(node);
-            println!(
-                "loaded node     ({}, {}, {}) moves by ({ux:.6}, {uy:.6}, {uz:.6})",
-                at[0], at[1], at[2]
-            );
-        }
-    }
-    print_costs(&sol, options);
-    if let Some(out) = out {
-        write_outputs(args, &sol, out, interrupt, |at, wrote| {
-            if !sol.face_pairs.is_empty() {
-                let (path, shown) = at("contact.csv");
-                let text = solver::report::contact_csv_3d(&sol, &sol.final_state)
-                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-                solver::report::write_atomic(&path, text)
-                    .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
-                wrote.push(format!("wrote           {}", shown.display()));
-            }
-            Ok(())
-        })?;
-    }
-    Ok(())
-}
-
-/// 3D face contact at the end of a solve, from the nodal contact table
-/// (`contact.csv`'s rows: each slave node taken as a point of its first
-/// slave face): the largest penetration over the nodes with pressure, and
-/// the nodes whose own projection finds no master face.
-fn face_contact_summary(sol: &solver::Solution<3>) -> CommandResult {
-    let rows = solver::report::face_nodal_rows(sol, &sol.final_state)
-        .map_err(|e| format!("cannot tabulate the contact nodes: {e}"))?;
-    let pressed: Vec<_> = rows.iter().filter(|r| r.pressure != 0.0).collect();
-    let penetration = pressed
-        .iter()
-        .filter_map(|r| r.gap)
-        .fold(None, |m: Option<f64>, g| Some(m.map_or(-g, |m| m.max(-g))));
-    match penetration {
-        Some(p) => println!(
-            "max penetration {p:.3e} (largest -gap over the {} slave nodes with pressure, \
-             each a point of its first slave face; {} nodes without pressure)",
-            pressed.len(),
-            rows.len() - pressed.len()
-        ),
-        None => println!(
-            "max penetration none (no slave node with pressure and a projection; {} slave nodes)",
-            rows.len()
-        ),
-    }
-    let unprojected = rows.iter().filter(|r| r.gap.is_none()).count();
-    if unprojected > 0 {
-        println!(
-            "unprojected     {unprojected} slave node(s) project into no master face (their gap is empty in contact.csv)"
-        );
-    }
-    Ok(())
 }
 
 /// The worst penetration of the contact set at the end of a solve.
@@ -480,8 +458,11 @@ fn active_penetration(sol: &solver::Solution) -> Option<ActivePenetration> {
 /// Types 1–6: the step-end checks (see `solver::newton`, "Re-pairing at
 /// the step end"): step repeats, unsettled points, accuracy halvings and
 /// the largest Taylor remainder (every step's with `every_step`).
-fn taylor_summary<const D: usize>(sol: &solver::Solution<D>, every_step: bool) {
-    let master = if D == 3 { "face" } else { "segment" };
+fn taylor_summary<const D: usize>(sol: &solver::Solution<D>, every_step: bool)
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    let master = FacetOf::<D>::NAME;
     println!(
         "step repeats    {} (steps solved again with re-paired expansions; {} iterations discarded)",
         sol.repeats, sol.repeated_iterations
@@ -528,7 +509,10 @@ fn taylor_summary<const D: usize>(sol: &solver::Solution<D>, every_step: bool) {
 
 /// The summary's first lines: the scene, the method, the size, the result
 /// and Newton's effort (cut-backs included).
-fn print_header<const D: usize>(name: &str, sol: &solver::Solution<D>) {
+fn print_header<const D: usize>(name: &str, sol: &solver::Solution<D>)
+where
+    Dim<D>: SurfaceDim<D>,
+{
     let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
     println!("scene           {name}");
     println!(
@@ -575,7 +559,10 @@ fn print_header<const D: usize>(name: &str, sol: &solver::Solution<D>) {
 
 /// The summary's cost lines: time, factorisation, fill, the linear
 /// solver's fallbacks, kernel calls.
-fn print_costs<const D: usize>(sol: &solver::Solution<D>, options: &SolveOptions) {
+fn print_costs<const D: usize>(sol: &solver::Solution<D>, options: &SolveOptions)
+where
+    Dim<D>: SurfaceDim<D>,
+{
     let t = &sol.timings;
     println!(
         "time            {:.2} ms (solid {:.2}, contact {:.2}, linear solve {:.2})",

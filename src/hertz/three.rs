@@ -13,7 +13,7 @@
 //! ```
 //!
 //! and are compared with the nodal contact table of the final state
-//! ([`solver::report::face_nodal_rows`]): the peak pressure is the largest
+//! ([`solver::report::ContactTable::rows`]): the peak pressure is the largest
 //! nodal pressure, the contact radius the largest `hypot(x, y)` of a node
 //! whose pressure exceeds `1e-3` of it (current coordinates).
 
@@ -80,8 +80,9 @@ pub fn measure_3d(
     let e_star = young / (2.0 * (1.0 - poisson * poisson));
     let a = (3.0 * load * sphere_radius / (4.0 * e_star)).cbrt();
     let p0 = 3.0 * load / (2.0 * std::f64::consts::PI * a * a);
-    let rows = solver::report::face_nodal_rows(solution, &solution.final_state)
-        .map_err(|e| e.to_string())?;
+    let rows =
+        <solver::Dim<3> as solver::report::ContactTable<3>>::rows(solution, &solution.final_state)
+            .map_err(|e| e.to_string())?;
     let points: Vec<(f64, f64)> = rows
         .iter()
         .map(|r| (r.x[0].hypot(r.x[1]), r.pressure))
@@ -205,7 +206,7 @@ pub fn solve_3d(scene: &solver::Scene, file: &str, sphere_radius: f64) -> Result
     scene.mesh = Some(solver::scene::MeshSpec {
         file: file.to_string(),
     });
-    let model = scene.build_model_3d().map_err(|e| e.to_string())?;
+    let model = scene.build_model::<3>().map_err(|e| e.to_string())?;
     let material = model.mesh.bodies[0].material;
     let options = solver::SolveOptions {
         linear: solver::LinearSolverKind::Ldlt,

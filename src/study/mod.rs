@@ -41,60 +41,43 @@ pub mod safety_map;
 use std::time::Duration;
 
 use contact_kernels::{ApproxType, Formulation};
+use solver::dim::ContactSpace;
 use solver::scene::Dimension;
-use solver::{Dim, Method, Scene, Solution, SolveOptions, SolverError, SpaceDim};
+use solver::{
+    Dim, Method, Scene, SceneDim, Solution, SolveOptions, SolverError, SpaceDim, SurfaceDim,
+};
 
-/// How the study solves a scene of dimension `D` (the one place that
-/// knows 2D from 3D: a 2D scene's model is `Scene::build_model`'s, a 3D
-/// one's `Scene::build_model_3d`'s).
-pub trait StudyDim<const D: usize> {
-    /// Solves `scene` with `options`.
-    fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution<D>, SolverError>;
+/// What the study reads of a solution of dimension `D` beyond what every
+/// dimension has.
+pub trait StudyDim<const D: usize>: SceneDim<D> {
     /// The largest `|gap|` over the paired integration points (`None`
     /// where the solution has no per-point report: 3D).
-    fn max_abs_gap(solution: &Solution<D>) -> Option<f64>;
-    /// The contact-heavy variant's size: solid elements and slave
-    /// integration points.
-    fn size(scene: &Scene) -> Result<(usize, usize), SolverError>;
+    fn max_abs_gap(solution: &Solution<D>) -> Option<f64>
+    where
+        Dim<D>: SurfaceDim<D>;
 }
 
 impl StudyDim<2> for Dim<2> {
-    fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution, SolverError> {
-        solver::solve(scene, options)
-    }
-
     fn max_abs_gap(solution: &Solution) -> Option<f64> {
         Some(solution.max_abs_gap())
-    }
-
-    fn size(scene: &Scene) -> Result<(usize, usize), SolverError> {
-        let model = scene.build_model()?;
-        Ok((
-            model.mesh.elements.len(),
-            model
-                .contacts
-                .iter()
-                .map(|c| c.slave.len() * c.gauss_points)
-                .sum(),
-        ))
     }
 }
 
 impl StudyDim<3> for Dim<3> {
-    fn solve(scene: &Scene, options: &SolveOptions) -> Result<Solution<3>, SolverError> {
-        let model = scene.build_model_3d()?;
-        solver::solve_model(&model, options)
-    }
-
     fn max_abs_gap(_: &Solution<3>) -> Option<f64> {
         None
     }
+}
 
-    fn size(scene: &Scene) -> Result<(usize, usize), SolverError> {
-        let model = scene.build_model_3d()?;
-        let layout = solver::contact::FaceLayout::new(&model.mesh, &model.face_contacts, None)?;
-        Ok((model.mesh.elements.len(), layout.points.len()))
-    }
+/// The contact-heavy variant's size: solid elements and slave
+/// integration points (of the contact element's layout).
+fn size<const D: usize>(scene: &Scene) -> Result<(usize, usize), SolverError>
+where
+    Dim<D>: SceneDim<D>,
+{
+    let model = scene.build_model::<D>()?;
+    let layout = <Dim<D> as SpaceDim<D>>::Contact::build(&model, None)?;
+    Ok((model.mesh.elements.len(), layout.point_count()))
 }
 
 /// Settings of a study.
@@ -361,7 +344,7 @@ where
     let mut times: [Vec<f64>; 4] = Default::default();
     let mut first = None;
     for _ in 0..repeats.max(1) {
-        let sol = Dim::<D>::solve(scene, &options)?;
+        let sol = solver::solve::<D>(scene, &options)?;
         let t = &sol.timings;
         for (v, d) in times.iter_mut().zip([
             t.total,
@@ -586,7 +569,7 @@ where
         )
         .and_then(|study| {
             let (solid_elements, contact_points) =
-                Dim::<D>::size(&variant).map_err(|source| StudyError::Reference {
+                size::<D>(&variant).map_err(|source| StudyError::Reference {
                     formulation: first,
                     steps: options.heavy_steps[0],
                     source,

@@ -29,13 +29,16 @@
 //! it is informative where displacements are prescribed (a drag, a press)
 //! or where several groups share the load.
 
-use solver::Solution;
+use solver::{Dim, Solution};
 
 /// The reactions at the end of each scheduled step: `[k][g]` for
 /// `k = 0..solution.steps` and `g` over [`Solution::support_groups`]. A
 /// scheduled step without a converged record (cannot happen in a returned
 /// solution) is left out.
-pub fn scheduled_reactions<const D: usize>(solution: &Solution<D>) -> Vec<Vec<[f64; D]>> {
+pub fn scheduled_reactions<const D: usize>(solution: &Solution<D>) -> Vec<Vec<[f64; D]>>
+where
+    Dim<D>: solver::SurfaceDim<D>,
+{
     (1..=solution.steps)
         .filter_map(|k| {
             solution

@@ -1,5 +1,5 @@
 //! [`FaceLayout`]: the integration points, multipliers and master faces of
-//! the 3D contact pairs of a model ([`FacePair`]), and the kernel each
+//! the 3D contact pairs of a model ([`ContactPair<3>`]), and the kernel each
 //! (slave face, master face) pair of kinds takes.
 //!
 //! # The 3D contact element
@@ -67,7 +67,7 @@ use crate::ids::{ContactPointIndex, DofId, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::FaceShape;
 use crate::mesh::volume::{Face, FaceKind};
-use crate::model::{ContactMode, FacePair, Integration};
+use crate::model::{ContactMode, ContactPair, Integration};
 
 use super::MultiplierDof;
 use super::active_set::ActiveSetView;
@@ -236,7 +236,7 @@ struct Segmenter {
 }
 
 impl Segmenter {
-    fn new(mesh: &Mesh<3>, pair: &FacePair) -> Result<Segmenter, FaceLayoutError> {
+    fn new(mesh: &Mesh<3>, pair: &ContactPair<3>) -> Result<Segmenter, FaceLayoutError> {
         let rule = match pair.gauss_points.unwrap_or(7) {
             1 => TriangleRule::Centroid,
             3 => TriangleRule::Three,
@@ -265,7 +265,7 @@ impl Segmenter {
     /// `x_ref`): every facing master face near it clipped and triangulated.
     fn points(
         &self,
-        pair: &FacePair,
+        pair: &ContactPair<3>,
         f: usize,
         x_ref: &Face<[f64; 3]>,
     ) -> Result<Vec<([f64; 2], f64)>, FaceLayoutError> {
@@ -307,7 +307,7 @@ impl FaceLayout {
     /// `reading` when given.
     pub fn new(
         mesh: &Mesh<3>,
-        pairs: &[FacePair],
+        pairs: &[ContactPair<3>],
         reading: Option<Formulation>,
     ) -> Result<FaceLayout, FaceLayoutError> {
         let mut points = Vec::new();
@@ -316,7 +316,7 @@ impl FaceLayout {
         let mut readings = Vec::new();
         for (p, pair) in pairs.iter().enumerate() {
             let pid = PairId::new(p);
-            let pair_reading = reading.unwrap_or(pair.reading);
+            let pair_reading = reading.unwrap_or(pair.formulation);
             if face_formulation(pair_reading, FaceKind::Tri3, FaceKind::Tri3).is_none() {
                 return Err(FaceLayoutError::Reading {
                     pair: pair.name.clone(),

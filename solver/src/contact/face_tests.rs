@@ -12,7 +12,7 @@ use crate::ids::{ContactPointIndex, MasterFaceIndex, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::volume::Face;
-use crate::model::{ContactMode, FacePair, Integration};
+use crate::model::{ContactMode, ContactPair, Integration};
 
 use super::term::{GapTerm, WeightedPoint};
 use super::{FaceEval, FaceLayout, KernelCounts, Taylor};
@@ -28,7 +28,7 @@ const MATERIAL: Material = Material {
 /// `[0.3, 1.7]^2 x [1 + gap, 1.5 + gap]` of 3 x 3 x 1 above it; the cap's
 /// bottom faces (split into triangles when `tri_slave`) are the slave
 /// faces, the base's top faces the master faces.
-fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, FacePair) {
+fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, ContactPair<3>) {
     let mut mesh = Mesh::<3>::new();
     let base = Block3d {
         origin: [0.0, 0.0, 0.0],
@@ -71,11 +71,11 @@ fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, FacePai
             })
             .collect();
     }
-    let pair = FacePair {
+    let pair = ContactPair {
         name: "cap-on-base".to_owned(),
         slave,
         master,
-        reading,
+        formulation: reading,
         mode: ContactMode::Unilateral,
         gauss_points: None,
         integration: Integration::Gauss,

@@ -19,6 +19,7 @@ use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, 
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Integration, Model};
 
+use super::face_rules::{FaceKind as RuleKind, default_points};
 use super::segmented::{segmented_rule, split_coordinates};
 use super::{ContactPoint, MultiplierDof, gauss_legendre};
 
@@ -67,7 +68,10 @@ impl ContactLayout {
                     });
                 }
             }
-            let rule = gauss_legendre(pair.gauss_points);
+            let rule = gauss_legendre(
+                pair.gauss_points
+                    .unwrap_or_else(|| default_points(RuleKind::Segment)),
+            );
             let masters_ref: Vec<[[f64; 2]; 2]> = match pair.integration {
                 Integration::Gauss => Vec::new(),
                 Integration::Segmented => pair

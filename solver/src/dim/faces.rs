@@ -29,7 +29,7 @@ impl ContactSpace<3> for FaceLayout {
     type Expansion = FaceTaylor;
 
     fn build(model: &Model<3>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError> {
-        FaceLayout::new(&model.mesh, &model.face_contacts, formulation)
+        FaceLayout::new(&model.mesh, &model.contacts, formulation)
     }
 
     fn point_count(&self) -> usize {

@@ -32,6 +32,7 @@ use crate::contact::{FaceLayoutError, KernelCounts, MultiplierDof, NodeTie, Poin
 use crate::ids::ContactPointIndex;
 use crate::mesh::Mesh;
 use crate::model::Model;
+use crate::model::{Dim, SurfaceDim};
 use crate::solution::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 
 /// Every point's evaluation (`None`: unpaired) and the kernel calls.
@@ -64,7 +65,9 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
 
     /// Lays out the contact pairs of `model`, every pair's formulation
     /// (reading) replaced by `formulation` when given.
-    fn build(model: &Model<D>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError>;
+    fn build(model: &Model<D>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError>
+    where
+        Dim<D>: SurfaceDim<D>;
     /// The number of integration points.
     fn point_count(&self) -> usize;
     /// The number of multiplier dofs.

@@ -146,7 +146,7 @@ fn unsupported_model_is_singular_with_ldlt() {
     let text = crate::scenes::STACKED_CANTILEVER.replace("[[fix]]\nx = 0.0\ndofs = \"xy\"\n", "");
     assert_ne!(text, crate::scenes::STACKED_CANTILEVER);
     let scene = Scene::from_toml_str(&text, "free.toml").unwrap();
-    let err = solve(
+    let err = solve::<2>(
         &scene,
         &SolveOptions {
             max_cutbacks: 1,

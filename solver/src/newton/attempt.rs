@@ -35,8 +35,12 @@ use super::iterate::Iterate;
 use super::outcome::{AttemptOutcome, Converged, PointsReport};
 use super::treatment::{ContactTreatment, Context, Settling, SolveEnd, StepStart};
 use super::{DIVERGENCE_FACTOR, REPAIR_AT_ONCE_ITERATIONS, Run, STAGNATION_FACTOR};
+use crate::model::{Dim, SurfaceDim};
 
-impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S> {
+impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The contact treatment with what it works on: the solve's context and
     /// the run's converged state.
     #[allow(clippy::type_complexity)] // the three borrows of the run

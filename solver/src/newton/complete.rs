@@ -26,6 +26,7 @@ use super::outcome::{AttemptOutcome, Converged};
 use super::pairing::{GuardOutcome, PairingGuard};
 use super::setup::Setup;
 use super::treatment::{ContactTreatment, Context, Evaluations, Settling, SolveEnd, StepStart};
+use crate::model::{Dim, SurfaceDim};
 
 /// The kernel the complete formulation evaluates: Type 6 drops no term of
 /// the gap's gradient and Hessian, so it is the exact linearisation.
@@ -46,7 +47,10 @@ impl<M> Default for Complete<M> {
     }
 }
 
-impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Complete<S::Master> {
+impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Complete<S::Master>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     fn begin_attempt(
         &mut self,
         _cx: &mut Context<'_, '_, D, S>,
@@ -148,7 +152,10 @@ pub(super) fn evaluate<const D: usize, S: ContactSpace<D>>(
     ties: &[NodeTie<S::Master>],
     at_once: bool,
     counts_out: &mut KernelCounts,
-) -> Result<Evaluations<D, S>, PointFailure<S::Master>> {
+) -> Result<Evaluations<D, S>, PointFailure<S::Master>>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     let mesh = &setup.model.mesh;
     let layout = &setup.layout;
     let (mut evals, counts) = if at_once {

@@ -28,6 +28,7 @@ use crate::solution::CutbackReason;
 use super::iterate::Iterate;
 use super::outcome::{Converged, StepEnd};
 use super::treatment::{ContactTreatment, Context, Evaluations, Settling, SolveEnd, StepStart};
+use crate::model::{Dim, SurfaceDim};
 
 /// The frozen expansions of one type (module docs).
 pub(super) struct Frozen<const D: usize, S: ContactSpace<D>> {
@@ -78,7 +79,10 @@ impl<M> Default for Check<M> {
     }
 }
 
-impl<const D: usize, S: ContactSpace<D>> Frozen<D, S> {
+impl<const D: usize, S: ContactSpace<D>> Frozen<D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The expansions of type `ty`, built at the first attempt.
     pub(super) fn new(ty: ApproxType) -> Frozen<D, S> {
         Frozen {
@@ -119,7 +123,10 @@ impl<const D: usize, S: ContactSpace<D>> Frozen<D, S> {
     }
 }
 
-impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Frozen<D, S> {
+impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Frozen<D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// Builds the expansions if the converged state has none yet, and
     /// starts the attempt's step-end check.
     fn begin_attempt(

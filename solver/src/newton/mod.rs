@@ -220,6 +220,7 @@ use crate::monitor::{Monitor, StepProgress};
 use crate::options::{Method, SolveOptions};
 use crate::solution::{AccuracyHalving, Cutback, Solution, State, StepRecord, Timings};
 
+use crate::model::{Dim, SurfaceDim};
 use complete::Complete;
 use frozen::Frozen;
 use outcome::{AttemptOutcome, Converged};
@@ -252,7 +253,10 @@ pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 pub const MAX_REPAIR_REPEATS: usize = 4;
 
 /// The solve in progress.
-pub(crate) struct Run<'a, const D: usize, S: ContactSpace<D>> {
+pub(crate) struct Run<'a, const D: usize, S: ContactSpace<D>>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     opts: &'a SolveOptions,
     /// Told of every finished step and cut-back; asked before every
     /// attempt and iteration whether to stop.
@@ -283,7 +287,10 @@ pub(crate) struct Run<'a, const D: usize, S: ContactSpace<D>> {
     accuracy_halvings: Vec<AccuracyHalving>,
 }
 
-impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S> {
+impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     pub(crate) fn new(
         model: &'a Model<D>,
         opts: &'a SolveOptions,
@@ -508,15 +515,14 @@ impl<'a, const D: usize, S: ContactSpace<D>> Run<'a, D, S> {
             final_state: self.state(),
             snapshots: self.snapshots.clone(),
             contact_points,
-            contact_pairs: crate::solution::ContactPairInfo::of_model(self.setup.model),
-            face_pairs: self
+            contact_pairs: self
                 .setup
                 .model
-                .face_contacts
+                .contacts
                 .iter()
                 .zip(layout.formulations())
-                .map(|(p, reading)| crate::model::FacePair {
-                    reading,
+                .map(|(p, formulation)| crate::model::ContactPair {
+                    formulation,
                     ..p.clone()
                 })
                 .collect(),

@@ -15,6 +15,7 @@ use crate::dim::{ContactSpace, Update};
 use crate::ids::ContactPointIndex;
 
 use super::setup::Setup;
+use crate::model::{Dim, SurfaceDim};
 
 /// What [`PairingGuard::apply`] decided at a converged iterate.
 #[derive(Debug, Clone, PartialEq)]
@@ -143,7 +144,10 @@ impl<M: Copy + PartialEq> PairingGuard<M> {
         evals: &[Option<S::Eval>],
         pairing: &mut [Option<M>],
         ties: &mut Vec<NodeTie<M>>,
-    ) -> Result<(GuardOutcome, KernelCounts), PointFailure<M>> {
+    ) -> Result<(GuardOutcome, KernelCounts), PointFailure<M>>
+    where
+        Dim<D>: SurfaceDim<D>,
+    {
         let layout = &setup.layout;
         let (updates, counts) = layout.pairing_updates(&setup.model.mesh, u, evals)?;
         let updates: Vec<_> = updates

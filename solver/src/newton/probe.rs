@@ -10,8 +10,9 @@ use std::time::Instant;
 
 use crate::assembly::System;
 use crate::contact::KernelCounts;
-use crate::dim::{ContactSpace, Dim, SpaceDim};
+use crate::dim::{ContactSpace, SpaceDim};
 use crate::error::SolverError;
+use crate::model::Dim;
 use crate::model::Model;
 use crate::options::{Method, SolveOptions};
 use crate::solution::State;
@@ -309,7 +310,7 @@ mod tests {
     fn probe_matches_the_first_newton_iterations_in_3d() {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/block3d.toml");
         let scene = Scene::from_file(&path).unwrap();
-        let mut model = scene.build_model_3d().unwrap();
+        let mut model = scene.build_model::<3>().unwrap();
         model.load_factor_end /= 2.0;
         let opts = SolveOptions {
             steps: 1,

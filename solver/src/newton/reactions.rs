@@ -38,8 +38,12 @@ use crate::model::Model;
 use crate::par;
 
 use super::setup::Setup;
+use crate::model::{Dim, SurfaceDim};
 
-impl<const D: usize, S: ContactSpace<D>> Setup<'_, D, S> {
+impl<const D: usize, S: ContactSpace<D>> Setup<'_, D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The reaction `[x, y(, z)]` of every support group of the model at the
     /// converged state `(u, lambda, ties)` of load factor `to`, with the
     /// contact evaluations `evals` (`others`: the ties' second evaluations)
@@ -88,7 +92,9 @@ fn add_supported_element_forces<const D: usize>(
     all: &DofMap,
     u: &[f64],
     residual: &mut [f64],
-) {
+) where
+    Dim<D>: SurfaceDim<D>,
+{
     let mesh = &model.mesh;
     let mut prescribed = vec![false; u.len()];
     for p in &model.prescribed {

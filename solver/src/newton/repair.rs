@@ -95,6 +95,7 @@ use super::frozen::Frozen;
 use super::outcome::{AttemptOutcome, Converged};
 use super::setup::Setup;
 use super::treatment::{Context, SolveEnd, StepStart};
+use crate::model::{Dim, SurfaceDim};
 
 /// A point whose expansion was re-taken at an attempt's end (it crossed a
 /// master node) gets it re-taken at the next end while its relative Taylor
@@ -108,7 +109,10 @@ pub(super) const ANCHOR_TOLERANCE: f64 = 1e-8;
 /// step's Taylor remainder.
 pub(super) const MAX_ANCHOR_UPDATES: usize = 4;
 
-impl<const D: usize, S: ContactSpace<D>> Frozen<D, S> {
+impl<const D: usize, S: ContactSpace<D>> Frozen<D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The step-end check of the converged solve `c` (module docs): the
     /// attempt's outcome, or a repeat of the step with new expansions
     /// while the pairing changes.
@@ -445,7 +449,10 @@ fn point_remainder<const D: usize, S: ContactSpace<D>>(
     i: ContactPointIndex,
     t: &S::Expansion,
     gap: f64,
-) -> Option<f64> {
+) -> Option<f64>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     let length = setup
         .layout
         .remainder_length(&setup.model.mesh, i, &c.active)?;

@@ -34,9 +34,13 @@ use crate::options::SolveOptions;
 use crate::solution::ContactPointId;
 
 use super::regularize::regularize;
+use crate::model::{Dim, SurfaceDim};
 
 /// The discretised problem of one solve (module docs).
-pub(super) struct Setup<'a, const D: usize, S> {
+pub(super) struct Setup<'a, const D: usize, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The model solved.
     pub(super) model: &'a Model<D>,
     /// The contact element: integration points, multipliers and masters
@@ -56,7 +60,10 @@ pub(super) struct Setup<'a, const D: usize, S> {
     spare: Cell<Option<System>>,
 }
 
-impl<'a, const D: usize, S: ContactSpace<D>> Setup<'a, D, S> {
+impl<'a, const D: usize, S: ContactSpace<D>> Setup<'a, D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// Checks `model` and lays out its contact pairs and equations with
     /// `options.formulation` and `options.linear`.
     pub(super) fn new(

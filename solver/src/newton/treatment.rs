@@ -57,6 +57,7 @@ use crate::solution::{CutbackReason, Timings};
 use super::iterate::Iterate;
 use super::outcome::{AttemptOutcome, Converged};
 use super::setup::Setup;
+use crate::model::{Dim, SurfaceDim};
 
 /// The contact evaluations of one iterate: one per point (`None`: the point
 /// is unpaired) and, for each node tie, the tied point's evaluation on the
@@ -68,7 +69,10 @@ pub(super) type Evaluations<const D: usize, S> = (
 
 /// What a treatment works with: the discretised problem, the options and
 /// the run's counters.
-pub(super) struct Context<'r, 'a, const D: usize, S> {
+pub(super) struct Context<'r, 'a, const D: usize, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The discretised problem (layout, equation numbering).
     pub(super) setup: &'r Setup<'a, D, S>,
     /// The solve's options (`repair`, `taylor_tolerance`).
@@ -119,7 +123,10 @@ pub(super) enum SolveEnd<const D: usize, M> {
 
 /// How contact is treated (module docs): its evaluation at an iterate and
 /// its logic at the step's start and end.
-pub(super) trait ContactTreatment<const D: usize, S: ContactSpace<D>> {
+pub(super) trait ContactTreatment<const D: usize, S: ContactSpace<D>>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// Before an attempt from the converged state `start`; an error stops
     /// the solve (a kernel failure at a converged state, which no smaller
     /// increment cures).

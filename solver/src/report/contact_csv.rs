@@ -1,6 +1,8 @@
 //! `contact.csv`: the nodal contact table of a solved state
-//! ([`super::nodal`]) as comma-separated values, written by `gapsim run
-//! --out DIR`.
+//! ([`super::contact_table`]) as comma-separated values, written by
+//! `gapsim run --out DIR`; its columns come from the dimension.
+//!
+//! # 2D
 //!
 //! One row per slave node and contact pair, pair by pair and in slave-face
 //! order, with the header
@@ -32,14 +34,35 @@
 //! project for a slave-side reason (a collapsed or folded slave segment,
 //! see [`super::nodal`]) has no table: the error is returned,
 //! never a row without a gap.
+//!
+//! # 3D
+//!
+//! One row per slave node and pair, pair by pair in multiplier order (the
+//! order the nodes first appear on the slave faces), with the header
+//!
+//! ```text
+//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area
+//! ```
+//!
+//! `pair` is the pair's name (quoted as in 2D), `node` the slave node's
+//! number ([`crate::Mesh::node_number`]: the mesh file's tag, or the
+//! internal index of a block body), `x, y, z` its current coordinates,
+//! `pressure` `p = -lambda` (positive in compression). `gap`, `xi_m_u`,
+//! `xi_m_v`, `master_face` (the index within the pair's master surface)
+//! and the master face's nodes are those of the node taken as a point of
+//! its first adjacent slave face (the face's corner), projected onto the
+//! master surface with the pair's reading
+//! ([`crate::contact::FaceLayout::nodal_table`]); all empty where it
+//! projects into no master face; `master_node_4` is empty on a tri3
+//! master face. `tributary_area` is `sum w J0 N_a` over the node's
+//! integration points: `sum pressure x tributary_area` over a pair is the
+//! pressure's resultant. Numbers in Rust's shortest round-trip form, as
+//! the 2D file.
 
+use crate::model::Dim;
 use crate::solution::{Solution, State};
 
-use super::csv::field;
-use super::nodal::{NodalContactError, nodal_contact};
-
-/// The header line of `contact.csv` (without the line break).
-pub const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
+use super::contact_table::{ContactTable, ContactTableError};
 
 /// `v` in Rust's shortest round-trip form: positional, or with an
 /// exponent where that is shorter (below 1e-4 and from 1e15 on).
@@ -53,37 +76,17 @@ pub(super) fn num(v: f64) -> String {
 
 /// The `contact.csv` text of `state` (one of `solution`'s states), or why
 /// its nodal contact table does not exist.
-pub fn contact_csv(solution: &Solution, state: &State) -> Result<String, NodalContactError> {
-    let mut out = format!("{HEADER}\n");
-    let number = |n: usize| solution.mesh.node_number(n);
-    for row in nodal_contact(solution, state)? {
-        let name = field(&solution.contact_pairs[row.pair].name);
-        let (projection, master_numbering) = match row.projection {
-            Some(p) => {
-                let (m1, numbering) = number(p.master_nodes[0]);
-                (
-                    format!(
-                        "{},{},{},{},{},{}",
-                        num(p.gap),
-                        num(row.pressure),
-                        num(p.xi_m),
-                        p.master_segment,
-                        m1,
-                        number(p.master_nodes[1]).0
-                    ),
-                    numbering.as_str(),
-                )
-            }
-            None => (format!(",{},,,,", num(row.pressure)), ""),
-        };
-        let (node, numbering) = number(row.node);
-        out.push_str(&format!(
-            "{name},{node},{},{},{projection},{},{},{master_numbering}\n",
-            num(row.position[0]),
-            num(row.position[1]),
-            num(row.tributary_length),
-            numbering.as_str(),
-        ));
+pub fn contact_csv<const D: usize>(
+    solution: &Solution<D>,
+    state: &State<D>,
+) -> Result<String, ContactTableError>
+where
+    Dim<D>: ContactTable<D>,
+{
+    let mut out = format!("{}\n", <Dim<D> as ContactTable<D>>::HEADER);
+    for row in <Dim<D> as ContactTable<D>>::rows(solution, state)? {
+        out.push_str(&<Dim<D> as ContactTable<D>>::csv_line(solution, &row));
+        out.push('\n');
     }
     Ok(out)
 }
@@ -91,6 +94,7 @@ pub fn contact_csv(solution: &Solution, state: &State) -> Result<String, NodalCo
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::report::nodal::nodal_contact;
 
     #[test]
     fn numbers_round_trip() {
@@ -118,7 +122,7 @@ mod tests {
     fn gmsh_nodes_are_numbered_by_their_file_tags() {
         let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes");
         let scene = crate::Scene::from_file(format!("{dir}/hertz-coarse.toml")).unwrap();
-        let sol = crate::solve(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
+        let sol = crate::solve::<2>(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let msh = crate::mesh::gmsh::MshMesh::read(format!("{dir}/hertz-coarse.msh")).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
         let table = nodal_contact(&sol, &sol.final_state).unwrap();
@@ -157,7 +161,7 @@ mod tests {
         }
         assert!(values("node_number_from_mesh_file").iter().all(|&v| v == 1));
         let scene = crate::Scene::from_file(format!("{dir}/pressed-blocks.toml")).unwrap();
-        let sol = crate::solve(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
+        let sol = crate::solve::<2>(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
         let table = nodal_contact(&sol, &sol.final_state).unwrap();
         for (line, row) in text.lines().skip(1).zip(&table) {
@@ -179,10 +183,10 @@ mod tests {
     fn a_collapsed_slave_segment_is_reported() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/pressed-blocks.toml");
         let scene = crate::Scene::from_file(path).unwrap();
-        let mut sol = crate::solve(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
+        let mut sol = crate::solve::<2>(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
         assert_eq!(text.lines().count(), 6, "{text}");
-        let [a, b] = sol.contact_pairs[0].slave[0];
+        let [a, b] = sol.contact_pairs[0].slave[0].map(crate::ids::NodeId::index);
         let x = &sol.mesh.nodes_ref;
         let d = &mut sol.final_state.displacements;
         d[a] = [x[b][0] + d[b][0] - x[a][0], x[b][1] + d[b][1] - x[a][1]];

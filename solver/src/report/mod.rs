@@ -1,9 +1,10 @@
 //! The solver's output: everything a solved [`crate::Solution`] is written
 //! as, and how files are written.
 //!
-//! * [`nodal`]: the nodal contact table of a state (pressure, gap and
+//! * [`contact_table`](mod@contact_table): the nodal contact table of a
+//!   state in either dimension ([`ContactTable`]: pressure, gap and
 //!   projection at every slave node), behind `contact.csv` and the `.vtu`
-//!   contact fields;
+//!   contact fields; [`nodal`]: the 2D table (segments);
 //! * [`vtu`]: the ASCII VTK unstructured grid of a state (`.vtu`);
 //! * [`contact_csv`](mod@contact_csv): `contact.csv`, the nodal contact table as CSV;
 //! * [`reactions_csv`](mod@reactions_csv): `reactions.csv`, the support groups' reactions at
@@ -19,7 +20,7 @@
 
 pub mod atomic;
 pub mod contact_csv;
-pub mod contact_csv3d;
+pub mod contact_table;
 pub mod csv;
 pub mod nodal;
 pub mod reactions_csv;
@@ -27,7 +28,7 @@ pub mod vtu;
 
 pub use atomic::{replace_with, write_atomic};
 pub use contact_csv::contact_csv;
-pub use contact_csv3d::{FaceContactError, HEADER_3D, contact_csv_3d, face_nodal_rows};
+pub use contact_table::{ContactTable, ContactTableError};
 pub use nodal::{NodalContactError, NodalContactRow, NodalProjection, nodal_contact};
 pub use reactions_csv::reactions_csv;
-pub use vtu::{ContactTableError, vtu_string, write_vtu, write_vtu_state};
+pub use vtu::{vtu_string, write_vtu, write_vtu_state};

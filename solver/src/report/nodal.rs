@@ -74,6 +74,7 @@ use crate::contact::{
     INDEX_MIN_SEGMENTS, MasterIndex, Tried, XI_INSIDE_TOL, XI_STUCK_BAND, gap_is_distance,
     slave_side,
 };
+use crate::ids::NodeId;
 use crate::solution::{Solution, State};
 
 /// A slave node the kernels cannot project for a reason no master segment
@@ -169,21 +170,26 @@ fn nodal_contact_with(
         .collect();
     let mut rows = Vec::new();
     for (p, pair) in solution.contact_pairs.iter().enumerate() {
+        // the segments as plain node indices
+        let raw = |f: &[[NodeId; 2]]| -> Vec<[usize; 2]> {
+            f.iter().map(|s| s.map(NodeId::index)).collect()
+        };
+        let (slave_segs, master_segs) = (raw(&pair.slave), raw(&pair.master));
         let formulation = solution.formulations[p];
         // the master face's index in this state, built for the first node
         // that needs it (`None`: every node scans)
         let index: OnceCell<Option<MasterIndex>> = OnceCell::new();
         let build_index = || {
-            if pair.master.len() < index_min_segments || !gap_is_distance(formulation) {
+            if master_segs.len() < index_min_segments || !gap_is_distance(formulation) {
                 return None;
             }
             let segments: Vec<[[f64; 2]; 2]> =
-                pair.master.iter().map(|seg| seg.map(current)).collect();
+                master_segs.iter().map(|seg| seg.map(current)).collect();
             MasterIndex::build(&segments)
         };
         // slave nodes in first-seen order, as the multipliers are laid out
         let mut nodes: Vec<usize> = Vec::new();
-        for seg in &pair.slave {
+        for seg in &slave_segs {
             for &n in seg {
                 if !nodes.contains(&n) {
                     nodes.push(n);
@@ -191,20 +197,18 @@ fn nodal_contact_with(
             }
         }
         for node in nodes {
-            let (slave_segment, xi_s) = pair
-                .slave
+            let (slave_segment, xi_s) = slave_segs
                 .iter()
                 .position(|s| s[0] == node)
                 .map(|s| (s, -1.0))
                 .or_else(|| {
-                    pair.slave
+                    slave_segs
                         .iter()
                         .position(|s| s[1] == node)
                         .map(|s| (s, 1.0))
                 })
                 .expect("the node was taken from the pair's slave segments");
-            let tributary_length = pair
-                .slave
+            let tributary_length = slave_segs
                 .iter()
                 .filter(|s| s.contains(&node))
                 .map(|s| {
@@ -213,9 +217,9 @@ fn nodal_contact_with(
                 })
                 .sum();
             let lambda = lambdas.get(&(p, node)).copied().unwrap_or(0.0);
-            let slave = pair.slave[slave_segment];
+            let slave = slave_segs[slave_segment];
             let project = |m: usize| {
-                let master = pair.master[m];
+                let master = master_segs[m];
                 let nodes = [slave[0], slave[1], master[0], master[1]];
                 let q: [f64; PAIR_COORDS] = std::array::from_fn(|k| current(nodes[k / 2])[k % 2]);
                 contact_kernels::project(formulation, &q, xi_s)
@@ -232,7 +236,7 @@ fn nodal_contact_with(
                                 gap: pr.gap,
                                 xi_m: pr.xi_m,
                                 master_segment: m,
-                                master_nodes: pair.master[m],
+                                master_nodes: master_segs[m],
                             },
                         },
                         Ok(_) => Tried::Elsewhere,
@@ -257,7 +261,7 @@ fn nodal_contact_with(
             // (projection, how far it misses the segment) on every master
             // segment the kernel accepts
             let mut candidates: Vec<(NodalProjection, f64)> = Vec::new();
-            for (m, master) in pair.master.iter().enumerate() {
+            for (m, master) in master_segs.iter().enumerate() {
                 let pr = match project(m) {
                     Ok(pr) => pr,
                     Err(error) if slave_side(&error) => {
@@ -365,7 +369,7 @@ mod tests {
                 assert!(pr.xi_m.abs() <= 1.0 + XI_INSIDE_TOL);
                 assert_eq!(
                     pr.master_nodes,
-                    sol.contact_pairs[0].master[pr.master_segment]
+                    sol.contact_pairs[0].master[pr.master_segment].map(NodeId::index)
                 );
                 // the nodes' current positions: left to right on y < 0.5
                 let reference = sol.mesh.nodes_ref[r.node];
@@ -399,7 +403,7 @@ mod tests {
     #[test]
     fn a_collapsed_slave_segment_is_an_error() {
         let mut sol = pressed_blocks(Formulation::SlaveNormal);
-        let [a, b] = sol.contact_pairs[0].slave[1];
+        let [a, b] = sol.contact_pairs[0].slave[1].map(NodeId::index);
         collapse(&mut sol, a, b);
         let e = nodal_contact(&sol, &sol.final_state).unwrap_err();
         assert_eq!(
@@ -427,7 +431,7 @@ mod tests {
     #[test]
     fn a_collapsed_master_segment_is_skipped() {
         let mut sol = pressed_blocks(Formulation::SlaveNormal);
-        let [a, b] = sol.contact_pairs[0].master[0];
+        let [a, b] = sol.contact_pairs[0].master[0].map(NodeId::index);
         collapse(&mut sol, a, b);
         let rows = nodal_contact(&sol, &sol.final_state).unwrap();
         assert_eq!(rows.len(), 5);
@@ -462,7 +466,7 @@ mod tests {
     fn hertz_pressure_carries_the_load() {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/hertz-coarse.toml");
         let scene = Scene::from_file(path).unwrap();
-        let model = scene.build_model().unwrap();
+        let model = scene.build_model::<2>().unwrap();
         let load: f64 = -model
             .loads
             .iter()
@@ -475,7 +479,7 @@ mod tests {
         let total: f64 = rows.iter().map(|r| r.pressure * r.tributary_length).sum();
         let mut cos_min: f64 = 1.0;
         for r in rows.iter().filter(|r| r.pressure > 0.0) {
-            let s = sol.contact_pairs[0].slave[r.slave_segment];
+            let s = sol.contact_pairs[0].slave[r.slave_segment].map(NodeId::index);
             let [a, b] = s.map(|n| {
                 let (x, d) = (sol.mesh.nodes_ref[n], sol.final_state.displacements[n]);
                 [x[0] + d[0], x[1] + d[1]]
@@ -519,9 +523,9 @@ mod tests {
                     steps,
                     ..SolveOptions::from_scene(&scene)
                 };
-                let sol = solve(&scene, &options).unwrap();
+                let sol = solve::<2>(&scene, &options).unwrap();
                 let pair = &sol.contact_pairs[0];
-                let slave: Vec<usize> = pair.slave.iter().flatten().copied().collect();
+                let slave: Vec<usize> = pair.slave.iter().flatten().map(|n| n.index()).collect();
                 for trial in 0..40 {
                     let mut state = sol.final_state.clone();
                     if trial > 0 {

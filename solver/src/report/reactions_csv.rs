@@ -9,7 +9,8 @@
 //! scheduled step it belongs to, its load factor and the reactions, values
 //! in Rust's shortest round-trip form (`{:?}`).
 
-use crate::dim::{Dim, SpaceDim};
+use crate::dim::SpaceDim;
+use crate::model::Dim;
 use crate::solution::Solution;
 
 use super::csv::field;

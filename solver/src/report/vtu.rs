@@ -26,10 +26,9 @@
 //!   `[xx, yy, xy]` in 2D, `[xx, yy, zz, yz, xz, xy]` in 3D, averaged over
 //!   the element's Gauss points) and `body` (the body index).
 //!
-//! The contact point data come from the nodal contact table: the 2D one
-//! of segment pairs, or in 3D that of the face pairs
-//! ([`super::contact_csv3d::face_nodal_rows`]: the node as a point of its
-//! first slave face).
+//! The contact point data come from the nodal contact table of the
+//! dimension ([`ContactTable`]: in 2D the node projected with its slave
+//! segment, in 3D the node as a point of its first slave face).
 //!
 //! A state whose nodal contact table does not exist (a
 //! [`ContactTableError`]: e.g. a collapsed slave
@@ -40,25 +39,12 @@
 use std::fmt::Write as _;
 use std::path::Path;
 
-use crate::dim::{Dim, SpaceDim};
 use crate::mesh::NodeNumbering;
+use crate::model::Dim;
 use crate::solution::{Solution, State};
 
 use super::atomic::write_atomic;
-use super::contact_csv3d::{FaceContactError, face_nodal_rows};
-use super::nodal::{NodalContactError, nodal_contact};
-
-/// Why a state has no `.vtu` document: its nodal contact table (2D
-/// segments or 3D faces) does not exist.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ContactTableError {
-    /// The 2D table ([`super::nodal`]).
-    #[error(transparent)]
-    Segments(#[from] NodalContactError),
-    /// The 3D table ([`super::contact_csv3d`]).
-    #[error(transparent)]
-    Faces(#[from] FaceContactError),
-}
+use super::contact_table::{ContactTable, ContactTableError};
 
 /// Writes the final state of `solution` to `path`.
 pub fn write_vtu<const D: usize>(
@@ -66,7 +52,7 @@ pub fn write_vtu<const D: usize>(
     solution: &Solution<D>,
 ) -> std::io::Result<()>
 where
-    Dim<D>: SpaceDim<D>,
+    Dim<D>: ContactTable<D>,
 {
     write_vtu_state(path, solution, &solution.final_state)
 }
@@ -78,7 +64,7 @@ pub fn write_vtu_state<const D: usize>(
     state: &State<D>,
 ) -> std::io::Result<()>
 where
-    Dim<D>: SpaceDim<D>,
+    Dim<D>: ContactTable<D>,
 {
     let text = vtu_string(solution, state)
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e))?;
@@ -137,7 +123,7 @@ pub fn vtu_string<const D: usize>(
     state: &State<D>,
 ) -> Result<String, ContactTableError>
 where
-    Dim<D>: SpaceDim<D>,
+    Dim<D>: ContactTable<D>,
 {
     let mesh = &solution.mesh;
     let n = mesh.node_count();
@@ -149,20 +135,10 @@ where
     let mut slave = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
     // (node, gap) of every row of the nodal contact table
-    let rows: Vec<(usize, Option<f64>)> =
-        if let Some((solution, state)) = Dim::<D>::planar_solution(solution, state) {
-            nodal_contact(solution, state)?
-                .into_iter()
-                .map(|row| (row.node, row.projection.map(|pr| pr.gap)))
-                .collect()
-        } else if let Some((solution, state)) = Dim::<D>::solid_solution(solution, state) {
-            face_nodal_rows(solution, state)?
-                .into_iter()
-                .map(|row| (row.node.index(), row.gap))
-                .collect()
-        } else {
-            Vec::new()
-        };
+    let rows: Vec<(usize, Option<f64>)> = <Dim<D> as ContactTable<D>>::rows(solution, state)?
+        .iter()
+        .map(<Dim<D> as ContactTable<D>>::node_gap)
+        .collect();
     for (node, g) in rows {
         slave[node] = 1;
         if let Some(g) = g

@@ -140,7 +140,7 @@ fn the_scene_reads() {
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("pair.msh"), MESH).unwrap();
     let model = Scene::from_toml_str(SCENE, &dir.join("scene.toml").display().to_string())
-        .and_then(|scene| scene.build_model());
+        .and_then(|scene| scene.build_model::<2>());
     std::fs::remove_dir_all(&dir).unwrap();
     let model = model.unwrap();
     assert_eq!(model.mesh.elements.len(), 2);

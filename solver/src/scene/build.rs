@@ -31,10 +31,39 @@ use super::initial_contact::check_initial_contact;
 use super::source::Sources;
 use super::supports::{Curves, Prescriptions};
 use super::{Dofs, Scene, SceneError};
+use crate::dim::SpaceDim;
 use crate::ids::DofId;
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::AnyMsh;
-use crate::model::{ContactPair, Model, PointLoad, SupportGroup};
+use crate::model::{ContactPair, Dim, Model, PointLoad, SupportGroup, SurfaceDim};
+
+/// A scene's dimension as a type: what the model builder takes from it.
+pub trait SceneDim<const D: usize>: SpaceDim<D> {
+    /// The scene dimension it builds.
+    const DIMENSION: Dimension;
+
+    /// The model of `scene`, whose `[mesh] file` is `file` (read), after
+    /// [`Scene::prepare`] found it of this dimension.
+    fn build(scene: &Scene, file: Option<AnyMsh>) -> Result<Model<D>, SceneError>
+    where
+        Dim<D>: SurfaceDim<D>;
+}
+
+impl SceneDim<2> for Dim<2> {
+    const DIMENSION: Dimension = Dimension::Two;
+
+    fn build(scene: &Scene, file: Option<AnyMsh>) -> Result<Model<2>, SceneError> {
+        scene.build_planar(file, Dimension::Two)
+    }
+}
+
+impl SceneDim<3> for Dim<3> {
+    const DIMENSION: Dimension = Dimension::Three;
+
+    fn build(scene: &Scene, file: Option<AnyMsh>) -> Result<Model<3>, SceneError> {
+        scene.build_solid(file)
+    }
+}
 
 impl Scene {
     /// The checks before any body is made: `[refine]`, the memory
@@ -49,11 +78,27 @@ impl Scene {
         Ok((file, dim))
     }
 
-    /// Builds the finite-element model of a 2D scene (a 3D scene is an
-    /// error naming its first body).
-    pub fn build_model(&self) -> Result<Model, SceneError> {
+    /// Builds the finite-element model of the scene in dimension `D`
+    /// (`build_model::<2>()` of a 2D scene, `build_model::<3>()` of a 3D
+    /// one); a scene of the other dimension is an error naming its first
+    /// body.
+    pub fn build_model<const D: usize>(&self) -> Result<Model<D>, SceneError>
+    where
+        Dim<D>: SceneDim<D>,
+    {
         let (file, dim) = self.prepare()?;
-        self.build_planar(file, dim)
+        if dim != <Dim<D> as SceneDim<D>>::DIMENSION {
+            return Err(self.invalid(
+                "body[0]",
+                format!(
+                    "is a {} body: build the model of a {} scene with `Scene::build_model::<{}>`",
+                    dim.name(),
+                    dim.name(),
+                    dim.count()
+                ),
+            ));
+        }
+        <Dim<D> as SceneDim<D>>::build(self, file)
     }
 
     /// [`Scene::build_model`] after [`Scene::prepare`].
@@ -65,19 +110,11 @@ impl Scene {
         let planar = match file {
             None => None,
             Some(AnyMsh::Planar(msh)) => Some(msh),
+            // `prepare` found the scene 2D, so its mesh file is 2D
             Some(AnyMsh::Volume(_)) => {
-                return Err(self.invalid(
-                    "mesh.file",
-                    "is a 3D mesh: a 3D scene's model is built by `Scene::build_model_3d`",
-                ));
+                return Err(self.invalid("mesh.file", "is a 3D mesh in a 2D scene"));
             }
         };
-        if dim == Dimension::Three {
-            return Err(self.invalid(
-                "body[0]",
-                "is a 3D body: a 3D scene's model is built by `Scene::build_model_3d`",
-            ));
-        }
         let mut sources = Sources::of(self, planar);
         let mut mesh = Mesh::new();
         for i in 0..self.bodies.len() {
@@ -93,7 +130,7 @@ impl Scene {
         for (i, fx) in self.fixes.iter().enumerate() {
             let f = format!("fix[{i}]");
             let start = prescribed.list.len();
-            let at = fx.at.and_then(|c| c.xy());
+            let at = fx.at.and_then(|c| c.point::<2>());
             for n in self.select_in(&mesh, &sources, &f, &fx.body, &fx.group, fx.x, fx.y, at)? {
                 for c in fx.dofs.unwrap_or(Dofs::XY).components() {
                     prescribed.add(self, &f, n, c, DofId::of(n, c), 0.0, None)?;
@@ -109,7 +146,7 @@ impl Scene {
             self.check_prescribe(&f, p, dim)?;
             let amplitude = curves.intern(self.check_amplitude(&f, &p.amplitude)?);
             let start = prescribed.list.len();
-            let at = p.at.and_then(|c| c.xy());
+            let at = p.at.and_then(|c| c.point::<2>());
             for n in self.select_in(&mesh, &sources, &f, &p.body, &p.group, p.x, p.y, at)? {
                 for (c, v) in [(0, p.ux), (1, p.uy)] {
                     if let Some(v) = v {
@@ -131,10 +168,10 @@ impl Scene {
             if l.at.is_none() && l.group.is_none() {
                 return Err(self.invalid(&f, "give `at` or `group`"));
             }
-            let at = l.at.and_then(|c| c.xy());
+            let at = l.at.and_then(|c| c.point::<2>());
             let force = l
                 .force
-                .xy()
+                .point::<2>()
                 .ok_or_else(|| self.invalid(format!("{f}.force"), "needs two numbers [x, y]"))?;
             let nodes = self.select_in(&mesh, &sources, &f, &l.body, &l.group, None, None, at)?;
             if nodes.len() > 1 {
@@ -201,7 +238,7 @@ impl Scene {
                 master,
                 formulation: c.formulation,
                 mode: c.mode,
-                gauss_points: c.segment_gauss_points(),
+                gauss_points: c.gauss_points,
                 integration: c.integration,
             };
             check_initial_contact(
@@ -220,7 +257,6 @@ impl Scene {
             prescribed: prescribed.list,
             loads,
             contacts,
-            face_contacts: Vec::new(),
             load_factor_end: self.loading.load_factor_end,
             amplitudes: curves.0,
             supports,

@@ -18,8 +18,8 @@
 //!   ([`crate::mesh::block3d`]), of a physical surface in file order; each
 //!   face's nodes in its order, each node's components x, y, z, with the
 //!   consistent nodal force of [`super::traction::nodal_forces`];
-//! * contact pairs in `[[contact]]` order, each a [`FacePair`] of
-//!   [`Model::face_contacts`] named as in 2D (`name`, else `contact[i]`):
+//! * contact pairs in `[[contact]]` order, each a [`ContactPair<3>`] of
+//!   [`Model::contacts`] named as in 2D (`name`, else `contact[i]`):
 //!   its slave and master faces (a block side's in the side's order, a
 //!   physical surface's in file order; each counter-clockwise seen from
 //!   outside its body), on two different bodies; its reading the
@@ -32,7 +32,7 @@
 //!   ([`FaceLayout::new`]) so that what the solve's layout refuses is a
 //!   scene error naming `contact[i]`.
 //!
-//! The pairs become [`Model::face_contacts`], which Newton solves with the
+//! The pairs become [`Model::contacts`], which Newton solves with the
 //! 3D contact element ([`crate::dim::ContactSpace`]). The 2D reference checks of a pair (faces facing each other, no initial
 //! penetration: `initial_contact.rs`) are not made in 3D.
 
@@ -49,7 +49,7 @@ use crate::ids::{DofId, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::AnyMsh;
 use crate::mesh::volume::{Face, FaceKind};
-use crate::model::{FacePair, Integration, Model, PointLoad, SupportGroup};
+use crate::model::{ContactPair, Integration, Model, PointLoad, SupportGroup};
 
 /// The dof of component `c` of `node` in 3D.
 fn dof(node: crate::ids::NodeId, c: usize) -> DofId {
@@ -57,32 +57,15 @@ fn dof(node: crate::ids::NodeId, c: usize) -> DofId {
 }
 
 impl Scene {
-    /// Builds the finite-element model of a 3D scene (a 2D scene is an
-    /// error naming its first body). Its contact pairs are
-    /// [`Model::face_contacts`].
-    pub fn build_model_3d(&self) -> Result<Model<3>, SceneError> {
-        let (file, dim) = self.prepare()?;
-        if dim == Dimension::Two {
-            return Err(self.invalid(
-                "body[0]",
-                "is a 2D body: a 2D scene's model is built by `Scene::build_model`",
-            ));
-        }
-        self.build_solid(file)
-    }
-
-    /// [`Scene::build_model_3d`] after [`Scene::prepare`] found the scene
-    /// 3D.
+    /// [`Scene::build_model`] of a 3D scene after [`Scene::prepare`].
     pub(super) fn build_solid(&self, file: Option<AnyMsh>) -> Result<Model<3>, SceneError> {
         let dim = Dimension::Three;
         let volume = match file {
             None => None,
             Some(AnyMsh::Volume(msh)) => Some(msh),
+            // `prepare` found the scene 3D, so its mesh file is 3D
             Some(AnyMsh::Planar(_)) => {
-                return Err(self.invalid(
-                    "mesh.file",
-                    "is a 2D mesh: a 2D scene's model is built by `Scene::build_model`",
-                ));
+                return Err(self.invalid("mesh.file", "is a 2D mesh in a 3D scene"));
             }
         };
         let mut sources = Solids::new(self, volume);
@@ -100,7 +83,7 @@ impl Scene {
         for (i, fx) in self.fixes.iter().enumerate() {
             let f = format!("fix[{i}]");
             let start = prescribed.list.len();
-            let at = fx.at.and_then(|c| c.xyz());
+            let at = fx.at.and_then(|c| c.point::<3>());
             let xyz = [fx.x, fx.y, fx.z];
             for n in self.select_3d(&mesh, &sources, &f, &fx.body, &fx.group, xyz, at)? {
                 for c in fx.dofs.unwrap_or(Dofs::XYZ).components() {
@@ -117,7 +100,7 @@ impl Scene {
             self.check_prescribe(&f, p, dim)?;
             let amplitude = curves.intern(self.check_amplitude(&f, &p.amplitude)?);
             let start = prescribed.list.len();
-            let at = p.at.and_then(|c| c.xyz());
+            let at = p.at.and_then(|c| c.point::<3>());
             let xyz = [p.x, p.y, p.z];
             for n in self.select_3d(&mesh, &sources, &f, &p.body, &p.group, xyz, at)? {
                 for (c, v) in [(0, p.ux), (1, p.uy), (2, p.uz)] {
@@ -140,8 +123,8 @@ impl Scene {
             if l.at.is_none() && l.group.is_none() {
                 return Err(self.invalid(&f, "give `at` or `group`"));
             }
-            let at = l.at.and_then(|c| c.xyz());
-            let force = l.force.xyz().ok_or_else(|| {
+            let at = l.at.and_then(|c| c.point::<3>());
+            let force = l.force.point::<3>().ok_or_else(|| {
                 self.invalid(format!("{f}.force"), "needs three numbers [x, y, z]")
             })?;
             let nodes = self.select_3d(&mesh, &sources, &f, &l.body, &l.group, [None; 3], at)?;
@@ -194,10 +177,10 @@ impl Scene {
                 }
             }
         }
-        let mut face_contacts = Vec::with_capacity(self.contacts.len());
+        let mut contacts = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
             let f = format!("contact[{i}]");
-            face_contacts.push(self.face_pair(&mesh, &sources, &f, c)?);
+            contacts.push(self.face_pair(&mesh, &sources, &f, c)?);
         }
         self.check_loading()?;
         self.check_newton()?;
@@ -205,8 +188,7 @@ impl Scene {
             mesh,
             prescribed: prescribed.list,
             loads,
-            contacts: Vec::new(),
-            face_contacts,
+            contacts,
             load_factor_end: self.loading.load_factor_end,
             amplitudes: curves.0,
             supports,
@@ -216,14 +198,14 @@ impl Scene {
         }
         // what the solve's layout of the pairs refuses (a clipping that
         // fails, a degenerate slave face) is refused here, by pair
-        for (i, pair) in model.face_contacts.iter().enumerate() {
+        for (i, pair) in model.contacts.iter().enumerate() {
             FaceLayout::new(&model.mesh, std::slice::from_ref(pair), None)
                 .map_err(|e| self.invalid(format!("contact[{i}]"), e.to_string()))?;
         }
         Ok(model)
     }
 
-    /// The [`FacePair`] of `contact[i]` (named `f`, `c`): its two faces
+    /// The [`ContactPair<3>`] of `contact[i]` (named `f`, `c`): its two faces
     /// resolved (a block side's faces in the side's order, a physical
     /// surface's in file order), on two different bodies, each with at
     /// least one face; its `formulation` a reading of 3D faces; its
@@ -236,7 +218,7 @@ impl Scene {
         sources: &Solids,
         f: &str,
         c: &ContactSpec,
-    ) -> Result<FacePair, SceneError> {
+    ) -> Result<ContactPair<3>, SceneError> {
         let faces = |which: &str, spec: &FaceSpec| {
             let field = format!("{f}.{which}");
             let (body, faces) =
@@ -264,11 +246,11 @@ impl Scene {
             ));
         }
         self.check_face_gauss_points(f, c, &slave)?;
-        Ok(FacePair {
+        Ok(ContactPair {
             name: c.pair_name(f),
             slave,
             master,
-            reading: c.formulation,
+            formulation: c.formulation,
             mode: c.mode,
             gauss_points: c.gauss_points,
             integration: c.integration,

@@ -54,7 +54,7 @@ impl Dimension {
     }
 
     /// `2D` or `3D`, for messages.
-    fn name(self) -> &'static str {
+    pub(super) fn name(self) -> &'static str {
         match self {
             Dimension::Two => "2D",
             Dimension::Three => "3D",

@@ -276,7 +276,7 @@ mod tests {
                     continue;
                 }
                 scene
-                    .build_model()
+                    .build_model::<2>()
                     .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
                 checked += 1;
             }

@@ -156,6 +156,7 @@
 
 use std::path::Path;
 
+use crate::model::Dim;
 use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
 
 mod build;
@@ -183,6 +184,7 @@ mod bad_input_tests;
 #[cfg(test)]
 mod tests3d;
 
+pub use build::SceneDim;
 pub use dimension::Dimension;
 pub use error::SceneError;
 pub use initial_contact::{FACING_TOL, PENETRATION_FRACTION};
@@ -197,8 +199,7 @@ impl Scene {
     /// messages (usually the file name). Validating builds the scene's
     /// model once (2D or 3D); a scene that asks for what the solver does
     /// not have yet ([`SceneError::Unsupported`]) would be read, everything
-    /// else checked, and fail when its model is built. (A 3D scene's
-    /// contact pairs are built as [`crate::model::Model::face_contacts`].)
+    /// else checked, and fail when its model is built.
     pub fn from_toml_str(text: &str, origin: &str) -> Result<Scene, SceneError> {
         let mut scene = error::parse(text, origin)?;
         scene.origin = origin.to_owned();
@@ -212,8 +213,8 @@ impl Scene {
     fn validate(&self) -> Result<(), SceneError> {
         let (file, dim) = self.prepare()?;
         match dim {
-            Dimension::Two => self.build_planar(file, dim).map(drop),
-            Dimension::Three => self.build_solid(file).map(drop),
+            Dimension::Two => <Dim<2> as SceneDim<2>>::build(self, file).map(drop),
+            Dimension::Three => <Dim<3> as SceneDim<3>>::build(self, file).map(drop),
         }
     }
 
@@ -313,11 +314,50 @@ steps = [2]
     /// printed as their plain numbers (`NodeId(3)` as `3`), as they were
     /// before the ids had types, so the prints recorded then still hold.
     fn fingerprint(model: &Model) -> u64 {
-        untyped(&format!("{model:?}"))
+        untyped(&print(model))
             .bytes()
             .fold(0xcbf2_9ce4_8422_2325, |h, b| {
                 (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3)
             })
+    }
+
+    /// The model as the fingerprints recorded it: its fields but
+    /// `supports` (report names only), `amplitudes` only when there are
+    /// curves, each pair's `gauss_points` resolved (2 when absent) and its
+    /// `integration` only when it is not Gauss.
+    fn print(m: &Model) -> String {
+        let pairs: Vec<String> = m
+            .contacts
+            .iter()
+            .map(|c| {
+                let integration = match c.integration {
+                    crate::model::Integration::Gauss => String::new(),
+                    i => format!(", integration: {i:?}"),
+                };
+                format!(
+                    "ContactPair {{ name: {:?}, slave: {:?}, master: {:?}, formulation: {:?}, mode: {:?}, gauss_points: {}{integration} }}",
+                    c.name,
+                    c.slave,
+                    c.master,
+                    c.formulation,
+                    c.mode,
+                    c.gauss_points.unwrap_or(2)
+                )
+            })
+            .collect();
+        let amplitudes = if m.amplitudes.is_empty() {
+            String::new()
+        } else {
+            format!(", amplitudes: {:?}", m.amplitudes)
+        };
+        format!(
+            "Model {{ mesh: {:?}, prescribed: {:?}, loads: {:?}, contacts: [{}], load_factor_end: {:?}{amplitudes} }}",
+            m.mesh,
+            m.prescribed,
+            m.loads,
+            pairs.join(", "),
+            m.load_factor_end
+        )
     }
 
     /// `text` with every `NodeId(n)`, `ElementId(n)` and `DofId(n)` replaced
@@ -384,7 +424,7 @@ steps = [2]
             (
                 Formulation::SlaveNormal,
                 crate::model::ContactMode::Persistent,
-                2
+                Some(2)
             )
         );
         assert_eq!(m.load_factor_end, 10.0);
@@ -431,7 +471,7 @@ steps = [2]
         assert_eq!(s.loading.method, Method::Complete);
         assert_eq!(s.default_steps(), 2);
         assert_eq!(s.newton.max_iterations, 30);
-        let m = s.build_model().unwrap();
+        let m = s.build_model::<2>().unwrap();
         assert_eq!(m.prescribed.len(), 4);
         assert_eq!(m.loads.len(), 2);
         let again = Scene::from_toml_str(&s.to_toml_string(), "round-trip").unwrap();

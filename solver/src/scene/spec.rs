@@ -162,20 +162,10 @@ impl Coords {
         }
     }
 
-    /// `[x, y]`, if two numbers were written.
-    pub fn xy(&self) -> Option<[f64; 2]> {
-        match *self {
-            Coords::Xy(v) => Some(v),
-            Coords::Xyz(_) => None,
-        }
-    }
-
-    /// `[x, y, z]`, if three numbers were written.
-    pub fn xyz(&self) -> Option<[f64; 3]> {
-        match *self {
-            Coords::Xy(_) => None,
-            Coords::Xyz(v) => Some(v),
-        }
+    /// The point `[x, y]` (`D` = 2) or `[x, y, z]` (`D` = 3), if `D`
+    /// numbers were written.
+    pub fn point<const D: usize>(&self) -> Option<[f64; D]> {
+        self.as_slice().try_into().ok()
     }
 }
 
@@ -627,7 +617,7 @@ pub struct ContactSpec {
     /// `formulation`: the gap formulation, `slave-normal` (default) or
     /// `closest-point`. (`quadratic-slave-normal`, for 3-node segments, is
     /// refused: the solver's contact faces are two-node segments.) In 3D
-    /// it is the pair's reading ([`crate::model::FacePair::reading`]): the
+    /// it is the pair's reading ([`crate::model::ContactPair::formulation`]): the
     /// kernel of each slave face on a master face is that reading's for
     /// the two faces' kinds.
     #[serde(
@@ -693,14 +683,6 @@ impl ContactSpec {
     /// `contact[i]` (`field`); the one naming of 2D and 3D pairs.
     pub(super) fn pair_name(&self, field: &str) -> String {
         self.name.clone().unwrap_or_else(|| field.to_owned())
-    }
-
-    /// The Gauss points per slave segment of a 2D pair: `gauss_points`,
-    /// else the segment's default (2).
-    pub(super) fn segment_gauss_points(&self) -> usize {
-        use crate::contact::face_rules::{FaceKind, default_points};
-        self.gauss_points
-            .unwrap_or_else(|| default_points(FaceKind::Segment))
     }
 }
 

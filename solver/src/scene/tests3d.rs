@@ -400,14 +400,19 @@ fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
         )
         .unwrap_or_else(|e| panic!("{mesh}: {e}"));
         let model = scene
-            .build_model_3d()
+            .build_model::<3>()
             .unwrap_or_else(|e| panic!("{mesh}: {e}"));
         assert!(model.contacts.is_empty());
-        assert_eq!(model.face_contacts.len(), 1);
-        let pair = &model.face_contacts[0];
+        assert_eq!(model.contacts.len(), 1);
+        let pair = &model.contacts[0];
         assert_eq!(pair.name, "contact[0]");
         assert_eq!(
-            (pair.reading, pair.mode, pair.gauss_points, pair.integration),
+            (
+                pair.formulation,
+                pair.mode,
+                pair.gauss_points,
+                pair.integration
+            ),
             (
                 Formulation::SlaveNormal,
                 ContactMode::Unilateral,
@@ -447,13 +452,13 @@ fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
         );
         let segmented = Scene::from_toml_str(&text, &scenes_dir("hertz3d.toml"))
             .unwrap_or_else(|e| panic!("{mesh} segmented: {e}"));
-        let model = segmented.build_model_3d().unwrap();
-        assert_eq!(model.face_contacts[0].integration, Integration::Segmented);
+        let model = segmented.build_model::<3>().unwrap();
+        assert_eq!(model.contacts[0].integration, Integration::Segmented);
     }
     // nor is it a 2D model
     let scene = Scene::from_file(scenes_dir("hertz3d.toml")).unwrap();
     assert!(matches!(
-        scene.build_model(),
+        scene.build_model::<2>(),
         Err(SceneError::Invalid { field, .. }) if field == "mesh.file"
     ));
 }
@@ -473,8 +478,8 @@ fn a_tri3_pair_refuses_a_count_without_a_triangle_rule() {
     for n in [1, 3, 4, 6, 7] {
         let scene = Scene::from_toml_str(&with(&format!("gauss_points = {n}")), &origin)
             .unwrap_or_else(|e| panic!("{n}: {e}"));
-        let model = scene.build_model_3d().unwrap();
-        assert_eq!(model.face_contacts[0].gauss_points, Some(n));
+        let model = scene.build_model::<3>().unwrap();
+        assert_eq!(model.contacts[0].gauss_points, Some(n));
     }
     for n in [0, 2, 5, 8] {
         match Scene::from_toml_str(&with(&format!("gauss_points = {n}")), &origin) {
@@ -547,8 +552,8 @@ fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
     use crate::mesh::volume::{Face, dot};
     use crate::model::{ContactMode, Integration};
     use contact_kernels::Formulation;
-    let model = error_free(BLOCKS3D).build_model_3d().unwrap();
-    assert_eq!(model.face_contacts.len(), 2);
+    let model = error_free(BLOCKS3D).build_model::<3>().unwrap();
+    assert_eq!(model.contacts.len(), 2);
     // each block's side, its nodes offset by the body's first node
     let side = |b: usize, size: [usize; 3], z: f64, s: Side3d| -> Vec<Face<NodeId>> {
         let block = Block3d {
@@ -569,14 +574,14 @@ fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
     let base_top = side(0, [2, 1, 1], 0.0, Side3d::Top);
     let block_bottom = side(1, [3, 2, 1], 0.5, Side3d::Bottom);
     assert_eq!((base_top.len(), block_bottom.len()), (2, 6));
-    let [first, second] = &model.face_contacts[..] else {
+    let [first, second] = &model.contacts[..] else {
         unreachable!()
     };
     assert_eq!(first.name, "contact[0]");
     assert_eq!((&first.slave, &first.master), (&block_bottom, &base_top));
     assert_eq!(
         (
-            first.reading,
+            first.formulation,
             first.mode,
             first.gauss_points,
             first.integration
@@ -592,7 +597,7 @@ fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
     assert_eq!((&second.slave, &second.master), (&base_top, &block_bottom));
     assert_eq!(
         (
-            second.reading,
+            second.formulation,
             second.mode,
             second.gauss_points,
             second.integration
@@ -624,9 +629,9 @@ fn a_3d_pair_refuses_counts_readings_and_faces_by_key() {
     let pair = |extra: &str| BLOCKS3D.replacen(first, &format!("{first}{extra}\n"), 1);
     for n in 1..=8 {
         let model = error_free(&pair(&format!("gauss_points = {n}")))
-            .build_model_3d()
+            .build_model::<3>()
             .unwrap();
-        assert_eq!(model.face_contacts[0].gauss_points, Some(n));
+        assert_eq!(model.contacts[0].gauss_points, Some(n));
     }
     for n in [0, 9] {
         let (field, message) = invalid(&pair(&format!("gauss_points = {n}")));
@@ -667,7 +672,7 @@ fn a_3d_pair_refuses_counts_readings_and_faces_by_key() {
     }
     let mut scene = error_free(BLOCKS3D);
     scene.contacts[1].formulation = contact_kernels::Formulation::QuadraticSlaveNormal;
-    match scene.build_model_3d() {
+    match scene.build_model::<3>() {
         Err(SceneError::Invalid { field, message, .. }) => {
             assert_eq!(field, "contact[1].formulation");
             assert!(
@@ -676,7 +681,7 @@ fn a_3d_pair_refuses_counts_readings_and_faces_by_key() {
                 "{message}"
             );
         }
-        other => panic!("{:?}", other.map(|m| m.face_contacts.len())),
+        other => panic!("{:?}", other.map(|m| m.contacts.len())),
     }
     // both faces on one body
     let (field, message) = invalid(&BLOCKS3D.replacen(
@@ -703,9 +708,14 @@ fn a_2d_pair_keeps_its_gauss_points() {
         ),
         (Some(2), None)
     );
-    let (a, b) = (given.build_model().unwrap(), absent.build_model().unwrap());
+    let (mut a, b) = (
+        given.build_model::<2>().unwrap(),
+        absent.build_model::<2>().unwrap(),
+    );
+    // absent: the segment's default, 2 points (the layout's)
+    assert_eq!(b.contacts[0].gauss_points, None);
+    a.contacts[0].gauss_points = None;
     assert_eq!(format!("{a:?}"), format!("{b:?}"));
-    assert_eq!(b.contacts[0].gauss_points, 2);
     assert!(!absent.to_toml_string().contains("gauss_points"));
     assert!(given.to_toml_string().contains("gauss_points = 2"));
     for n in [0, 9] {
@@ -724,7 +734,7 @@ fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
         let scene = Scene::from_toml_str(&hertz3d_without_contact(mesh), &origin)
             .unwrap_or_else(|e| panic!("{mesh}: {e}"));
         let model = scene
-            .build_model_3d()
+            .build_model::<3>()
             .unwrap_or_else(|e| panic!("{mesh}: {e}"));
         let msh = MshVolumeMesh::read(scenes_dir(mesh)).unwrap();
         let names: Vec<&str> = model.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
@@ -812,7 +822,7 @@ fn the_3d_hertz_scene_without_contact_builds_a_3d_model() {
 fn a_3d_block_fixes_every_component_and_loads_its_side_consistently() {
     let text = BLOCK3D.replace("ny = 1\nnz = 1", "ny = 2\nnz = 2");
     let scene = error_free(&text);
-    let model = scene.build_model_3d().unwrap();
+    let model = scene.build_model::<3>().unwrap();
     assert_eq!(model.mesh.node_count(), 5 * 3 * 3);
     assert_eq!(model.mesh.elements.len(), 4 * 2 * 2);
     // x = 0: 9 nodes, all three components, node by node
@@ -858,7 +868,7 @@ fn selections_and_refinement_in_3d() {
         "[[fix]]\nx = 0.0\n",
         "[[fix]]\nz = 0.0\ndofs = \"zx\"\n\n[[prescribe]]\nat = [4.0, 1.0, 1.0]\nuz = -0.5\n",
     ) + "\n[refine]\nz = 3\n";
-    let model = error_free(&text).build_model_3d().unwrap();
+    let model = error_free(&text).build_model::<3>().unwrap();
     assert_eq!(model.mesh.node_count(), 5 * 2 * 4);
     let fix = &model.prescribed[model.supports[0].prescribed.clone()];
     assert_eq!(fix.len(), 2 * 10);
@@ -881,7 +891,7 @@ fn selections_and_refinement_in_3d() {
     assert!(message.contains("no node at"), "{message}");
     // the sides of a 3D block by name; a mesh group without a mesh file
     let text = BLOCK3D.replace("side = \"right\"", "side = \"back\"");
-    let model = error_free(&text).build_model_3d().unwrap();
+    let model = error_free(&text).build_model::<3>().unwrap();
     assert!(
         model
             .loads

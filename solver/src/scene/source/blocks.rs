@@ -55,7 +55,7 @@ impl MeshSource for Blocks<'_> {
         }
         // a 2D scene's blocks have two numbers in both (`check_dimension`)
         let two = |c: Option<crate::scene::Coords>, k: &str| {
-            c.ok_or_else(|| missing(k))?.xy().ok_or_else(|| {
+            c.ok_or_else(|| missing(k))?.point::<2>().ok_or_else(|| {
                 self.scene
                     .invalid(format!("{f}.{k}"), "needs two numbers [x, y] in a 2D block")
             })

@@ -32,7 +32,7 @@ pub(super) fn block(scene: &Scene, i: usize) -> Result<Block3d, SceneError> {
         ));
     }
     let three = |c: Option<crate::scene::Coords>, k: &str| {
-        c.ok_or_else(|| missing(k))?.xyz().ok_or_else(|| {
+        c.ok_or_else(|| missing(k))?.point::<3>().ok_or_else(|| {
             scene.invalid(
                 format!("{f}.{k}"),
                 "needs three numbers [x, y, z] in a 3D block",

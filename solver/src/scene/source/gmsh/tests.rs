@@ -559,7 +559,7 @@ steps = [2]
 fn mixed_mesh_is_read_and_solved() {
     let origin = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/mesh/gmsh/testdata/mixed.toml");
     let scene = Scene::from_toml_str(MIXED, &origin.display().to_string()).unwrap();
-    let model = scene.build_model().unwrap();
+    let model = scene.build_model::<2>().unwrap();
     let mesh = &model.mesh;
     let kinds: Vec<crate::mesh::ElementKind> = mesh.elements.iter().map(|e| e.kind()).collect();
     use crate::mesh::ElementKind::{Quad4, Tri3};
@@ -570,7 +570,7 @@ fn mixed_mesh_is_read_and_solved() {
     assert_eq!(c.slave.len(), 2);
     assert!(c.slave.iter().all(|s| normal_y(s) < 0.0), "{:?}", c.slave);
     assert!(c.master.iter().all(|s| normal_y(s) > 0.0), "{:?}", c.master);
-    let sol = crate::solve(&scene, &crate::SolveOptions::default()).unwrap();
+    let sol = crate::solve::<2>(&scene, &crate::SolveOptions::default()).unwrap();
     let s = sol.element_stresses(&sol.final_state);
     let syy = s[0].pk2[1];
     assert!(syy < -1.0, "{s:?}");

@@ -21,149 +21,28 @@
 //! amplitude index is in range, every support group is a range of
 //! `prescribed`, every node with a free
 //! dof belongs to an element, and every contact pair has non-empty slave and
-//! master faces of non-degenerate segments that share no node. Nodes are
+//! master surfaces of facets that share no node (segments of non-zero
+//! length in 2D) and `gauss_points`, if given, in 1..=8. Nodes are
 //! [`NodeId`]s and dofs [`DofId`]s (`D node + component`); the error
 //! variants carry their plain numbers.
 //!
 //! A model lives in the dimension of its mesh (`Model<D>`, 2 by default;
-//! one type and one solver for both). A 2D model's contact pairs are
-//! pairs of segments (`contacts`), a 3D model's pairs of tri3/quad4 faces
-//! (`face_contacts`, [`FacePair`]); [`Model::check`] refuses a pair of the
-//! other dimension ([`ModelError::ContactIn3d`] for segments in 3D), and a
-//! 3D body whose material is not admissible in 3D
-//! ([`ModelError::Material`]: Poisson's ratio must be below 1/2; a 2D
-//! model's materials are checked where they are read).
+//! one type and one solver for both). Its contact pairs are
+//! [`ContactPair<D>`]s of the dimension's facets (`pair.rs`: segments in
+//! 2D, tri3/quad4 faces in 3D); [`Model::check`] refuses a 3D body whose
+//! material is not admissible in 3D ([`ModelError::Material`]: Poisson's
+//! ratio must be below 1/2; a 2D model's materials are checked where they
+//! are read).
 
-use contact_kernels::Formulation;
-use serde::{Deserialize, Serialize};
+mod pair;
 
 use std::ops::Range;
 
 use crate::amplitude::Amplitude;
 use crate::ids::{AmplitudeId, DofId, NodeId};
 use crate::mesh::Mesh;
-use crate::mesh::volume::Face;
 
-/// How a contact pair integrates over its slave segments
-/// (`[[contact]] integration`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Integration {
-    /// `gauss_points` Gauss points on every slave segment (the default).
-    #[default]
-    Gauss,
-    /// Each slave segment split at the projections of the master nodes,
-    /// `gauss_points` Gauss points on every piece (see
-    /// [`crate::contact::segmented_rule`]).
-    Segmented,
-}
-
-impl Integration {
-    /// The name used in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Integration::Gauss => "gauss",
-            Integration::Segmented => "segmented",
-        }
-    }
-}
-
-/// How a contact pair's constraint is enforced.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum ContactMode {
-    /// Equality `g = 0` at every paired integration point (frictionless
-    /// sliding; the paper's contact).
-    #[default]
-    Persistent,
-    /// Inequality `g >= 0` with compressive pressure `p = -lambda >= 0`
-    /// and an active set of multiplier nodes (see [`crate::contact`]).
-    Unilateral,
-}
-
-impl ContactMode {
-    /// The name used in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            ContactMode::Persistent => "persistent",
-            ContactMode::Unilateral => "unilateral",
-        }
-    }
-}
-
-/// One contact pair: a slave face and a master face, each a list of 2-node
-/// segments (global node indices) ordered counter-clockwise around its
-/// body.
-#[derive(Clone, PartialEq)]
-pub struct ContactPair {
-    /// A name for reports.
-    pub name: String,
-    /// Slave segments.
-    pub slave: Vec<[NodeId; 2]>,
-    /// Master segments.
-    pub master: Vec<[NodeId; 2]>,
-    /// The gap formulation.
-    pub formulation: Formulation,
-    /// Persistent or unilateral.
-    pub mode: ContactMode,
-    /// Gauss points per slave segment (1..=8), per piece of it with
-    /// segmented integration.
-    pub gauss_points: usize,
-    /// The integration rule on the slave segments (see
-    /// [`Integration`]).
-    pub integration: Integration,
-}
-
-/// As derived, except that the default integration rule is not printed, so
-/// that the `Debug` text of every model without segmented integration (and
-/// the fingerprints of it that tests keep) is what it was before the rule
-/// existed.
-impl std::fmt::Debug for ContactPair {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("ContactPair");
-        d.field("name", &self.name)
-            .field("slave", &self.slave)
-            .field("master", &self.master)
-            .field("formulation", &self.formulation)
-            .field("mode", &self.mode)
-            .field("gauss_points", &self.gauss_points);
-        if self.integration != Integration::Gauss {
-            d.field("integration", &self.integration);
-        }
-        d.finish()
-    }
-}
-
-/// One 3D contact pair: a slave surface and a master surface, each a list
-/// of tri3 and quad4 faces (global node indices) whose nodes run
-/// counter-clockwise seen from outside the body they bound
-/// (docs/conventions.md, "3D faces"). The solver picks the kernel of each
-/// (slave face, master face) pair from the pair's reading and the two
-/// faces' kinds ([`crate::contact::face_formulation`]).
-#[derive(Debug, Clone, PartialEq)]
-pub struct FacePair {
-    /// A name for reports.
-    pub name: String,
-    /// Slave faces.
-    pub slave: Vec<Face<NodeId>>,
-    /// Master faces.
-    pub master: Vec<Face<NodeId>>,
-    /// The reading of the gap: [`Formulation::SlaveNormal`] or
-    /// [`Formulation::ClosestPoint`].
-    pub reading: Formulation,
-    /// Persistent or unilateral.
-    pub mode: ContactMode,
-    /// `gauss_points`: `n x n` points on a quad4, `n` on a tri3 (1, 3, 4,
-    /// 6 or 7); `None`: 2 x 2 on a quad4, 3 on a tri3
-    /// ([`crate::contact::face_rules::default_points`]). With segmented
-    /// integration the rule on each clipped triangle: 1, 3 or 7 points
-    /// (`None`: 7).
-    pub gauss_points: Option<usize>,
-    /// The rule on the slave faces: Gauss on every face, or segmented
-    /// (each slave face clipped against the master faces projected onto
-    /// it, see [`crate::contact::FaceLayout`]).
-    pub integration: Integration,
-}
+pub use pair::{ContactMode, ContactPair, Dim, Facet, FacetOf, Integration, SurfaceDim};
 
 /// A prescribed displacement degree of freedom.
 ///
@@ -205,23 +84,19 @@ pub struct SupportGroup {
 }
 
 /// Everything the solver needs.
-///
-/// Its `Debug` print leaves out `amplitudes` when there are none and
-/// `supports` always (report names only), so that the print of a model
-/// without curves, and the fingerprints recorded from it, stay as they
-/// were.
-#[derive(Clone)]
-pub struct Model<const D: usize = 2> {
+#[derive(Debug, Clone)]
+pub struct Model<const D: usize = 2>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The mesh with materials.
     pub mesh: Mesh<D>,
     /// Prescribed degrees of freedom (each at most once).
     pub prescribed: Vec<Prescribed>,
     /// Reference point loads (a dof may appear several times; they add).
     pub loads: Vec<PointLoad>,
-    /// Contact pairs of 2D segments (2D models only).
-    pub contacts: Vec<ContactPair>,
-    /// Contact pairs of tri3/quad4 faces (3D models only).
-    pub face_contacts: Vec<FacePair>,
+    /// Contact pairs.
+    pub contacts: Vec<ContactPair<D>>,
     /// The final load factor.
     pub load_factor_end: f64,
     /// Load curves, referred to by [`Prescribed::amplitude`] and
@@ -249,24 +124,6 @@ impl std::fmt::Debug for PointLoad {
         d.field("dof", &self.dof).field("value", &self.value);
         if let Some(a) = self.amplitude {
             d.field("amplitude", &a);
-        }
-        d.finish()
-    }
-}
-
-impl<const D: usize> std::fmt::Debug for Model<D> {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("Model");
-        d.field("mesh", &self.mesh)
-            .field("prescribed", &self.prescribed)
-            .field("loads", &self.loads)
-            .field("contacts", &self.contacts)
-            .field("load_factor_end", &self.load_factor_end);
-        if !self.face_contacts.is_empty() {
-            d.field("face_contacts", &self.face_contacts);
-        }
-        if !self.amplitudes.is_empty() {
-            d.field("amplitudes", &self.amplitudes);
         }
         d.finish()
     }
@@ -361,18 +218,12 @@ pub enum ModelError {
         /// Why.
         error: crate::material::MaterialError,
     },
-    /// A contact pair of 2D segments in a model of another dimension (a 3D
-    /// model's pairs are `face_contacts`).
-    #[error("contact pair `{pair}`: a pair of segments needs a 2D model, this one is {dim}D")]
-    ContactIn3d {
-        /// The first pair's name.
-        pair: String,
-        /// The model's dimension.
-        dim: usize,
-    },
 }
 
-impl<const D: usize> Model<D> {
+impl<const D: usize> Model<D>
+where
+    Dim<D>: SurfaceDim<D>,
+{
     /// The factor of an item with load curve `amplitude` at load factor
     /// `load_factor`: `load_factor` itself without a curve (so the item's
     /// value is `load_factor * value`, as for proportional loading), else
@@ -389,7 +240,7 @@ impl<const D: usize> Model<D> {
         D * self.mesh.node_count()
     }
 
-    /// Checks indices, duplicates and contact pairs (refused in 3D).
+    /// Checks indices, duplicates and contact pairs (module docs).
     pub fn check(&self) -> Result<(), ModelError> {
         let ndof = self.dof_count();
         if !self.load_factor_end.is_finite() {
@@ -488,94 +339,52 @@ impl<const D: usize> Model<D> {
                     })?;
             }
         }
-        if let Some(pair) = self.contacts.first()
-            && D != 2
-        {
-            return Err(ModelError::ContactIn3d {
-                pair: pair.name.clone(),
-                dim: D,
-            });
-        }
-        if let Some(pair) = self.face_contacts.first()
-            && D != 3
-        {
-            return Err(ModelError::Contact {
-                pair: pair.name.clone(),
-                message: format!("face pairs need a 3D model, this one is {D}D"),
-            });
-        }
-        for pair in &self.face_contacts {
-            let err = |message: String| ModelError::Contact {
-                pair: pair.name.clone(),
-                message,
-            };
-            if pair.slave.is_empty() || pair.master.is_empty() {
-                return Err(err(
-                    "the slave and the master surface need at least one face each".into(),
-                ));
-            }
-            for face in pair.slave.iter().chain(&pair.master) {
-                if face
-                    .nodes()
-                    .iter()
-                    .any(|n| n.index() >= self.mesh.node_count())
-                {
-                    let raw: Vec<usize> = face.nodes().iter().map(|n| n.index()).collect();
-                    return Err(err(format!("face {raw:?} refers to a missing node")));
-                }
-            }
-            let slave_nodes: std::collections::HashSet<NodeId> = pair
-                .slave
-                .iter()
-                .flat_map(|f| f.nodes().iter().copied())
-                .collect();
-            if pair
-                .master
-                .iter()
-                .any(|f| f.nodes().iter().any(|n| slave_nodes.contains(n)))
-            {
-                return Err(err("the slave and the master surface share a node".into()));
-            }
-        }
         for pair in &self.contacts {
-            let err = |message: String| ModelError::Contact {
-                pair: pair.name.clone(),
-                message,
-            };
-            if pair.slave.is_empty() || pair.master.is_empty() {
-                return Err(err(
-                    "the slave and the master face need at least one segment each".into(),
-                ));
-            }
-            if !(1..=8).contains(&pair.gauss_points) {
-                return Err(err(format!(
-                    "gauss_points must be in 1..=8, got {}",
-                    pair.gauss_points
-                )));
-            }
-            let tolerance = self.mesh.coordinate_tolerance();
-            for seg in pair.slave.iter().chain(&pair.master) {
-                // printed as the plain `[a, b]` it always was
-                let raw = seg.map(NodeId::index);
-                if raw.iter().any(|&n| n >= self.mesh.node_count()) {
-                    return Err(err(format!("segment {raw:?} refers to a missing node")));
-                }
-                let (a, b) = (self.mesh.node_ref(seg[0]), self.mesh.node_ref(seg[1]));
-                let d: [f64; D] = std::array::from_fn(|c| a[c] - b[c]);
-                if !(crate::mesh::length(&d) > tolerance) {
-                    return Err(err(format!("segment {raw:?} has zero length")));
-                }
-            }
-            let slave_nodes: std::collections::HashSet<NodeId> =
-                pair.slave.iter().flatten().copied().collect();
-            if pair
-                .master
+            self.check_pair(pair)
+                .map_err(|message| ModelError::Contact {
+                    pair: pair.name.clone(),
+                    message,
+                })?;
+        }
+        Ok(())
+    }
+
+    /// What is wrong with `pair` (module docs), if anything.
+    fn check_pair(&self, pair: &ContactPair<D>) -> Result<(), String> {
+        let (facet, surface) = (FacetOf::<D>::NAME, FacetOf::<D>::SURFACE);
+        if pair.slave.is_empty() || pair.master.is_empty() {
+            return Err(format!(
+                "the slave and the master {surface} need at least one {facet} each"
+            ));
+        }
+        if let Some(n) = pair.gauss_points
+            && !(1..=8).contains(&n)
+        {
+            return Err(format!("gauss_points must be in 1..=8, got {n}"));
+        }
+        for f in pair.slave.iter().chain(&pair.master) {
+            if f.nodes()
                 .iter()
-                .flatten()
-                .any(|n| slave_nodes.contains(n))
+                .any(|n| n.index() >= self.mesh.node_count())
             {
-                return Err(err("the slave and the master face share a node".into()));
+                let raw: Vec<usize> = f.nodes().iter().map(|n| n.index()).collect();
+                return Err(format!("{facet} {raw:?} refers to a missing node"));
             }
+            if let Some(m) = <Dim<D> as SurfaceDim<D>>::degenerate(&self.mesh, f) {
+                return Err(m);
+            }
+        }
+        let slave_nodes: std::collections::HashSet<NodeId> = pair
+            .slave
+            .iter()
+            .flat_map(|f| f.nodes().iter().copied())
+            .collect();
+        if pair
+            .master
+            .iter()
+            .any(|f| f.nodes().iter().any(|n| slave_nodes.contains(n)))
+        {
+            return Err(format!("the slave and the master {surface} share a node"));
         }
         Ok(())
     }
@@ -617,7 +426,6 @@ mod tests {
                 amplitude: Some(AmplitudeId::new(0)),
             }],
             contacts: Vec::new(),
-            face_contacts: Vec::new(),
             load_factor_end: 1.0,
             amplitudes: vec![Amplitude::new(vec![[0.0, 0.0], [0.5, 1.0]]).unwrap()],
             supports: vec![SupportGroup {
@@ -680,23 +488,5 @@ mod tests {
         m.prescribed[0].amplitude = Some(AmplitudeId::new(0));
         m.prescribed.truncate(2);
         m.check().unwrap();
-    }
-
-    /// The `Debug` print of a model without curves has no trace of them
-    /// (the scene fingerprints are taken from it).
-    #[test]
-    fn debug_shows_curves_only_when_present() {
-        let m = model();
-        let text = format!("{m:?}");
-        assert!(text.contains("amplitude: AmplitudeId(0)") && text.contains("amplitudes: ["));
-        let mut plain = model();
-        plain.loads[0].amplitude = None;
-        plain.amplitudes.clear();
-        let text = format!("{plain:?}");
-        assert!(
-            !text.contains("amplitude") && !text.contains("supports"),
-            "{text}"
-        );
-        assert!(text.ends_with("load_factor_end: 1.0 }"), "{text}");
     }
 }
