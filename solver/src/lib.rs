@@ -1,20 +1,31 @@
-//! A 2D geometrically nonlinear finite-element solver with
-//! Lagrange-multiplier, segment-to-segment contact whose gap derivatives come
-//! from the generated kernels of `contact-kernels`.
+//! A 2D and 3D geometrically nonlinear finite-element solver with
+//! Lagrange-multiplier contact (segment-to-segment in 2D, face-to-face in
+//! 3D) whose gap derivatives come from the generated kernels of
+//! `contact-kernels`.
 //!
 //! * Solid: total-Lagrangian 4-node quadrilaterals (2x2 Gauss) and 3-node
-//!   triangles (one point), mixed in one mesh, St Venant–Kirchhoff, plane
-//!   stress or plane strain, unit thickness ([`element`]: [`element::quad`],
-//!   [`element::tri`], [`material`]).
-//! * Contact: 2-point (or `n`-point) Gauss on the slave segments in the
+//!   triangles (one point) in 2D (plane stress or plane strain, unit
+//!   thickness), 8-node hexahedra (2x2x2 Gauss) and 4-node tetrahedra (one
+//!   point) in 3D, mixed in one mesh, St Venant–Kirchhoff or small-strain
+//!   linear elasticity ([`element`], [`material`]).
+//! * Contact: Gauss (or segmented) integration on the slave facets in the
 //!   reference configuration, multipliers at slave nodes, persistent or
-//!   unilateral ([`contact`]).
+//!   unilateral ([`contact`]); one [`model::ContactPair`] over the
+//!   dimension, whose facets are segments in 2D and tri3/quad4 faces in 3D
+//!   ([`model::SurfaceDim`]).
 //! * Approximation: Types 1–6 freeze the gap's second-order Taylor expansion
 //!   at each step start; the complete formulation re-projects and evaluates
 //!   the exact kernel every iteration ([`Method`]).
 //! * Solution: Newton–Raphson per load step with bisection cut-backs
-//!   ([`newton`]), a sparse direct solver (faer's LU) with symbolic reuse
-//!   behind the [`linear::LinearSolver`] seam ([`linear`]).
+//!   ([`newton`]), sparse direct solvers with symbolic reuse behind the
+//!   [`linear::LinearSolver`] seam ([`linear`]: faer's LU, the default, and
+//!   a supernodal LDLᵀ).
+//!
+//! One code path serves both dimensions, generic over `const D: usize`;
+//! what differs between them are traits of the type `Dim<D>`
+//! ([`model::SurfaceDim`], [`dim::SpaceDim`], [`scene::SceneDim`],
+//! [`report::ContactTable`]). [`solve`] takes the dimension of the scene:
+//! `solve::<2>` or `solve::<3>` ([`Scene::dimension`] says which).
 //!
 //! The modules, bottom up (the layers of `docs/architecture.md`, which
 //! `solver/tests/layers.rs` checks: a module imports nothing from a layer
@@ -22,12 +33,12 @@
 //! sparse solvers) and [`options`] (what a solve is asked to do; modules
 //! import it from there, not from the crate root); [`element`] (the solid
 //! elements, kinematics and [`material`]), [`mesh`], [`model`] (the discrete
-//! problem); [`contact`] (the contact element), [`assembly`] (one Newton
-//! system), [`memory`] and [`solution`] (what a solve returns); [`scene`]
-//! (builds a model from TOML); [`monitor`] and the error type; [`newton`]
-//! (the load schedule and the iterations), which fills in the solution;
-//! [`report`] (writes a solution out: `.vtu`, `contact.csv`,
-//! `reactions.csv`, atomically).
+//! problem); [`contact`] (the contact element), [`dim`] (the seam over the
+//! dimension), [`assembly`] (one Newton system), [`memory`] and
+//! [`solution`] (what a solve returns); [`scene`] (builds a model from
+//! TOML); [`monitor`] and the error type; [`newton`] (the load schedule and
+//! the iterations), which fills in the solution; [`report`] (writes a
+//! solution out: `.vtu`, `contact.csv`, `reactions.csv`, atomically).
 //!
 //! ```no_run
 //! use solver::{Scene, SolveOptions, solve};

@@ -3,7 +3,7 @@
 //!
 //! # The estimate
 //!
-//! `bytes = equations x B`, where `equations = 2 x nodes` (the free
+//! `bytes = equations x B`, where `equations = D x nodes` (the free
 //! displacements; the prescribed dofs are fewer than the multipliers
 //! added, or negligible for the meshes this matters for) and `B` is
 //! [`LU_BYTES_PER_EQUATION`] or [`LDLT_BYTES_PER_EQUATION`], the memory of

@@ -2,7 +2,7 @@
 //!
 //! Where a scene prescribes displacements (its `[[fix]]` and
 //! `[[prescribe]]` items, [`solver::Solution::support_groups`]), every
-//! converged step records the reaction `R_g = [x, y]` of each support
+//! converged step records the reaction `R_g` (`[x, y]`, `[x, y, z]`) of each support
 //! group `g` ([`solver::StepRecord::reactions`]). A type's reaction error
 //! at `N` load steps compares it with the complete formulation's at the same
 //! `N`, over the end of every scheduled step `k = 1..N` (the last converged
@@ -13,7 +13,7 @@
 //! e_R % = 100 max_{k,g} |R_type(k,g) - R_complete(k,g)| / max_{k,g} |R_complete(k,g)|
 //! ```
 //!
-//! with `|.|` the Euclidean norm of the 2-vector. The denominator is the
+//! with `|.|` the Euclidean norm of the `D`-vector. The denominator is the
 //! largest reaction of the whole complete history, so a group that carries
 //! almost nothing does not blow the error up; the numerator is the largest
 //! deviation at any step, so a type that is right only at the end still

@@ -1,4 +1,7 @@
-//! The model builder: from a [`Scene`] to the [`Model`] the solver works on.
+//! The model builder: from a [`Scene`] to the [`Model<D>`] the solver
+//! works on, one code path for both dimensions; what differs between them
+//! comes from the dimension ([`Build`], implemented in `planar.rs` and
+//! `solid.rs`).
 //!
 //! The order of everything the solver sees is fixed here and is part of the
 //! results (assembly and the contact points follow it):
@@ -7,37 +10,48 @@
 //!   fresh nodes (bodies share no nodes);
 //! * prescribed degrees of freedom in the order `[[fix]]` then
 //!   `[[prescribe]]`, each item's nodes in increasing index, then its
-//!   components x, y; a degree of freedom appears once (a second item may
-//!   only repeat its value and, unless it is zero, its load curve);
+//!   components x, y (, z) (`dofs`, default all); a degree of freedom
+//!   appears once (a second item may only repeat its value and, unless it
+//!   is zero, its load curve);
 //! * support groups, one per `[[fix]]` and `[[prescribe]]` in that order,
 //!   named by the item's `name`, else its `group` when no other item has
-//!   the same `group`, else `fix[i]` / `prescribe[i]`; each holds the dofs its item added
-//!   (a dof prescribed twice belongs to the first item, so the groups'
-//!   reactions add up to the total support force);
+//!   the same `group`, else `fix[i]` / `prescribe[i]`; each holds the dofs
+//!   its item added (a dof prescribed twice belongs to the first item, so
+//!   the groups' reactions add up to the total support force);
 //! * load curves, each distinct table once, in the order items first use
 //!   them;
-//! * point loads in `[[load]]` order, x then y; then the tractions in
-//!   `[[traction]]` order: a block side's segments counter-clockwise
-//!   around the body (as a contact face), a curve's segments in file order
-//!   with each segment's two nodes in the file's direction; each segment's
-//!   nodes x then y (`t L / 2` each, `L` the reference length);
-//! * contact pairs in `[[contact]]` order, each face's segments as its
-//!   source orders them (counter-clockwise around the body); each pair's
-//!   reference geometry checked (`initial_contact`: faces that face each
-//!   other, no initial penetration, unless the `[[contact]]` allows it).
+//! * point loads in `[[load]]` order, one per component; then the
+//!   tractions in `[[traction]]` order, each facet's nodes in order, each
+//!   node's components in order ([`Build::traction_forces`]: in 2D
+//!   `t L / 2` per node of a segment of reference length `L`, a block
+//!   side's segments counter-clockwise around the body, a curve's in file
+//!   order and direction; in 3D the consistent nodal forces of
+//!   [`super::traction::nodal_forces`], a block side's faces in the side's
+//!   order, a physical surface's in file order);
+//! * contact pairs in `[[contact]]` order, named by `name`, else
+//!   `contact[i]`: its slave and master facets (a block side's in the
+//!   side's order, a physical group's in file order; outward, see
+//!   [`crate::model::ContactPair`]), on two different bodies, each with at
+//!   least one facet, checked by the dimension ([`Build::check_pair`]: in
+//!   2D the reference geometry, `initial_contact.rs`; in 3D the reading
+//!   and the `gauss_points` on the slave faces' kinds) and, once the model
+//!   is checked, laid out ([`Build::check_model`]: in 3D every pair once,
+//!   so that what the solve's layout refuses is a scene error naming
+//!   `contact[i]`).
 
 use super::dimension::Dimension;
-use super::initial_contact::check_initial_contact;
-use super::source::Sources;
+use super::source::MeshSource;
 use super::supports::{Curves, Prescriptions};
-use super::{Dofs, Scene, SceneError};
+use super::{ContactSpec, Dofs, FaceSpec, Scene, SceneError, TractionSpec};
 use crate::dim::SpaceDim;
-use crate::ids::DofId;
+use crate::ids::{DofId, NodeId};
+use crate::material::Material;
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::AnyMsh;
-use crate::model::{ContactPair, Dim, Model, PointLoad, SupportGroup, SurfaceDim};
+use crate::model::{ContactPair, Dim, Facet, FacetOf, Model, PointLoad, SupportGroup, SurfaceDim};
 
-/// A scene's dimension as a type: what the model builder takes from it.
+/// A scene's dimension as a type: `Dim<2>` builds the model of a 2D
+/// scene, `Dim<3>` of a 3D one ([`Scene::build_model`]).
 pub trait SceneDim<const D: usize>: SpaceDim<D> {
     /// The scene dimension it builds.
     const DIMENSION: Dimension;
@@ -53,7 +67,7 @@ impl SceneDim<2> for Dim<2> {
     const DIMENSION: Dimension = Dimension::Two;
 
     fn build(scene: &Scene, file: Option<AnyMsh>) -> Result<Model<2>, SceneError> {
-        scene.build_planar(file, Dimension::Two)
+        scene.build_in::<2>(file)
     }
 }
 
@@ -61,8 +75,65 @@ impl SceneDim<3> for Dim<3> {
     const DIMENSION: Dimension = Dimension::Three;
 
     fn build(scene: &Scene, file: Option<AnyMsh>) -> Result<Model<3>, SceneError> {
-        scene.build_solid(file)
+        scene.build_in::<3>(file)
     }
+}
+
+/// What the builder takes from the dimension (module docs).
+pub(super) trait Build<const D: usize>: SceneDim<D> {
+    /// The scene's mesh sources.
+    type Sources<'s>: MeshSource<D>;
+    /// How many numbers a point has, in words (`two`, `three`).
+    const NUMBERS: &'static str;
+    /// What a physical group of facets is (`curve`, `surface`).
+    const GROUP: &'static str;
+
+    /// The mesh sources of `scene` and its `[mesh] file` `file` (read).
+    fn sources<'s>(scene: &'s Scene, file: Option<AnyMsh>)
+    -> Result<Self::Sources<'s>, SceneError>;
+
+    /// `traction[i]`'s force per reference length or area (named `f`).
+    fn traction_force(scene: &Scene, f: &str, t: &TractionSpec) -> Result<[f64; D], SceneError>;
+
+    /// The nodal forces of the traction `t` (named `f`) of force `force`:
+    /// each node of each loaded facet, in order (module docs).
+    fn traction_forces(
+        scene: &Scene,
+        mesh: &Mesh<D>,
+        sources: &Self::Sources<'_>,
+        f: &str,
+        t: &TractionSpec,
+        force: [f64; D],
+    ) -> Result<Vec<(NodeId, [f64; D])>, SceneError>
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// Checks `contact[i]` (named `f`, `c`) on its `slave` facets before
+    /// its pair is made.
+    fn check_spec(
+        scene: &Scene,
+        f: &str,
+        c: &ContactSpec,
+        slave: &[FacetOf<D>],
+    ) -> Result<(), SceneError>
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// Checks the pair `pair` of `contact[i]` (named `f`, `c`) on `mesh`.
+    fn check_pair(
+        scene: &Scene,
+        mesh: &Mesh<D>,
+        f: &str,
+        c: &ContactSpec,
+        pair: &ContactPair<D>,
+    ) -> Result<(), SceneError>
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// Checks the checked `model` as a whole.
+    fn check_model(scene: &Scene, model: &Model<D>) -> Result<(), SceneError>
+    where
+        Dim<D>: SurfaceDim<D>;
 }
 
 impl Scene {
@@ -101,39 +172,34 @@ impl Scene {
         <Dim<D> as SceneDim<D>>::build(self, file)
     }
 
-    /// [`Scene::build_model`] after [`Scene::prepare`].
-    pub(super) fn build_planar(
-        &self,
-        file: Option<AnyMsh>,
-        dim: Dimension,
-    ) -> Result<Model, SceneError> {
-        let planar = match file {
-            None => None,
-            Some(AnyMsh::Planar(msh)) => Some(msh),
-            // `prepare` found the scene 2D, so its mesh file is 2D
-            Some(AnyMsh::Volume(_)) => {
-                return Err(self.invalid("mesh.file", "is a 3D mesh in a 2D scene"));
-            }
-        };
-        let mut sources = Sources::of(self, planar);
-        let mut mesh = Mesh::new();
+    /// [`Scene::build_model`] after [`Scene::prepare`] found the scene of
+    /// dimension `D` (module docs).
+    fn build_in<const D: usize>(&self, file: Option<AnyMsh>) -> Result<Model<D>, SceneError>
+    where
+        Dim<D>: Build<D>,
+    {
+        let dim = <Dim<D> as SceneDim<D>>::DIMENSION;
+        let mut sources = <Dim<D> as Build<D>>::sources(self, file)?;
+        let mut mesh = Mesh::<D>::new();
         for i in 0..self.bodies.len() {
-            let material = self.check_body(i, dim)?;
+            let material: Material = self.check_body(i, dim)?;
             sources.add_body(&mut mesh, i, material)?;
         }
         if mesh.bodies.is_empty() {
             return Err(self.invalid("body", "at least one [[body]] is needed"));
         }
+        let dof = |n: NodeId, c: usize| DofId::in_dim::<D>(n, c);
         let mut curves = Curves::default();
         let mut prescribed = Prescriptions::default();
         let mut supports = Vec::new();
         for (i, fx) in self.fixes.iter().enumerate() {
             let f = format!("fix[{i}]");
             let start = prescribed.list.len();
-            let at = fx.at.and_then(|c| c.point::<2>());
-            for n in self.select_in(&mesh, &sources, &f, &fx.body, &fx.group, fx.x, fx.y, at)? {
-                for c in fx.dofs.unwrap_or(Dofs::XY).components() {
-                    prescribed.add(self, &f, n, c, DofId::of(n, c), 0.0, None)?;
+            let at = fx.at.and_then(|c| c.point::<D>());
+            let axes = [fx.x, fx.y, fx.z];
+            for n in self.select(&mesh, &sources, &f, &fx.body, &fx.group, &axes, at)? {
+                for c in fx.dofs.unwrap_or(Dofs::all(D)).components() {
+                    prescribed.add(self, &f, n, c, dof(n, c), 0.0, None)?;
                 }
             }
             supports.push(SupportGroup {
@@ -146,11 +212,12 @@ impl Scene {
             self.check_prescribe(&f, p, dim)?;
             let amplitude = curves.intern(self.check_amplitude(&f, &p.amplitude)?);
             let start = prescribed.list.len();
-            let at = p.at.and_then(|c| c.point::<2>());
-            for n in self.select_in(&mesh, &sources, &f, &p.body, &p.group, p.x, p.y, at)? {
-                for (c, v) in [(0, p.ux), (1, p.uy)] {
+            let at = p.at.and_then(|c| c.point::<D>());
+            let axes = [p.x, p.y, p.z];
+            for n in self.select(&mesh, &sources, &f, &p.body, &p.group, &axes, at)? {
+                for (c, v) in [p.ux, p.uy, p.uz].into_iter().take(D).enumerate() {
                     if let Some(v) = v {
-                        prescribed.add(self, &f, n, c, DofId::of(n, c), v, amplitude)?;
+                        prescribed.add(self, &f, n, c, dof(n, c), v, amplitude)?;
                     }
                 }
             }
@@ -168,35 +235,42 @@ impl Scene {
             if l.at.is_none() && l.group.is_none() {
                 return Err(self.invalid(&f, "give `at` or `group`"));
             }
-            let at = l.at.and_then(|c| c.point::<2>());
-            let force = l
-                .force
-                .point::<2>()
-                .ok_or_else(|| self.invalid(format!("{f}.force"), "needs two numbers [x, y]"))?;
-            let nodes = self.select_in(&mesh, &sources, &f, &l.body, &l.group, None, None, at)?;
+            let at = l.at.and_then(|c| c.point::<D>());
+            let force = l.force.point::<D>().ok_or_else(|| {
+                self.invalid(
+                    format!("{f}.force"),
+                    format!(
+                        "needs {} numbers [{}]",
+                        <Dim<D> as Build<D>>::NUMBERS,
+                        <Dim<D> as SpaceDim<D>>::AXES.join(", ")
+                    ),
+                )
+            })?;
+            let nodes = self.select(&mesh, &sources, &f, &l.body, &l.group, &[None; 3], at)?;
             if nodes.len() > 1 {
-                return Err(match (&l.group, l.at) {
-                    (Some(g), _) => self.invalid(
+                return Err(match &l.group {
+                    Some(g) => self.invalid(
                         format!("{f}.group"),
                         format!(
-                            "physical group `{g}` has {} nodes; a point load needs one (a [[traction]] loads a curve)",
-                            nodes.len()
+                            "physical group `{g}` has {} nodes; a point load needs one (a [[traction]] loads a {})",
+                            nodes.len(),
+                            <Dim<D> as Build<D>>::GROUP
                         ),
                     ),
-                    (None, _) => self.invalid(
+                    None => self.invalid(
                         format!("{f}.at"),
                         format!(
                             "{} nodes sit at {:?} (bodies share no nodes); name the `body`",
                             nodes.len(),
-                            at.unwrap_or_default()
+                            at.unwrap_or([0.0; D])
                         ),
                     ),
                 });
             }
-            for c in 0..2 {
+            for (c, &value) in force.iter().enumerate() {
                 loads.push(PointLoad {
-                    dof: DofId::of(nodes[0], c),
-                    value: force[c],
+                    dof: dof(nodes[0], c),
+                    value,
                     amplitude,
                 });
             }
@@ -204,51 +278,24 @@ impl Scene {
         for (i, t) in self.tractions.iter().enumerate() {
             let f = format!("traction[{i}]");
             self.check_traction(&f, t)?;
-            let force_per_length = t
-                .force_per_length
-                .ok_or_else(|| self.invalid(&f, "give `force_per_length = [tx, ty]`"))?;
+            let force = <Dim<D> as Build<D>>::traction_force(self, &f, t)?;
             let amplitude = curves.intern(self.check_amplitude(&f, &t.amplitude)?);
-            let segments = self.traction_segments(&mesh, &sources, &f, t)?;
-            for seg in segments {
-                let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
-                let half = (b[0] - a[0]).hypot(b[1] - a[1]) / 2.0;
-                for n in seg {
-                    for c in 0..2 {
-                        loads.push(PointLoad {
-                            dof: DofId::of(n, c),
-                            value: force_per_length[c] * half,
-                            amplitude,
-                        });
-                    }
+            let forces =
+                <Dim<D> as Build<D>>::traction_forces(self, &mesh, &sources, &f, t, force)?;
+            for (n, fa) in forces {
+                for (c, &value) in fa.iter().enumerate() {
+                    loads.push(PointLoad {
+                        dof: dof(n, c),
+                        value,
+                        amplitude,
+                    });
                 }
             }
         }
-        let mut contacts = Vec::new();
+        let mut contacts = Vec::with_capacity(self.contacts.len());
         for (i, c) in self.contacts.iter().enumerate() {
             let f = format!("contact[{i}]");
-            let (slave_body, slave) = self.face(&mesh, &sources, &f, "slave", &c.slave)?;
-            let (master_body, master) = self.face(&mesh, &sources, &f, "master", &c.master)?;
-            if slave_body == master_body {
-                return Err(self.invalid(&f, "slave and master must be different bodies"));
-            }
-            self.check_contact(&f, c)?;
-            let pair = ContactPair {
-                name: c.pair_name(&f),
-                slave,
-                master,
-                formulation: c.formulation,
-                mode: c.mode,
-                gauss_points: c.gauss_points,
-                integration: c.integration,
-            };
-            check_initial_contact(
-                &mesh,
-                &pair,
-                c.allow_not_facing,
-                c.allow_initial_penetration,
-            )
-            .map_err(|m| self.invalid(&f, m))?;
-            contacts.push(pair);
+            contacts.push(self.contact_pair(&mesh, &sources, &f, c)?);
         }
         self.check_loading()?;
         self.check_newton()?;
@@ -264,6 +311,48 @@ impl Scene {
         model
             .check()
             .map_err(|e| self.invalid("(model)", e.to_string()))?;
+        <Dim<D> as Build<D>>::check_model(self, &model)?;
         Ok(model)
+    }
+
+    /// The pair of `contact[i]` (named `f`, `c`): its two surfaces
+    /// resolved, on two different bodies, each with at least one facet,
+    /// checked by the dimension (module docs).
+    fn contact_pair<const D: usize>(
+        &self,
+        mesh: &Mesh<D>,
+        sources: &<Dim<D> as Build<D>>::Sources<'_>,
+        f: &str,
+        c: &ContactSpec,
+    ) -> Result<ContactPair<D>, SceneError>
+    where
+        Dim<D>: Build<D>,
+    {
+        let facets = |which: &str, spec: &FaceSpec| {
+            let field = format!("{f}.{which}");
+            let (body, facets) =
+                self.facets(mesh, sources, &field, &spec.body, spec.side, &spec.group)?;
+            if facets.is_empty() {
+                return Err(self.invalid(field, format!("has no {}s", FacetOf::<D>::NAME)));
+            }
+            Ok((body, facets))
+        };
+        let (slave_body, slave) = facets("slave", &c.slave)?;
+        let (master_body, master) = facets("master", &c.master)?;
+        if slave_body == master_body {
+            return Err(self.invalid(f, "slave and master must be different bodies"));
+        }
+        <Dim<D> as Build<D>>::check_spec(self, f, c, &slave)?;
+        let pair = ContactPair {
+            name: c.pair_name(f),
+            slave,
+            master,
+            formulation: c.formulation,
+            mode: c.mode,
+            gauss_points: c.gauss_points,
+            integration: c.integration,
+        };
+        <Dim<D> as Build<D>>::check_pair(self, mesh, f, c, &pair)?;
+        Ok(pair)
     }
 }

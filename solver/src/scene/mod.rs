@@ -1,7 +1,8 @@
 //! Scene files (TOML).
 //!
-//! A scene describes bodies of Q4 elements (structured rectangular blocks)
-//! or of Q4 and triangles (physical surfaces of a Gmsh mesh file), their
+//! A scene describes bodies, 2D or 3D (structured blocks of Q4 or
+//! hexahedral elements, or the physical surfaces or volumes of a Gmsh mesh
+//! file: Q4 and triangles, hexahedra and tetrahedra), their
 //! materials, supports, loads and tractions, prescribed displacements (each
 //! proportional to the load factor or following a load curve), contact
 //! pairs and the load schedule. Unknown keys are errors. The reference of
@@ -145,14 +146,21 @@
 //!   path of a TOML error;
 //! * `validate.rs`: the checks of values that need no mesh (counts, finite
 //!   numbers, materials, names), each naming its field;
-//! * `source/`: mesh sources, which make the bodies and resolve the faces
-//!   that depend on how a body was made (`source/blocks.rs`: the
-//!   structured rectangular blocks of `[[body]]`; `source/gmsh.rs`: the
-//!   physical surfaces of the `[mesh]` file and its groups by name);
-//! * `select.rs`: node selection by reference coordinates and face
-//!   resolution by body name;
+//! * `dimension.rs`: the scene's dimension and the keys only one has;
+//! * `source/`: mesh sources (`MeshSource<D>`), which make the bodies and
+//!   resolve the facets that depend on how a body was made (2D:
+//!   `source/blocks.rs`, the structured rectangular blocks of `[[body]]`,
+//!   and `source/gmsh.rs`, the physical surfaces of the `[mesh]` file and
+//!   its groups by name; 3D: `source/solid.rs` over `source/blocks3d.rs`
+//!   and `source/gmsh3d.rs`);
+//! * `select.rs`: node selection by reference coordinates or group, and
+//!   the facets of a side or group, in either dimension;
 //! * `build.rs`: [`Scene::build_model`], from a scene to a
-//!   [`Model`](crate::model::Model).
+//!   [`Model<D>`](crate::model::Model), one code path for both
+//!   dimensions ([`SceneDim`]); what it takes from each is in `planar.rs`
+//!   (2D: tractions on segments, the pairs' reference geometry) and
+//!   `solid.rs` (3D: tractions on faces, the pairs' readings and rules,
+//!   their layout).
 
 use std::path::Path;
 
@@ -160,13 +168,13 @@ use crate::model::Dim;
 use crate::options::{DEFAULT_REGULARIZATION, SolveOptions};
 
 mod build;
-mod build3d;
 mod dimension;
 mod error;
 mod initial_contact;
 mod memory;
+mod planar;
 mod select;
-mod select3d;
+mod solid;
 mod source;
 mod spec;
 mod supports;

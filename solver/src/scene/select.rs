@@ -1,18 +1,22 @@
-//! Selections in a scene: nodes by reference coordinates or physical
-//! group, bodies by name, faces by body and side or by physical curve.
+//! Selections in a scene of either dimension: nodes by reference
+//! coordinates or physical group, bodies by name, the facets of a contact
+//! surface or traction by body and side or by physical group.
 //!
-//! Selection by coordinates (`x`, `y`, `at`, optionally within a `body`) is
-//! geometric and works on any mesh: it matches every node within
-//! [`Mesh::coordinate_tolerance`]. Which segments a face names depends on
-//! how its body was made, so faces are resolved by the body's mesh source
-//! ([`Sources::face`]); physical groups (`group`) by the source that read
-//! the mesh file ([`Sources::group_nodes`], [`Sources::group_face`],
-//! [`Sources::group_segments`]). A traction loads a face of either kind.
+//! Selection by coordinates (`x`, `y`, `z`, `at`, optionally within a
+//! `body`) is geometric and works on any mesh: it matches every node within
+//! [`Mesh::coordinate_tolerance`] ([`Mesh::select_nodes_at`]). Which facets
+//! a side names depends on how its body was made, so sides are resolved
+//! by the body's mesh source ([`MeshSource::side`]); physical groups
+//! (`group`) by the source that read the mesh file
+//! ([`MeshSource::group_nodes`], [`MeshSource::group_facets`]).
 
-use super::source::Sources;
-use super::{FaceSpec, Scene, SceneError, SideName, TractionSpec};
+use super::build::Build;
+use super::source::MeshSource;
+use super::{Scene, SceneError, SideName};
+use crate::dim::SpaceDim;
 use crate::ids::NodeId;
-use crate::mesh::{Mesh, Side};
+use crate::mesh::Mesh;
+use crate::model::{Dim, FacetOf};
 
 impl Scene {
     /// The index of the body named `body` (in a mesh of either dimension),
@@ -36,185 +40,139 @@ impl Scene {
         }
     }
 
-    /// The nodes (optionally of one body) of the physical `group` if one is
-    /// given (then not `x`, `y` or `at`), ascending; otherwise those of
-    /// [`Scene::select`]. At least one node.
+    /// The nodes (optionally of one body) of the item `field`: its
+    /// physical `group` (then no coordinates), or those at the reference
+    /// coordinates `at`, or on the lines/planes `axes` (any of x, y, z; the
+    /// dimension's first ones, the others `None`). Ascending, at least
+    /// one.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn select_in(
+    pub(super) fn select<const D: usize>(
         &self,
-        mesh: &Mesh,
-        sources: &Sources,
+        mesh: &Mesh<D>,
+        sources: &impl MeshSource<D>,
         field: &str,
         body: &Option<String>,
         group: &Option<String>,
-        x: Option<f64>,
-        y: Option<f64>,
-        at: Option<[f64; 2]>,
-    ) -> Result<Vec<NodeId>, SceneError> {
-        let Some(group) = group else {
-            return self.select(mesh, field, body, x, y, at);
-        };
+        axes: &[Option<f64>; 3],
+        at: Option<[f64; D]>,
+    ) -> Result<Vec<NodeId>, SceneError>
+    where
+        Dim<D>: SpaceDim<D>,
+    {
+        let names = <Dim<D> as SpaceDim<D>>::AXES;
+        let listed = |sep: &str| format!("`{}`", names.join(&format!("`{sep}`")));
         let b = self.body_index(mesh, format!("{field}.body"), body)?;
-        if x.is_some() || y.is_some() || at.is_some() {
-            return Err(self.invalid(field, "give either `group` or `x`/`y`/`at`, not both"));
-        }
-        let mut nodes = sources.group_nodes(&format!("{field}.group"), group)?;
-        if let Some(b) = b {
-            nodes.retain(|&n| mesh.bodies[b].has_node(n));
-        }
-        if nodes.is_empty() {
-            return Err(self.invalid(
-                format!("{field}.group"),
-                format!("physical group `{group}` has no node{}", in_body(body)),
-            ));
-        }
-        Ok(nodes)
-    }
-
-    /// The nodes (optionally of one body) at the reference coordinates the
-    /// item `field` gives: `at`, or `x` and/or `y`. At least one node.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn select(
-        &self,
-        mesh: &Mesh,
-        field: &str,
-        body: &Option<String>,
-        x: Option<f64>,
-        y: Option<f64>,
-        at: Option<[f64; 2]>,
-    ) -> Result<Vec<NodeId>, SceneError> {
-        let b = self.body_index(mesh, format!("{field}.body"), body)?;
-        let (x, y) = match (at, x, y) {
-            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => {
-                return Err(self.invalid(field, "give either `at` or `x`/`y`, not both"));
+        let axes: [Option<f64>; D] = std::array::from_fn(|c| axes[c]);
+        let coordinates = axes.iter().any(Option::is_some) || at.is_some();
+        if let Some(group) = group {
+            if coordinates {
+                return Err(self.invalid(
+                    field,
+                    format!("give either `group` or {}/`at`, not both", listed("/")),
+                ));
             }
-            (Some(p), None, None) => (Some(p[0]), Some(p[1])),
-            (None, None, None) => {
-                return Err(self.invalid(field, "select nodes with `x`, `y` or `at`"));
+            let mut nodes = sources.group_nodes(&format!("{field}.group"), group)?;
+            if let Some(b) = b {
+                nodes.retain(|&n| mesh.bodies[b].has_node(n));
             }
-            (None, x, y) => (x, y),
+            if nodes.is_empty() {
+                return Err(self.invalid(
+                    format!("{field}.group"),
+                    format!("physical group `{group}` has no node{}", in_body(body)),
+                ));
+            }
+            return Ok(nodes);
+        }
+        let want = match at {
+            Some(_) if axes.iter().any(Option::is_some) => {
+                return Err(self.invalid(
+                    field,
+                    format!("give either `at` or {}, not both", listed("/")),
+                ));
+            }
+            Some(p) => p.map(Some),
+            None if !coordinates => {
+                return Err(
+                    self.invalid(field, format!("select nodes with {} or `at`", listed(", ")))
+                );
+            }
+            None => axes,
         };
-        let nodes = mesh.select_nodes(b, x, y);
+        let nodes = mesh.select_nodes_at(b, &want);
         if nodes.is_empty() {
+            let at: Vec<String> = names
+                .iter()
+                .zip(&want)
+                .map(|(name, v)| format!("{name} = {v:?}"))
+                .collect();
             return Err(self.invalid(
                 field,
-                format!("no node at x = {x:?}, y = {y:?}{}", in_body(body)),
+                format!("no node at {}{}", at.join(", "), in_body(body)),
             ));
         }
         Ok(nodes)
     }
 
-    /// The body and the segments of the face `spec`, the `which` face
-    /// (`slave` or `master`) of the item `field`, counter-clockwise around
-    /// its body: a body's `side`, or a physical curve (`group`).
-    pub(super) fn face(
+    /// The body and the facets named by `body`, `side` and `group` (the
+    /// item `f`: a contact surface or a 3D traction), outward: a block
+    /// body's side, or a physical group (a curve in 2D, a surface in 3D)
+    /// on one body's boundary, whose `body`, if given, must be that body.
+    pub(super) fn facets<const D: usize>(
         &self,
-        mesh: &Mesh,
-        sources: &Sources,
-        field: &str,
-        which: &str,
-        spec: &FaceSpec,
-    ) -> Result<(usize, Vec<[NodeId; 2]>), SceneError> {
-        let f = format!("{field}.{which}");
-        let b = self.body_index(mesh, format!("{f}.body"), &spec.body)?;
-        match (&spec.group, spec.side) {
+        mesh: &Mesh<D>,
+        sources: &<Dim<D> as Build<D>>::Sources<'_>,
+        f: &str,
+        body: &Option<String>,
+        side: Option<SideName>,
+        group: &Option<String>,
+    ) -> Result<(usize, Vec<FacetOf<D>>), SceneError>
+    where
+        Dim<D>: Build<D>,
+    {
+        let b = self.body_index(mesh, format!("{f}.body"), body)?;
+        match (group, side) {
             (Some(_), Some(_)) => Err(self.invalid(f, "give either `side` or `group`, not both")),
             (None, None) => Err(self.invalid(f, "give `body` and `side`, or `group`")),
             (None, Some(side)) => {
                 let b = b.ok_or_else(|| {
                     self.invalid(format!("{f}.body"), "a `side` needs its `body`")
                 })?;
-                let side = self.side_2d(format!("{f}.side"), side)?;
-                let segments = sources
-                    .face(mesh, b, side)
-                    .ok_or_else(|| self.invalid(f, "not a block body"))?;
-                Ok((b, segments))
+                let facets = sources
+                    .side(mesh, b, side)
+                    .map_err(|m| self.invalid(format!("{f}.side"), m))?;
+                let facets = facets.ok_or_else(|| {
+                    self.invalid(
+                        format!("{f}.side"),
+                        format!(
+                            "body `{}` is not a block body (name a physical {} with `group`)",
+                            mesh.bodies[b].name,
+                            <Dim<D> as Build<D>>::GROUP
+                        ),
+                    )
+                })?;
+                Ok((b, facets))
             }
             (Some(group), None) => {
-                let face = sources.group_face(&format!("{f}.group"), group)?;
-                if let Some(b) = b.filter(|&b| b != face.body) {
+                let (owner, facets) = sources.group_facets(&format!("{f}.group"), group)?;
+                if let Some(b) = b.filter(|&b| b != owner) {
                     return Err(self.invalid(
                         format!("{f}.body"),
                         format!(
-                            "physical curve `{group}` is on body `{}`, not `{}`",
-                            mesh.bodies[face.body].name, mesh.bodies[b].name
+                            "physical {} `{group}` is on body `{}`, not `{}`",
+                            <Dim<D> as Build<D>>::GROUP,
+                            mesh.bodies[owner].name,
+                            mesh.bodies[b].name
                         ),
                     ));
                 }
-                Ok((face.body, face.segments))
-            }
-        }
-    }
-
-    /// The segments that the traction `spec`, item `field`, loads: a block
-    /// body's `side`, counter-clockwise around the body as in a contact
-    /// face, or the physical curve `group` in the file's order and direction
-    /// (every node of it in `body`, if one is named).
-    pub(super) fn traction_segments(
-        &self,
-        mesh: &Mesh,
-        sources: &Sources,
-        field: &str,
-        spec: &TractionSpec,
-    ) -> Result<Vec<[NodeId; 2]>, SceneError> {
-        let b = self.body_index(mesh, format!("{field}.body"), &spec.body)?;
-        match (&spec.group, spec.side) {
-            (Some(_), Some(_)) => {
-                Err(self.invalid(field, "give either `side` or `group`, not both"))
-            }
-            (None, None) => Err(self.invalid(field, "give `body` and `side`, or `group`")),
-            (None, Some(side)) => {
-                let b = b.ok_or_else(|| {
-                    self.invalid(format!("{field}.body"), "a `side` needs its `body`")
-                })?;
-                let side = self.side_2d(format!("{field}.side"), side)?;
-                sources.face(mesh, b, side).ok_or_else(|| {
-                    self.invalid(
-                        format!("{field}.side"),
-                        format!(
-                            "body `{}` is not a block body (load a physical curve with `group`)",
-                            mesh.bodies[b].name
-                        ),
-                    )
-                })
-            }
-            (Some(group), None) => {
-                let segments = sources.group_segments(&format!("{field}.group"), group)?;
-                if let Some(b) = b {
-                    let body = &mesh.bodies[b];
-                    if let Some(&n) = segments.iter().flatten().find(|&&n| !body.has_node(n)) {
-                        let owner = mesh
-                            .bodies
-                            .iter()
-                            .find(|o| o.has_node(n))
-                            .map_or("no body", |o| o.name.as_str());
-                        return Err(self.invalid(
-                            format!("{field}.body"),
-                            format!(
-                                "physical curve `{group}` has a node of `{owner}`, not of `{}`",
-                                body.name
-                            ),
-                        ));
-                    }
-                }
-                Ok(segments)
+                Ok((owner, facets))
             }
         }
     }
 }
 
-impl Scene {
-    /// The 2D side `side` names (the item `field`'s); `front` and `back`
-    /// are refused (already by `check_dimension`, before any face is
-    /// resolved).
-    fn side_2d(&self, field: String, side: SideName) -> Result<Side, SceneError> {
-        side.side_2d().ok_or_else(|| {
-            self.invalid(field, format!("`{}` is a side of a 3D block", side.name()))
-        })
-    }
-}
-
-fn in_body(body: &Option<String>) -> String {
+/// ` in body `b`` when a body is named, for messages.
+pub(super) fn in_body(body: &Option<String>) -> String {
     body.as_ref()
         .map(|b| format!(" in body `{b}`"))
         .unwrap_or_default()

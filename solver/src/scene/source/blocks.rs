@@ -5,7 +5,7 @@
 //! (refinement included), so that no scene value overflows the counts or
 //! asks for more memory than a machine has.
 
-use super::MeshSource;
+use super::BodySource;
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::{Block, Mesh, Side};
@@ -27,7 +27,7 @@ impl<'s> Blocks<'s> {
     }
 }
 
-impl MeshSource for Blocks<'_> {
+impl BodySource for Blocks<'_> {
     /// A `[[body]]` with any of the block fields is a block.
     fn owns(&self, index: usize) -> bool {
         is_block(&self.scene.bodies[index])

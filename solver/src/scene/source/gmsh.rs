@@ -10,15 +10,15 @@
 //! directed as the element runs (counter-clockwise), so that physical
 //! curves and points can be answered by name:
 //!
-//! * a face ([`MeshSource::group_face`]): each segment of the curve is
+//! * a face ([`BodySource::group_face`]): each segment of the curve is
 //!   oriented as the one element that has it as an edge runs, so the face
 //!   is counter-clockwise around its body with the outward normal, however
 //!   the curve was drawn; then the segments are chained (each chain from
 //!   its start, chains in the order of their first segment in the file).
 //!   A segment that is no element's edge, or an edge of two elements, or
 //!   segments on two bodies are errors naming the curve;
-//! * node groups ([`MeshSource::group_nodes`]) and loaded curves
-//!   ([`MeshSource::group_segments`]): every node must belong to a body.
+//! * node groups ([`BodySource::group_nodes`]) and loaded curves
+//!   ([`BodySource::group_segments`]): every node must belong to a body.
 //!
 //! Invariants: bodies share no nodes (a node of the file in two bodies'
 //! surfaces is an error naming it); an element that is inverted (drawn
@@ -28,7 +28,7 @@
 //! types are refused by the reader, naming the type; errors name the file
 //! and the group or element, the scene field is added by the caller.
 
-use super::{GroupFace, MeshSource, blocks::is_block};
+use super::{BodySource, GroupFace, blocks::is_block};
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::gmsh::{MshElementType, MshMesh};
@@ -93,7 +93,7 @@ impl<'s> Gmsh<'s> {
     }
 }
 
-impl MeshSource for Gmsh<'_> {
+impl BodySource for Gmsh<'_> {
     /// A `[[body]]` without block fields is a physical surface.
     fn owns(&self, index: usize) -> bool {
         !is_block(&self.scene.bodies[index])
@@ -216,7 +216,7 @@ impl MeshSource for Gmsh<'_> {
 }
 
 impl Gmsh<'_> {
-    /// [`MeshSource::group_face`] of the file's mesh `msh`.
+    /// [`BodySource::group_face`] of the file's mesh `msh`.
     fn face_of(&self, msh: &MshMesh, group: &str) -> Result<GroupFace, String> {
         let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
         let file = msh.file().display();
@@ -265,7 +265,7 @@ impl Gmsh<'_> {
         Ok(GroupFace { body, segments })
     }
 
-    /// [`MeshSource::group_nodes`] of the file's mesh `msh`.
+    /// [`BodySource::group_nodes`] of the file's mesh `msh`.
     fn nodes_of(&self, msh: &MshMesh, group: &str) -> Result<Vec<NodeId>, String> {
         let nodes = msh.group_nodes(group).map_err(|e| e.to_string())?;
         let mut nodes = self.mesh_nodes(msh, group, &nodes)?;
@@ -273,7 +273,7 @@ impl Gmsh<'_> {
         Ok(nodes)
     }
 
-    /// [`MeshSource::group_segments`] of the file's mesh `msh`.
+    /// [`BodySource::group_segments`] of the file's mesh `msh`.
     fn segments_of(&self, msh: &MshMesh, group: &str) -> Result<Vec<[NodeId; 2]>, String> {
         let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
         segments

@@ -1,7 +1,12 @@
 //! Mesh sources: where a scene's bodies come from.
 //!
-//! A [`MeshSource`] makes the bodies it owns and answers the selections
-//! whose meaning depends on how a body was made. There are two sources,
+//! A scene's [`MeshSource<D>`] makes its bodies and answers the selections
+//! whose meaning depends on how a body was made: a block body's sides,
+//! and the physical groups of the `[mesh]` file (nodes; facets: curves in
+//! 2D, surfaces in 3D). It is [`Sources`] in 2D and [`Solids`] in 3D
+//! (`solid.rs`).
+//!
+//! In 2D, a [`BodySource`] makes the bodies it owns. There are two,
 //! asked in this order who owns a body:
 //!
 //! * [`Blocks`] (`blocks.rs`): a `[[body]]` with the block fields
@@ -12,7 +17,7 @@
 //!   groups and loaded curves, asked for by name.
 //!
 //! Selection by reference coordinates does not depend on the source and
-//! stays with the mesh ([`Mesh::select_nodes`]). Questions by group name go
+//! stays with the mesh ([`Mesh::select_nodes_at`]). Questions by group name go
 //! to every source in turn; the first that knows groups answers (the
 //! blocks know none: the trait's defaults return `None`).
 //!
@@ -25,11 +30,12 @@
 //!   indices) ordered counter-clockwise around their body, so that the
 //!   outward normal of a segment with tangent `t` is `(t.y, -t.x)/|t|`.
 
-use super::{Scene, SceneError};
+use super::{Scene, SceneError, SideName};
 use crate::ids::NodeId;
 use crate::material::Material;
 use crate::mesh::gmsh::MshMesh;
 use crate::mesh::{Mesh, Side};
+use crate::model::{Dim, FacetOf, SurfaceDim};
 
 mod blocks;
 mod blocks3d;
@@ -65,8 +71,83 @@ pub(super) struct GroupFace {
     pub(super) segments: Vec<[NodeId; 2]>,
 }
 
-/// A way of making some of a scene's bodies.
-pub(super) trait MeshSource {
+/// A scene's mesh sources in dimension `D` (module docs).
+pub(in crate::scene) trait MeshSource<const D: usize> {
+    /// Appends the scene's `body[index]` with its (checked) `material` to
+    /// `mesh` and returns the new body's index. Errors name the body's
+    /// fields (`body[index].nx`, ...).
+    fn add_body(
+        &mut self,
+        mesh: &mut Mesh<D>,
+        index: usize,
+        material: Material,
+    ) -> Result<usize, SceneError>;
+
+    /// The facets of `side` of the mesh body `body`, outward: `Ok(None)`
+    /// if the body is not a block body, `Err` (a message) if `side` is
+    /// not a side of the dimension's blocks.
+    fn side(
+        &self,
+        mesh: &Mesh<D>,
+        body: usize,
+        side: SideName,
+    ) -> Result<Option<Vec<FacetOf<D>>>, String>
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// The physical group `group` (a curve in 2D, a surface in 3D) as
+    /// facets of one body, outward, and that body; errors name `field`.
+    fn group_facets(
+        &self,
+        field: &str,
+        group: &str,
+    ) -> Result<(usize, Vec<FacetOf<D>>), SceneError>
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// The mesh nodes of the physical group `group`, ascending; errors
+    /// name `field`.
+    fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError>;
+}
+
+impl MeshSource<2> for Sources<'_> {
+    fn add_body(
+        &mut self,
+        mesh: &mut Mesh,
+        index: usize,
+        material: Material,
+    ) -> Result<usize, SceneError> {
+        Sources::add_body(self, mesh, index, material)
+    }
+
+    fn side(
+        &self,
+        mesh: &Mesh,
+        body: usize,
+        side: SideName,
+    ) -> Result<Option<Vec<[NodeId; 2]>>, String> {
+        let side = side
+            .side_2d()
+            .ok_or_else(|| format!("`{}` is a side of a 3D block", side.name()))?;
+        Ok(self.face(mesh, body, side))
+    }
+
+    fn group_facets(
+        &self,
+        field: &str,
+        group: &str,
+    ) -> Result<(usize, Vec<[NodeId; 2]>), SceneError> {
+        let face = self.group_face(field, group)?;
+        Ok((face.body, face.segments))
+    }
+
+    fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError> {
+        Sources::group_nodes(self, field, group)
+    }
+}
+
+/// A way of making some of a 2D scene's bodies.
+pub(super) trait BodySource {
     /// Whether this source makes the scene's `body[index]`.
     fn owns(&self, index: usize) -> bool;
 
@@ -109,7 +190,7 @@ pub(super) trait MeshSource {
 /// A scene's mesh sources, and which one made each body of the mesh.
 pub(super) struct Sources<'s> {
     scene: &'s Scene,
-    sources: Vec<Box<dyn MeshSource + 's>>,
+    sources: Vec<Box<dyn BodySource + 's>>,
     /// The source of each mesh body, by index into `sources`.
     made_by: Vec<usize>,
 }
@@ -165,7 +246,7 @@ impl Sources<'_> {
     fn by_group<T>(
         &self,
         field: &str,
-        ask: impl Fn(&dyn MeshSource) -> Option<Result<T, String>>,
+        ask: impl Fn(&dyn BodySource) -> Option<Result<T, String>>,
     ) -> Result<T, SceneError> {
         self.sources
             .iter()
@@ -174,7 +255,7 @@ impl Sources<'_> {
             .map_err(|m| self.scene.invalid(field, m))
     }
 
-    /// The physical curve `group` as a face (see [`MeshSource::group_face`]);
+    /// The physical curve `group` as a face (see [`BodySource::group_face`]);
     /// errors name `field`.
     pub(super) fn group_face(&self, field: &str, group: &str) -> Result<GroupFace, SceneError> {
         self.by_group(field, |s| s.group_face(group))

@@ -17,7 +17,9 @@ use crate::mesh::Mesh;
 use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::gmsh::MshVolumeMesh;
 use crate::mesh::volume::Face;
-use crate::scene::{Scene, SceneError};
+use crate::scene::{Scene, SceneError, SideName};
+
+use super::MeshSource;
 
 /// A 3D scene's mesh sources, and the block of each block body.
 pub(in crate::scene) struct Solids<'s> {
@@ -115,5 +117,37 @@ impl<'s> Solids<'s> {
         group: &str,
     ) -> Result<Vec<NodeId>, SceneError> {
         self.by_group(field, |f| f.group_nodes(group))
+    }
+}
+
+impl MeshSource<3> for Solids<'_> {
+    fn add_body(
+        &mut self,
+        mesh: &mut Mesh<3>,
+        index: usize,
+        material: Material,
+    ) -> Result<usize, SceneError> {
+        Solids::add_body(self, mesh, index, material)
+    }
+
+    fn side(
+        &self,
+        _: &Mesh<3>,
+        body: usize,
+        side: SideName,
+    ) -> Result<Option<Vec<Face<NodeId>>>, String> {
+        Ok(Solids::side(self, body, side.side_3d()))
+    }
+
+    fn group_facets(
+        &self,
+        field: &str,
+        group: &str,
+    ) -> Result<(usize, Vec<Face<NodeId>>), SceneError> {
+        self.group_faces(field, group)
+    }
+
+    fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError> {
+        Solids::group_nodes(self, field, group)
     }
 }

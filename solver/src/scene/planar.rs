@@ -1,0 +1,146 @@
+//! What the model builder takes from a 2D scene ([`Build`] for `Dim<2>`,
+//! see `build.rs`): its mesh sources ([`Sources`]: blocks and the physical
+//! surfaces of a 2D `[mesh]` file), tractions per unit reference length on
+//! segments, and the pairs' reference geometry (`initial_contact.rs`:
+//! faces that face each other, no initial penetration, unless the
+//! `[[contact]]` allows it).
+
+use super::build::Build;
+use super::initial_contact::check_initial_contact;
+use super::source::Sources;
+use super::{ContactSpec, Scene, SceneError, TractionSpec};
+use crate::ids::NodeId;
+use crate::mesh::Mesh;
+use crate::mesh::gmsh::AnyMsh;
+use crate::model::{ContactPair, Dim, Model};
+
+impl Build<2> for Dim<2> {
+    type Sources<'s> = Sources<'s>;
+    const NUMBERS: &'static str = "two";
+    const GROUP: &'static str = "curve";
+
+    fn sources<'s>(scene: &'s Scene, file: Option<AnyMsh>) -> Result<Sources<'s>, SceneError> {
+        let planar = match file {
+            None => None,
+            Some(AnyMsh::Planar(msh)) => Some(msh),
+            // `prepare` found the scene 2D, so its mesh file is 2D
+            Some(AnyMsh::Volume(_)) => {
+                return Err(scene.invalid("mesh.file", "is a 3D mesh in a 2D scene"));
+            }
+        };
+        Ok(Sources::of(scene, planar))
+    }
+
+    fn traction_force(scene: &Scene, f: &str, t: &TractionSpec) -> Result<[f64; 2], SceneError> {
+        t.force_per_length
+            .ok_or_else(|| scene.invalid(f, "give `force_per_length = [tx, ty]`"))
+    }
+
+    /// `t L / 2` at each node of each loaded segment of reference length
+    /// `L` ([`Scene::traction_segments`]).
+    fn traction_forces(
+        scene: &Scene,
+        mesh: &Mesh<2>,
+        sources: &Sources<'_>,
+        f: &str,
+        t: &TractionSpec,
+        force: [f64; 2],
+    ) -> Result<Vec<(NodeId, [f64; 2])>, SceneError> {
+        let mut forces = Vec::new();
+        for seg in scene.traction_segments(mesh, sources, f, t)? {
+            let (a, b) = (mesh.node_ref(seg[0]), mesh.node_ref(seg[1]));
+            let half = (b[0] - a[0]).hypot(b[1] - a[1]) / 2.0;
+            for n in seg {
+                forces.push((n, [force[0] * half, force[1] * half]));
+            }
+        }
+        Ok(forces)
+    }
+
+    fn check_spec(
+        scene: &Scene,
+        f: &str,
+        c: &ContactSpec,
+        _slave: &[[NodeId; 2]],
+    ) -> Result<(), SceneError> {
+        scene.check_contact(f, c)
+    }
+
+    fn check_pair(
+        scene: &Scene,
+        mesh: &Mesh<2>,
+        f: &str,
+        c: &ContactSpec,
+        pair: &ContactPair<2>,
+    ) -> Result<(), SceneError> {
+        check_initial_contact(mesh, pair, c.allow_not_facing, c.allow_initial_penetration)
+            .map_err(|m| scene.invalid(f, m))
+    }
+
+    fn check_model(_: &Scene, _: &Model<2>) -> Result<(), SceneError> {
+        Ok(())
+    }
+}
+
+impl Scene {
+    /// The segments that the traction `spec`, item `field`, loads: a block
+    /// body's `side`, counter-clockwise around the body as in a contact
+    /// face, or the physical curve `group` in the file's order and direction
+    /// (every node of it in `body`, if one is named).
+    pub(super) fn traction_segments(
+        &self,
+        mesh: &Mesh,
+        sources: &Sources,
+        field: &str,
+        spec: &TractionSpec,
+    ) -> Result<Vec<[NodeId; 2]>, SceneError> {
+        let b = self.body_index(mesh, format!("{field}.body"), &spec.body)?;
+        match (&spec.group, spec.side) {
+            (Some(_), Some(_)) => {
+                Err(self.invalid(field, "give either `side` or `group`, not both"))
+            }
+            (None, None) => Err(self.invalid(field, "give `body` and `side`, or `group`")),
+            (None, Some(side)) => {
+                let b = b.ok_or_else(|| {
+                    self.invalid(format!("{field}.body"), "a `side` needs its `body`")
+                })?;
+                let side = side.side_2d().ok_or_else(|| {
+                    self.invalid(
+                        format!("{field}.side"),
+                        format!("`{}` is a side of a 3D block", side.name()),
+                    )
+                })?;
+                sources.face(mesh, b, side).ok_or_else(|| {
+                    self.invalid(
+                        format!("{field}.side"),
+                        format!(
+                            "body `{}` is not a block body (load a physical curve with `group`)",
+                            mesh.bodies[b].name
+                        ),
+                    )
+                })
+            }
+            (Some(group), None) => {
+                let segments = sources.group_segments(&format!("{field}.group"), group)?;
+                if let Some(b) = b {
+                    let body = &mesh.bodies[b];
+                    if let Some(&n) = segments.iter().flatten().find(|&&n| !body.has_node(n)) {
+                        let owner = mesh
+                            .bodies
+                            .iter()
+                            .find(|o| o.has_node(n))
+                            .map_or("no body", |o| o.name.as_str());
+                        return Err(self.invalid(
+                            format!("{field}.body"),
+                            format!(
+                                "physical curve `{group}` has a node of `{owner}`, not of `{}`",
+                                body.name
+                            ),
+                        ));
+                    }
+                }
+                Ok(segments)
+            }
+        }
+    }
+}
