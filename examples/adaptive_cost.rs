@@ -25,7 +25,7 @@
 //! Then, per scene, method and target error (|e_U| below 0.05 % and
 //! 0.005 %, e_R below 1 %), the cheapest run in Newton iterations that
 //! meets it. Writes `adaptive-cost.csv` (every run) and
-//! `adaptive-cost.md` (both tables, for the README) into `--out`
+//! `adaptive-cost.md` (both tables, linked from docs/benchmarks.md) into `--out`
 //! (default `target/adaptive-cost`).
 
 use std::fmt::Write as _;

@@ -6,10 +6,10 @@
 //! ```
 //!
 //! With `--faces` it prints only the 3D face table (group
-//! `faces-tri3-slave-normal`, the README's `bench-faces` section), with
-//! the CPU model of `/proc/cpuinfo` and the load average of
-//! `/proc/loadavg`; `scripts/splice-readme.sh bench-faces FILE` puts it
-//! into README.md (as `scripts/refresh-readme.sh` does).
+//! `faces-tri3-slave-normal`, docs/kernels.md's `bench-faces` section),
+//! with the CPU model of `/proc/cpuinfo` and the load average of
+//! `/proc/loadavg`; `scripts/splice-docs.sh bench-faces FILE docs/kernels.md`
+//! puts it into docs/kernels.md (as `scripts/refresh-docs.sh` does).
 //!
 //! Reads criterion's results (`<criterion dir>/<formulation>/<id>/new/estimates.json`,
 //! the median's point estimate in ns) written by `benches/kernels.rs` (the

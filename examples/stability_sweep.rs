@@ -7,9 +7,9 @@
 //! ```
 //!
 //! writes `OUT_DIR` (default `docs/stability`): segments `stability.csv`
-//! and `stability.md` (also printed: the README's `stability` table),
+//! and `stability.md` (also printed: docs/kernels.md's `stability` table),
 //! `stability.{png,svg}`; faces `stability-faces.csv`, `stability-faces.md`
-//! (the README's `stability-faces` table), `stability-faces.{png,svg}`.
+//! (docs/kernels.md's `stability-faces` table), `stability-faces.{png,svg}`.
 
 use std::path::PathBuf;
 

@@ -5,8 +5,11 @@
 //! cost against complete: [`gapsim::study::errors`]).
 //!
 //! ```text
-//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt] [--readme README.md]
+//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt] [--readme PAGE.md]
 //! ```
+//!
+//! `--readme` splices the results section into any Markdown page that has
+//! the study markers, e.g. `--readme docs/study.md`.
 
 use std::path::PathBuf;
 
@@ -162,7 +165,7 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     Ok(())
 }
 
-/// The link prefix from `base` (the README's directory) to `out`.
+/// The link prefix from `base` (the page's directory) to `out`.
 fn relative_prefix(base: &std::path::Path, out: &std::path::Path) -> String {
     let (Ok(b), Ok(o)) = (base.canonicalize(), out.canonicalize()) else {
         return format!("{}/", out.display());

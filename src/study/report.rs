@@ -665,7 +665,7 @@ pub fn terminal_summary(results: &StudyResults) -> String {
     out
 }
 
-/// Markers around the generated section of a README.
+/// Markers around the generated section of a Markdown page (e.g. `docs/study.md`).
 pub const README_BEGIN: &str = "<!-- study:begin -->";
 /// See [`README_BEGIN`].
 pub const README_END: &str = "<!-- study:end -->";

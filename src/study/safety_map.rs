@@ -35,7 +35,7 @@
 //! Outputs: `safety-map.csv` (one row per scene and type),
 //! `safety-map-runs.csv` (every run, as `study-errors.csv` with the scene
 //! first) and `safety-map.md` (the scene x type table with its legend, for
-//! the README).
+//! docs/benchmarks.md).
 
 use std::fmt::{self, Write as _};
 

@@ -5,8 +5,8 @@
 //!
 //! [`InterpretedKernels::flip_sign`] is the verifier's mutation hook: it
 //! turns one `+` of a kernel into `-` (or one `-` into `+`), the kind of
-//! slip a hand-edited or mis-generated kernel has, so that tests and the
-//! README can show the verifier catching a broken kernel.
+//! slip a hand-edited or mis-generated kernel has, so that tests and
+//! docs/kernels.md can show the verifier catching a broken kernel.
 
 use codegen::lower::Instr;
 use codegen::{Formulation, FormulationPrograms, Program};
