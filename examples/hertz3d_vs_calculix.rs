@@ -11,7 +11,7 @@
 //! contact) and each linear solver of `--linear` (default `ldlt`: the LU of
 //! the 87 012 equations is much slower), `N` times each (default 1). A run's
 //! time is the wall time of `Scene::from_file` (TOML and mesh reading),
-//! `build_model_3d` and `solve_model`, in this process: what a user of
+//! `build_model::<3>` and `solve_model`, in this process: what a user of
 //! `gapsim run` waits for, without process start-up and output. The
 //! pressures are measured by [`gapsim::hertz::three::measure_3d`] (`P` four
 //! times the bottom's z reaction, Hertz's `a` and `p0` from it, the peak
@@ -244,7 +244,7 @@ fn main() -> Result<(), Box<dyn Error>> {
          the largest hypot(x, y) of a slave node with pressure above 1e-3 of the peak (current \
          coordinates), its difference from a in units of h. Time: {} on this machine \
          ({threads} cores, load average {load_before} before the gapsim runs, {load_after} \
-         after); gapsim: scene and mesh reading plus `build_model_3d` and `solve_model`, \
+         after); gapsim: scene and mesh reading plus `build_model::<3>` and `solve_model`, \
          in-process, rayon's pool (RAYON_NUM_THREADS, default: one thread per core), one load \
          step with the complete formulation and Lagrange multipliers, as `gapsim run SCENE`; \
          CalculiX: the whole `ccx` process. CPU: user plus system time of all threads, less \

@@ -19,8 +19,7 @@ use crate::dim::SpaceDim;
 use crate::model::{Dim, SurfaceDim};
 use crate::solution::{Solution, State};
 
-use super::contact_csv::num;
-use super::csv::field;
+use super::csv::{field, num};
 use super::nodal::{NodalContactError, NodalContactRow, nodal_contact};
 
 /// Why a state has no nodal contact table.
