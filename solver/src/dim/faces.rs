@@ -1,21 +1,21 @@
 //! [`ContactSpace`] of 3D faces: [`FaceLayout`] (tri3 and quad4 faces,
-//! `crate::contact::face_layout`, pairing by `face_pairing`). No node ties
-//! (module docs of [`super::space`]); the per-point report is the 2D one's
-//! only ([`ContactSpace::reports`] is empty here: the 3D contact table is
-//! [`FaceLayout::nodal_table`]).
+//! `crate::contact::face_layout`, pairing by `face_pairing`). It keeps the
+//! trait's defaults of an element without node ties and without a
+//! per-point report (module docs of [`super::space`]; the 3D contact table
+//! is [`FaceLayout::nodal_table`]).
 
 use contact_kernels::{ApproxType, Formulation, KernelError};
 
 use crate::assembly::{DofMap, System, assemble_contact_terms};
 use crate::contact::{
-    FACE_COORDS, FaceEval, FaceFound, FaceLayout, FaceLayoutError, KernelCounts, NodeTie,
-    PointFailure, Taylor, WeightedPoint, XI_STUCK_BAND,
+    FACE_COORDS, FaceEval, FaceFound, FaceLayout, FaceLayoutError, KernelCounts, PointFailure,
+    Taylor, WeightedPoint, XI_STUCK_BAND,
 };
 use crate::ids::{ContactPointIndex, MasterFaceIndex};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::reach;
 use crate::model::Model;
-use crate::solution::{ContactPointId, ContactPointReport, MultiplierDofInfo};
+use crate::solution::{ContactPointId, MultiplierDofInfo};
 
 use super::space::{ContactSpace, EvalsResult, FoundResult, Update};
 
@@ -133,10 +133,6 @@ impl ContactSpace<3> for FaceLayout {
         FaceLayout::pairing_updates(self, mesh, u, evals)
     }
 
-    fn reports(&self, _found: &[Option<FaceFound>]) -> Vec<ContactPointReport> {
-        Vec::new()
-    }
-
     fn stuck_xi(&self, e: &FaceEval) -> f64 {
         reach(e.master_kind, e.xi_m)
     }
@@ -179,17 +175,6 @@ impl ContactSpace<3> for FaceLayout {
         assemble_contact_terms(&self.points, evals, lambda, active, dofs, sys);
     }
 
-    /// No ties in 3D: nothing to add.
-    fn assemble_ties(
-        ties: &[NodeTie<MasterFaceIndex>],
-        _evals: &[Option<FaceEval>],
-        _others: &[FaceEval],
-        _dofs: &DofMap,
-        _sys: &mut System,
-    ) {
-        debug_assert!(ties.is_empty(), "3D faces are never tied");
-    }
-
     fn expand_at(e: FaceEval, u: &[f64]) -> FaceTaylor {
         Taylor::at(e, u)
     }
@@ -219,17 +204,5 @@ impl ContactSpace<3> for FaceLayout {
             return None;
         }
         Some(pt.slave.map_nodes(|n| mesh.node_ref(n)).size())
-    }
-
-    fn can_tie(&self, _: ContactPointIndex, _: MasterFaceIndex, _: MasterFaceIndex) -> bool {
-        false
-    }
-
-    fn tie_theta(&self, _: &NodeTie<MasterFaceIndex>, _: &[f64]) -> Option<f64> {
-        None
-    }
-
-    fn at_node(_: &FaceEval) -> bool {
-        false
     }
 }

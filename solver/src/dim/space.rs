@@ -17,9 +17,11 @@
 //! reads it against [`crate::contact::XI_STUCK_BAND`].
 //!
 //! Node ties (a point held at the node between two master segments,
-//! `crate::contact`, "Points stuck at a master node") exist in 2D only:
-//! in 3D [`ContactSpace::can_tie`] is false, so no tie is ever made and
-//! the tie hooks are never reached.
+//! `crate::contact`, "Points stuck at a master node") are an optional
+//! capability: the trait's defaults are an element without ties
+//! ([`ContactSpace::can_tie`] false, so no tie is ever made and the other
+//! tie hooks are never reached), which the 3D faces keep; the 2D segments
+//! override them.
 //!
 //! Invariant: the 2D implementation calls exactly the functions the
 //! Newton loop called before this seam, in the same order, so 2D results
@@ -139,8 +141,11 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         u: &[f64],
         evals: &[Option<Self::Eval>],
     ) -> Result<(Vec<Update<Self, D>>, KernelCounts), PointFailure<Self::Master>>;
-    /// The report of every point at its projection `found`.
-    fn reports(&self, found: &[Option<Self::Found>]) -> Vec<ContactPointReport>;
+    /// The report of every point at its projection `found` (default:
+    /// none; 3D reports the nodal table instead, `crate::report`).
+    fn reports(&self, _found: &[Option<Self::Found>]) -> Vec<ContactPointReport> {
+        Vec::new()
+    }
 
     /// The parameter a point stuck beyond its master reports: `xi_m` on a
     /// segment, the reach on a face (module docs).
@@ -174,15 +179,22 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         dofs: &DofMap,
         sys: &mut System,
     );
+    // Node ties: an optional capability (module docs), 2D's only. The
+    // defaults are an element without ties: none is ever made, so the
+    // other hooks are never reached.
+
     /// Adds the node ties (with `others`, their evaluations on the other
-    /// master) to `sys`.
+    /// master) to `sys` (default: there are none).
     fn assemble_ties(
         ties: &[NodeTie<Self::Master>],
         evals: &[Option<Self::Eval>],
         others: &[Self::Eval],
         dofs: &DofMap,
         sys: &mut System,
-    );
+    ) {
+        debug_assert!(ties.is_empty(), "no ties without `can_tie`");
+        let _ = (evals, others, dofs, sys);
+    }
 
     /// The expansion of `e`, evaluated at displacements `u`.
     fn expand_at(e: Self::Eval, u: &[f64]) -> Self::Expansion;
@@ -203,13 +215,19 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     ) -> Option<f64>;
 
     /// Whether point `i` may be tied between masters `p` and `o` (they
-    /// share a node; never in 3D).
-    fn can_tie(&self, i: ContactPointIndex, p: Self::Master, o: Self::Master) -> bool;
-    /// A tie's weight `theta` at multipliers `lambda` (2D only).
-    fn tie_theta(&self, tie: &NodeTie<Self::Master>, lambda: &[f64]) -> Option<f64>;
-    /// Whether a tied point's evaluation is at its master's node (2D
-    /// only).
-    fn at_node(e: &Self::Eval) -> bool;
+    /// share a node; default: never).
+    fn can_tie(&self, _i: ContactPointIndex, _p: Self::Master, _o: Self::Master) -> bool {
+        false
+    }
+    /// A tie's weight `theta` at multipliers `lambda` (default: none).
+    fn tie_theta(&self, _tie: &NodeTie<Self::Master>, _lambda: &[f64]) -> Option<f64> {
+        None
+    }
+    /// Whether a tied point's evaluation is at its master's node (default:
+    /// never).
+    fn at_node(_e: &Self::Eval) -> bool {
+        false
+    }
 }
 
 /// The report of multiplier dofs `multipliers` (pair and slave node of
