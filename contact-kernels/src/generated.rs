@@ -58,8 +58,10 @@ pub(crate) type FaceGradientFn = fn(&[f64], &[f64], &mut [f64], &mut [f64]) -> f
 /// `(d, xi_s, xi_m, grad, hess) -> g` for faces.
 pub(crate) type FaceHessianFn = fn(&[f64], &[f64], &mut [f64], &mut [f64], &mut [f64]) -> f64;
 
-/// One approximation type's kernel for faces.
+/// One approximation type's kernel for faces (made only by the face
+/// formulations compiled in: none without the `faces` features).
 #[derive(Clone, Copy)]
+#[cfg_attr(not(feature = "faces"), allow(dead_code))]
 pub(crate) enum FaceKernel {
     /// First-order only (Type 1).
     Gradient(FaceGradientFn),

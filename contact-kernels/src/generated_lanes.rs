@@ -52,8 +52,10 @@ pub(crate) type FaceLaneGradientFn =
 pub(crate) type FaceLaneHessianFn =
     unsafe fn(&[Lanes], &[Lanes], &mut [Lanes], &mut [Lanes], &mut [Lanes]) -> Lanes;
 
-/// One approximation type's lane kernel for faces.
+/// One approximation type's lane kernel for faces (made only by the face
+/// formulations compiled in: none without the `faces` features).
 #[derive(Clone, Copy)]
+#[cfg_attr(not(feature = "faces"), allow(dead_code))]
 pub(crate) enum FaceLaneKernel {
     /// First-order only (Type 1).
     Gradient(FaceLaneGradientFn),
