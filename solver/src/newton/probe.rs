@@ -55,7 +55,7 @@ impl IterationSample {
 
 /// One Newton iteration of the **complete** formulation at a fixed state,
 /// split into the phases that [`Timings`](crate::Timings) reports — for benchmarks and
-/// profiling (`benches/solver_scaling.rs`, `examples/scaling_table.rs`).
+/// profiling (`benches/solver_scaling.rs`, `examples/scaling_table/`).
 ///
 /// Each phase calls the same setup and phase code as an iteration of
 /// [`crate::solve`]:

@@ -141,7 +141,7 @@
 //!
 //! The module is laid out by concept:
 //!
-//! * `spec.rs`: the serde types above (the schema) and their defaults;
+//! * `spec/`: the serde types above (the schema) and their defaults;
 //! * `error.rs`: [`SceneError`], and parsing with the position and field
 //!   path of a TOML error;
 //! * `validate.rs`: the checks of values that need no mesh (counts, finite
