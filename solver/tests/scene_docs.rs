@@ -12,7 +12,7 @@
 //! the table has ("unknown field `zz_probe`, expected one of `a`, `b`"). A
 //! key whose value is a table (or an array of tables) answers the same way
 //! one level down, and a key whose value is a fixed set of strings lists
-//! them ("unknown variant"). So a key added to `solver/src/scene/spec.rs`
+//! them ("unknown variant"). So a key added to `solver/src/scene/spec/`
 //! (or to a type it holds, such as the material) fails here until the page
 //! describes it.
 
