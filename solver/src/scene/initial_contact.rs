@@ -263,7 +263,7 @@ mod tests {
     }
 
     /// Every 2D scene shipped in `scenes/` passes both checks unchanged
-    /// (3D scenes have no reference check of their pairs: `build3d.rs`).
+    /// (3D scenes have no reference check of their pairs: `solid.rs`).
     #[test]
     fn shipped_scenes_pass() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");

@@ -139,7 +139,7 @@ impl Scene {
     /// `contact[i]` (named `f`) of a 2D scene: 1..=8 Gauss points if
     /// given (that its faces are on two different bodies is checked where
     /// they are resolved; a 3D pair's count is checked against its faces'
-    /// kinds by `build3d.rs`).
+    /// kinds by `solid.rs`).
     pub(super) fn check_contact(&self, f: &str, c: &ContactSpec) -> Result<(), SceneError> {
         if c.gauss_points.is_some_and(|n| !(1..=8).contains(&n)) {
             return Err(self.invalid(format!("{f}.gauss_points"), "must be in 1..=8"));
