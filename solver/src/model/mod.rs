@@ -45,10 +45,7 @@ use crate::mesh::Mesh;
 pub use pair::{ContactMode, ContactPair, Dim, Facet, FacetOf, Integration, SurfaceDim};
 
 /// A prescribed displacement degree of freedom.
-///
-/// Its `Debug` print leaves out `amplitude` when it is `None` (the print
-/// of a model without curves is the one recorded before curves existed).
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Prescribed {
     /// Global degree of freedom (`D node + component`,
     /// [`DofId::in_dim`]).
@@ -61,9 +58,7 @@ pub struct Prescribed {
 }
 
 /// A point force component (proportional, or scaled by a load curve).
-///
-/// `Debug` as for [`Prescribed`].
-#[derive(Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointLoad {
     /// Global degree of freedom (`D node + component`,
     /// [`DofId::in_dim`]).
@@ -105,28 +100,6 @@ where
     /// Groups of prescribed dofs whose reactions are reported, in report
     /// order (may be empty: no reactions reported).
     pub supports: Vec<SupportGroup>,
-}
-
-impl std::fmt::Debug for Prescribed {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("Prescribed");
-        d.field("dof", &self.dof).field("value", &self.value);
-        if let Some(a) = self.amplitude {
-            d.field("amplitude", &a);
-        }
-        d.finish()
-    }
-}
-
-impl std::fmt::Debug for PointLoad {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("PointLoad");
-        d.field("dof", &self.dof).field("value", &self.value);
-        if let Some(a) = self.amplitude {
-            d.field("amplitude", &a);
-        }
-        d.finish()
-    }
 }
 
 /// A model inconsistency found by [`Model::check`].

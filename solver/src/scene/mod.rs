@@ -284,7 +284,7 @@ impl SolveOptions {
 mod tests {
     use super::*;
     use crate::Method;
-    use crate::ids::{DofId, NodeId};
+    use crate::ids::{AmplitudeId, DofId, NodeId};
     use crate::model::Model;
     use contact_kernels::Formulation;
 
@@ -331,7 +331,8 @@ steps = [2]
 
     /// The model as the fingerprints recorded it: its fields but
     /// `supports` (report names only), `amplitudes` only when there are
-    /// curves, each pair's `gauss_points` resolved (2 when absent) and its
+    /// curves, a prescribed dof's or a load's `amplitude` only when it has
+    /// one, each pair's `gauss_points` resolved (2 when absent) and its
     /// `integration` only when it is not Gauss.
     fn print(m: &Model) -> String {
         let pairs: Vec<String> = m
@@ -358,11 +359,28 @@ steps = [2]
         } else {
             format!(", amplitudes: {:?}", m.amplitudes)
         };
+        // a prescribed dof or a load without its curve when it has none
+        let item = |kind: &str, dof: DofId, value: f64, amplitude: Option<AmplitudeId>| {
+            let curve = amplitude
+                .map(|a| format!(", amplitude: {a:?}"))
+                .unwrap_or_default();
+            format!("{kind} {{ dof: {dof:?}, value: {value:?}{curve} }}")
+        };
+        let prescribed: Vec<String> = m
+            .prescribed
+            .iter()
+            .map(|p| item("Prescribed", p.dof, p.value, p.amplitude))
+            .collect();
+        let loads: Vec<String> = m
+            .loads
+            .iter()
+            .map(|l| item("PointLoad", l.dof, l.value, l.amplitude))
+            .collect();
         format!(
-            "Model {{ mesh: {:?}, prescribed: {:?}, loads: {:?}, contacts: [{}], load_factor_end: {:?}{amplitudes} }}",
+            "Model {{ mesh: {:?}, prescribed: [{}], loads: [{}], contacts: [{}], load_factor_end: {:?}{amplitudes} }}",
             m.mesh,
-            m.prescribed,
-            m.loads,
+            prescribed.join(", "),
+            loads.join(", "),
             pairs.join(", "),
             m.load_factor_end
         )
