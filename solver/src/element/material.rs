@@ -97,9 +97,8 @@ impl Kinematics {
 
 /// An isotropic St Venant–Kirchhoff material (in scene files: `young`,
 /// `poisson`, optionally `model = "plane-stress" | "plane-strain"` and
-/// `kinematics = "finite" | "small"`). Its `Debug` text leaves out the
-/// default kinematics, so fingerprints of existing models are unchanged.
-#[derive(Clone, Copy, PartialEq, Serialize, Deserialize)]
+/// `kinematics = "finite" | "small"`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
     /// Young's modulus `E` (> 0).
@@ -112,19 +111,6 @@ pub struct Material {
     /// Finite strain (the default) or linear elasticity.
     #[serde(default, skip_serializing_if = "Kinematics::is_finite")]
     pub kinematics: Kinematics,
-}
-
-impl std::fmt::Debug for Material {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("Material");
-        d.field("young", &self.young)
-            .field("poisson", &self.poisson)
-            .field("model", &self.model);
-        if self.kinematics != Kinematics::Finite {
-            d.field("kinematics", &self.kinematics);
-        }
-        d.finish()
-    }
 }
 
 impl Material {

@@ -58,11 +58,7 @@ pub mod volume;
 pub use block::{Block, Side};
 
 /// One body of the mesh.
-///
-/// `Debug` leaves out `node_tags` when it is `None` (the print of a mesh
-/// of blocks, and the scene fingerprints taken from it, are what they were
-/// before the tags existed).
-#[derive(Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Body {
     /// The body's name (unique in the mesh).
     pub name: String,
@@ -79,21 +75,6 @@ pub struct Body {
     /// nodes have only their internal numbers (see [`Mesh::node_number`]).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub node_tags: Option<Vec<u64>>,
-}
-
-impl std::fmt::Debug for Body {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let mut d = f.debug_struct("Body");
-        d.field("name", &self.name)
-            .field("material", &self.material)
-            .field("nodes", &self.nodes)
-            .field("elements", &self.elements)
-            .field("block", &self.block);
-        if let Some(tags) = &self.node_tags {
-            d.field("node_tags", tags);
-        }
-        d.finish()
-    }
 }
 
 /// How a node is numbered in the output ([`Mesh::node_number`]).

@@ -332,7 +332,8 @@ steps = [2]
     /// The model as the fingerprints recorded it: its fields but
     /// `supports` (report names only), `amplitudes` only when there are
     /// curves, a prescribed dof's or a load's `amplitude` only when it has
-    /// one, each pair's `gauss_points` resolved (2 when absent) and its
+    /// one, a material's `kinematics` only when small, a body's
+    /// `node_tags` only when it has them, each pair's `gauss_points` resolved (2 when absent) and its
     /// `integration` only when it is not Gauss.
     fn print(m: &Model) -> String {
         let pairs: Vec<String> = m
@@ -376,9 +377,48 @@ steps = [2]
             .iter()
             .map(|l| item("PointLoad", l.dof, l.value, l.amplitude))
             .collect();
+        // a material without its kinematics when finite, a body without
+        // its node tags when it has none
+        let material = |a: &crate::material::Material| {
+            let kinematics = match a.kinematics {
+                crate::material::Kinematics::Finite => String::new(),
+                k => format!(", kinematics: {k:?}"),
+            };
+            format!(
+                "Material {{ young: {:?}, poisson: {:?}, model: {:?}{kinematics} }}",
+                a.young, a.poisson, a.model
+            )
+        };
+        let bodies: Vec<String> = m
+            .mesh
+            .bodies
+            .iter()
+            .map(|b| {
+                let tags = b
+                    .node_tags
+                    .as_ref()
+                    .map(|t| format!(", node_tags: {t:?}"))
+                    .unwrap_or_default();
+                format!(
+                    "Body {{ name: {:?}, material: {}, nodes: {:?}, elements: {:?}, block: {:?}{tags} }}",
+                    b.name,
+                    material(&b.material),
+                    b.nodes,
+                    b.elements,
+                    b.block
+                )
+            })
+            .collect();
+        let mesh = format!(
+            "Mesh {{ nodes_ref: {:?}, elements: {:?}, element_body: {:?}, bodies: [{}], geometry: {:?} }}",
+            m.mesh.nodes_ref,
+            m.mesh.elements,
+            m.mesh.element_body,
+            bodies.join(", "),
+            m.mesh.geometry
+        );
         format!(
-            "Model {{ mesh: {:?}, prescribed: [{}], loads: [{}], contacts: [{}], load_factor_end: {:?}{amplitudes} }}",
-            m.mesh,
+            "Model {{ mesh: {mesh}, prescribed: [{}], loads: [{}], contacts: [{}], load_factor_end: {:?}{amplitudes} }}",
             prescribed.join(", "),
             loads.join(", "),
             pairs.join(", "),
