@@ -55,9 +55,6 @@ pub trait ContactTable<const D: usize>: SpaceDim<D> {
     /// A row's slave node and its gap (`None`: it projects nowhere).
     fn node_gap(row: &Self::Row) -> (usize, Option<f64>);
 
-    /// A row's pressure `p = -lambda` (positive in compression).
-    fn pressure(row: &Self::Row) -> f64;
-
     /// A row's line of `contact.csv` (without the line break).
     fn csv_line(solution: &Solution<D>, row: &Self::Row) -> String
     where
@@ -74,10 +71,6 @@ impl ContactTable<2> for Dim<2> {
 
     fn node_gap(row: &NodalContactRow) -> (usize, Option<f64>) {
         (row.node, row.projection.map(|p| p.gap))
-    }
-
-    fn pressure(row: &NodalContactRow) -> f64 {
-        row.pressure
     }
 
     fn csv_line(solution: &Solution, row: &NodalContactRow) -> String {
@@ -128,10 +121,6 @@ impl ContactTable<3> for Dim<3> {
 
     fn node_gap(row: &FaceNodalRow) -> (usize, Option<f64>) {
         (row.node.index(), row.gap)
-    }
-
-    fn pressure(row: &FaceNodalRow) -> f64 {
-        row.pressure
     }
 
     fn csv_line(solution: &Solution<3>, row: &FaceNodalRow) -> String {

@@ -7,7 +7,7 @@
 
 use super::build::Build;
 use super::initial_contact::check_initial_contact;
-use super::source::Sources;
+use super::source::{MeshSource, Sources};
 use super::{ContactSpec, Scene, SceneError, TractionSpec};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
@@ -104,13 +104,9 @@ impl Scene {
                 let b = b.ok_or_else(|| {
                     self.invalid(format!("{field}.body"), "a `side` needs its `body`")
                 })?;
-                let side = side.side_2d().ok_or_else(|| {
-                    self.invalid(
-                        format!("{field}.side"),
-                        format!("`{}` is a side of a 3D block", side.name()),
-                    )
-                })?;
-                sources.face(mesh, b, side).ok_or_else(|| {
+                let segments = MeshSource::side(sources, mesh, b, side)
+                    .map_err(|m| self.invalid(format!("{field}.side"), m))?;
+                segments.ok_or_else(|| {
                     self.invalid(
                         format!("{field}.side"),
                         format!(

@@ -172,7 +172,7 @@ impl Scene {
 }
 
 /// ` in body `b`` when a body is named, for messages.
-pub(super) fn in_body(body: &Option<String>) -> String {
+fn in_body(body: &Option<String>) -> String {
     body.as_ref()
         .map(|b| format!(" in body `{b}`"))
         .unwrap_or_default()
