@@ -17,7 +17,7 @@
 //! | [`MasterFaceIndex`] | master faces of one 3D pair | `ContactPair::master`, 3D pairings |
 //! | [`AmplitudeId`] | load curves of a model | `Model::amplitudes` |
 //!
-//! The equation numbering is owned by [`crate::assembly::DofMap`]: free dofs
+//! The equation numbering is owned by [`crate::system::DofMap`]: free dofs
 //! first (in dof order), then the multipliers, then one equation per node tie
 //! of the complete formulation. The node and element numbering is owned by
 //! [`crate::mesh::Mesh`] (bodies in the order they were appended). Body
@@ -114,7 +114,7 @@ impl DofId {
 
 index_type!(
     /// A row (and column) of the Newton system (see
-    /// [`crate::assembly::DofMap`]).
+    /// [`crate::system::DofMap`]).
     EquationIndex
 );
 

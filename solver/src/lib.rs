@@ -72,6 +72,7 @@ mod par;
 pub mod report;
 pub mod scene;
 pub mod solution;
+pub mod system;
 
 #[cfg(test)]
 mod tests;

@@ -4,13 +4,15 @@
 
 use contact_kernels::ApproxType;
 
-use crate::assembly::{DofMap, System, add_external, assemble_contact, assemble_solid};
-use crate::contact::{ContactLayout, PointEval, Taylor};
+use crate::assembly::{add_external, assemble_solid};
+use crate::contact::assemble_contact;
+use crate::contact::{ContactLayout, ContactSpace, PointEval, Taylor};
 use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, NodeId, PairId};
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Block, Mesh};
 use crate::model::{Model, PointLoad, Prescribed};
 use crate::scene::Coords;
+use crate::system::{DofMap, System};
 use crate::testutil::Lcg;
 use crate::{Method, Scene, SolveOptions, SolverError, solve, solve_model};
 
@@ -28,7 +30,7 @@ fn system_at(
     let evals = evals_at(u);
     let active = layout.active_multipliers(&evals, lambda, model.mesh.size());
     let mut sys = System::new(dofs.n_eq());
-    assemble_contact(layout, &evals, lambda, &active, dofs, &mut sys);
+    assemble_contact(&layout.points, &evals, lambda, &active, dofs, &mut sys);
     assemble_solid(model, dofs, u, &mut sys);
     add_external(model, dofs, load_factor, &mut sys);
     let n = dofs.n_eq();
@@ -976,15 +978,15 @@ fn refined_paper_scene_converges_across_master_nodes() {
 }
 
 /// The node tie's contributions (`mu (g_o - g_p)`, see
-/// [`crate::assembly::assemble_ties`]): the assembled tangent of the whole
+/// [`crate::contact::assemble_ties`]): the assembled tangent of the whole
 /// system with ties equals central differences of its residual in every
 /// unknown (displacements, multipliers and the ties' `mu`), at random
 /// states of the paper scene with points tied across the nodes between
 /// adjacent master segments.
 #[test]
 fn node_tie_tangent_matches_finite_differences() {
-    use crate::assembly::assemble_ties;
     use crate::contact::NodeTie;
+    use crate::contact::assemble_ties;
     let model = paper_model();
     let mut rng = Lcg::new(7);
     for formulation in contact_kernels::pair_formulations() {
@@ -1057,7 +1059,7 @@ fn node_tie_tangent_matches_finite_differences() {
                 .collect();
             let active = layout.active_multipliers(&evals, lam, model.mesh.size());
             let mut sys = System::new(n);
-            assemble_contact(&layout, &evals, lam, &active, &dofs, &mut sys);
+            assemble_contact(&layout.points, &evals, lam, &active, &dofs, &mut sys);
             assemble_ties(&ties, &evals, &others, &dofs, &mut sys);
             assemble_solid(&model, &dofs, u, &mut sys);
             add_external(&model, &dofs, 1.0, &mut sys);

@@ -5,7 +5,7 @@
 //! (small and finite kinematics), the 3D outputs and what a 3D model
 //! refuses.
 
-use solver::assembly::{DofMap, System, assemble_solid};
+use solver::assembly::assemble_solid;
 use solver::element::{Element, ElementKind};
 use solver::ids::{DofId, NodeId};
 use solver::mesh::block3d::Block3d;
@@ -13,6 +13,7 @@ use solver::mesh::volume::Cell;
 use solver::mesh::{Mesh, MeshError};
 use solver::model::{ContactPair, Integration, ModelError, PointLoad, Prescribed, SupportGroup};
 use solver::report::{reactions_csv, vtu_string};
+use solver::system::{DofMap, System};
 use solver::{
     ContactMode, Formulation, Kinematics, Material, Model, PlaneModel, SolveOptions, SolverError,
 };

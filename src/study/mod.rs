@@ -41,7 +41,7 @@ pub mod safety_map;
 use std::time::Duration;
 
 use contact_kernels::{ApproxType, Formulation};
-use solver::dim::ContactSpace;
+use solver::contact::ContactSpace;
 use solver::scene::Dimension;
 use solver::{
     Dim, Method, Scene, SceneDim, Solution, SolveOptions, SolverError, SpaceDim, SurfaceDim,

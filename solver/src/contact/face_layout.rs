@@ -23,7 +23,7 @@
 //! functions ([`crate::mesh::face_shape`]), and the element's potential is
 //! `Pi_c = sum_points w J0 lambda g` as in 2D ([`super`]): the same
 //! residual and tangent, assembled by
-//! [`crate::assembly::assemble_contact_terms`].
+//! [`crate::contact::assemble_contact`].
 //!
 //! The gap `g` of a point paired with a master face is the kernel of the
 //! pair's reading for the two faces' kinds ([`face_formulation`]:

@@ -125,7 +125,8 @@ pub(super) type Failure = (Option<MasterFaceIndex>, KernelError);
 
 /// The master faces' index of one pair at one configuration, with the
 /// mean face size `h`.
-pub(super) struct MasterFaces {
+#[derive(Debug)]
+pub struct MasterFaces {
     index: FaceIndex<3>,
     size: f64,
 }
@@ -173,20 +174,6 @@ impl FaceLayout {
         let m = self.masters_of(pt.pair)[master.index()];
         face_formulation(reading, pt.slave.kind(), m.kind())
             .ok_or(KernelError::NotCompiled(reading))
-    }
-
-    /// Evaluates the kernel of type `ty` for point `i` on master face
-    /// `master`, wherever on the face's surface the point projects.
-    pub fn evaluate_on(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        i: ContactPointIndex,
-        master: MasterFaceIndex,
-        ty: ApproxType,
-        counts: &mut KernelCounts,
-    ) -> Result<FaceEval, KernelError> {
-        self.evaluate_probe(mesh, u, &self.probe(i), master, ty, counts)
     }
 
     /// [`Self::evaluate_on`] for any probe.
@@ -351,111 +338,6 @@ impl FaceLayout {
         }
     }
 
-    /// Pairs point `i` (from its current master `start`) and evaluates the
-    /// kernel of type `ty` there; `Ok(None)`: it projects into no master
-    /// face.
-    #[allow(clippy::too_many_arguments)] // the pass's state: mesh, u, indexes, counts
-    fn pair_and_evaluate(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        i: ContactPointIndex,
-        start: Option<MasterFaceIndex>,
-        ty: ApproxType,
-        indexes: &[Option<MasterFaces>],
-        counts: &mut KernelCounts,
-    ) -> Result<Option<FaceEval>, PointFailure<MasterFaceIndex>> {
-        let fail = |m, error| PointFailure {
-            point: i,
-            master_segment: m,
-            error,
-        };
-        if let Some(m) = start {
-            let kind = self.masters_of(self.point(i).pair)[m.index()].kind();
-            match self.evaluate_on(mesh, u, i, m, ty, counts) {
-                Ok(e)
-                    if inside(kind, e.xi_m, XI_INSIDE_TOL)
-                        && self.faces_each_other(mesh, u, i, m, e.xi_m) =>
-                {
-                    return Ok(Some(e));
-                }
-                Ok(_) => {}
-                Err(e) if slave_side(&e) => return Err(fail(Some(m), e)),
-                Err(_) => {}
-            }
-        }
-        let found = self
-            .find_master(mesh, u, &self.probe(i), indexes, counts)
-            .map_err(|(m, e)| fail(m, e))?;
-        match found {
-            None => Ok(None),
-            Some((m, _, _)) => self
-                .evaluate_on(mesh, u, i, m, ty, counts)
-                .map(Some)
-                .map_err(|e| fail(Some(m), e)),
-        }
-    }
-
-    /// Pairs every point and evaluates type `ty` at displacements `u`, in
-    /// parallel; returns the evaluations (`None`: projects nowhere) and the
-    /// kernel-call counts. `pairing` gives each point's current master.
-    pub fn evaluate_all(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        pairing: &[Option<MasterFaceIndex>],
-        ty: ApproxType,
-    ) -> Result<(Vec<Option<FaceEval>>, KernelCounts), PointFailure<MasterFaceIndex>> {
-        let indexes = self.master_indexes(mesh, u);
-        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
-            let i = ContactPointIndex::new(k);
-            self.pair_and_evaluate(mesh, u, i, pairing[k], ty, &indexes, c)
-        })
-    }
-
-    /// Evaluates type `ty` at every point on the master face `pairing`
-    /// gives it, without re-pairing (the projection may lie beyond the
-    /// face); `None` points stay inactive. A point whose kernel fails on
-    /// its face for a master-side reason is re-paired as by
-    /// [`evaluate_all`](Self::evaluate_all).
-    pub fn evaluate_paired(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        pairing: &[Option<MasterFaceIndex>],
-        ty: ApproxType,
-    ) -> Result<(Vec<Option<FaceEval>>, KernelCounts), PointFailure<MasterFaceIndex>> {
-        let indexes = std::sync::OnceLock::new();
-        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
-            let i = ContactPointIndex::new(k);
-            match pairing[k] {
-                None => Ok(None),
-                Some(m) => match self.evaluate_on(mesh, u, i, m, ty, c) {
-                    Ok(e) => Ok(Some(e)),
-                    Err(error) if slave_side(&error) => Err(PointFailure {
-                        point: i,
-                        master_segment: Some(m),
-                        error,
-                    }),
-                    Err(_) => {
-                        let indexes = indexes.get_or_init(|| self.master_indexes(mesh, u));
-                        self.pair_and_evaluate(mesh, u, i, None, ty, indexes, c)
-                    }
-                },
-            }
-        })
-    }
-
-    /// Pairs every point from scratch at displacements `u`: each point's
-    /// master face (`None`: projects into none) and the projection calls.
-    pub fn initial_pairing(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-    ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
-        self.pair_all(mesh, u, &self.master_indexes(mesh, u))
-    }
-
     /// [`Self::initial_pairing`] trying every master face in order (no
     /// index): the reference the index's choices are tested against.
     pub fn pairing_by_scan(
@@ -467,41 +349,14 @@ impl FaceLayout {
         self.pair_all(mesh, u, &none)
     }
 
-    /// Re-pairs every point by projection only (no derivatives), each
-    /// from its master face of `pairing`: kept where the point still
-    /// projects into it and the faces face each other, else searched for
-    /// through the index ([`Self::initial_pairing`]'s choice).
-    #[allow(clippy::type_complexity)] // as initial_pairing's
-    pub fn project_all(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        pairing: &[Option<MasterFaceIndex>],
-    ) -> Result<(Vec<Option<FaceFound>>, KernelCounts), PointFailure<MasterFaceIndex>> {
-        let indexes = std::sync::OnceLock::new();
-        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
-            let i = ContactPointIndex::new(k);
-            let fail = |(m, error)| PointFailure {
-                point: i,
-                master_segment: m,
-                error,
-            };
-            let pt = self.probe(i);
-            if let Some(m) = pairing[k]
-                && let Some((gap, xi_m)) = self.project_into(mesh, u, &pt, m, c).map_err(fail)?
-            {
-                return Ok(Some(self.found(&pt, m, gap, xi_m)));
-            }
-            let indexes = indexes.get_or_init(|| self.master_indexes(mesh, u));
-            Ok(self
-                .find_master(mesh, u, &pt, indexes, c)
-                .map_err(fail)?
-                .map(|(m, gap, xi_m)| self.found(&pt, m, gap, xi_m)))
-        })
-    }
-
     /// A projection of probe `pt` onto master face `m`.
-    fn found(&self, pt: &Probe, m: MasterFaceIndex, gap: f64, xi_m: [f64; 2]) -> FaceFound {
+    pub(super) fn found(
+        &self,
+        pt: &Probe,
+        m: MasterFaceIndex,
+        gap: f64,
+        xi_m: [f64; 2],
+    ) -> FaceFound {
         FaceFound {
             master: m,
             kind: self.masters_of(pt.pair)[m.index()].kind(),
@@ -510,60 +365,8 @@ impl FaceLayout {
         }
     }
 
-    /// The pairing changes due at a converged iterate of the complete
-    /// formulation, as in 2D: every point whose projection has left its
-    /// master face (beyond [`XI_INSIDE_TOL`]) or whose faces no longer face
-    /// each other is searched for, every unpaired point too; returns
-    /// `(point, new pairing)` for the points whose master face changes, in
-    /// point order.
-    #[allow(clippy::type_complexity)] // as initial_pairing's
-    pub fn pairing_updates(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        evals: &[Option<FaceEval>],
-    ) -> Result<
-        (Vec<(ContactPointIndex, Option<FaceFound>)>, KernelCounts),
-        PointFailure<MasterFaceIndex>,
-    > {
-        let mut counts = KernelCounts::default();
-        let mut indexes = None;
-        let mut out = Vec::new();
-        for (k, ev) in evals.iter().enumerate() {
-            let i = ContactPointIndex::new(k);
-            let pair = self.point(i).pair;
-            let current = match ev {
-                Some(e)
-                    if inside(
-                        self.masters_of(pair)[e.master.index()].kind(),
-                        e.xi_m,
-                        XI_INSIDE_TOL,
-                    ) && self.faces_each_other(mesh, u, i, e.master, e.xi_m) =>
-                {
-                    continue;
-                }
-                Some(e) => Some(e.master),
-                None => None,
-            };
-            let indexes = indexes.get_or_insert_with(|| self.master_indexes(mesh, u));
-            let pt = self.probe(i);
-            let found = self
-                .find_master(mesh, u, &pt, indexes, &mut counts)
-                .map_err(|(m, error)| PointFailure {
-                    point: i,
-                    master_segment: m,
-                    error,
-                })?
-                .map(|(m, gap, xi_m)| self.found(&pt, m, gap, xi_m));
-            if found.map(|f| f.master) != current {
-                out.push((i, found));
-            }
-        }
-        Ok((out, counts))
-    }
-
     /// Every point's master face with `indexes` (in parallel).
-    fn pair_all(
+    pub(super) fn pair_all(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],

@@ -6,13 +6,14 @@
 use contact_kernels::{ApproxType, Formulation};
 use nalgebra::{DMatrix, DVector};
 
-use crate::assembly::{DofMap, System, assemble_contact_terms};
+use crate::contact::{ContactSpace, assemble_contact};
 use crate::element::material::{Kinematics, Material, PlaneModel};
 use crate::ids::{ContactPointIndex, MasterFaceIndex, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::volume::Face;
 use crate::model::{ContactMode, ContactPair, Integration};
+use crate::system::{DofMap, System};
 
 use super::term::{GapTerm, WeightedPoint};
 use super::{FaceEval, FaceLayout, KernelCounts, Taylor};
@@ -180,7 +181,7 @@ fn potential(
     let dofs = DofMap::all_free(u.len(), lambda.len());
     let mut sys = System::new(n);
     let active = vec![true; lambda.len()];
-    assemble_contact_terms(&layout.points, &evals, lambda, &active, &dofs, &mut sys);
+    assemble_contact(&layout.points, &evals, lambda, &active, &dofs, &mut sys);
     let mut k = DMatrix::zeros(n, n);
     for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
         k[(r, c)] += v;

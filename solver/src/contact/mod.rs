@@ -143,7 +143,7 @@
 //! with one more unknown `mu` per tie whose equation `g_o - g_p = 0` holds
 //! exactly where the point projects onto the node (the two segments' lines
 //! meet there; both kernels are exact Type 6 evaluations, so the tangent is
-//! exact, see [`crate::assembly::assemble_ties`]). A tie holds while
+//! exact, see [`crate::contact::assemble_ties`]). A tie holds while
 //! `theta` is in `[0, 1]` and the point projects onto the node (`|xi_m|`
 //! on `p` within [`XI_STUCK_BAND`] of 1: where the two segments' lines
 //! nearly coincide, `g_o = g_p` holds wherever the point is, and a tied
@@ -223,7 +223,7 @@
 //!   multipliers and kernels, evaluation and pairing through the spatial
 //!   index. It is verified on its own (`face_tests`: weights, gaps,
 //!   pairing against the scan, residual and tangent against finite
-//!   differences) and through Newton (`crate::dim::ContactSpace`,
+//!   differences) and through Newton (`crate::contact::ContactSpace`,
 //!   `solver/tests/contact3d.rs`).
 //!
 //! Invariants: the point order (pair by pair, slave segment by slave
@@ -233,19 +233,23 @@
 //! evaluations return in that order (`crate::par`).
 
 mod active_set;
+mod assemble;
 pub mod clip;
-mod evaluate;
 pub mod face_index;
 mod face_layout;
 mod face_nodal;
 mod face_pairing;
 pub mod face_rules;
+mod face_space;
 #[cfg(test)]
 mod face_tests;
 mod layout;
 pub mod master_search;
+mod report;
 mod search;
+mod segment_space;
 mod segmented;
+mod space;
 mod taylor;
 pub mod term;
 
@@ -254,15 +258,18 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
+pub use assemble::{assemble_contact, assemble_ties};
 pub use face_layout::{FaceLayout, FaceLayoutError, FacePoint, face_formulation};
 pub use face_nodal::{FaceNodalError, FaceNodalRow};
-pub use face_pairing::{FACE_COORDS, FaceEval, FaceFound};
+pub use face_pairing::{FACE_COORDS, FaceEval, FaceFound, MasterFaces};
 pub use layout::ContactLayout;
 pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
+pub use report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 pub use search::PassIndexes;
 pub use segmented::{
     SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
 };
+pub use space::{ContactSpace, EvalsResult, FoundResult, Update};
 pub use taylor::Taylor;
 pub use term::{GapTerm, MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
@@ -446,7 +453,7 @@ impl GapTerm<8> for PointEval {
 /// `lambda w J0 g_p + mu (g_o - g_p)`, with `g_p` its gap on the `paired`
 /// segment and `g_o` on the `other` one. Generic over the master's index
 /// so that the Newton loop names one type in 2D and 3D; only 2D segments
-/// are ever tied ([`crate::dim::ContactSpace::can_tie`]).
+/// are ever tied ([`crate::contact::ContactSpace::can_tie`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodeTie<M = MasterSegmentIndex> {
     /// Index into [`ContactLayout::points`].

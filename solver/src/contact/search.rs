@@ -20,16 +20,12 @@ use std::sync::OnceLock;
 
 use contact_kernels::Projection;
 
-use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, NodeId, PairId};
+use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, NodeId};
 use crate::mesh::Mesh;
-use crate::par;
 
 use super::face_index::QueryStats;
 use super::master_search::{MasterIndex, Tried, gap_is_distance};
-use super::{
-    ContactLayout, KernelCounts, PAR_MIN_LEN, Paired, PairingUpdate, PointEval, PointFailure,
-    XI_INSIDE_TOL, slave_side,
-};
+use super::{ContactLayout, KernelCounts, Paired, PointFailure, XI_INSIDE_TOL, slave_side};
 
 /// The master indexes of one pass over the points (one configuration
 /// `u`), one per pair, each built the first time a point of the pair
@@ -199,90 +195,11 @@ impl ContactLayout {
         }
         Ok(best)
     }
-
-    /// The pairing changes due at a converged iterate of the complete
-    /// formulation (module docs, "Complete formulation"): every active point
-    /// whose projection has left its master segment (`|xi_m| > 1 +`
-    /// [`XI_INSIDE_TOL`] in `evals`) is searched for from that segment, every
-    /// inactive point from scratch. Returns `(point, new pairing)` for the
-    /// points whose master segment changes, in point order, with the
-    /// projection onto the new segment (`None`: the point now projects into
-    /// no master segment).
-    pub fn pairing_updates(
-        &self,
-        mesh: &Mesh,
-        u: &[f64],
-        evals: &[Option<PointEval>],
-    ) -> Result<(Vec<PairingUpdate>, KernelCounts), PointFailure> {
-        let mut counts = KernelCounts::default();
-        let indexes = self.pass_indexes();
-        let mut out = Vec::new();
-        for (i, ev) in evals.iter().enumerate() {
-            let i = ContactPointIndex::new(i);
-            let current = match ev {
-                Some(e)
-                    if e.xi_m.abs() <= 1.0 + XI_INSIDE_TOL
-                        && self.faces_each_other(mesh, u, i, e.master) =>
-                {
-                    continue;
-                }
-                Some(e) => Some(e.master),
-                None => None,
-            };
-            let found = self.find_master(mesh, u, i, current, &indexes, &mut counts)?;
-            if found.map(|(m, _)| m) != current {
-                out.push((i, found));
-            }
-        }
-        Ok((out, counts))
-    }
-
-    /// Pairs every point from scratch (sequentially): each point's search
-    /// starts from the master segment found for the previous point of the
-    /// same pair, so along a face the walk usually finds it in a step or
-    /// two instead of trying every master segment.
-    pub fn initial_pairing(
-        &self,
-        mesh: &Mesh,
-        u: &[f64],
-    ) -> Result<(Vec<Option<MasterSegmentIndex>>, KernelCounts), PointFailure> {
-        let mut counts = KernelCounts::default();
-        let indexes = self.pass_indexes();
-        let mut out = Vec::with_capacity(self.points.len());
-        let mut seed: Option<(PairId, MasterSegmentIndex)> = None;
-        for (i, pt) in self.points.iter().enumerate() {
-            let i = ContactPointIndex::new(i);
-            let start = seed.filter(|(pair, _)| *pair == pt.pair).map(|(_, m)| m);
-            let found = self
-                .find_master(mesh, u, i, start, &indexes, &mut counts)?
-                .map(|(m, _)| m);
-            if let Some(m) = found {
-                seed = Some((pt.pair, m));
-            }
-            out.push(found);
-        }
-        Ok((out, counts))
-    }
-
-    /// Re-pairs every point by projection only (no derivatives): the exact
-    /// gap and `xi_m` at displacements `u`, for reports.
-    pub fn project_all(
-        &self,
-        mesh: &Mesh,
-        u: &[f64],
-        pairing: &[Option<MasterSegmentIndex>],
-    ) -> Result<(Vec<Option<Paired>>, KernelCounts), PointFailure> {
-        let indexes = self.pass_indexes();
-        par::try_map_counted(self.points.len(), PAR_MIN_LEN, |i, c| {
-            let start = pairing[i];
-            self.find_master(mesh, u, ContactPointIndex::new(i), start, &indexes, c)
-        })
-    }
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::contact::ContactLayout;
+    use crate::contact::{ContactLayout, ContactSpace};
     use crate::ids::{DofId, MasterSegmentIndex};
     use crate::testutil::Lcg;
     use crate::{Formulation, Scene};

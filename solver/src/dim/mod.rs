@@ -9,9 +9,9 @@
 //! of a contact pair ([`crate::model::SurfaceDim`]: a segment in 2D, a
 //! tri3/quad4 face in 3D), and here the axis names and the contact
 //! element, whose mathematics is the same in both dimensions
-//! ([`ContactSpace`], `space.rs`: the trait the Newton loop reads,
-//! implemented for the 2D [`ContactLayout`] in `planar.rs` and the 3D
-//! [`FaceLayout`] in `faces.rs`). Above it the scene builder
+//! ([`ContactSpace`], the trait the Newton loop reads, which the 2D
+//! [`ContactLayout`] and the 3D [`FaceLayout`] implement in
+//! `crate::contact`). Above it the scene builder
 //! (`crate::scene::SceneDim`) and the nodal contact table
 //! (`crate::report::ContactTable`) are traits of the same kind. A generic
 //! function that builds a solve (Newton's `Setup`, [`crate::solve_model`])
@@ -19,14 +19,8 @@
 //! to 2 and 3; a function that only reads a model or a solution carries
 //! `Dim<D>: SurfaceDim<D>` (what `Model<D>` needs to name its pairs).
 
-mod faces;
-mod planar;
-mod space;
-
-use crate::contact::{ContactLayout, FaceLayout};
+use crate::contact::{ContactLayout, ContactSpace, FaceLayout};
 use crate::model::{Dim, SurfaceDim};
-
-pub use space::{ContactSpace, EvalsResult, FoundResult, Update};
 
 /// What differs between the dimensions beyond the sizes `D` fixes, above
 /// the facets of a contact pair ([`SurfaceDim`]).

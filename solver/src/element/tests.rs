@@ -70,13 +70,14 @@ fn connectivity_views() {
 }
 
 mod mixed {
-    use crate::assembly::{DofMap, System, assemble_solid};
+    use crate::assembly::assemble_solid;
     use crate::element::quad::quad_response;
     use crate::element::{Element, ElementKind};
     use crate::ids::{DofId, EquationIndex, NodeId};
     use crate::material::{Material, PlaneModel};
     use crate::mesh::{Mesh, MeshError};
     use crate::model::{Model, Prescribed};
+    use crate::system::{DofMap, System};
     use crate::testutil::Lcg;
     use crate::{SolveOptions, solve_model};
 

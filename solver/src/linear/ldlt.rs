@@ -8,7 +8,7 @@
 //! negative one for every active multiplier. This solver factorises the
 //! **lower triangle** of the assembled matrix (`row >= col`, duplicates
 //! added), mirrored. Equations are numbered displacements first, then
-//! multipliers and ties ([`crate::assembly::DofMap`]), so for an inactive
+//! multipliers and ties ([`crate::system::DofMap`]), so for an inactive
 //! multiplier the lower triangle holds its decoupled unit diagonal only,
 //! while the assembled matrix `A` also has the column `G^T` in the
 //! displacement rows (`A = S + E`, `S` the mirrored lower triangle, `E` that

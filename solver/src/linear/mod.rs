@@ -92,7 +92,7 @@ pub trait LinearSolver: Send {
 
     /// Tells the solver that equations `first..` are constraint rows
     /// (multipliers and ties, numbered after the free dofs; see
-    /// [`crate::assembly::DofMap`]). A symmetric solver orders them after
+    /// [`crate::system::DofMap`]). A symmetric solver orders them after
     /// the unknowns they constrain; the default ignores the hint.
     fn set_constraints_from(&mut self, first: usize) {
         let _ = first;

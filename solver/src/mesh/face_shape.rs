@@ -108,7 +108,7 @@ pub fn inside(kind: FaceKind, [u, v]: [f64; 2], tol: f64) -> bool {
 }
 
 /// How far `xi` lies from the centre of a face of `kind`, 1 on its
-/// boundary (the reach of a projection, [`crate::dim::ContactSpace`]):
+/// boundary (the reach of a projection, [`crate::contact::ContactSpace`]):
 /// quad4 `max(|u|, |v|)`, tri3 `1 + max(-u, -v, u + v - 1)`; a point is
 /// [`inside`] with tolerance `tol` exactly when its reach is at most
 /// `1 + tol` (up to rounding).

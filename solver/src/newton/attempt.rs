@@ -26,7 +26,7 @@
 
 use std::time::Instant;
 
-use crate::dim::ContactSpace;
+use crate::contact::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::solution::CutbackReason;

@@ -16,8 +16,8 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
+use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
-use crate::dim::ContactSpace;
 use crate::error::SolverError;
 use crate::solution::{ContactPointId, CutbackReason};
 

@@ -20,7 +20,7 @@ use std::time::Instant;
 
 use contact_kernels::ApproxType;
 
-use crate::dim::ContactSpace;
+use crate::contact::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::solution::CutbackReason;

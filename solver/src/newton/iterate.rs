@@ -4,9 +4,9 @@
 //! Invariant: an iterate is its attempt's own copy; the run's converged
 //! state changes only when a converged attempt is committed.
 
-use crate::assembly::DofMap;
 use crate::contact::NodeTie;
 use crate::ids::{DofId, MultiplierIndex};
+use crate::system::DofMap;
 
 /// The unknowns of an attempt's current iterate (copies of the converged
 /// state at the start).

@@ -212,8 +212,8 @@ mod treatment;
 
 use std::time::Instant;
 
+use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie};
-use crate::dim::ContactSpace;
 use crate::error::SolverError;
 use crate::model::Model;
 use crate::monitor::{Monitor, StepProgress};

@@ -9,8 +9,8 @@
 //! (it is kept within [`XI_STUCK_BAND`] or the attempt fails as stuck).
 //! Updates are applied in point order.
 
+use crate::contact::{ContactSpace, Update};
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
-use crate::dim::{ContactSpace, Update};
 
 use crate::ids::ContactPointIndex;
 

@@ -8,14 +8,15 @@
 
 use std::time::Instant;
 
-use crate::assembly::System;
+use crate::contact::ContactSpace;
 use crate::contact::KernelCounts;
-use crate::dim::{ContactSpace, SpaceDim};
+use crate::dim::SpaceDim;
 use crate::error::SolverError;
 use crate::model::Dim;
 use crate::model::Model;
 use crate::options::{Method, SolveOptions};
 use crate::solution::State;
+use crate::system::System;
 
 use super::complete;
 use super::setup::Setup;
@@ -239,8 +240,8 @@ mod tests {
 
     use super::*;
     use crate::Scene;
-    use crate::assembly::DofMap;
     use crate::ids::{DofId, MultiplierIndex};
+    use crate::system::DofMap;
 
     /// The probe reproduces the solver's own iterates: from the reference
     /// state towards the first step's load factor, its residual norm is the

@@ -30,12 +30,13 @@
 //! the kept ones add in the same order as in the full assembly, so the
 //! reactions are the full residual's entries to the bit.
 
-use crate::assembly::{DofMap, PAR_MIN_LEN, System, add_external};
+use crate::assembly::{PAR_MIN_LEN, add_external};
+use crate::contact::ContactSpace;
 use crate::contact::NodeTie;
-use crate::dim::ContactSpace;
 use crate::ids::ElementId;
 use crate::model::Model;
 use crate::par;
+use crate::system::{DofMap, System};
 
 use super::setup::Setup;
 use crate::model::{Dim, SurfaceDim};

@@ -7,8 +7,8 @@
 //! the multiplier is active or not, so the pattern does not depend on the
 //! active set.
 
-use crate::assembly::{DofMap, System};
 use crate::ids::MultiplierIndex;
+use crate::system::{DofMap, System};
 
 /// Adds the tangent-only multiplier regularisation (module docs): `-eps` on
 /// the diagonal of the active multiplier rows (an explicit zero on the

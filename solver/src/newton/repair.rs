@@ -84,8 +84,8 @@
 
 use std::time::Instant;
 
+use crate::contact::ContactSpace;
 use crate::contact::NodeTie;
-use crate::dim::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::solution::CutbackReason;

@@ -23,15 +23,16 @@
 
 use std::cell::Cell;
 
-use crate::assembly::{DofMap, System, add_external, assemble_solid_lifted};
+use crate::assembly::{add_external, assemble_solid_lifted};
+use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
-use crate::dim::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::linear::{LinearError, LinearSolver};
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::solution::ContactPointId;
+use crate::system::{DofMap, System};
 
 use super::regularize::regularize;
 use crate::model::{Dim, SurfaceDim};

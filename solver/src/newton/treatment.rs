@@ -47,8 +47,8 @@
 //! evaluations are in point order and add their kernel calls to
 //! [`Context::counts`].
 
+use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie};
-use crate::dim::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::options::SolveOptions;

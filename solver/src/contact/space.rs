@@ -1,7 +1,11 @@
 //! [`ContactSpace`]: what the Newton loop reads of the contact element of
 //! one dimension: 2D segments ([`ContactLayout`](crate::contact::ContactLayout),
-//! `planar.rs`) or 3D faces ([`FaceLayout`](crate::contact::FaceLayout),
-//! `faces.rs`).
+//! `segment_space.rs`) or 3D faces ([`FaceLayout`](crate::contact::FaceLayout),
+//! `face_space.rs`), each implementing it directly. The passes over every
+//! point that are the same in both (pair and evaluate every point, evaluate
+//! on the given masters) are the trait's provided methods, written once
+//! over the element's one-point step ([`ContactSpace::pair_and_evaluate`])
+//! and its per-pass search indexes ([`ContactSpace::Indexes`]).
 //!
 //! The element's mathematics is the same in both (see [`crate::contact`]
 //! and [`crate::contact::face_layout`]): integration points on the slave
@@ -27,15 +31,21 @@
 //! Newton loop called before this seam, in the same order, so 2D results
 //! are unchanged to the bit.
 
+use std::sync::OnceLock;
+
 use contact_kernels::{ApproxType, Formulation, KernelError};
 
-use crate::assembly::{DofMap, System};
-use crate::contact::{FaceLayoutError, KernelCounts, MultiplierDof, NodeTie, PointFailure};
 use crate::ids::ContactPointIndex;
 use crate::mesh::Mesh;
 use crate::model::Model;
 use crate::model::{Dim, SurfaceDim};
-use crate::solution::{ContactPointId, ContactPointReport, MultiplierDofInfo};
+use crate::par;
+use crate::system::{DofMap, System};
+
+use super::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
+use super::{
+    FaceLayoutError, KernelCounts, MultiplierDof, NodeTie, PAR_MIN_LEN, PointFailure, slave_side,
+};
 
 /// Every point's evaluation (`None`: unpaired) and the kernel calls.
 pub type EvalsResult<S, const D: usize> = Result<
@@ -64,6 +74,9 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     type Found: Copy + std::fmt::Debug + Send + Sync;
     /// A point's frozen Taylor expansion (Types 1–6).
     type Expansion: Copy + std::fmt::Debug;
+    /// The master search's indexes of one pass over every point, built
+    /// (or begun, lazily) at the pass's displacements.
+    type Indexes: Send + Sync;
 
     /// Lays out the contact pairs of `model`, every pair's formulation
     /// (reading) replaced by `formulation` when given.
@@ -99,22 +112,75 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         mesh: &Mesh<D>,
         u: &[f64],
     ) -> Result<(Vec<Option<Self::Master>>, KernelCounts), PointFailure<Self::Master>>;
-    /// Pairs every point (from `pairing`) and evaluates type `ty`.
+    /// The master search's indexes for one pass at displacements `u`.
+    fn indexes(&self, mesh: &Mesh<D>, u: &[f64]) -> Self::Indexes;
+    /// Pairs point `i` (from its current master `start`: kept where the
+    /// point still projects into it and the two face each other, else
+    /// searched for through `indexes`) and evaluates type `ty` there.
+    /// `Ok(None)`: the point projects into no master.
+    #[allow(clippy::too_many_arguments)] // the pass's state: mesh, u, indexes, counts
+    fn pair_and_evaluate(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        i: ContactPointIndex,
+        start: Option<Self::Master>,
+        ty: ApproxType,
+        indexes: &Self::Indexes,
+        counts: &mut KernelCounts,
+    ) -> Result<Option<Self::Eval>, PointFailure<Self::Master>>;
+    /// Pairs every point (each from its master of `pairing`) and evaluates
+    /// type `ty` at displacements `u`, in parallel (`crate::par`): the
+    /// evaluations in point order (`None`: projects nowhere), the kernel
+    /// calls summed in point order, the first failing point's failure.
     fn evaluate_all(
         &self,
         mesh: &Mesh<D>,
         u: &[f64],
         pairing: &[Option<Self::Master>],
         ty: ApproxType,
-    ) -> EvalsResult<Self, D>;
-    /// Evaluates type `ty` on each point's master of `pairing`.
+    ) -> EvalsResult<Self, D> {
+        let indexes = self.indexes(mesh, u);
+        par::try_map_counted(self.point_count(), PAR_MIN_LEN, |k, c| {
+            let i = ContactPointIndex::new(k);
+            self.pair_and_evaluate(mesh, u, i, pairing[k], ty, &indexes, c)
+        })
+    }
+    /// Evaluates type `ty` at every point on the master `pairing` gives
+    /// it, without re-pairing: the projection onto the master's line or
+    /// plane is used also where it falls outside the master (the complete
+    /// formulation's Newton iterations, `crate::contact`). `None` points
+    /// stay inactive. Only a point whose kernel fails on its master for a
+    /// master-side reason (the projection out of reach, say) is re-paired
+    /// by search, as [`evaluate_all`](Self::evaluate_all) does; the
+    /// indexes are built for the first such point.
     fn evaluate_paired(
         &self,
         mesh: &Mesh<D>,
         u: &[f64],
         pairing: &[Option<Self::Master>],
         ty: ApproxType,
-    ) -> EvalsResult<Self, D>;
+    ) -> EvalsResult<Self, D> {
+        let indexes = OnceLock::new();
+        par::try_map_counted(self.point_count(), PAR_MIN_LEN, |k, c| {
+            let i = ContactPointIndex::new(k);
+            let Some(m) = pairing[k] else {
+                return Ok(None);
+            };
+            match self.evaluate_on(mesh, u, i, m, ty, c) {
+                Ok(e) => Ok(Some(e)),
+                Err(error) if slave_side(&error) => Err(PointFailure {
+                    point: i,
+                    master_segment: Some(m),
+                    error,
+                }),
+                Err(_) => {
+                    let indexes = indexes.get_or_init(|| self.indexes(mesh, u));
+                    self.pair_and_evaluate(mesh, u, i, None, ty, indexes, c)
+                }
+            }
+        })
+    }
     /// Evaluates type `ty` for point `i` on `master`.
     fn evaluate_on(
         &self,
