@@ -6,7 +6,7 @@ use contact_kernels::ApproxType;
 
 use crate::assembly::{add_external, assemble_solid};
 use crate::contact::assemble_contact;
-use crate::contact::{ContactLayout, ContactSpace, PointEval, Taylor};
+use crate::contact::{ContactLayout, ContactSpace, PointEval, SegmentTaylor, Taylor};
 use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, NodeId, PairId};
 use crate::material::{Material, PlaneModel};
 use crate::mesh::{Block, Mesh};
@@ -28,7 +28,9 @@ fn system_at(
     evals_at: &dyn Fn(&[f64]) -> Vec<Option<PointEval>>,
 ) -> (Vec<f64>, Vec<Vec<f64>>) {
     let evals = evals_at(u);
-    let active = layout.active_multipliers(&evals, lambda, model.mesh.size());
+    let active = layout
+        .active_set_view()
+        .active_multipliers(&evals, lambda, model.mesh.size());
     let mut sys = System::new(dofs.n_eq());
     assemble_contact(&layout.points, &evals, lambda, &active, dofs, &mut sys);
     assemble_solid(model, dofs, u, &mut sys);
@@ -479,7 +481,7 @@ fn contact_tangent_matches_finite_differences() {
         let (u0, _) = random_state(&model, &layout, &mut rng, 0.05, 0.0);
         let none = vec![None; layout.points.len()];
         let (evals0, _) = layout.evaluate_all(&model.mesh, &u0, &none, ty).unwrap();
-        let taylor: Vec<Option<Taylor>> = evals0
+        let taylor: Vec<Option<SegmentTaylor>> = evals0
             .iter()
             .map(|e| e.map(|at_start| Taylor::at(at_start, &u0)))
             .collect();
@@ -1057,7 +1059,10 @@ fn node_tie_tangent_matches_finite_differences() {
                         .unwrap()
                 })
                 .collect();
-            let active = layout.active_multipliers(&evals, lam, model.mesh.size());
+            let active =
+                layout
+                    .active_set_view()
+                    .active_multipliers(&evals, lam, model.mesh.size());
             let mut sys = System::new(n);
             assemble_contact(&layout.points, &evals, lam, &active, &dofs, &mut sys);
             assemble_ties(&ties, &evals, &others, &dofs, &mut sys);

@@ -23,19 +23,19 @@
 //!
 //! The rules work on any dimension's points and evaluations
 //! ([`ActiveSetView`], over [`WeightedPoint`] and [`GapTerm`]): 2D
-//! segments ([`ContactLayout`]) and 3D faces ([`super::FaceLayout`]), where
+//! segments ([`super::ContactLayout`]) and 3D faces ([`super::FaceLayout`]), where
 //! the tributary length is a tributary area.
 //!
 //! Invariant: the nodal weights and weighted gaps are summed in point order.
 
 use crate::model::ContactMode;
 
+use super::MultiplierDof;
 use super::term::{GapTerm, WeightedPoint};
-use super::{ContactLayout, MultiplierDof, PointEval};
 
 /// A node of a unilateral pair whose weighted gap is at most this times its
 /// tributary length `sum w J0 N_a` counts as touching at the start of an
-/// attempt ([`ContactLayout::close_touching`]). At a smooth convex contact
+/// attempt ([`ActiveSetView::close_touching`]). At a smooth convex contact
 /// with segments of length `h` and curvature radius `R` the touching node's
 /// ratio is about `h / (30 R)`.
 pub const CLOSING_GAP: f64 = 1e-2;
@@ -147,39 +147,5 @@ impl<P: WeightedPoint> ActiveSetView<'_, P> {
                 }
             })
             .collect()
-    }
-}
-
-impl ContactLayout {
-    /// The layout as the active set reads it.
-    fn active_set_view(&self) -> ActiveSetView<'_, super::ContactPoint> {
-        ActiveSetView {
-            points: &self.points,
-            multipliers: &self.multipliers,
-            modes: &self.modes,
-            complementarity: &self.complementarity,
-        }
-    }
-
-    /// First iteration of an attempt (module docs): in every unilateral
-    /// pair with all multipliers zero and none `active`, makes every node
-    /// active whose weighted gap is at most [`CLOSING_GAP`] times its
-    /// tributary length; if none does, its node with the smallest ratio
-    /// when that is at most [`NEARLY_TOUCHING`].
-    pub fn close_touching(&self, evals: &[Option<PointEval>], lambda: &[f64], active: &mut [bool]) {
-        self.active_set_view().close_touching(evals, lambda, active);
-    }
-
-    /// Which multipliers carry a constraint row (see the module docs):
-    /// persistent pairs: those with an active integration point;
-    /// unilateral pairs: the primal–dual active set at `(evals, lambda)`.
-    pub fn active_multipliers(
-        &self,
-        evals: &[Option<PointEval>],
-        lambda: &[f64],
-        length_scale: f64,
-    ) -> Vec<bool> {
-        self.active_set_view()
-            .active_multipliers(evals, lambda, length_scale)
     }
 }

@@ -1,11 +1,11 @@
 //! The contact element's part of the Newton system ([`crate::system`]):
-//! the terms of every evaluated integration point and its multipliers
-//! (both dimensions), and the node ties of the 2D complete formulation.
+//! the terms of every evaluated integration point and its multipliers, in
+//! both dimensions (the 2D node ties are `segment/ties.rs`).
 
 use crate::ids::{EquationIndex, MultiplierIndex};
 use crate::system::{DofMap, System};
 
-use super::{GapTerm, NodeTie, PointEval, WeightedPoint};
+use super::{GapTerm, WeightedPoint};
 
 /// Adds the contact contributions of the evaluated integration points
 /// (`evals[i]`, `None` = inactive) with multipliers `lambda` and the
@@ -82,54 +82,5 @@ pub fn assemble_contact<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
             sys.residual[row.index()] = lambda[m];
             sys.push(row, row, 1.0);
         }
-    }
-}
-
-/// Adds the node ties of the complete formulation (see
-/// [`crate::contact`], "Points stuck at a master node"): tie `k`, with the
-/// point's evaluation on its paired segment `evals[point]` (its regular
-/// term, added by [`assemble_contact`]) and on the other segment
-/// `others[k]`, adds the potential `mu (g_o - g_p)`:
-///
-/// ```text
-/// r_u  += mu (g_o' - g_p')        K_uu += mu (g_o'' - g_p'')
-/// r_mu  = g_o - g_p               K_u,mu = K_mu,u = g_o' - g_p'
-/// ```
-///
-/// with the tie's equation [`DofMap::tie_eq`] (after the free dofs and
-/// multipliers) and an explicit zero `K_mu,mu`.
-pub fn assemble_ties(
-    ties: &[NodeTie],
-    evals: &[Option<PointEval>],
-    others: &[PointEval],
-    dofs: &DofMap,
-    sys: &mut System,
-) {
-    for (k, (tie, other)) in ties.iter().zip(others).enumerate() {
-        let row = dofs.tie_eq(k);
-        let Some(paired) = &evals[tie.point.index()] else {
-            // an inactive point cannot be tied; keep the row regular
-            sys.residual[row.index()] = tie.mu;
-            sys.push(row, row, 1.0);
-            continue;
-        };
-        sys.residual[row.index()] = other.gap - paired.gap;
-        for (ev, sign) in [(other, 1.0), (paired, -1.0)] {
-            let eqs = dofs.node_eqs(&ev.nodes);
-            for p in 0..8 {
-                let Some(ep) = eqs[p] else { continue };
-                sys.residual[ep.index()] += sign * tie.mu * ev.grad[p];
-                sys.push(ep, row, sign * ev.grad[p]);
-                sys.push(row, ep, sign * ev.grad[p]);
-                if let Some(h) = &ev.hess {
-                    for q in 0..8 {
-                        if let Some(eq) = eqs[q] {
-                            sys.push(ep, eq, sign * tie.mu * h[(p, q)]);
-                        }
-                    }
-                }
-            }
-        }
-        sys.push(row, row, 0.0);
     }
 }

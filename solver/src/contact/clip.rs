@@ -159,7 +159,7 @@ impl TriangleRule {
             TriangleRule::Three => 3,
             TriangleRule::Seven => 7,
         };
-        super::face_rules::tri3_rule(n)
+        crate::contact::face_rules::tri3_rule(n)
             .expect("face_rules has the tri3 rules of 1, 3 and 7 points")
             .points
             .into_iter()

@@ -235,39 +235,32 @@
 mod active_set;
 mod assemble;
 pub mod clip;
+pub mod face;
 pub mod face_index;
-mod face_layout;
-mod face_nodal;
-mod face_pairing;
 pub mod face_rules;
-mod face_space;
-#[cfg(test)]
-mod face_tests;
-mod layout;
-pub mod master_search;
+mod layout_error;
 mod report;
-mod search;
-mod segment_space;
-mod segmented;
+pub mod segment;
 mod space;
 mod taylor;
 pub mod term;
 
-use contact_kernels::{KernelError, Projection, Segment};
-use nalgebra::{SMatrix, SVector};
+use contact_kernels::{KernelError, Segment};
 
-use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
+use crate::ids::{ContactPointIndex, MasterSegmentIndex, NodeId, PairId};
 
-pub use assemble::{assemble_contact, assemble_ties};
-pub use face_layout::{FaceLayout, FaceLayoutError, FacePoint, face_formulation};
-pub use face_nodal::{FaceNodalError, FaceNodalRow};
-pub use face_pairing::{FACE_COORDS, FaceEval, FaceFound, MasterFaces};
-pub use layout::ContactLayout;
-pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
+pub use active_set::ActiveSetView;
+pub use assemble::assemble_contact;
+pub use face::{
+    FACE_COORDS, FaceEval, FaceFound, FaceLayout, FaceNodalError, FaceNodalRow, FacePoint,
+    MasterFaces, face_formulation,
+};
+pub use layout_error::FaceLayoutError;
 pub use report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
-pub use search::PassIndexes;
-pub use segmented::{
-    SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
+pub use segment::{
+    ContactLayout, ContactPoint, INDEX_MIN_SEGMENTS, MasterIndex, Paired, PairingUpdate,
+    PassIndexes, PointEval, SPLIT_TOL, SegmentTaylor, Tried, assemble_ties, gap_is_distance,
+    is_new_split, segmented_rule, shape2, slave_coordinate_of_master_end, split_coordinates,
 };
 pub use space::{ContactSpace, EvalsResult, FoundResult, Update};
 pub use taylor::Taylor;
@@ -317,39 +310,6 @@ pub fn gauss_legendre(n: usize) -> Vec<(f64, f64)> {
     out
 }
 
-/// Linear shape functions `[N1, N2]` at `xi`.
-pub fn shape2(xi: f64) -> [f64; 2] {
-    [(1.0 - xi) / 2.0, (1.0 + xi) / 2.0]
-}
-
-/// A master segment index with the projection onto it.
-pub type Paired = (MasterSegmentIndex, Projection);
-
-/// A due pairing change: the point (index into [`ContactLayout::points`])
-/// and its new master segment with the projection onto it (`None`: it
-/// projects into no master segment).
-pub type PairingUpdate = (ContactPointIndex, Option<Paired>);
-
-/// Static data of one slave integration point.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ContactPoint {
-    /// Contact pair.
-    pub pair: PairId,
-    /// Slave segment index within the pair.
-    pub slave_segment: usize,
-    /// Integration point index within the segment (with segmented
-    /// integration, counted piece by piece).
-    pub gauss: usize,
-    /// Parametric coordinate on the slave segment.
-    pub xi_s: f64,
-    /// `w J0` (reference length weight).
-    pub weight_ref: f64,
-    /// The slave segment's nodes.
-    pub slave_nodes: [NodeId; 2],
-    /// Global multiplier indices of the slave segment's nodes.
-    pub multipliers: [MultiplierIndex; 2],
-}
-
 /// One multiplier degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct MultiplierDof {
@@ -387,66 +347,6 @@ pub struct PointFailure<M = MasterSegmentIndex> {
     pub error: KernelError,
 }
 
-/// The gap and its derivatives at one paired integration point, as used in
-/// the assembly.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PointEval {
-    /// Master segment index within the pair.
-    pub master: MasterSegmentIndex,
-    /// `[slave 1, slave 2, master 1, master 2]` global node indices.
-    pub nodes: [NodeId; 4],
-    /// Gap (exact or Taylor-approximated).
-    pub gap: f64,
-    /// The projection coordinate (at the evaluation point of the kernel).
-    pub xi_m: f64,
-    /// `dg/du` on the 8 dofs of `nodes`.
-    pub grad: SVector<f64, 8>,
-    /// `d2g/du2`, `None` when the type has none (Type 1).
-    pub hess: Option<SMatrix<f64, 8, 8>>,
-}
-
-impl WeightedPoint for ContactPoint {
-    fn weight_ref(&self) -> f64 {
-        self.weight_ref
-    }
-
-    fn multiplier_shape(&self) -> MultiplierShape {
-        let n = shape2(self.xi_s);
-        MultiplierShape {
-            multipliers: [
-                self.multipliers[0],
-                self.multipliers[1],
-                self.multipliers[1],
-                self.multipliers[1],
-            ],
-            shape: [n[0], n[1], 0.0, 0.0],
-            count: 2,
-        }
-    }
-}
-
-impl GapTerm<8> for PointEval {
-    fn gap(&self) -> f64 {
-        self.gap
-    }
-
-    fn grad(&self) -> &SVector<f64, 8> {
-        &self.grad
-    }
-
-    fn hess(&self) -> Option<&SMatrix<f64, 8, 8>> {
-        self.hess.as_ref()
-    }
-
-    fn dof(&self, k: usize) -> Option<DofId> {
-        Some(DofId::of(self.nodes[k / 2], k % 2))
-    }
-
-    fn with_gap(&self, gap: f64, grad: SVector<f64, 8>) -> PointEval {
-        PointEval { gap, grad, ..*self }
-    }
-}
-
 /// Complete formulation: a slave integration point held at the master node
 /// shared by two adjacent master segments (module docs, "Points stuck at a
 /// master node"). The point's contact potential is
@@ -464,21 +364,6 @@ pub struct NodeTie<M = MasterSegmentIndex> {
     pub other: M,
     /// The tie's multiplier `mu`.
     pub mu: f64,
-}
-
-impl NodeTie {
-    /// The weight `theta = mu / (lambda w J0)` of the `other` segment's
-    /// gradient in the point's contact force (`1 - theta` for the paired
-    /// one); `None` when the point carries no multiplier. The tie holds for
-    /// `theta` in `[0, 1]`.
-    pub fn theta(&self, layout: &ContactLayout, lambda: &[f64]) -> Option<f64> {
-        let pt = layout.point(self.point);
-        let nsh = shape2(pt.xi_s);
-        let lam =
-            nsh[0] * lambda[pt.multipliers[0].index()] + nsh[1] * lambda[pt.multipliers[1].index()];
-        let force = lam * pt.weight_ref;
-        (force != 0.0).then(|| self.mu / force)
-    }
 }
 
 /// Errors that concern the slave segment or the input itself; no other

@@ -1,14 +1,14 @@
 //! [`ContactSpace`]: what the Newton loop reads of the contact element of
 //! one dimension: 2D segments ([`ContactLayout`](crate::contact::ContactLayout),
-//! `segment_space.rs`) or 3D faces ([`FaceLayout`](crate::contact::FaceLayout),
-//! `face_space.rs`), each implementing it directly. The passes over every
+//! `segment/space.rs`) or 3D faces ([`FaceLayout`](crate::contact::FaceLayout),
+//! `face/space.rs`), each implementing it directly. The passes over every
 //! point that are the same in both (pair and evaluate every point, evaluate
 //! on the given masters) are the trait's provided methods, written once
 //! over the element's one-point step ([`ContactSpace::pair_and_evaluate`])
 //! and its per-pass search indexes ([`ContactSpace::Indexes`]).
 //!
 //! The element's mathematics is the same in both (see [`crate::contact`]
-//! and [`crate::contact::face_layout`]): integration points on the slave
+//! and `crate::contact::face`): integration points on the slave
 //! side, each paired with a master segment or face (`Master`), whose
 //! evaluation (`Eval`: gap, gradient, Hessian) the assembly adds as
 //! `w J0 lambda g`; the frozen Taylor expansions of Types 1–6
@@ -42,10 +42,9 @@ use crate::model::{Dim, SurfaceDim};
 use crate::par;
 use crate::system::{DofMap, System};
 
+use super::layout_error::FaceLayoutError;
 use super::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
-use super::{
-    FaceLayoutError, KernelCounts, MultiplierDof, NodeTie, PAR_MIN_LEN, PointFailure, slave_side,
-};
+use super::{KernelCounts, MultiplierDof, NodeTie, PAR_MIN_LEN, PointFailure, slave_side};
 
 /// Every point's evaluation (`None`: unpaired) and the kernel calls.
 pub type EvalsResult<S, const D: usize> = Result<

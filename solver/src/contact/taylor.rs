@@ -12,14 +12,14 @@
 
 use nalgebra::SVector;
 
-use super::PointEval;
 use super::term::GapTerm;
 
 /// Frozen Taylor coefficients of one integration point for one load step,
-/// on the `N` coordinates of its evaluation `E` (a 2D [`PointEval`] by
-/// default; a 3D [`super::FaceEval`] with `N = 24`).
+/// on the `N` coordinates of its evaluation `E` (a 2D
+/// [`super::PointEval`] with `N = 8`, a 3D [`super::FaceEval`] with
+/// `N = 24`).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Taylor<E = PointEval, const N: usize = 8> {
+pub struct Taylor<E, const N: usize> {
     /// The kernel output at the expansion point (the step start, or for a
     /// re-paired point an earlier attempt's end).
     pub at_start: E,
@@ -63,6 +63,7 @@ mod tests {
     use nalgebra::SMatrix;
 
     use super::*;
+    use crate::contact::{PointEval, SegmentTaylor};
     use crate::ids::MasterSegmentIndex;
 
     #[test]
@@ -78,7 +79,7 @@ mod tests {
             hess: Some(h),
         };
         let u0 = SVector::<f64, 8>::from_fn(|i, _| 0.01 * i as f64);
-        let t: Taylor = Taylor { at_start, u0 };
+        let t: SegmentTaylor = Taylor { at_start, u0 };
         let u: Vec<f64> = (0..8)
             .map(|i| 0.01 * i as f64 + 0.02 * (i as f64).cos())
             .collect();

@@ -28,7 +28,7 @@ use super::setup::Setup;
 pub struct ContactPhase {
     /// Residual and triplets with the contact terms only.
     pub system: System,
-    /// Active multipliers (see [`ContactLayout::active_multipliers`](crate::contact::ContactLayout::active_multipliers)).
+    /// Active multipliers (see [`ActiveSetView::active_multipliers`](crate::contact::ActiveSetView::active_multipliers)).
     pub active: Vec<bool>,
 }
 

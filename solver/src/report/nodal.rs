@@ -30,7 +30,7 @@
 //! a hair beyond the master's last node, or a node in the shadow of a
 //! convex master corner. A master segment the kernel rejects for a reason
 //! of its own (degenerate or folded master, no projection, projection out
-//! of reach or diverged: what pairing, `contact/search.rs`, also treats as
+//! of reach or diverged: what pairing, `contact/segment/search.rs`, also treats as
 //! "not this segment") is skipped; a node with no projection has no gap,
 //! `xi_m` or master segment (`None`; empty fields in `contact.csv`), never
 //! NaN. A failure no master segment can cure (contact's `slave_side`
@@ -53,7 +53,7 @@
 //! Cost: on a master face of [`crate::contact::INDEX_MIN_SEGMENTS`]
 //! segments or more (and a formulation whose gap is a distance), the
 //! smallest `|g|` is found through the spatial index of the master face in
-//! the state's configuration (`contact::master_search`, which proves the
+//! the state's configuration (`contact::segment::master_search`, which proves the
 //! same choice, ties included): `O(log n_master)` projections per node
 //! that projects into a segment. A node the index cannot decide (one that
 //! projects into no candidate, which includes every node of the band's

@@ -15,8 +15,8 @@ use crate::mesh::volume::Face;
 use crate::model::{ContactMode, ContactPair, Integration};
 use crate::system::{DofMap, System};
 
-use super::term::{GapTerm, WeightedPoint};
-use super::{FaceEval, FaceLayout, KernelCounts, Taylor};
+use crate::contact::term::{GapTerm, WeightedPoint};
+use crate::contact::{FaceEval, FaceLayout, KernelCounts, Taylor};
 
 const MATERIAL: Material = Material {
     young: 200.0,

@@ -25,9 +25,9 @@ use crate::mesh::Mesh;
 use crate::mesh::face_shape::QUAD4_CORNERS;
 use crate::mesh::volume::Face;
 
-use super::face_pairing::Probe;
-use super::term::WeightedPoint;
-use super::{FaceLayout, KernelCounts};
+use super::pairing::Probe;
+use crate::contact::term::WeightedPoint;
+use crate::contact::{FaceLayout, KernelCounts};
 
 /// One slave node's row (module docs).
 #[derive(Debug, Clone, PartialEq)]

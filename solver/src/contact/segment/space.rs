@@ -16,10 +16,12 @@ use crate::model::Model;
 use crate::par;
 use crate::system::{DofMap, System};
 
-use super::assemble::{assemble_contact, assemble_ties};
-use super::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
-use super::space::{ContactSpace, Update};
-use super::{
+use super::SegmentTaylor;
+use super::ties::assemble_ties;
+use crate::contact::assemble::assemble_contact;
+use crate::contact::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
+use crate::contact::space::{ContactSpace, Update};
+use crate::contact::{
     ContactLayout, FaceLayoutError, KernelCounts, NodeTie, PAR_MIN_LEN, Paired, PassIndexes,
     PointEval, PointFailure, Taylor, XI_INSIDE_TOL, XI_STUCK_BAND, slave_side,
 };
@@ -28,7 +30,7 @@ impl ContactSpace<2> for ContactLayout {
     type Master = MasterSegmentIndex;
     type Eval = PointEval;
     type Found = Paired;
-    type Expansion = Taylor;
+    type Expansion = SegmentTaylor;
     type Indexes = PassIndexes;
 
     fn build(model: &Model<2>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError> {
@@ -44,7 +46,7 @@ impl ContactSpace<2> for ContactLayout {
     }
 
     fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {
-        super::space::multiplier_dofs(&self.multipliers)
+        crate::contact::space::multiplier_dofs(&self.multipliers)
     }
 
     fn formulations(&self) -> Vec<Formulation> {
@@ -279,9 +281,10 @@ impl ContactSpace<2> for ContactLayout {
         length_scale: f64,
         first: bool,
     ) -> Vec<bool> {
-        let mut active = self.active_multipliers(evals, lambda, length_scale);
+        let view = self.active_set_view();
+        let mut active = view.active_multipliers(evals, lambda, length_scale);
         if first {
-            self.close_touching(evals, lambda, &mut active);
+            view.close_touching(evals, lambda, &mut active);
         }
         active
     }
@@ -307,19 +310,19 @@ impl ContactSpace<2> for ContactLayout {
         assemble_ties(ties, evals, others, dofs, sys);
     }
 
-    fn expand_at(e: PointEval, u: &[f64]) -> Taylor {
+    fn expand_at(e: PointEval, u: &[f64]) -> SegmentTaylor {
         Taylor::at(e, u)
     }
 
-    fn expand(x: &Taylor, u: &[f64]) -> PointEval {
+    fn expand(x: &SegmentTaylor, u: &[f64]) -> PointEval {
         x.expand(u)
     }
 
-    fn expanded(x: &Taylor) -> &PointEval {
+    fn expanded(x: &SegmentTaylor) -> &PointEval {
         &x.at_start
     }
 
-    fn moved(t: &Taylor, u: &[f64]) -> bool {
+    fn moved(t: &SegmentTaylor, u: &[f64]) -> bool {
         (0..8).any(|k| t.u0[k] != u[DofId::of(t.at_start.nodes[k / 2], k % 2).index()])
     }
 

@@ -41,10 +41,10 @@ use crate::mesh::face_shape::inside;
 use crate::mesh::volume::{Face, FaceKind, dot};
 use crate::par;
 
-use super::face_index::FaceIndex;
-use super::face_layout::{FaceLayout, face_formulation};
-use super::term::GapTerm;
-use super::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, slave_side};
+use super::layout::{FaceLayout, face_formulation};
+use crate::contact::face_index::FaceIndex;
+use crate::contact::term::GapTerm;
+use crate::contact::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, slave_side};
 
 /// The coordinates of the largest face pair (a quad4 on a quad4: 8 nodes
 /// of 3): the size of a [`FaceEval`]'s gradient and Hessian.

@@ -1,8 +1,8 @@
 //! [`ContactSpace`] of 3D faces: [`FaceLayout`] (tri3 and quad4 faces,
-//! `crate::contact::face_layout`): the kernel evaluation of one point on
+//! `layout.rs`): the kernel evaluation of one point on
 //! one master face, and the pairing passes (from scratch, by projection
 //! only, the updates at a converged iterate) over the search of
-//! `face_pairing.rs` (the rule is stated there). It keeps the
+//! `pairing.rs` (the rule is stated there). It keeps the
 //! trait's defaults of an element without node ties and without a
 //! per-point report (module docs of [`super::space`]; the 3D contact table
 //! is [`FaceLayout::nodal_table`]).
@@ -16,12 +16,12 @@ use crate::model::Model;
 use crate::par;
 use crate::system::{DofMap, System};
 
-use super::assemble::assemble_contact;
-use super::face_pairing::MasterFaces;
-use super::report::{ContactPointId, MultiplierDofInfo};
-use super::space::ContactSpace;
-use super::term::WeightedPoint;
-use super::{
+use super::pairing::MasterFaces;
+use crate::contact::assemble::assemble_contact;
+use crate::contact::report::{ContactPointId, MultiplierDofInfo};
+use crate::contact::space::ContactSpace;
+use crate::contact::term::WeightedPoint;
+use crate::contact::{
     FACE_COORDS, FaceEval, FaceFound, FaceLayout, FaceLayoutError, KernelCounts, PAR_MIN_LEN,
     PointFailure, Taylor, XI_INSIDE_TOL, XI_STUCK_BAND, slave_side,
 };
@@ -49,7 +49,7 @@ impl ContactSpace<3> for FaceLayout {
     }
 
     fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {
-        super::space::multiplier_dofs(&self.multipliers)
+        crate::contact::space::multiplier_dofs(&self.multipliers)
     }
 
     fn formulations(&self) -> Vec<Formulation> {

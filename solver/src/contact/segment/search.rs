@@ -23,9 +23,11 @@ use contact_kernels::Projection;
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, NodeId};
 use crate::mesh::Mesh;
 
-use super::face_index::QueryStats;
 use super::master_search::{MasterIndex, Tried, gap_is_distance};
-use super::{ContactLayout, KernelCounts, Paired, PointFailure, XI_INSIDE_TOL, slave_side};
+use crate::contact::face_index::QueryStats;
+use crate::contact::{
+    ContactLayout, KernelCounts, Paired, PointFailure, XI_INSIDE_TOL, slave_side,
+};
 
 /// The master indexes of one pass over the points (one configuration
 /// `u`), one per pair, each built the first time a point of the pair

@@ -19,9 +19,10 @@ use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, 
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Integration, Model};
 
-use super::face_rules::{FaceKind as RuleKind, default_points};
 use super::segmented::{segmented_rule, split_coordinates};
-use super::{ContactPoint, MultiplierDof, gauss_legendre};
+use crate::contact::active_set::ActiveSetView;
+use crate::contact::face_rules::{FaceKind as RuleKind, default_points};
+use crate::contact::{ContactPoint, MultiplierDof, gauss_legendre};
 
 /// The integration points, multipliers and master-chain adjacency of all
 /// contact pairs of a model.
@@ -43,12 +44,22 @@ pub struct ContactLayout {
     pub complementarity: Vec<f64>,
     /// Pairs with at least this many master segments search them through
     /// the spatial index (`master_search`; default
-    /// [`super::INDEX_MIN_SEGMENTS`]); the choices are the same either
+    /// [`super::master_search::INDEX_MIN_SEGMENTS`]); the choices are the same either
     /// way.
     pub index_min_segments: usize,
 }
 
 impl ContactLayout {
+    /// The layout as the active set reads it.
+    pub fn active_set_view(&self) -> ActiveSetView<'_, ContactPoint> {
+        ActiveSetView {
+            points: &self.points,
+            multipliers: &self.multipliers,
+            modes: &self.modes,
+            complementarity: &self.complementarity,
+        }
+    }
+
     /// Lays out the contact pairs of `model`, with every pair's
     /// formulation replaced by `formulation` when given.
     pub fn new(model: &Model, formulation: Option<Formulation>) -> ContactLayout {
@@ -137,7 +148,7 @@ impl ContactLayout {
             masters: model.contacts.iter().map(|c| c.master.clone()).collect(),
             adjacency,
             complementarity,
-            index_min_segments: super::INDEX_MIN_SEGMENTS,
+            index_min_segments: super::master_search::INDEX_MIN_SEGMENTS,
         }
     }
 
@@ -152,7 +163,7 @@ impl ContactLayout {
             masters: Vec::new(),
             adjacency: Vec::new(),
             complementarity: Vec::new(),
-            index_min_segments: super::INDEX_MIN_SEGMENTS,
+            index_min_segments: super::master_search::INDEX_MIN_SEGMENTS,
         }
     }
 

@@ -61,7 +61,6 @@
 use std::collections::HashMap;
 
 use contact_kernels::Formulation;
-use thiserror::Error;
 
 use crate::ids::{ContactPointIndex, DofId, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
@@ -69,12 +68,13 @@ use crate::mesh::face_shape::FaceShape;
 use crate::mesh::volume::{Face, FaceKind};
 use crate::model::{ContactMode, ContactPair, Integration};
 
-use super::MultiplierDof;
-use super::active_set::ActiveSetView;
-use super::clip::{ClipError, SlaveFace, TriangleRule};
-use super::face_index::{Aabb, FaceIndex};
-use super::face_rules::{self, RuleError, default_points, face_rule};
-use super::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
+use crate::contact::MultiplierDof;
+use crate::contact::active_set::ActiveSetView;
+use crate::contact::clip::{SlaveFace, TriangleRule};
+use crate::contact::face_index::{Aabb, FaceIndex};
+use crate::contact::face_rules::{self, default_points, face_rule};
+use crate::contact::layout_error::FaceLayoutError;
+use crate::contact::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
 /// Static data of one slave integration point of a 3D pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -109,67 +109,6 @@ impl WeightedPoint for FacePoint {
             count: s.count,
         }
     }
-}
-
-/// A 3D pair that cannot be laid out.
-#[derive(Debug, Clone, PartialEq, Error)]
-pub enum FaceLayoutError {
-    /// `gauss_points` has no rule on one of the pair's slave face kinds.
-    #[error("contact pair `{pair}`: {source}")]
-    Rule {
-        /// The pair's name.
-        pair: String,
-        /// The rule's error (the counts there are).
-        source: RuleError,
-    },
-    /// A slave face whose reference area element is not positive and
-    /// finite at an integration point.
-    #[error(
-        "contact pair `{pair}`: slave face {face} has area element {area_element:e} at its integration point {gauss}"
-    )]
-    DegenerateSlaveFace {
-        /// The pair's name.
-        pair: String,
-        /// The slave face's index in the pair.
-        face: usize,
-        /// The integration point.
-        gauss: usize,
-        /// `|dX/du x dX/dv|` there.
-        area_element: f64,
-    },
-    /// `gauss_points` is not a triangle rule's count (segmented
-    /// integration: 1, 3 or 7).
-    #[error(
-        "contact pair `{pair}`: segmented integration takes gauss_points = 1, 3 or 7 (points per triangle), got {requested}"
-    )]
-    TriangleRule {
-        /// The pair's name.
-        pair: String,
-        /// The count asked for.
-        requested: usize,
-    },
-    /// A slave face the clipping refuses (segmented integration).
-    #[error("contact pair `{pair}`: slave face {face} against master face {master}: {source}")]
-    Clip {
-        /// The pair's name.
-        pair: String,
-        /// The slave face's index in the pair.
-        face: usize,
-        /// The master face's index in the pair.
-        master: usize,
-        /// Why.
-        source: ClipError,
-    },
-    /// The pair's reading is not `slave-normal` or `closest-point`.
-    #[error(
-        "contact pair `{pair}`: `{reading}` is not a reading of 3D faces (slave-normal, closest-point)"
-    )]
-    Reading {
-        /// The pair's name.
-        pair: String,
-        /// The reading given.
-        reading: Formulation,
-    },
 }
 
 /// The kernel of `reading` (`slave-normal` or `closest-point`) for a slave

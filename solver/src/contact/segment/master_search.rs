@@ -6,7 +6,7 @@
 //!
 //! # What the full scan chooses
 //!
-//! The scan of `contact/search.rs` (and of the nodal contact table,
+//! The scan of `search.rs` (and of the nodal contact table,
 //! `report/nodal.rs`) tries master segments `0, 1, ..., n - 1`, keeps those
 //! the point projects into (`|xi_m| <= 1 + `[`XI_INSIDE_TOL`]) and replaces
 //! its choice only on a strictly smaller `|g|`: it chooses the segment with
@@ -75,8 +75,8 @@
 
 use contact_kernels::{DEGENERATE_LENGTH, Formulation, PAIR_COORDS};
 
-use super::XI_INSIDE_TOL;
-use super::face_index::{Aabb, FaceIndex, QueryStats};
+use crate::contact::XI_INSIDE_TOL;
+use crate::contact::face_index::{Aabb, FaceIndex, QueryStats};
 
 /// Pairs with fewer master segments are scanned (module docs, "When").
 pub const INDEX_MIN_SEGMENTS: usize = 64;
@@ -504,7 +504,7 @@ mod tests {
             .collect()
     }
 
-    /// The scan's test on one segment (as `contact/search.rs` makes it,
+    /// The scan's test on one segment (as `search.rs` makes it,
     /// facing check aside): the projection kernel, inside by
     /// `|xi_m| <= 1 + XI_INSIDE_TOL`.
     fn try_segment(
@@ -523,7 +523,7 @@ mod tests {
                 value: p.gap,
             },
             Ok(_) => Tried::Elsewhere,
-            Err(e) if super::super::slave_side(&e) => Tried::Unsure,
+            Err(e) if crate::contact::slave_side(&e) => Tried::Unsure,
             Err(_) => Tried::Elsewhere,
         }
     }
