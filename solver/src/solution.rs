@@ -276,7 +276,7 @@ where
     pub contact_points: Vec<ContactPointReport>,
     /// The contact pairs, in model order, each with the formulation it
     /// was solved with ([`Solution::formulations`]): what the nodal
-    /// contact table is taken on ([`crate::report::nodal`]).
+    /// contact table is taken on ([`crate::report::ContactTable`]).
     pub contact_pairs: Vec<ContactPair<D>>,
     /// The support groups whose reactions each [`StepRecord::reactions`]
     /// holds (a scene's `[[fix]]` and `[[prescribe]]` items: their `group`,

@@ -258,9 +258,10 @@ pub use face::{
 pub use layout_error::FaceLayoutError;
 pub use report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 pub use segment::{
-    ContactLayout, ContactPoint, INDEX_MIN_SEGMENTS, MasterIndex, Paired, PairingUpdate,
-    PassIndexes, PointEval, SPLIT_TOL, SegmentTaylor, Tried, assemble_ties, gap_is_distance,
-    is_new_split, segmented_rule, shape2, slave_coordinate_of_master_end, split_coordinates,
+    ContactLayout, ContactPoint, INDEX_MIN_SEGMENTS, MasterIndex, NodalContactError,
+    NodalContactRow, NodalProjection, NodalState, Paired, PairingUpdate, PassIndexes, PointEval,
+    SPLIT_TOL, SegmentTaylor, Tried, assemble_ties, gap_is_distance, is_new_split, nodal_contact,
+    segmented_rule, shape2, slave_coordinate_of_master_end, split_coordinates,
 };
 pub use space::{ContactSpace, EvalsResult, FoundResult, Update};
 pub use taylor::Taylor;

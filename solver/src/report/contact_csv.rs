@@ -32,7 +32,7 @@
 //! written in Rust's shortest round-trip form (with an exponent below
 //! 1e-4 and from 1e15 on). A state with a slave node the kernels cannot
 //! project for a slave-side reason (a collapsed or folded slave segment,
-//! see [`super::nodal`]) has no table: the error is returned,
+//! see [`crate::contact::nodal_contact`]) has no table: the error is returned,
 //! never a row without a gap.
 //!
 //! # 3D
@@ -84,7 +84,8 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::report::nodal::nodal_contact;
+    use crate::model::Dim;
+    use crate::report::ContactTable;
 
     /// A Gmsh scene's rows number the nodes by the mesh file's tags: each
     /// row's `node` is the tag of the file node at that slave node's
@@ -97,7 +98,7 @@ mod tests {
         let sol = crate::solve::<2>(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let msh = crate::mesh::gmsh::MshMesh::read(format!("{dir}/hertz-coarse.msh")).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
-        let table = nodal_contact(&sol, &sol.final_state).unwrap();
+        let table = Dim::<2>::rows(&sol, &sol.final_state).unwrap();
         let at_tag = |field: &str| msh.nodes()[msh.node_index(field.parse().unwrap()).unwrap()];
         let mut differs = 0;
         assert_eq!(text.lines().count(), table.len() + 1);
@@ -135,7 +136,7 @@ mod tests {
         let scene = crate::Scene::from_file(format!("{dir}/pressed-blocks.toml")).unwrap();
         let sol = crate::solve::<2>(&scene, &crate::SolveOptions::from_scene(&scene)).unwrap();
         let text = contact_csv(&sol, &sol.final_state).unwrap();
-        let table = nodal_contact(&sol, &sol.final_state).unwrap();
+        let table = Dim::<2>::rows(&sol, &sol.final_state).unwrap();
         for (line, row) in text.lines().skip(1).zip(&table) {
             let f: Vec<&str> = line.split(',').collect();
             assert_eq!(

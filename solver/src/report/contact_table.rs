@@ -1,6 +1,6 @@
 //! The nodal contact table of a solved state in either dimension, and how
 //! `contact.csv` writes its rows: the trait [`ContactTable`], implemented
-//! for `Dim<2>` (segments: [`super::nodal`]) and `Dim<3>` (faces:
+//! for `Dim<2>` (segments: [`crate::contact::nodal_contact`]) and `Dim<3>` (faces:
 //! [`crate::contact::FaceLayout::nodal_table`]). The `.vtu` contact fields
 //! ([`super::vtu`]) and `contact.csv` ([`super::contact_csv`]) read the
 //! table through it, without knowing the dimension.
@@ -14,19 +14,21 @@
 //!
 //! (every column is described in [`super::contact_csv`]).
 
-use crate::contact::{FaceLayout, FaceLayoutError, FaceNodalError, FaceNodalRow};
+use crate::contact::{
+    FaceLayout, FaceLayoutError, FaceNodalError, FaceNodalRow, NodalContactError, NodalContactRow,
+    NodalState, nodal_contact,
+};
 use crate::dim::SpaceDim;
 use crate::model::{Dim, SurfaceDim};
 use crate::solution::{Solution, State};
 
 use super::csv::{field, num};
-use super::nodal::{NodalContactError, NodalContactRow, nodal_contact};
 
 /// Why a state has no nodal contact table.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ContactTableError {
     /// A slave node of a 2D pair the kernels cannot project
-    /// ([`super::nodal`]).
+    /// ([`crate::contact::nodal_contact`]).
     #[error(transparent)]
     Segments(#[from] NodalContactError),
     /// The solution's 3D pairs cannot be laid out again (cannot happen
@@ -66,7 +68,14 @@ impl ContactTable<2> for Dim<2> {
     const HEADER: &'static str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
 
     fn rows(solution: &Solution, state: &State) -> Result<Vec<NodalContactRow>, ContactTableError> {
-        Ok(nodal_contact(solution, state)?)
+        Ok(nodal_contact(&NodalState {
+            mesh: &solution.mesh,
+            pairs: &solution.contact_pairs,
+            formulations: &solution.formulations,
+            multiplier_dofs: &solution.multiplier_dofs,
+            displacements: &state.displacements,
+            multipliers: &state.multipliers,
+        })?)
     }
 
     fn node_gap(row: &NodalContactRow) -> (usize, Option<f64>) {

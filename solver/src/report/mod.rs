@@ -4,7 +4,9 @@
 //! * [`contact_table`](mod@contact_table): the nodal contact table of a
 //!   state in either dimension ([`ContactTable`]: pressure, gap and
 //!   projection at every slave node), behind `contact.csv` and the `.vtu`
-//!   contact fields; [`nodal`]: the 2D table (segments);
+//!   contact fields; each dimension's table is its contact element's
+//!   (`crate::contact::nodal_contact` for segments,
+//!   `crate::contact::FaceLayout::nodal_table` for faces);
 //! * [`vtu`]: the ASCII VTK unstructured grid of a state (`.vtu`);
 //! * [`contact_csv`](mod@contact_csv): `contact.csv`, the nodal contact table as CSV;
 //! * [`reactions_csv`](mod@reactions_csv): `reactions.csv`, the support groups' reactions at
@@ -15,20 +17,17 @@
 //!   [`replace_with`]).
 //!
 //! This is the top layer of the solver: it reads the solution (and
-//! contact's projection rules for the nodal table), and nothing below
-//! imports from it.
+//! contact's nodal tables), and nothing below imports from it.
 
 pub mod atomic;
 pub mod contact_csv;
 pub mod contact_table;
 pub mod csv;
-pub mod nodal;
 pub mod reactions_csv;
 pub mod vtu;
 
 pub use atomic::{replace_with, write_atomic};
 pub use contact_csv::contact_csv;
 pub use contact_table::{ContactTable, ContactTableError};
-pub use nodal::{NodalContactError, NodalContactRow, NodalProjection, nodal_contact};
 pub use reactions_csv::reactions_csv;
 pub use vtu::{vtu_string, write_vtu, write_vtu_state};

@@ -11,7 +11,7 @@
 //!   slave nodes, summed over pairs, zero elsewhere), `contact_pressure`
 //!   (`p = -multiplier`, positive in compression), `contact_gap` (the gap
 //!   of the node projected onto the master face,
-//!   [`super::nodal`]), `contact_slave` (1 at a slave node of any
+//!   [`crate::contact::nodal_contact`]), `contact_slave` (1 at a slave node of any
 //!   pair, 0 elsewhere) and `contact_paired` (1 where the node projects
 //!   into a master segment, 0 elsewhere). `contact_gap` is 0 where
 //!   `contact_paired` is 0. A node that is a slave node of two pairs

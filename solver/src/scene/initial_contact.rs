@@ -4,7 +4,7 @@
 //! `allow_initial_penetration`; see [`super::ContactSpec`]).
 //!
 //! Every slave node is projected onto the master face in the reference
-//! configuration as `contact.csv` does it ([`crate::report::nodal`]): the
+//! configuration as `contact.csv` does it ([`crate::contact::nodal_contact`]): the
 //! pair's formulation on the slave segment that starts at the node (the
 //! last node of an open face: the one ending there), every master segment
 //! tried, the smallest `|g|` among those the node projects into

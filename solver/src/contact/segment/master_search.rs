@@ -7,7 +7,7 @@
 //! # What the full scan chooses
 //!
 //! The scan of `search.rs` (and of the nodal contact table,
-//! `report/nodal.rs`) tries master segments `0, 1, ..., n - 1`, keeps those
+//! `nodal.rs`) tries master segments `0, 1, ..., n - 1`, keeps those
 //! the point projects into (`|xi_m| <= 1 + `[`XI_INSIDE_TOL`]) and replaces
 //! its choice only on a strictly smaller `|g|`: it chooses the segment with
 //! the smallest `|g|`, the smallest index among equal `|g|`. It returns a

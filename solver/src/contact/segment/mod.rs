@@ -3,12 +3,14 @@
 //! there ([`PointEval`]), laid out pair by pair ([`ContactLayout`],
 //! `layout.rs`, with segmented integration in `segmented.rs`), paired by
 //! projection (`search.rs`, through `master_search.rs` on long master
-//! faces), tied at master nodes (`ties.rs`), and the Newton loop's view of
-//! it ([`crate::contact::ContactSpace`], `space.rs`). The mathematics is
+//! faces), tied at master nodes (`ties.rs`), its nodal table of a solved
+//! state (`nodal.rs`), and the Newton loop's view of it
+//! ([`crate::contact::ContactSpace`], `space.rs`). The mathematics is
 //! `crate::contact`'s module docs.
 
 mod layout;
 pub mod master_search;
+mod nodal;
 mod search;
 mod segmented;
 mod space;
@@ -24,6 +26,7 @@ use super::term::{GapTerm, MultiplierShape, WeightedPoint};
 
 pub use layout::ContactLayout;
 pub use master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
+pub use nodal::{NodalContactError, NodalContactRow, NodalProjection, NodalState, nodal_contact};
 pub use search::PassIndexes;
 pub use segmented::{
     SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,

@@ -1,6 +1,8 @@
-//! Contact results at the slave **nodes** of a solved state: the nodal
-//! contact pressure, the nodal gap and where the node projects; the table
-//! behind `contact.csv` and the contact point data of the `.vtu` files.
+//! The nodal contact table of a 2D state: contact results at the slave
+//! **nodes** (the nodal contact pressure, the nodal gap and where the node
+//! projects), what the 2D `contact.csv` and the contact point data of the
+//! `.vtu` files are written from (`crate::report::ContactTable` for
+//! `Dim<2>`; the 3D table is `crate::contact::face`'s `nodal.rs`).
 //!
 //! # Pressure
 //!
@@ -30,7 +32,7 @@
 //! a hair beyond the master's last node, or a node in the shadow of a
 //! convex master corner. A master segment the kernel rejects for a reason
 //! of its own (degenerate or folded master, no projection, projection out
-//! of reach or diverged: what pairing, `contact/segment/search.rs`, also treats as
+//! of reach or diverged: what pairing, `search.rs`, also treats as
 //! "not this segment") is skipped; a node with no projection has no gap,
 //! `xi_m` or master segment (`None`; empty fields in `contact.csv`), never
 //! NaN. A failure no master segment can cure (contact's `slave_side`
@@ -53,7 +55,7 @@
 //! Cost: on a master face of [`crate::contact::INDEX_MIN_SEGMENTS`]
 //! segments or more (and a formulation whose gap is a distance), the
 //! smallest `|g|` is found through the spatial index of the master face in
-//! the state's configuration (`contact::segment::master_search`, which proves the
+//! the state's configuration (`master_search.rs`, which proves the
 //! same choice, ties included): `O(log n_master)` projections per node
 //! that projects into a segment. A node the index cannot decide (one that
 //! projects into no candidate, which includes every node of the band's
@@ -67,15 +69,16 @@
 use std::cell::OnceCell;
 use std::collections::HashMap;
 
-use contact_kernels::{KernelError, PAIR_COORDS};
+use contact_kernels::{Formulation, KernelError, PAIR_COORDS};
 
 use crate::contact::face_index::QueryStats;
-use crate::contact::{
-    INDEX_MIN_SEGMENTS, MasterIndex, Tried, XI_INSIDE_TOL, XI_STUCK_BAND, gap_is_distance,
-    slave_side,
-};
+use crate::contact::report::MultiplierDofInfo;
+use crate::contact::{XI_INSIDE_TOL, XI_STUCK_BAND, slave_side};
 use crate::ids::NodeId;
-use crate::solution::{Solution, State};
+use crate::mesh::Mesh;
+use crate::model::ContactPair;
+
+use super::master_search::{INDEX_MIN_SEGMENTS, MasterIndex, Tried, gap_is_distance};
 
 /// A slave node the kernels cannot project for a reason no master segment
 /// avoids (see the module docs): the nodal table of that state does not
@@ -117,7 +120,8 @@ pub struct NodalProjection {
 /// One slave node of one contact pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodalContactRow {
-    /// The contact pair (index into [`Solution::contact_pairs`]).
+    /// The contact pair (index into the solved pairs,
+    /// `crate::solution::Solution::contact_pairs`).
     pub pair: usize,
     /// The global node.
     pub node: usize,
@@ -138,44 +142,59 @@ pub struct NodalContactRow {
     pub projection: Option<NodalProjection>,
 }
 
-/// The nodal contact table of `state` (one of `solution`'s states): one
-/// row per slave node and pair (see the module docs); an error for the
-/// first node the kernels cannot project onto any master segment.
-pub fn nodal_contact(
-    solution: &Solution,
-    state: &State,
-) -> Result<Vec<NodalContactRow>, NodalContactError> {
-    nodal_contact_with(solution, state, INDEX_MIN_SEGMENTS)
+/// A solved 2D state as the nodal table reads it: the mesh, the pairs
+/// with the formulation each was solved with, the multiplier dofs, and the
+/// state's displacements and multipliers (in multiplier-dof order).
+#[derive(Debug, Clone, Copy)]
+pub struct NodalState<'a> {
+    /// The mesh.
+    pub mesh: &'a Mesh<2>,
+    /// The contact pairs.
+    pub pairs: &'a [ContactPair<2>],
+    /// Each pair's formulation.
+    pub formulations: &'a [Formulation],
+    /// The pair and slave node of every multiplier.
+    pub multiplier_dofs: &'a [MultiplierDofInfo],
+    /// Nodal displacements.
+    pub displacements: &'a [[f64; 2]],
+    /// The multipliers.
+    pub multipliers: &'a [f64],
+}
+
+/// The nodal contact table of `state`: one row per slave node and pair
+/// (see the module docs); an error for the first node the kernels cannot
+/// project onto any master segment.
+pub fn nodal_contact(state: &NodalState) -> Result<Vec<NodalContactRow>, NodalContactError> {
+    nodal_contact_with(state, INDEX_MIN_SEGMENTS)
 }
 
 /// [`nodal_contact`], searching master faces of at least
 /// `index_min_segments` segments through the spatial index (the rows are
 /// the same for every value; the tests compare them).
 fn nodal_contact_with(
-    solution: &Solution,
-    state: &State,
+    state: &NodalState,
     index_min_segments: usize,
 ) -> Result<Vec<NodalContactRow>, NodalContactError> {
-    let mesh = &solution.mesh;
+    let mesh = state.mesh;
     let current = |n: usize| {
         let (x, d) = (mesh.nodes_ref[n], state.displacements[n]);
         [x[0] + d[0], x[1] + d[1]]
     };
     // one multiplier per (pair, slave node)
-    let lambdas: HashMap<(usize, usize), f64> = solution
+    let lambdas: HashMap<(usize, usize), f64> = state
         .multiplier_dofs
         .iter()
-        .zip(&state.multipliers)
+        .zip(state.multipliers)
         .map(|(m, &l)| ((m.pair, m.node), l))
         .collect();
     let mut rows = Vec::new();
-    for (p, pair) in solution.contact_pairs.iter().enumerate() {
+    for (p, pair) in state.pairs.iter().enumerate() {
         // the segments as plain node indices
         let raw = |f: &[[NodeId; 2]]| -> Vec<[usize; 2]> {
             f.iter().map(|s| s.map(NodeId::index)).collect()
         };
         let (slave_segs, master_segs) = (raw(&pair.slave), raw(&pair.master));
-        let formulation = solution.formulations[p];
+        let formulation = state.formulations[p];
         // the master face's index in this state, built for the first node
         // that needs it (`None`: every node scans)
         let index: OnceCell<Option<MasterIndex>> = OnceCell::new();
@@ -318,9 +337,22 @@ fn nodal_contact_with(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{Formulation, Scene, SolveOptions, solve};
+    use crate::solution::{Solution, State};
+    use crate::{Scene, SolveOptions, solve};
 
-    const PRESSED_BLOCKS: &str = include_str!("../../../scenes/pressed-blocks.toml");
+    /// `state` of `sol` as the table reads it.
+    fn read<'a>(sol: &'a Solution, state: &'a State) -> NodalState<'a> {
+        NodalState {
+            mesh: &sol.mesh,
+            pairs: &sol.contact_pairs,
+            formulations: &sol.formulations,
+            multiplier_dofs: &sol.multiplier_dofs,
+            displacements: &state.displacements,
+            multipliers: &state.multipliers,
+        }
+    }
+
+    const PRESSED_BLOCKS: &str = include_str!("../../../../scenes/pressed-blocks.toml");
 
     /// The total load on the block of `scenes/pressed-blocks.toml`.
     const LOAD: f64 = 1.0;
@@ -352,7 +384,7 @@ mod tests {
     fn pressure_balances_the_load_and_closed_gaps_vanish() {
         for formulation in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
             let sol = pressed_blocks(formulation);
-            let rows = nodal_contact(&sol, &sol.final_state).unwrap();
+            let rows = nodal_contact(&read(&sol, &sol.final_state)).unwrap();
             assert_eq!(rows.len(), 5);
             assert_eq!(sol.contact_pairs[0].name, "interface");
             let total: f64 = rows.iter().map(|r| r.pressure * r.tributary_length).sum();
@@ -405,7 +437,7 @@ mod tests {
         let mut sol = pressed_blocks(Formulation::SlaveNormal);
         let [a, b] = sol.contact_pairs[0].slave[1].map(NodeId::index);
         collapse(&mut sol, a, b);
-        let e = nodal_contact(&sol, &sol.final_state).unwrap_err();
+        let e = nodal_contact(&read(&sol, &sol.final_state)).unwrap_err();
         assert_eq!(
             (e.pair.as_str(), e.node, e.slave_segment, e.master_segment),
             ("interface", a, 1, 0)
@@ -433,7 +465,7 @@ mod tests {
         let mut sol = pressed_blocks(Formulation::SlaveNormal);
         let [a, b] = sol.contact_pairs[0].master[0].map(NodeId::index);
         collapse(&mut sol, a, b);
-        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
+        let rows = nodal_contact(&read(&sol, &sol.final_state)).unwrap();
         assert_eq!(rows.len(), 5);
         assert!(
             rows.iter()
@@ -448,7 +480,7 @@ mod tests {
         let mut sol = pressed_blocks(Formulation::SlaveNormal);
         // keep the base's right half only (its first top segment)
         sol.contact_pairs[0].master.truncate(1);
-        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
+        let rows = nodal_contact(&read(&sol, &sol.final_state)).unwrap();
         let paired: Vec<bool> = rows.iter().map(|r| r.projection.is_some()).collect();
         assert_eq!(paired, [false, false, true, true, true]);
         // the pressure is the solution's, whatever the projection
@@ -475,7 +507,7 @@ mod tests {
             .sum::<f64>();
         assert!((load - 4.315).abs() < 1e-9, "{load}");
         let sol = solve(&scene, &SolveOptions::from_scene(&scene)).unwrap();
-        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
+        let rows = nodal_contact(&read(&sol, &sol.final_state)).unwrap();
         let total: f64 = rows.iter().map(|r| r.pressure * r.tributary_length).sum();
         let mut cos_min: f64 = 1.0;
         for r in rows.iter().filter(|r| r.pressure > 0.0) {
@@ -537,8 +569,8 @@ mod tests {
                             d[1] += s[1] + jitter[1];
                         }
                     }
-                    let scanned = nodal_contact_with(&sol, &state, usize::MAX);
-                    let indexed = nodal_contact_with(&sol, &state, 0);
+                    let scanned = nodal_contact_with(&read(&sol, &state), usize::MAX);
+                    let indexed = nodal_contact_with(&read(&sol, &state), 0);
                     assert_eq!(indexed, scanned, "{path} {formulation} trial {trial}");
                     for r in scanned.unwrap() {
                         if r.projection.is_some() {
@@ -578,7 +610,7 @@ mod tests {
             field("contact_pressure"),
         );
         assert_eq!([slave.len(), paired.len(), gap.len()], [n, n, n]);
-        let rows = nodal_contact(&sol, &sol.final_state).unwrap();
+        let rows = nodal_contact(&read(&sol, &sol.final_state)).unwrap();
         for node in 0..n {
             let row = rows.iter().find(|r| r.node == node);
             assert_eq!(slave[node], f64::from(u8::from(row.is_some())));
