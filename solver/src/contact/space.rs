@@ -84,10 +84,22 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         Dim<D>: SurfaceDim<D>;
     /// The number of integration points.
     fn point_count(&self) -> usize;
+    /// The multiplier dofs, in multiplier order.
+    fn multipliers(&self) -> &[MultiplierDof];
     /// The number of multiplier dofs.
-    fn multiplier_count(&self) -> usize;
+    fn multiplier_count(&self) -> usize {
+        self.multipliers().len()
+    }
     /// The slave node and pair of every multiplier.
-    fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo>;
+    fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {
+        self.multipliers()
+            .iter()
+            .map(|m| MultiplierDofInfo {
+                pair: m.pair.index(),
+                node: m.node.index(),
+            })
+            .collect()
+    }
     /// Each pair's formulation.
     fn formulations(&self) -> Vec<Formulation>;
     /// Point `i` for reports, with `master` (in 3D the slave "segment" is
@@ -293,16 +305,4 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     fn at_node(_e: &Self::Eval) -> bool {
         false
     }
-}
-
-/// The report of multiplier dofs `multipliers` (pair and slave node of
-/// each), for either layout's [`ContactSpace::multiplier_dofs`].
-pub(super) fn multiplier_dofs(multipliers: &[MultiplierDof]) -> Vec<MultiplierDofInfo> {
-    multipliers
-        .iter()
-        .map(|m| MultiplierDofInfo {
-            pair: m.pair.index(),
-            node: m.node.index(),
-        })
-        .collect()
 }

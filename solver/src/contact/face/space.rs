@@ -17,8 +17,9 @@ use crate::par;
 use crate::system::{DofMap, System};
 
 use super::pairing::MasterFaces;
+use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
-use crate::contact::report::{ContactPointId, MultiplierDofInfo};
+use crate::contact::report::ContactPointId;
 use crate::contact::space::ContactSpace;
 use crate::contact::term::WeightedPoint;
 use crate::contact::{
@@ -44,12 +45,8 @@ impl ContactSpace<3> for FaceLayout {
         self.points.len()
     }
 
-    fn multiplier_count(&self) -> usize {
-        self.multipliers.len()
-    }
-
-    fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {
-        crate::contact::space::multiplier_dofs(&self.multipliers)
+    fn multipliers(&self) -> &[MultiplierDof] {
+        &self.multipliers
     }
 
     fn formulations(&self) -> Vec<Formulation> {

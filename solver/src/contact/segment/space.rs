@@ -18,8 +18,9 @@ use crate::system::{DofMap, System};
 
 use super::SegmentTaylor;
 use super::ties::assemble_ties;
+use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
-use crate::contact::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
+use crate::contact::report::{ContactPointId, ContactPointReport};
 use crate::contact::space::{ContactSpace, Update};
 use crate::contact::{
     ContactLayout, FaceLayoutError, KernelCounts, NodeTie, PAR_MIN_LEN, Paired, PassIndexes,
@@ -41,12 +42,8 @@ impl ContactSpace<2> for ContactLayout {
         self.points.len()
     }
 
-    fn multiplier_count(&self) -> usize {
-        self.multipliers.len()
-    }
-
-    fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {
-        crate::contact::space::multiplier_dofs(&self.multipliers)
+    fn multipliers(&self) -> &[MultiplierDof] {
+        &self.multipliers
     }
 
     fn formulations(&self) -> Vec<Formulation> {
