@@ -63,17 +63,18 @@ use std::collections::HashMap;
 use contact_kernels::Formulation;
 use thiserror::Error;
 
+use crate::element::FaceKind;
 use crate::ids::{ContactPointIndex, DofId, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::FaceShape;
-use crate::mesh::volume::{Face, FaceKind};
+use crate::mesh::volume::Face;
 use crate::model::{ContactMode, ContactPair, Integration};
 
 use super::MultiplierDof;
 use super::active_set::ActiveSetView;
 use super::clip::{ClipError, SlaveFace, TriangleRule};
 use super::face_index::{Aabb, FaceIndex};
-use super::face_rules::{self, RuleError, default_points, face_rule};
+use super::face_rules::{RuleError, default_points, face_rule};
 use super::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
 /// Static data of one slave integration point of a 3D pair.
@@ -187,24 +188,12 @@ pub fn face_formulation(
     ) {
         return None;
     }
-    let kind = |k: FaceKind| match k {
-        FaceKind::Tri3 => "tri3",
-        FaceKind::Quad4 => "quad4",
-    };
     let name = if slave == master {
-        format!("{}-{}", kind(slave), reading.name())
+        format!("{slave}-{}", reading.name())
     } else {
-        format!("{}-{}-{}", kind(slave), kind(master), reading.name())
+        format!("{slave}-{master}-{}", reading.name())
     };
     name.parse().ok()
-}
-
-/// The rule's kind for a face kind.
-fn rule_kind(kind: FaceKind) -> face_rules::FaceKind {
-    match kind {
-        FaceKind::Tri3 => face_rules::FaceKind::Tri3,
-        FaceKind::Quad4 => face_rules::FaceKind::Quad4,
-    }
 }
 
 /// The integration points, multipliers and master faces of all 3D contact
@@ -348,7 +337,7 @@ impl FaceLayout {
                     None => {
                         let kind = face.kind();
                         if let std::collections::hash_map::Entry::Vacant(e) = rules.entry(kind) {
-                            let rk = rule_kind(kind);
+                            let rk = kind;
                             let n = pair.gauss_points.unwrap_or_else(|| default_points(rk));
                             e.insert(face_rule(rk, n).map_err(|source| FaceLayoutError::Rule {
                                 pair: pair.name.clone(),

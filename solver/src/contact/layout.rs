@@ -19,9 +19,10 @@ use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, 
 use crate::mesh::Mesh;
 use crate::model::{ContactMode, Integration, Model};
 
-use super::face_rules::{FaceKind as RuleKind, default_points};
+use super::face_rules::default_points;
 use super::segmented::{segmented_rule, split_coordinates};
 use super::{ContactPoint, MultiplierDof, gauss_legendre};
+use crate::element::FaceKind as RuleKind;
 
 /// The integration points, multipliers and master-chain adjacency of all
 /// contact pairs of a model.

@@ -28,26 +28,26 @@ fn dispatch_is_the_element_functions() {
     let et = ElementGeometry::new(&Element::Tri3(xt)).unwrap();
     assert_eq!(eq.kind(), ElementKind::Quad4);
     assert_eq!(et.kind(), ElementKind::Tri3);
-    let rq = quad_response(&gq, &u8, &MAT);
+    let rq = gq.response(&u8, &MAT);
     assert_eq!(eq.response(&u, &MAT), ElementResponse::Quad4(rq));
     let ut: [f64; 6] = std::array::from_fn(|k| u8[k]);
-    let rt = tri_response(&gt, &ut, &MAT);
+    let rt = gt.response(&ut, &MAT);
     let r = et.response(&u, &MAT);
     assert_eq!(r, ElementResponse::Tri3(rt));
     assert_eq!(r.f_int(), &rt.f_int);
     assert_eq!(r.k_row(5), &rt.k[5]);
     assert_eq!(r.energy(), rt.energy);
-    assert_eq!(eq.energy(&u, &MAT), quad_energy(&gq, &u8, &MAT));
-    assert_eq!(et.energy(&u, &MAT), tri_energy(&gt, &ut, &MAT));
+    assert_eq!(eq.energy(&u, &MAT), gq.energy(&u8, &MAT));
+    assert_eq!(et.energy(&u, &MAT), gt.energy(&ut, &MAT));
     assert_eq!(
         eq.mean_stress(&u, &MAT),
-        ElementStress::Plane(quad_mean_stress(&gq, &u8, &MAT))
+        ElementStress::Plane(gq.mean_stress(&u8, &MAT))
     );
     assert_eq!(
         et.mean_stress(&u, &MAT),
-        ElementStress::Plane(tri_mean_stress(&gt, &ut, &MAT))
+        ElementStress::Plane(gt.mean_stress(&ut, &MAT))
     );
-    assert_eq!(et.area_ref(), gt.area_ref());
+    assert_eq!(et.area_ref(), gt.measure_ref());
     // a clockwise triangle is refused with the element's detJ0
     let cw = Element::Tri3([xt[0], xt[2], xt[1]]);
     let Err(ElementError::Invalid(InvalidElement { det_j0 })) = ElementGeometry::new(&cw) else {
@@ -71,8 +71,7 @@ fn connectivity_views() {
 
 mod mixed {
     use crate::assembly::{DofMap, System, assemble_solid};
-    use crate::element::quad::quad_response;
-    use crate::element::{Element, ElementKind};
+    use crate::element::{Element, ElementKind, SolidElement};
     use crate::ids::{DofId, EquationIndex, NodeId};
     use crate::material::{Material, PlaneModel};
     use crate::mesh::{Mesh, MeshError};
@@ -307,7 +306,7 @@ mod mixed {
                 panic!("element {e} is not a quadrilateral");
             };
             let ue: [f64; 8] = std::array::from_fn(|k| u[2 * el[k / 2] + k % 2]);
-            let r = quad_response(g, &ue, &MAT);
+            let r = g.response(&ue, &MAT);
             let eqs: [Option<EquationIndex>; 8] =
                 std::array::from_fn(|k| dofs.eq(DofId::new(2 * el[k / 2] + k % 2)));
             for p in 0..8 {

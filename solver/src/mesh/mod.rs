@@ -53,6 +53,7 @@ pub mod block3d;
 pub mod face_shape;
 pub mod faces;
 pub mod gmsh;
+mod grid;
 pub mod volume;
 
 pub use block::{Block, Side};
