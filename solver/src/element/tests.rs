@@ -69,7 +69,7 @@ fn connectivity_views() {
     assert_eq!(ElementKind::Tri3.to_string(), "3-node triangle");
 }
 
-mod mixed {
+pub(super) mod mixed {
     use crate::assembly::{DofMap, System, assemble_solid};
     use crate::element::{Element, ElementKind, SolidElement};
     use crate::ids::{DofId, EquationIndex, NodeId};
@@ -87,7 +87,7 @@ mod mixed {
     };
 
     /// The MacNeal–Harder patch (corners 0..3, interior nodes 4..7).
-    const NODES: [[f64; 2]; 8] = [
+    pub(in crate::element) const NODES: [[f64; 2]; 8] = [
         [0.0, 0.0],
         [0.24, 0.0],
         [0.24, 0.12],
@@ -118,6 +118,29 @@ mod mixed {
         mesh.add_body("patch", material, &NODES, &mixed_elements())
             .unwrap();
         mesh
+    }
+
+    /// The mixed patch with the displacements `H X` prescribed on its
+    /// four corner nodes.
+    fn deformed_patch(h: [[f64; 2]; 2]) -> Model {
+        let prescribed = (0..4)
+            .flat_map(|n| {
+                (0..2).map(move |i| Prescribed {
+                    dof: DofId::of(NodeId::new(n), i),
+                    value: h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1],
+                    amplitude: None,
+                })
+            })
+            .collect();
+        Model {
+            mesh: mixed_mesh(MAT),
+            prescribed,
+            loads: Vec::new(),
+            contacts: Vec::new(),
+            amplitudes: Vec::new(),
+            supports: Vec::new(),
+            load_factor_end: 1.0,
+        }
     }
 
     #[test]
@@ -281,7 +304,7 @@ mod mixed {
 
     /// A mesh of quadrilaterals assembles as before the element seam: the
     /// same triplets and residual bits as the plain loop over
-    /// `quad_response` (every element's 8 rows in order, each row's 8
+    /// the quadrilateral's response (every element's 8 rows in order, each row's 8
     /// columns in order).
     #[test]
     fn quad_assembly_is_unchanged() {
@@ -335,28 +358,9 @@ mod mixed {
     /// energy density of the prescribed strain.
     #[test]
     fn mixed_patch_reproduces_homogeneous_deformation() {
-        let mesh = mixed_mesh(MAT);
         let h = [[0.08, 0.03], [-0.02, 0.05]];
         let exact = |n: usize, i: usize| h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1];
-        let mut prescribed = Vec::new();
-        for n in 0..4 {
-            for i in 0..2 {
-                prescribed.push(Prescribed {
-                    dof: DofId::of(NodeId::new(n), i),
-                    value: exact(n, i),
-                    amplitude: None,
-                });
-            }
-        }
-        let model = Model {
-            mesh,
-            prescribed,
-            loads: Vec::new(),
-            contacts: Vec::new(),
-            amplitudes: Vec::new(),
-            supports: Vec::new(),
-            load_factor_end: 1.0,
-        };
+        let model = deformed_patch(h);
         let sol = solve_model(
             &model,
             &SolveOptions {
@@ -408,26 +412,7 @@ mod mixed {
     /// node count and VTK type (9 quadrilateral, 5 triangle).
     #[test]
     fn vtu_cells_of_a_mixed_mesh() {
-        let h = [[0.01, 0.0], [0.0, -0.02]];
-        let mesh = mixed_mesh(MAT);
-        let prescribed = (0..4)
-            .flat_map(|n| {
-                (0..2).map(move |i| Prescribed {
-                    dof: DofId::of(NodeId::new(n), i),
-                    value: h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1],
-                    amplitude: None,
-                })
-            })
-            .collect();
-        let model = Model {
-            mesh,
-            prescribed,
-            loads: Vec::new(),
-            contacts: Vec::new(),
-            amplitudes: Vec::new(),
-            supports: Vec::new(),
-            load_factor_end: 1.0,
-        };
+        let model = deformed_patch([[0.01, 0.0], [0.0, -0.02]]);
         let sol = solve_model(&model, &SolveOptions::default()).unwrap();
         let text = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
         assert!(text.contains("NumberOfPoints=\"8\" NumberOfCells=\"8\""));

@@ -351,16 +351,7 @@ mod tests {
     /// nodes and every element has the same stress.
     #[test]
     fn patch_of_triangles_is_in_equilibrium_under_homogeneous_deformation() {
-        let nodes = [
-            [0.0, 0.0],
-            [0.24, 0.0],
-            [0.24, 0.12],
-            [0.0, 0.12],
-            [0.04, 0.02],
-            [0.18, 0.03],
-            [0.16, 0.08],
-            [0.08, 0.08],
-        ];
+        let nodes = crate::element::tests::mixed::NODES;
         let quads = [
             [0, 1, 5, 4],
             [1, 2, 6, 5],

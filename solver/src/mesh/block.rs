@@ -109,40 +109,20 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::PlaneModel;
-
-    const MAT: Material = Material {
-        young: 1.0,
-        poisson: 0.0,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    use crate::mesh::tests::MAT;
 
     #[test]
     fn block_numbering_and_sides_are_counter_clockwise() {
         let mut m = Mesh::new();
-        m.add_block(
-            "a",
-            MAT,
-            Block {
-                origin: [0.0, 0.0],
+        for (name, y0) in [("a", 0.0), ("b", 1.0)] {
+            let block = Block {
+                origin: [0.0, y0],
                 size: [2.0, 1.0],
                 nx: 2,
                 ny: 1,
-            },
-        )
-        .unwrap();
-        m.add_block(
-            "b",
-            MAT,
-            Block {
-                origin: [0.0, 1.0],
-                size: [2.0, 1.0],
-                nx: 2,
-                ny: 1,
-            },
-        )
-        .unwrap();
+            };
+            m.add_block(name, MAT, block).unwrap();
+        }
         assert_eq!(m.node_count(), 12);
         let raw = |segs: Vec<[NodeId; 2]>| segs.iter().map(|s| s.map(NodeId::index)).collect();
         assert_eq!(

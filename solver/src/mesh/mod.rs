@@ -434,7 +434,8 @@ mod tests {
     use super::*;
     use crate::material::PlaneModel;
 
-    const MAT: Material = Material {
+    /// The mesh tests' material.
+    pub(in crate::mesh) const MAT: Material = Material {
         young: 1.0,
         poisson: 0.0,
         model: PlaneModel::PlaneStress,
