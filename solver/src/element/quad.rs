@@ -73,14 +73,15 @@ impl Shape<2, 4, 4> for Quad4 {
 pub type QuadGeometry = Geometry<Quad4, 2, 4, 8, 3, 4>;
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::element::SolidElement;
     use crate::element::material::Material;
     use crate::element::material::PlaneModel;
     use crate::testutil::Lcg;
 
-    const MAT: Material = Material {
+    /// The 2D element tests' material.
+    pub(in crate::element) const MAT: Material = Material {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,

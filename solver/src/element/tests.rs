@@ -98,6 +98,15 @@ pub(super) mod mixed {
         [0.08, 0.08],
     ];
 
+    /// The patch's five quadrilaterals.
+    pub(in crate::element) const QUADS: [[usize; 4]; 5] = [
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+        [4, 5, 6, 7],
+    ];
+
     /// The patch's five quadrilaterals, three of them split into two
     /// triangles each: 2 quadrilaterals and 6 triangles, interleaved.
     fn mixed_elements() -> Vec<Element<usize>> {
@@ -308,13 +317,7 @@ pub(super) mod mixed {
     /// columns in order).
     #[test]
     fn quad_assembly_is_unchanged() {
-        let quads = [
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-            [4, 5, 6, 7],
-        ];
+        let quads = QUADS;
         let mut mesh = Mesh::new();
         mesh.add_body("patch", MAT, &NODES, &quads).unwrap();
         let model = fixed_corner(mesh);

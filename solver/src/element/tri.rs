@@ -70,17 +70,10 @@ pub type TriGeometry = Geometry<Tri3, 2, 3, 6, 3, 1>;
 mod tests {
     use super::*;
     use crate::element::SolidElement;
-    use crate::element::material::Material;
-    use crate::element::material::PlaneModel;
+    use crate::element::material::{Material, PlaneModel};
     use crate::element::quad::QuadGeometry;
+    use crate::element::quad::tests::MAT;
     use crate::testutil::Lcg;
-
-    const MAT: Material = Material {
-        young: 1000.0,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::element::material::Kinematics::Finite,
-    };
 
     fn skewed() -> [[f64; 2]; 3] {
         [[0.1, -0.05], [1.2, 0.1], [0.3, 0.7]]
@@ -352,13 +345,7 @@ mod tests {
     #[test]
     fn patch_of_triangles_is_in_equilibrium_under_homogeneous_deformation() {
         let nodes = crate::element::tests::mixed::NODES;
-        let quads = [
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-            [4, 5, 6, 7],
-        ];
+        let quads = crate::element::tests::mixed::QUADS;
         let tris: Vec<[usize; 3]> = quads
             .iter()
             .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
