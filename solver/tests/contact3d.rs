@@ -427,23 +427,16 @@ fn kuhn(x: &[[f64; 3]], h: [usize; 8]) -> Vec<solver::mesh::volume::Cell> {
         a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
             + a[2] * (b[0] * c[1] - b[1] * c[0])
     };
-    [
-        [0, 1, 2, 6],
-        [0, 2, 3, 6],
-        [0, 3, 7, 6],
-        [0, 7, 4, 6],
-        [0, 4, 5, 6],
-        [0, 5, 1, 6],
-    ]
-    .iter()
-    .map(|l| {
-        let mut t = l.map(|k| h[k]);
-        if volume6(t) < 0.0 {
-            t.swap(1, 2);
-        }
-        solver::mesh::volume::Cell::Tet4(t)
-    })
-    .collect()
+    solver::element::hex::KUHN_TETS
+        .iter()
+        .map(|l| {
+            let mut t = l.map(|k| h[k]);
+            if volume6(t) < 0.0 {
+                t.swap(1, 2);
+            }
+            solver::mesh::volume::Cell::Tet4(t)
+        })
+        .collect()
 }
 
 /// The patch test with tri3 slave faces on quad4 master faces: the scene's

@@ -18,7 +18,8 @@
 
 use std::path::{Path, PathBuf};
 
-use solver::contact::face_rules::{FaceKind, default_points};
+use solver::contact::face_rules::default_points;
+use solver::element::FaceKind;
 use solver::scene::Dimension;
 use solver::{Formulation, LinearSolverKind, Scene, SceneError, SolveOptions, solve, solve_model};
 

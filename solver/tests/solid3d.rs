@@ -69,23 +69,16 @@ fn tet_volume6(x: &[[f64; 3]], t: [usize; 4]) -> f64 {
 /// The six tetrahedra (Kuhn's split along the diagonal 0-6) of a
 /// hexahedron, each oriented positive.
 fn kuhn(x: &[[f64; 3]], h: [usize; 8]) -> Vec<Element<usize>> {
-    [
-        [0, 1, 2, 6],
-        [0, 2, 3, 6],
-        [0, 3, 7, 6],
-        [0, 7, 4, 6],
-        [0, 4, 5, 6],
-        [0, 5, 1, 6],
-    ]
-    .iter()
-    .map(|l| {
-        let mut t = l.map(|k| h[k]);
-        if tet_volume6(x, t) < 0.0 {
-            t.swap(1, 2);
-        }
-        Element::Tet4(t)
-    })
-    .collect()
+    solver::element::hex::KUHN_TETS
+        .iter()
+        .map(|l| {
+            let mut t = l.map(|k| h[k]);
+            if tet_volume6(x, t) < 0.0 {
+                t.swap(1, 2);
+            }
+            Element::Tet4(t)
+        })
+        .collect()
 }
 
 fn hexes(block: &Block3d) -> Vec<[usize; 8]> {

@@ -30,27 +30,7 @@
 use thiserror::Error;
 
 use super::gauss_legendre;
-
-/// The kinds of slave face a rule is for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum FaceKind {
-    /// A 2-node segment, `xi` in `[-1, 1]`.
-    Segment,
-    /// A bilinear quadrilateral, `(u, v)` in `[-1, 1]^2`.
-    Quad4,
-    /// A linear triangle, the unit triangle in `(u, v)`.
-    Tri3,
-}
-
-impl std::fmt::Display for FaceKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            FaceKind::Segment => "segment",
-            FaceKind::Quad4 => "quad4",
-            FaceKind::Tri3 => "tri3",
-        })
-    }
-}
+use crate::element::FaceKind;
 
 /// The largest `gauss_points` on segments and (per direction) on quad4.
 pub const MAX_TENSOR_POINTS: usize = 8;

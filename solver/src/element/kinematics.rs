@@ -165,9 +165,10 @@ pub(crate) fn dot<const V: usize>(a: &[f64; V], b: &[f64; V]) -> f64 {
 
 #[cfg(test)]
 mod tests {
+    use crate::element::SolidElement;
     use crate::element::material::{Kinematics, Material, PlaneModel};
-    use crate::element::quad::{QuadGeometry, quad_energy, quad_response};
-    use crate::element::tri::{TriGeometry, tri_energy, tri_response};
+    use crate::element::quad::QuadGeometry;
+    use crate::element::tri::TriGeometry;
     use crate::testutil::Lcg;
 
     const SMALL: Material = Material {
@@ -217,14 +218,14 @@ mod tests {
             let u: [f64; 8] = std::array::from_fn(|_| rng.uniform(-0.2, 0.2));
             check_derivatives(
                 u,
-                |u| quad_energy(&qg, u, &SMALL),
+                |u| qg.energy(u, &SMALL),
                 |u| {
-                    let r = quad_response(&qg, u, &SMALL);
+                    let r = qg.response(u, &SMALL);
                     (r.f_int, r.k)
                 },
             );
-            let r = quad_response(&qg, &u, &SMALL);
-            let r0 = quad_response(&qg, &[0.0; 8], &SMALL);
+            let r = qg.response(&u, &SMALL);
+            let r0 = qg.response(&[0.0; 8], &SMALL);
             assert_eq!(r.k, r0.k, "the Q4 tangent depends on u");
             for p in 0..8 {
                 let ku: f64 = (0..8).map(|q| r.k[p][q] * u[q]).sum();
@@ -234,14 +235,14 @@ mod tests {
             let u: [f64; 6] = std::array::from_fn(|_| rng.uniform(-0.2, 0.2));
             check_derivatives(
                 u,
-                |u| tri_energy(&tg, u, &SMALL),
+                |u| tg.energy(u, &SMALL),
                 |u| {
-                    let r = tri_response(&tg, u, &SMALL);
+                    let r = tg.response(u, &SMALL);
                     (r.f_int, r.k)
                 },
             );
-            let r = tri_response(&tg, &u, &SMALL);
-            let r0 = tri_response(&tg, &[0.0; 6], &SMALL);
+            let r = tg.response(&u, &SMALL);
+            let r0 = tg.response(&[0.0; 6], &SMALL);
             assert_eq!(r.k, r0.k, "the triangle tangent depends on u");
         }
     }
@@ -255,14 +256,14 @@ mod tests {
             ..SMALL
         };
         let qg = QuadGeometry::new(&QUAD).unwrap();
-        let k_small = quad_response(&qg, &[0.0; 8], &SMALL).k;
-        let k_finite = quad_response(&qg, &[0.0; 8], &finite).k;
+        let k_small = qg.response(&[0.0; 8], &SMALL).k;
+        let k_finite = qg.response(&[0.0; 8], &finite).k;
         assert_eq!(k_small, k_finite);
         let dir: [f64; 8] = [0.3, -0.1, 0.2, 0.4, -0.2, 0.1, 0.05, -0.3];
         let diff = |s: f64| {
             let u = dir.map(|d| s * d);
-            let a = quad_response(&qg, &u, &SMALL).f_int;
-            let b = quad_response(&qg, &u, &finite).f_int;
+            let a = qg.response(&u, &SMALL).f_int;
+            let b = qg.response(&u, &finite).f_int;
             a.iter()
                 .zip(&b)
                 .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
@@ -285,11 +286,11 @@ mod tests {
             u[2 * a] = c * TRI[a][0] - s * TRI[a][1] - TRI[a][0];
             u[2 * a + 1] = s * TRI[a][0] + c * TRI[a][1] - TRI[a][1];
         }
-        assert!(tri_energy(&tg, &u, &SMALL) > 1e-3);
+        assert!(tg.energy(&u, &SMALL) > 1e-3);
         let finite = Material {
             kinematics: Kinematics::Finite,
             ..SMALL
         };
-        assert!(tri_energy(&tg, &u, &finite).abs() < 1e-12);
+        assert!(tg.energy(&u, &finite).abs() < 1e-12);
     }
 }

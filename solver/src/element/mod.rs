@@ -1,23 +1,25 @@
 //! The solid elements and their seam: the element kinds a mesh holds (the
-//! 4-node quadrilateral of [`quad`] and the 3-node triangle of [`tri`]),
-//! their connectivity, their reference geometry and their response, so that
-//! the mesh, the assembly, the stresses and the output dispatch through one
+//! 4-node quadrilateral of [`quad`] and the 3-node triangle of [`tri`] in
+//! 2D, the 8-node hexahedron of [`hex`] and the 4-node tetrahedron of
+//! [`tet`] in 3D), the kinds of their facets ([`FaceKind`]), their
+//! connectivity, their reference geometry and their response, so that the
+//! mesh, the assembly, the stresses and the output dispatch through one
 //! place instead of branching on the kind everywhere. Each kind owns its
-//! VTK cell type ([`ElementKind::vtk_cell_type`]).
+//! VTK cell type ([`ElementKind::vtk_cell_type`]) and its edges.
 //!
 //! Every element is a total-Lagrangian St Venant–Kirchhoff element with
-//! the same point kinematics ([`kinematics`], over the dimension `D`) and
-//! one integrand ([`solid`]: `B^T D B`, the geometric stiffness, the energy
-//! and the stresses, written once); they differ in their shape functions
-//! and integration rule only (Q4: bilinear, 2x2 Gauss; T3: linear, one
-//! point, exact; in 3D H8 ([`hex`]): trilinear, 2x2x2 Gauss; T4 ([`tet`]):
-//! linear, one point, exact). The material is [`material`], the stress
-//! measures [`Stress`]. Every element type implements [`SolidElement`],
-//! one interface for 2D and 3D; the variants of [`Element`],
-//! [`ElementGeometry`] and [`ElementResponse`] call their
-//! [`SolidElement`] methods (2D: [`ElementKind::Quad4`],
-//! [`ElementKind::Tri3`]; 3D: [`ElementKind::Hex8`], [`ElementKind::Tet4`]).
-//! An element with `n` nodes in `D` dimensions has `D n` dofs, ordered
+//! the same point kinematics ([`kinematics`], over the dimension `D`), one
+//! isoparametric geometry ([`geometry`]: the reference gradients and
+//! weights at the integration points, the degeneracy floor, the sums over
+//! the points) and one integrand ([`solid`]: `B^T D B`, the geometric
+//! stiffness, the energy and the stresses); they differ in their shape
+//! functions and integration rule only (Q4: bilinear, 2x2 Gauss; T3:
+//! linear, one point, exact; H8: trilinear, 2x2x2 Gauss; T4: linear, one
+//! point, exact). The material is [`material`], the stress measures
+//! [`Stress`]. Every element's geometry implements [`SolidElement`], one
+//! interface for 2D and 3D; the variants of [`Element`],
+//! [`ElementGeometry`] and [`ElementResponse`] call its methods. An
+//! element with `n` nodes in `D` dimensions has `D n` dofs, ordered
 //! `[u1x, u1y, (u1z,) u2x, ...]`; the seam's element buffers are sized for
 //! the largest element (the hexahedron's 24 dofs) and every other kind
 //! uses their first `D n` entries. The hexahedron's geometry and the 3D
@@ -26,18 +28,19 @@
 //! variants.
 //!
 //! Invariants: an [`Element`]'s nodes run counter-clockwise (2D) or in
-//! Gmsh's order with a positive Jacobian (3D); an
-//! [`ElementGeometry`] exists only for a positive reference Jacobian (see
-//! [`QuadGeometry::new`], [`TriGeometry::new`]); dispatching a quadrilateral
-//! through this seam performs exactly the operations of
-//! [`quad_response`], [`quad_energy`] and [`quad_mean_stress`], so a mesh of
-//! quadrilaterals gives the same bits as before triangles existed.
+//! Gmsh's order with a positive Jacobian (3D); an [`ElementGeometry`]
+//! exists only for finite coordinates and a reference Jacobian above the
+//! degeneracy floor at every integration point
+//! ([`geometry::Geometry::new`]); each kind's arithmetic is the one its
+//! own functions performed before the geometry was shared, so a mesh
+//! gives the same bits.
 
 use std::fmt;
 use std::ops::Deref;
 
 use crate::ids::NodeId;
 
+pub mod geometry;
 pub mod hex;
 pub mod kinematics;
 pub mod material;
@@ -47,17 +50,26 @@ mod stress;
 pub mod tet;
 pub mod tri;
 
-use hex::{HexGeometry, HexResponse};
+use hex::HexGeometry;
 use material::Material;
-use quad::{
-    QuadGeometry, QuadResponse, quad_energy, quad_mean_stress, quad_point_stresses, quad_response,
-};
+use quad::QuadGeometry;
 use solid::SolidResponse;
 pub use stress::Stress;
-use tet::{TetGeometry, TetResponse};
-use tri::{
-    TriGeometry, TriResponse, tri_energy, tri_mean_stress, tri_point_stresses, tri_response,
-};
+use tet::TetGeometry;
+use tri::TriGeometry;
+
+/// `$body` for the value `$x` of whichever of the four kinds' variants
+/// `$value` (of the enum `$enum`) holds.
+macro_rules! each_kind {
+    ($enum:ident, $value:expr, $x:ident => $body:expr) => {
+        match $value {
+            $enum::Quad4($x) => $body,
+            $enum::Tri3($x) => $body,
+            $enum::Hex8($x) => $body,
+            $enum::Tet4($x) => $body,
+        }
+    };
+}
 
 /// VTK cell type of a 4-node quadrilateral.
 pub const VTK_QUAD: u8 = 9;
@@ -117,45 +129,123 @@ pub enum ElementKind {
     Tet4,
 }
 
+/// What is fixed per element kind (the rows of [`ElementKind::info`]).
+struct KindInfo {
+    nodes: usize,
+    dim: usize,
+    vtk: u8,
+    name: &'static str,
+    edges: &'static [[usize; 2]],
+}
+
 impl ElementKind {
+    /// The kind's row: node count, dimension, VTK cell type, name, edges.
+    fn info(self) -> KindInfo {
+        match self {
+            ElementKind::Quad4 => KindInfo {
+                nodes: 4,
+                dim: 2,
+                vtk: VTK_QUAD,
+                name: "4-node quadrilateral",
+                edges: &[[0, 1], [1, 2], [2, 3], [3, 0]],
+            },
+            ElementKind::Tri3 => KindInfo {
+                nodes: 3,
+                dim: 2,
+                vtk: VTK_TRIANGLE,
+                name: "3-node triangle",
+                edges: &[[0, 1], [1, 2], [2, 0]],
+            },
+            ElementKind::Hex8 => KindInfo {
+                nodes: 8,
+                dim: 3,
+                vtk: VTK_HEXAHEDRON,
+                name: "8-node hexahedron",
+                edges: &[
+                    [0, 1],
+                    [1, 2],
+                    [2, 3],
+                    [3, 0],
+                    [4, 5],
+                    [5, 6],
+                    [6, 7],
+                    [7, 4],
+                    [0, 4],
+                    [1, 5],
+                    [2, 6],
+                    [3, 7],
+                ],
+            },
+            ElementKind::Tet4 => KindInfo {
+                nodes: 4,
+                dim: 3,
+                vtk: VTK_TETRA,
+                name: "4-node tetrahedron",
+                edges: &[[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]],
+            },
+        }
+    }
+
     /// Nodes per element.
     pub fn node_count(self) -> usize {
-        match self {
-            ElementKind::Quad4 => 4,
-            ElementKind::Tri3 => 3,
-            ElementKind::Hex8 => 8,
-            ElementKind::Tet4 => 4,
-        }
+        self.info().nodes
     }
 
     /// The spatial dimension (2 or 3): each node has this many dofs.
     pub fn dim(self) -> usize {
-        match self {
-            ElementKind::Quad4 | ElementKind::Tri3 => 2,
-            ElementKind::Hex8 | ElementKind::Tet4 => 3,
-        }
+        self.info().dim
     }
 
     /// The VTK cell type ([`VTK_QUAD`] = 9, [`VTK_TRIANGLE`] = 5,
     /// [`VTK_HEXAHEDRON`] = 12, [`VTK_TETRA`] = 10; VTK's node orders are
     /// Gmsh's for all four).
     pub fn vtk_cell_type(self) -> u8 {
-        match self {
-            ElementKind::Quad4 => VTK_QUAD,
-            ElementKind::Tri3 => VTK_TRIANGLE,
-            ElementKind::Hex8 => VTK_HEXAHEDRON,
-            ElementKind::Tet4 => VTK_TETRA,
-        }
+        self.info().vtk
+    }
+
+    /// Its edges as pairs of local nodes (what the degeneracy floor
+    /// [`geometry::min_det`] measures).
+    pub fn edges(self) -> &'static [[usize; 2]] {
+        self.info().edges
     }
 }
 
 impl fmt::Display for ElementKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.info().name)
+    }
+}
+
+/// The kind of a facet: an element's side in 2D (a segment), its face in
+/// 3D (a quadrilateral's or a triangle's) — the surfaces that carry
+/// contact and tractions.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum FaceKind {
+    /// A 2-node segment, `xi` in `[-1, 1]`.
+    Segment,
+    /// A bilinear quadrilateral, `(u, v)` in `[-1, 1]^2`.
+    Quad4,
+    /// A linear triangle, the unit triangle in `(u, v)`.
+    Tri3,
+}
+
+impl FaceKind {
+    /// Nodes per facet.
+    pub fn node_count(self) -> usize {
+        match self {
+            FaceKind::Segment => 2,
+            FaceKind::Quad4 => 4,
+            FaceKind::Tri3 => 3,
+        }
+    }
+}
+
+impl fmt::Display for FaceKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
-            ElementKind::Quad4 => "4-node quadrilateral",
-            ElementKind::Tri3 => "3-node triangle",
-            ElementKind::Hex8 => "8-node hexahedron",
-            ElementKind::Tet4 => "4-node tetrahedron",
+            FaceKind::Segment => "segment",
+            FaceKind::Quad4 => "quad4",
+            FaceKind::Tri3 => "tri3",
         })
     }
 }
@@ -165,8 +255,9 @@ impl fmt::Display for ElementKind {
 /// Voigt components (3 in 2D, 6 in 3D). Implemented by the reference
 /// geometries [`QuadGeometry`] (`<2, 4, 8, 3>`), [`TriGeometry`]
 /// (`<2, 3, 6, 3>`), [`hex::HexGeometry`] (`<3, 8, 24, 6>`) and
-/// [`tet::TetGeometry`] (`<3, 4, 12, 6>`); the seam's dispatch arms are
-/// calls of these methods.
+/// [`tet::TetGeometry`] (`<3, 4, 12, 6>`), all one
+/// [`geometry::Geometry`]; the seam's dispatch arms are calls of these
+/// methods.
 pub trait SolidElement<const D: usize, const N: usize, const M: usize, const V: usize>:
     Sized + Copy + fmt::Debug
 {
@@ -177,6 +268,11 @@ pub trait SolidElement<const D: usize, const N: usize, const M: usize, const V: 
     /// `x_ref` (in the kind's node order); fails for a non-positive,
     /// degenerate or non-finite reference Jacobian.
     fn from_reference(x_ref: &[[f64; D]; N]) -> Result<Self, InvalidElement>;
+
+    /// Its kind.
+    fn kind(&self) -> ElementKind {
+        Self::KIND
+    }
 
     /// The reference area (2D, unit thickness) or volume (3D).
     fn measure_ref(&self) -> f64;
@@ -225,12 +321,7 @@ impl<N> Element<N> {
 
     /// Its nodes, counter-clockwise.
     pub fn nodes(&self) -> &[N] {
-        match self {
-            Element::Quad4(n) => n,
-            Element::Tri3(n) => n,
-            Element::Hex8(n) => n,
-            Element::Tet4(n) => n,
-        }
+        each_kind!(Element, self, n => n)
     }
 
     /// The same element with every node mapped by `f`.
@@ -326,12 +417,7 @@ pub enum ElementGeometry {
 
 impl fmt::Debug for ElementGeometry {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ElementGeometry::Quad4(g) => fmt::Debug::fmt(g, f),
-            ElementGeometry::Tri3(g) => fmt::Debug::fmt(g, f),
-            ElementGeometry::Hex8(g) => fmt::Debug::fmt(g, f),
-            ElementGeometry::Tet4(g) => fmt::Debug::fmt(g, f),
-        }
+        each_kind!(ElementGeometry, self, g => fmt::Debug::fmt(g, f))
     }
 }
 
@@ -339,8 +425,7 @@ impl ElementGeometry {
     /// The geometry of the element whose reference node coordinates are
     /// `x_ref` (`D` per node: counter-clockwise in 2D, Gmsh's order in 3D);
     /// fails for a kind of another dimension than `D` and for a
-    /// non-positive (or, for a triangle or a 3D element, degenerate or
-    /// non-finite) reference Jacobian.
+    /// non-finite, non-positive or degenerate reference Jacobian.
     pub fn new<const D: usize>(x_ref: &Element<[f64; D]>) -> Result<ElementGeometry, ElementError> {
         let kind = x_ref.kind();
         Ok(match x_ref {
@@ -355,49 +440,23 @@ impl ElementGeometry {
 
     /// Its kind.
     pub fn kind(&self) -> ElementKind {
-        match self {
-            ElementGeometry::Quad4(_) => ElementKind::Quad4,
-            ElementGeometry::Tri3(_) => ElementKind::Tri3,
-            ElementGeometry::Hex8(_) => ElementKind::Hex8,
-            ElementGeometry::Tet4(_) => ElementKind::Tet4,
-        }
+        each_kind!(ElementGeometry, self, g => g.kind())
     }
 
     /// The reference area (2D, unit thickness) or volume (3D).
     pub fn area_ref(&self) -> f64 {
-        match self {
-            ElementGeometry::Quad4(g) => g.area_ref(),
-            ElementGeometry::Tri3(g) => g.area_ref(),
-            ElementGeometry::Hex8(g) => g.measure_ref(),
-            ElementGeometry::Tet4(g) => g.measure_ref(),
-        }
+        each_kind!(ElementGeometry, self, g => g.measure_ref())
     }
 
     /// Internal force, tangent and energy at the element displacements `u`
     /// (the first `D n` entries are used).
     pub fn response(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> ElementResponse {
-        match self {
-            ElementGeometry::Quad4(g) => {
-                ElementResponse::Quad4(quad_response(g, first(u), material))
-            }
-            ElementGeometry::Tri3(g) => ElementResponse::Tri3(tri_response(g, first(u), material)),
-            ElementGeometry::Hex8(g) => {
-                ElementResponse::Hex8(Box::new(g.as_ref().response(first(u), material)))
-            }
-            ElementGeometry::Tet4(g) => {
-                ElementResponse::Tet4(Box::new(g.response(first(u), material)))
-            }
-        }
+        each_kind!(ElementGeometry, self, g => g.response(first(u), material).into())
     }
 
     /// The strain energy at the element displacements `u`.
     pub fn energy(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> f64 {
-        match self {
-            ElementGeometry::Quad4(g) => quad_energy(g, first(u), material),
-            ElementGeometry::Tri3(g) => tri_energy(g, first(u), material),
-            ElementGeometry::Hex8(g) => g.as_ref().energy(first(u), material),
-            ElementGeometry::Tet4(g) => g.energy(first(u), material),
-        }
+        each_kind!(ElementGeometry, self, g => g.energy(first(u), material))
     }
 
     /// The stresses at each of its integration points (four for a
@@ -408,41 +467,16 @@ impl ElementGeometry {
         u: &[f64; MAX_ELEMENT_DOFS],
         material: &Material,
     ) -> Vec<ElementStress> {
-        match self {
-            ElementGeometry::Quad4(g) => quad_point_stresses(g, first(u), material)
-                .map(ElementStress::Plane)
-                .to_vec(),
-            ElementGeometry::Tri3(g) => tri_point_stresses(g, first(u), material)
-                .map(ElementStress::Plane)
-                .to_vec(),
-            ElementGeometry::Hex8(g) => g
-                .as_ref()
-                .point_stresses(first(u), material)
-                .into_iter()
-                .map(ElementStress::Solid)
-                .collect(),
-            ElementGeometry::Tet4(g) => g
-                .point_stresses(first(u), material)
-                .into_iter()
-                .map(ElementStress::Solid)
-                .collect(),
-        }
+        each_kind!(ElementGeometry, self, g => g
+            .point_stresses(first(u), material)
+            .into_iter()
+            .map(ElementStress::from)
+            .collect())
     }
 
     /// The element's stresses averaged over its integration points.
     pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> ElementStress {
-        match self {
-            ElementGeometry::Quad4(g) => {
-                ElementStress::Plane(quad_mean_stress(g, first(u), material))
-            }
-            ElementGeometry::Tri3(g) => {
-                ElementStress::Plane(tri_mean_stress(g, first(u), material))
-            }
-            ElementGeometry::Hex8(g) => {
-                ElementStress::Solid(g.as_ref().mean_stress(first(u), material))
-            }
-            ElementGeometry::Tet4(g) => ElementStress::Solid(g.mean_stress(first(u), material)),
-        }
+        each_kind!(ElementGeometry, self, g => g.mean_stress(first(u), material).into())
     }
 }
 
@@ -454,6 +488,18 @@ pub enum ElementStress {
     Plane(Stress<3>),
     /// A 3D element's (`[xx, yy, zz, yz, xz, xy]`).
     Solid(Stress<6>),
+}
+
+impl From<Stress<3>> for ElementStress {
+    fn from(s: Stress<3>) -> Self {
+        ElementStress::Plane(s)
+    }
+}
+
+impl From<Stress<6>> for ElementStress {
+    fn from(s: Stress<6>) -> Self {
+        ElementStress::Solid(s)
+    }
 }
 
 impl ElementStress {
@@ -507,44 +553,53 @@ impl ElementStress {
 #[derive(Debug, Clone, PartialEq)]
 pub enum ElementResponse {
     /// A quadrilateral's.
-    Quad4(QuadResponse),
+    Quad4(SolidResponse<8>),
     /// A triangle's.
-    Tri3(TriResponse),
+    Tri3(SolidResponse<6>),
     /// A hexahedron's.
-    Hex8(Box<HexResponse>),
+    Hex8(Box<SolidResponse<24>>),
     /// A tetrahedron's.
-    Tet4(Box<TetResponse>),
+    Tet4(Box<SolidResponse<12>>),
+}
+
+impl From<SolidResponse<8>> for ElementResponse {
+    fn from(r: SolidResponse<8>) -> Self {
+        ElementResponse::Quad4(r)
+    }
+}
+
+impl From<SolidResponse<6>> for ElementResponse {
+    fn from(r: SolidResponse<6>) -> Self {
+        ElementResponse::Tri3(r)
+    }
+}
+
+impl From<SolidResponse<24>> for ElementResponse {
+    fn from(r: SolidResponse<24>) -> Self {
+        ElementResponse::Hex8(Box::new(r))
+    }
+}
+
+impl From<SolidResponse<12>> for ElementResponse {
+    fn from(r: SolidResponse<12>) -> Self {
+        ElementResponse::Tet4(Box::new(r))
+    }
 }
 
 impl ElementResponse {
     /// `f_int` (`D n` entries, in the element's dof order).
     pub fn f_int(&self) -> &[f64] {
-        match self {
-            ElementResponse::Quad4(r) => &r.f_int,
-            ElementResponse::Tri3(r) => &r.f_int,
-            ElementResponse::Hex8(r) => &r.f_int,
-            ElementResponse::Tet4(r) => &r.f_int,
-        }
+        each_kind!(ElementResponse, self, r => &r.f_int)
     }
 
     /// Row `p` of the tangent `d f_int / d u` (`D n` entries).
     pub fn k_row(&self, p: usize) -> &[f64] {
-        match self {
-            ElementResponse::Quad4(r) => &r.k[p],
-            ElementResponse::Tri3(r) => &r.k[p],
-            ElementResponse::Hex8(r) => &r.k[p],
-            ElementResponse::Tet4(r) => &r.k[p],
-        }
+        each_kind!(ElementResponse, self, r => &r.k[p])
     }
 
     /// The strain energy.
     pub fn energy(&self) -> f64 {
-        match self {
-            ElementResponse::Quad4(r) => r.energy,
-            ElementResponse::Tri3(r) => r.energy,
-            ElementResponse::Hex8(r) => r.energy,
-            ElementResponse::Tet4(r) => r.energy,
-        }
+        each_kind!(ElementResponse, self, r => r.energy)
     }
 }
 

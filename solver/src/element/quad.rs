@@ -26,10 +26,8 @@
 //! derivative of `B^T` at fixed `S`), and `f_int` the exact gradient of `U`.
 //! The point's sums are [`super::solid`]'s, shared with every element.
 
-use super::material::Material;
-use super::solid::{SolidResponse, add_point, point_energy, point_stress};
-use super::stress::Stress;
-use super::{ElementKind, InvalidElement, SolidElement};
+use super::ElementKind;
+use super::geometry::{Geometry, Shape, gauss_point};
 
 /// The 2x2 Gauss points on the parent square (weights are all one).
 pub const GAUSS_2X2: [[f64; 2]; 4] = {
@@ -38,7 +36,7 @@ pub const GAUSS_2X2: [[f64; 2]; 4] = {
 };
 
 /// Parent coordinates of the four corners, counter-clockwise.
-const CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+pub const CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
 
 /// `[dN_a/dxi, dN_a/deta]` at a parent point.
 fn parent_gradients(xi: f64, eta: f64) -> [[f64; 2]; 4] {
@@ -52,144 +50,38 @@ fn parent_gradients(xi: f64, eta: f64) -> [[f64; 2]; 4] {
     out
 }
 
-/// The reference-configuration geometry of one element at its Gauss points,
-/// computed once per mesh.
+/// The 4-node quadrilateral's parent square and 2x2 Gauss rule.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct QuadGeometry {
-    /// `G_a = dN_a/dX` per Gauss point and node.
-    pub grads_ref: [[[f64; 2]; 4]; 4],
-    /// `w detJ0` per Gauss point (the reference area weight).
-    pub weight_ref: [f64; 4],
-}
+pub struct Quad4;
 
-impl QuadGeometry {
-    /// Geometry of the element with reference corner coordinates `x_ref`
-    /// (counter-clockwise). Fails when `detJ0 <= 0` at a Gauss point
-    /// (clockwise, degenerate or badly distorted element).
-    pub fn new(x_ref: &[[f64; 2]; 4]) -> Result<QuadGeometry, InvalidElement> {
-        let mut grads_ref = [[[0.0; 2]; 4]; 4];
-        let mut weight_ref = [0.0; 4];
-        let mut worst = f64::INFINITY;
-        for (gp, p) in GAUSS_2X2.iter().enumerate() {
-            let dn = parent_gradients(p[0], p[1]);
-            // J[i][j] = sum_a X_a[i] dN_a/dxi_j
-            let mut j = [[0.0; 2]; 2];
-            for a in 0..4 {
-                for i in 0..2 {
-                    for k in 0..2 {
-                        j[i][k] += x_ref[a][i] * dn[a][k];
-                    }
-                }
-            }
-            let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-            worst = worst.min(det);
-            if !(det > 0.0) {
-                continue;
-            }
-            // dN/dX = dN/dxi J^-1 (row vectors)
-            let inv = [
-                [j[1][1] / det, -j[0][1] / det],
-                [-j[1][0] / det, j[0][0] / det],
-            ];
-            for a in 0..4 {
-                grads_ref[gp][a] = [
-                    dn[a][0] * inv[0][0] + dn[a][1] * inv[1][0],
-                    dn[a][0] * inv[0][1] + dn[a][1] * inv[1][1],
-                ];
-            }
-            weight_ref[gp] = det;
-        }
-        if !(worst > 0.0) {
-            return Err(InvalidElement { det_j0: worst });
-        }
-        Ok(QuadGeometry {
-            grads_ref,
-            weight_ref,
-        })
-    }
-
-    /// The reference area `sum w detJ0`.
-    pub fn area_ref(&self) -> f64 {
-        self.weight_ref.iter().sum()
-    }
-}
-
-/// Internal force, tangent stiffness and strain energy of one element
-/// (`f_int` ordered `[u1x, u1y, u2x, ..., u4y]`, the 8x8 tangent).
-pub type QuadResponse = SolidResponse<8>;
-
-/// Evaluates the element at displacements `u` (reference frame).
-pub fn quad_response(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> QuadResponse {
-    let d = material.d_matrix();
-    let mut out = SolidResponse::starting_at(0.0);
-    for gp in 0..4 {
-        add_point(
-            &mut out,
-            &geom.grads_ref[gp],
-            geom.weight_ref[gp],
-            u,
-            &d,
-            material,
-        );
-    }
-    out.symmetrize();
-    out
-}
-
-/// Strain energy only (cheaper than [`quad_response`]).
-pub fn quad_energy(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> f64 {
-    let d = material.d_matrix();
-    (0..4)
-        .map(|gp| point_energy(&geom.grads_ref[gp], geom.weight_ref[gp], u, &d, material))
-        .sum()
-}
-
-/// Stresses at each Gauss point of the element.
-pub fn quad_point_stresses(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> [Stress; 4] {
-    let d = material.d_matrix();
-    std::array::from_fn(|gp| point_stress(&geom.grads_ref[gp], u, &d, material))
-}
-
-/// Stresses averaged over the Gauss points (equal weights).
-pub fn quad_mean_stress(geom: &QuadGeometry, u: &[f64; 8], material: &Material) -> Stress {
-    Stress::mean(&quad_point_stresses(geom, u, material))
-}
-
-impl SolidElement<2, 4, 8, 3> for QuadGeometry {
+impl Shape<2, 4, 4> for Quad4 {
     const KIND: ElementKind = ElementKind::Quad4;
+    const NAME: &'static str = "QuadGeometry";
 
-    fn from_reference(x_ref: &[[f64; 2]; 4]) -> Result<Self, InvalidElement> {
-        QuadGeometry::new(x_ref)
+    fn point(x_ref: &[[f64; 2]; 4], p: usize) -> (f64, Option<[[f64; 2]; 4]>) {
+        let [xi, eta] = GAUSS_2X2[p];
+        gauss_point(x_ref, &parent_gradients(xi, eta))
     }
 
-    fn measure_ref(&self) -> f64 {
-        self.area_ref()
-    }
-
-    fn response(&self, u: &[f64; 8], material: &Material) -> SolidResponse<8> {
-        quad_response(self, u, material)
-    }
-
-    fn energy(&self, u: &[f64; 8], material: &Material) -> f64 {
-        quad_energy(self, u, material)
-    }
-
-    fn point_stresses(&self, u: &[f64; 8], material: &Material) -> Vec<Stress<3>> {
-        quad_point_stresses(self, u, material).to_vec()
-    }
-
-    fn mean_stress(&self, u: &[f64; 8], material: &Material) -> Stress<3> {
-        quad_mean_stress(self, u, material)
+    fn weight(det_j0: f64) -> f64 {
+        det_j0
     }
 }
+
+/// The reference geometry of one quadrilateral at its four Gauss points,
+/// computed once per mesh.
+pub type QuadGeometry = Geometry<Quad4, 2, 4, 8, 3, 4>;
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
+    use crate::element::SolidElement;
+    use crate::element::material::Material;
     use crate::element::material::PlaneModel;
     use crate::testutil::Lcg;
 
-    const MAT: Material = Material {
+    /// The 2D element tests' material.
+    pub(in crate::element) const MAT: Material = Material {
         young: 1000.0,
         poisson: 0.3,
         model: PlaneModel::PlaneStress,
@@ -203,7 +95,7 @@ mod tests {
     #[test]
     fn area_and_partition_of_unity() {
         let g = QuadGeometry::new(&[[0.0, 0.0], [2.0, 0.0], [2.0, 0.5], [0.0, 0.5]]).unwrap();
-        assert!((g.area_ref() - 1.0).abs() < 1e-14);
+        assert!((g.measure_ref() - 1.0).abs() < 1e-14);
         for gp in 0..4 {
             for dir in 0..2 {
                 let s: f64 = (0..4).map(|a| g.grads_ref[gp][a][dir]).sum();
@@ -225,7 +117,7 @@ mod tests {
             u[2 * a] = c * x[a][0] - s * x[a][1] + 0.3 - x[a][0];
             u[2 * a + 1] = s * x[a][0] + c * x[a][1] - 1.1 - x[a][1];
         }
-        let r = quad_response(&g, &u, &MAT);
+        let r = g.response(&u, &MAT);
         assert!(r.energy.abs() < 1e-12);
         assert!(r.f_int.iter().all(|f| f.abs() < 1e-10));
     }
@@ -242,7 +134,7 @@ mod tests {
             let mat = Material { model, ..MAT };
             for _ in 0..5 {
                 let u: [f64; 8] = std::array::from_fn(|_| rng.uniform(-0.2, 0.2));
-                let r = quad_response(&g, &u, &mat);
+                let r = g.response(&u, &mat);
                 let h = 1e-6;
                 let scale = r.k.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
                 for p in 0..8 {
@@ -250,14 +142,13 @@ mod tests {
                     let mut um = u;
                     up[p] += h;
                     um[p] -= h;
-                    let fd_e =
-                        (quad_energy(&g, &up, &mat) - quad_energy(&g, &um, &mat)) / (2.0 * h);
+                    let fd_e = (g.energy(&up, &mat) - g.energy(&um, &mat)) / (2.0 * h);
                     assert!(
                         (fd_e - r.f_int[p]).abs() < 1e-6 * scale.max(1.0),
                         "force {p}"
                     );
-                    let rp = quad_response(&g, &up, &mat);
-                    let rm = quad_response(&g, &um, &mat);
+                    let rp = g.response(&up, &mat);
+                    let rm = g.response(&um, &mat);
                     for q in 0..8 {
                         let fd = (rp.f_int[q] - rm.f_int[q]) / (2.0 * h);
                         assert!(
@@ -292,7 +183,7 @@ mod tests {
         ];
         let d = MAT.d_matrix();
         let s: [f64; 3] = std::array::from_fn(|r| d[r][0] * e[0] + d[r][1] * e[1] + d[r][2] * e[2]);
-        for p in quad_point_stresses(&g, &u, &MAT) {
+        for p in g.point_stresses(&u, &MAT) {
             for c in 0..3 {
                 assert!((p.pk2[c] - s[c]).abs() < 1e-10 * s[c].abs().max(1.0));
             }

@@ -6,7 +6,7 @@
 //! and the element patch test), the reference-Jacobian checks and the
 //! element kinds.
 
-use super::hex::{CORNERS, HexGeometry};
+use super::hex::{CORNERS, HexGeometry, KUHN_TETS};
 use super::kinematics::{VOIGT_2D, VOIGT_3D};
 use super::material::{Kinematics, Material, PlaneModel};
 use super::quad::QuadGeometry;
@@ -42,7 +42,7 @@ fn random_tet(rng: &mut Lcg) -> [[f64; 3]; 4] {
         let x: [[f64; 3]; 4] =
             std::array::from_fn(|_| std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
         if let Ok(g) = TetGeometry::new(&x)
-            && g.volume_ref() * 6.0 > 0.2
+            && g.measure_ref() * 6.0 > 0.2
         {
             return x;
         }
@@ -55,7 +55,7 @@ fn random_tri(rng: &mut Lcg) -> [[f64; 2]; 3] {
         let x: [[f64; 2]; 3] =
             std::array::from_fn(|_| std::array::from_fn(|_| rng.uniform(-1.0, 1.0)));
         if let Ok(g) = TriGeometry::new(&x)
-            && g.area_ref() * 2.0 > 0.2
+            && g.measure_ref() * 2.0 > 0.2
         {
             return x;
         }
@@ -459,17 +459,9 @@ fn patch_hexes() -> Vec<[usize; 8]> {
 /// diagonal from local node 0 to local node 6 (positive for these mildly
 /// distorted cells).
 fn patch_tets() -> Vec<[usize; 4]> {
-    const SPLIT: [[usize; 4]; 6] = [
-        [0, 1, 2, 6],
-        [0, 2, 3, 6],
-        [0, 3, 7, 6],
-        [0, 7, 4, 6],
-        [0, 4, 5, 6],
-        [0, 5, 1, 6],
-    ];
     patch_hexes()
         .iter()
-        .flat_map(|h| SPLIT.map(|t| t.map(|a| h[a])))
+        .flat_map(|h| KUHN_TETS.map(|t| t.map(|a| h[a])))
         .collect()
 }
 
@@ -543,11 +535,11 @@ fn patch_test_3d() {
         let w = density(&want, &VOIGT_3D);
         let vh: f64 = patch_hexes()
             .iter()
-            .map(|h| HexGeometry::new(&h.map(|n| x[n])).unwrap().volume_ref())
+            .map(|h| HexGeometry::new(&h.map(|n| x[n])).unwrap().measure_ref())
             .sum();
         let vt: f64 = patch_tets()
             .iter()
-            .map(|t| TetGeometry::new(&t.map(|n| x[n])).unwrap().volume_ref())
+            .map(|t| TetGeometry::new(&t.map(|n| x[n])).unwrap().measure_ref())
             .sum();
         assert!((eh - vh * w).abs() < 1e-12 * eh, "{eh} vs {}", vh * w);
         assert!((et - vt * w).abs() < 1e-12 * et, "{et} vs {}", vt * w);
@@ -574,15 +566,7 @@ fn brick_tets_give_the_same_bits_and_the_hex_agrees() {
         let u: [f64; 24] = mapped(&x, &h, &id, &[0.0; 3]);
         let hex = HexGeometry::new(&x).unwrap();
         let mut stresses = hex.point_stresses(&u, &material);
-        const SPLIT: [[usize; 4]; 6] = [
-            [0, 1, 2, 6],
-            [0, 2, 3, 6],
-            [0, 3, 7, 6],
-            [0, 7, 4, 6],
-            [0, 4, 5, 6],
-            [0, 5, 1, 6],
-        ];
-        for t in SPLIT {
+        for t in KUHN_TETS {
             let g = TetGeometry::new(&t.map(|a| x[a])).unwrap();
             let ut: [f64; 12] = std::array::from_fn(|p| u[3 * t[p / 3] + p % 3]);
             stresses.push(g.mean_stress(&ut, &material));
@@ -663,14 +647,14 @@ fn invalid_3d_elements_are_refused() {
         [0.2, 0.3, 1e-6],
     ];
     let g = TetGeometry::new(&thin).unwrap();
-    assert!((g.volume_ref() - 1e-6 / 6.0).abs() < 1e-20);
+    assert!((g.measure_ref() - 1e-6 / 6.0).abs() < 1e-20);
     let unit = [
         [0.0, 0.0, 0.0],
         [2.0, 0.0, 0.0],
         [0.0, 1.0, 0.0],
         [0.0, 0.0, 1.5],
     ];
-    assert_eq!(TetGeometry::new(&unit).unwrap().volume_ref(), 0.5);
+    assert_eq!(TetGeometry::new(&unit).unwrap().measure_ref(), 0.5);
 }
 
 /// Reference gradients: a partition of unity's (they sum to zero) and
@@ -698,10 +682,10 @@ fn reference_gradients_3d() {
     let x = distorted_hex(&mut rng);
     check::<HexGeometry, 8, 24>(&x, &HexGeometry::new(&x).unwrap().grads_ref);
     let t = random_tet(&mut rng);
-    check::<TetGeometry, 4, 12>(&t, &[TetGeometry::new(&t).unwrap().grads_ref]);
+    check::<TetGeometry, 4, 12>(&t, &TetGeometry::new(&t).unwrap().grads_ref);
     let brick: [[f64; 3]; 8] =
         CORNERS.map(|c| [c[0] + 1.0, (c[1] + 1.0) * 1.5, (c[2] + 1.0) / 4.0]);
-    assert!((HexGeometry::new(&brick).unwrap().volume_ref() - 3.0).abs() < 1e-14);
+    assert!((HexGeometry::new(&brick).unwrap().measure_ref() - 3.0).abs() < 1e-14);
 }
 
 /// The kinds: node counts, dimensions, VTK cell types and names, and each

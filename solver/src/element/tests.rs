@@ -28,26 +28,26 @@ fn dispatch_is_the_element_functions() {
     let et = ElementGeometry::new(&Element::Tri3(xt)).unwrap();
     assert_eq!(eq.kind(), ElementKind::Quad4);
     assert_eq!(et.kind(), ElementKind::Tri3);
-    let rq = quad_response(&gq, &u8, &MAT);
+    let rq = gq.response(&u8, &MAT);
     assert_eq!(eq.response(&u, &MAT), ElementResponse::Quad4(rq));
     let ut: [f64; 6] = std::array::from_fn(|k| u8[k]);
-    let rt = tri_response(&gt, &ut, &MAT);
+    let rt = gt.response(&ut, &MAT);
     let r = et.response(&u, &MAT);
     assert_eq!(r, ElementResponse::Tri3(rt));
     assert_eq!(r.f_int(), &rt.f_int);
     assert_eq!(r.k_row(5), &rt.k[5]);
     assert_eq!(r.energy(), rt.energy);
-    assert_eq!(eq.energy(&u, &MAT), quad_energy(&gq, &u8, &MAT));
-    assert_eq!(et.energy(&u, &MAT), tri_energy(&gt, &ut, &MAT));
+    assert_eq!(eq.energy(&u, &MAT), gq.energy(&u8, &MAT));
+    assert_eq!(et.energy(&u, &MAT), gt.energy(&ut, &MAT));
     assert_eq!(
         eq.mean_stress(&u, &MAT),
-        ElementStress::Plane(quad_mean_stress(&gq, &u8, &MAT))
+        ElementStress::Plane(gq.mean_stress(&u8, &MAT))
     );
     assert_eq!(
         et.mean_stress(&u, &MAT),
-        ElementStress::Plane(tri_mean_stress(&gt, &ut, &MAT))
+        ElementStress::Plane(gt.mean_stress(&ut, &MAT))
     );
-    assert_eq!(et.area_ref(), gt.area_ref());
+    assert_eq!(et.area_ref(), gt.measure_ref());
     // a clockwise triangle is refused with the element's detJ0
     let cw = Element::Tri3([xt[0], xt[2], xt[1]]);
     let Err(ElementError::Invalid(InvalidElement { det_j0 })) = ElementGeometry::new(&cw) else {
@@ -69,10 +69,9 @@ fn connectivity_views() {
     assert_eq!(ElementKind::Tri3.to_string(), "3-node triangle");
 }
 
-mod mixed {
+pub(super) mod mixed {
     use crate::assembly::assemble_solid;
-    use crate::element::quad::quad_response;
-    use crate::element::{Element, ElementKind};
+    use crate::element::{Element, ElementKind, SolidElement};
     use crate::ids::{DofId, EquationIndex, NodeId};
     use crate::material::{Material, PlaneModel};
     use crate::mesh::{Mesh, MeshError};
@@ -89,7 +88,7 @@ mod mixed {
     };
 
     /// The MacNeal–Harder patch (corners 0..3, interior nodes 4..7).
-    const NODES: [[f64; 2]; 8] = [
+    pub(in crate::element) const NODES: [[f64; 2]; 8] = [
         [0.0, 0.0],
         [0.24, 0.0],
         [0.24, 0.12],
@@ -98,6 +97,15 @@ mod mixed {
         [0.18, 0.03],
         [0.16, 0.08],
         [0.08, 0.08],
+    ];
+
+    /// The patch's five quadrilaterals.
+    pub(in crate::element) const QUADS: [[usize; 4]; 5] = [
+        [0, 1, 5, 4],
+        [1, 2, 6, 5],
+        [2, 3, 7, 6],
+        [3, 0, 4, 7],
+        [4, 5, 6, 7],
     ];
 
     /// The patch's five quadrilaterals, three of them split into two
@@ -120,6 +128,29 @@ mod mixed {
         mesh.add_body("patch", material, &NODES, &mixed_elements())
             .unwrap();
         mesh
+    }
+
+    /// The mixed patch with the displacements `H X` prescribed on its
+    /// four corner nodes.
+    fn deformed_patch(h: [[f64; 2]; 2]) -> Model {
+        let prescribed = (0..4)
+            .flat_map(|n| {
+                (0..2).map(move |i| Prescribed {
+                    dof: DofId::of(NodeId::new(n), i),
+                    value: h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1],
+                    amplitude: None,
+                })
+            })
+            .collect();
+        Model {
+            mesh: mixed_mesh(MAT),
+            prescribed,
+            loads: Vec::new(),
+            contacts: Vec::new(),
+            amplitudes: Vec::new(),
+            supports: Vec::new(),
+            load_factor_end: 1.0,
+        }
     }
 
     #[test]
@@ -283,17 +314,11 @@ mod mixed {
 
     /// A mesh of quadrilaterals assembles as before the element seam: the
     /// same triplets and residual bits as the plain loop over
-    /// `quad_response` (every element's 8 rows in order, each row's 8
+    /// the quadrilateral's response (every element's 8 rows in order, each row's 8
     /// columns in order).
     #[test]
     fn quad_assembly_is_unchanged() {
-        let quads = [
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-            [4, 5, 6, 7],
-        ];
+        let quads = QUADS;
         let mut mesh = Mesh::new();
         mesh.add_body("patch", MAT, &NODES, &quads).unwrap();
         let model = fixed_corner(mesh);
@@ -308,7 +333,7 @@ mod mixed {
                 panic!("element {e} is not a quadrilateral");
             };
             let ue: [f64; 8] = std::array::from_fn(|k| u[2 * el[k / 2] + k % 2]);
-            let r = quad_response(g, &ue, &MAT);
+            let r = g.response(&ue, &MAT);
             let eqs: [Option<EquationIndex>; 8] =
                 std::array::from_fn(|k| dofs.eq(DofId::new(2 * el[k / 2] + k % 2)));
             for p in 0..8 {
@@ -337,28 +362,9 @@ mod mixed {
     /// energy density of the prescribed strain.
     #[test]
     fn mixed_patch_reproduces_homogeneous_deformation() {
-        let mesh = mixed_mesh(MAT);
         let h = [[0.08, 0.03], [-0.02, 0.05]];
         let exact = |n: usize, i: usize| h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1];
-        let mut prescribed = Vec::new();
-        for n in 0..4 {
-            for i in 0..2 {
-                prescribed.push(Prescribed {
-                    dof: DofId::of(NodeId::new(n), i),
-                    value: exact(n, i),
-                    amplitude: None,
-                });
-            }
-        }
-        let model = Model {
-            mesh,
-            prescribed,
-            loads: Vec::new(),
-            contacts: Vec::new(),
-            amplitudes: Vec::new(),
-            supports: Vec::new(),
-            load_factor_end: 1.0,
-        };
+        let model = deformed_patch(h);
         let sol = solve_model(
             &model,
             &SolveOptions {
@@ -410,26 +416,7 @@ mod mixed {
     /// node count and VTK type (9 quadrilateral, 5 triangle).
     #[test]
     fn vtu_cells_of_a_mixed_mesh() {
-        let h = [[0.01, 0.0], [0.0, -0.02]];
-        let mesh = mixed_mesh(MAT);
-        let prescribed = (0..4)
-            .flat_map(|n| {
-                (0..2).map(move |i| Prescribed {
-                    dof: DofId::of(NodeId::new(n), i),
-                    value: h[i][0] * NODES[n][0] + h[i][1] * NODES[n][1],
-                    amplitude: None,
-                })
-            })
-            .collect();
-        let model = Model {
-            mesh,
-            prescribed,
-            loads: Vec::new(),
-            contacts: Vec::new(),
-            amplitudes: Vec::new(),
-            supports: Vec::new(),
-            load_factor_end: 1.0,
-        };
+        let model = deformed_patch([[0.01, 0.0], [0.0, -0.02]]);
         let sol = solve_model(&model, &SolveOptions::default()).unwrap();
         let text = crate::report::vtu_string(&sol, &sol.final_state).unwrap();
         assert!(text.contains("NumberOfPoints=\"8\" NumberOfCells=\"8\""));

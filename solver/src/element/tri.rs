@@ -34,150 +34,46 @@
 //! the quadrilateral the same stress.
 //!
 //! Invariant of a [`TriGeometry`]: finite reference coordinates and
-//! `detJ0 > MIN_RELATIVE_DET * l_max^2` (`l_max` the longest edge), i.e.
-//! counter-clockwise and not degenerate beyond rounding. Failures reuse
-//! [`InvalidElement`] (`det_j0` is the element's one `detJ0`, NaN for a
-//! non-finite coordinate).
+//! `detJ0 > MIN_RELATIVE_DET * l_max^2` (`l_max` the longest edge,
+//! [`super::geometry`]), i.e. counter-clockwise and not degenerate beyond
+//! rounding. Failures are [`super::InvalidElement`] (`det_j0` is the
+//! element's one `detJ0`, NaN for a non-finite coordinate).
 //!
 //! [`quad`]: super::quad
 
-use super::material::Material;
-use super::solid::{SolidResponse, add_point, point_energy, point_stress};
-use super::stress::Stress;
-use super::{ElementKind, InvalidElement, SolidElement};
+use super::ElementKind;
+use super::geometry::{Geometry, Shape, simplex_point};
 
-/// The smallest admissible `detJ0 / l_max^2` (`l_max` the longest reference
-/// edge): below it the element's area is at the level of the rounding error
-/// of `detJ0` (about `2 eps l_max^2`), i.e. its nodes are collinear as far as
-/// the arithmetic can tell. A triangle passes when its smallest angle is
-/// above about `1e-14` rad.
-pub const MIN_RELATIVE_DET: f64 = 16.0 * f64::EPSILON;
-
-/// The reference-configuration geometry of one element, computed once per
-/// mesh.
+/// The 3-node triangle's parent triangle and one-point rule.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TriGeometry {
-    /// `G_a = dN_a/dX` per node (constant over the element).
-    pub grads_ref: [[f64; 2]; 3],
-    /// The reference area `A0 = detJ0 / 2` (the weight of the one
-    /// integration point).
-    pub weight_ref: f64,
-}
+pub struct Tri3;
 
-impl TriGeometry {
-    /// Geometry of the element with reference corner coordinates `x_ref`
-    /// (counter-clockwise). Fails when a coordinate is not finite
-    /// (`det_j0` NaN) or when `detJ0 <= MIN_RELATIVE_DET l_max^2`
-    /// (clockwise or degenerate element).
-    pub fn new(x_ref: &[[f64; 2]; 3]) -> Result<TriGeometry, InvalidElement> {
-        if x_ref.iter().flatten().any(|v| !v.is_finite()) {
-            return Err(InvalidElement { det_j0: f64::NAN });
-        }
-        // J[i][k] = sum_a X_a[i] dN_a/dxi_k = X_{k+2}[i] - X_1[i]
-        let j = [
-            [x_ref[1][0] - x_ref[0][0], x_ref[2][0] - x_ref[0][0]],
-            [x_ref[1][1] - x_ref[0][1], x_ref[2][1] - x_ref[0][1]],
-        ];
-        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        let edge2 = |a: usize, b: usize| {
-            let (dx, dy) = (x_ref[b][0] - x_ref[a][0], x_ref[b][1] - x_ref[a][1]);
-            dx * dx + dy * dy
-        };
-        let l2_max = edge2(0, 1).max(edge2(1, 2)).max(edge2(2, 0));
-        if !(det.is_finite() && det > MIN_RELATIVE_DET * l2_max) {
-            return Err(InvalidElement { det_j0: det });
-        }
-        // dN/dX = dN/dxi J^-1 (row vectors); dN_2/dxi = [1, 0] and
-        // dN_3/dxi = [0, 1] pick the rows of J^-1, and N_1 = 1 - N_2 - N_3.
-        let g2 = [j[1][1] / det, -j[0][1] / det];
-        let g3 = [-j[1][0] / det, j[0][0] / det];
-        let g1 = [-(g2[0] + g3[0]), -(g2[1] + g3[1])];
-        Ok(TriGeometry {
-            grads_ref: [g1, g2, g3],
-            weight_ref: det / 2.0,
-        })
-    }
-
-    /// The reference area `A0`.
-    pub fn area_ref(&self) -> f64 {
-        self.weight_ref
-    }
-}
-
-/// Internal force, tangent stiffness and strain energy of one element
-/// (`f_int` ordered `[u1x, u1y, u2x, u2y, u3x, u3y]`, the 6x6 tangent).
-pub type TriResponse = SolidResponse<6>;
-
-/// Evaluates the element at displacements `u` (reference frame).
-pub fn tri_response(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> TriResponse {
-    let d = material.d_matrix();
-    let mut out = SolidResponse::starting_at(-0.0);
-    add_point(&mut out, &geom.grads_ref, geom.weight_ref, u, &d, material);
-    out.symmetrize();
-    out
-}
-
-/// Strain energy only (cheaper than [`tri_response`]).
-pub fn tri_energy(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> f64 {
-    let d = material.d_matrix();
-    point_energy(&geom.grads_ref, geom.weight_ref, u, &d, material)
-}
-
-/// Stresses at the element's one integration point (the type of every
-/// element's, [`Stress`]).
-pub fn tri_point_stresses(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> [Stress; 1] {
-    let d = material.d_matrix();
-    [point_stress(&geom.grads_ref, u, &d, material)]
-}
-
-/// The element's stress (constant over it, so the mean is the value at its
-/// one integration point).
-pub fn tri_mean_stress(geom: &TriGeometry, u: &[f64; 6], material: &Material) -> Stress {
-    let [s] = tri_point_stresses(geom, u, material);
-    s
-}
-
-impl SolidElement<2, 3, 6, 3> for TriGeometry {
+impl Shape<2, 3, 1> for Tri3 {
     const KIND: ElementKind = ElementKind::Tri3;
+    const NAME: &'static str = "TriGeometry";
 
-    fn from_reference(x_ref: &[[f64; 2]; 3]) -> Result<Self, InvalidElement> {
-        TriGeometry::new(x_ref)
+    fn point(x_ref: &[[f64; 2]; 3], _: usize) -> (f64, Option<[[f64; 2]; 3]>) {
+        simplex_point(x_ref)
     }
 
-    fn measure_ref(&self) -> f64 {
-        self.area_ref()
-    }
-
-    fn response(&self, u: &[f64; 6], material: &Material) -> SolidResponse<6> {
-        tri_response(self, u, material)
-    }
-
-    fn energy(&self, u: &[f64; 6], material: &Material) -> f64 {
-        tri_energy(self, u, material)
-    }
-
-    fn point_stresses(&self, u: &[f64; 6], material: &Material) -> Vec<Stress<3>> {
-        tri_point_stresses(self, u, material).to_vec()
-    }
-
-    fn mean_stress(&self, u: &[f64; 6], material: &Material) -> Stress<3> {
-        tri_mean_stress(self, u, material)
+    /// `A0 = detJ0 / 2`.
+    fn weight(det_j0: f64) -> f64 {
+        det_j0 / 2.0
     }
 }
+
+/// The reference geometry of one triangle (constant gradients, the weight
+/// `A0`), computed once per mesh.
+pub type TriGeometry = Geometry<Tri3, 2, 3, 6, 3, 1>;
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::material::PlaneModel;
-    use crate::element::quad::{QuadGeometry, quad_energy, quad_response};
+    use crate::element::SolidElement;
+    use crate::element::material::{Material, PlaneModel};
+    use crate::element::quad::QuadGeometry;
+    use crate::element::quad::tests::MAT;
     use crate::testutil::Lcg;
-
-    const MAT: Material = Material {
-        young: 1000.0,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::element::material::Kinematics::Finite,
-    };
 
     fn skewed() -> [[f64; 2]; 3] {
         [[0.1, -0.05], [1.2, 0.1], [0.3, 0.7]]
@@ -218,9 +114,9 @@ mod tests {
     #[test]
     fn area_and_partition_of_unity() {
         let g = TriGeometry::new(&[[0.0, 0.0], [2.0, 0.0], [0.5, 0.5]]).unwrap();
-        assert!((g.area_ref() - 0.5).abs() < 1e-15);
+        assert!((g.measure_ref() - 0.5).abs() < 1e-15);
         for dir in 0..2 {
-            let s: f64 = (0..3).map(|a| g.grads_ref[a][dir]).sum();
+            let s: f64 = (0..3).map(|a| g.grads_ref[0][a][dir]).sum();
             assert!(s.abs() < 1e-15);
         }
         // G_a . (X_b - X_c) reproduces the identity: sum_a X_a G_a^T = I.
@@ -228,7 +124,7 @@ mod tests {
         let g = TriGeometry::new(&x).unwrap();
         for i in 0..2 {
             for j in 0..2 {
-                let v: f64 = (0..3).map(|a| x[a][i] * g.grads_ref[a][j]).sum();
+                let v: f64 = (0..3).map(|a| x[a][i] * g.grads_ref[0][a][j]).sum();
                 let id = if i == j { 1.0 } else { 0.0 };
                 assert!((v - id).abs() < 1e-14, "[{i}][{j}] = {v}");
             }
@@ -288,10 +184,10 @@ mod tests {
         let zero = [[0.0; 2]; 2];
         for (angle, c) in [(0.0, [0.3, -1.1]), (0.7, [0.3, -1.1]), (2.5, [0.0, 0.0])] {
             let u = mapped(&x, zero, angle, c);
-            let r = tri_response(&g, &u, &MAT);
+            let r = g.response(&u, &MAT);
             assert!(r.energy.abs() < 1e-12, "{angle}: U = {}", r.energy);
             assert!(max_abs(r.f_int) < 1e-10, "{angle}: {:?}", r.f_int);
-            let s = tri_mean_stress(&g, &u, &MAT);
+            let s = g.mean_stress(&u, &MAT);
             assert!(max_abs(s.pk2.into_iter().chain(s.cauchy)) < 1e-10);
         }
     }
@@ -308,7 +204,7 @@ mod tests {
             for _ in 0..5 {
                 let g = TriGeometry::new(&random_triangle(&mut rng)).unwrap();
                 let u: [f64; 6] = std::array::from_fn(|_| rng.uniform(-0.2, 0.2));
-                let r = tri_response(&g, &u, &mat);
+                let r = g.response(&u, &mat);
                 let h = 1e-6;
                 let scale = max_abs(r.k.into_iter().flatten());
                 for p in 0..6 {
@@ -316,14 +212,14 @@ mod tests {
                     let mut um = u;
                     up[p] += h;
                     um[p] -= h;
-                    let fd_e = (tri_energy(&g, &up, &mat) - tri_energy(&g, &um, &mat)) / (2.0 * h);
+                    let fd_e = (g.energy(&up, &mat) - g.energy(&um, &mat)) / (2.0 * h);
                     assert!(
                         (fd_e - r.f_int[p]).abs() < 1e-6 * scale.max(1.0),
                         "force {p}: {fd_e} vs {}",
                         r.f_int[p]
                     );
-                    let rp = tri_response(&g, &up, &mat);
-                    let rm = tri_response(&g, &um, &mat);
+                    let rp = g.response(&up, &mat);
+                    let rm = g.response(&um, &mat);
                     for q in 0..6 {
                         let fd = (rp.f_int[q] - rm.f_int[q]) / (2.0 * h);
                         assert!(
@@ -334,7 +230,7 @@ mod tests {
                         assert_eq!(r.k[p][q], r.k[q][p]);
                     }
                 }
-                assert_eq!(r.energy, tri_energy(&g, &u, &mat));
+                assert_eq!(r.energy, g.energy(&u, &mat));
             }
         }
     }
@@ -365,7 +261,7 @@ mod tests {
             let sigma = |i: usize, j: usize| (fs(i, 0) * f[j][0] + fs(i, 1) * f[j][1]) / det_f;
             let cauchy = [sigma(0, 0), sigma(1, 1), sigma(0, 1)];
             let tol = 1e-12 * s[0].abs().max(s[1].abs());
-            let st = tri_mean_stress(&g, &u, &mat);
+            let st = g.mean_stress(&u, &mat);
             for c in 0..3 {
                 assert!((st.pk2[c] - s[c]).abs() < tol, "S[{c}]");
                 assert!((st.cauchy[c] - cauchy[c]).abs() < tol, "sigma[{c}]");
@@ -373,13 +269,13 @@ mod tests {
             assert!((st.green[0] - e[0]).abs() < 1e-14);
             assert!((st.green[1] - e[1]).abs() < 1e-14);
             assert!((st.green[2] - e[2] / 2.0).abs() < 1e-14);
-            let r = tri_response(&g, &u, &mat);
-            let energy = g.area_ref() / 2.0 * (e[0] * s[0] + e[1] * s[1] + e[2] * s[2]);
+            let r = g.response(&u, &mat);
+            let energy = g.measure_ref() / 2.0 * (e[0] * s[0] + e[1] * s[1] + e[2] * s[2]);
             assert!((r.energy - energy).abs() < 1e-12 * energy);
             for a in 0..3 {
                 for i in 0..2 {
-                    let ga = g.grads_ref[a];
-                    let fa = g.area_ref() * (fs(i, 0) * ga[0] + fs(i, 1) * ga[1]);
+                    let ga = g.grads_ref[0][a];
+                    let fa = g.measure_ref() * (fs(i, 0) * ga[0] + fs(i, 1) * ga[1]);
                     assert!((r.f_int[2 * a + i] - fa).abs() < tol, "f[{a}][{i}]");
                 }
             }
@@ -414,15 +310,15 @@ mod tests {
                     uq[2 * a] = cs * y[0] - sn * y[1] + 0.4 - x[0];
                     uq[2 * a + 1] = sn * y[0] + cs * y[1] - 0.2 - x[1];
                 }
-                let rq = quad_response(&q, &uq, &mat);
-                assert!((rq.energy - quad_energy(&q, &uq, &mat)).abs() < 1e-12 * rq.energy);
+                let rq = q.response(&uq, &mat);
+                assert!((rq.energy - q.energy(&uq, &mat)).abs() < 1e-12 * rq.energy);
                 for split in splits {
                     let mut energy = 0.0;
                     let mut f = [0.0; 8];
                     for tri in split {
                         let g = TriGeometry::new(&tri.map(|n| sq[n])).unwrap();
                         let u: [f64; 6] = std::array::from_fn(|p| uq[2 * tri[p / 2] + p % 2]);
-                        let r = tri_response(&g, &u, &mat);
+                        let r = g.response(&u, &mat);
                         energy += r.energy;
                         for p in 0..6 {
                             f[2 * tri[p / 2] + p % 2] += r.f_int[p];
@@ -448,23 +344,8 @@ mod tests {
     /// nodes and every element has the same stress.
     #[test]
     fn patch_of_triangles_is_in_equilibrium_under_homogeneous_deformation() {
-        let nodes = [
-            [0.0, 0.0],
-            [0.24, 0.0],
-            [0.24, 0.12],
-            [0.0, 0.12],
-            [0.04, 0.02],
-            [0.18, 0.03],
-            [0.16, 0.08],
-            [0.08, 0.08],
-        ];
-        let quads = [
-            [0, 1, 5, 4],
-            [1, 2, 6, 5],
-            [2, 3, 7, 6],
-            [3, 0, 4, 7],
-            [4, 5, 6, 7],
-        ];
+        let nodes = crate::element::tests::mixed::NODES;
+        let quads = crate::element::tests::mixed::QUADS;
         let tris: Vec<[usize; 3]> = quads
             .iter()
             .flat_map(|&[a, b, c, d]| [[a, b, c], [a, c, d]])
@@ -476,11 +357,11 @@ mod tests {
             let x = tri.map(|n| nodes[n]);
             let g = TriGeometry::new(&x).unwrap();
             let u = mapped(&x, hm, 0.4, [0.01, -0.02]);
-            let r = tri_response(&g, &u, &MAT);
+            let r = g.response(&u, &MAT);
             for p in 0..6 {
                 f[2 * tri[p / 2] + p % 2] += r.f_int[p];
             }
-            stresses.push(tri_mean_stress(&g, &u, &MAT));
+            stresses.push(g.mean_stress(&u, &MAT));
         }
         let scale = max_abs(f);
         assert!(scale > 1.0);
@@ -518,8 +399,8 @@ mod tests {
                     ur[2 * a] = y[0] + c[0] - x[a][0];
                     ur[2 * a + 1] = y[1] + c[1] - x[a][1];
                 }
-                let r = tri_response(&g, &u, &mat);
-                let rr = tri_response(&g, &ur, &mat);
+                let r = g.response(&u, &mat);
+                let rr = g.response(&ur, &mat);
                 assert!((r.energy - rr.energy).abs() < 1e-12 * r.energy.max(1.0));
                 let scale = max_abs(r.f_int);
                 for a in 0..3 {
@@ -528,8 +409,8 @@ mod tests {
                         assert!((rr.f_int[2 * a + i] - fa[i]).abs() < 1e-11 * scale);
                     }
                 }
-                let s = tri_mean_stress(&g, &u, &mat);
-                let sr = tri_mean_stress(&g, &ur, &mat);
+                let s = g.mean_stress(&u, &mat);
+                let sr = g.mean_stress(&ur, &mat);
                 let smax = max_abs(s.pk2);
                 for k in 0..3 {
                     assert!((s.pk2[k] - sr.pk2[k]).abs() < 1e-11 * smax);

@@ -4,7 +4,8 @@
 //! A structured rectangular block with origin `(x0, y0)`, size `(w, h)` and
 //! `nx x ny` elements has the nodes `(i, j)`, `i = 0..=nx`, `j = 0..=ny`, at
 //! `(x0 + i w/nx, y0 + j h/ny)`, numbered `j (nx + 1) + i` within the body,
-//! and the elements `(i, j)` with nodes `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`.
+//! and the elements `(i, j)` with nodes `(i,j), (i+1,j), (i+1,j+1), (i,j+1)`
+//! (the 2D [`super::grid`], as the 3D blocks').
 //!
 //! A block's sides are chains of 2-node segments ordered counter-clockwise
 //! around the body (so the outward normal of a segment with tangent `t` is
@@ -15,7 +16,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::grid::Grid;
 use super::{Mesh, MeshError};
+use crate::element::quad::CORNERS;
 use crate::ids::NodeId;
 use crate::material::Material;
 
@@ -78,23 +81,13 @@ impl Mesh {
                 body: name.to_owned(),
             });
         }
-        let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1));
-        for j in 0..=ny {
-            for i in 0..=nx {
-                nodes.push([
-                    origin[0] + size[0] * i as f64 / nx as f64,
-                    origin[1] + size[1] * j as f64 / ny as f64,
-                ]);
-            }
-        }
-        let id = |i: usize, j: usize| j * (nx + 1) + i;
-        let mut elements = Vec::with_capacity(nx * ny);
-        for j in 0..ny {
-            for i in 0..nx {
-                elements.push([id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)]);
-            }
-        }
-        self.push_body(name, material, &nodes, &elements, Some(block))
+        let grid = Grid {
+            origin,
+            size,
+            cells: [nx, ny],
+        };
+        let elements = grid.cells(&CORNERS);
+        self.push_body(name, material, &grid.nodes(), &elements, Some(block))
     }
 
     /// The segments (global node pairs) of a side of a block body, ordered
@@ -116,40 +109,20 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::material::PlaneModel;
-
-    const MAT: Material = Material {
-        young: 1.0,
-        poisson: 0.0,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    use crate::mesh::tests::MAT;
 
     #[test]
     fn block_numbering_and_sides_are_counter_clockwise() {
         let mut m = Mesh::new();
-        m.add_block(
-            "a",
-            MAT,
-            Block {
-                origin: [0.0, 0.0],
+        for (name, y0) in [("a", 0.0), ("b", 1.0)] {
+            let block = Block {
+                origin: [0.0, y0],
                 size: [2.0, 1.0],
                 nx: 2,
                 ny: 1,
-            },
-        )
-        .unwrap();
-        m.add_block(
-            "b",
-            MAT,
-            Block {
-                origin: [0.0, 1.0],
-                size: [2.0, 1.0],
-                nx: 2,
-                ny: 1,
-            },
-        )
-        .unwrap();
+            };
+            m.add_block(name, MAT, block).unwrap();
+        }
         assert_eq!(m.node_count(), 12);
         let raw = |segs: Vec<[NodeId; 2]>| segs.iter().map(|s| s.map(NodeId::index)).collect();
         assert_eq!(

@@ -7,7 +7,8 @@
 //! `(k (ny + 1) + j)(nx + 1) + i` within the body, and the cells `(i, j, k)`
 //! numbered `(k ny + j) nx + i`, each a [`Cell::Hex8`] with the nodes
 //! `(i,j,k), (i+1,j,k), (i+1,j+1,k), (i,j+1,k)`, then the same at `k + 1`
-//! (Gmsh's order; every corner Jacobian is `abc / (8 nx ny nz)`).
+//! (Gmsh's order; every corner Jacobian is `abc / (8 nx ny nz)`): the 3D
+//! [`super::grid`], as the 2D blocks'.
 //!
 //! Its sides ([`Side3d`]): `left`/`right` at the smallest/largest x,
 //! `front`/`back` at the smallest/largest y, `bottom`/`top` at the
@@ -20,7 +21,9 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::grid::Grid;
 use super::volume::{Cell, Face, HEX8_FACES};
+use crate::element::hex::CORNERS;
 
 /// A structured block of hexahedra.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -173,60 +176,35 @@ impl Block3d {
         }
     }
 
+    /// The block's grid (cells `nx, ny, nz`).
+    fn grid(&self) -> Grid<3> {
+        Grid {
+            origin: self.origin,
+            size: self.size,
+            cells: [self.nx, self.ny, self.nz],
+        }
+    }
+
     /// The body-local number of node `(i, j, k)`.
     pub fn node(&self, i: usize, j: usize, k: usize) -> usize {
-        (k * (self.ny + 1) + j) * (self.nx + 1) + i
+        self.grid().node([i, j, k])
     }
 
     /// The nodes' reference coordinates, in body-local order (module docs).
     pub fn nodes(&self) -> Result<Vec<[f64; 3]>, Block3dError> {
         self.check()?;
-        let Block3d {
-            origin,
-            size,
-            nx,
-            ny,
-            nz,
-        } = *self;
-        let at = |axis: usize, i: usize, n: usize| origin[axis] + size[axis] * i as f64 / n as f64;
-        let mut nodes = Vec::with_capacity((nx + 1) * (ny + 1) * (nz + 1));
-        for k in 0..=nz {
-            for j in 0..=ny {
-                for i in 0..=nx {
-                    nodes.push([at(0, i, nx), at(1, j, ny), at(2, k, nz)]);
-                }
-            }
-        }
-        Ok(nodes)
-    }
-
-    /// The cell `(i, j, k)` with body-local nodes.
-    fn cell(&self, i: usize, j: usize, k: usize) -> Cell {
-        let n = |di: usize, dj: usize, dk: usize| self.node(i + di, j + dj, k + dk);
-        Cell::Hex8([
-            n(0, 0, 0),
-            n(1, 0, 0),
-            n(1, 1, 0),
-            n(0, 1, 0),
-            n(0, 0, 1),
-            n(1, 0, 1),
-            n(1, 1, 1),
-            n(0, 1, 1),
-        ])
+        Ok(self.grid().nodes())
     }
 
     /// The cells, with body-local nodes, in body-local order (module docs).
     pub fn cells(&self) -> Result<Vec<Cell>, Block3dError> {
         self.check()?;
-        let mut cells = Vec::with_capacity(self.nx * self.ny * self.nz);
-        for k in 0..self.nz {
-            for j in 0..self.ny {
-                for i in 0..self.nx {
-                    cells.push(self.cell(i, j, k));
-                }
-            }
-        }
-        Ok(cells)
+        Ok(self
+            .grid()
+            .cells(&CORNERS)
+            .into_iter()
+            .map(Cell::Hex8)
+            .collect())
     }
 
     /// The quad4 faces of a side, with body-local nodes, counter-clockwise
@@ -250,9 +228,7 @@ impl Block3d {
                 ijk[axis] = at;
                 ijk[a] = p;
                 ijk[b] = q;
-                let Cell::Hex8(nodes) = self.cell(ijk[0], ijk[1], ijk[2]) else {
-                    unreachable!("a block's cells are hexahedra")
-                };
+                let nodes = self.grid().cell(ijk, &CORNERS);
                 faces.push(Face::Quad4(local.map(|k| nodes[k])));
             }
         }

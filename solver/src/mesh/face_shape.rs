@@ -12,7 +12,8 @@
 //!
 //! Invariant: entries beyond the face's node count are zero.
 
-use super::volume::{Face, FaceKind};
+use super::volume::Face;
+use crate::element::FaceKind;
 
 /// The quad4's reference corners, in Gmsh's node order.
 pub const QUAD4_CORNERS: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
@@ -32,9 +33,15 @@ pub struct FaceShape {
 }
 
 impl FaceShape {
-    /// The shape functions of `kind` at `xi = (u, v)`.
+    /// The shape functions of `kind` at `xi = (u, v)` (a segment's at `u`).
     pub fn at(kind: FaceKind, [u, v]: [f64; 2]) -> FaceShape {
         match kind {
+            FaceKind::Segment => FaceShape {
+                n: [(1.0 - u) / 2.0, (1.0 + u) / 2.0, 0.0, 0.0],
+                du: [-0.5, 0.5, 0.0, 0.0],
+                dv: [0.0; 4],
+                count: 2,
+            },
             FaceKind::Tri3 => FaceShape {
                 n: [1.0 - u - v, u, v, 0.0],
                 du: [-1.0, 1.0, 0.0, 0.0],
@@ -85,9 +92,9 @@ impl Face<[f64; 3]> {
     /// The face's size: the square root of its area as the one-point rule
     /// at its centre gives it (exact for a flat tri3 and a parallelogram).
     pub fn size(&self) -> f64 {
-        match self.kind() {
-            FaceKind::Tri3 => (self.area_element([1.0 / 3.0, 1.0 / 3.0]) / 2.0).sqrt(),
-            FaceKind::Quad4 => (4.0 * self.area_element([0.0, 0.0])).sqrt(),
+        match self {
+            Face::Tri3(_) => (self.area_element([1.0 / 3.0, 1.0 / 3.0]) / 2.0).sqrt(),
+            Face::Quad4(_) => (4.0 * self.area_element([0.0, 0.0])).sqrt(),
         }
     }
 
@@ -99,9 +106,11 @@ impl Face<[f64; 3]> {
 }
 
 /// Whether `xi` lies on a face of `kind`, within `tol` of its boundary:
-/// tri3 `u, v >= -tol`, `u + v <= 1 + tol`; quad4 `|u|, |v| <= 1 + tol`.
+/// tri3 `u, v >= -tol`, `u + v <= 1 + tol`; quad4 `|u|, |v| <= 1 + tol`;
+/// a segment `|u| <= 1 + tol`.
 pub fn inside(kind: FaceKind, [u, v]: [f64; 2], tol: f64) -> bool {
     match kind {
+        FaceKind::Segment => u.abs() <= 1.0 + tol,
         FaceKind::Tri3 => u >= -tol && v >= -tol && u + v <= 1.0 + tol,
         FaceKind::Quad4 => u.abs() <= 1.0 + tol && v.abs() <= 1.0 + tol,
     }
@@ -109,11 +118,13 @@ pub fn inside(kind: FaceKind, [u, v]: [f64; 2], tol: f64) -> bool {
 
 /// How far `xi` lies from the centre of a face of `kind`, 1 on its
 /// boundary (the reach of a projection, [`crate::contact::ContactSpace`]):
-/// quad4 `max(|u|, |v|)`, tri3 `1 + max(-u, -v, u + v - 1)`; a point is
+/// quad4 `max(|u|, |v|)`, tri3 `1 + max(-u, -v, u + v - 1)`, a segment
+/// `|u|`; a point is
 /// [`inside`] with tolerance `tol` exactly when its reach is at most
 /// `1 + tol` (up to rounding).
 pub fn reach(kind: FaceKind, [u, v]: [f64; 2]) -> f64 {
     match kind {
+        FaceKind::Segment => u.abs(),
         FaceKind::Tri3 => 1.0 + (-u).max(-v).max(u + v - 1.0),
         FaceKind::Quad4 => u.abs().max(v.abs()),
     }
@@ -125,8 +136,9 @@ mod tests {
 
     #[test]
     fn shape_functions_are_a_partition_of_unity_and_interpolate_the_nodes() {
-        for kind in [FaceKind::Tri3, FaceKind::Quad4] {
+        for kind in [FaceKind::Segment, FaceKind::Tri3, FaceKind::Quad4] {
             let corners: Vec<[f64; 2]> = match kind {
+                FaceKind::Segment => vec![[-1.0, 0.0], [1.0, 0.0]],
                 FaceKind::Tri3 => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
                 FaceKind::Quad4 => QUAD4_CORNERS.to_vec(),
             };

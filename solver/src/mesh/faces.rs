@@ -142,18 +142,10 @@ mod tests {
     /// A cube `[0, 1]^3` cut into six tetrahedra around its diagonal 0-6
     /// (Kuhn's triangulation), nodes numbered as a hexahedron's.
     fn kuhn_cube() -> (Vec<[f64; 3]>, Vec<Cell>) {
-        let nodes = crate::mesh::volume::HEX8_CORNERS
+        let nodes = crate::element::hex::CORNERS
             .map(|p| p.map(|v| (v + 1.0) / 2.0))
             .to_vec();
-        let paths = [
-            [0, 1, 2, 6],
-            [0, 2, 3, 6],
-            [0, 3, 7, 6],
-            [0, 7, 4, 6],
-            [0, 4, 5, 6],
-            [0, 5, 1, 6],
-        ];
-        let cells = paths
+        let cells = crate::element::hex::KUHN_TETS
             .iter()
             .map(|&t| {
                 let cell = Cell::Tet4(t);

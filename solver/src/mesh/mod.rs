@@ -53,6 +53,7 @@ pub mod block3d;
 pub mod face_shape;
 pub mod faces;
 pub mod gmsh;
+mod grid;
 pub mod volume;
 
 pub use block::{Block, Side};
@@ -433,7 +434,8 @@ mod tests {
     use super::*;
     use crate::material::PlaneModel;
 
-    const MAT: Material = Material {
+    /// The mesh tests' material.
+    pub(in crate::mesh) const MAT: Material = Material {
         young: 1.0,
         poisson: 0.0,
         model: PlaneModel::PlaneStress,

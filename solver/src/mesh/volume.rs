@@ -7,7 +7,7 @@
 //! Node order is Gmsh's (and VTK's) for both cells:
 //!
 //! * [`Cell::Hex8`]: nodes 0-3 the face `zeta = -1` and 4-7 the face
-//!   `zeta = +1`, at the natural coordinates [`HEX8_CORNERS`]
+//!   `zeta = +1`, at the natural coordinates [`CORNERS`]
 //!   (`(-1,-1,-1), (1,-1,-1), (1,1,-1), (-1,1,-1)`, then the same at
 //!   `zeta = 1`); positive when `(x1 - x0) x (x3 - x0) . (x4 - x0) > 0` at
 //!   every corner (see [`Cell::min_corner_jacobian`]);
@@ -19,19 +19,9 @@
 //! points out. [`Cell::faces`] lists a cell's faces that way: the table
 //! [`HEX8_FACES`] (six quad4s) or [`TET4_FACES`] (four tri3s).
 
-use std::fmt;
-
-/// The natural coordinates of the hexahedron's nodes, in node order.
-pub const HEX8_CORNERS: [[f64; 3]; 8] = [
-    [-1.0, -1.0, -1.0],
-    [1.0, -1.0, -1.0],
-    [1.0, 1.0, -1.0],
-    [-1.0, 1.0, -1.0],
-    [-1.0, -1.0, 1.0],
-    [1.0, -1.0, 1.0],
-    [1.0, 1.0, 1.0],
-    [-1.0, 1.0, 1.0],
-];
+use crate::element::geometry::min_det;
+use crate::element::hex::CORNERS;
+use crate::element::{ElementKind, FaceKind};
 
 /// The hexahedron's faces as its local nodes, each counter-clockwise seen
 /// from outside: `zeta = -1`, `zeta = +1`, `eta = -1`, `xi = +1`,
@@ -48,39 +38,6 @@ pub const HEX8_FACES: [[usize; 4]; 6] = [
 /// The tetrahedron's faces as its local nodes, each counter-clockwise seen
 /// from outside: opposite node 3, 2, 0 and 1.
 pub const TET4_FACES: [[usize; 3]; 4] = [[0, 2, 1], [0, 1, 3], [1, 2, 3], [0, 3, 2]];
-
-/// Relative threshold below which a corner Jacobian counts as degenerate:
-/// `det J <= DEGENERATE * L^3`, `L` the largest coordinate difference of
-/// the cell's nodes.
-pub const DEGENERATE: f64 = 1e-12;
-
-/// The kind of a volume cell.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum CellKind {
-    /// The 8-node hexahedron.
-    Hex8,
-    /// The 4-node tetrahedron.
-    Tet4,
-}
-
-impl CellKind {
-    /// Nodes per cell.
-    pub fn node_count(self) -> usize {
-        match self {
-            CellKind::Hex8 => 8,
-            CellKind::Tet4 => 4,
-        }
-    }
-}
-
-impl fmt::Display for CellKind {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            CellKind::Hex8 => "8-node hexahedron",
-            CellKind::Tet4 => "4-node tetrahedron",
-        })
-    }
-}
 
 /// The connectivity of one volume cell, in Gmsh's node order (module
 /// docs). `N` is the node index.
@@ -102,15 +59,6 @@ impl<N> From<Cell<N>> for crate::element::Element<N> {
     }
 }
 
-/// The kind of a face.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum FaceKind {
-    /// The 4-node quadrilateral face.
-    Quad4,
-    /// The 3-node triangular face.
-    Tri3,
-}
-
 /// One face of a volume mesh: its nodes counter-clockwise seen from outside
 /// the cell it bounds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -123,10 +71,10 @@ pub enum Face<N = usize> {
 
 impl<N: Copy> Cell<N> {
     /// Its kind.
-    pub fn kind(&self) -> CellKind {
+    pub fn kind(&self) -> ElementKind {
         match self {
-            Cell::Hex8(_) => CellKind::Hex8,
-            Cell::Tet4(_) => CellKind::Tet4,
+            Cell::Hex8(_) => ElementKind::Hex8,
+            Cell::Tet4(_) => ElementKind::Tet4,
         }
     }
 
@@ -173,11 +121,11 @@ impl Cell<[f64; 3]> {
             Cell::Tet4(x) => (triple(sub(x[1], x[0]), sub(x[2], x[0]), sub(x[3], x[0])), 0),
             Cell::Hex8(x) => {
                 let mut worst = (f64::INFINITY, 0);
-                for (a, p) in HEX8_CORNERS.iter().enumerate() {
+                for (a, p) in CORNERS.iter().enumerate() {
                     // J[:, j] = sum_b x_b dN_b/dxi_j at the corner p
                     let mut columns = [[0.0; 3]; 3];
                     for (b, xb) in x.iter().enumerate() {
-                        let q = HEX8_CORNERS[b];
+                        let q = CORNERS[b];
                         for (j, column) in columns.iter_mut().enumerate() {
                             let mut d = q[j] / 8.0;
                             for k in (0..3).filter(|&k| k != j) {
@@ -201,27 +149,15 @@ impl Cell<[f64; 3]> {
         }
     }
 
-    /// The threshold of [`Cell::is_valid`]: `DEGENERATE L^3`, `L` the
-    /// largest coordinate difference of the cell's nodes.
-    pub fn degenerate_threshold(&self) -> f64 {
-        let x = self.nodes();
-        let mut size = 0.0_f64;
-        for c in 0..3 {
-            let lo = x.iter().map(|p| p[c]).fold(f64::INFINITY, f64::min);
-            let hi = x.iter().map(|p| p[c]).fold(f64::NEG_INFINITY, f64::max);
-            size = size.max(hi - lo);
-        }
-        DEGENERATE * size.powi(3)
-    }
-
     /// Whether the cell is positive: its smallest corner Jacobian (see
-    /// [`Cell::min_corner_jacobian`]) exceeds
-    /// [`Cell::degenerate_threshold`] (a hexahedron at that threshold or
-    /// below is inverted or degenerate at a corner, a tetrahedron flat or
-    /// inverted). Cells of non-finite coordinates are not valid.
+    /// [`Cell::min_corner_jacobian`]) exceeds the elements' degeneracy
+    /// floor [`min_det`] (`MIN_RELATIVE_DET l^3`, `l` its longest edge; a
+    /// hexahedron at that floor or below is inverted or degenerate at a
+    /// corner, a tetrahedron flat or inverted). Cells of non-finite
+    /// coordinates are not valid.
     pub fn is_valid(&self) -> bool {
         let (det, _) = self.min_corner_jacobian();
-        det > self.degenerate_threshold()
+        det > min_det(self.kind(), self.nodes())
     }
 }
 
@@ -306,7 +242,7 @@ mod tests {
 
     /// The unit cube's hexahedron and a tetrahedron at the origin.
     fn unit_hex() -> Cell<[f64; 3]> {
-        Cell::Hex8(HEX8_CORNERS.map(|p| p.map(|v| (v + 1.0) / 2.0)))
+        Cell::Hex8(CORNERS.map(|p| p.map(|v| (v + 1.0) / 2.0)))
     }
 
     fn unit_tet() -> Cell<[f64; 3]> {

@@ -18,11 +18,12 @@ use super::source::Solids;
 use super::traction::nodal_forces;
 use super::{ContactSpec, Scene, SceneError, TractionSpec};
 use crate::contact::FaceLayout;
-use crate::contact::face_rules::{FaceKind as RuleKind, face_rule};
+use crate::contact::face_rules::face_rule;
+use crate::element::FaceKind;
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::AnyMsh;
-use crate::mesh::volume::{Face, FaceKind};
+use crate::mesh::volume::Face;
 use crate::model::{ContactPair, Dim, Integration, Model};
 
 impl Build<3> for Dim<3> {
@@ -147,14 +148,15 @@ fn check_face_gauss_points(
                 }
             }
             for kind in kinds {
-                let (rule, per) = match kind {
-                    FaceKind::Quad4 => (RuleKind::Quad4, " per direction (n x n points)"),
-                    FaceKind::Tri3 => (RuleKind::Tri3, ""),
+                let per = if kind == FaceKind::Quad4 {
+                    " per direction (n x n points)"
+                } else {
+                    ""
                 };
-                face_rule(rule, n).map_err(|e| {
+                face_rule(kind, n).map_err(|e| {
                     scene.invalid(
                         &field,
-                        format!("{e}{per}, for the pair's {rule} slave faces"),
+                        format!("{e}{per}, for the pair's {kind} slave faces"),
                     )
                 })?;
             }

@@ -386,8 +386,9 @@ fn hertz3d_without_contact(mesh: &str) -> String {
 
 #[test]
 fn the_3d_hertz_scene_builds_its_face_pair_and_its_solve_refuses_it() {
+    use crate::element::FaceKind;
     use crate::mesh::gmsh::MshVolumeMesh;
-    use crate::mesh::volume::{FaceKind, dot};
+    use crate::mesh::volume::dot;
     use crate::model::{ContactMode, Integration};
     use contact_kernels::Formulation;
     for (mesh, kind) in [

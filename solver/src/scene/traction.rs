@@ -21,8 +21,9 @@
 //! The weights add up to the face's area (the rule's area for a warped
 //! quad4), so the nodal forces add up to `t` times it.
 
+use crate::element::FaceKind;
 use crate::mesh::face_shape::FaceShape;
-use crate::mesh::volume::{Face, FaceKind, cross};
+use crate::mesh::volume::{Face, cross};
 
 /// `1/sqrt(3)`: the 2-point Gauss abscissa.
 const GAUSS: f64 = 0.577_350_269_189_625_8;

@@ -62,17 +62,18 @@ use std::collections::HashMap;
 
 use contact_kernels::Formulation;
 
+use crate::element::FaceKind;
 use crate::ids::{ContactPointIndex, DofId, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::FaceShape;
-use crate::mesh::volume::{Face, FaceKind};
+use crate::mesh::volume::Face;
 use crate::model::{ContactMode, ContactPair, Integration};
 
 use crate::contact::MultiplierDof;
 use crate::contact::active_set::ActiveSetView;
 use crate::contact::clip::{SlaveFace, TriangleRule};
 use crate::contact::face_index::{Aabb, FaceIndex};
-use crate::contact::face_rules::{self, default_points, face_rule};
+use crate::contact::face_rules::{default_points, face_rule};
 use crate::contact::layout_error::FaceLayoutError;
 use crate::contact::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
@@ -126,24 +127,12 @@ pub fn face_formulation(
     ) {
         return None;
     }
-    let kind = |k: FaceKind| match k {
-        FaceKind::Tri3 => "tri3",
-        FaceKind::Quad4 => "quad4",
-    };
     let name = if slave == master {
-        format!("{}-{}", kind(slave), reading.name())
+        format!("{slave}-{}", reading.name())
     } else {
-        format!("{}-{}-{}", kind(slave), kind(master), reading.name())
+        format!("{slave}-{master}-{}", reading.name())
     };
     name.parse().ok()
-}
-
-/// The rule's kind for a face kind.
-fn rule_kind(kind: FaceKind) -> face_rules::FaceKind {
-    match kind {
-        FaceKind::Tri3 => face_rules::FaceKind::Tri3,
-        FaceKind::Quad4 => face_rules::FaceKind::Quad4,
-    }
 }
 
 /// The integration points, multipliers and master faces of all 3D contact
@@ -287,7 +276,7 @@ impl FaceLayout {
                     None => {
                         let kind = face.kind();
                         if let std::collections::hash_map::Entry::Vacant(e) = rules.entry(kind) {
-                            let rk = rule_kind(kind);
+                            let rk = kind;
                             let n = pair.gauss_points.unwrap_or_else(|| default_points(rk));
                             e.insert(face_rule(rk, n).map_err(|source| FaceLayoutError::Rule {
                                 pair: pair.name.clone(),

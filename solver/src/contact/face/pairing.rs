@@ -35,10 +35,11 @@
 use contact_kernels::{ApproxType, GapOut, Kernel, KernelError, Projector};
 use nalgebra::{SMatrix, SVector};
 
+use crate::element::FaceKind;
 use crate::ids::{ContactPointIndex, DofId, MasterFaceIndex, NodeId};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::inside;
-use crate::mesh::volume::{Face, FaceKind, dot};
+use crate::mesh::volume::{Face, dot};
 use crate::par;
 
 use super::layout::{FaceLayout, face_formulation};

@@ -21,8 +21,9 @@ use crate::model::{ContactMode, Integration, Model};
 
 use super::segmented::{segmented_rule, split_coordinates};
 use crate::contact::active_set::ActiveSetView;
-use crate::contact::face_rules::{FaceKind as RuleKind, default_points};
+use crate::contact::face_rules::default_points;
 use crate::contact::{ContactPoint, MultiplierDof, gauss_legendre};
+use crate::element::FaceKind as RuleKind;
 
 /// The integration points, multipliers and master-chain adjacency of all
 /// contact pairs of a model.

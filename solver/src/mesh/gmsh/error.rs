@@ -167,8 +167,8 @@ pub enum MshErrorKind {
         expected: &'static str,
     },
     /// A volume element whose Jacobian is not positive at a corner
-    /// (inverted, or degenerate: at most `1e-12 L^3`, `L` its largest
-    /// coordinate difference; see [`crate::mesh::volume::Cell::is_valid`]).
+    /// (inverted, or degenerate: at most `16 eps l^3`, `l` its longest
+    /// edge; see [`crate::mesh::volume::Cell::is_valid`]).
     #[error(
         "element {element} ({kind}) is inverted or degenerate: its Jacobian at node {node} is {det_j:e}; nodes must be in Gmsh's order (a tetrahedron's 0, 1, 2 counter-clockwise seen from node 3, a hexahedron's 0-3 counter-clockwise seen from 4-7)"
     )]

@@ -9,7 +9,8 @@ use std::path::Path;
 
 use super::tests::{CUBE, CUBE_BINARY, TETS, TETS_BINARY};
 use super::*;
-use crate::mesh::volume::{FaceKind, dot};
+use crate::element::FaceKind;
+use crate::mesh::volume::dot;
 
 fn cube(edit: impl FnOnce(String) -> String) -> Result<MshVolumeMesh, MshError> {
     MshVolumeMesh::from_bytes(edit(CUBE.to_owned()).as_bytes(), "cube.msh")

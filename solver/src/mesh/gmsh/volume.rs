@@ -12,8 +12,8 @@
 //! [`super`]) except planarity:
 //!
 //! * every tetrahedron and hexahedron is positive: its Jacobian exceeds
-//!   `1e-12 L^3` at every corner ([`Cell::is_valid`]); otherwise the read
-//!   fails naming the element's tag and the corner node;
+//!   the elements' floor `16 eps l^3` at every corner ([`Cell::is_valid`]);
+//!   otherwise the read fails naming the element's tag and the corner node;
 //! * every triangle and quadrangle on an entity of a named physical surface
 //!   is a boundary face of exactly one volume element of the file
 //!   ([`BoundaryFaces`] of all its tetrahedra and hexahedra, matched by
