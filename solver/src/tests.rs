@@ -78,6 +78,37 @@ fn tangent_error(
     worst
 }
 
+/// A finite-strain plane-stress material.
+fn plane_stress(young: f64, poisson: f64) -> Material {
+    Material {
+        young,
+        poisson,
+        model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
+    }
+}
+
+/// The length of [`tip_loaded_cantilever`].
+const CANTILEVER_LENGTH: f64 = 10.0;
+
+/// A cantilever of length [`CANTILEVER_LENGTH`], height `height`, Young's
+/// modulus 1e4 and Poisson's ratio `poisson` ([`block_model`]: `nx` x 2
+/// elements, clamped at x = 0), loaded at its bottom tip node by
+/// `-EI / L^2` along y, so that the load factor is `P L^2 / (EI)`: the
+/// model and the tip node.
+fn tip_loaded_cantilever(nx: usize, height: f64, poisson: f64) -> (Model, NodeId) {
+    let (length, young) = (CANTILEVER_LENGTH, 1.0e4);
+    let ei = young * height.powi(3) / 12.0;
+    let mut model = block_model(nx, 2, length, height, plane_stress(young, poisson));
+    let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
+    model.loads.push(PointLoad {
+        dof: DofId::of(tip, 1),
+        value: -ei / (length * length),
+        amplitude: None,
+    });
+    (model, tip)
+}
+
 fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Material) -> Model {
     let mut mesh = Mesh::new();
     mesh.add_block(
@@ -125,12 +156,7 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
 /// the largest tangent entry).
 #[test]
 fn solid_tangent_matches_finite_differences() {
-    let mat = Material {
-        young: 1000.0,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    let mat = plane_stress(1000.0, 0.3);
     let model = block_model(3, 2, 3.0, 1.0, mat);
     let layout = ContactLayout::new(&model, None);
     let mut rng = Lcg::new(11);
@@ -166,12 +192,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         [3, 0, 4, 7],
         [4, 5, 6, 7],
     ];
-    let mat = Material {
-        young: 1.0e6,
-        poisson: 0.25,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    let mat = plane_stress(1.0e6, 0.25);
     let mut mesh = Mesh::new();
     mesh.add_body("patch", mat, &nodes, &elements).unwrap();
     let h = [[0.08, 0.03], [-0.02, 0.05]];
@@ -282,21 +303,8 @@ fn elastica_reference_matches_mattiasson() {
 /// displacements within 1 % of the reference.
 #[test]
 fn large_deflection_cantilever_matches_elastica() {
-    let (length, height, young): (f64, f64, f64) = (10.0, 0.4, 1.0e4);
-    let ei = young * height.powi(3) / 12.0;
-    let mat = Material {
-        young,
-        poisson: 0.0,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
-    let mut model = block_model(400, 2, length, height, mat);
-    let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
-    model.loads.push(PointLoad {
-        dof: DofId::of(tip, 1),
-        value: -ei / (length * length),
-        amplitude: None,
-    });
+    let (mut model, tip) = tip_loaded_cantilever(400, 0.4, 0.0);
+    let length = CANTILEVER_LENGTH;
     model.load_factor_end = 5.0;
     let opts = SolveOptions {
         steps: 10,
@@ -337,21 +345,7 @@ fn large_deflection_cantilever_matches_elastica() {
 /// (the elastic problem is path independent).
 #[test]
 fn cutback_recovers_a_too_large_step() {
-    let (length, height, young): (f64, f64, f64) = (10.0, 0.5, 1.0e4);
-    let ei = young * height.powi(3) / 12.0;
-    let mat = Material {
-        young,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
-    let mut model = block_model(40, 2, length, height, mat);
-    let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
-    model.loads.push(PointLoad {
-        dof: DofId::of(tip, 1),
-        value: -ei / (length * length),
-        amplitude: None,
-    });
+    let (mut model, tip) = tip_loaded_cantilever(40, 0.5, 0.3);
     model.load_factor_end = 10.0;
     let full = solve_model(
         &model,
@@ -410,12 +404,7 @@ fn cutback_recovers_a_too_large_step() {
 /// bounded number of attempts).
 #[test]
 fn unsupported_body_is_singular() {
-    let mat = Material {
-        young: 1.0,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    let mat = plane_stress(1.0, 0.3);
     let mut model = block_model(2, 1, 2.0, 1.0, mat);
     model.prescribed.clear();
     model.loads.push(PointLoad {

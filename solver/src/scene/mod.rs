@@ -157,10 +157,10 @@
 //!   the facets of a side or group, in either dimension;
 //! * `build.rs`: [`Scene::build_model`], from a scene to a
 //!   [`Model<D>`](crate::model::Model), one code path for both
-//!   dimensions ([`SceneDim`]); what it takes from each is in `planar.rs`
-//!   (2D: tractions on segments, the pairs' reference geometry) and
-//!   `solid.rs` (3D: tractions on faces, the pairs' readings and rules,
-//!   their layout).
+//!   dimensions ([`SceneDim`]); what it and the sources take from each is
+//!   in `planar.rs` (2D: blocks and surfaces, tractions on segments, the
+//!   pairs' reference geometry) and `solid.rs` (3D: blocks and volumes,
+//!   tractions on faces, the pairs' readings and rules, their layout).
 
 use std::path::Path;
 
