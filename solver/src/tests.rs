@@ -78,6 +78,19 @@ fn tangent_error(
     worst
 }
 
+/// `model` solved in `steps` equal load steps (the other options the
+/// defaults).
+fn solve_in_steps(model: &Model, steps: usize) -> crate::Solution {
+    solve_model(
+        model,
+        &SolveOptions {
+            steps,
+            ..SolveOptions::default()
+        },
+    )
+    .unwrap()
+}
+
 /// A finite-strain plane-stress material.
 fn plane_stress(young: f64, poisson: f64) -> Material {
     Material {
@@ -215,14 +228,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         amplitudes: Vec::new(),
         supports: Vec::new(),
     };
-    let sol = solve_model(
-        &model,
-        &SolveOptions {
-            steps: 2,
-            ..SolveOptions::default()
-        },
-    )
-    .unwrap();
+    let sol = solve_in_steps(&model, 2);
     for n in 4..8 {
         for i in 0..2 {
             let exact = h[i][0] * nodes[n][0] + h[i][1] * nodes[n][1];
@@ -347,14 +353,7 @@ fn large_deflection_cantilever_matches_elastica() {
 fn cutback_recovers_a_too_large_step() {
     let (mut model, tip) = tip_loaded_cantilever(40, 0.5, 0.3);
     model.load_factor_end = 10.0;
-    let full = solve_model(
-        &model,
-        &SolveOptions {
-            steps: 1,
-            ..SolveOptions::default()
-        },
-    )
-    .unwrap();
+    let full = solve_in_steps(&model, 1);
     assert!(full.cutbacks.is_empty() && full.newton_iterations > 8);
     let one = solve_model(
         &model,
@@ -383,14 +382,7 @@ fn cutback_recovers_a_too_large_step() {
             .iter()
             .all(|c| c.step == 1 && c.from_load_factor < c.attempted_load_factor)
     );
-    let many = solve_model(
-        &model,
-        &SolveOptions {
-            steps: 20,
-            ..SolveOptions::default()
-        },
-    )
-    .unwrap();
+    let many = solve_in_steps(&model, 20);
     assert!(many.cutbacks.is_empty());
     let (a, b) = (one.displacement(tip), many.displacement(tip));
     assert!(

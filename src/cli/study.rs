@@ -172,6 +172,18 @@ fn relative_prefix(base: &std::path::Path, out: &std::path::Path) -> String {
     }
 }
 
+/// The progress bar of a long command (`study`, `safety-map`): elapsed
+/// time, bar, runs done of all, the current run.
+pub(super) fn progress_bar() -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(0);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -200,16 +212,4 @@ mod tests {
             assert!(!is_result_file(name), "{name}");
         }
     }
-}
-
-/// The progress bar of a long command (`study`, `safety-map`): elapsed
-/// time, bar, runs done of all, the current run.
-pub(super) fn progress_bar() -> indicatif::ProgressBar {
-    let bar = indicatif::ProgressBar::new(0);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
-    bar
 }
