@@ -509,6 +509,19 @@ fn run(scene: &Scene, method: Method, steps: usize) -> crate::Solution {
     .unwrap()
 }
 
+/// Two solves of the paper scene end in the same state: strain energy
+/// (relative) and tip displacement within 1e-8.
+fn assert_same_end(a: &crate::Solution, b: &crate::Solution) {
+    assert!(
+        (a.strain_energy / b.strain_energy - 1.0).abs() < 1e-8,
+        "{} vs {}",
+        a.strain_energy,
+        b.strain_energy
+    );
+    let (ta, tb) = (tip(a), tip(b));
+    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+}
+
 fn tip(sol: &crate::Solution) -> [f64; 2] {
     sol.displacement(sol.node_at("slave", [7.0, 1.0]).unwrap())
 }
@@ -548,14 +561,7 @@ fn complete_formulation_is_path_independent() {
     let scene = paper_scene();
     let a = run(&scene, Method::Complete, 4);
     let b = run(&scene, Method::Complete, 20);
-    assert!(
-        (a.strain_energy / b.strain_energy - 1.0).abs() < 1e-8,
-        "{} vs {}",
-        a.strain_energy,
-        b.strain_energy
-    );
-    let (ta, tb) = (tip(&a), tip(&b));
-    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+    assert_same_end(&a, &b);
 }
 
 /// Every type solves the paper scene with 4 and 20 steps without
@@ -935,14 +941,7 @@ fn refined_paper_scene_converges_across_master_nodes() {
 
     let eight = solve(&scene, &opts(Method::Complete, 8)).unwrap();
     assert!(eight.cutbacks.is_empty());
-    assert!(
-        (four.strain_energy / eight.strain_energy - 1.0).abs() < 1e-8,
-        "{} vs {}",
-        four.strain_energy,
-        eight.strain_energy
-    );
-    let (ta, tb) = (tip(&four), tip(&eight));
-    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+    assert_same_end(&four, &eight);
     let (lo, hi) = four.xi_m_range().unwrap();
     assert!(lo >= -1.0 && hi <= 1.0);
     assert!(four.unpaired_points().is_empty());
