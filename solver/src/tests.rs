@@ -82,6 +82,50 @@ fn tangent_error(
     worst
 }
 
+/// `model` solved in `steps` equal load steps (the other options the
+/// defaults).
+fn solve_in_steps(model: &Model, steps: usize) -> crate::Solution {
+    solve_model(
+        model,
+        &SolveOptions {
+            steps,
+            ..SolveOptions::default()
+        },
+    )
+    .unwrap()
+}
+
+/// A finite-strain plane-stress material.
+fn plane_stress(young: f64, poisson: f64) -> Material {
+    Material {
+        young,
+        poisson,
+        model: PlaneModel::PlaneStress,
+        kinematics: crate::material::Kinematics::Finite,
+    }
+}
+
+/// The length of [`tip_loaded_cantilever`].
+const CANTILEVER_LENGTH: f64 = 10.0;
+
+/// A cantilever of length [`CANTILEVER_LENGTH`], height `height`, Young's
+/// modulus 1e4 and Poisson's ratio `poisson` ([`block_model`]: `nx` x 2
+/// elements, clamped at x = 0), loaded at its bottom tip node by
+/// `-EI / L^2` along y, so that the load factor is `P L^2 / (EI)`: the
+/// model and the tip node.
+fn tip_loaded_cantilever(nx: usize, height: f64, poisson: f64) -> (Model, NodeId) {
+    let (length, young) = (CANTILEVER_LENGTH, 1.0e4);
+    let ei = young * height.powi(3) / 12.0;
+    let mut model = block_model(nx, 2, length, height, plane_stress(young, poisson));
+    let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
+    model.loads.push(PointLoad {
+        dof: DofId::of(tip, 1),
+        value: -ei / (length * length),
+        amplitude: None,
+    });
+    (model, tip)
+}
+
 fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Material) -> Model {
     let mut mesh = Mesh::new();
     mesh.add_block(
@@ -129,12 +173,7 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
 /// the largest tangent entry).
 #[test]
 fn solid_tangent_matches_finite_differences() {
-    let mat = Material {
-        young: 1000.0,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    let mat = plane_stress(1000.0, 0.3);
     let model = block_model(3, 2, 3.0, 1.0, mat);
     let layout = ContactLayout::new(&model, None);
     let mut rng = Lcg::new(11);
@@ -170,12 +209,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         [3, 0, 4, 7],
         [4, 5, 6, 7],
     ];
-    let mat = Material {
-        young: 1.0e6,
-        poisson: 0.25,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    let mat = plane_stress(1.0e6, 0.25);
     let mut mesh = Mesh::new();
     mesh.add_body("patch", mat, &nodes, &elements).unwrap();
     let h = [[0.08, 0.03], [-0.02, 0.05]];
@@ -198,14 +232,7 @@ fn patch_test_reproduces_constant_stress_on_distorted_mesh() {
         amplitudes: Vec::new(),
         supports: Vec::new(),
     };
-    let sol = solve_model(
-        &model,
-        &SolveOptions {
-            steps: 2,
-            ..SolveOptions::default()
-        },
-    )
-    .unwrap();
+    let sol = solve_in_steps(&model, 2);
     for n in 4..8 {
         for i in 0..2 {
             let exact = h[i][0] * nodes[n][0] + h[i][1] * nodes[n][1];
@@ -286,21 +313,8 @@ fn elastica_reference_matches_mattiasson() {
 /// displacements within 1 % of the reference.
 #[test]
 fn large_deflection_cantilever_matches_elastica() {
-    let (length, height, young): (f64, f64, f64) = (10.0, 0.4, 1.0e4);
-    let ei = young * height.powi(3) / 12.0;
-    let mat = Material {
-        young,
-        poisson: 0.0,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
-    let mut model = block_model(400, 2, length, height, mat);
-    let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
-    model.loads.push(PointLoad {
-        dof: DofId::of(tip, 1),
-        value: -ei / (length * length),
-        amplitude: None,
-    });
+    let (mut model, tip) = tip_loaded_cantilever(400, 0.4, 0.0);
+    let length = CANTILEVER_LENGTH;
     model.load_factor_end = 5.0;
     let opts = SolveOptions {
         steps: 10,
@@ -341,30 +355,9 @@ fn large_deflection_cantilever_matches_elastica() {
 /// (the elastic problem is path independent).
 #[test]
 fn cutback_recovers_a_too_large_step() {
-    let (length, height, young): (f64, f64, f64) = (10.0, 0.5, 1.0e4);
-    let ei = young * height.powi(3) / 12.0;
-    let mat = Material {
-        young,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
-    let mut model = block_model(40, 2, length, height, mat);
-    let tip = model.mesh.select_nodes(None, Some(length), Some(0.0))[0];
-    model.loads.push(PointLoad {
-        dof: DofId::of(tip, 1),
-        value: -ei / (length * length),
-        amplitude: None,
-    });
+    let (mut model, tip) = tip_loaded_cantilever(40, 0.5, 0.3);
     model.load_factor_end = 10.0;
-    let full = solve_model(
-        &model,
-        &SolveOptions {
-            steps: 1,
-            ..SolveOptions::default()
-        },
-    )
-    .unwrap();
+    let full = solve_in_steps(&model, 1);
     assert!(full.cutbacks.is_empty() && full.newton_iterations > 8);
     let one = solve_model(
         &model,
@@ -393,14 +386,7 @@ fn cutback_recovers_a_too_large_step() {
             .iter()
             .all(|c| c.step == 1 && c.from_load_factor < c.attempted_load_factor)
     );
-    let many = solve_model(
-        &model,
-        &SolveOptions {
-            steps: 20,
-            ..SolveOptions::default()
-        },
-    )
-    .unwrap();
+    let many = solve_in_steps(&model, 20);
     assert!(many.cutbacks.is_empty());
     let (a, b) = (one.displacement(tip), many.displacement(tip));
     assert!(
@@ -414,12 +400,7 @@ fn cutback_recovers_a_too_large_step() {
 /// bounded number of attempts).
 #[test]
 fn unsupported_body_is_singular() {
-    let mat = Material {
-        young: 1.0,
-        poisson: 0.3,
-        model: PlaneModel::PlaneStress,
-        kinematics: crate::material::Kinematics::Finite,
-    };
+    let mat = plane_stress(1.0, 0.3);
     let mut model = block_model(2, 1, 2.0, 1.0, mat);
     model.prescribed.clear();
     model.loads.push(PointLoad {
@@ -532,6 +513,19 @@ fn run(scene: &Scene, method: Method, steps: usize) -> crate::Solution {
     .unwrap()
 }
 
+/// Two solves of the paper scene end in the same state: strain energy
+/// (relative) and tip displacement within 1e-8.
+fn assert_same_end(a: &crate::Solution, b: &crate::Solution) {
+    assert!(
+        (a.strain_energy / b.strain_energy - 1.0).abs() < 1e-8,
+        "{} vs {}",
+        a.strain_energy,
+        b.strain_energy
+    );
+    let (ta, tb) = (tip(a), tip(b));
+    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+}
+
 fn tip(sol: &crate::Solution) -> [f64; 2] {
     sol.displacement(sol.node_at("slave", [7.0, 1.0]).unwrap())
 }
@@ -571,14 +565,7 @@ fn complete_formulation_is_path_independent() {
     let scene = paper_scene();
     let a = run(&scene, Method::Complete, 4);
     let b = run(&scene, Method::Complete, 20);
-    assert!(
-        (a.strain_energy / b.strain_energy - 1.0).abs() < 1e-8,
-        "{} vs {}",
-        a.strain_energy,
-        b.strain_energy
-    );
-    let (ta, tb) = (tip(&a), tip(&b));
-    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+    assert_same_end(&a, &b);
 }
 
 /// Every type solves the paper scene with 4 and 20 steps without
@@ -958,14 +945,7 @@ fn refined_paper_scene_converges_across_master_nodes() {
 
     let eight = solve(&scene, &opts(Method::Complete, 8)).unwrap();
     assert!(eight.cutbacks.is_empty());
-    assert!(
-        (four.strain_energy / eight.strain_energy - 1.0).abs() < 1e-8,
-        "{} vs {}",
-        four.strain_energy,
-        eight.strain_energy
-    );
-    let (ta, tb) = (tip(&four), tip(&eight));
-    assert!((ta[0] - tb[0]).abs() < 1e-8 && (ta[1] - tb[1]).abs() < 1e-8);
+    assert_same_end(&four, &eight);
     let (lo, hi) = four.xi_m_range().unwrap();
     assert!(lo >= -1.0 && hi <= 1.0);
     assert!(four.unpaired_points().is_empty());

@@ -141,12 +141,7 @@ pub fn run(args: &SafetyMapArgs) -> CommandResult {
     };
     let out = OutDir::check(&args.out, is_result_file)?;
 
-    let bar = indicatif::ProgressBar::new(0);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
+    let bar = super::study::progress_bar();
     let map = safety_map::run_map(&scenes, &options, &bar as &dyn study::Progress)?;
     bar.finish_and_clear();
 

@@ -93,12 +93,7 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     };
     let out = OutDir::check(&args.out, is_result_file)?;
 
-    let bar = indicatif::ProgressBar::new(0);
-    bar.set_style(
-        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
-            .expect("valid template")
-            .progress_chars("=> "),
-    );
+    let bar = progress_bar();
     let results = study::run_study(&scene, &options, &bar)?;
     bar.finish_and_clear();
 
@@ -175,6 +170,18 @@ fn relative_prefix(base: &std::path::Path, out: &std::path::Path) -> String {
         Ok(rel) => format!("{}/", rel.display()),
         Err(_) => format!("{}/", o.display()),
     }
+}
+
+/// The progress bar of a long command (`study`, `safety-map`): elapsed
+/// time, bar, runs done of all, the current run.
+pub(super) fn progress_bar() -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(0);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{elapsed_precise} [{bar:40}] {pos}/{len} {msg}")
+            .expect("valid template")
+            .progress_chars("=> "),
+    );
+    bar
 }
 
 #[cfg(test)]

@@ -27,12 +27,12 @@
 //! the worst over them (as in 2D, [`super`]); a configuration the kernel
 //! refuses is counted, not compared.
 
-use contact_kernels::{ApproxType, Formulation, GapOut, Kernel};
+use contact_kernels::Formulation;
 
 #[cfg(test)]
 use super::face_reference::face_gap;
 use super::face_reference::face_reference;
-use super::{CONFIGURATIONS, Family, Lcg, SweepRow, dd, normwise};
+use super::{Family, Lcg, SweepRow, sweep_row};
 
 /// The face formulations the sweep covers, those compiled in.
 pub fn face_formulations() -> Vec<Formulation> {
@@ -257,39 +257,19 @@ pub fn sweep_faces() -> Vec<SweepRow> {
 
 /// One row of the face sweep.
 pub(super) fn sweep_one_face(family: Family, value: f64, formulation: Formulation) -> SweepRow {
-    let kernel = Kernel::new(formulation, ApproxType::Type6).expect("compiled formulation");
-    let mut out = GapOut::new(&kernel);
     let family_bits = (Family::FACES.iter().position(|&f| f == family).unwrap_or(0) as u64) << 56;
-    let mut rng = Lcg(0x3d_5eed ^ family_bits ^ value.to_bits());
-    let mut row = SweepRow {
+    sweep_row(
         family,
         value,
         formulation,
-        gap: None,
-        grad: None,
-        hess: None,
-        refused: 0,
-        refusal: None,
-    };
-    let worse = |slot: &mut Option<f64>, e: f64| *slot = Some(slot.map_or(e, |m| m.max(e)));
-    for _ in 0..CONFIGURATIONS {
-        let (q, xi_s) = configuration(formulation, family, value, &mut rng);
-        if let Err(e) = kernel.eval(&q, xi_s, &mut out) {
-            row.refused += 1;
-            row.refusal.get_or_insert_with(|| e.to_string());
-            continue;
-        }
-        let xi_m = out.xi_m_all();
-        let r = face_reference(formulation, &q, xi_s, [xi_m[0], xi_m[1]]);
-        let gap_err = (dd::Dd::from_f64(out.gap()) - r.gap).abs().to_f64() / r.gap.abs().to_f64();
-        worse(&mut row.gap, gap_err);
-        worse(&mut row.grad, normwise(out.grad(), &r.grad));
-        worse(
-            &mut row.hess,
-            normwise(out.hess().expect("Type 6"), &r.hess),
-        );
-    }
-    row
+        0x3d_5eed ^ family_bits ^ value.to_bits(),
+        |rng| configuration(formulation, family, value, rng),
+        |q, xi_s, out| {
+            let xi_m = out.xi_m_all();
+            let r = face_reference(formulation, q, xi_s, [xi_m[0], xi_m[1]]);
+            (r.gap, r.grad, r.hess)
+        },
+    )
 }
 
 #[cfg(test)]

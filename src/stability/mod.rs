@@ -255,9 +255,36 @@ fn normwise(a: &[f64], b: &[dd::Dd]) -> f64 {
 }
 
 fn sweep_one(family: Family, value: f64, formulation: Formulation) -> SweepRow {
+    sweep_row(
+        family,
+        value,
+        formulation,
+        0x5eed ^ value.to_bits(),
+        |rng| configuration(&geometry(family, value, rng), rng),
+        |q, xi_s, _| {
+            let r = reference(formulation, q, xi_s);
+            (r.gap, r.grad.to_vec(), r.hess.to_vec())
+        },
+    )
+}
+
+/// One row of a sweep (2D or faces): [`CONFIGURATIONS`] configurations
+/// `(q, xi_s)` drawn by `sample` from the generator seeded `seed`, each
+/// evaluated by the Type 6 kernel of `formulation` and compared with the
+/// double-double `reference` (gap, gradient, Hessian) of the
+/// configuration and the kernel's output; a configuration the kernel
+/// refuses is counted, not compared.
+fn sweep_row<Q: AsRef<[f64]>, X: contact_kernels::XiArg + Copy>(
+    family: Family,
+    value: f64,
+    formulation: Formulation,
+    seed: u64,
+    mut sample: impl FnMut(&mut Lcg) -> (Q, X),
+    reference: impl Fn(&Q, X, &GapOut) -> (dd::Dd, Vec<dd::Dd>, Vec<dd::Dd>),
+) -> SweepRow {
     let kernel = Kernel::new(formulation, ApproxType::Type6).expect("compiled formulation");
     let mut out = GapOut::new(&kernel);
-    let mut rng = Lcg(0x5eed ^ value.to_bits());
+    let mut rng = Lcg(seed);
     let mut row = SweepRow {
         family,
         value,
@@ -270,21 +297,17 @@ fn sweep_one(family: Family, value: f64, formulation: Formulation) -> SweepRow {
     };
     let worse = |slot: &mut Option<f64>, e: f64| *slot = Some(slot.map_or(e, |m| m.max(e)));
     for _ in 0..CONFIGURATIONS {
-        let g = geometry(family, value, &mut rng);
-        let (q, xi_s) = configuration(&g, &mut rng);
-        if let Err(e) = kernel.eval(&q, xi_s, &mut out) {
+        let (q, xi_s) = sample(&mut rng);
+        if let Err(e) = kernel.eval(q.as_ref(), xi_s, &mut out) {
             row.refused += 1;
             row.refusal.get_or_insert_with(|| e.to_string());
             continue;
         }
-        let r = reference(formulation, &q, xi_s);
-        let gap_err = (dd::Dd::from_f64(out.gap()) - r.gap).abs().to_f64() / r.gap.abs().to_f64();
+        let (gap, grad, hess) = reference(&q, xi_s, &out);
+        let gap_err = (dd::Dd::from_f64(out.gap()) - gap).abs().to_f64() / gap.abs().to_f64();
         worse(&mut row.gap, gap_err);
-        worse(&mut row.grad, normwise(out.grad(), &r.grad));
-        worse(
-            &mut row.hess,
-            normwise(out.hess().expect("Type 6"), &r.hess),
-        );
+        worse(&mut row.grad, normwise(out.grad(), &grad));
+        worse(&mut row.hess, normwise(out.hess().expect("Type 6"), &hess));
     }
     row
 }

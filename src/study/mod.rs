@@ -372,28 +372,10 @@ pub(crate) enum OnReferenceFailure {
 }
 
 /// Runs the complete formulation and every type at every step count of
-/// `steps` (in that order), with their energy and reaction errors (a 2D
-/// scene: the safety map's).
-pub(crate) fn study_formulation(
-    scene: &Scene,
-    formulation: Formulation,
-    steps: &[usize],
-    repeats: usize,
-    progress: &dyn Progress,
-    on_reference_failure: OnReferenceFailure,
-) -> Result<FormulationStudy, StudyError> {
-    study_formulation_in::<2>(
-        scene,
-        formulation,
-        steps,
-        repeats,
-        progress,
-        on_reference_failure,
-    )
-}
-
-/// [`study_formulation`] of a scene of dimension `D`.
-fn study_formulation_in<const D: usize>(
+/// `steps` (in that order), with their energy and reaction errors, on a
+/// scene of dimension `D` (the study's, and on 2D scenes the safety
+/// map's).
+pub(crate) fn study_formulation<const D: usize>(
     scene: &Scene,
     formulation: Formulation,
     steps: &[usize],
@@ -544,7 +526,7 @@ where
 
     let mut studies = Vec::new();
     for &f in &formulations {
-        studies.push(study_formulation_in::<D>(
+        studies.push(study_formulation::<D>(
             scene,
             f,
             &steps,
@@ -559,7 +541,7 @@ where
     } else {
         let variant =
             contact_heavy_variant(scene, options.heavy_refine, options.heavy_gauss_points);
-        let heavy = study_formulation_in::<D>(
+        let heavy = study_formulation::<D>(
             &variant,
             first,
             &options.heavy_steps,

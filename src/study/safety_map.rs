@@ -308,7 +308,7 @@ pub fn run_map(
     let mut studies = Vec::new();
     let mut rows = Vec::new();
     for (s, formulation, steps) in plan {
-        let study = super::study_formulation(
+        let study = super::study_formulation::<2>(
             &s.scene,
             formulation,
             &steps,

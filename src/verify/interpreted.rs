@@ -127,14 +127,7 @@ impl InterpretedKernels {
         let grad = out[1..1 + n].to_vec();
         let hess = has_hessian.then(|| {
             let mut h = vec![0.0; n * n];
-            let mut at = 1 + n;
-            for j in 0..n {
-                for k in j..n {
-                    h[j * n + k] = out[at];
-                    h[k * n + j] = out[at];
-                    at += 1;
-                }
-            }
+            unpack_hessian(&out[1 + n..], n, &mut h);
             h
         });
         Some(KernelOutput {
@@ -214,15 +207,21 @@ impl contact_kernels::RuntimeKernels for InterpretedKernels {
         }
         grad.copy_from_slice(&out[1..1 + n]);
         if *has_hessian {
-            let mut at = 1 + n;
-            for j in 0..n {
-                for k in j..n {
-                    hess[j * n + k] = out[at];
-                    hess[k * n + j] = out[at];
-                    at += 1;
-                }
-            }
+            unpack_hessian(&out[1 + n..], n, hess);
         }
         out[0]
+    }
+}
+
+/// The `n x n` Hessian `hess` (row-major) from its packed upper triangle
+/// `packed` (row by row, `j <= k`), as a kernel program outputs it.
+fn unpack_hessian(packed: &[f64], n: usize, hess: &mut [f64]) {
+    let mut at = 0;
+    for j in 0..n {
+        for k in j..n {
+            hess[j * n + k] = packed[at];
+            hess[k * n + j] = packed[at];
+            at += 1;
+        }
     }
 }

@@ -462,6 +462,34 @@ mod tests {
         }
     }
 
+    /// The interpreted `kernels` against `reference` on `configs`.
+    fn verify_interpreted(
+        reference: &AdFormulation,
+        kernels: &InterpretedKernels,
+        configs: &[Config],
+    ) -> Report {
+        verify(
+            reference,
+            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
+            configs,
+            TOL,
+        )
+        .unwrap()
+    }
+
+    /// The indices of the `Add` instructions of Type `ty`'s program.
+    fn adds(kernels: &InterpretedKernels, ty: usize) -> Vec<usize> {
+        (kernels.program(ty).instrs.iter().enumerate())
+            .filter(|(_, i)| matches!(i, codegen::lower::Instr::Add(..)))
+            .map(|(k, _)| k)
+            .collect()
+    }
+
+    /// The types that fail in `report`.
+    fn failing(report: &Report) -> Vec<usize> {
+        report.failures().iter().map(|r| r.ty).collect()
+    }
+
     #[test]
     fn scaled_errors_measure_each_block_against_its_bound() {
         let mut r = Reference::zeros(2);
@@ -502,29 +530,14 @@ mod tests {
         let reference = AdFormulation::parse("slave-normal", SLAVE_NORMAL).unwrap();
         let configs = configurations(&reference).unwrap();
         let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
-        let report = verify(
-            &reference,
-            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
-            &configs[..50],
-            TOL,
-        )
-        .unwrap();
+        let report = verify_interpreted(&reference, &kernels, &configs[..50]);
         assert!(report.passed(), "{report}");
-        let adds: Vec<usize> = (kernels.program(6).instrs.iter().enumerate())
-            .filter(|(_, i)| matches!(i, codegen::lower::Instr::Add(..)))
-            .map(|(k, _)| k)
-            .collect();
-        let flip = kernels.flip_sign(6, *adds.last().unwrap()).unwrap();
+        let flip = kernels
+            .flip_sign(6, *adds(&kernels, 6).last().unwrap())
+            .unwrap();
         assert!(flip.before.starts_with("Add(") && flip.after.starts_with("Sub("));
-        let report = verify(
-            &reference,
-            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
-            &configs[..50],
-            TOL,
-        )
-        .unwrap();
-        let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
-        assert_eq!(failing, [6], "{report}");
+        let report = verify_interpreted(&reference, &kernels, &configs[..50]);
+        assert_eq!(failing(&report), [6], "{report}");
     }
 
     /// The 3-node formulation: its families are 3-node configurations, the
@@ -550,20 +563,10 @@ mod tests {
         );
         let reference = AdFormulation::parse("quadratic-slave-normal", QUADRATIC).unwrap();
         let mut kernels = InterpretedKernels::new(reference.formulation()).unwrap();
-        let adds: Vec<usize> = (kernels.program(3).instrs.iter().enumerate())
-            .filter(|(_, i)| matches!(i, codegen::lower::Instr::Add(..)))
-            .map(|(k, _)| k)
-            .collect();
+        let adds = adds(&kernels, 3);
         kernels.flip_sign(3, adds[adds.len() / 2]).unwrap();
-        let report = verify(
-            &reference,
-            &|ty, q, p| kernels.eval(ty, &kernels.relative(q), p),
-            &configs[..60],
-            TOL,
-        )
-        .unwrap();
-        let failing: Vec<usize> = report.failures().iter().map(|r| r.ty).collect();
-        assert_eq!(failing, [3], "{report}");
+        let report = verify_interpreted(&reference, &kernels, &configs[..60]);
+        assert_eq!(failing(&report), [3], "{report}");
     }
 
     /// Kernels that take coordinates relative to the first point (the

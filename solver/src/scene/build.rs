@@ -40,7 +40,7 @@
 //!   `contact[i]`).
 
 use super::dimension::Dimension;
-use super::source::MeshSource;
+use super::source::{SourceDim, Sources};
 use super::supports::{Curves, Prescriptions};
 use super::{ContactSpec, Dofs, FaceSpec, Scene, SceneError, TractionSpec};
 use crate::dim::SpaceDim;
@@ -79,19 +79,9 @@ impl SceneDim<3> for Dim<3> {
     }
 }
 
-/// What the builder takes from the dimension (module docs).
-pub(super) trait Build<const D: usize>: SceneDim<D> {
-    /// The scene's mesh sources.
-    type Sources<'s>: MeshSource<D>;
-    /// How many numbers a point has, in words (`two`, `three`).
-    const NUMBERS: &'static str;
-    /// What a physical group of facets is (`curve`, `surface`).
-    const GROUP: &'static str;
-
-    /// The mesh sources of `scene` and its `[mesh] file` `file` (read).
-    fn sources<'s>(scene: &'s Scene, file: Option<AnyMsh>)
-    -> Result<Self::Sources<'s>, SceneError>;
-
+/// What the builder takes from the dimension (module docs), beyond what
+/// its mesh sources take ([`SourceDim`]).
+pub(super) trait Build<const D: usize>: SceneDim<D> + SourceDim<D> {
     /// `traction[i]`'s force per reference length or area (named `f`).
     fn traction_force(scene: &Scene, f: &str, t: &TractionSpec) -> Result<[f64; D], SceneError>;
 
@@ -100,13 +90,13 @@ pub(super) trait Build<const D: usize>: SceneDim<D> {
     fn traction_forces(
         scene: &Scene,
         mesh: &Mesh<D>,
-        sources: &Self::Sources<'_>,
+        sources: &Sources<'_, D>,
         f: &str,
         t: &TractionSpec,
         force: [f64; D],
     ) -> Result<Vec<(NodeId, [f64; D])>, SceneError>
     where
-        Dim<D>: SurfaceDim<D>;
+        Dim<D>: SourceDim<D>;
 
     /// Checks `contact[i]` (named `f`, `c`) on its `slave` facets before
     /// its pair is made.
@@ -179,7 +169,7 @@ impl Scene {
         Dim<D>: Build<D>,
     {
         let dim = <Dim<D> as SceneDim<D>>::DIMENSION;
-        let mut sources = <Dim<D> as Build<D>>::sources(self, file)?;
+        let mut sources = Sources::<D>::new(self, file)?;
         let mut mesh = Mesh::<D>::new();
         for i in 0..self.bodies.len() {
             let material: Material = self.check_body(i, dim)?;
@@ -241,7 +231,7 @@ impl Scene {
                     format!("{f}.force"),
                     format!(
                         "needs {} numbers [{}]",
-                        <Dim<D> as Build<D>>::NUMBERS,
+                        <Dim<D> as SourceDim<D>>::NUMBERS,
                         <Dim<D> as SpaceDim<D>>::AXES.join(", ")
                     ),
                 )
@@ -254,7 +244,7 @@ impl Scene {
                         format!(
                             "physical group `{g}` has {} nodes; a point load needs one (a [[traction]] loads a {})",
                             nodes.len(),
-                            <Dim<D> as Build<D>>::GROUP
+                            <Dim<D> as SourceDim<D>>::GROUP
                         ),
                     ),
                     None => self.invalid(
@@ -321,7 +311,7 @@ impl Scene {
     fn contact_pair<const D: usize>(
         &self,
         mesh: &Mesh<D>,
-        sources: &<Dim<D> as Build<D>>::Sources<'_>,
+        sources: &Sources<'_, D>,
         f: &str,
         c: &ContactSpec,
     ) -> Result<ContactPair<D>, SceneError>

@@ -147,20 +147,21 @@
 //! * `validate.rs`: the checks of values that need no mesh (counts, finite
 //!   numbers, materials, names), each naming its field;
 //! * `dimension.rs`: the scene's dimension and the keys only one has;
-//! * `source/`: mesh sources (`MeshSource<D>`), which make the bodies and
-//!   resolve the facets that depend on how a body was made (2D:
-//!   `source/blocks.rs`, the structured rectangular blocks of `[[body]]`,
-//!   and `source/gmsh.rs`, the physical surfaces of the `[mesh]` file and
-//!   its groups by name; 3D: `source/solid.rs` over `source/blocks3d.rs`
-//!   and `source/gmsh3d.rs`);
+//! * `source/`: the mesh sources (`Sources<D>`, one for both dimensions),
+//!   which make the bodies and resolve the facets that depend on how a
+//!   body was made: `source/blocks.rs`, the structured blocks of
+//!   `[[body]]`, and `source/gmsh.rs`, the physical surfaces (2D) or
+//!   volumes (3D) of the `[mesh]` file and its groups by name; what
+//!   differs between the dimensions is `SourceDim<D>`, in `planar.rs` and
+//!   `solid.rs`;
 //! * `select.rs`: node selection by reference coordinates or group, and
 //!   the facets of a side or group, in either dimension;
 //! * `build.rs`: [`Scene::build_model`], from a scene to a
 //!   [`Model<D>`](crate::model::Model), one code path for both
-//!   dimensions ([`SceneDim`]); what it takes from each is in `planar.rs`
-//!   (2D: tractions on segments, the pairs' reference geometry) and
-//!   `solid.rs` (3D: tractions on faces, the pairs' readings and rules,
-//!   their layout).
+//!   dimensions ([`SceneDim`]); what it and the sources take from each is
+//!   in `planar.rs` (2D: blocks and surfaces, tractions on segments, the
+//!   pairs' reference geometry) and `solid.rs` (3D: blocks and volumes,
+//!   tractions on faces, the pairs' readings and rules, their layout).
 
 use std::path::Path;
 

@@ -1,36 +1,101 @@
 //! What the model builder takes from a 2D scene ([`Build`] for `Dim<2>`,
-//! see `build.rs`): its mesh sources ([`Sources`]: blocks and the physical
-//! surfaces of a 2D `[mesh]` file), tractions per unit reference length on
-//! segments, and the pairs' reference geometry (`initial_contact.rs`:
-//! faces that face each other, no initial penetration, unless the
-//! `[[contact]]` allows it).
+//! see `build.rs`): what its mesh sources make ([`SourceDim`]: blocks
+//! ([`Block`], sides as [`Mesh::block_side`]'s segments) and the physical
+//! surfaces of a 2D `[mesh]` file, whose triangles and quadrangles are the
+//! body's elements and whose physical curves are faces), tractions per
+//! unit reference length on segments, and the pairs' reference geometry
+//! (`initial_contact.rs`: faces that face each other, no initial
+//! penetration, unless the `[[contact]]` allows it).
 
 use super::build::Build;
 use super::initial_contact::check_initial_contact;
-use super::source::{MeshSource, Sources};
-use super::{ContactSpec, Scene, SceneError, TractionSpec};
+use super::source::{MeshFile, SourceDim, Sources};
+use super::{ContactSpec, Scene, SceneError, SideName, TractionSpec};
+use crate::element::Element;
 use crate::ids::NodeId;
-use crate::mesh::Mesh;
-use crate::mesh::gmsh::AnyMsh;
+use crate::material::Material;
+use crate::mesh::gmsh::{AnyMsh, MshError, MshMesh};
+use crate::mesh::volume::Face;
+use crate::mesh::{Block, Mesh, Side};
 use crate::model::{ContactPair, Dim, Model};
 
-impl Build<2> for Dim<2> {
-    type Sources<'s> = Sources<'s>;
+impl SourceDim<2> for Dim<2> {
     const NUMBERS: &'static str = "two";
     const GROUP: &'static str = "curve";
+    const BODY: &'static str = "surface";
+    const PREFIX: &'static str = "";
+    const EXTENTS: &'static str = "width and height";
+    const INVERTED: &'static str = "; its nodes must run counter-clockwise";
 
-    fn sources<'s>(scene: &'s Scene, file: Option<AnyMsh>) -> Result<Sources<'s>, SceneError> {
-        let planar = match file {
-            None => None,
-            Some(AnyMsh::Planar(msh)) => Some(msh),
+    type Block = Block;
+    type Side = Side;
+
+    fn mesh_file(scene: &Scene, file: AnyMsh) -> Result<MshMesh, SceneError> {
+        match file {
+            AnyMsh::Planar(msh) => Ok(msh),
             // `prepare` found the scene 2D, so its mesh file is 2D
-            Some(AnyMsh::Volume(_)) => {
-                return Err(scene.invalid("mesh.file", "is a 3D mesh in a 2D scene"));
-            }
-        };
-        Ok(Sources::of(scene, planar))
+            AnyMsh::Volume(_) => Err(scene.invalid("mesh.file", "is a 3D mesh in a 2D scene")),
+        }
     }
 
+    fn add_block(
+        mesh: &mut Mesh,
+        name: &str,
+        material: Material,
+        origin: [f64; 2],
+        size: [f64; 2],
+        [nx, ny]: [usize; 2],
+    ) -> Result<(usize, Block), String> {
+        let block = Block {
+            origin,
+            size,
+            nx,
+            ny,
+        };
+        let body = mesh
+            .add_block(name, material, block)
+            .map_err(|e| e.to_string())?;
+        Ok((body, block))
+    }
+
+    fn side(side: SideName) -> Result<Side, String> {
+        side.side_2d()
+            .ok_or_else(|| format!("`{}` is a side of a 3D block", side.name()))
+    }
+
+    /// The mesh keeps its block bodies' blocks: [`Mesh::block_side`].
+    fn block_side(
+        mesh: &Mesh,
+        body: usize,
+        _: &Block,
+        _: usize,
+        side: Side,
+    ) -> Option<Vec<[NodeId; 2]>> {
+        mesh.block_side(body, side)
+    }
+
+    /// The triangles and quadrangles of the physical surface `group`.
+    fn elements(msh: &MshMesh, group: &str) -> Result<Vec<(u64, Element<usize>)>, MshError> {
+        Ok(msh
+            .surface_elements(group)?
+            .iter()
+            .filter_map(|e| {
+                let element = match e.face()? {
+                    Face::Tri3(n) => Element::Tri3(n),
+                    Face::Quad4(n) => Element::Quad4(n),
+                };
+                Some((e.tag, element))
+            })
+            .collect())
+    }
+
+    /// The physical curve `group` as a face ([`MeshFile::group_face`]).
+    fn group_facets(file: &MeshFile<2>, group: &str) -> Result<(usize, Vec<[NodeId; 2]>), String> {
+        file.group_face(group)
+    }
+}
+
+impl Build<2> for Dim<2> {
     fn traction_force(scene: &Scene, f: &str, t: &TractionSpec) -> Result<[f64; 2], SceneError> {
         t.force_per_length
             .ok_or_else(|| scene.invalid(f, "give `force_per_length = [tx, ty]`"))
@@ -41,7 +106,7 @@ impl Build<2> for Dim<2> {
     fn traction_forces(
         scene: &Scene,
         mesh: &Mesh<2>,
-        sources: &Sources<'_>,
+        sources: &Sources<'_, 2>,
         f: &str,
         t: &TractionSpec,
         force: [f64; 2],
@@ -90,7 +155,7 @@ impl Scene {
     pub(super) fn traction_segments(
         &self,
         mesh: &Mesh,
-        sources: &Sources,
+        sources: &Sources<'_, 2>,
         field: &str,
         spec: &TractionSpec,
     ) -> Result<Vec<[NodeId; 2]>, SceneError> {
@@ -104,7 +169,8 @@ impl Scene {
                 let b = b.ok_or_else(|| {
                     self.invalid(format!("{field}.body"), "a `side` needs its `body`")
                 })?;
-                let segments = MeshSource::side(sources, mesh, b, side)
+                let segments = sources
+                    .side(mesh, b, side)
                     .map_err(|m| self.invalid(format!("{field}.side"), m))?;
                 segments.ok_or_else(|| {
                     self.invalid(

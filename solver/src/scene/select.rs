@@ -6,12 +6,11 @@
 //! `body`) is geometric and works on any mesh: it matches every node within
 //! [`Mesh::coordinate_tolerance`] ([`Mesh::select_nodes_at`]). Which facets
 //! a side names depends on how its body was made, so sides are resolved
-//! by the body's mesh source ([`MeshSource::side`]); physical groups
+//! by the body's mesh source ([`Sources::side`]); physical groups
 //! (`group`) by the source that read the mesh file
-//! ([`MeshSource::group_nodes`], [`MeshSource::group_facets`]).
+//! ([`Sources::group_nodes`], [`Sources::group_facets`]).
 
-use super::build::Build;
-use super::source::MeshSource;
+use super::source::{SourceDim, Sources};
 use super::{Scene, SceneError, SideName};
 use crate::dim::SpaceDim;
 use crate::ids::NodeId;
@@ -49,7 +48,7 @@ impl Scene {
     pub(super) fn select<const D: usize>(
         &self,
         mesh: &Mesh<D>,
-        sources: &impl MeshSource<D>,
+        sources: &Sources<'_, D>,
         field: &str,
         body: &Option<String>,
         group: &Option<String>,
@@ -57,7 +56,7 @@ impl Scene {
         at: Option<[f64; D]>,
     ) -> Result<Vec<NodeId>, SceneError>
     where
-        Dim<D>: SpaceDim<D>,
+        Dim<D>: SourceDim<D>,
     {
         let names = <Dim<D> as SpaceDim<D>>::AXES;
         let listed = |sep: &str| format!("`{}`", names.join(&format!("`{sep}`")));
@@ -120,14 +119,14 @@ impl Scene {
     pub(super) fn facets<const D: usize>(
         &self,
         mesh: &Mesh<D>,
-        sources: &<Dim<D> as Build<D>>::Sources<'_>,
+        sources: &Sources<'_, D>,
         f: &str,
         body: &Option<String>,
         side: Option<SideName>,
         group: &Option<String>,
     ) -> Result<(usize, Vec<FacetOf<D>>), SceneError>
     where
-        Dim<D>: Build<D>,
+        Dim<D>: SourceDim<D>,
     {
         let b = self.body_index(mesh, format!("{f}.body"), body)?;
         match (group, side) {
@@ -146,7 +145,7 @@ impl Scene {
                         format!(
                             "body `{}` is not a block body (name a physical {} with `group`)",
                             mesh.bodies[b].name,
-                            <Dim<D> as Build<D>>::GROUP
+                            <Dim<D> as SourceDim<D>>::GROUP
                         ),
                     )
                 })?;
@@ -159,7 +158,7 @@ impl Scene {
                         format!("{f}.body"),
                         format!(
                             "physical {} `{group}` is on body `{}`, not `{}`",
-                            <Dim<D> as Build<D>>::GROUP,
+                            <Dim<D> as SourceDim<D>>::GROUP,
                             mesh.bodies[owner].name,
                             mesh.bodies[b].name
                         ),

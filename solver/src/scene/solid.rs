@@ -1,6 +1,9 @@
 //! What the model builder takes from a 3D scene ([`Build`] for `Dim<3>`,
-//! see `build.rs`): its mesh sources ([`Solids`]: 3D blocks and the
-//! physical volumes of a 3D `[mesh]` file), tractions per unit reference
+//! see `build.rs`): what its mesh sources make ([`SourceDim`]: 3D blocks
+//! ([`Block3d`], `[refine] z`, the six sides as quad4 faces) and the
+//! physical volumes of a 3D `[mesh]` file, whose tetrahedra and hexahedra
+//! are the body's elements and whose physical surfaces are face groups
+//! on one body), tractions per unit reference
 //! area on faces ([`nodal_forces`]), and each pair's reading and
 //! `gauss_points`: the `formulation` a reading of 3D faces
 //! (`slave-normal` or `closest-point`: any other is refused naming
@@ -14,35 +17,101 @@
 use contact_kernels::Formulation;
 
 use super::build::Build;
-use super::source::Solids;
+use super::source::{MeshFile, SourceDim, Sources};
 use super::traction::nodal_forces;
-use super::{ContactSpec, Scene, SceneError, TractionSpec};
+use super::{ContactSpec, Scene, SceneError, SideName, TractionSpec};
 use crate::contact::FaceLayout;
 use crate::contact::face_rules::face_rule;
-use crate::element::FaceKind;
+use crate::element::{Element, FaceKind};
 use crate::ids::NodeId;
+use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::mesh::gmsh::AnyMsh;
+use crate::mesh::block3d::{Block3d, Side3d};
+use crate::mesh::gmsh::{AnyMsh, MshError, MshVolumeMesh};
 use crate::mesh::volume::Face;
 use crate::model::{ContactPair, Dim, Integration, Model};
 
-impl Build<3> for Dim<3> {
-    type Sources<'s> = Solids<'s>;
+impl SourceDim<3> for Dim<3> {
     const NUMBERS: &'static str = "three";
     const GROUP: &'static str = "surface";
+    const BODY: &'static str = "volume";
+    const PREFIX: &'static str = "3D ";
+    const EXTENTS: &'static str = "every extent";
+    const INVERTED: &'static str = "";
 
-    fn sources<'s>(scene: &'s Scene, file: Option<AnyMsh>) -> Result<Solids<'s>, SceneError> {
-        let volume = match file {
-            None => None,
-            Some(AnyMsh::Volume(msh)) => Some(msh),
+    type Block = Block3d;
+    type Side = Side3d;
+
+    fn mesh_file(scene: &Scene, file: AnyMsh) -> Result<MshVolumeMesh, SceneError> {
+        match file {
+            AnyMsh::Volume(msh) => Ok(msh),
             // `prepare` found the scene 3D, so its mesh file is 3D
-            Some(AnyMsh::Planar(_)) => {
-                return Err(scene.invalid("mesh.file", "is a 2D mesh in a 3D scene"));
-            }
-        };
-        Ok(Solids::new(scene, volume))
+            AnyMsh::Planar(_) => Err(scene.invalid("mesh.file", "is a 2D mesh in a 3D scene")),
+        }
     }
 
+    /// The block checked ([`Block3d::check`]), then appended
+    /// ([`Mesh::add_block3d`]).
+    fn add_block(
+        mesh: &mut Mesh<3>,
+        name: &str,
+        material: Material,
+        origin: [f64; 3],
+        size: [f64; 3],
+        [nx, ny, nz]: [usize; 3],
+    ) -> Result<(usize, Block3d), String> {
+        let block = Block3d {
+            origin,
+            size,
+            nx,
+            ny,
+            nz,
+        };
+        block.check().map_err(|e| e.to_string())?;
+        let body = mesh
+            .add_block3d(name, material, block)
+            .map_err(|e| e.to_string())?;
+        Ok((body, block))
+    }
+
+    fn side(side: SideName) -> Result<Side3d, String> {
+        Ok(side.side_3d())
+    }
+
+    /// [`Block3d::side`]'s body-local nodes plus the body's first node
+    /// ([`Mesh::add_block3d`] numbers the body so).
+    fn block_side(
+        _: &Mesh<3>,
+        _: usize,
+        block: &Block3d,
+        node0: usize,
+        side: Side3d,
+    ) -> Option<Vec<Face<NodeId>>> {
+        let faces = block.side(side).ok()?;
+        Some(
+            faces
+                .into_iter()
+                .map(|f| f.map_nodes(|n| NodeId::new(node0 + n)))
+                .collect(),
+        )
+    }
+
+    /// The tetrahedra and hexahedra of the physical volume `group`.
+    fn elements(msh: &MshVolumeMesh, group: &str) -> Result<Vec<(u64, Element<usize>)>, MshError> {
+        Ok(msh
+            .volume_elements(group)?
+            .iter()
+            .filter_map(|e| Some((e.tag, e.cell()?.into())))
+            .collect())
+    }
+
+    /// The physical surface `group` as faces ([`MeshFile::group_faces`]).
+    fn group_facets(file: &MeshFile<3>, group: &str) -> Result<(usize, Vec<Face<NodeId>>), String> {
+        file.group_faces(group)
+    }
+}
+
+impl Build<3> for Dim<3> {
     fn traction_force(scene: &Scene, f: &str, t: &TractionSpec) -> Result<[f64; 3], SceneError> {
         t.force_per_area
             .ok_or_else(|| scene.invalid(f, "give `force_per_area = [tx, ty, tz]`"))
@@ -52,7 +121,7 @@ impl Build<3> for Dim<3> {
     fn traction_forces(
         scene: &Scene,
         mesh: &Mesh<3>,
-        sources: &Solids<'_>,
+        sources: &Sources<'_, 3>,
         f: &str,
         t: &TractionSpec,
         force: [f64; 3],

@@ -27,6 +27,16 @@ pub(super) enum Dimension {
 }
 
 impl Dimension {
+    /// The mesh of dimension `D` (2 or 3).
+    pub(super) fn of<const D: usize>() -> Dimension {
+        const { assert!(D == 2 || D == 3, "a Gmsh mesh is 2D or 3D") };
+        if D == 2 {
+            Dimension::Planar
+        } else {
+            Dimension::Volume
+        }
+    }
+
     /// The element types it reads, as its error names them.
     fn element_types(self) -> &'static str {
         match self {
@@ -131,15 +141,8 @@ fn nodes(
         .flat_map(|b| &b.nodes)
         .fold(1.0_f64, |m, n| m.max(n.x.abs()).max(n.y.abs()));
     let tolerance = PLANAR_TOLERANCE * extent;
-    let found: usize = section.node_blocks.iter().map(|b| b.nodes.len()).sum();
-    if section.num_nodes != found as u64 {
-        return Err(MshErrorKind::WrongCount {
-            section: "$Nodes",
-            items: "nodes",
-            declared: section.num_nodes,
-            found: found as u64,
-        });
-    }
+    let found = section.node_blocks.iter().map(|b| b.nodes.len()).sum();
+    check_count("$Nodes", "nodes", section.num_nodes, found)?;
     let mut coordinates = Vec::new();
     let mut node_tags = Vec::new();
     let mut node_index = HashMap::new();
@@ -173,6 +176,25 @@ fn nodes(
     Ok((coordinates, node_tags, node_index))
 }
 
+/// Whether the header of `section` declares as many `items` as its blocks
+/// hold (`found`).
+fn check_count(
+    section: &'static str,
+    items: &'static str,
+    declared: u64,
+    found: usize,
+) -> Result<(), MshErrorKind> {
+    if declared != found as u64 {
+        return Err(MshErrorKind::WrongCount {
+            section,
+            items,
+            declared,
+            found: found as u64,
+        });
+    }
+    Ok(())
+}
+
 /// The elements in file order, with dense node indices.
 fn elements(
     msh: &MshFile<u64, i32, f64>,
@@ -182,19 +204,12 @@ fn elements(
     let Some(section) = &msh.data.elements else {
         return Ok(Vec::new());
     };
-    let found: usize = section
+    let found = section
         .element_blocks
         .iter()
         .map(|b| b.elements.len())
         .sum();
-    if section.num_elements != found as u64 {
-        return Err(MshErrorKind::WrongCount {
-            section: "$Elements",
-            items: "elements",
-            declared: section.num_elements,
-            found: found as u64,
-        });
-    }
+    check_count("$Elements", "elements", section.num_elements, found)?;
     let mut seen = std::collections::HashSet::new();
     let mut elements = Vec::new();
     for block in &section.element_blocks {

@@ -193,13 +193,22 @@ pub struct PhysicalGroup {
     pub entities: Vec<i32>,
 }
 
-/// A 2D Gmsh mesh as read from a file; see the module docs for its
-/// invariants.
+/// A Gmsh mesh of dimension `D` (2 or 3) as read from a file: the file,
+/// the nodes (`D` coordinates), their tags, the elements and the named
+/// physical groups. [`MshMesh`] (2D, the module docs give its invariants)
+/// and [`MshVolumeMesh`] (3D, `volume.rs`) add the queries of their
+/// dimension.
 #[derive(Debug, Clone)]
-pub struct MshMesh {
-    nodes: Vec<[f64; 2]>,
+pub struct Msh<const D: usize> {
+    nodes: Vec<[f64; D]>,
     tables: Tables,
+    /// The outward face of every triangle and quadrangle of a named
+    /// physical surface, by the element's tag (3D; empty in 2D).
+    faces: HashMap<u64, SurfaceFace>,
 }
+
+/// A 2D Gmsh mesh; see the module docs for its invariants.
+pub type MshMesh = Msh<2>;
 
 /// What a 2D and a 3D mesh have alike: the file, the node tags, the
 /// elements and the groups, with the queries by group name.
@@ -230,6 +239,10 @@ const CURVE_OR_POINT: Expect = Expect {
     dims: &[0, 1],
     what: "0 or 1 (a physical point or curve)",
 };
+const BELOW_VOLUME: Expect = Expect {
+    dims: &[0, 1, 2],
+    what: "0, 1 or 2 (a physical point, curve or surface)",
+};
 
 /// Reads the file at `path`, or names it in the error.
 fn read_file(path: &Path) -> Result<Vec<u8>, MshError> {
@@ -239,25 +252,55 @@ fn read_file(path: &Path) -> Result<Vec<u8>, MshError> {
     })
 }
 
-impl MshMesh {
-    /// Reads the `.msh` file at `path` (MSH 4.1, ASCII or binary). Errors
-    /// name `path`.
-    pub fn read(path: impl AsRef<Path>) -> Result<MshMesh, MshError> {
+impl<const D: usize> Msh<D> {
+    /// Reads the `.msh` file at `path` (MSH 4.1, ASCII or binary) as a
+    /// mesh of dimension `D`. Errors name `path`.
+    pub fn read(path: impl AsRef<Path>) -> Result<Msh<D>, MshError> {
         let path = path.as_ref();
-        MshMesh::from_bytes(&read_file(path)?, path)
+        Msh::from_bytes(&read_file(path)?, path)
     }
 
-    /// Reads the contents of a `.msh` file; `file` is the name errors give.
-    /// Never panics, whatever the bytes.
-    pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<MshMesh, MshError> {
+    /// Reads the contents of a `.msh` file as a mesh of dimension `D`;
+    /// `file` is the name errors give. Never panics, whatever the bytes.
+    pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<Msh<D>, MshError> {
         let file = file.into();
-        match convert::read(bytes, convert::Dimension::Planar) {
-            Ok(parts) => Ok(MshMesh {
-                nodes: parts.nodes.iter().map(|&[x, y, _]| [x, y]).collect(),
-                tables: Tables::new(file, parts),
-            }),
+        match convert::read(bytes, convert::Dimension::of::<D>()) {
+            Ok(parts) => Msh::from_parts(parts, file),
             Err(kind) => Err(MshError { file, kind }),
         }
+    }
+
+    /// The mesh of the parts of a file read in dimension `D`: in 3D every
+    /// volume element checked and every surface element oriented
+    /// (`volume.rs`).
+    fn from_parts(parts: convert::Parts, file: PathBuf) -> Result<Msh<D>, MshError> {
+        let convert::Parts {
+            nodes,
+            node_tags,
+            node_index,
+            elements,
+            groups,
+        } = parts;
+        let tables = Tables {
+            file,
+            node_tags,
+            node_index,
+            elements,
+            groups,
+        };
+        let faces = if D == 3 {
+            volume::orient(&nodes, &tables).map_err(|kind| tables.error(kind))?
+        } else {
+            HashMap::new()
+        };
+        Ok(Msh {
+            nodes: nodes
+                .iter()
+                .map(|n| std::array::from_fn(|k| n[k]))
+                .collect(),
+            tables,
+            faces,
+        })
     }
 
     /// The file the mesh was read from.
@@ -265,8 +308,9 @@ impl MshMesh {
         &self.tables.file
     }
 
-    /// Reference coordinates (x, y) of the nodes, by dense index.
-    pub fn nodes(&self) -> &[[f64; 2]] {
+    /// Reference coordinates (`D` of them: x, y (, z)) of the nodes, by
+    /// dense index.
+    pub fn nodes(&self) -> &[[f64; D]] {
         &self.nodes
     }
 
@@ -290,18 +334,29 @@ impl MshMesh {
         &self.tables.groups
     }
 
+    /// The nodes (dense indices, ascending, each once) of the elements of
+    /// the physical groups `name` below the mesh's dimension: a point or
+    /// curve, and in 3D a surface (of all of them if several dimensions
+    /// share the name). Errors: no group of that name, none below the
+    /// mesh's dimension, no elements.
+    pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
+        let (expect, what) = if D == 2 {
+            (&CURVE_OR_POINT, "point or line elements")
+        } else {
+            (&BELOW_VOLUME, "point, line or surface elements")
+        };
+        self.tables.nodes_of(name, expect, what)
+    }
+}
+
+impl MshMesh {
     /// The triangles and quadrangles of the physical surface `name`, in
     /// file order. Errors: no group of that name, not a surface, no such
     /// elements.
     pub fn surface_elements(&self, name: &str) -> Result<Vec<&MshElement>, MshError> {
         let elements = self.tables.elements_of(name, &SURFACE)?;
-        if elements.is_empty() {
-            return Err(self.tables.error(MshErrorKind::EmptyGroup {
-                name: name.to_owned(),
-                what: "triangles or quadrangles",
-            }));
-        }
-        Ok(elements)
+        self.tables
+            .non_empty(elements, name, "triangles or quadrangles")
     }
 
     /// The 2-node line elements of the physical curve `name`, as node
@@ -316,36 +371,11 @@ impl MshMesh {
             .filter(|e| e.kind == MshElementType::Line)
             .map(|e| [e.nodes[0], e.nodes[1]])
             .collect();
-        if segments.is_empty() {
-            return Err(self.tables.error(MshErrorKind::EmptyGroup {
-                name: name.to_owned(),
-                what: "line elements",
-            }));
-        }
-        Ok(segments)
-    }
-
-    /// The nodes (dense indices, ascending, each once) of the elements of
-    /// the physical curve or point `name`; if a curve and a point share the
-    /// name, of both. Errors: no group of that name, not a curve or point,
-    /// no elements.
-    pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
-        self.tables
-            .nodes_of(name, &CURVE_OR_POINT, "point or line elements")
+        self.tables.non_empty(segments, name, "line elements")
     }
 }
 
 impl Tables {
-    fn new(file: PathBuf, parts: convert::Parts) -> Tables {
-        Tables {
-            file,
-            node_tags: parts.node_tags,
-            node_index: parts.node_index,
-            elements: parts.elements,
-            groups: parts.groups,
-        }
-    }
-
     /// The elements of the dimension(s) `expect` allows on the entities of
     /// the groups named `name`.
     fn elements_of(&self, name: &str, expect: &Expect) -> Result<Vec<&MshElement>, MshError> {
@@ -394,13 +424,23 @@ impl Tables {
             .collect();
         nodes.sort_unstable();
         nodes.dedup();
-        if nodes.is_empty() {
+        self.non_empty(nodes, name, what)
+    }
+
+    /// `items` of the group `name`, or the error that it has no `what`.
+    fn non_empty<T>(
+        &self,
+        items: Vec<T>,
+        name: &str,
+        what: &'static str,
+    ) -> Result<Vec<T>, MshError> {
+        if items.is_empty() {
             return Err(self.error(MshErrorKind::EmptyGroup {
                 name: name.to_owned(),
                 what,
             }));
         }
-        Ok(nodes)
+        Ok(items)
     }
 
     fn error(&self, kind: MshErrorKind) -> MshError {

@@ -62,15 +62,59 @@ fn scene_file(name: &str) -> PathBuf {
         .join(name)
 }
 
+/// The fixture `text` after `edit`, read in dimension `D` as the file
+/// `file`.
+pub(super) fn edited<const D: usize>(
+    text: &str,
+    file: &str,
+    edit: impl FnOnce(String) -> String,
+) -> Result<Msh<D>, MshError> {
+    Msh::from_bytes(edit(text.to_owned()).as_bytes(), file)
+}
+
 fn tiny(edit: impl FnOnce(String) -> String) -> Result<MshMesh, MshError> {
-    MshMesh::from_bytes(edit(TINY.to_owned()).as_bytes(), "tiny.msh")
+    edited(TINY, "tiny.msh", edit)
+}
+
+/// The kind of the error `result` is, after checking that it names the
+/// file `file` first.
+pub(super) fn kind_in<const D: usize>(
+    result: Result<Msh<D>, MshError>,
+    file: &str,
+) -> MshErrorKind {
+    let error = result.expect_err("the file should be rejected");
+    assert_eq!(error.file, Path::new(file));
+    assert!(
+        error.to_string().starts_with(&format!("{file}: ")),
+        "{error}"
+    );
+    error.kind
 }
 
 fn kind(result: Result<MshMesh, MshError>) -> MshErrorKind {
-    let error = result.expect_err("the file should be rejected");
-    assert_eq!(error.file, Path::new("tiny.msh"));
-    assert!(error.to_string().starts_with("tiny.msh: "), "{error}");
-    error.kind
+    kind_in(result, "tiny.msh")
+}
+
+/// Every one of `results` is an error whose kind `is` accepts.
+pub(super) fn assert_kinds<T>(
+    results: impl IntoIterator<Item = Result<T, MshError>>,
+    is: impl Fn(&MshErrorKind) -> bool,
+) {
+    for result in results {
+        let Err(error) = result else {
+            panic!("an error was expected");
+        };
+        assert!(is(&error.kind), "{error}");
+    }
+}
+
+/// `result` is an error whose message contains `part`.
+pub(super) fn assert_message<T>(result: Result<T, MshError>, part: &str) {
+    let Err(error) = result else {
+        panic!("an error containing `{part}` was expected");
+    };
+    let text = error.to_string();
+    assert!(text.contains(part), "{text}");
 }
 
 fn count(mesh: &MshMesh, kind: MshElementType) -> usize {
@@ -514,22 +558,18 @@ fn unknown_group_names_list_the_known_ones() {
 #[test]
 fn groups_of_the_wrong_dimension() {
     let mesh = tiny(|s| s).unwrap();
-    for result in [
-        mesh.surface_elements("edge").map(|_| ()),
-        mesh.curve_segments("face").map(|_| ()),
-        mesh.curve_segments("tip").map(|_| ()),
-        mesh.group_nodes("face").map(|_| ()),
-    ] {
-        let error = result.unwrap_err();
-        assert!(
-            matches!(error.kind, MshErrorKind::WrongDimension { .. }),
-            "{error}"
-        );
-    }
-    let text = mesh.surface_elements("edge").unwrap_err().to_string();
-    assert!(
-        text.contains("`edge` has dimension 1, but 2 (a physical surface)"),
-        "{text}"
+    assert_kinds(
+        [
+            mesh.surface_elements("edge").map(|_| ()),
+            mesh.curve_segments("face").map(|_| ()),
+            mesh.curve_segments("tip").map(|_| ()),
+            mesh.group_nodes("face").map(|_| ()),
+        ],
+        |k| matches!(k, MshErrorKind::WrongDimension { .. }),
+    );
+    assert_message(
+        mesh.surface_elements("edge"),
+        "`edge` has dimension 1, but 2 (a physical surface)",
     );
 }
 
@@ -537,11 +577,9 @@ fn groups_of_the_wrong_dimension() {
 fn empty_groups_are_errors() {
     // A named group no entity belongs to.
     let mesh = tiny(|s| s.replace("3\n0 3 \"tip\"", "4\n1 9 \"nothing\"\n0 3 \"tip\"")).unwrap();
-    let error = mesh.curve_segments("nothing").unwrap_err();
-    assert!(
-        matches!(error.kind, MshErrorKind::EmptyGroup { .. }),
-        "{error}"
-    );
+    assert_kinds([mesh.curve_segments("nothing")], |k| {
+        matches!(k, MshErrorKind::EmptyGroup { .. })
+    });
 }
 
 #[test]

@@ -28,11 +28,9 @@
 //! turns the groups into bodies, as for 2D meshes.
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use super::{
-    Expect, MshElement, MshError, MshErrorKind, MshMesh, PhysicalGroup, Tables, convert, read_file,
-};
+use super::{Expect, Msh, MshElement, MshError, MshErrorKind, MshMesh, Tables, convert, read_file};
 use crate::mesh::faces::{BoundaryFaces, FaceLookup, starting_at};
 use crate::mesh::volume::{Cell, Face};
 
@@ -41,20 +39,9 @@ const VOLUME: Expect = Expect {
     what: "3 (a physical volume)",
 };
 const SURFACE: Expect = super::SURFACE;
-const BELOW_VOLUME: Expect = Expect {
-    dims: &[0, 1, 2],
-    what: "0, 1 or 2 (a physical point, curve or surface)",
-};
 
 /// A 3D Gmsh mesh; see the module docs for its invariants.
-#[derive(Debug, Clone)]
-pub struct MshVolumeMesh {
-    nodes: Vec<[f64; 3]>,
-    tables: Tables,
-    /// The outward face of every triangle and quadrangle of a named
-    /// physical surface, by the element's tag.
-    faces: HashMap<u64, SurfaceFace>,
-}
+pub type MshVolumeMesh = Msh<3>;
 
 /// A triangle or quadrangle of a physical surface, oriented by the volume
 /// element that owns it.
@@ -70,77 +57,13 @@ pub struct SurfaceFace {
 }
 
 impl MshVolumeMesh {
-    /// Reads the `.msh` file at `path` (MSH 4.1, ASCII or binary) as a 3D
-    /// mesh. Errors name `path`.
-    pub fn read(path: impl AsRef<Path>) -> Result<MshVolumeMesh, MshError> {
-        let path = path.as_ref();
-        MshVolumeMesh::from_bytes(&read_file(path)?, path)
-    }
-
-    /// Reads the contents of a `.msh` file as a 3D mesh; `file` is the
-    /// name errors give. Never panics, whatever the bytes.
-    pub fn from_bytes(bytes: &[u8], file: impl Into<PathBuf>) -> Result<MshVolumeMesh, MshError> {
-        let file = file.into();
-        match convert::read(bytes, convert::Dimension::Volume) {
-            Ok(parts) => MshVolumeMesh::from_parts(parts, file),
-            Err(kind) => Err(MshError { file, kind }),
-        }
-    }
-
-    /// The mesh of the parts of a file read as a volume mesh.
-    fn from_parts(parts: convert::Parts, file: PathBuf) -> Result<MshVolumeMesh, MshError> {
-        let nodes = parts.nodes.clone();
-        let tables = Tables::new(file, parts);
-        let faces = orient(&nodes, &tables).map_err(|kind| tables.error(kind))?;
-        Ok(MshVolumeMesh {
-            nodes,
-            tables,
-            faces,
-        })
-    }
-
-    /// The file the mesh was read from.
-    pub fn file(&self) -> &Path {
-        &self.tables.file
-    }
-
-    /// Reference coordinates (x, y, z) of the nodes, by dense index.
-    pub fn nodes(&self) -> &[[f64; 3]] {
-        &self.nodes
-    }
-
-    /// The file's tag of node `index`.
-    pub fn node_tag(&self, index: usize) -> Option<u64> {
-        self.tables.node_tags.get(index).copied()
-    }
-
-    /// The dense index of the node with the file's tag `tag`.
-    pub fn node_index(&self, tag: u64) -> Option<usize> {
-        self.tables.node_index.get(&tag).copied()
-    }
-
-    /// Every element, in file order.
-    pub fn elements(&self) -> &[MshElement] {
-        &self.tables.elements
-    }
-
-    /// The named physical groups, in `$PhysicalNames` order.
-    pub fn groups(&self) -> &[PhysicalGroup] {
-        &self.tables.groups
-    }
-
     /// The tetrahedra and hexahedra of the physical volume `name`, in file
     /// order (each a [`Cell`] through [`MshElement::cell`]). Errors: no
     /// group of that name, not a volume, no such elements.
     pub fn volume_elements(&self, name: &str) -> Result<Vec<&MshElement>, MshError> {
         let elements = self.tables.elements_of(name, &VOLUME)?;
-        if elements.is_empty() {
-            return Err(self.tables.error(MshErrorKind::EmptyGroup {
-                name: name.to_owned(),
-                what: "tetrahedra or hexahedra",
-            }));
-        }
-        Ok(elements)
+        self.tables
+            .non_empty(elements, name, "tetrahedra or hexahedra")
     }
 
     /// The faces of the physical surface `name`, in file order, each
@@ -154,22 +77,8 @@ impl MshVolumeMesh {
             .into_iter()
             .filter_map(|e| self.faces.get(&e.tag).copied())
             .collect();
-        if faces.is_empty() {
-            return Err(self.tables.error(MshErrorKind::EmptyGroup {
-                name: name.to_owned(),
-                what: "triangles or quadrangles",
-            }));
-        }
-        Ok(faces)
-    }
-
-    /// The nodes (dense indices, ascending, each once) of the elements of
-    /// the physical point, curve or surface `name` (of all of them if
-    /// several dimensions share the name). Errors: no group of that name,
-    /// a volume only, no elements.
-    pub fn group_nodes(&self, name: &str) -> Result<Vec<usize>, MshError> {
         self.tables
-            .nodes_of(name, &BELOW_VOLUME, "point, line or surface elements")
+            .non_empty(faces, name, "triangles or quadrangles")
     }
 }
 
@@ -191,7 +100,7 @@ pub fn read_any(path: impl AsRef<Path>) -> Result<AnyMsh, MshError> {
     let bytes = read_file(path)?;
     match convert::read(&bytes, convert::Dimension::Volume) {
         Ok(parts) if parts.elements.iter().any(|e| e.cell().is_some()) => {
-            MshVolumeMesh::from_parts(parts, path.to_owned()).map(AnyMsh::Volume)
+            Msh::from_parts(parts, path.to_owned()).map(AnyMsh::Volume)
         }
         _ => MshMesh::from_bytes(&bytes, path).map(AnyMsh::Planar),
     }
@@ -199,7 +108,10 @@ pub fn read_any(path: impl AsRef<Path>) -> Result<AnyMsh, MshError> {
 
 /// Checks every volume element's Jacobian, then orients every triangle and
 /// quadrangle of a named physical surface by its owner (module docs).
-fn orient(nodes: &[[f64; 3]], tables: &Tables) -> Result<HashMap<u64, SurfaceFace>, MshErrorKind> {
+pub(super) fn orient(
+    nodes: &[[f64; 3]],
+    tables: &Tables,
+) -> Result<HashMap<u64, SurfaceFace>, MshErrorKind> {
     let mut cells: Vec<Cell> = Vec::new();
     let mut owners: Vec<u64> = Vec::new();
     for e in &tables.elements {

@@ -1,117 +1,134 @@
-//! The structured-block source: each `[[body]]` with `origin`, `size`, `nx`
-//! and `ny` (any of them: the others are then missing) becomes a [`Block`] of `nx * refine.x` by `ny * refine.y`
-//! elements ([`crate::mesh::block`] has the numbering), and its faces are
-//! the block's sides. A block has at most [`MAX_BLOCK_ELEMENTS`] elements
-//! (refinement included), so that no scene value overflows the counts or
-//! asks for more memory than a machine has.
+//! The structured-block source: each `[[body]]` with `origin`, `size`,
+//! `nx`, `ny` and, in 3D, `nz` (any of them: the others are then missing;
+//! `D` numbers in `origin` and `size`) becomes a block of `nx rx` by
+//! `ny ry` (by `nz rz`) elements (`[refine]`'s factors; [`crate::mesh::block`]
+//! and [`crate::mesh::block3d`] have the numbering), and its facets are
+//! the block's sides (through [`SourceDim`]). A block has at most
+//! [`MAX_BLOCK_ELEMENTS`] elements (refinement included), so that no scene
+//! value overflows the counts or asks for more memory than a machine has.
 
-use super::BodySource;
-use crate::ids::NodeId;
+use super::SourceDim;
 use crate::material::Material;
-use crate::mesh::{Block, Mesh, Side};
+use crate::mesh::Mesh;
+use crate::model::Dim;
 use crate::scene::{BodySpec, Scene, SceneError};
 
-/// The most elements one block may have (`nx ny` times the refinement
-/// factors); larger blocks are an error naming the body.
+/// The most elements one block may have (`nx ny (nz)` times the
+/// refinement factors); larger blocks are an error naming the body.
 pub const MAX_BLOCK_ELEMENTS: usize = 10_000_000;
 
-/// The structured rectangular blocks of a scene.
-pub(in crate::scene) struct Blocks<'s> {
-    scene: &'s Scene,
+/// The element counts of a block of dimension `D`, by field name.
+const COUNTS: [&str; 3] = ["nx", "ny", "nz"];
+
+/// The fields of a block body of dimension `D` in backticks, separated by
+/// `sep` and the last by `last` (`` `origin`, `size`, `nx` and `ny` ``).
+pub(super) fn fields<const D: usize>(sep: &str, last: &str) -> String {
+    let names: Vec<String> = ["origin", "size"]
+        .iter()
+        .chain(&COUNTS[..D])
+        .map(|k| format!("`{k}`"))
+        .collect();
+    let (tail, head) = names.split_last().expect("a block has fields");
+    format!("{}{last}{tail}", head.join(sep))
 }
 
-impl<'s> Blocks<'s> {
-    /// The blocks of `scene`.
-    pub(in crate::scene) fn new(scene: &'s Scene) -> Blocks<'s> {
-        Blocks { scene }
+/// Appends the scene's block `body[i]` with its checked `material`,
+/// checked first: every field given, at least one element along each
+/// axis, a positive finite size, a finite origin and far corner, at most
+/// [`MAX_BLOCK_ELEMENTS`] elements. Returns the mesh body's index, and
+/// the block with the body's first node. Errors name the field.
+pub(super) fn add_block<const D: usize>(
+    scene: &Scene,
+    mesh: &mut Mesh<D>,
+    i: usize,
+    material: Material,
+) -> Result<(usize, (<Dim<D> as SourceDim<D>>::Block, usize)), SceneError>
+where
+    Dim<D>: SourceDim<D>,
+{
+    let b: &BodySpec = &scene.bodies[i];
+    let f = format!("body[{i}]");
+    let prefix = <Dim<D> as SourceDim<D>>::PREFIX;
+    let missing = |k: &str| {
+        scene.invalid(
+            format!("{f}.{k}"),
+            format!(
+                "missing field `{k}` (a {prefix}block body needs {})",
+                fields::<D>(", ", " and ")
+            ),
+        )
+    };
+    if b.group.is_some() {
+        return Err(scene.invalid(
+            format!("{f}.group"),
+            format!("a block body ({}) has no `group`", fields::<D>(", ", ", ")),
+        ));
     }
-}
-
-impl BodySource for Blocks<'_> {
-    /// A `[[body]]` with any of the block fields is a block.
-    fn owns(&self, index: usize) -> bool {
-        is_block(&self.scene.bodies[index])
-    }
-
-    fn add_body(
-        &mut self,
-        mesh: &mut Mesh,
-        i: usize,
-        material: Material,
-    ) -> Result<usize, SceneError> {
-        let b = &self.scene.bodies[i];
-        let f = format!("body[{i}]");
-        let missing = |k: &str| {
-            self.scene.invalid(
+    let point = |c: Option<crate::scene::Coords>, k: &str| {
+        c.ok_or_else(|| missing(k))?.point::<D>().ok_or_else(|| {
+            scene.invalid(
                 format!("{f}.{k}"),
-                format!("missing field `{k}` (a block body needs `origin`, `size`, `nx` and `ny`)"),
-            )
-        };
-        if b.group.is_some() {
-            return Err(self.scene.invalid(
-                format!("{f}.group"),
-                "a block body (`origin`, `size`, `nx`, `ny`) has no `group`",
-            ));
-        }
-        // a 2D scene's blocks have two numbers in both (`check_dimension`)
-        let two = |c: Option<crate::scene::Coords>, k: &str| {
-            c.ok_or_else(|| missing(k))?.point::<2>().ok_or_else(|| {
-                self.scene
-                    .invalid(format!("{f}.{k}"), "needs two numbers [x, y] in a 2D block")
-            })
-        };
-        let origin = two(b.origin, "origin")?;
-        let size = two(b.size, "size")?;
-        let nx = b.nx.ok_or_else(|| missing("nx"))?;
-        let ny = b.ny.ok_or_else(|| missing("ny"))?;
-        for (k, v) in [("nx", nx), ("ny", ny)] {
-            if v == 0 {
-                return Err(self.scene.invalid(format!("{f}.{k}"), "must be at least 1"));
-            }
-        }
-        if !(size[0] > 0.0 && size[1] > 0.0 && size.iter().all(|v| v.is_finite())) {
-            return Err(self.scene.invalid(
-                format!("{f}.size"),
-                "width and height must be positive and finite",
-            ));
-        }
-        if !origin.iter().all(|v| v.is_finite()) {
-            return Err(self.scene.invalid(format!("{f}.origin"), "must be finite"));
-        }
-        if !(0..2).all(|k| (origin[k] + size[k]).is_finite()) {
-            return Err(self.scene.invalid(
-                format!("{f}.size"),
-                "the far corner origin + size is not finite",
-            ));
-        }
-        let (nx, ny) = (
-            nx.checked_mul(self.scene.refine.x),
-            ny.checked_mul(self.scene.refine.y),
-        );
-        let Some((nx, ny)) = nx
-            .zip(ny)
-            .filter(|&(nx, ny)| nx.checked_mul(ny).is_some_and(|n| n <= MAX_BLOCK_ELEMENTS))
-        else {
-            return Err(self.scene.invalid(
-                f.clone(),
                 format!(
-                    "more than {MAX_BLOCK_ELEMENTS} elements (nx x ny times the [refine] factors)"
+                    "needs {} numbers [{}] in a {}D block",
+                    <Dim<D> as SourceDim<D>>::NUMBERS,
+                    <Dim<D> as crate::dim::SpaceDim<D>>::AXES.join(", "),
+                    D
                 ),
-            ));
-        };
-        let block = Block {
-            origin,
-            size,
-            nx,
-            ny,
-        };
-        mesh.add_block(&b.name, material, block)
-            .map_err(|e| self.scene.invalid(f.clone(), e.to_string()))
+            )
+        })
+    };
+    let origin = point(b.origin, "origin")?;
+    let size = point(b.size, "size")?;
+    let given = [b.nx, b.ny, b.nz];
+    let mut n = [0; D];
+    for (k, count) in n.iter_mut().enumerate() {
+        *count = given[k].ok_or_else(|| missing(COUNTS[k]))?;
     }
-
-    fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
-        mesh.block_side(body, side)
+    for (k, &v) in n.iter().enumerate() {
+        if v == 0 {
+            return Err(scene.invalid(format!("{f}.{}", COUNTS[k]), "must be at least 1"));
+        }
     }
+    if !size.iter().all(|&v| v > 0.0 && v.is_finite()) {
+        return Err(scene.invalid(
+            format!("{f}.size"),
+            format!(
+                "{} must be positive and finite",
+                <Dim<D> as SourceDim<D>>::EXTENTS
+            ),
+        ));
+    }
+    if !origin.iter().all(|v| v.is_finite()) {
+        return Err(scene.invalid(format!("{f}.origin"), "must be finite"));
+    }
+    if !(0..D).all(|k| (origin[k] + size[k]).is_finite()) {
+        return Err(scene.invalid(
+            format!("{f}.size"),
+            "the far corner origin + size is not finite",
+        ));
+    }
+    let r = &scene.refine;
+    let factors = [r.x, r.y, r.z_factor()];
+    let refined: [Option<usize>; D] = std::array::from_fn(|k| n[k].checked_mul(factors[k]));
+    let count = refined
+        .iter()
+        .try_fold(1_usize, |acc, &k| acc.checked_mul(k?))
+        .filter(|&c| c <= MAX_BLOCK_ELEMENTS);
+    if count.is_none() {
+        return Err(scene.invalid(
+            f,
+            format!(
+                "more than {MAX_BLOCK_ELEMENTS} elements ({} times the [refine] factors)",
+                COUNTS[..D].join(" x ")
+            ),
+        ));
+    }
+    let n = refined.map(|k| k.unwrap_or(0));
+    let node0 = mesh.node_count();
+    let (body, block) =
+        <Dim<D> as SourceDim<D>>::add_block(mesh, &b.name, material, origin, size, n)
+            .map_err(|m| scene.invalid(&f, m))?;
+    Ok((body, (block, node0)))
 }
 
 /// Whether `body` gives any of the block fields (`origin`, `size`, `nx`,

@@ -1,167 +1,129 @@
 //! The Gmsh source: the `[mesh] file` (MSH 4.1, read by
-//! [`crate::mesh::gmsh`]) and the bodies that are its physical surfaces.
+//! [`crate::mesh::gmsh`]) and the bodies that are its physical surfaces
+//! (2D) or volumes (3D).
 //!
-//! A `[[body]]` without block fields is the physical surface `group`
-//! (default: its `name`). Its quadrangles and triangles (Gmsh types 3 and
-//! 2, mixed freely) become the body's elements ([`Element::Quad4`],
-//! [`Element::Tri3`]), in file order; its nodes are the nodes of those elements, in the file's
-//! node order, appended fresh through [`Mesh::add_body`]. The source keeps
-//! the map from the file's nodes to mesh nodes and every element edge,
-//! directed as the element runs (counter-clockwise), so that physical
-//! curves and points can be answered by name:
+//! A `[[body]]` without block fields is the physical surface or volume
+//! `group` (default: its `name`). Its elements (2D: quadrangles and
+//! triangles, Gmsh types 3 and 2; 3D: hexahedra and tetrahedra, types 5
+//! and 4, each positive at every corner: the reader checks it; mixed
+//! freely) become the body's elements in file order, in the file's node
+//! order; its nodes are the nodes of those elements, in the file's node
+//! order, appended fresh through [`Mesh::add_body`]. The source keeps the
+//! map from the file's nodes to mesh nodes and the body of every element
+//! it added, so that groups can be answered by name:
 //!
-//! * a face ([`BodySource::group_face`]): each segment of the curve is
-//!   oriented as the one element that has it as an edge runs, so the face
-//!   is counter-clockwise around its body with the outward normal, however
-//!   the curve was drawn; then the segments are chained (each chain from
-//!   its start, chains in the order of their first segment in the file).
-//!   A segment that is no element's edge, or an edge of two elements, or
-//!   segments on two bodies are errors naming the curve;
-//! * node groups ([`BodySource::group_nodes`]) and loaded curves
-//!   ([`BodySource::group_segments`]): every node must belong to a body.
+//! * in 2D a face ([`MeshFile::group_face`]): each segment of the physical
+//!   curve is oriented as the one element that has it as an edge runs
+//!   (counter-clockwise), so the face is counter-clockwise around its body
+//!   with the outward normal, however the curve was drawn; then the
+//!   segments are chained (each chain from its start, chains in the order
+//!   of their first segment in the file). A segment that is no element's
+//!   edge, or an edge of two elements, or segments on two bodies are
+//!   errors naming the curve;
+//! * in 3D a face group ([`MeshFile::group_faces`]): the triangles and
+//!   quadrangles of a physical surface, each oriented outward by the one
+//!   volume element that owns it (the reader refuses a face that no volume
+//!   element has, or that two have, naming it); every face's owner must be
+//!   an element of a `[[body]]`, and all of them of one body;
+//! * node groups ([`MeshFile::group_nodes`]: physical points and curves,
+//!   and surfaces in 3D) and, in 2D, loaded curves
+//!   ([`MeshFile::group_segments`]): every node must belong to a body.
 //!
-//! Invariants: bodies share no nodes (a node of the file in two bodies'
-//! surfaces is an error naming it); an element that is inverted (drawn
-//! clockwise) or degenerate is an error naming its tag and kind, as the
-//! file's elements are used as drawn (Gmsh draws them counter-clockwise
-//! about the surface's normal, +z for a plane surface); other element
-//! types are refused by the reader, naming the type; errors name the file
-//! and the group or element, the scene field is added by the caller.
+//! Invariants: bodies share no nodes (a node of the file in two bodies is
+//! an error naming it); an element that is inverted or degenerate is an
+//! error naming its tag and kind, as the file's elements are used as drawn
+//! (in 2D Gmsh draws them counter-clockwise about the surface's normal, +z
+//! for a plane surface); other element types are refused by the reader,
+//! naming the type; errors name the file and the group or element, the
+//! scene field is added by the caller.
 
-use super::{BodySource, GroupFace, blocks::is_block};
+use std::collections::{HashMap, HashSet};
+
+use super::SourceDim;
 use crate::ids::NodeId;
 use crate::material::Material;
-use crate::mesh::gmsh::{MshElementType, MshMesh};
-use crate::mesh::{Element, Mesh, MeshError, Side};
+use crate::mesh::gmsh::Msh;
+use crate::mesh::volume::Face;
+use crate::mesh::{Mesh, MeshError};
+use crate::model::Dim;
 use crate::scene::{Scene, SceneError};
-use std::collections::HashMap;
 
 /// The bodies of a scene that come from its `[mesh]` file.
-pub(in crate::scene) struct Gmsh<'s> {
-    scene: &'s Scene,
-    /// The file's mesh, if the scene has a `[mesh]` section.
-    msh: Option<MshMesh>,
+pub(in crate::scene) struct MeshFile<const D: usize> {
+    msh: Msh<D>,
     /// The mesh node of each of the file's nodes (dense index), once its
     /// body is added.
     node_of: Vec<Option<NodeId>>,
     /// The mesh body of each of the file's nodes that belongs to one.
     body_of: Vec<Option<usize>>,
-    /// Every element edge `(from, to)` (the file's dense node indices) as
-    /// its element runs, with the element's tag.
-    edges: HashMap<(usize, usize), u64>,
+    /// The mesh body of each element added, by the element's tag.
+    element_body: HashMap<u64, usize>,
 }
 
-impl<'s> Gmsh<'s> {
-    /// The source of `scene` and its `[mesh] file` `msh`, read (if it has
-    /// one).
-    pub(in crate::scene) fn new(scene: &'s Scene, msh: Option<MshMesh>) -> Gmsh<'s> {
-        let n = msh.as_ref().map_or(0, |m| m.nodes().len());
-        Gmsh {
-            scene,
+impl<const D: usize> MeshFile<D> {
+    /// The source of the file's mesh `msh`.
+    pub(super) fn new(msh: Msh<D>) -> MeshFile<D> {
+        let n = msh.nodes().len();
+        MeshFile {
             msh,
             node_of: vec![None; n],
             body_of: vec![None; n],
-            edges: HashMap::new(),
+            element_body: HashMap::new(),
         }
     }
 
     /// The file's tag of node `index` (for messages).
-    fn tag(msh: &MshMesh, index: usize) -> u64 {
-        msh.node_tag(index).unwrap_or(index as u64)
+    fn tag(&self, index: usize) -> u64 {
+        self.msh.node_tag(index).unwrap_or(index as u64)
     }
 
-    /// The mesh nodes of the file's nodes `nodes`; an error naming `group`
-    /// for a node in no body.
-    fn mesh_nodes(
-        &self,
-        msh: &MshMesh,
-        group: &str,
-        nodes: &[usize],
-    ) -> Result<Vec<NodeId>, String> {
-        nodes
-            .iter()
-            .map(|&n| {
-                self.node_of[n].ok_or_else(|| {
-                    format!(
-                        "{}: node {} of physical group `{group}` belongs to no [[body]]",
-                        msh.file().display(),
-                        Self::tag(msh, n)
-                    )
-                })
-            })
-            .collect()
-    }
-}
-
-impl BodySource for Gmsh<'_> {
-    /// A `[[body]]` without block fields is a physical surface.
-    fn owns(&self, index: usize) -> bool {
-        !is_block(&self.scene.bodies[index])
-    }
-
-    fn add_body(
+    /// Appends the scene's `body[i]`, the physical surface (2D) or volume
+    /// (3D) `group` (default: its `name`), with its checked `material`;
+    /// returns the mesh body.
+    pub(super) fn add_body(
         &mut self,
-        mesh: &mut Mesh,
+        scene: &Scene,
+        mesh: &mut Mesh<D>,
         i: usize,
         material: Material,
-    ) -> Result<usize, SceneError> {
-        let b = &self.scene.bodies[i];
+    ) -> Result<usize, SceneError>
+    where
+        Dim<D>: SourceDim<D>,
+    {
+        let b = &scene.bodies[i];
         let f = format!("body[{i}]");
-        let Some(msh) = &self.msh else {
-            return Err(self.scene.invalid(
-                f,
-                "a body needs `origin`, `size`, `nx` and `ny` (a block), or a `[mesh] file` whose physical surface it is",
-            ));
-        };
         let (group, field) = match &b.group {
             Some(g) => (g.as_str(), format!("{f}.group")),
             None => (b.name.as_str(), format!("{f}.name")),
         };
-        let elements = msh
-            .surface_elements(group)
-            .map_err(|e| self.scene.invalid(&field, e.to_string()))?;
+        let what = <Dim<D> as SourceDim<D>>::BODY;
+        let msh = &self.msh;
         let file = msh.file().display();
+        let elements = <Dim<D> as SourceDim<D>>::elements(msh, group)
+            .map_err(|e| scene.invalid(&field, e.to_string()))?;
         // the body's nodes: those of its elements, in the file's order
-        let mut nodes: Vec<usize> = elements.iter().flat_map(|e| e.nodes().to_vec()).collect();
+        let mut nodes: Vec<usize> = elements
+            .iter()
+            .flat_map(|(_, e)| e.nodes().to_vec())
+            .collect();
         nodes.sort_unstable();
         nodes.dedup();
         if let Some(&n) = nodes.iter().find(|&&n| self.body_of[n].is_some()) {
-            let other = &mesh.bodies[self.body_of[n].unwrap_or(0)].name;
-            return Err(self.scene.invalid(
+            let other = self.body_of[n].map_or("", |o| mesh.bodies[o].name.as_str());
+            return Err(scene.invalid(
                 &field,
                 format!(
-                    "{file}: physical surface `{group}` shares node {} with body `{other}`; bodies share no nodes (give each body its own nodes, e.g. separate surfaces that only touch)",
-                    Self::tag(msh, n)
+                    "{file}: physical {what} `{group}` shares node {} with body `{other}`; bodies share no nodes (give each body its own nodes, e.g. separate {what}s that only touch)",
+                    self.tag(n)
                 ),
             ));
         }
         let local: HashMap<usize, usize> = nodes.iter().enumerate().map(|(k, &n)| (n, k)).collect();
-        let coords: Vec<[f64; 2]> = nodes.iter().map(|&n| msh.nodes()[n]).collect();
-        let conn: Vec<Element<usize>> = elements
+        let coords: Vec<[f64; D]> = nodes.iter().map(|&n| msh.nodes()[n]).collect();
+        let conn: Vec<_> = elements
             .iter()
-            .map(|e| {
-                let n = e.nodes();
-                match e.kind {
-                    MshElementType::Triangle => {
-                        Ok(Element::Tri3([local[&n[0]], local[&n[1]], local[&n[2]]]))
-                    }
-                    MshElementType::Quad => Ok(Element::Quad4([
-                        local[&n[0]],
-                        local[&n[1]],
-                        local[&n[2]],
-                        local[&n[3]],
-                    ])),
-                    // `surface_elements` holds 2D elements only
-                    other => Err(self.scene.invalid(
-                        &field,
-                        format!(
-                            "{file}: element {} of physical surface `{group}` is a {other:?}, not a surface element",
-                            e.tag
-                        ),
-                    )),
-                }
-            })
-            .collect::<Result<_, _>>()?;
+            .map(|(_, e)| e.map_nodes(|n| local[&n]))
+            .collect();
         let elem0 = mesh.element_count();
         let node0 = mesh.node_count();
         let body = mesh
@@ -172,66 +134,89 @@ impl BodySource for Gmsh<'_> {
                     kind,
                     det_j0,
                     ..
-                } => self.scene.invalid(
+                } => scene.invalid(
                     &field,
                     format!(
-                        "{file}: element {} of physical surface `{group}` is inverted or degenerate ({kind}, detJ0 = {det_j0:e}); its nodes must run counter-clockwise",
-                        elements[element - elem0].tag
+                        "{file}: element {} of physical {what} `{group}` is inverted or degenerate ({kind}, detJ0 = {det_j0:e}){}",
+                        elements[element - elem0].0,
+                        <Dim<D> as SourceDim<D>>::INVERTED
                     ),
                 ),
-                e => self.scene.invalid(&field, format!("{file}: {e}")),
+                e => scene.invalid(&field, format!("{file}: {e}")),
             })?;
         for (k, &n) in nodes.iter().enumerate() {
             self.node_of[n] = Some(NodeId::new(node0 + k));
             self.body_of[n] = Some(body);
         }
-        mesh.bodies[body].node_tags = Some(nodes.iter().map(|&n| Self::tag(msh, n)).collect());
-        for e in &elements {
-            let n = e.nodes();
-            for k in 0..n.len() {
-                self.edges.insert((n[k], n[(k + 1) % n.len()]), e.tag);
-            }
+        for (tag, _) in &elements {
+            self.element_body.insert(*tag, body);
         }
+        mesh.bodies[body].node_tags = Some(nodes.iter().map(|&n| self.tag(n)).collect());
         Ok(body)
     }
 
-    fn face(&self, _mesh: &Mesh, _body: usize, _side: Side) -> Option<Vec<[NodeId; 2]>> {
-        None
-    }
-
-    fn group_face(&self, group: &str) -> Option<Result<GroupFace, String>> {
-        let msh = self.msh.as_ref()?;
-        Some(self.face_of(msh, group))
-    }
-
-    fn group_nodes(&self, group: &str) -> Option<Result<Vec<NodeId>, String>> {
-        let msh = self.msh.as_ref()?;
-        Some(self.nodes_of(msh, group))
-    }
-
-    fn group_segments(&self, group: &str) -> Option<Result<Vec<[NodeId; 2]>, String>> {
-        let msh = self.msh.as_ref()?;
-        Some(self.segments_of(msh, group))
+    /// The mesh nodes of the file's nodes `nodes`; an error naming `group`
+    /// for a node in no body.
+    fn mesh_nodes(&self, group: &str, nodes: &[usize]) -> Result<Vec<NodeId>, String> {
+        nodes
+            .iter()
+            .map(|&n| {
+                self.node_of[n].ok_or_else(|| {
+                    format!(
+                        "{}: node {} of physical group `{group}` belongs to no [[body]]",
+                        self.msh.file().display(),
+                        self.tag(n)
+                    )
+                })
+            })
+            .collect()
     }
 }
 
-impl Gmsh<'_> {
-    /// [`BodySource::group_face`] of the file's mesh `msh`.
-    fn face_of(&self, msh: &MshMesh, group: &str) -> Result<GroupFace, String> {
-        let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
-        let file = msh.file().display();
+impl<const D: usize> MeshFile<D> {
+    /// The mesh nodes of the physical group `group` (a point or curve; in
+    /// 3D also a surface), ascending.
+    pub(super) fn group_nodes(&self, group: &str) -> Result<Vec<NodeId>, String> {
+        let nodes = self.msh.group_nodes(group).map_err(|e| e.to_string())?;
+        let mut nodes = self.mesh_nodes(group, &nodes)?;
+        nodes.sort_unstable();
+        Ok(nodes)
+    }
+}
+
+impl MeshFile<2> {
+    /// The physical curve `group` as a face of one body: the body and the
+    /// segments, oriented and chained counter-clockwise around it (module
+    /// docs).
+    pub(in crate::scene) fn group_face(
+        &self,
+        group: &str,
+    ) -> Result<(usize, Vec<[NodeId; 2]>), String> {
+        let segments = self.msh.curve_segments(group).map_err(|e| e.to_string())?;
+        let file = self.msh.file().display();
         let not_on_boundary = |[a, b]: [usize; 2], why: &str| {
             format!(
                 "{file}: physical curve `{group}` is not on the boundary of a body: its segment from node {} to node {} {why}",
-                Self::tag(msh, a),
-                Self::tag(msh, b)
+                self.tag(a),
+                self.tag(b)
             )
         };
+        // every edge of an element of a body, directed as the element runs
+        let edges: HashSet<(usize, usize)> = self
+            .msh
+            .elements()
+            .iter()
+            .filter(|e| self.element_body.contains_key(&e.tag))
+            .flat_map(|e| {
+                let n = e.nodes();
+                (0..n.len()).map(move |k| (n[k], n[(k + 1) % n.len()]))
+            })
+            .collect();
         let mut body = None;
         let mut oriented = Vec::with_capacity(segments.len());
         for [a, b] in segments {
-            let forward = self.edges.contains_key(&(a, b));
-            let backward = self.edges.contains_key(&(b, a));
+            let forward = edges.contains(&(a, b));
+            let backward = edges.contains(&(b, a));
             let seg = match (forward, backward) {
                 (true, false) => [a, b],
                 (false, true) => [b, a],
@@ -262,27 +247,59 @@ impl Gmsh<'_> {
             .into_iter()
             .map(|s| s.map(|n| self.node_of[n].unwrap_or(NodeId::new(0))))
             .collect();
-        Ok(GroupFace { body, segments })
+        Ok((body, segments))
     }
 
-    /// [`BodySource::group_nodes`] of the file's mesh `msh`.
-    fn nodes_of(&self, msh: &MshMesh, group: &str) -> Result<Vec<NodeId>, String> {
-        let nodes = msh.group_nodes(group).map_err(|e| e.to_string())?;
-        let mut nodes = self.mesh_nodes(msh, group, &nodes)?;
-        nodes.sort_unstable();
-        Ok(nodes)
-    }
-
-    /// [`BodySource::group_segments`] of the file's mesh `msh`.
-    fn segments_of(&self, msh: &MshMesh, group: &str) -> Result<Vec<[NodeId; 2]>, String> {
-        let segments = msh.curve_segments(group).map_err(|e| e.to_string())?;
+    /// The segments of the physical curve `group` in the file's order and
+    /// direction.
+    pub(super) fn group_segments(&self, group: &str) -> Result<Vec<[NodeId; 2]>, String> {
+        let segments = self.msh.curve_segments(group).map_err(|e| e.to_string())?;
         segments
             .iter()
             .map(|s| {
-                let n = self.mesh_nodes(msh, group, s)?;
+                let n = self.mesh_nodes(group, s)?;
                 Ok([n[0], n[1]])
             })
             .collect()
+    }
+}
+
+impl MeshFile<3> {
+    /// The physical surface `group` as faces of one body: the body and the
+    /// faces (mesh nodes), each counter-clockwise seen from outside its
+    /// owning element, in file order (module docs).
+    pub(in crate::scene) fn group_faces(
+        &self,
+        group: &str,
+    ) -> Result<(usize, Vec<Face<NodeId>>), String> {
+        let faces = self.msh.surface_faces(group).map_err(|e| e.to_string())?;
+        let file = self.msh.file().display();
+        let mut body = None;
+        let mut out = Vec::with_capacity(faces.len());
+        for sf in faces {
+            let owner = self.element_body.get(&sf.owner).copied().ok_or_else(|| {
+                format!(
+                    "{file}: element {} of physical surface `{group}` is a face of volume element {}, which belongs to no [[body]]",
+                    sf.element, sf.owner
+                )
+            })?;
+            match body {
+                None => body = Some(owner),
+                Some(first) if first != owner => {
+                    return Err(format!(
+                        "{file}: physical surface `{group}` lies on more than one body; a face group is on one body"
+                    ));
+                }
+                Some(_) => {}
+            }
+            let nodes = self.mesh_nodes(group, sf.face.nodes())?;
+            out.push(match sf.face {
+                Face::Quad4(_) => Face::Quad4([nodes[0], nodes[1], nodes[2], nodes[3]]),
+                Face::Tri3(_) => Face::Tri3([nodes[0], nodes[1], nodes[2]]),
+            });
+        }
+        let body = body.ok_or_else(|| format!("{file}: physical surface `{group}` is empty"))?;
+        Ok((body, out))
     }
 }
 

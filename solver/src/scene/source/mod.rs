@@ -1,53 +1,50 @@
-//! Mesh sources: where a scene's bodies come from.
+//! Mesh sources: where a scene's bodies come from, in either dimension.
 //!
-//! A scene's [`MeshSource<D>`] makes its bodies and answers the selections
+//! A scene's [`Sources<D>`] makes its bodies and answers the selections
 //! whose meaning depends on how a body was made: a block body's sides,
 //! and the physical groups of the `[mesh]` file (nodes; facets: curves in
-//! 2D, surfaces in 3D). It is [`Sources`] in 2D and [`Solids`] in 3D
-//! (`solid.rs`).
+//! 2D, surfaces in 3D). Who makes a body:
 //!
-//! In 2D, a [`BodySource`] makes the bodies it owns. There are two,
-//! asked in this order who owns a body:
+//! * a block (`blocks.rs`): a `[[body]]` with any of the block fields
+//!   (`origin`, `size`, `nx`, `ny`, and `nz` in 3D) is a structured block
+//!   and its facets are its sides;
+//! * the mesh file (`gmsh.rs`): a `[[body]]` without them is a physical
+//!   surface (2D) or volume (3D) of the `[mesh] file`; its physical groups
+//!   are facets, node groups and (in 2D) loaded curves, asked for by name.
 //!
-//! * [`Blocks`] (`blocks.rs`): a `[[body]]` with the block fields
-//!   (`origin`, `size`, `nx`, `ny`) is a structured rectangular block and
-//!   its faces are its four sides;
-//! * [`Gmsh`] (`gmsh.rs`): a `[[body]]` without them is a physical surface
-//!   of the `[mesh]` file; its physical curves and points are faces, node
-//!   groups and loaded curves, asked for by name.
+//! What differs between the dimensions (the block and its sides, which
+//! file elements make a body, a group's facets, the words of messages)
+//! comes from [`SourceDim`], implemented for `Dim<2>` in `planar.rs` and
+//! for `Dim<3>` in `solid.rs`.
 //!
 //! Selection by reference coordinates does not depend on the source and
-//! stays with the mesh ([`Mesh::select_nodes_at`]). Questions by group name go
-//! to every source in turn; the first that knows groups answers (the
-//! blocks know none: the trait's defaults return `None`).
+//! stays with the mesh ([`Mesh::select_nodes_at`]).
 //!
-//! Invariants every source keeps:
+//! Invariants:
 //!
-//! * it appends each body to the mesh with fresh nodes (through
-//!   [`Mesh::add_body`] or [`Mesh::add_block`]), so bodies share no nodes and
-//!   the mesh's bodies are in the scene's `[[body]]` order;
-//! * the faces it returns are chains of 2-node segments (global node
-//!   indices) ordered counter-clockwise around their body, so that the
-//!   outward normal of a segment with tangent `t` is `(t.y, -t.x)/|t|`.
+//! * each body is appended to the mesh with fresh nodes, so bodies share
+//!   no nodes and the mesh's bodies are in the scene's `[[body]]` order;
+//! * the facets returned are outward: 2-node segments (global node
+//!   indices) ordered counter-clockwise around their body in 2D, so that
+//!   the outward normal of a segment with tangent `t` is `(t.y, -t.x)/|t|`;
+//!   tri3 and quad4 faces counter-clockwise seen from outside their body
+//!   in 3D (outward normal `t_1 x t_2`).
 
 use super::{Scene, SceneError, SideName};
+use crate::dim::SpaceDim;
+use crate::element::Element;
 use crate::ids::NodeId;
 use crate::material::Material;
-use crate::mesh::gmsh::MshMesh;
-use crate::mesh::{Mesh, Side};
+use crate::mesh::Mesh;
+use crate::mesh::gmsh::{AnyMsh, Msh, MshError};
 use crate::model::{Dim, FacetOf, SurfaceDim};
 
 mod blocks;
-mod blocks3d;
 mod gmsh;
-mod gmsh3d;
-mod solid;
 
-pub(super) use blocks::Blocks;
 pub(crate) use blocks::MAX_BLOCK_ELEMENTS;
 pub(super) use blocks::is_block;
-pub(super) use gmsh::Gmsh;
-pub(super) use solid::Solids;
+pub(super) use gmsh::MeshFile;
 
 /// The path of the mesh file `file` of the scene read from `origin`:
 /// relative to the scene file's directory.
@@ -62,218 +59,195 @@ pub(super) fn resolve(origin: &str, file: &str) -> std::path::PathBuf {
     }
 }
 
-/// A physical curve on the boundary of one body: the mesh body's index and
-/// its segments, counter-clockwise around the body.
-pub(super) struct GroupFace {
-    /// The mesh body whose boundary the curve is.
-    pub(super) body: usize,
-    /// The segments, oriented and chained counter-clockwise.
-    pub(super) segments: Vec<[NodeId; 2]>,
+/// What the mesh sources take from the dimension (module docs).
+pub(in crate::scene) trait SourceDim<const D: usize>: SpaceDim<D> {
+    /// How many numbers a point has, in words (`two`, `three`).
+    const NUMBERS: &'static str;
+    /// What a physical group of facets is (`curve`, `surface`).
+    const GROUP: &'static str;
+    /// What a body of the mesh file is (a physical `surface`, `volume`).
+    const BODY: &'static str;
+    /// How messages name the dimension's block bodies and mesh files:
+    /// empty in 2D, `3D ` in 3D.
+    const PREFIX: &'static str;
+    /// What must be positive and finite in a block's `size`.
+    const EXTENTS: &'static str;
+    /// What the message for an inverted element of the mesh file adds.
+    const INVERTED: &'static str;
+
+    /// A structured block of the dimension.
+    type Block: Copy;
+    /// A side of a block of the dimension.
+    type Side: Copy;
+
+    /// The mesh file of a scene of this dimension, out of the file read;
+    /// an error naming `mesh.file` if it is of the other dimension.
+    fn mesh_file(scene: &Scene, file: AnyMsh) -> Result<Msh<D>, SceneError>;
+
+    /// Appends the checked block (`origin`, `size`, elements along each
+    /// axis, refinement included) as the body `name`: the body's index
+    /// and the block, or the mesh's message.
+    fn add_block(
+        mesh: &mut Mesh<D>,
+        name: &str,
+        material: Material,
+        origin: [f64; D],
+        size: [f64; D],
+        n: [usize; D],
+    ) -> Result<(usize, Self::Block), String>;
+
+    /// The side `side` names, or a message if the dimension's blocks have
+    /// no such side.
+    fn side(side: SideName) -> Result<Self::Side, String>;
+
+    /// The facets of `side` of the block body `body` (`block`, its first
+    /// node `node0`), outward; `None` if the block has no such facets.
+    fn block_side(
+        mesh: &Mesh<D>,
+        body: usize,
+        block: &Self::Block,
+        node0: usize,
+        side: Self::Side,
+    ) -> Option<Vec<FacetOf<D>>>
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// The elements (with their tags) of the file's physical surface (2D)
+    /// or volume (3D) `group`, in file order and node order.
+    fn elements(msh: &Msh<D>, group: &str) -> Result<Vec<(u64, Element<usize>)>, MshError>;
+
+    /// The physical group `group` of `file` as facets of one body, outward,
+    /// and that body.
+    fn group_facets(file: &MeshFile<D>, group: &str) -> Result<(usize, Vec<FacetOf<D>>), String>
+    where
+        Dim<D>: SurfaceDim<D>;
 }
 
-/// A scene's mesh sources in dimension `D` (module docs).
-pub(in crate::scene) trait MeshSource<const D: usize> {
-    /// Appends the scene's `body[index]` with its (checked) `material` to
-    /// `mesh` and returns the new body's index. Errors name the body's
-    /// fields (`body[index].nx`, ...).
-    fn add_body(
+/// A scene's mesh sources in dimension `D` (module docs), and the block
+/// of each block body.
+pub(in crate::scene) struct Sources<'s, const D: usize>
+where
+    Dim<D>: SourceDim<D>,
+{
+    scene: &'s Scene,
+    file: Option<MeshFile<D>>,
+    /// Per mesh body: its block and first node, for a block body.
+    blocks: Vec<Option<(<Dim<D> as SourceDim<D>>::Block, usize)>>,
+}
+
+impl<'s, const D: usize> Sources<'s, D>
+where
+    Dim<D>: SourceDim<D>,
+{
+    /// The sources of `scene` and its `[mesh] file`, read (if it has one).
+    pub(in crate::scene) fn new(
+        scene: &'s Scene,
+        file: Option<AnyMsh>,
+    ) -> Result<Sources<'s, D>, SceneError> {
+        let file = file
+            .map(|f| <Dim<D> as SourceDim<D>>::mesh_file(scene, f))
+            .transpose()?;
+        Ok(Sources {
+            scene,
+            file: file.map(MeshFile::new),
+            blocks: Vec::new(),
+        })
+    }
+
+    /// Appends the scene's `body[i]` with its checked `material` and
+    /// returns the mesh body's index. Errors name the body's fields
+    /// (`body[i].nx`, ...).
+    pub(in crate::scene) fn add_body(
         &mut self,
         mesh: &mut Mesh<D>,
-        index: usize,
+        i: usize,
         material: Material,
-    ) -> Result<usize, SceneError>;
+    ) -> Result<usize, SceneError> {
+        let scene = self.scene;
+        if is_block(&scene.bodies[i]) {
+            let (body, block) = blocks::add_block::<D>(scene, mesh, i, material)?;
+            self.blocks.push(Some(block));
+            return Ok(body);
+        }
+        let Some(file) = &mut self.file else {
+            return Err(scene.invalid(
+                format!("body[{i}]"),
+                format!(
+                    "a {}body needs {} (a block), or a {}`[mesh] file` whose physical {} it is",
+                    <Dim<D> as SourceDim<D>>::PREFIX,
+                    blocks::fields::<D>(", ", " and "),
+                    <Dim<D> as SourceDim<D>>::PREFIX,
+                    <Dim<D> as SourceDim<D>>::BODY,
+                ),
+            ));
+        };
+        let body = file.add_body(scene, mesh, i, material)?;
+        self.blocks.push(None);
+        Ok(body)
+    }
 
     /// The facets of `side` of the mesh body `body`, outward: `Ok(None)`
     /// if the body is not a block body, `Err` (a message) if `side` is
     /// not a side of the dimension's blocks.
-    fn side(
+    pub(in crate::scene) fn side(
         &self,
         mesh: &Mesh<D>,
         body: usize,
         side: SideName,
-    ) -> Result<Option<Vec<FacetOf<D>>>, String>
-    where
-        Dim<D>: SurfaceDim<D>;
+    ) -> Result<Option<Vec<FacetOf<D>>>, String> {
+        let side = <Dim<D> as SourceDim<D>>::side(side)?;
+        let Some(Some((block, node0))) = self.blocks.get(body) else {
+            return Ok(None);
+        };
+        Ok(<Dim<D> as SourceDim<D>>::block_side(
+            mesh, body, block, *node0, side,
+        ))
+    }
 
-    /// The physical group `group` (a curve in 2D, a surface in 3D) as
-    /// facets of one body, outward, and that body; errors name `field`.
-    fn group_facets(
+    /// The answer of the mesh file, or an error for `field` if there is
+    /// none.
+    pub(in crate::scene) fn by_group<T>(
         &self,
         field: &str,
-        group: &str,
-    ) -> Result<(usize, Vec<FacetOf<D>>), SceneError>
-    where
-        Dim<D>: SurfaceDim<D>;
-
-    /// The mesh nodes of the physical group `group`, ascending; errors
-    /// name `field`.
-    fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError>;
-}
-
-impl MeshSource<2> for Sources<'_> {
-    fn add_body(
-        &mut self,
-        mesh: &mut Mesh,
-        index: usize,
-        material: Material,
-    ) -> Result<usize, SceneError> {
-        Sources::add_body(self, mesh, index, material)
-    }
-
-    fn side(
-        &self,
-        mesh: &Mesh,
-        body: usize,
-        side: SideName,
-    ) -> Result<Option<Vec<[NodeId; 2]>>, String> {
-        let side = side
-            .side_2d()
-            .ok_or_else(|| format!("`{}` is a side of a 3D block", side.name()))?;
-        Ok(self.face(mesh, body, side))
-    }
-
-    fn group_facets(
-        &self,
-        field: &str,
-        group: &str,
-    ) -> Result<(usize, Vec<[NodeId; 2]>), SceneError> {
-        let face = self.group_face(field, group)?;
-        Ok((face.body, face.segments))
-    }
-
-    fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError> {
-        Sources::group_nodes(self, field, group)
-    }
-}
-
-/// A way of making some of a 2D scene's bodies.
-pub(super) trait BodySource {
-    /// Whether this source makes the scene's `body[index]`.
-    fn owns(&self, index: usize) -> bool;
-
-    /// Appends the scene's `body[index]` with its (checked) `material` to
-    /// `mesh` and returns the new body's index. Errors name the body's
-    /// fields (`body[index].nx`, ...).
-    fn add_body(
-        &mut self,
-        mesh: &mut Mesh,
-        index: usize,
-        material: Material,
-    ) -> Result<usize, SceneError>;
-
-    /// The segments of `side` of the mesh body `body`, which this source
-    /// made, counter-clockwise around the body; `None` if the body has no
-    /// such face.
-    fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>>;
-
-    /// The physical curve `group` as a face of one body (counter-clockwise
-    /// around it); `None` if this source knows no groups, `Err` (a message)
-    /// if the group is unknown, of the wrong dimension or not on one body's
-    /// boundary.
-    fn group_face(&self, _group: &str) -> Option<Result<GroupFace, String>> {
-        None
-    }
-
-    /// The mesh nodes of the physical curve or point `group`, ascending;
-    /// `None` if this source knows no groups.
-    fn group_nodes(&self, _group: &str) -> Option<Result<Vec<NodeId>, String>> {
-        None
-    }
-
-    /// The segments of the physical curve `group` in the file's order and
-    /// direction; `None` if this source knows no groups.
-    fn group_segments(&self, _group: &str) -> Option<Result<Vec<[NodeId; 2]>, String>> {
-        None
-    }
-}
-
-/// A scene's mesh sources, and which one made each body of the mesh.
-pub(super) struct Sources<'s> {
-    scene: &'s Scene,
-    sources: Vec<Box<dyn BodySource + 's>>,
-    /// The source of each mesh body, by index into `sources`.
-    made_by: Vec<usize>,
-}
-
-impl<'s> Sources<'s> {
-    /// The sources of `scene`, in the order they are asked who owns a body;
-    /// `msh` is its `[mesh] file`, read (if it has one).
-    pub(super) fn of(scene: &'s Scene, msh: Option<MshMesh>) -> Sources<'s> {
-        Sources {
-            scene,
-            sources: vec![
-                Box::new(Blocks::new(scene)),
-                Box::new(Gmsh::new(scene, msh)),
-            ],
-            made_by: Vec::new(),
+        ask: impl Fn(&MeshFile<D>) -> Result<T, String>,
+    ) -> Result<T, SceneError> {
+        match &self.file {
+            Some(file) => ask(file).map_err(|m| self.scene.invalid(field, m)),
+            None => Err(self
+                .scene
+                .invalid(field, "physical groups need a `[mesh] file`")),
         }
     }
 
-    /// Appends the scene's `body[index]` through the first source that owns
-    /// it and returns the mesh body's index.
-    pub(super) fn add_body(
-        &mut self,
-        mesh: &mut Mesh,
-        index: usize,
-        material: Material,
-    ) -> Result<usize, SceneError> {
-        let s = self
-            .sources
-            .iter()
-            .position(|s| s.owns(index))
-            .ok_or_else(|| {
-                self.scene
-                    .invalid(format!("body[{index}]"), "no mesh source makes this body")
-            })?;
-        let body = self.sources[s].add_body(mesh, index, material)?;
-        // every body comes through here, one at a time
-        debug_assert_eq!(body, self.made_by.len());
-        self.made_by.push(s);
-        Ok(body)
+    /// The physical group `group` (a curve in 2D, a surface in 3D) as
+    /// facets of one body, outward, and that body; errors name `field`.
+    pub(in crate::scene) fn group_facets(
+        &self,
+        field: &str,
+        group: &str,
+    ) -> Result<(usize, Vec<FacetOf<D>>), SceneError> {
+        self.by_group(field, |f| <Dim<D> as SourceDim<D>>::group_facets(f, group))
     }
 
-    /// The segments of `side` of the mesh body `body`, from the source that
-    /// made it; `None` if it has no such face.
-    pub(super) fn face(&self, mesh: &Mesh, body: usize, side: Side) -> Option<Vec<[NodeId; 2]>> {
-        let s = *self.made_by.get(body)?;
-        self.sources.get(s)?.face(mesh, body, side)
+    /// The mesh nodes of the physical group `group`, ascending; errors
+    /// name `field`.
+    pub(in crate::scene) fn group_nodes(
+        &self,
+        field: &str,
+        group: &str,
+    ) -> Result<Vec<NodeId>, SceneError> {
+        self.by_group(field, |f| f.group_nodes(group))
     }
 }
 
-impl Sources<'_> {
-    /// The first answer of a source that knows groups, or an error for
-    /// `field` if none does.
-    fn by_group<T>(
-        &self,
-        field: &str,
-        ask: impl Fn(&dyn BodySource) -> Option<Result<T, String>>,
-    ) -> Result<T, SceneError> {
-        self.sources
-            .iter()
-            .find_map(|s| ask(s.as_ref()))
-            .unwrap_or_else(|| Err("physical groups need a `[mesh] file`".to_owned()))
-            .map_err(|m| self.scene.invalid(field, m))
-    }
-
-    /// The physical curve `group` as a face (see [`BodySource::group_face`]);
-    /// errors name `field`.
-    pub(super) fn group_face(&self, field: &str, group: &str) -> Result<GroupFace, SceneError> {
-        self.by_group(field, |s| s.group_face(group))
-    }
-
-    /// The nodes of the physical curve or point `group`, ascending; errors
-    /// name `field`.
-    pub(super) fn group_nodes(&self, field: &str, group: &str) -> Result<Vec<NodeId>, SceneError> {
-        self.by_group(field, |s| s.group_nodes(group))
-    }
-
+impl Sources<'_, 2> {
     /// The segments of the physical curve `group`, in file order; errors
     /// name `field`.
-    pub(super) fn group_segments(
+    pub(in crate::scene) fn group_segments(
         &self,
         field: &str,
         group: &str,
     ) -> Result<Vec<[NodeId; 2]>, SceneError> {
-        self.by_group(field, |s| s.group_segments(group))
+        self.by_group(field, |f| f.group_segments(group))
     }
 }
