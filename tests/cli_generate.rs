@@ -67,7 +67,13 @@ fn generate_c_of_the_shipped_formulation_is_the_checked_in_file() {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", text(&o.stderr));
-    for name in ["gapsim.h", "gapsim_slave_normal.h", "gapsim_slave_normal.c"] {
+    for name in [
+        "gapsim.h",
+        "gapsim_runtime.h",
+        "gapsim_runtime.c",
+        "gapsim_slave_normal.h",
+        "gapsim_slave_normal.c",
+    ] {
         let written = std::fs::read_to_string(out.join(name)).unwrap();
         let checked_in =
             std::fs::read_to_string(repo(&format!("contact-kernels/c/{name}"))).unwrap();
@@ -89,7 +95,13 @@ fn generate_a_variant_outside_the_repository() {
         ("rust", &["kernels.rs"][..], "fn my_normal_type6"),
         (
             "c",
-            &["gapsim.h", "gapsim_my_normal.h", "gapsim_my_normal.c"][..],
+            &[
+                "gapsim.h",
+                "gapsim_runtime.h",
+                "gapsim_runtime.c",
+                "gapsim_my_normal.h",
+                "gapsim_my_normal.c",
+            ][..],
             "int gapsim_my_normal_type6(",
         ),
     ] {
@@ -329,7 +341,12 @@ fn generate_and_verify_take_face_formulations() {
         "{header}"
     );
     let source = std::fs::read_to_string(gen_dir.join("gapsim_my_face.c")).unwrap();
-    assert!(source.contains("static int my_face_check_face("));
+    assert!(
+        source.contains("#include \"gapsim_runtime.h\"")
+            && source.contains("gapsim_validate_faces(q, s, 3, 4, d)")
+    );
+    let runtime = std::fs::read_to_string(gen_dir.join("gapsim_runtime.c")).unwrap();
+    assert!(runtime.contains("static int check_face("));
     let common = std::fs::read_to_string(gen_dir.join("gapsim.h")).unwrap();
     assert!(common.contains("GAPSIM_SLAVE_POINT_OUTSIDE = 16"));
 }

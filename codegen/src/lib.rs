@@ -130,7 +130,8 @@ pub fn generate_with(
 }
 
 /// Generates the C99 kernels for all compiled `sources` ([`emit::CEmitter`]):
-/// `gapsim.h`, then a header and a source per formulation.
+/// `gapsim.h`, the shared runtime (`gapsim_runtime.h`, `gapsim_runtime.c`),
+/// then a header and a source per formulation.
 ///
 /// ```
 /// let text = std::fs::read_to_string(concat!(
@@ -140,8 +141,17 @@ pub fn generate_with(
 /// let src = codegen::Source { name: "slave-normal".into(), text, compiled: true };
 /// let files = codegen::generate_c(&[src])?;
 /// let names: Vec<_> = files.iter().map(|f| f.name.as_str()).collect();
-/// assert_eq!(names, ["gapsim.h", "gapsim_slave_normal.h", "gapsim_slave_normal.c"]);
-/// assert!(files[2].contents.contains("int gapsim_slave_normal_type6("));
+/// assert_eq!(
+///     names,
+///     [
+///         "gapsim.h",
+///         "gapsim_runtime.h",
+///         "gapsim_runtime.c",
+///         "gapsim_slave_normal.h",
+///         "gapsim_slave_normal.c"
+///     ]
+/// );
+/// assert!(files[4].contents.contains("int gapsim_slave_normal_type6("));
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 pub fn generate_c(sources: &[Source]) -> Result<Vec<emit::EmittedFile>, Error> {

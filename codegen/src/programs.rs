@@ -39,12 +39,9 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
     if f.implicit.is_vector() {
         return programs_vector(f);
     }
-    let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
-        finite(f, Program::lower(dag, outs, &f.signature))
-    };
     let xi = f.implicit.sym;
     // Closed-form projection when r is affine in xi: xi_m = -r(q, 0) / r_xi(q).
-    let closed_form = |dag: &mut expr::Dag| -> Option<expr::Id> {
+    let closed_form = |dag: &mut expr::Dag| -> Option<Vec<expr::Id>> {
         let [r, r_xi] = truncation::residual(f, dag);
         if diff::Differentiator::new().d(dag, r_xi, xi).is_some() {
             return None;
@@ -53,14 +50,35 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
         let r0 = dag.replace(&[Some(r)], xi, zero)[0].expect("some");
         let inv = dag.recip(r_xi);
         let t = dag.mul(r0, inv);
-        Some(dag.neg(t))
+        Some(vec![dag.neg(t)])
+    };
+    assemble(f, &[xi], closed_form, |dag| {
+        truncation::residual(f, dag).to_vec()
+    })
+}
+
+/// The programs of a formulation whose unknown has the components `xs`
+/// (its parametric dimension `P`): `closed_form` gives the projection's
+/// components when the residual is affine (then every kernel solves it and
+/// returns them last), `residual` the residual program's outputs.
+fn assemble(
+    f: &Formulation,
+    xs: &[expr::Sym],
+    closed_form: impl Fn(&mut expr::Dag) -> Option<Vec<expr::Id>>,
+    residual: impl Fn(&mut expr::Dag) -> Vec<expr::Id>,
+) -> Result<FormulationPrograms, Error> {
+    let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
+        finite(f, Program::lower(dag, outs, &f.signature))
     };
     // Outputs with the projection solved inside the kernel, when affine.
     let finish = |dag: &mut expr::Dag, outs: Vec<Option<expr::Id>>| -> Vec<Option<expr::Id>> {
         match closed_form(dag) {
             Some(x) => {
-                let mut outs = dag.replace(&outs, xi, x);
-                outs.push(Some(x));
+                let mut outs = outs;
+                for (sym, val) in xs.iter().zip(&x) {
+                    outs = dag.replace(&outs, *sym, *val);
+                }
+                outs.extend(x.into_iter().map(Some));
                 outs
             }
             None => outs,
@@ -68,8 +86,8 @@ pub fn programs(f: &Formulation) -> Result<FormulationPrograms, Error> {
     };
     let mut dag = f.dag.clone();
     let affine = closed_form(&mut dag).is_some();
-    let [r, r_xi] = truncation::residual(f, &mut dag);
-    let residual = lower(&dag, &[Some(r), Some(r_xi)])?;
+    let r = residual(&mut dag);
+    let residual = lower(&dag, &r.into_iter().map(Some).collect::<Vec<_>>())?;
     let g = truncation::gap_value(f, &mut dag)?;
     let outs = finish(&mut dag, vec![Some(g)]);
     let gap = lower(&dag, &outs)?;
@@ -128,11 +146,8 @@ fn finite(f: &Formulation, program: Program) -> Result<Program, Error> {
 /// when every `A_ac` is independent of `xi` (the residual is affine: a
 /// tri3 master), the inverse by adjugate over determinant.
 fn programs_vector(f: &Formulation) -> Result<FormulationPrograms, Error> {
-    let lower = |dag: &expr::Dag, outs: &[Option<expr::Id>]| {
-        finite(f, Program::lower(dag, outs, &f.signature))
-    };
     let xs: Vec<expr::Sym> = f.implicit.components.iter().map(|c| c.0).collect();
-    let closed_form = |dag: &mut expr::Dag| -> Option<[expr::Id; 2]> {
+    let closed_form = |dag: &mut expr::Dag| -> Option<Vec<expr::Id>> {
         let ra = truncation::residual_vector(f, dag);
         let mut diff = diff::Differentiator::new();
         for a in &ra[2..] {
@@ -162,43 +177,9 @@ fn programs_vector(f: &Formulation) -> Result<FormulationPrograms, Error> {
         let t3 = dag.mul(a10, r0);
         let v = dag.sub(t2, t3);
         let v = dag.mul(v, inv);
-        Some([dag.neg(u), dag.neg(v)])
+        Some(vec![dag.neg(u), dag.neg(v)])
     };
-    let finish = |dag: &mut expr::Dag, outs: Vec<Option<expr::Id>>| -> Vec<Option<expr::Id>> {
-        match closed_form(dag) {
-            Some(x) => {
-                let mut outs = outs;
-                for (sym, val) in xs.iter().zip(x) {
-                    outs = dag.replace(&outs, *sym, val);
-                }
-                outs.extend(x.map(Some));
-                outs
-            }
-            None => outs,
-        }
-    };
-    let mut dag = f.dag.clone();
-    let affine = closed_form(&mut dag).is_some();
-    let ra = truncation::residual_vector(f, &mut dag);
-    let residual = lower(&dag, &ra.iter().map(|r| Some(*r)).collect::<Vec<_>>())?;
-    let g = truncation::gap_value(f, &mut dag)?;
-    let outs = finish(&mut dag, vec![Some(g)]);
-    let gap = lower(&dag, &outs)?;
-    let mut kernels = Vec::new();
-    for row in TYPES {
-        let mut dag = f.dag.clone();
-        let k = truncation::derive(f, &mut dag, row)?;
-        let has_hessian = k.has_hessian();
-        let mut outs = vec![Some(k.gap)];
-        outs.extend(k.grad);
-        outs.extend(k.hess);
-        let outs = finish(&mut dag, outs);
-        kernels.push((lower(&dag, &outs)?, has_hessian));
-    }
-    Ok(FormulationPrograms {
-        affine,
-        residual,
-        gap,
-        kernels,
+    assemble(f, &xs, closed_form, |dag| {
+        truncation::residual_vector(f, dag)
     })
 }

@@ -51,6 +51,7 @@ use crate::diff::{Differentiator, add_opt, mul_opt};
 use crate::expr::{Dag, Id};
 use crate::formulation::{Formulation, Value};
 use crate::jet::{JetArena, JetId, Matrix, Parts, Vector};
+use crate::signature::Signature;
 
 mod vector;
 
@@ -125,33 +126,8 @@ pub fn derive(
         return vector::derive(formulation, dag, orders);
     }
     let origin = format!("{}.rs", formulation.name);
-    let order_of = |name: &str| -> Result<EntityOrder, Error> {
-        ENTITY_NAMES
-            .iter()
-            .position(|n| *n == name)
-            .map(|i| orders[i])
-            .ok_or_else(|| Error::Truncation {
-                file: origin.clone(),
-                message: format!(
-                    "entity `{name}` has no column in the truncation table (known: {})",
-                    ENTITY_NAMES.join(", ")
-                ),
-            })
-    };
-    let mut declared: Vec<&str> = formulation
-        .entities
-        .iter()
-        .map(|e| e.name.as_str())
-        .collect();
-    declared.push(&formulation.implicit.name);
-    for name in ENTITY_NAMES {
-        if !declared.contains(&name) {
-            return Err(Error::Truncation {
-                file: origin.clone(),
-                message: format!("the formulation does not define entity `{name}`"),
-            });
-        }
-    }
+    let order_of = |name: &str| order_of(formulation, orders, name);
+    check_defined(formulation, &declared(formulation))?;
 
     let sig = &formulation.signature;
     let (n, q) = (sig.coords(), sig.coord_syms());
@@ -241,14 +217,7 @@ pub fn derive(
                     parts.gl.push((b, c));
                 }
                 if order == EntityOrder::Quadratic {
-                    let mut h: Matrix = vec![None; sig.packed_len()];
-                    for j in 0..n {
-                        let e_qj = diff.d(dag, e, q[j]);
-                        for k in j..n {
-                            h[sig.packed(j, k)] = diff.d_opt(dag, e_qj, q[k]);
-                        }
-                    }
-                    parts.h = Some(h);
+                    parts.h = Some(hessian_q(dag, &mut diff, e, sig));
                     if let Some(b) = xi_basis {
                         // E_qxi xi'^T + xi' E_xiq = sym(E_qxi, xi').
                         let u: Vector = (0..n).map(|j| diff.d_opt(dag, e_xi, q[j])).collect();
@@ -302,18 +271,30 @@ fn order_of(
         })
 }
 
-/// Every entity of the table is defined, and every defined one has a
-/// column.
-fn check_entities(formulation: &Formulation, orders: [EntityOrder; 3]) -> Result<(), Error> {
+/// The names a formulation defines: its entities, then its implicit
+/// unknown.
+fn declared(formulation: &Formulation) -> Vec<&str> {
     let mut declared: Vec<&str> = formulation
         .entities
         .iter()
         .map(|e| e.name.as_str())
         .collect();
     declared.push(&formulation.implicit.name);
+    declared
+}
+
+/// Every entity of the table is defined, and every defined one has a
+/// column.
+fn check_entities(formulation: &Formulation, orders: [EntityOrder; 3]) -> Result<(), Error> {
+    let declared = declared(formulation);
     for name in &declared {
         order_of(formulation, orders, name)?;
     }
+    check_defined(formulation, &declared)
+}
+
+/// Every entity of the table is among the `declared` names.
+fn check_defined(formulation: &Formulation, declared: &[&str]) -> Result<(), Error> {
     for name in ENTITY_NAMES {
         if !declared.contains(&name) {
             return Err(Error::Truncation {
@@ -323,6 +304,20 @@ fn check_entities(formulation: &Formulation, orders: [EntityOrder; 3]) -> Result
         }
     }
     Ok(())
+}
+
+/// `E_qq` of `e` at fixed `xi`, packed upper (`sig.packed(j, k)`, `j <=
+/// k`): the derivatives in coordinate order.
+fn hessian_q(dag: &mut Dag, diff: &mut Differentiator, e: Id, sig: &Signature) -> Matrix {
+    let (n, q) = (sig.coords(), sig.coord_syms());
+    let mut h: Matrix = vec![None; sig.packed_len()];
+    for j in 0..n {
+        let e_qj = diff.d(dag, e, q[j]);
+        for k in j..n {
+            h[sig.packed(j, k)] = diff.d_opt(dag, e_qj, q[k]);
+        }
+    }
+    h
 }
 
 /// Adds `sym(u, B_b)` to a list of rank-2 terms.

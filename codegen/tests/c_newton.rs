@@ -3,7 +3,8 @@
 //!
 //! A test formulation whose projection residual is not affine in `xi` and
 //! whose gap uses `powi` with positive and negative exponents is emitted as
-//! C, compiled with the system C compiler (`$CC`, else `cc`; `-O2
+//! C (its Newton projection: the shared runtime's `gapsim_newton_segment`),
+//! compiled with the system C compiler (`$CC`, else `cc`; `-O2
 //! -ffp-contract=off -Wall -Wextra -pedantic -Werror`) and run on seeded
 //! configurations. Its outputs must equal, bit for bit, the same instruction
 //! lists run by [`codegen::Program::run`] (the reference semantics, with
@@ -182,7 +183,9 @@ fn newton_projection_and_powi_match_the_instruction_lists() {
         .find(|f| f.name == "gapsim_newton_test.c")
         .unwrap()
         .contents;
-    assert!(c.contains("gapsim_powi(") && c.contains("GAPSIM_PROJECTION_ITERATIONS"));
+    assert!(
+        c.contains("gapsim_powi(") && c.contains("gapsim_newton_segment(newton_test_residual,")
+    );
 
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_newton");
     std::fs::create_dir_all(&dir).unwrap();
@@ -197,6 +200,7 @@ fn newton_projection_and_powi_match_the_instruction_lists() {
         .arg(&dir)
         .arg(dir.join("driver.c"))
         .arg(dir.join("gapsim_newton_test.c"))
+        .arg(dir.join("gapsim_runtime.c"))
         .arg("-o")
         .arg(&exe)
         .arg("-lm")

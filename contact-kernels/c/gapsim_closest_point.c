@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "gapsim_closest_point.h"
+#include "gapsim_runtime.h"
 
 /*
  * The `closest-point` gap. The projection is solved in closed form inside
@@ -1909,108 +1910,24 @@ static double closest_point_type6(const double *d, double xi_s, double *xi_m, do
     return v338;
 }
 
-/* Whether all len values are finite. */
-static int closest_point_all_finite(const double *v, int len)
-{
-    int i;
-    for (i = 0; i < len; ++i) {
-        if (!isfinite(v[i])) {
-            return 0;
-        }
-    }
-    return 1;
-}
-
-/*
- * Validates q and the parameters and writes the coordinates relative to the
- * first point into d (contact-kernels' validate.rs): every value finite,
- * then neither segment (slave: points 1..2, master: 3..4; the chord
- * between a segment's first and last point) shorter than
- * GAPSIM_DEGENERATE_LENGTH times the largest |d[i]|.
- */
-static int closest_point_validate(const double *q, double xi_s, double *d)
-{
-    double size = 0.0;
-    double threshold;
-    int i;
-    if (!closest_point_all_finite(q, 8)) {
-        return GAPSIM_NON_FINITE_INPUT;
-    }
-    if (!isfinite(xi_s)) {
-        return GAPSIM_NON_FINITE_INPUT;
-    }
-    for (i = 0; i < 8; ++i) {
-        d[i] = q[i] - q[i % 2];
-    }
-    for (i = 0; i < 8; ++i) {
-        if (fabs(d[i]) > size) {
-            size = fabs(d[i]);
-        }
-    }
-    threshold = GAPSIM_DEGENERATE_LENGTH * size;
-    {
-        double length2 = 0.0;
-        const double c0 = d[2] - d[0];
-        length2 += c0 * c0;
-        const double c1 = d[3] - d[1];
-        length2 += c1 * c1;
-        /* Written so that a NaN length is also rejected. */
-        if (!(length2 > threshold * threshold)) {
-            return GAPSIM_DEGENERATE_SLAVE;
-        }
-    }
-    {
-        double length2 = 0.0;
-        const double c0 = d[6] - d[4];
-        length2 += c0 * c0;
-        const double c1 = d[7] - d[5];
-        length2 += c1 * c1;
-        /* Written so that a NaN length is also rejected. */
-        if (!(length2 > threshold * threshold)) {
-            return GAPSIM_DEGENERATE_MASTER;
-        }
-    }
-    return GAPSIM_OK;
-}
-
-/* The projection is solved in closed form inside the kernels (the residual
- * is affine in xi): they ignore the start value. */
-static int closest_point_start(const double *d, double xi_s, double *xi)
-{
-    (void)d;
-    (void)xi_s;
-    *xi = 0.0;
-    return GAPSIM_OK;
-}
-
-/* Rejects a projection the kernel could not find or that lies out of reach
- * (contact-kernels' projection::check). */
-static int closest_point_check(double xi)
-{
-    if (!isfinite(xi)) {
-        return GAPSIM_NO_PROJECTION;
-    }
-    if (fabs(xi) > GAPSIM_XI_M_LIMIT) {
-        return GAPSIM_PROJECTION_OUT_OF_REACH;
-    }
-    return GAPSIM_OK;
-}
-
 int gapsim_closest_point_project(const double q[8], double xi_s, double *gap, double *xi_m)
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
-    int status = closest_point_validate(q, xi_s, d);
+    int status;
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_gap(d, xi_s, &xi);
-    status = closest_point_check(xi);
+    g = closest_point_gap(d, s[0], xi);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
@@ -2018,202 +1935,214 @@ int gapsim_closest_point_project(const double q[8], double xi_s, double *gap, do
         return GAPSIM_NON_FINITE_GAP;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_closest_point_type1(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double *hess)
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
     (void)hess;
-    status = closest_point_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_type1(d, xi_s, &xi, grad);
-    status = closest_point_check(xi);
+    g = closest_point_type1(d, s[0], xi, grad);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!closest_point_all_finite(grad, 8)) {
+    if (!gapsim_all_finite(grad, 8)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_closest_point_type2(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64])
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = closest_point_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_type2(d, xi_s, &xi, grad, hess);
-    status = closest_point_check(xi);
+    g = closest_point_type2(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!closest_point_all_finite(grad, 8)) {
+    if (!gapsim_all_finite(grad, 8)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!closest_point_all_finite(hess, 64)) {
+    if (!gapsim_all_finite(hess, 64)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_closest_point_type3(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64])
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = closest_point_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_type3(d, xi_s, &xi, grad, hess);
-    status = closest_point_check(xi);
+    g = closest_point_type3(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!closest_point_all_finite(grad, 8)) {
+    if (!gapsim_all_finite(grad, 8)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!closest_point_all_finite(hess, 64)) {
+    if (!gapsim_all_finite(hess, 64)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_closest_point_type4(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64])
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = closest_point_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_type4(d, xi_s, &xi, grad, hess);
-    status = closest_point_check(xi);
+    g = closest_point_type4(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!closest_point_all_finite(grad, 8)) {
+    if (!gapsim_all_finite(grad, 8)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!closest_point_all_finite(hess, 64)) {
+    if (!gapsim_all_finite(hess, 64)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_closest_point_type5(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64])
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = closest_point_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_type5(d, xi_s, &xi, grad, hess);
-    status = closest_point_check(xi);
+    g = closest_point_type5(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!closest_point_all_finite(grad, 8)) {
+    if (!gapsim_all_finite(grad, 8)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!closest_point_all_finite(hess, 64)) {
+    if (!gapsim_all_finite(hess, 64)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_closest_point_type6(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64])
 {
     double d[8];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = closest_point_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 4, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = closest_point_start(d, xi_s, &xi);
+    status = gapsim_start_closed_form(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = closest_point_type6(d, xi_s, &xi, grad, hess);
-    status = closest_point_check(xi);
+    g = closest_point_type6(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!closest_point_all_finite(grad, 8)) {
+    if (!gapsim_all_finite(grad, 8)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!closest_point_all_finite(hess, 64)) {
+    if (!gapsim_all_finite(hess, 64)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }

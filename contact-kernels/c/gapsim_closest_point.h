@@ -5,8 +5,8 @@
  * segment's inward unit normal (pointing towards the slave body).
  *
  * gapsim_closest_point.h: the `closest-point` kernels for C and C++ (C99;
- * link gapsim_closest_point.c and -lm; compile with -ffp-contract=off for the
- * same bits as the Rust kernels).
+ * link gapsim_closest_point.c, gapsim_runtime.c and -lm; compile with
+ * -ffp-contract=off for the same bits as the Rust kernels).
  *
  * Every function takes q, the 8 coordinates of the points xs1, xs2, xm1, xm2
  * (x, y of each, point by point: the slave segment's nodes, then the master

@@ -10,8 +10,8 @@
  * the quad4 master the residual is not affine in xi: Newton from (0, 0).
  *
  * gapsim_quad4_slave_normal.h: the `quad4-slave-normal` kernels for C and C++
- * (C99; link gapsim_quad4_slave_normal.c and -lm; compile with
- * -ffp-contract=off for the same bits as the Rust kernels).
+ * (C99; link gapsim_quad4_slave_normal.c, gapsim_runtime.c and -lm; compile
+ * with -ffp-contract=off for the same bits as the Rust kernels).
  *
  * Every function takes q, the 24 coordinates of the points xs1, xs2, xs3,
  * xs4, xm1, xm2, xm3, xm4 (x, y, z of each, point by point: the slave face's

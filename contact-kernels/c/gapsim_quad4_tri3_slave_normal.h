@@ -10,8 +10,8 @@
  * in xi (a tri3 master): solved in closed form.
  *
  * gapsim_quad4_tri3_slave_normal.h: the `quad4-tri3-slave-normal` kernels for
- * C and C++ (C99; link gapsim_quad4_tri3_slave_normal.c and -lm; compile with
- * -ffp-contract=off for the same bits as the Rust kernels).
+ * C and C++ (C99; link gapsim_quad4_tri3_slave_normal.c, gapsim_runtime.c and
+ * -lm; compile with -ffp-contract=off for the same bits as the Rust kernels).
  *
  * Every function takes q, the 21 coordinates of the points xs1, xs2, xs3,
  * xs4, xm1, xm2, xm3 (x, y, z of each, point by point: the slave face's 4

@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "gapsim_quadratic_slave_normal.h"
+#include "gapsim_runtime.h"
 
 /*
  * `[r, dr/dxi]` of the `quadratic-slave-normal` projection at `xi`. Cost: 60
@@ -5210,169 +5211,24 @@ static double quadratic_slave_normal_type6(const double *d, double xi_s, double 
     return v1113;
 }
 
-/* Whether all len values are finite. */
-static int quadratic_slave_normal_all_finite(const double *v, int len)
-{
-    int i;
-    for (i = 0; i < len; ++i) {
-        if (!isfinite(v[i])) {
-            return 0;
-        }
-    }
-    return 1;
-}
-
-/*
- * Validates q and the parameters and writes the coordinates relative to the
- * first point into d (contact-kernels' validate.rs): every value finite,
- * then neither segment (slave: points 1..3, master: 4..6; the chord
- * between a segment's first and second point) shorter than
- * GAPSIM_DEGENERATE_LENGTH times the largest |d[i]|.
- * Then neither 3-node segment folded (GAPSIM_FOLDED_SLAVE, _MASTER): its
- * tangent's component along the chord must stay positive at both ends,
- * chord^2 / 2 - |(a + b - 2 m) . (b - a)| > GAPSIM_DEGENERATE_LENGTH *
- * chord^2 / 2 (a, b the end nodes, m the mid node).
- */
-static int quadratic_slave_normal_validate(const double *q, double xi_s, double *d)
-{
-    double size = 0.0;
-    double threshold;
-    int i;
-    if (!quadratic_slave_normal_all_finite(q, 12)) {
-        return GAPSIM_NON_FINITE_INPUT;
-    }
-    if (!isfinite(xi_s)) {
-        return GAPSIM_NON_FINITE_INPUT;
-    }
-    for (i = 0; i < 12; ++i) {
-        d[i] = q[i] - q[i % 2];
-    }
-    for (i = 0; i < 12; ++i) {
-        if (fabs(d[i]) > size) {
-            size = fabs(d[i]);
-        }
-    }
-    threshold = GAPSIM_DEGENERATE_LENGTH * size;
-    {
-        double length2 = 0.0;
-        const double c0 = d[2] - d[0];
-        length2 += c0 * c0;
-        const double c1 = d[3] - d[1];
-        length2 += c1 * c1;
-        /* Written so that a NaN length is also rejected. */
-        if (!(length2 > threshold * threshold)) {
-            return GAPSIM_DEGENERATE_SLAVE;
-        }
-    }
-    {
-        double length2 = 0.0;
-        const double c0 = d[8] - d[6];
-        length2 += c0 * c0;
-        const double c1 = d[9] - d[7];
-        length2 += c1 * c1;
-        /* Written so that a NaN length is also rejected. */
-        if (!(length2 > threshold * threshold)) {
-            return GAPSIM_DEGENERATE_MASTER;
-        }
-    }
-    {
-        /* 3-node segment: its mid node must not fold it. */
-        double chord2 = 0.0;
-        double along = 0.0;
-        double half_chord2;
-        {
-            const double c = d[2] - d[0];
-            chord2 += c * c;
-            along += (d[0] + d[2] - 2.0 * d[4]) * c;
-        }
-        {
-            const double c = d[3] - d[1];
-            chord2 += c * c;
-            along += (d[1] + d[3] - 2.0 * d[5]) * c;
-        }
-        half_chord2 = 0.5 * chord2;
-        /* Written so that a NaN is also rejected. */
-        if (!(half_chord2 - fabs(along) > GAPSIM_DEGENERATE_LENGTH * half_chord2)) {
-            return GAPSIM_FOLDED_SLAVE;
-        }
-    }
-    {
-        /* 3-node segment: its mid node must not fold it. */
-        double chord2 = 0.0;
-        double along = 0.0;
-        double half_chord2;
-        {
-            const double c = d[8] - d[6];
-            chord2 += c * c;
-            along += (d[6] + d[8] - 2.0 * d[10]) * c;
-        }
-        {
-            const double c = d[9] - d[7];
-            chord2 += c * c;
-            along += (d[7] + d[9] - 2.0 * d[11]) * c;
-        }
-        half_chord2 = 0.5 * chord2;
-        /* Written so that a NaN is also rejected. */
-        if (!(half_chord2 - fabs(along) > GAPSIM_DEGENERATE_LENGTH * half_chord2)) {
-            return GAPSIM_FOLDED_MASTER;
-        }
-    }
-    return GAPSIM_OK;
-}
-
-/* Newton's method on the projection residual from xi = 0
- * (contact-kernels' projection::solve). */
-static int quadratic_slave_normal_start(const double *d, double xi_s, double *xi)
-{
-    double x = 0.0;
-    int it;
-    for (it = 0; it < GAPSIM_PROJECTION_ITERATIONS; ++it) {
-        double r_xi;
-        const double r = quadratic_slave_normal_residual(d, xi_s, x, &r_xi);
-        const double step = r / r_xi;
-        if (!isfinite(step)) {
-            return GAPSIM_NO_PROJECTION;
-        }
-        x -= step;
-        if (fabs(x) > GAPSIM_XI_M_LIMIT) {
-            return GAPSIM_PROJECTION_OUT_OF_REACH;
-        }
-        if (fabs(step) <= GAPSIM_PROJECTION_TOLERANCE * (1.0 + fabs(x))) {
-            *xi = x;
-            return GAPSIM_OK;
-        }
-    }
-    return GAPSIM_PROJECTION_DIVERGED;
-}
-
-/* Rejects a projection the kernel could not find or that lies out of reach
- * (contact-kernels' projection::check). */
-static int quadratic_slave_normal_check(double xi)
-{
-    if (!isfinite(xi)) {
-        return GAPSIM_NO_PROJECTION;
-    }
-    if (fabs(xi) > GAPSIM_XI_M_LIMIT) {
-        return GAPSIM_PROJECTION_OUT_OF_REACH;
-    }
-    return GAPSIM_OK;
-}
-
 int gapsim_quadratic_slave_normal_project(const double q[12], double xi_s, double *gap, double *xi_m)
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
-    int status = quadratic_slave_normal_validate(q, xi_s, d);
+    int status;
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_gap(d, xi_s, &xi);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_gap(d, s[0], xi);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
@@ -5380,202 +5236,214 @@ int gapsim_quadratic_slave_normal_project(const double q[12], double xi_s, doubl
         return GAPSIM_NON_FINITE_GAP;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_quadratic_slave_normal_type1(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double *hess)
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
     (void)hess;
-    status = quadratic_slave_normal_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_type1(d, xi_s, &xi, grad);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_type1(d, s[0], xi, grad);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!quadratic_slave_normal_all_finite(grad, 12)) {
+    if (!gapsim_all_finite(grad, 12)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_quadratic_slave_normal_type2(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double hess[144])
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = quadratic_slave_normal_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_type2(d, xi_s, &xi, grad, hess);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_type2(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!quadratic_slave_normal_all_finite(grad, 12)) {
+    if (!gapsim_all_finite(grad, 12)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!quadratic_slave_normal_all_finite(hess, 144)) {
+    if (!gapsim_all_finite(hess, 144)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_quadratic_slave_normal_type3(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double hess[144])
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = quadratic_slave_normal_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_type3(d, xi_s, &xi, grad, hess);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_type3(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!quadratic_slave_normal_all_finite(grad, 12)) {
+    if (!gapsim_all_finite(grad, 12)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!quadratic_slave_normal_all_finite(hess, 144)) {
+    if (!gapsim_all_finite(hess, 144)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_quadratic_slave_normal_type4(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double hess[144])
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = quadratic_slave_normal_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_type4(d, xi_s, &xi, grad, hess);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_type4(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!quadratic_slave_normal_all_finite(grad, 12)) {
+    if (!gapsim_all_finite(grad, 12)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!quadratic_slave_normal_all_finite(hess, 144)) {
+    if (!gapsim_all_finite(hess, 144)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_quadratic_slave_normal_type5(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double hess[144])
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = quadratic_slave_normal_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_type5(d, xi_s, &xi, grad, hess);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_type5(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!quadratic_slave_normal_all_finite(grad, 12)) {
+    if (!gapsim_all_finite(grad, 12)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!quadratic_slave_normal_all_finite(hess, 144)) {
+    if (!gapsim_all_finite(hess, 144)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }
 
 int gapsim_quadratic_slave_normal_type6(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double hess[144])
 {
     double d[12];
-    double xi;
+    double s[1];
+    double xi[1];
     double g;
     int status;
-    status = quadratic_slave_normal_validate(q, xi_s, d);
+    s[0] = xi_s;
+    status = gapsim_validate_segments(q, s, 6, 2, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = quadratic_slave_normal_start(d, xi_s, &xi);
+    status = gapsim_newton_segment(quadratic_slave_normal_residual, d, s[0], xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = quadratic_slave_normal_type6(d, xi_s, &xi, grad, hess);
-    status = quadratic_slave_normal_check(xi);
+    g = quadratic_slave_normal_type6(d, s[0], xi, grad, hess);
+    status = gapsim_check_projection(xi, 1);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!quadratic_slave_normal_all_finite(grad, 12)) {
+    if (!gapsim_all_finite(grad, 12)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!quadratic_slave_normal_all_finite(hess, 144)) {
+    if (!gapsim_all_finite(hess, 144)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
-    *xi_m = xi;
+    *xi_m = xi[0];
     return GAPSIM_OK;
 }

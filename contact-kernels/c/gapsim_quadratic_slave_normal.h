@@ -9,8 +9,8 @@
  * normal is the slave's outward unit normal there.
  *
  * gapsim_quadratic_slave_normal.h: the `quadratic-slave-normal` kernels for C
- * and C++ (C99; link gapsim_quadratic_slave_normal.c and -lm; compile with
- * -ffp-contract=off for the same bits as the Rust kernels).
+ * and C++ (C99; link gapsim_quadratic_slave_normal.c, gapsim_runtime.c and
+ * -lm; compile with -ffp-contract=off for the same bits as the Rust kernels).
  *
  * Every function takes q, the 12 coordinates of the points xs1, xs2, xs3,
  * xm1, xm2, xm3 (x, y of each, point by point: the slave segment's nodes,

@@ -5,8 +5,8 @@
  * the normal is the slave segment's outward unit normal.
  *
  * gapsim_slave_normal.h: the `slave-normal` kernels for C and C++ (C99; link
- * gapsim_slave_normal.c and -lm; compile with -ffp-contract=off for the same
- * bits as the Rust kernels).
+ * gapsim_slave_normal.c, gapsim_runtime.c and -lm; compile with
+ * -ffp-contract=off for the same bits as the Rust kernels).
  *
  * Every function takes q, the 8 coordinates of the points xs1, xs2, xm1, xm2
  * (x, y of each, point by point: the slave segment's nodes, then the master

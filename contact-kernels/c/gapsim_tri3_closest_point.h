@@ -9,8 +9,8 @@
  * affine in xi (a tri3 master): solved in closed form.
  *
  * gapsim_tri3_closest_point.h: the `tri3-closest-point` kernels for C and C++
- * (C99; link gapsim_tri3_closest_point.c and -lm; compile with
- * -ffp-contract=off for the same bits as the Rust kernels).
+ * (C99; link gapsim_tri3_closest_point.c, gapsim_runtime.c and -lm; compile
+ * with -ffp-contract=off for the same bits as the Rust kernels).
  *
  * Every function takes q, the 18 coordinates of the points xs1, xs2, xs3,
  * xm1, xm2, xm3 (x, y, z of each, point by point: the slave face's 3 nodes

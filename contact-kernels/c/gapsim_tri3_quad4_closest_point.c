@@ -8,6 +8,7 @@
 #include <math.h>
 
 #include "gapsim_tri3_quad4_closest_point.h"
+#include "gapsim_runtime.h"
 
 /*
  * `[r_0, r_1, A_00, A_01, A_10, A_11]` (`A_ac = dr_a/dxi_c`) of the
@@ -28530,220 +28531,25 @@ static double tri3_quad4_closest_point_type6(const double *d, const double *xi_s
     return v5976;
 }
 
-/* Whether all len values are finite. */
-static int tri3_quad4_closest_point_all_finite(const double *v, int len)
-{
-    int i;
-    for (i = 0; i < len; ++i) {
-        if (!isfinite(v[i])) {
-            return 0;
-        }
-    }
-    return 1;
-}
-
-/* a - b (3 components). */
-static void tri3_quad4_closest_point_sub(const double *a, const double *b, double *c)
-{
-    c[0] = a[0] - b[0];
-    c[1] = a[1] - b[1];
-    c[2] = a[2] - b[2];
-}
-
-/* a x b. */
-static void tri3_quad4_closest_point_cross(const double *a, const double *b, double *c)
-{
-    c[0] = a[1] * b[2] - a[2] * b[1];
-    c[1] = a[2] * b[0] - a[0] * b[2];
-    c[2] = a[0] * b[1] - a[1] * b[0];
-}
-
-/* a . b. */
-static double tri3_quad4_closest_point_dot(const double *a, const double *b)
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-/* The (sub(a, b)) / 2 of a quad4's tangents. */
-static void tri3_quad4_closest_point_half_edge(const double *a, const double *b, double *c)
-{
-    tri3_quad4_closest_point_sub(a, b, c);
-    c[0] = 0.5 * c[0];
-    c[1] = 0.5 * c[1];
-    c[2] = 0.5 * c[2];
-}
-
-/*
- * The degenerate and fold checks of one face (p: its nodes, 3 or 4 points of
- * three coordinates, relative to the configuration's first point): at each
- * corner t1 x t2 (a tri3: one value; a quad4: the tangents dx/du, dx/dv at
- * its corners), whose squared length must be above the square of
- * GAPSIM_DEGENERATE_LENGTH times the face's size squared (the size: the
- * largest coordinate difference between its first node and the others);
- * then, for a quad4, each corner's t1 x t2 must point the way of the mean
- * normal (x3 - x1) x (x4 - x2).
- */
-static int tri3_quad4_closest_point_check_face(const double *p, int nodes, int degenerate, int folded)
-{
-    double size = 0.0;
-    double threshold;
-    double corners[4][3];
-    int count;
-    int a;
-    int k;
-    for (a = 1; a < nodes; ++a) {
-        for (k = 0; k < 3; ++k) {
-            const double c = fabs(p[3 * a + k] - p[k]);
-            /* A NaN difference leaves the size as it is (Rust's f64::max). */
-            if (c > size) {
-                size = c;
-            }
-        }
-    }
-    threshold = GAPSIM_DEGENERATE_LENGTH * size * size;
-    if (nodes == 3) {
-        double e1[3];
-        double e2[3];
-        tri3_quad4_closest_point_sub(p + 3, p, e1);
-        tri3_quad4_closest_point_sub(p + 6, p, e2);
-        tri3_quad4_closest_point_cross(e1, e2, corners[0]);
-        count = 1;
-    } else {
-        double e12[3];
-        double e43[3];
-        double e14[3];
-        double e23[3];
-        tri3_quad4_closest_point_half_edge(p + 3, p, e12);
-        tri3_quad4_closest_point_half_edge(p + 6, p + 9, e43);
-        tri3_quad4_closest_point_half_edge(p + 9, p, e14);
-        tri3_quad4_closest_point_half_edge(p + 6, p + 3, e23);
-        tri3_quad4_closest_point_cross(e12, e14, corners[0]);
-        tri3_quad4_closest_point_cross(e12, e23, corners[1]);
-        tri3_quad4_closest_point_cross(e43, e23, corners[2]);
-        tri3_quad4_closest_point_cross(e43, e14, corners[3]);
-        count = 4;
-    }
-    for (a = 0; a < count; ++a) {
-        const double area2 = tri3_quad4_closest_point_dot(corners[a], corners[a]);
-        /* Written so that a NaN is also rejected. */
-        if (!(area2 > threshold * threshold)) {
-            return degenerate;
-        }
-    }
-    if (nodes == 4) {
-        double d13[3];
-        double d24[3];
-        double mean[3];
-        tri3_quad4_closest_point_sub(p + 6, p, d13);
-        tri3_quad4_closest_point_sub(p + 9, p + 3, d24);
-        tri3_quad4_closest_point_cross(d13, d24, mean);
-        for (a = 0; a < count; ++a) {
-            if (!(tri3_quad4_closest_point_dot(corners[a], mean) > 0.0)) {
-                return folded;
-            }
-        }
-    }
-    return GAPSIM_OK;
-}
-
-/*
- * Validates q and xi_s and writes the coordinates relative to the first
- * point into d (contact-kernels' faces.rs): every value finite, the slave
- * point on its tri3 face (u, v >= 0 and u + v <= 1), then the slave face (points 1..3, a
- * tri3) and the master face (points 4..7, a quad4) neither degenerate nor
- * folded.
- */
-static int tri3_quad4_closest_point_validate(const double *q, const double *xi_s, double *d)
-{
-    int i;
-    int status;
-    if (!tri3_quad4_closest_point_all_finite(q, 21) || !tri3_quad4_closest_point_all_finite(xi_s, 2)) {
-        return GAPSIM_NON_FINITE_INPUT;
-    }
-    if (!(xi_s[0] >= 0.0 && xi_s[1] >= 0.0 && xi_s[0] + xi_s[1] <= 1.0)) {
-        return GAPSIM_SLAVE_POINT_OUTSIDE;
-    }
-    for (i = 0; i < 21; ++i) {
-        d[i] = q[i] - q[i % 3];
-    }
-    status = tri3_quad4_closest_point_check_face(d, 3, GAPSIM_DEGENERATE_SLAVE_FACE, GAPSIM_FOLDED_SLAVE_FACE);
-    if (status != GAPSIM_OK) {
-        return status;
-    }
-    return tri3_quad4_closest_point_check_face(d + 9, 4, GAPSIM_DEGENERATE_MASTER_FACE, GAPSIM_FOLDED_MASTER_FACE);
-}
-
-/* Newton's method on the projection residual from xi = (0, 0), the step by
- * Cramer's rule (contact-kernels' faces::solve). */
-static int tri3_quad4_closest_point_start(const double *d, const double *xi_s, double *xi)
-{
-    double x[2];
-    int it;
-    x[0] = 0.0;
-    x[1] = 0.0;
-    for (it = 0; it < GAPSIM_PROJECTION_ITERATIONS; ++it) {
-        double r1;
-        double a00;
-        double a01;
-        double a10;
-        double a11;
-        const double r0 = tri3_quad4_closest_point_residual(d, xi_s, x, &r1, &a00, &a01, &a10, &a11);
-        const double det = a00 * a11 - a01 * a10;
-        const double du = (a11 * r0 - a01 * r1) / det;
-        const double dv = (a00 * r1 - a10 * r0) / det;
-        double reach;
-        double step;
-        if (det == 0.0 || !(isfinite(du) && isfinite(dv))) {
-            return GAPSIM_NO_PROJECTION;
-        }
-        x[0] = x[0] - du;
-        x[1] = x[1] - dv;
-        reach = fabs(x[0]) >= fabs(x[1]) ? fabs(x[0]) : fabs(x[1]);
-        if (reach > GAPSIM_XI_M_LIMIT) {
-            return GAPSIM_PROJECTION_OUT_OF_REACH;
-        }
-        step = fabs(du) >= fabs(dv) ? fabs(du) : fabs(dv);
-        if (step <= GAPSIM_PROJECTION_TOLERANCE * (1.0 + reach)) {
-            xi[0] = x[0];
-            xi[1] = x[1];
-            return GAPSIM_OK;
-        }
-    }
-    return GAPSIM_PROJECTION_DIVERGED;
-}
-
-/* Rejects a projection the kernel could not find or that lies out of reach
- * (contact-kernels' faces::check). */
-static int tri3_quad4_closest_point_check(const double *xi)
-{
-    if (!(isfinite(xi[0]) && isfinite(xi[1]))) {
-        return GAPSIM_NO_PROJECTION;
-    }
-    if (fabs(xi[0]) > GAPSIM_XI_M_LIMIT || fabs(xi[1]) > GAPSIM_XI_M_LIMIT) {
-        return GAPSIM_PROJECTION_OUT_OF_REACH;
-    }
-    return GAPSIM_OK;
-}
-
 int gapsim_tri3_quad4_closest_point_project(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v)
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_gap(d, xi_s, xi);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_gap(d, s, xi);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
@@ -28759,30 +28565,30 @@ int gapsim_tri3_quad4_closest_point_project(const double q[21], double xi_s_u, d
 int gapsim_tri3_quad4_closest_point_type1(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double *hess)
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
     (void)hess;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_type1(d, xi_s, xi, grad);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_type1(d, s, xi, grad);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!tri3_quad4_closest_point_all_finite(grad, 21)) {
+    if (!gapsim_all_finite(grad, 21)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
     *gap = g;
@@ -28794,32 +28600,32 @@ int gapsim_tri3_quad4_closest_point_type1(const double q[21], double xi_s_u, dou
 int gapsim_tri3_quad4_closest_point_type2(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441])
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_type2(d, xi_s, xi, grad, hess);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_type2(d, s, xi, grad, hess);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!tri3_quad4_closest_point_all_finite(grad, 21)) {
+    if (!gapsim_all_finite(grad, 21)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!tri3_quad4_closest_point_all_finite(hess, 441)) {
+    if (!gapsim_all_finite(hess, 441)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
@@ -28831,32 +28637,32 @@ int gapsim_tri3_quad4_closest_point_type2(const double q[21], double xi_s_u, dou
 int gapsim_tri3_quad4_closest_point_type3(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441])
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_type3(d, xi_s, xi, grad, hess);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_type3(d, s, xi, grad, hess);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!tri3_quad4_closest_point_all_finite(grad, 21)) {
+    if (!gapsim_all_finite(grad, 21)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!tri3_quad4_closest_point_all_finite(hess, 441)) {
+    if (!gapsim_all_finite(hess, 441)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
@@ -28868,32 +28674,32 @@ int gapsim_tri3_quad4_closest_point_type3(const double q[21], double xi_s_u, dou
 int gapsim_tri3_quad4_closest_point_type4(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441])
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_type4(d, xi_s, xi, grad, hess);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_type4(d, s, xi, grad, hess);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!tri3_quad4_closest_point_all_finite(grad, 21)) {
+    if (!gapsim_all_finite(grad, 21)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!tri3_quad4_closest_point_all_finite(hess, 441)) {
+    if (!gapsim_all_finite(hess, 441)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
@@ -28905,32 +28711,32 @@ int gapsim_tri3_quad4_closest_point_type4(const double q[21], double xi_s_u, dou
 int gapsim_tri3_quad4_closest_point_type5(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441])
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_type5(d, xi_s, xi, grad, hess);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_type5(d, s, xi, grad, hess);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!tri3_quad4_closest_point_all_finite(grad, 21)) {
+    if (!gapsim_all_finite(grad, 21)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!tri3_quad4_closest_point_all_finite(hess, 441)) {
+    if (!gapsim_all_finite(hess, 441)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;
@@ -28942,32 +28748,32 @@ int gapsim_tri3_quad4_closest_point_type5(const double q[21], double xi_s_u, dou
 int gapsim_tri3_quad4_closest_point_type6(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441])
 {
     double d[21];
-    double xi_s[2];
+    double s[2];
     double xi[2];
     double g;
     int status;
-    xi_s[0] = xi_s_u;
-    xi_s[1] = xi_s_v;
-    status = tri3_quad4_closest_point_validate(q, xi_s, d);
+    s[0] = xi_s_u;
+    s[1] = xi_s_v;
+    status = gapsim_validate_faces(q, s, 3, 4, d);
     if (status != GAPSIM_OK) {
         return status;
     }
-    status = tri3_quad4_closest_point_start(d, xi_s, xi);
+    status = gapsim_newton_face(tri3_quad4_closest_point_residual, d, s, xi);
     if (status != GAPSIM_OK) {
         return status;
     }
-    g = tri3_quad4_closest_point_type6(d, xi_s, xi, grad, hess);
-    status = tri3_quad4_closest_point_check(xi);
+    g = tri3_quad4_closest_point_type6(d, s, xi, grad, hess);
+    status = gapsim_check_projection(xi, 2);
     if (status != GAPSIM_OK) {
         return status;
     }
     if (!isfinite(g)) {
         return GAPSIM_NON_FINITE_GAP;
     }
-    if (!tri3_quad4_closest_point_all_finite(grad, 21)) {
+    if (!gapsim_all_finite(grad, 21)) {
         return GAPSIM_NON_FINITE_GRADIENT;
     }
-    if (!tri3_quad4_closest_point_all_finite(hess, 441)) {
+    if (!gapsim_all_finite(hess, 441)) {
         return GAPSIM_NON_FINITE_HESSIAN;
     }
     *gap = g;

@@ -41,17 +41,18 @@
 //! segment, no projection) does not stop the others, as the solver treats
 //! failures per point. A failed point's entries are zero and its accessors
 //! return its error, never stale or NaN values. It evaluates 4 points per
-//! call of the lane kernels (`batch.rs`; AVX2 when the CPU has it), with
-//! the same results and errors as [`Kernel::eval`] point by point; a face
-//! kernel's batch runs the face lane kernels (`face_batch.rs`).
+//! call of the lane kernels (`batch.rs`, one driver for segments and
+//! faces over their parametric dimension, `param_kernel.rs`; AVX2 when the
+//! CPU has it), with the same results and errors as [`Kernel::eval`] point
+//! by point.
 
 use crate::generated::{self, KernelSet, face_kernel_set, kernel_set};
 use crate::generated_lanes::{
     self, FaceLaneKernel, LaneIsa, LaneKernel, LaneSet, face_lane_set, lane_set,
 };
 use crate::param::{Xi, XiArg};
-use crate::validate::{all_finite, relative_coordinates};
-use crate::{ApproxType, Formulation, KernelError, OpCount, OutputKind, faces, projection};
+use crate::{ApproxType, Formulation, KernelError, OpCount};
+use param_kernel::eval_point;
 
 /// The generated kernel of one (formulation, approximation type).
 #[derive(Clone, Copy)]
@@ -90,7 +91,7 @@ pub(crate) struct Faces {
 }
 
 mod batch;
-mod face_batch;
+mod param_kernel;
 
 impl std::fmt::Debug for Kernel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -431,16 +432,16 @@ impl Kernel {
         }
         match &self.imp {
             Imp::Segments(s) => {
-                let xi_s = param(xi_s.as_xi(), 1)?;
-                let (gap, xi_m) =
-                    s.eval_into(q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
+                let xi_s = param(xi_s.as_xi())?;
+                let (gap, [xi_m]) =
+                    eval_point(s, q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
                 out.gap = gap;
                 out.xi_m = Xi::scalar(xi_m);
             }
             Imp::Faces(f) => {
-                let xi_s = pair(xi_s.as_xi())?;
+                let xi_s = param(xi_s.as_xi())?;
                 let (gap, xi_m) =
-                    f.eval_into(q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
+                    eval_point(f, q, xi_s, &mut out.scratch, &mut out.grad, &mut out.hess)?;
                 out.gap = gap;
                 out.xi_m = Xi::pair(xi_m);
             }
@@ -488,12 +489,12 @@ impl Kernel {
         }
         out.prepare(points, self.has_hessian());
         Ok(match &self.imp {
-            Imp::Segments(s) => s.eval_lanes(qs, xi_s, out),
-            Imp::Faces(f) => f.eval_lanes(qs, xi_s, out),
+            Imp::Segments(s) => batch::eval_lanes(s, qs, xi_s, out),
+            Imp::Faces(f) => batch::eval_lanes(f, qs, xi_s, out),
         })
     }
 
-    /// [`Segments::eval_into`] for a segment kernel (the value API's path);
+    /// [`eval_point`] for a segment kernel (the value API's path);
     /// a face kernel reports [`KernelError::ParamCount`] (it takes two).
     #[inline]
     pub(crate) fn eval_into(
@@ -505,7 +506,7 @@ impl Kernel {
         hess: &mut [f64],
     ) -> Result<(f64, f64), KernelError> {
         match &self.imp {
-            Imp::Segments(s) => s.eval_into(q, xi_s, d, grad, hess),
+            Imp::Segments(s) => eval_point(s, q, [xi_s], d, grad, hess).map(|(g, [x])| (g, x)),
             Imp::Faces(_) => Err(KernelError::ParamCount {
                 expected: 2,
                 found: 1,
@@ -515,121 +516,18 @@ impl Kernel {
 }
 
 impl Segments {
-    /// The coordinate count.
-    #[inline(always)]
-    pub(crate) fn coords(&self) -> usize {
-        self.set.coords
-    }
-
     /// Whether the kernel computes a second-order term.
     #[inline(always)]
     pub(crate) fn has_hessian(&self) -> bool {
         matches!(self.kernel, generated::Kernel::Hessian(_))
     }
-
-    /// The evaluation on raw buffers: `d` (scratch), `grad` of `n` and
-    /// `hess` of `n * n` values (untouched without second-order term), sized
-    /// by the caller. Returns `(gap, xi_m)`.
-    #[inline]
-    pub(crate) fn eval_into(
-        &self,
-        q: &[f64],
-        xi_s: f64,
-        d: &mut [f64],
-        grad: &mut [f64],
-        hess: &mut [f64],
-    ) -> Result<(f64, f64), KernelError> {
-        let set = self.set;
-        relative_coordinates(set, q, xi_s, d)?;
-        let mut xi_m = projection::start(set, d, xi_s)?;
-        let (gap, finite) = match self.kernel {
-            generated::Kernel::Gradient(k) => {
-                let gap = k(d, xi_s, &mut xi_m, grad);
-                (gap, all_finite(grad))
-            }
-            generated::Kernel::Hessian(k) => {
-                let gap = k(d, xi_s, &mut xi_m, grad, hess);
-                (gap, all_finite(grad) & all_finite(hess))
-            }
-        };
-        projection::check(set, d, xi_s, xi_m)?;
-        if !(finite && gap.is_finite()) {
-            return Err(non_finite(gap, grad, xi_m));
-        }
-        Ok((gap, xi_m))
-    }
 }
 
-impl Faces {
-    /// The evaluation of a face pair on raw buffers (as
-    /// [`Segments::eval_into`]): validation (`faces::relative_coordinates`),
-    /// the projection (`faces::start`, `faces::check`), the kernel and the
-    /// finiteness of its outputs. Returns `(gap, [u, v])`.
-    #[inline]
-    pub(crate) fn eval_into(
-        &self,
-        q: &[f64],
-        xi_s: [f64; 2],
-        d: &mut [f64],
-        grad: &mut [f64],
-        hess: &mut [f64],
-    ) -> Result<(f64, [f64; 2]), KernelError> {
-        let set = self.set;
-        faces::relative_coordinates(set, q, xi_s, d)?;
-        let mut xi_m = faces::start(set, d, xi_s)?;
-        let (gap, finite) = match self.kernel {
-            generated::FaceKernel::Gradient(k) => {
-                let gap = k(d, &xi_s, &mut xi_m, grad);
-                (gap, all_finite(grad))
-            }
-            generated::FaceKernel::Hessian(k) => {
-                let gap = k(d, &xi_s, &mut xi_m, grad, hess);
-                (gap, all_finite(grad) & all_finite(hess))
-            }
-        };
-        faces::check(set, d, xi_s, xi_m)?;
-        if !(finite && gap.is_finite()) {
-            return Err(non_finite(gap, grad, xi_m[0]));
-        }
-        Ok((gap, xi_m))
-    }
-}
-
-/// The error of a kernel output that is not finite: the first non-finite
-/// one, in the order gap, gradient, Hessian (cold path).
-#[cold]
-fn non_finite(gap: f64, grad: &[f64], xi_m: f64) -> KernelError {
-    let output = if !gap.is_finite() {
-        OutputKind::Gap
-    } else if !all_finite(grad) {
-        OutputKind::Gradient
-    } else {
-        OutputKind::Hessian
-    };
-    KernelError::NonFiniteOutput { output, xi_m }
-}
-
-/// `xi_s` of a face: exactly two values.
+/// `xi_s` checked against the parametric dimension `P`.
 #[inline(always)]
-fn pair(xi_s: &[f64]) -> Result<[f64; 2], KernelError> {
-    match xi_s {
-        [u, v] => Ok([*u, *v]),
-        _ => Err(KernelError::ParamCount {
-            expected: 2,
-            found: xi_s.len(),
-        }),
-    }
-}
-
-/// `xi_s` checked against the parametric dimension `k` (the segment
-/// kernels take its one value).
-#[inline(always)]
-fn param(xi_s: &[f64], k: usize) -> Result<f64, KernelError> {
-    match xi_s {
-        [x] if k == 1 => Ok(*x),
-        _ => Err(KernelError::ParamCount {
-            expected: k,
-            found: xi_s.len(),
-        }),
-    }
+fn param<const P: usize>(xi_s: &[f64]) -> Result<[f64; P], KernelError> {
+    xi_s.try_into().map_err(|_| KernelError::ParamCount {
+        expected: P,
+        found: xi_s.len(),
+    })
 }

@@ -1,7 +1,8 @@
 //! The checked-in C kernels (`contact-kernels/c/`) against the Rust kernels,
 //! bit for bit.
 //!
-//! The test compiles the C files and a driver (`tests/c/driver.c`) with the
+//! The test compiles the C files, the shared runtime they call
+//! (`c/gapsim_runtime.c`) and a driver (`tests/c/driver.c`) with the
 //! system C compiler (`$CC`, else `cc`) as C99 with `-O2 -ffp-contract=off`
 //! and `-Wall -Wextra -pedantic -Werror`, feeds it configurations as the
 //! bits of each double, and compares every output of the projection and of
@@ -196,7 +197,8 @@ const FLAGS: [&str; 7] = [
     "-Werror",
 ];
 
-/// Compiles `sources` with the test's flags into `out`.
+/// Compiles `sources` and the shared runtime (`c/gapsim_runtime.c`) with
+/// the test's flags into `out`.
 fn compile(sources: &[PathBuf], out: &Path) {
     let c_dir = manifest().join("c");
     let output = Command::new(compiler())
@@ -204,6 +206,7 @@ fn compile(sources: &[PathBuf], out: &Path) {
         .arg("-I")
         .arg(&c_dir)
         .args(sources)
+        .arg(c_dir.join("gapsim_runtime.c"))
         .arg("-o")
         .arg(out)
         .arg("-lm")
@@ -707,7 +710,10 @@ fn c_face_kernels_equal_rust_kernels_bit_for_bit() {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("c_kernels_faces");
     std::fs::create_dir_all(&dir).unwrap();
     let driver = dir.join("driver_faces");
-    let mut sources = vec![manifest().join("tests/c/driver_faces.c")];
+    let mut sources = vec![
+        manifest().join("tests/c/driver_faces.c"),
+        manifest().join("c/gapsim_runtime.c"),
+    ];
     sources.extend(
         FACES
             .iter()

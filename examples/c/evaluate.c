@@ -4,7 +4,7 @@
  *
  * Build and run from the repository root:
  *
- *   cc -std=c99 -O2 -ffp-contract=off -Icontact-kernels/c examples/c/evaluate.c contact-kernels/c/gapsim_slave_normal.c -lm -o evaluate && ./evaluate
+ *   cc -std=c99 -O2 -ffp-contract=off -Icontact-kernels/c examples/c/evaluate.c contact-kernels/c/gapsim_slave_normal.c contact-kernels/c/gapsim_runtime.c -lm -o evaluate && ./evaluate
  */
 #include <stdio.h>
 

@@ -7,7 +7,8 @@
 //! parses each formulation file (its stem names the formulation: `my-normal.rs`
 //! gives `my_normal_type1`..`_type6`), derives every approximation type and
 //! writes the generated files into `DIR`: `kernels.rs` (Rust, the module
-//! contact-kernels `include!`s) or `gapsim.h` plus `gapsim_{name}.h/.c` per
+//! contact-kernels `include!`s) or `gapsim.h`, the shared runtime
+//! `gapsim_runtime.h/.c` and `gapsim_{name}.h/.c` per
 //! formulation (C99). Each written path is printed on stdout; the Rust
 //! file's header names the files it came from. A malformed file is
 //! reported as `FILE:LINE:COLUMN: message` (or `FILE: message` where no
@@ -25,7 +26,8 @@ use super::CommandResult;
 pub enum Lang {
     /// Rust: one `kernels.rs`.
     Rust,
-    /// C99: `gapsim.h` and a header and source per formulation.
+    /// C99: `gapsim.h`, the shared runtime and a header and source per
+    /// formulation.
     C,
 }
 

@@ -1,5 +1,6 @@
 //! The C99 emitter: a [`KernelPlan`] to one header and one source per
-//! compiled formulation, plus the shared header `gapsim.h`.
+//! compiled formulation, plus the shared header `gapsim.h` and the shared
+//! runtime `gapsim_runtime.h`/`.c`.
 //!
 //! ## The emitted files
 //!
@@ -8,6 +9,11 @@
 //!   limits the wrappers apply (`GAPSIM_DEGENERATE_LENGTH`,
 //!   `GAPSIM_XI_M_LIMIT`, the Newton projection's iteration count and
 //!   tolerance) and `gapsim_status_name`.
+//! * `gapsim_runtime.h` and `gapsim_runtime.c` (verbatim,
+//!   [`RUNTIME_HEADER`], [`RUNTIME_SOURCE`]): the shared runtime every
+//!   formulation's `.c` file includes and calls: the validation of segments
+//!   and of faces, the Newton projections, the projection check (compiled
+//!   and linked once, beside the formulations' sources).
 //! * `gapsim_{ident}.h`: per formulation, `GAPSIM_{IDENT}_COORDS` and the
 //!   public functions `gapsim_{ident}_project` and
 //!   `gapsim_{ident}_type1` .. `_type6`, declared `extern "C"` under C++.
@@ -17,21 +23,21 @@
 //!   operation and operand order as the Rust emitter, so that both compute
 //!   identical bits when the C compiler does not contract `a * b + c` into
 //!   fused multiply-adds: compile with `-ffp-contract=off`), and the public
-//!   wrappers, which do what contact-kernels does around the generated
-//!   functions, in the same order: validation (finite input, relative
-//!   coordinates, degenerate segments), the projection (closed form inside
-//!   the kernels, or Newton on the residual), the kernel, the projection
-//!   check (finite, `|xi_m| <= GAPSIM_XI_M_LIMIT`), finite outputs.
-//! * A formulation of 3D faces gets the header and wrappers of
-//!   `faces` (`xi_s` as two doubles, `xi_m` through two pointers; the face
-//!   validation and projection of contact-kernels' `faces.rs`); its
-//!   kernels are emitted by the same `function` (vector parameters and
-//!   unknowns as `const double *` / `double *`, read by component).
+//!   functions, which do what contact-kernels does around the generated
+//!   functions, in the same order, through the runtime: validation, the
+//!   projection (closed form inside the kernels, or Newton on the
+//!   residual), the kernel, the projection check (finite,
+//!   `|xi_m| <= GAPSIM_XI_M_LIMIT`), finite outputs. Segments and faces
+//!   differ in their parametric dimension `P` (1 or 2): `xi_s` is passed as
+//!   `P` doubles and `xi_m` through `P` pointers (`wrappers`); the kernels
+//!   are emitted by the same `function` (vector parameters and unknowns as
+//!   `const double *` / `double *`, read by component).
 //!
 //! ## Invariants
 //!
-//! * Only `<math.h>` is included (`sqrt`, `fabs`, `isfinite`); the files
-//!   compile cleanly with `-std=c99 -Wall -Wextra -pedantic`.
+//! * Only `<math.h>` and the emitted headers are included (`sqrt`, `fabs`,
+//!   `isfinite`); the files compile cleanly with
+//!   `-std=c99 -Wall -Wextra -pedantic`.
 //! * Constants are printed with Rust's shortest round-trip representation
 //!   (the same text the Rust emitter writes), which a correctly rounding C
 //!   compiler reads back to the same bits.
@@ -44,11 +50,11 @@
 //!
 //! ## Layout
 //!
-//! This file holds the emitter and what both kinds of formulation share
-//! (the `.c` file's assembly, comments); `common_header` holds `gapsim.h`,
-//! `kernels` the generated functions (one statement per instruction),
-//! `segments` the header and wrappers of a formulation of 2D segments and
-//! `faces` those of a formulation of 3D faces.
+//! This file holds the emitter and the `.c` file's assembly and comments;
+//! `common_header` holds `gapsim.h`, `runtime` the shared runtime,
+//! `kernels` the generated functions (one statement per instruction) and
+//! `wrappers` the header and public functions of a formulation over its
+//! parametric dimension.
 
 use std::fmt::Write as _;
 
@@ -57,13 +63,14 @@ use crate::lower::Instr;
 use crate::plan::{FormulationPlan, FunctionPlan, InputKind, KernelPlan, KernelSetPlan};
 
 mod common_header;
-mod faces;
 mod kernels;
-mod segments;
+mod runtime;
+mod wrappers;
 
 pub use common_header::COMMON_HEADER;
 use kernels::{POWI, function};
 pub use kernels::{body, float_literal};
+pub use runtime::{RUNTIME_HEADER, RUNTIME_SOURCE};
 
 /// The C99 emitter (headers and sources checked in under
 /// `contact-kernels/c/`).
@@ -71,23 +78,30 @@ pub use kernels::{body, float_literal};
 pub struct CEmitter;
 
 impl Emitter for CEmitter {
-    /// `gapsim.h`, then `gapsim_{ident}.h` and `gapsim_{ident}.c` per
-    /// compiled formulation, in plan order.
+    /// `gapsim.h`, `gapsim_runtime.h` and `gapsim_runtime.c`, then
+    /// `gapsim_{ident}.h` and `gapsim_{ident}.c` per compiled formulation,
+    /// in plan order.
     fn emit(&self, plan: &KernelPlan) -> Vec<EmittedFile> {
-        let mut files = vec![EmittedFile {
-            name: "gapsim.h".into(),
-            contents: COMMON_HEADER.into(),
-        }];
+        let mut files = vec![
+            EmittedFile {
+                name: "gapsim.h".into(),
+                contents: COMMON_HEADER.into(),
+            },
+            EmittedFile {
+                name: "gapsim_runtime.h".into(),
+                contents: RUNTIME_HEADER.into(),
+            },
+            EmittedFile {
+                name: "gapsim_runtime.c".into(),
+                contents: RUNTIME_SOURCE.into(),
+            },
+        ];
         for f in &plan.formulations {
             let Some(set) = &f.kernels else { continue };
-            let (h, c) = if f.dim == 3 {
-                (faces::header(f, set), source(f, set, faces::wrappers(set)))
-            } else {
-                (
-                    segments::header(f, set),
-                    source(f, set, segments::wrappers(set)),
-                )
-            };
+            let (h, c) = (
+                wrappers::header(f, set),
+                source(f, set, wrappers::wrappers(set)),
+            );
             files.push(EmittedFile {
                 name: format!("gapsim_{}.h", set.ident),
                 contents: h,
@@ -160,7 +174,7 @@ last bits.",
     ));
     let _ = write!(
         out,
-        "#include <math.h>\n\n#include \"gapsim_{}.h\"\n\n",
+        "#include <math.h>\n\n#include \"gapsim_{}.h\"\n#include \"gapsim_runtime.h\"\n\n",
         set.ident
     );
     // The residual serves only the Newton projection: with the projection

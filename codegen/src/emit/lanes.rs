@@ -41,12 +41,11 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
+use super::frame::{Frame, Param};
 use super::rust::{Spelling, body_in, float_literal, format_file, operand_in};
 use super::{EmittedFile, Emitter};
 use crate::lower::{Operand, Program};
-use crate::plan::{
-    Delivery, FunctionPlan, InputKind, KernelPlan, KernelSetPlan, Layout, Output, Role,
-};
+use crate::plan::{FunctionPlan, KernelPlan, KernelSetPlan, Layout, Output, Role};
 
 /// The lane emitter (the contact-kernels crate's batched kernels).
 #[derive(Debug, Clone, Copy, Default)]
@@ -169,103 +168,30 @@ fn lane_set(set: &KernelSetPlan, static_name: &Ident, faces: bool) -> TokenStrea
 
 /// One kernel: the inlined body over lanes and its two entry points.
 fn kernel(f: &FunctionPlan) -> TokenStream {
-    let ident = |s: &str| format_ident!("{}", s);
     let body_name = format_ident!("{}_lanes", f.name);
     let portable = format_ident!("{}_x4", f.name);
     let avx2 = format_ident!("{}_x4_avx2", f.name);
     // Each parameter as (name, kind): the entry points take `Lanes`, the
     // body any `L: LaneValue`, and the AVX2 entry point passes `Avx4`
-    // views of the same buffers.
-    let mut params: Vec<(Ident, Param)> = Vec::new();
-    let mut prologue = Vec::new();
-    let mut coords = ident("d");
-    let mut scalar_params = Vec::new();
-    let mut implicit = ident("xi_in");
-    let mut implicit_ref = None;
-    // A 2-vector `xi_s` or `xi_m` (faces): `&[Lanes]` (`&mut` for the
-    // in/out unknown), read into `x_0`, `x_1` as the scalar emitter does.
-    let component = |x: &Ident, k: usize| format_ident!("{}_{}", x, k);
-    let mut implicit_len = 1;
-    for input in &f.inputs {
-        let x = ident(&input.name);
-        match input.kind {
-            InputKind::Coords => {
-                let len = idx(input.len);
-                params.push((x.clone(), Param::Slice));
-                prologue.push(quote!(let #x = &#x[..#len];));
-                coords = x.clone();
-            }
-            InputKind::Param(_) if input.len > 1 => {
-                params.push((x.clone(), Param::Slice));
-                for k in 0..input.len {
-                    let (c, kk) = (component(&x, k), idx(k));
-                    prologue.push(quote!(let #c = #x[#kk];));
-                    scalar_params.push(c);
-                }
-            }
-            InputKind::ImplicitInOut if input.len > 1 => {
-                params.push((x.clone(), Param::SliceMut));
-                implicit_ref = Some(x.clone());
-                implicit_len = input.len;
-            }
-            InputKind::Param(_) => {
-                params.push((x.clone(), Param::Value));
-                scalar_params.push(x.clone());
-            }
-            InputKind::Implicit => {
-                params.push((x.clone(), Param::Value));
-                implicit = x.clone();
-            }
-            InputKind::ImplicitInOut => {
-                params.push((x.clone(), Param::ValueMut));
-                implicit_ref = Some(x.clone());
-            }
-        }
-    }
-    let mut stores = Vec::new();
-    let mut returns = Vec::new();
-    let mut write_back = None;
-    for out in &f.outputs {
-        match out.delivery {
-            Delivery::Return => returns.push(output(f.program.outputs[out.first])),
-            Delivery::Implicit if out.len > 1 => {
-                let target = implicit_ref.as_ref().expect("an in/out implicit input");
-                let stmts = (0..out.len).map(|k| {
-                    let v = output(f.program.outputs[out.first + k]);
-                    let k = idx(k);
-                    quote!(#target[#k] = #v;)
-                });
-                write_back = Some(quote!(#(#stmts)*));
-            }
-            Delivery::Implicit => {
-                let target = implicit_ref.as_ref().expect("an in/out implicit input");
-                let v = output(f.program.outputs[out.first]);
-                write_back = Some(quote!(*#target = #v;));
-            }
-            Delivery::Store => {
-                let x = ident(&out.name);
-                let len = idx(match out.layout {
-                    Layout::PackedSymmetric { n } => n * n,
-                    _ => out.len,
-                });
-                params.push((x.clone(), Param::SliceMut));
-                prologue.push(quote!(let #x = &mut #x[..#len];));
-                stores.push(store(&f.program, out, &x));
-            }
-        }
-    }
-    let read = match (&implicit_ref, &write_back) {
-        (Some(r), None) if implicit_len > 1 => {
-            let stmts = (0..implicit_len).map(|k| {
-                let (c, kk) = (component(&implicit, k), idx(k));
-                quote!(let #c = #r[#kk];)
-            });
-            quote!(#(#stmts)*)
-        }
-        (Some(r), None) => quote!(let #implicit = *#r;),
-        _ => quote!(),
-    };
-    let body = body(&f.program, &coords, &scalar_params, &implicit);
+    // views of the same buffers. A 2-vector `xi_s` or `xi_m` (faces) is
+    // `&[Lanes]` (`&mut` for the in/out unknown), read into `x_0`, `x_1` as
+    // the scalar emitter does.
+    let frame = Frame::new(f, "xi_in", output, store);
+    let Frame {
+        params,
+        prologue,
+        read,
+        stores,
+        returns,
+        write_back,
+        ..
+    } = &frame;
+    let body = body(
+        &f.program,
+        &frame.coords,
+        &frame.scalar_params,
+        &frame.implicit,
+    );
     let ret = match returns.as_slice() {
         [one] => one.clone(),
         _ => panic!("a kernel returns exactly its gap"),
@@ -279,12 +205,7 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
     let lanes_ty = quote!(Lanes);
     let generic_ty = quote!(L);
     let decl = |ty: &TokenStream| {
-        let ps = params.iter().map(|(x, k)| match k {
-            Param::Slice => quote!(#x: &[#ty]),
-            Param::SliceMut => quote!(#x: &mut [#ty]),
-            Param::Value => quote!(#x: #ty),
-            Param::ValueMut => quote!(#x: &mut #ty),
-        });
+        let ps = frame.declare(ty);
         quote!(#(#ps),*)
     };
     let (entry_params, body_params) = (decl(&lanes_ty), decl(&generic_ty));
@@ -319,16 +240,6 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
             #body_name::<Avx4>(#(#avx_args),*).to_lanes()
         }
     }
-}
-
-/// How a kernel parameter is passed: lanes by value or by reference, or
-/// a buffer of lanes.
-#[derive(Clone, Copy)]
-enum Param {
-    Slice,
-    SliceMut,
-    Value,
-    ValueMut,
 }
 
 /// Assignments of a stored output: a vector entry by entry, a packed

@@ -17,6 +17,7 @@
 use crate::plan::KernelPlan;
 
 pub mod c;
+mod frame;
 pub mod lanes;
 pub mod rust;
 

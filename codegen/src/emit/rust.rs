@@ -20,11 +20,10 @@
 use proc_macro2::{Ident, Span, TokenStream};
 use quote::{format_ident, quote};
 
+use super::frame::Frame;
 use super::{EmittedFile, Emitter};
 use crate::lower::{Instr, OpCount, Operand, Program, Source};
-use crate::plan::{
-    Delivery, FunctionPlan, InputKind, KernelPlan, KernelSetPlan, Layout, Output, Role,
-};
+use crate::plan::{FunctionPlan, KernelPlan, KernelSetPlan, Layout, Output, Role};
 
 /// The Rust emitter (the contact-kernels crate's generated module).
 #[derive(Debug, Clone, Copy, Default)]
@@ -78,7 +77,7 @@ fn module(plan: &KernelPlan) -> TokenStream {
                 let static_name = format_ident!("{}", set.ident.to_uppercase());
                 arms.push(quote!(Formulation::#variant => None,));
                 face_arms.push(quote!(Formulation::#variant => Some(&#static_name),));
-                items.push(face_kernel_set(set, &static_name));
+                items.push(kernel_set(set, &static_name));
             }
             Some(set) => {
                 let static_name = format_ident!("{}", set.ident.to_uppercase());
@@ -143,9 +142,13 @@ fn module(plan: &KernelPlan) -> TokenStream {
     }
 }
 
-/// A compiled formulation of faces: its functions and its `static`
-/// `FaceKernelSet` (the run-time crate's; node counts of both faces).
-fn face_kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
+/// A compiled formulation's functions and its `static` kernel set: a
+/// `KernelSet` for segments, a `FaceKernelSet` (node counts of both faces)
+/// for faces, by the parametric dimension `P` (the unknown's component
+/// count).
+fn kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
+    let faces = set.signature.implicit_len() == 2;
+    let kernel = format_ident!("{}", if faces { "FaceKernel" } else { "Kernel" });
     let mut items = vec![function(&set.residual), function(&set.gap)];
     let mut kernel_refs = Vec::new();
     let mut op_lits = Vec::new();
@@ -153,8 +156,8 @@ fn face_kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
         items.push(function(k));
         let kfn = format_ident!("{}", k.name);
         kernel_refs.push(match k.role {
-            Role::Kernel { hessian: true, .. } => quote!(FaceKernel::Hessian(#kfn)),
-            _ => quote!(FaceKernel::Gradient(#kfn)),
+            Role::Kernel { hessian: true, .. } => quote!(#kernel::Hessian(#kfn)),
+            _ => quote!(#kernel::Gradient(#kfn)),
         });
         op_lits.push(ops_literal(&k.ops));
     }
@@ -167,56 +170,27 @@ fn face_kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
     let set_doc = format!(" {}", set.doc);
     let sig = &set.signature;
     let coords = idx(sig.coords());
-    let slave = idx(sig.slave_points());
-    let master = idx(sig.points().len() - sig.slave_points());
+    // The fields before `closed_form_projection`, and the type.
+    let (ty, shape) = if faces {
+        let slave = idx(sig.slave_points());
+        let master = idx(sig.points().len() - sig.slave_points());
+        (
+            format_ident!("FaceKernelSet"),
+            quote!(coords: #coords, slave_nodes: #slave, master_nodes: #master,),
+        )
+    } else {
+        let dim = idx(sig.dim());
+        (
+            format_ident!("KernelSet"),
+            quote!(dim: #dim, coords: #coords,),
+        )
+    };
     quote! {
         #(#items)*
 
         #[doc = #set_doc]
-        static #static_name: FaceKernelSet = FaceKernelSet {
-            coords: #coords,
-            slave_nodes: #slave,
-            master_nodes: #master,
-            closed_form_projection: #affine,
-            residual: #res_fn,
-            gap: #gap_fn,
-            kernels: [#(#kernel_refs),*],
-            ops: [#(#op_lits),*],
-            projection_ops: #proj_ops,
-        };
-    }
-}
-
-/// A compiled formulation's functions and its `static` `KernelSet`.
-fn kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
-    let mut items = vec![function(&set.residual), function(&set.gap)];
-    let mut kernel_refs = Vec::new();
-    let mut op_lits = Vec::new();
-    for k in &set.kernels {
-        items.push(function(k));
-        let kfn = format_ident!("{}", k.name);
-        kernel_refs.push(match k.role {
-            Role::Kernel { hessian: true, .. } => quote!(Kernel::Hessian(#kfn)),
-            _ => quote!(Kernel::Gradient(#kfn)),
-        });
-        op_lits.push(ops_literal(&k.ops));
-    }
-    let (res_fn, gap_fn) = (
-        format_ident!("{}", set.residual.name),
-        format_ident!("{}", set.gap.name),
-    );
-    let affine = set.closed_form_projection;
-    let proj_ops = ops_literal(&set.projection_ops);
-    let set_doc = format!(" {}", set.doc);
-    let dim = proc_macro2::Literal::usize_unsuffixed(set.signature.dim());
-    let coords = proc_macro2::Literal::usize_unsuffixed(set.signature.coords());
-    quote! {
-        #(#items)*
-
-        #[doc = #set_doc]
-        static #static_name: KernelSet = KernelSet {
-            dim: #dim,
-            coords: #coords,
+        static #static_name: #ty = #ty {
+            #shape
             closed_form_projection: #affine,
             residual: #res_fn,
             gap: #gap_fn,
@@ -233,109 +207,22 @@ fn kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
 fn function(f: &FunctionPlan) -> TokenStream {
     let doc = format!(" {}", f.doc);
     let name = format_ident!("{}", f.name);
-    let ident = |s: &str| format_ident!("{}", s);
-    let mut args = Vec::new();
-    let mut prologue = Vec::new();
-    let mut coords = ident("d");
-    let mut params = Vec::new();
-    let mut implicit = ident("xi");
-    let mut implicit_ref = None;
-    // A vector input `x` of `len` components: `x: &[f64]` (`&mut` for the
-    // in/out unknown), its components bound to `x_0`, `x_1` (`component`).
-    let component = |x: &Ident, k: usize| format_ident!("{}_{}", x, k);
-    let mut implicit_len = 1;
-    for input in &f.inputs {
-        let x = ident(&input.name);
-        match input.kind {
-            InputKind::Coords => {
-                let len = idx(input.len);
-                args.push(quote!(#x: &[f64]));
-                prologue.push(quote!(let #x = &#x[..#len];));
-                coords = x;
-            }
-            InputKind::Param(_) if input.len > 1 => {
-                args.push(quote!(#x: &[f64]));
-                for k in 0..input.len {
-                    let c = component(&x, k);
-                    let kk = idx(k);
-                    prologue.push(quote!(let #c = #x[#kk];));
-                    params.push(c);
-                }
-            }
-            InputKind::Param(_) => {
-                args.push(quote!(#x: f64));
-                params.push(x);
-            }
-            InputKind::Implicit if input.len > 1 => {
-                args.push(quote!(#x: &[f64]));
-                for k in 0..input.len {
-                    let (c, kk) = (component(&x, k), idx(k));
-                    prologue.push(quote!(let #c = #x[#kk];));
-                }
-                implicit = x;
-            }
-            InputKind::Implicit => {
-                args.push(quote!(#x: f64));
-                implicit = x;
-            }
-            InputKind::ImplicitInOut if input.len > 1 => {
-                args.push(quote!(#x: &mut [f64]));
-                implicit = ident("xi_in");
-                implicit_ref = Some(x);
-                implicit_len = input.len;
-            }
-            InputKind::ImplicitInOut => {
-                args.push(quote!(#x: &mut f64));
-                implicit = ident("xi_in");
-                implicit_ref = Some(x);
-            }
-        }
-    }
-    let mut stores = Vec::new();
-    let mut returns = Vec::new();
-    let mut write_back = None;
-    for out in &f.outputs {
-        match out.delivery {
-            Delivery::Return => returns.push(output(f.program.outputs[out.first])),
-            Delivery::Implicit if out.len > 1 => {
-                let target = implicit_ref.as_ref().expect("an in/out implicit input");
-                let stmts = (0..out.len).map(|k| {
-                    let v = output(f.program.outputs[out.first + k]);
-                    let k = idx(k);
-                    quote!(#target[#k] = #v;)
-                });
-                write_back = Some(quote!(#(#stmts)*));
-            }
-            Delivery::Implicit => {
-                let target = implicit_ref.as_ref().expect("an in/out implicit input");
-                let v = output(f.program.outputs[out.first]);
-                write_back = Some(quote!(*#target = #v;));
-            }
-            Delivery::Store => {
-                let x = ident(&out.name);
-                let len = idx(match out.layout {
-                    Layout::PackedSymmetric { n } => n * n,
-                    _ => out.len,
-                });
-                args.push(quote!(#x: &mut [f64]));
-                prologue.push(quote!(let #x = &mut #x[..#len];));
-                stores.push(store(&f.program, out, &x));
-            }
-        }
-    }
-    // The converged projection is read unless this function solves it.
-    let read = match (&implicit_ref, &write_back) {
-        (Some(r), None) if implicit_len > 1 => {
-            let stmts = (0..implicit_len).map(|k| {
-                let (c, kk) = (component(&implicit, k), idx(k));
-                quote!(let #c = #r[#kk];)
-            });
-            quote!(#(#stmts)*)
-        }
-        (Some(r), None) => quote!(let #implicit = *#r;),
-        _ => quote!(),
-    };
-    let body = body(&f.program, &coords, &params, &implicit);
+    let frame = Frame::new(f, "xi", output, store);
+    let args = frame.declare(&quote!(f64));
+    let Frame {
+        prologue,
+        read,
+        stores,
+        returns,
+        write_back,
+        ..
+    } = &frame;
+    let body = body(
+        &f.program,
+        &frame.coords,
+        &frame.scalar_params,
+        &frame.implicit,
+    );
     let (ret_ty, ret) = if let [one] = returns.as_slice() {
         (quote!(f64), one.clone())
     } else {

@@ -16,7 +16,7 @@
 
 use std::collections::HashMap;
 
-use super::{EntityOrder, KernelExprs, add_pair, add_rank2, check_entities, order_of};
+use super::{EntityOrder, KernelExprs, add_pair, add_rank2, check_entities, hessian_q, order_of};
 use crate::Error;
 use crate::diff::{Differentiator, add_opt, mul_opt};
 use crate::expr::{Dag, Id, Sym};
@@ -203,14 +203,7 @@ pub(super) fn derive(
                     }
                 }
                 if order == EntityOrder::Quadratic {
-                    let mut h: Matrix = vec![None; sig.packed_len()];
-                    for j in 0..n {
-                        let e_qj = diff.d(dag, e, q[j]);
-                        for k in j..n {
-                            h[sig.packed(j, k)] = diff.d_opt(dag, e_qj, q[k]);
-                        }
-                    }
-                    parts.h = Some(h);
+                    parts.h = Some(hessian_q(dag, &mut diff, e, sig));
                     if let Some(bv) = basis {
                         for b in 0..2 {
                             // E_qxi_b xi_b'^T + xi_b' E_xi_bq = sym(E_qxi_b, xi_b').

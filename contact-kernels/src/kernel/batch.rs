@@ -1,37 +1,43 @@
-//! [`Kernel::eval_batch`](super::Kernel::eval_batch)'s evaluation: the points in groups of [`LANES`],
-//! one call of the lane kernel per group.
+//! [`Kernel::eval_batch`](super::Kernel::eval_batch)'s evaluation, one
+//! driver for every [`ParamKernel`] (segments, `P = 1`; faces, `P = 2`): the
+//! points in groups of [`LANES`], one call of the lane kernel per group.
 //!
 //! Per group:
 //!
-//! 1. the points' coordinates are gathered into lanes (structure of
-//!    arrays) and validated there (`validate::relative_coordinates_lanes`:
-//!    the scalar checks' decisions and the scalar relative coordinates);
-//!    a point that fails is validated again by the scalar
-//!    [`relative_coordinates`], which names its error, and its lane (like
-//!    the lanes past the end of a short last group) computes on zeros whose
-//!    results are discarded. The projection is started per point as
-//!    [`Kernel::eval`](super::Kernel::eval) starts it (`projection::start`);
+//! 1. the points' coordinates are validated in lanes where the kernel can
+//!    (segments: gathered into lanes, structure of arrays, and checked by
+//!    `validate::relative_coordinates_lanes`, the scalar checks' decisions
+//!    and the scalar relative coordinates; faces: nowhere). A point the
+//!    lanes do not pass, or whose projection is not in closed form, is
+//!    validated and its projection started by the scalar path's own
+//!    functions ([`ParamKernel::relative_coordinates`],
+//!    [`ParamKernel::start`]: Newton where the kernels do not solve it), so
+//!    a point that fails there gets exactly
+//!    [`Kernel::eval`](super::Kernel::eval)'s error. A failed point's lane
+//!    (like the lanes past the end of a short last group) computes on zeros
+//!    whose results are discarded;
 //! 2. the lane kernel evaluates all lanes at once; lane `l` holds the
 //!    scalar kernel's bits for point `l`;
-//! 3. a lane is accepted when its `xi_m` passes `projection::check`'s tests
-//!    and every output is finite (the scalar path's two checks). Any other
-//!    lane is evaluated again by the scalar path, so a failing point
-//!    reports exactly the error [`Kernel::eval`](super::Kernel::eval) reports (no projection,
-//!    out of reach, non-finite output), never a second opinion;
+//! 3. a lane is accepted when every component of its `xi_m` passes the
+//!    projection check's tests and every output is finite (the scalar
+//!    path's two checks). Any other lane is evaluated again by the scalar
+//!    path, so a failing point reports exactly the error
+//!    [`Kernel::eval`](super::Kernel::eval) reports (no projection, out of
+//!    reach, non-finite output), never a second opinion;
 //! 4. accepted lanes are scattered into the [`GapBatch`] (4 x 4 transposes
 //!    when the whole group is accepted).
 //!
 //! The whole evaluation is compiled twice, like the lane kernels: for the
 //! target's baseline and, on x86-64, for AVX2 (no FMA), and runs in the
-//! copy of the kernel's [`Kernel::lane_isa`](super::Kernel::lane_isa). A failed point is zeroed and
-//! carries its error ([`GapBatch::status`]).
+//! copy of the kernel's [`Kernel::lane_isa`](super::Kernel::lane_isa). A
+//! failed point is zeroed and carries its error ([`GapBatch::status`]).
 
-use super::{GapBatch, Segments};
+use super::GapBatch;
+use super::param_kernel::{ParamKernel, eval_point};
 use crate::KernelError;
-use crate::generated_lanes::{LaneIsa, LaneKernel};
+use crate::generated_lanes::LaneIsa;
 use crate::lanes::{LANES, Lanes};
-use crate::projection::{self, XI_M_LIMIT};
-use crate::validate::{relative_coordinates, relative_coordinates_lanes};
+use crate::projection::XI_M_LIMIT;
 
 /// The lane kernel's buffers: relative coordinates, gradient and Hessian
 /// (full, row-major), `LANES` points each.
@@ -53,40 +59,50 @@ impl LaneBuffers {
     }
 }
 
-impl Segments {
-    /// Evaluates every point of `xi_s` into `out` (shapes checked and
-    /// `out` prepared by the caller); returns how many succeeded.
-    pub(super) fn eval_lanes(&self, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
-        match self.lane_isa {
-            // SAFETY: `lane_isa` is AVX2 only when the CPU supports it
-            // (`generated_lanes::select`).
-            #[cfg(target_arch = "x86_64")]
-            LaneIsa::Avx2 => unsafe { eval_all_avx2(self, qs, xi_s, out) },
-            _ => eval_all::<false>(self, qs, xi_s, out),
-        }
+/// Evaluates every point of `xi_s` (`P` values each) into `out` (shapes
+/// checked and `out` prepared by the caller); returns how many succeeded.
+pub(super) fn eval_lanes<K: ParamKernel<P>, const P: usize>(
+    k: &K,
+    qs: &[f64],
+    xi_s: &[f64],
+    out: &mut GapBatch,
+) -> usize {
+    match k.lane_isa() {
+        // SAFETY: `lane_isa` is AVX2 only when the CPU supports it
+        // (`generated_lanes::select`).
+        #[cfg(target_arch = "x86_64")]
+        LaneIsa::Avx2 => unsafe { eval_all_avx2(k, qs, xi_s, out) },
+        _ => eval_all::<K, P, false>(k, qs, xi_s, out),
     }
+}
 
-    /// Point `p` through the scalar path (for its exact error); whether it
-    /// succeeded.
-    #[cold]
-    #[inline(never)]
-    fn eval_point_scalar(&self, p: usize, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> bool {
-        let n = self.coords();
-        let nn = if self.has_hessian() { n * n } else { 0 };
-        let q = &qs[p * n..(p + 1) * n];
-        let grad = &mut out.grad[p * n..(p + 1) * n];
-        let hess = &mut out.hess[p * nn..(p + 1) * nn];
-        match self.eval_into(q, xi_s[p], &mut out.scratch, grad, hess) {
-            Ok((gap, xi_m)) => {
-                out.gap[p] = gap;
-                out.xi_m[p] = xi_m;
-                out.status[p] = None;
-                true
-            }
-            Err(e) => {
-                out.fail(p, e);
-                false
-            }
+/// Point `p` through the scalar path (for its exact error); whether it
+/// succeeded.
+#[cold]
+#[inline(never)]
+fn eval_point_scalar<K: ParamKernel<P>, const P: usize>(
+    k: &K,
+    p: usize,
+    qs: &[f64],
+    xi_s: &[f64],
+    out: &mut GapBatch,
+) -> bool {
+    let n = k.coords();
+    let nn = if out.has_hessian { n * n } else { 0 };
+    let q = &qs[p * n..(p + 1) * n];
+    let grad = &mut out.grad[p * n..(p + 1) * n];
+    let hess = &mut out.hess[p * nn..(p + 1) * nn];
+    let xi = std::array::from_fn(|c| xi_s[P * p + c]);
+    match eval_point(k, q, xi, &mut out.scratch, grad, hess) {
+        Ok((gap, xi_m)) => {
+            out.gap[p] = gap;
+            out.xi_m[P * p..P * (p + 1)].copy_from_slice(&xi_m);
+            out.status[p] = None;
+            true
+        }
+        Err(e) => {
+            out.fail(p, e);
+            false
         }
     }
 }
@@ -97,19 +113,30 @@ impl Segments {
 /// The CPU must support AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn eval_all_avx2(k: &Segments, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
-    eval_all::<true>(k, qs, xi_s, out)
+unsafe fn eval_all_avx2<K: ParamKernel<P>, const P: usize>(
+    k: &K,
+    qs: &[f64],
+    xi_s: &[f64],
+    out: &mut GapBatch,
+) -> usize {
+    eval_all::<K, P, true>(k, qs, xi_s, out)
 }
 
 /// Every group; returns how many points succeeded. `AVX2`: the caller runs
-/// with AVX2 enabled (the scatter uses its shuffles).
+/// with AVX2 enabled (the gather and scatter use its shuffles).
 #[inline(always)]
-fn eval_all<const AVX2: bool>(k: &Segments, qs: &[f64], xi_s: &[f64], out: &mut GapBatch) -> usize {
+fn eval_all<K: ParamKernel<P>, const P: usize, const AVX2: bool>(
+    k: &K,
+    qs: &[f64],
+    xi_s: &[f64],
+    out: &mut GapBatch,
+) -> usize {
+    let points = xi_s.len() / P;
     let mut ok = 0;
     let mut first = 0;
-    while first < xi_s.len() {
-        let count = LANES.min(xi_s.len() - first);
-        ok += eval_group::<AVX2>(k, first, count, qs, xi_s, out);
+    while first < points {
+        let count = LANES.min(points - first);
+        ok += eval_group::<K, P, AVX2>(k, first, count, qs, xi_s, out);
         first += LANES;
     }
     ok
@@ -118,28 +145,36 @@ fn eval_all<const AVX2: bool>(k: &Segments, qs: &[f64], xi_s: &[f64], out: &mut 
 /// Points `first..first + count` (`count <= LANES`); returns how many
 /// succeeded.
 #[inline(always)]
-fn eval_group<const AVX2: bool>(
-    k: &Segments,
+fn eval_group<K: ParamKernel<P>, const P: usize, const AVX2: bool>(
+    k: &K,
     first: usize,
     count: usize,
     qs: &[f64],
     xi_s: &[f64],
     out: &mut GapBatch,
 ) -> usize {
-    let set = k.set;
     let n = k.coords();
-    let mut xi_s_l = Lanes::ZERO;
-    xi_s_l.0[..count].copy_from_slice(&xi_s[first..first + count]);
-    gather::<AVX2>(&qs[first * n..(first + count) * n], &mut out.lanes.d);
-    let mut valid = relative_coordinates_lanes(&mut out.lanes.d, xi_s_l);
+    let mut xi_s_l = [Lanes::ZERO; P];
+    for l in 0..count {
+        for (c, x) in xi_s_l.iter_mut().enumerate() {
+            x.0[l] = xi_s[P * (first + l) + c];
+        }
+    }
+    let (mut valid, start_all) = k.validate_lanes::<AVX2>(
+        &qs[first * n..(first + count) * n],
+        &mut out.lanes.d,
+        &xi_s_l,
+    );
     valid[count..].fill(false);
-    let mut xi_m_l = Lanes::ZERO;
+    let mut xi_m_l = [Lanes::ZERO; P];
     for (l, valid) in valid.iter_mut().enumerate() {
-        if !*valid || !set.closed_form_projection {
-            let started = (l < count).then(|| k.start_lane(first + l, l, qs, xi_s, out));
+        if !*valid || start_all {
+            let started = (l < count).then(|| start_lane(k, first + l, l, qs, xi_s, out));
             match started {
                 Some(Ok(xi_m)) => {
-                    xi_m_l.0[l] = xi_m;
+                    for (x, v) in xi_m_l.iter_mut().zip(xi_m) {
+                        x.0[l] = v;
+                    }
                     *valid = true;
                 }
                 Some(Err(e)) => {
@@ -162,15 +197,8 @@ fn eval_group<const AVX2: bool>(
     // SAFETY: `generated_lanes::select` returns an AVX2 kernel only when
     // the CPU supports AVX2; the buffers have the lengths the kernels
     // reslice to (`n`, `n * n`).
-    let (gap_l, hessian) = unsafe {
-        match k.lanes {
-            LaneKernel::Gradient(f) => (f(&buf.d, xi_s_l, &mut xi_m_l, &mut buf.grad), false),
-            LaneKernel::Hessian(f) => (
-                f(&buf.d, xi_s_l, &mut xi_m_l, &mut buf.grad, &mut buf.hess),
-                true,
-            ),
-        }
-    };
+    let (gap_l, hessian) =
+        unsafe { k.run_lanes(&buf.d, &xi_s_l, &mut xi_m_l, &mut buf.grad, &mut buf.hess) };
     // The lane's outputs are all finite when their sum is (a NaN or an
     // infinity makes it non-finite; an overflowing sum of finite values
     // only sends the point through the scalar path, which decides).
@@ -178,13 +206,13 @@ fn eval_group<const AVX2: bool>(
         // The common case: scatter first (summing on the way), then send
         // any lane that fails a check through the scalar path, which
         // rewrites or zeroes all of its point's entries.
-        let sum = out.accept_all::<AVX2>(first, gap_l, xi_m_l, hessian);
+        let sum = out.accept_all::<P, AVX2>(first, gap_l, &xi_m_l, hessian);
         let mut ok = 0;
         for l in 0..LANES {
-            if accepted(sum, xi_m_l, l) {
+            if accepted(sum, &xi_m_l, l) {
                 ok += 1;
             } else {
-                ok += usize::from(k.eval_point_scalar(first + l, qs, xi_s, out));
+                ok += usize::from(eval_point_scalar(k, first + l, qs, xi_s, out));
             }
         }
         return ok;
@@ -197,46 +225,46 @@ fn eval_group<const AVX2: bool>(
     let mut ok = 0;
     for l in (0..count).filter(|&l| valid[l]) {
         let p = first + l;
-        if accepted(sum, xi_m_l, l) {
-            out.accept(p, l, gap_l.0[l], xi_m_l.0[l], hessian);
+        if accepted(sum, &xi_m_l, l) {
+            out.accept(p, l, gap_l.0[l], xi_m_l.map(|x| x.0[l]), hessian);
             ok += 1;
         } else {
-            ok += usize::from(k.eval_point_scalar(p, qs, xi_s, out));
+            ok += usize::from(eval_point_scalar(k, p, qs, xi_s, out));
         }
     }
     ok
 }
 
-impl Segments {
-    /// Lane `l` (point `p`) when the lanes cannot decide alone: the scalar
-    /// validation for a lane that failed the lane checks (its error, or
-    /// its relative coordinates), then `projection::start`.
-    #[cold]
-    #[inline(never)]
-    fn start_lane(
-        &self,
-        p: usize,
-        l: usize,
-        qs: &[f64],
-        xi_s: &[f64],
-        out: &mut GapBatch,
-    ) -> Result<f64, KernelError> {
-        let n = self.coords();
-        let d = &mut out.scratch;
-        relative_coordinates(self.set, &qs[p * n..(p + 1) * n], xi_s[p], d)?;
-        for (dl, &v) in out.lanes.d.iter_mut().zip(d.iter()) {
-            dl.0[l] = v;
-        }
-        projection::start(self.set, d, xi_s[p])
+/// Lane `l` (point `p`) when the lanes cannot decide alone: the scalar
+/// validation for a lane that failed the lane checks (its error, or its
+/// relative coordinates, which go into the lane), then the projection's
+/// start.
+#[cold]
+#[inline(never)]
+fn start_lane<K: ParamKernel<P>, const P: usize>(
+    k: &K,
+    p: usize,
+    l: usize,
+    qs: &[f64],
+    xi_s: &[f64],
+    out: &mut GapBatch,
+) -> Result<[f64; P], KernelError> {
+    let n = k.coords();
+    let xi = std::array::from_fn(|c| xi_s[P * p + c]);
+    let d = &mut out.scratch;
+    k.relative_coordinates(&qs[p * n..(p + 1) * n], xi, d)?;
+    for (dl, &v) in out.lanes.d.iter_mut().zip(d.iter()) {
+        dl.0[l] = v;
     }
+    k.start(d, xi)
 }
 
 /// Whether lane `l` passes the scalar path's checks: every output finite
-/// (`sum`, the sum of its outputs, is finite) and `projection::check`'s
-/// tests on `xi_m` (written so that NaN fails them).
+/// (`sum`, the sum of its outputs, is finite) and the projection check's
+/// tests on every component of `xi_m` (written so that NaN fails them).
 #[inline(always)]
-fn accepted(sum: Lanes, xi_m: Lanes, l: usize) -> bool {
-    sum.0[l].is_finite() && xi_m.0[l].abs() <= XI_M_LIMIT
+fn accepted<const P: usize>(sum: Lanes, xi_m: &[Lanes; P], l: usize) -> bool {
+    sum.0[l].is_finite() && xi_m.iter().all(|x| x.0[l].abs() <= XI_M_LIMIT)
 }
 
 /// `qs` (up to `LANES` points of `d.len()` coordinates each, point-major)
@@ -244,7 +272,7 @@ fn accepted(sum: Lanes, xi_m: Lanes, l: usize) -> bool {
 /// With `AVX2` (which the caller must have enabled), a full group goes
 /// through 4 x 4 transposes in registers.
 #[inline(always)]
-fn gather<const AVX2: bool>(qs: &[f64], d: &mut [Lanes]) {
+pub(super) fn gather<const AVX2: bool>(qs: &[f64], d: &mut [Lanes]) {
     let n = d.len();
     #[cfg(target_arch = "x86_64")]
     if AVX2 && qs.len() == LANES * n {
@@ -274,7 +302,7 @@ fn gather<const AVX2: bool>(qs: &[f64], d: &mut [Lanes]) {
 /// transpose per block; with `AVX2`, which the caller must have enabled, in
 /// four shuffles and four 256-bit stores).
 #[inline(always)]
-pub(super) fn scatter<const AVX2: bool>(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
+fn scatter<const AVX2: bool>(src: &[Lanes], rows: &mut [f64], sum: Lanes) -> Lanes {
     #[cfg(target_arch = "x86_64")]
     if AVX2 {
         // SAFETY: `AVX2` is true only in `eval_all_avx2`, which runs on a
@@ -412,10 +440,17 @@ impl GapBatch {
 
     /// Point `p` takes lane `l` of the lane buffers.
     #[inline(always)]
-    fn accept(&mut self, p: usize, l: usize, gap: f64, xi_m: f64, hessian: bool) {
+    fn accept<const P: usize>(
+        &mut self,
+        p: usize,
+        l: usize,
+        gap: f64,
+        xi_m: [f64; P],
+        hessian: bool,
+    ) {
         let n = self.coords;
         self.gap[p] = gap;
-        self.xi_m[p] = xi_m;
+        self.xi_m[P * p..P * (p + 1)].copy_from_slice(&xi_m);
         self.status[p] = None;
         for (g, v) in self.grad[p * n..(p + 1) * n]
             .iter_mut()
@@ -436,16 +471,24 @@ impl GapBatch {
     /// Points `first..first + LANES` take the lane buffers; returns the sum
     /// of each lane's outputs (gap, gradient, Hessian).
     #[inline(always)]
-    fn accept_all<const AVX2: bool>(
+    fn accept_all<const P: usize, const AVX2: bool>(
         &mut self,
         first: usize,
         gap: Lanes,
-        xi_m: Lanes,
+        xi_m: &[Lanes; P],
         hessian: bool,
     ) -> Lanes {
         let (n, range) = (self.coords, first..first + LANES);
         self.gap[range.clone()].copy_from_slice(&gap.0);
-        self.xi_m[range.clone()].copy_from_slice(&xi_m.0);
+        if P == 1 {
+            self.xi_m[range.clone()].copy_from_slice(&xi_m[0].0);
+        } else {
+            for l in 0..LANES {
+                for (c, x) in xi_m.iter().enumerate() {
+                    self.xi_m[P * (first + l) + c] = x.0[l];
+                }
+            }
+        }
         self.status[range].fill(None);
         let grad = &mut self.grad[first * n..(first + LANES) * n];
         let sum = scatter::<AVX2>(&self.lanes.grad, grad, gap);
