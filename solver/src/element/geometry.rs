@@ -76,8 +76,6 @@ pub trait Shape<const D: usize, const N: usize, const P: usize>:
 {
     /// The kind (`KIND.node_count() == N`, `KIND.dim() == D`).
     const KIND: ElementKind;
-    /// The geometry's name in its `Debug` text.
-    const NAME: &'static str;
 
     /// `detJ0` at integration point `p` of the element with reference
     /// coordinates `x_ref`, and its reference gradients `G_a` when `detJ0`
@@ -175,10 +173,8 @@ pub(crate) fn simplex_point<const D: usize, const N: usize>(
 
 /// The reference geometry of one element of shape `S` (`D` dimensions,
 /// `N` nodes, `M = D N` dofs, `V` Voigt components, `P` integration
-/// points), computed once per mesh. Its `Debug` is the kind's
-/// (`QuadGeometry { .. }`), a one-point element's with the point's values
-/// alone.
-#[derive(Clone, Copy, PartialEq)]
+/// points), computed once per mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Geometry<
     S,
     const D: usize,
@@ -192,23 +188,6 @@ pub struct Geometry<
     /// `w_p detJ0` per integration point (the reference measure's weight).
     pub weight_ref: [f64; P],
     shape: PhantomData<S>,
-}
-
-impl<S, const D: usize, const N: usize, const M: usize, const V: usize, const P: usize> fmt::Debug
-    for Geometry<S, D, N, M, V, P>
-where
-    S: Shape<D, N, P>,
-{
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let mut s = f.debug_struct(S::NAME);
-        if let ([g], [w]) = (self.grads_ref.as_slice(), self.weight_ref.as_slice()) {
-            s.field("grads_ref", g).field("weight_ref", w)
-        } else {
-            s.field("grads_ref", &self.grads_ref)
-                .field("weight_ref", &self.weight_ref)
-        }
-        .finish()
-    }
 }
 
 impl<S, const D: usize, const N: usize, const M: usize, const V: usize, const P: usize>

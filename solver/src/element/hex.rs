@@ -80,7 +80,6 @@ pub struct Hex8;
 
 impl Shape<3, 8, 8> for Hex8 {
     const KIND: ElementKind = ElementKind::Hex8;
-    const NAME: &'static str = "HexGeometry";
 
     fn point(x_ref: &[[f64; 3]; 8], p: usize) -> (f64, Option<[[f64; 3]; 8]>) {
         gauss_point(x_ref, &parent_gradients(&GAUSS_2X2X2[p]))

@@ -296,7 +296,7 @@ pub trait SolidElement<const D: usize, const N: usize, const M: usize, const V: 
 /// `usize` when a body is added. Dereferences to the slice of its nodes.
 /// Its `Debug` is the node list alone (the kind is its length), as the
 /// plain `[NodeId; 4]` of a quadrilateral mesh printed before.
-#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Element<N = NodeId> {
     /// A 4-node quadrilateral.
     Quad4([N; 4]),
@@ -332,12 +332,6 @@ impl<N> Element<N> {
             Element::Hex8(n) => Element::Hex8(n.map(f)),
             Element::Tet4(n) => Element::Tet4(n.map(f)),
         }
-    }
-}
-
-impl<N: fmt::Debug> fmt::Debug for Element<N> {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Debug::fmt(self.nodes(), f)
     }
 }
 
@@ -394,16 +388,14 @@ fn first<const M: usize>(u: &[f64; MAX_ELEMENT_DOFS]) -> &[f64; M] {
         .unwrap_or_else(|| unreachable!("M <= MAX_ELEMENT_DOFS"))
 }
 
-/// The reference geometry of one element, computed once per mesh. Its
-/// `Debug` is the element's own (`QuadGeometry { .. }`, `TriGeometry { ..
-/// }`), which names the kind.
+/// The reference geometry of one element, computed once per mesh.
 ///
 /// The 2D variants differ in size (a triangle's is smaller); they stay
 /// unboxed: geometries live in one dense vector indexed by element, read
 /// in every iteration, and a box per element would cost an indirection
 /// for every quadrilateral. The hexahedron's (1.6 kB) is boxed, so that
 /// the vector of a 2D mesh keeps the quadrilateral's size.
-#[derive(Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum ElementGeometry {
     /// A quadrilateral's (per Gauss point).
     Quad4(QuadGeometry),
@@ -413,12 +405,6 @@ pub enum ElementGeometry {
     Hex8(Box<HexGeometry>),
     /// A tetrahedron's (constant).
     Tet4(TetGeometry),
-}
-
-impl fmt::Debug for ElementGeometry {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        each_kind!(ElementGeometry, self, g => fmt::Debug::fmt(g, f))
-    }
 }
 
 impl ElementGeometry {

@@ -56,7 +56,6 @@ pub struct Quad4;
 
 impl Shape<2, 4, 4> for Quad4 {
     const KIND: ElementKind = ElementKind::Quad4;
-    const NAME: &'static str = "QuadGeometry";
 
     fn point(x_ref: &[[f64; 2]; 4], p: usize) -> (f64, Option<[[f64; 2]; 4]>) {
         let [xi, eta] = GAUSS_2X2[p];

@@ -32,7 +32,6 @@ pub struct Tet4;
 
 impl Shape<3, 4, 1> for Tet4 {
     const KIND: ElementKind = ElementKind::Tet4;
-    const NAME: &'static str = "TetGeometry";
 
     fn point(x_ref: &[[f64; 3]; 4], _: usize) -> (f64, Option<[[f64; 3]; 4]>) {
         simplex_point(x_ref)

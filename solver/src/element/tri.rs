@@ -50,7 +50,6 @@ pub struct Tri3;
 
 impl Shape<2, 3, 1> for Tri3 {
     const KIND: ElementKind = ElementKind::Tri3;
-    const NAME: &'static str = "TriGeometry";
 
     fn point(x_ref: &[[f64; 2]; 3], _: usize) -> (f64, Option<[[f64; 2]; 3]>) {
         simplex_point(x_ref)

@@ -330,6 +330,26 @@ steps = [2]
             })
     }
 
+    /// An element's reference geometry as the fingerprints recorded it:
+    /// `QuadGeometry { grads_ref: .., weight_ref: .. }` (`TriGeometry`,
+    /// `HexGeometry`, `TetGeometry`), a one-point element's with the
+    /// point's values alone.
+    fn geometry(g: &crate::element::ElementGeometry) -> String {
+        use crate::element::ElementGeometry as G;
+        fn fields<T: std::fmt::Debug, W: std::fmt::Debug>(name: &str, g: &[T], w: &[W]) -> String {
+            match (g, w) {
+                ([g], [w]) => format!("{name} {{ grads_ref: {g:?}, weight_ref: {w:?} }}"),
+                _ => format!("{name} {{ grads_ref: {g:?}, weight_ref: {w:?} }}"),
+            }
+        }
+        match g {
+            G::Quad4(g) => fields("QuadGeometry", &g.grads_ref, &g.weight_ref),
+            G::Tri3(g) => fields("TriGeometry", &g.grads_ref, &g.weight_ref),
+            G::Hex8(g) => fields("HexGeometry", &g.grads_ref, &g.weight_ref),
+            G::Tet4(g) => fields("TetGeometry", &g.grads_ref, &g.weight_ref),
+        }
+    }
+
     /// The model as the fingerprints recorded it: its fields but
     /// `supports` (report names only), `amplitudes` only when there are
     /// curves, a prescribed dof's or a load's `amplitude` only when it has
@@ -410,13 +430,20 @@ steps = [2]
                 )
             })
             .collect();
+        let elements: Vec<String> = m
+            .mesh
+            .elements
+            .iter()
+            .map(|e| format!("{:?}", e.nodes()))
+            .collect();
+        let geometry: Vec<String> = m.mesh.geometry.iter().map(geometry).collect();
         let mesh = format!(
-            "Mesh {{ nodes_ref: {:?}, elements: {:?}, element_body: {:?}, bodies: [{}], geometry: {:?} }}",
+            "Mesh {{ nodes_ref: {:?}, elements: [{}], element_body: {:?}, bodies: [{}], geometry: [{}] }}",
             m.mesh.nodes_ref,
-            m.mesh.elements,
+            elements.join(", "),
             m.mesh.element_body,
             bodies.join(", "),
-            m.mesh.geometry
+            geometry.join(", ")
         );
         format!(
             "Model {{ mesh: {mesh}, prescribed: [{}], loads: [{}], contacts: [{}], load_factor_end: {:?}{amplitudes} }}",
