@@ -115,7 +115,8 @@ fn an_interrupted_run_leaves_the_old_result_set() {
             "reactions.csv",
             "step-0000.vtu",
             "step-0001.vtu",
-            "step-0002.vtu"
+            "step-0002.vtu",
+            "steps.pvd"
         ]
     );
     // 20000 steps take far longer than the signal does to arrive
@@ -148,7 +149,7 @@ fn a_completed_run_replaces_the_whole_set() {
     let dir = scratch("replace");
     let scene = scene("pressed-blocks.toml");
     run_ok(&scene, &dir, &["--every-step", "--steps", "4"]);
-    assert_eq!(names(&dir).len(), 3 + 5);
+    assert_eq!(names(&dir).len(), 3 + 5 + 1); // + steps.pvd
     std::fs::write(dir.join("notes.txt"), "mine").unwrap();
     std::fs::write(dir.join(".step-0000.vtu.27215.0.tmp.vtu"), "partial").unwrap();
     std::fs::write(dir.join("contact.csv"), "stale").unwrap();

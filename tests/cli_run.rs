@@ -62,7 +62,7 @@ fn contact_csv_balances_the_load() {
         assert_eq!((row[11], row[12]), ("internal", "internal"), "{row:?}");
         let num = |k: usize| row[k].parse::<f64>().unwrap();
         // closed: gap 0 up to Newton's tolerance (see the solver's
-        // report::nodal tests for the bound), pressure 1 = F / width
+        // contact::segment::nodal tests for the bound), pressure 1 = F / width
         assert!(num(4).abs() < 1e-8, "{row:?}");
         assert!((num(5) - 1.0).abs() < 1e-8, "{row:?}");
         assert!(num(6).abs() <= 1.0 + 1e-9, "{row:?}");
@@ -99,8 +99,22 @@ fn contact_csv_balances_the_load() {
             "reactions.csv",
             "step-0000.vtu",
             "step-0001.vtu",
-            "step-0002.vtu"
+            "step-0002.vtu",
+            "steps.pvd"
         ]
+    );
+    // the time series: the initial state and the two steps at their load
+    // factors, in order
+    let pvd = std::fs::read_to_string(dir.join("steps.pvd")).unwrap();
+    let sets: Vec<&str> = pvd.lines().filter(|l| l.contains("<DataSet")).collect();
+    assert_eq!(
+        sets,
+        [
+            r#"    <DataSet timestep="0" group="" part="0" file="step-0000.vtu"/>"#,
+            r#"    <DataSet timestep="0.5" group="" part="0" file="step-0001.vtu"/>"#,
+            r#"    <DataSet timestep="1" group="" part="0" file="step-0002.vtu"/>"#,
+        ],
+        "{pvd}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -7,7 +7,8 @@
 //! Without `SCENE` the embedded paper scene is solved. With `--out DIR` the
 //! final state (and with `--every-step` every converged step) is written as
 //! `.vtu` files that ParaView opens (displacement, stresses, contact
-//! pressure and gap), and a scene with contact pairs also gets
+//! pressure and gap; with `--every-step` also `steps.pvd`, the step files
+//! as one time series over the load factor), and a scene with contact pairs also gets
 //! `DIR/contact.csv`, the final state's contact pressure and gap at every
 //! slave node (see [`solver::report::contact_csv`]); the reaction force of every
 //! `[[fix]]` and `[[prescribe]]` group at every converged step goes to
@@ -41,13 +42,15 @@ use super::interrupt::Interrupt;
 use super::out_dir::OutDir;
 
 /// Whether `name` is a file of `gapsim run`'s result set: `final.vtu`,
-/// `contact.csv`, `reactions.csv`, `step-NNNN.vtu`.
+/// `contact.csv`, `reactions.csv`, `step-NNNN.vtu`, `steps.pvd`.
 pub fn is_result_file(name: &str) -> bool {
-    matches!(name, "final.vtu" | "contact.csv" | "reactions.csv")
-        || name
-            .strip_prefix("step-")
-            .and_then(|n| n.strip_suffix(".vtu"))
-            .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+    matches!(
+        name,
+        "final.vtu" | "contact.csv" | "reactions.csv" | "steps.pvd"
+    ) || name
+        .strip_prefix("step-")
+        .and_then(|n| n.strip_suffix(".vtu"))
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
 }
 
 /// The solve's progress lines on stderr, and Ctrl-C.
@@ -349,7 +352,7 @@ where
 type At<'a> = &'a dyn Fn(&str) -> (PathBuf, PathBuf);
 
 /// With `--out`: the `.vtu` files (every step's with `--every-step`, and
-/// `final.vtu`), `reactions.csv` when the scene reports supports, then
+/// their `steps.pvd`; `final.vtu`), `reactions.csv` when the scene reports supports, then
 /// what `more` adds (`contact.csv`), staged and committed at once; then
 /// the list of what was written.
 fn write_outputs<const D: usize>(
@@ -366,13 +369,22 @@ where
     let staging = out.stage()?;
     let at = |name: &str| (staging.path().join(name), dir.join(name));
     let mut vtu_files = 0;
+    let mut series = None;
     if args.every_step {
+        let mut steps = Vec::with_capacity(sol.snapshots.len());
         for (i, state) in sol.snapshots.iter().enumerate() {
-            let (path, shown) = at(&format!("step-{i:04}.vtu"));
+            let name = format!("step-{i:04}.vtu");
+            let (path, shown) = at(&name);
             solver::report::write_vtu_state(&path, sol, state)
                 .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
             vtu_files += 1;
+            steps.push((state.load_factor, name));
         }
+        let files: Vec<(f64, &str)> = steps.iter().map(|(f, n)| (*f, n.as_str())).collect();
+        let (path, shown) = at("steps.pvd");
+        solver::report::write_atomic(&path, solver::report::pvd_string(&files))
+            .map_err(|e| format!("cannot write {}: {e}", shown.display()))?;
+        series = Some(shown);
     }
     let (path, shown) = at("final.vtu");
     solver::report::write_vtu(&path, sol)
@@ -382,6 +394,12 @@ where
         "wrote           {vtu_files} .vtu file(s) to {}",
         dir.display()
     )];
+    if let Some(shown) = series {
+        wrote.push(format!(
+            "wrote           {} (the steps as a ParaView time series)",
+            shown.display()
+        ));
+    }
     if !sol.support_groups.is_empty() {
         let (path, shown) = at("reactions.csv");
         solver::report::write_atomic(&path, reactions_csv(sol))

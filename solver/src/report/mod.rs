@@ -11,6 +11,7 @@
 //! * [`contact_csv`](mod@contact_csv): `contact.csv`, the nodal contact table as CSV;
 //! * [`reactions_csv`](mod@reactions_csv): `reactions.csv`, the support groups' reactions at
 //!   every converged step;
+//! * [`pvd`]: the ParaView collection of a solve's step files (`.pvd`);
 //! * [`csv`]: CSV fields (the one quoting rule of both CSV files);
 //! * [`atomic`]: atomic file output (every file `gapsim run --out` and
 //!   `gapsim study --out` write goes through [`write_atomic`] or
@@ -23,11 +24,13 @@ pub mod atomic;
 pub mod contact_csv;
 pub mod contact_table;
 pub mod csv;
+pub mod pvd;
 pub mod reactions_csv;
 pub mod vtu;
 
 pub use atomic::{replace_with, write_atomic};
 pub use contact_csv::contact_csv;
 pub use contact_table::{ContactTable, ContactTableError};
+pub use pvd::pvd_string;
 pub use reactions_csv::reactions_csv;
 pub use vtu::{vtu_string, write_vtu, write_vtu_state};
