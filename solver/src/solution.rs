@@ -17,7 +17,7 @@ use contact_kernels::{Formulation, KernelError};
 
 use crate::element::{ElementStress, Stress};
 use crate::ids::NodeId;
-use crate::mesh::Mesh;
+use crate::mesh::{InvertedElement, Mesh};
 use crate::model::{ContactPair, Dim, SurfaceDim};
 use crate::options::Method;
 
@@ -61,6 +61,9 @@ pub enum CutbackReason {
         /// Its projection coordinate there.
         xi_m: f64,
     },
+    /// The iterate inverts an element (`det F <= 0` at an integration
+    /// point, [`crate::mesh::inversion`]): rejected, whatever its residual.
+    InvertedElement(InvertedElement),
 }
 
 impl std::fmt::Display for CutbackReason {
@@ -80,6 +83,7 @@ impl std::fmt::Display for CutbackReason {
             CutbackReason::Kernel { point, error } => {
                 write!(f, "contact kernel failed at {point}: {error}")
             }
+            CutbackReason::InvertedElement(inverted) => write!(f, "{inverted}"),
             CutbackReason::StuckAtMasterNode { point, xi_m } => write!(
                 f,
                 "{point} is stuck at a master node: its pairing cycles and xi_m = {xi_m:.6} \

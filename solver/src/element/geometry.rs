@@ -285,4 +285,29 @@ where
     fn mean_stress(&self, u: &[f64; M], material: &Material) -> Stress<V> {
         Stress::mean(&self.point_stresses(u, material))
     }
+
+    /// `det(I + sum_a u_a G_a^T)` at each point, the smallest (NaN as
+    /// soon as one is NaN).
+    fn min_det_f(&self, u: &[f64; M]) -> f64 {
+        let mut worst = f64::INFINITY;
+        for grads in &self.grads_ref {
+            let mut f = [[0.0; D]; D];
+            for (i, row) in f.iter_mut().enumerate() {
+                row[i] = 1.0;
+            }
+            for (a, g) in grads.iter().enumerate() {
+                for i in 0..D {
+                    for j in 0..D {
+                        f[i][j] += u[D * a + i] * g[j];
+                    }
+                }
+            }
+            let d = det(&f);
+            if d.is_nan() {
+                return f64::NAN;
+            }
+            worst = worst.min(d);
+        }
+        worst
+    }
 }

@@ -288,6 +288,13 @@ pub trait SolidElement<const D: usize, const N: usize, const M: usize, const V: 
 
     /// The stresses averaged over the integration points.
     fn mean_stress(&self, u: &[f64; M], material: &Material) -> Stress<V>;
+
+    /// The smallest `det F` over the integration points at the
+    /// displacements `u`, `F = I + du/dX` (the in-plane `2 x 2` in 2D),
+    /// whatever the material's kinematics: the current element's volume
+    /// ratio, at most zero where it is inverted or flattened (NaN for
+    /// non-finite `u`).
+    fn min_det_f(&self, u: &[f64; M]) -> f64;
 }
 
 /// The connectivity of one element: its nodes, counter-clockwise (2D) or in
@@ -463,6 +470,12 @@ impl ElementGeometry {
     /// The element's stresses averaged over its integration points.
     pub fn mean_stress(&self, u: &[f64; MAX_ELEMENT_DOFS], material: &Material) -> ElementStress {
         each_kind!(ElementGeometry, self, g => g.mean_stress(first(u), material).into())
+    }
+
+    /// The smallest `det F` over its integration points at the element
+    /// displacements `u` ([`SolidElement::min_det_f`]).
+    pub fn min_det_f(&self, u: &[f64; MAX_ELEMENT_DOFS]) -> f64 {
+        each_kind!(ElementGeometry, self, g => g.min_det_f(first(u)))
     }
 }
 

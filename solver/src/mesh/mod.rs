@@ -54,9 +54,11 @@ pub mod face_shape;
 pub mod faces;
 pub mod gmsh;
 mod grid;
+pub mod inversion;
 pub mod volume;
 
 pub use block::{Block, Side};
+pub use inversion::InvertedElement;
 
 /// One body of the mesh.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -10,8 +10,9 @@
 //! solves until the treatment's
 //! [`end_solve`](ContactTreatment::end_solve) accepts one (Types 1–6 solve
 //! the step again while the pairing at its end changes, `repair.rs`).
-//! Each iteration: the treatment's contact evaluation, contact and solid
-//! assembly, the convergence test (at a converged iterate the treatment
+//! Each iteration: the check that the iterate inverts no element (one
+//! that does is cut back: [`crate::mesh::inversion`]), the treatment's
+//! contact evaluation, contact and solid assembly, the convergence test (at a converged iterate the treatment
 //! settles the pairing, before `Run::accept`), the divergence tests, the
 //! regularised solve and the correction ([`Iterate::correct`]).
 //! Errors that a smaller increment cannot cure (a kernel failure at the
@@ -125,6 +126,18 @@ where
         let mut it = 0;
         loop {
             self.check_stop()?;
+            // an iterate that inverts an element is rejected, whatever its
+            // residual would be
+            let t = Instant::now();
+            let inverted = self.setup.model.mesh.most_inverted(&x.u);
+            self.timings.solid_assembly += t.elapsed();
+            if let Some(inverted) = inverted {
+                return Ok(AttemptOutcome::cut_back(
+                    CutbackReason::InvertedElement(inverted),
+                    residuals,
+                    it,
+                ));
+            }
             // contact
             let t = Instant::now();
             // a re-projecting treatment re-pairs at once in the first

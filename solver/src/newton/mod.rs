@@ -137,7 +137,10 @@
 //! unregularised problem; for `delta` in `[1e-12, 1e-8]` the paper scene's
 //! results and iteration counts do not depend on `delta`.
 //!
-//! An attempt fails when the residual is not finite, grows above
+//! An attempt fails when an iterate inverts an element (`det F <= 0` at an
+//! integration point, [`crate::mesh::inversion`]; so no converged state
+//! has an inverted element, and a solve that cannot avoid one ends in the
+//! error naming it), when the residual is not finite, grows above
 //! `1e10 max(|r_0|, 1)`, the iteration limit is reached, the linear system is
 //! singular (see [`crate::linear`]), a kernel fails during the iterations
 //! or (complete formulation) a point stuck at the end of a master chain
