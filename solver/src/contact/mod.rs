@@ -239,6 +239,7 @@ pub mod face;
 pub mod face_index;
 pub mod face_rules;
 mod layout_error;
+pub mod reference;
 mod report;
 pub mod segment;
 mod space;
@@ -256,6 +257,7 @@ pub use face::{
     MasterFaces, face_formulation,
 };
 pub use layout_error::FaceLayoutError;
+pub use reference::ReferencePairing;
 pub use report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 pub use segment::{
     ContactLayout, ContactPoint, INDEX_MIN_SEGMENTS, MasterIndex, NodalContactError,

@@ -1,54 +1,54 @@
-//! The reference geometry of a contact pair, checked before a solve: faces
-//! that do not face each other and initial penetration are errors unless
-//! the `[[contact]]` acknowledges them (`allow_not_facing`,
-//! `allow_initial_penetration`; see [`super::ContactSpec`]).
+//! The reference geometry of a contact pair, checked before a solve, the
+//! same three checks in 2D and 3D: faces that do not face each other,
+//! initial penetration, and a persistent pair that starts open are errors
+//! unless the `[[contact]]` acknowledges them (`allow_not_facing`,
+//! `allow_initial_penetration`, `allow_initial_gap`; see
+//! [`super::ContactSpec`]).
 //!
-//! Every slave node is projected onto the master face in the reference
-//! configuration as `contact.csv` does it ([`crate::contact::nodal_contact`]): the
-//! pair's formulation on the slave segment that starts at the node (the
-//! last node of an open face: the one ending there), every master segment
-//! tried, the smallest `|g|` among those the node projects into
-//! (`|xi_m| <= 1 +` [`crate::contact::XI_INSIDE_TOL`]). A node that
-//! projects into none is not checked (it does not pair). Where a node
-//! pairs:
+//! Every slave node is paired in the reference configuration as
+//! [`crate::contact::reference`] describes it (2D: the pair's formulation on
+//! the slave segment that starts at the node, every master segment tried;
+//! 3D: [`crate::contact::FaceLayout::reference_pairings`]), facing or not,
+//! the smallest `|g|` among the master facets the node projects into. A
+//! node that projects into none is not checked (it does not pair). Where a
+//! node pairs, with `h` the size of its slave facet (a segment's length, a
+//! face's square root of its area):
 //!
-//! * **facing**: the outward normals of its slave segment and of the
-//!   master segment (each face runs counter-clockwise around its body, so
+//! * **facing**: the unit outward normals of its slave facet and of the
+//!   master facet (each face runs counter-clockwise around its body, so
 //!   the outward normal of a segment `a -> b` is `(b - a)` turned
-//!   clockwise) must be opposed, `n_s . n_m <= FACING_TOL`; a slave face
-//!   looking away from its master (the far side of the slave body) has
-//!   `n_s . n_m` near 1;
-//! * **penetration**: `g >= -PENETRATION_FRACTION h`, `h` the length of
-//!   that slave segment (the element size at the node).
+//!   clockwise, of a face `t_1 x t_2`) must be opposed,
+//!   `n_s . n_m <= FACING_TOL`; a slave face looking away from its master
+//!   (the far side of the slave body) has `n_s . n_m` near 1;
+//! * **penetration**: `g >= -PENETRATION_FRACTION h`;
+//! * **open persistent pair**: in `mode = "persistent"` (the default),
+//!   `g <= OPEN_GAP_FRACTION h`: a persistent pair holds `g = 0` at every
+//!   paired point, so the first step would pull an open gap shut with
+//!   whatever force that takes (contact that may open and close is
+//!   `mode = "unilateral"`).
 //!
 //! The error names the pair and its worst node (largest `n_s . n_m`; most
-//! negative `g / h`) by its reference coordinates, and the key that
-//! acknowledges it.
+//! negative or most positive `g / h`) by its reference coordinates, and
+//! the key that acknowledges it.
 
 use contact_kernels::{Formulation, PAIR_COORDS};
 
-use crate::contact::XI_INSIDE_TOL;
+use crate::contact::{ReferencePairing, XI_INSIDE_TOL};
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
-use crate::model::ContactPair;
+use crate::model::{ContactMode, ContactPair};
 
 /// The largest `n_s . n_m` of faces that face each other (the normals at
 /// most 90 degrees from opposed; the slack is round-off).
 pub const FACING_TOL: f64 = 1e-9;
 
 /// The largest initial penetration accepted, as a fraction of the slave
-/// segment's length.
+/// facet's size.
 pub const PENETRATION_FRACTION: f64 = 1e-2;
 
-/// A slave node paired with a master segment in the reference
-/// configuration.
-struct Paired {
-    node: NodeId,
-    gap: f64,
-    slave_length: f64,
-    cos: f64,
-    normals: [[f64; 2]; 2],
-}
+/// The largest initial gap of a persistent pair accepted, as a fraction of
+/// the slave facet's size.
+pub const OPEN_GAP_FRACTION: f64 = 1e-2;
 
 /// The outward unit normal of segment `a -> b` of a counter-clockwise
 /// face (zero for a zero-length segment).
@@ -62,9 +62,13 @@ fn outward(a: [f64; 2], b: [f64; 2]) -> ([f64; 2], f64) {
     }
 }
 
-/// Every slave node of `pair` that pairs in the reference configuration,
-/// with `formulation` (module docs).
-fn paired_nodes(mesh: &Mesh, pair: &ContactPair, formulation: Formulation) -> Vec<Paired> {
+/// Every slave node of the 2D `pair` that pairs in the reference
+/// configuration, with `formulation` (module docs).
+pub(super) fn reference_pairings_2d(
+    mesh: &Mesh,
+    pair: &ContactPair,
+    formulation: Formulation,
+) -> Vec<ReferencePairing<2>> {
     let mut nodes: Vec<NodeId> = Vec::new();
     for seg in &pair.slave {
         for &n in seg {
@@ -99,10 +103,10 @@ fn paired_nodes(mesh: &Mesh, pair: &ContactPair, formulation: Formulation) -> Ve
         let Some((gap, master)) = best else { continue };
         let (n_s, slave_length) = outward(mesh.node_ref(slave[0]), mesh.node_ref(slave[1]));
         let (n_m, _) = outward(mesh.node_ref(master[0]), mesh.node_ref(master[1]));
-        out.push(Paired {
+        out.push(ReferencePairing {
             node,
             gap,
-            slave_length,
+            size: slave_length,
             cos: n_s[0] * n_m[0] + n_s[1] * n_m[1],
             normals: [n_s, n_m],
         });
@@ -110,25 +114,60 @@ fn paired_nodes(mesh: &Mesh, pair: &ContactPair, formulation: Formulation) -> Ve
     out
 }
 
-/// `[x, y]` written for a message.
-fn point(x: [f64; 2]) -> String {
-    format!("({}, {})", x[0], x[1])
+/// A point or vector written for a message: `(x, y)` or `(x, y, z)`.
+fn point<const D: usize>(x: [f64; D]) -> String {
+    let parts: Vec<String> = x.iter().map(|c| format!("{c}")).collect();
+    format!("({})", parts.join(", "))
 }
 
-/// Checks `pair`'s reference geometry (module docs); `allow_not_facing`
-/// and `allow_initial_penetration` skip the two checks. The message names
-/// the pair and its worst node.
-pub(super) fn check_initial_contact(
-    mesh: &Mesh,
-    pair: &ContactPair,
-    allow_not_facing: bool,
-    allow_initial_penetration: bool,
-) -> Result<(), String> {
-    if allow_not_facing && allow_initial_penetration {
-        return Ok(());
+/// What a [`ContactSpec`](super::ContactSpec) acknowledges of its pair's
+/// reference geometry, and the pair's mode.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Acknowledged {
+    /// `allow_not_facing`.
+    pub not_facing: bool,
+    /// `allow_initial_penetration`.
+    pub penetration: bool,
+    /// `allow_initial_gap`.
+    pub open_gap: bool,
+    /// The pair's mode.
+    pub mode: ContactMode,
+}
+
+impl Acknowledged {
+    /// What `spec` acknowledges.
+    pub(super) fn of(spec: &super::ContactSpec) -> Acknowledged {
+        Acknowledged {
+            not_facing: spec.allow_not_facing,
+            penetration: spec.allow_initial_penetration,
+            open_gap: spec.allow_initial_gap,
+            mode: spec.mode,
+        }
     }
-    let paired = paired_nodes(mesh, pair, pair.formulation);
-    if !allow_not_facing {
+
+    /// Whether no check is left to make.
+    pub(super) fn everything(&self) -> bool {
+        self.not_facing
+            && self.penetration
+            && (self.open_gap || self.mode != ContactMode::Persistent)
+    }
+}
+
+/// Checks the reference pairings `paired` of the pair named `name`
+/// (module docs) against what `ack` acknowledges; the message names the
+/// pair and its worst node.
+pub(super) fn check_initial_contact<const D: usize>(
+    mesh: &Mesh<D>,
+    name: &str,
+    paired: &[ReferencePairing<D>],
+    ack: Acknowledged,
+) -> Result<(), String> {
+    let facet = if D == 2 {
+        "slave segment's length"
+    } else {
+        "slave face's size"
+    };
+    if !ack.not_facing {
         let worst = paired
             .iter()
             .filter(|p| p.cos > FACING_TOL)
@@ -136,34 +175,53 @@ pub(super) fn check_initial_contact(
         if let Some(w) = worst {
             let angle = w.cos.clamp(-1.0, 1.0).acos().to_degrees();
             return Err(format!(
-                "contact pair `{}`: the slave and master faces do not face each other: at the \
+                "contact pair `{name}`: the slave and master faces do not face each other: at the \
                  slave node at {} the outward normals of the slave face {} and of the master \
                  face {} are {angle:.1} degrees apart (facing faces have opposed normals, 180 \
                  degrees; the slave face may be the far side of its body); set \
                  `allow_not_facing = true` in this [[contact]] if that is intended",
-                pair.name,
                 point(mesh.node_ref(w.node)),
                 point(w.normals[0]),
                 point(w.normals[1]),
             ));
         }
     }
-    if !allow_initial_penetration {
+    if !ack.penetration {
         let worst = paired
             .iter()
-            .filter(|p| p.gap < -PENETRATION_FRACTION * p.slave_length)
-            .min_by(|a, b| (a.gap / a.slave_length).total_cmp(&(b.gap / b.slave_length)));
+            .filter(|p| p.gap < -PENETRATION_FRACTION * p.size)
+            .min_by(|a, b| (a.gap / a.size).total_cmp(&(b.gap / b.size)));
         if let Some(w) = worst {
             return Err(format!(
-                "contact pair `{}`: initial penetration {} at the slave node at {}, beyond the \
-                 tolerance {} ({} of the slave segment's length {}); set \
+                "contact pair `{name}`: initial penetration {} at the slave node at {}, beyond the \
+                 tolerance {} ({} of the {facet} {}); set \
                  `allow_initial_penetration = true` in this [[contact]] if that is intended",
-                pair.name,
                 -w.gap,
                 point(mesh.node_ref(w.node)),
-                PENETRATION_FRACTION * w.slave_length,
+                PENETRATION_FRACTION * w.size,
                 PENETRATION_FRACTION,
-                w.slave_length,
+                w.size,
+            ));
+        }
+    }
+    if !ack.open_gap && ack.mode == ContactMode::Persistent {
+        let worst = paired
+            .iter()
+            .filter(|p| p.gap > OPEN_GAP_FRACTION * p.size)
+            .max_by(|a, b| (a.gap / a.size).total_cmp(&(b.gap / b.size)));
+        if let Some(w) = worst {
+            return Err(format!(
+                "contact pair `{name}`: initial gap {} at the slave node at {}, beyond the \
+                 tolerance {} ({} of the {facet} {}), and the pair is persistent (the default \
+                 `mode`: g = 0 at every paired point), so the first step would pull the gap \
+                 shut; set `mode = \"unilateral\"` for contact that opens and closes, or \
+                 `allow_initial_gap = true` in this [[contact]] if the pair is meant to be \
+                 pulled shut",
+                w.gap,
+                point(mesh.node_ref(w.node)),
+                OPEN_GAP_FRACTION * w.size,
+                OPEN_GAP_FRACTION,
+                w.size,
             ));
         }
     }
@@ -262,8 +320,157 @@ mod tests {
         build(&block_at(0.499)).unwrap();
     }
 
-    /// Every 2D scene shipped in `scenes/` passes both checks unchanged
-    /// (3D scenes have no reference check of their pairs: `solid.rs`).
+    /// A persistent pair whose block starts 0.05 above its base (beyond
+    /// 1 % of the slave segments' 0.25) is an error naming the gap and
+    /// the two ways out; unilateral, or with the key, it builds; 0.001
+    /// (within the tolerance) builds as it is.
+    #[test]
+    fn a_persistent_pair_that_starts_open_is_an_error() {
+        let unilateral = block_at(0.55);
+        let open = unilateral.replace("mode = \"unilateral\"", "mode = \"persistent\"");
+        assert_ne!(unilateral, open, "the scene names its mode");
+        let e = build(&open).unwrap_err();
+        assert!(
+            e.starts_with("blocks.toml: contact[0]: contact pair `interface`: initial gap "),
+            "{e}"
+        );
+        assert!(
+            (number_after(&e, "initial gap ") - 0.05).abs() < 1e-12,
+            "{e}"
+        );
+        assert!(
+            e.contains("tolerance 0.0025 (0.01 of the slave segment's length 0.25)"),
+            "{e}"
+        );
+        assert!(e.contains("mode = \"unilateral\"") && e.contains("allow_initial_gap = true"));
+        build(&with_keys(&open, "allow_initial_gap = true")).unwrap();
+        build(&unilateral).unwrap();
+        build(&block_at(0.501).replace("mode = \"unilateral\"", "mode = \"persistent\"")).unwrap();
+    }
+
+    /// A 3D cube (2 x 2 x 1 hexahedra, 1 x 1 x 0.5) on a base (3 x 3 x 1,
+    /// 1 x 1 x 0.5): its bottom at `z`, the pair's slave and master sides
+    /// and the extra `[[contact]]` keys given.
+    fn cube_on_base(z: f64, slave: &str, master: &str, keys: &str) -> String {
+        format!(
+            r#"
+[material]
+young = 1000.0
+poisson = 0.3
+
+[[body]]
+name = "base"
+origin = [0.0, 0.0, 0.0]
+size = [1.0, 1.0, 0.5]
+nx = 3
+ny = 3
+nz = 1
+
+[[body]]
+name = "cube"
+origin = [0.0, 0.0, {z:?}]
+size = [1.0, 1.0, 0.5]
+nx = 2
+ny = 2
+nz = 1
+
+[[fix]]
+body = "base"
+z = 0.0
+
+[[traction]]
+body = "cube"
+side = "top"
+force_per_area = [0.0, 0.0, -1.0]
+
+[[contact]]
+name = "seat"
+slave = {{ body = "cube", side = "{slave}" }}
+master = {{ body = "base", side = "{master}" }}
+{keys}
+
+[loading]
+load_factor_end = 1.0
+steps = [1]
+"#
+        )
+    }
+
+    fn build3d(text: &str) -> Result<crate::model::Model<3>, String> {
+        Scene::from_toml_str(text, "cube.toml")
+            .and_then(|s| s.build_model::<3>())
+            .map_err(|e| e.to_string())
+    }
+
+    /// The 3D pair refuses what the 2D one refuses, through the same
+    /// checks: a slave face looking away from its master, a master looking
+    /// away, an overlap of 0.2 and, persistent, a gap of 0.05; each key
+    /// accepts its case, and the cube resting on the base builds.
+    #[test]
+    fn a_3d_pair_refuses_what_a_2d_pair_refuses() {
+        build3d(&cube_on_base(0.5, "bottom", "top", "")).unwrap();
+
+        let e = build3d(&cube_on_base(0.5, "top", "top", "")).unwrap_err();
+        assert!(
+            e.starts_with("cube.toml: contact[0]: contact pair `seat`: the slave and master faces do not face each other"),
+            "{e}"
+        );
+        assert!(
+            e.contains("0.0 degrees apart") && e.contains("(0, 0, 1)"),
+            "{e}"
+        );
+        // with the key, the top is the cube's height (0.5) behind the
+        // base's top along its normal
+        let e = build3d(&cube_on_base(0.5, "top", "top", "allow_not_facing = true")).unwrap_err();
+        assert!(
+            (number_after(&e, "initial penetration ") - 0.5).abs() < 1e-12,
+            "{e}"
+        );
+
+        let e = build3d(&cube_on_base(0.5, "bottom", "bottom", "")).unwrap_err();
+        assert!(e.contains("do not face each other"), "{e}");
+
+        let e = build3d(&cube_on_base(0.3, "bottom", "top", "")).unwrap_err();
+        assert!(
+            (number_after(&e, "initial penetration ") - 0.2).abs() < 1e-12,
+            "{e}"
+        );
+        assert!(
+            e.contains("tolerance 0.005 (0.01 of the slave face's size 0.5)"),
+            "{e}"
+        );
+        build3d(&cube_on_base(
+            0.3,
+            "bottom",
+            "top",
+            "allow_initial_penetration = true",
+        ))
+        .unwrap();
+
+        let e = build3d(&cube_on_base(0.55, "bottom", "top", "")).unwrap_err();
+        assert!(
+            (number_after(&e, "initial gap ") - 0.05).abs() < 1e-12,
+            "{e}"
+        );
+        assert!(e.contains("allow_initial_gap = true"), "{e}");
+        build3d(&cube_on_base(
+            0.55,
+            "bottom",
+            "top",
+            "allow_initial_gap = true",
+        ))
+        .unwrap();
+        build3d(&cube_on_base(
+            0.55,
+            "bottom",
+            "top",
+            "mode = \"unilateral\"",
+        ))
+        .unwrap();
+    }
+
+    /// Every scene shipped in `scenes/`, 2D and 3D, passes the checks
+    /// unchanged.
     #[test]
     fn shipped_scenes_pass() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
@@ -272,15 +479,15 @@ mod tests {
             let path = entry.unwrap().path();
             if path.extension().is_some_and(|e| e == "toml") {
                 let scene = Scene::from_file(&path).unwrap();
-                if scene.dimension().unwrap() == crate::scene::Dimension::Three {
-                    continue;
-                }
-                scene
-                    .build_model::<2>()
-                    .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+                let built = if scene.dimension().unwrap() == crate::scene::Dimension::Three {
+                    scene.build_model::<3>().map(|_| ())
+                } else {
+                    scene.build_model::<2>().map(|_| ())
+                };
+                built.unwrap_or_else(|e| panic!("{}: {e}", path.display()));
                 checked += 1;
             }
         }
-        assert!(checked >= 9, "{checked}");
+        assert!(checked >= 15, "{checked}");
     }
 }

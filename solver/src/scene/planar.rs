@@ -5,10 +5,11 @@
 //! body's elements and whose physical curves are faces), tractions per
 //! unit reference length on segments, and the pairs' reference geometry
 //! (`initial_contact.rs`: faces that face each other, no initial
-//! penetration, unless the `[[contact]]` allows it).
+//! penetration, a persistent pair that does not start open, unless the
+//! `[[contact]]` allows it).
 
 use super::build::Build;
-use super::initial_contact::check_initial_contact;
+use super::initial_contact::{Acknowledged, check_initial_contact, reference_pairings_2d};
 use super::source::{MeshFile, SourceDim, Sources};
 use super::{ContactSpec, Scene, SceneError, SideName, TractionSpec};
 use crate::element::Element;
@@ -138,8 +139,12 @@ impl Build<2> for Dim<2> {
         c: &ContactSpec,
         pair: &ContactPair<2>,
     ) -> Result<(), SceneError> {
-        check_initial_contact(mesh, pair, c.allow_not_facing, c.allow_initial_penetration)
-            .map_err(|m| scene.invalid(f, m))
+        let ack = Acknowledged::of(c);
+        if ack.everything() {
+            return Ok(());
+        }
+        let paired = reference_pairings_2d(mesh, pair, pair.formulation);
+        check_initial_contact(mesh, &pair.name, &paired, ack).map_err(|m| scene.invalid(f, m))
     }
 
     fn check_model(_: &Scene, _: &Model<2>) -> Result<(), SceneError> {

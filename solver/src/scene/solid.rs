@@ -12,11 +12,15 @@
 //! triangle with segmented integration), checked against the kinds of the
 //! slave faces ([`face_rule`]) or the clipped triangles' rules (1, 3, 7);
 //! and every pair laid out once ([`FaceLayout::new`]) so that what the
-//! solve's layout refuses is a scene error naming `contact[i]`.
+//! solve's layout refuses is a scene error naming `contact[i]`, then its
+//! reference geometry checked as in 2D (`initial_contact.rs`: faces that
+//! face each other, no initial penetration, a persistent pair that does
+//! not start open, unless the `[[contact]]` acknowledges it).
 
 use contact_kernels::Formulation;
 
 use super::build::Build;
+use super::initial_contact::{Acknowledged, check_initial_contact};
 use super::source::{MeshFile, SourceDim, Sources};
 use super::traction::nodal_forces;
 use super::{ContactSpec, Scene, SceneError, SideName, TractionSpec};
@@ -173,11 +177,24 @@ impl Build<3> for Dim<3> {
     }
 
     /// What the solve's layout of the pairs refuses (a clipping that
-    /// fails, a degenerate slave face) is refused here, by pair.
+    /// fails, a degenerate slave face) is refused here, by pair; then the
+    /// pair's reference geometry (`initial_contact.rs`: faces that face
+    /// each other, no initial penetration, a persistent pair closed,
+    /// unless the `[[contact]]` acknowledges it), as in 2D.
     fn check_model(scene: &Scene, model: &Model<3>) -> Result<(), SceneError> {
-        for (i, pair) in model.contacts.iter().enumerate() {
-            FaceLayout::new(&model.mesh, std::slice::from_ref(pair), None)
-                .map_err(|e| scene.invalid(format!("contact[{i}]"), e.to_string()))?;
+        for (i, (pair, spec)) in model.contacts.iter().zip(&scene.contacts).enumerate() {
+            let f = format!("contact[{i}]");
+            let layout = FaceLayout::new(&model.mesh, std::slice::from_ref(pair), None)
+                .map_err(|e| scene.invalid(&f, e.to_string()))?;
+            let ack = Acknowledged::of(spec);
+            if ack.everything() {
+                continue;
+            }
+            let paired = layout
+                .reference_pairings(&model.mesh, 0)
+                .map_err(|e| scene.invalid(&f, e.to_string()))?;
+            check_initial_contact(&model.mesh, &pair.name, &paired, ack)
+                .map_err(|m| scene.invalid(&f, m))?;
         }
         Ok(())
     }

@@ -10,6 +10,7 @@
 mod layout;
 mod nodal;
 mod pairing;
+mod reference;
 mod space;
 #[cfg(test)]
 mod tests;

@@ -63,7 +63,7 @@ pub struct FaceNodalError {
 }
 
 /// The parametric coordinates of corner `k` of a face of `kind`'s shape.
-fn corner(face: &Face<NodeId>, k: usize) -> [f64; 2] {
+pub(super) fn corner(face: &Face<NodeId>, k: usize) -> [f64; 2] {
     match face {
         Face::Tri3(_) => [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]][k],
         Face::Quad4(_) => QUAD4_CORNERS[k],

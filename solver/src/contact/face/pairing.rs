@@ -249,6 +249,19 @@ impl FaceLayout {
         master: MasterFaceIndex,
         counts: &mut KernelCounts,
     ) -> Result<Option<(f64, [f64; 2])>, Failure> {
+        self.project_onto(mesh, u, pt, master, counts, true)
+    }
+
+    /// [`Self::project_into`], the faces' facing required or not.
+    fn project_onto(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pt: &Probe,
+        master: MasterFaceIndex,
+        counts: &mut KernelCounts,
+        require_facing: bool,
+    ) -> Result<Option<(f64, [f64; 2])>, Failure> {
         let fail = |error| (Some(master), error);
         let projector = self.formulation_of(pt, master).and_then(Projector::new);
         let projector = projector.map_err(fail)?;
@@ -262,10 +275,9 @@ impl FaceLayout {
                 let xi = p.xi_m_all();
                 let xi_m = [xi[0], xi[1]];
                 let kind = self.masters_of(pt.pair)[master.index()].kind();
-                Ok(
-                    (inside(kind, xi_m, XI_INSIDE_TOL) && self.facing(mesh, u, pt, master, xi_m))
-                        .then_some((p.gap, xi_m)),
-                )
+                Ok((inside(kind, xi_m, XI_INSIDE_TOL)
+                    && (!require_facing || self.facing(mesh, u, pt, master, xi_m)))
+                .then_some((p.gap, xi_m)))
             }
             Err(e) if slave_side(&e) => Err(fail(e)),
             Err(_) => Ok(None),
@@ -303,13 +315,28 @@ impl FaceLayout {
         indexes: &[Option<MasterFaces>],
         counts: &mut KernelCounts,
     ) -> Result<Option<(MasterFaceIndex, f64, [f64; 2])>, Failure> {
+        self.find_master_where(mesh, u, pt, indexes, counts, true)
+    }
+
+    /// [`Self::find_master`], the faces' facing required or not (not: the
+    /// master face the point projects into with the smallest `|g|`, facing
+    /// or not, as the reference checks of a scene want it).
+    pub(super) fn find_master_where(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pt: &Probe,
+        indexes: &[Option<MasterFaces>],
+        counts: &mut KernelCounts,
+        require_facing: bool,
+    ) -> Result<Option<(MasterFaceIndex, f64, [f64; 2])>, Failure> {
         let n_faces = self.masters_of(pt.pair).len();
         type Best = Option<(usize, f64, [f64; 2])>;
         let best_of = |cands: &[usize], counts: &mut KernelCounts| -> Result<Best, Failure> {
             let mut best: Best = None;
             for &f in cands {
                 if let Some((g, xi)) =
-                    self.project_into(mesh, u, pt, MasterFaceIndex::new(f), counts)?
+                    self.project_onto(mesh, u, pt, MasterFaceIndex::new(f), counts, require_facing)?
                     && best.is_none_or(|(_, b, _)| g.abs() < b.abs())
                 {
                     best = Some((f, g, xi));

@@ -298,6 +298,19 @@ pub struct ContactSpec {
     /// `false`.
     #[serde(default, skip_serializing_if = "is_false")]
     pub allow_initial_penetration: bool,
+    /// `allow_initial_gap`: accept a persistent pair (`mode =
+    /// "persistent"`, the default) whose slave nodes start apart from the
+    /// master (default `false`). Where a slave node pairs in the reference
+    /// configuration (as for `allow_not_facing`), its gap must be at most
+    /// [`crate::scene::OPEN_GAP_FRACTION`] (1 %) times the size of its
+    /// slave facet: a persistent pair holds `g = 0` at every paired point,
+    /// so the first step would pull a wider gap shut. A wider gap is an
+    /// error naming the pair and the node with the largest gap relative to
+    /// that size, unless this key is `true` or the pair is
+    /// `mode = "unilateral"` (contact that opens and closes). Not written
+    /// when `false`.
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub allow_initial_gap: bool,
 }
 
 impl ContactSpec {
