@@ -64,10 +64,50 @@ pub(super) struct Parts {
 pub(super) fn read(bytes: &[u8], dimension: Dimension) -> Result<Parts, MshErrorKind> {
     let encoding = guard::check(bytes)?;
     let msh = mshio::parse_msh_bytes(bytes).map_err(|e| malformed(bytes, &e))?;
+    parts(bytes, encoding, &msh, dimension)
+}
+
+/// Reads and checks a whole file as the mesh it holds: a volume mesh when
+/// one of its element blocks lies on a volume entity or holds elements of
+/// a three-dimensional type (read or not: a second-order tetrahedron makes
+/// a 3D file, refused by the 3D reader naming its type), else a planar
+/// mesh. The error is that mesh's reader's (a file that does not parse
+/// fails alike in both).
+pub(super) fn read_detected(bytes: &[u8]) -> Result<(Dimension, Parts), MshErrorKind> {
+    let encoding = guard::check(bytes)?;
+    let msh = mshio::parse_msh_bytes(bytes).map_err(|e| malformed(bytes, &e))?;
+    let volume = msh.data.elements.as_ref().is_some_and(|section| {
+        section
+            .element_blocks
+            .iter()
+            .any(|b| b.entity_dim == 3 || is_volume_type(b.element_type))
+    });
+    let dimension = if volume {
+        Dimension::Volume
+    } else {
+        Dimension::Planar
+    };
+    Ok((dimension, parts(bytes, encoding, &msh, dimension)?))
+}
+
+/// Whether Gmsh's element type `t` is three-dimensional (tetrahedra,
+/// hexahedra, prisms and pyramids of the first and second order).
+fn is_volume_type(t: ElementType) -> bool {
+    matches!(t as i32, 4..=7 | 11..=14 | 17..=19)
+}
+
+/// The parts of the parsed file `msh` (`bytes`, in `encoding`), read as a
+/// mesh of `dimension`.
+fn parts(
+    bytes: &[u8],
+    encoding: guard::Encoding,
+    msh: &MshFile<u64, i32, f64>,
+    dimension: Dimension,
+) -> Result<Parts, MshErrorKind> {
     let names = physical_names::parse(bytes)?;
-    let (nodes, node_tags, node_index) = nodes(bytes, encoding, &msh, dimension)?;
-    let elements = elements(&msh, &node_index, dimension)?;
-    let groups = groups(&msh, names)?;
+    let (nodes, node_tags, node_index) = nodes(bytes, encoding, msh, dimension)?;
+    let elements = elements(msh, &node_index, dimension)?;
+    let groups = groups(msh, names)?;
     Ok(Parts {
         nodes,
         node_tags,
@@ -228,6 +268,7 @@ fn elements(
                     entity_dim: block.entity_dim,
                     entity_tag: block.entity_tag,
                     read: dimension.element_types(),
+                    hint: unsupported_hint(other),
                 });
             }
         };
@@ -263,6 +304,21 @@ fn elements(
         }
     }
     Ok(elements)
+}
+
+/// What to do about an element type that is not read: higher-order
+/// elements re-meshed with first-order ones, prisms and pyramids meshed
+/// as tetrahedra or hexahedra.
+fn unsupported_hint(t: ElementType) -> &'static str {
+    match t as i32 {
+        6 | 7 => {
+            "; mesh the volumes with tetrahedra or hexahedra only (no prisms or pyramids: in Gmsh, no `Recombine` of extruded layers into prisms, or `Mesh.SubdivisionAlgorithm = 2` to split them into hexahedra)"
+        }
+        1..=5 | 15 => "",
+        _ => {
+            "; gapsim's elements are linear: mesh with first-order elements (Gmsh's default: `-order 1` on the command line, `Mesh.ElementOrder = 1` in a .geo file, `gmsh.option.setNumber(\"Mesh.ElementOrder\", 1)` in the API)"
+        }
+    }
 }
 
 /// The named groups, each with the entities whose physical tags name it.

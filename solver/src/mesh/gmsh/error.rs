@@ -65,7 +65,7 @@ pub enum MshErrorKind {
     /// 2-node lines, 3-node triangles and 4-node quadrangles, and in a 3D
     /// mesh 4-node tetrahedra and 8-node hexahedra.
     #[error(
-        "unsupported element type: {name} (type {gmsh_type}), {count} of them on entity {entity_dim}/{entity_tag}; only {read} are read"
+        "unsupported element type: {name} (type {gmsh_type}), {count} of them on entity {entity_dim}/{entity_tag}; only {read} are read{hint}"
     )]
     UnsupportedElement {
         /// The type's name (`9-node second order quadrangle`).
@@ -80,6 +80,9 @@ pub enum MshErrorKind {
         entity_tag: i32,
         /// The types that are read (`1-node points, ...`).
         read: &'static str,
+        /// What to do instead (`; gapsim's elements are linear: ...`), or
+        /// empty.
+        hint: &'static str,
     },
     /// An element block's entity dimension differs from its elements'.
     #[error(

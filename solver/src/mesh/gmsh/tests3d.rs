@@ -297,8 +297,9 @@ fn other_3d_types_and_misplaced_volumes_are_refused() {
         "{e}"
     );
     assert!(
-        e.to_string()
-            .ends_with("4-node tetrahedra and 8-node hexahedra are read"),
+        e.to_string().contains(
+            "4-node tetrahedra and 8-node hexahedra are read; mesh the volumes with tetrahedra or hexahedra only"
+        ),
         "{e}"
     );
     // a hexahedron on a surface entity
@@ -541,4 +542,82 @@ proptest::proptest! {
         let end = at.index(bytes.len());
         super::tests::read_any(&bytes[..end]);
     }
+}
+
+/// `text` written to a fresh file named `name` in the temporary directory,
+/// read by [`read_any`] (the scene's reader: the file's own dimension).
+fn read_any_text(text: &str, name: &str) -> Result<AnyMsh, MshError> {
+    let dir = std::env::temp_dir().join(format!("gapsim-read-any-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    let result = read_any(&path);
+    std::fs::remove_file(&path).unwrap();
+    result
+}
+
+/// A 3D file's own problems reach the user as the 3D reader says them,
+/// never as the 2D reader's complaint about a node's z: a NaN coordinate,
+/// a duplicated node tag, a second-order tetrahedron (with what to do), an
+/// extra 3-node line; the file as written reads as 3D, a 2D file as 2D.
+#[test]
+fn a_3d_file_s_errors_are_the_3d_reader_s() {
+    assert!(matches!(
+        read_any_text(TETS, "t.msh"),
+        Ok(AnyMsh::Volume(_))
+    ));
+    let square = std::str::from_utf8(include_bytes!("testdata/square.msh")).unwrap();
+    assert!(matches!(
+        read_any_text(square, "sq.msh"),
+        Ok(AnyMsh::Planar(_))
+    ));
+
+    let nan = TETS.replace("1 1 1\n$EndNodes", "nan 1 1\n$EndNodes");
+    assert_ne!(nan, TETS);
+    let e = read_any_text(&nan, "nan.msh").unwrap_err();
+    assert!(
+        matches!(e.kind, MshErrorKind::NonFiniteNode { node: 5, .. }),
+        "{e}"
+    );
+
+    let twice = TETS.replace("1\n2\n3\n4\n5\n", "1\n2\n3\n4\n4\n");
+    assert_ne!(twice, TETS);
+    let e = read_any_text(&twice, "twice.msh").unwrap_err();
+    assert!(matches!(e.kind, MshErrorKind::DuplicateNode(4)), "{e}");
+
+    // the two tetrahedra as one 10-node second-order tetrahedron
+    let second = TETS.replace("3 4 1 4\n", "3 3 1 4\n").replace(
+        "3 1 4 2\n1 1 2 3 4\n2 2 3 4 5\n",
+        "3 1 11 1\n1 1 2 3 4 5 1 2 3 4 5\n",
+    );
+    assert_ne!(second, TETS);
+    let e = read_any_text(&second, "second.msh").unwrap_err();
+    assert!(
+        matches!(
+            e.kind,
+            MshErrorKind::UnsupportedElement { gmsh_type: 11, .. }
+        ),
+        "{e}"
+    );
+    let text = e.to_string();
+    assert!(
+        text.contains("10-node second order tetrahedron (type 11)")
+            && text.contains("gapsim's elements are linear")
+            && text.contains("-order 1"),
+        "{text}"
+    );
+
+    // an extra 3-node line on a curve
+    let line = TETS
+        .replace("3 4 1 4\n", "4 5 1 5\n")
+        .replace("$EndElements", "1 1 8 1\n5 1 2 3\n$EndElements");
+    let e = read_any_text(&line, "line.msh").unwrap_err();
+    assert!(
+        matches!(
+            e.kind,
+            MshErrorKind::UnsupportedElement { gmsh_type: 8, .. }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("3-node second order line"), "{e}");
 }

@@ -91,18 +91,27 @@ pub enum AnyMsh {
     Volume(MshVolumeMesh),
 }
 
-/// Reads the `.msh` file at `path` as a 3D mesh when it holds tetrahedra
-/// or hexahedra, else as a 2D mesh, exactly as [`MshMesh::read`] reads it
-/// (so a file that cannot be read either way fails with the 2D reader's
-/// error). Errors name `path`.
+/// Reads the `.msh` file at `path` as the mesh it holds: a 3D mesh when an
+/// element block lies on a volume or holds three-dimensional elements
+/// (read or not), else a 2D mesh exactly as [`MshMesh::read`] reads it.
+/// The error is that mesh's reader's: a 3D file's own problem (a NaN
+/// coordinate, a duplicated node tag, a second-order tetrahedron) is
+/// reported as such, never as the 2D reader's complaint about its z.
+/// Errors name `path`.
 pub fn read_any(path: impl AsRef<Path>) -> Result<AnyMsh, MshError> {
     let path = path.as_ref();
     let bytes = read_file(path)?;
-    match convert::read(&bytes, convert::Dimension::Volume) {
-        Ok(parts) if parts.elements.iter().any(|e| e.cell().is_some()) => {
+    let fail = |kind| MshError {
+        file: path.to_owned(),
+        kind,
+    };
+    match convert::read_detected(&bytes).map_err(fail)? {
+        (convert::Dimension::Volume, parts) => {
             Msh::from_parts(parts, path.to_owned()).map(AnyMsh::Volume)
         }
-        _ => MshMesh::from_bytes(&bytes, path).map(AnyMsh::Planar),
+        (convert::Dimension::Planar, parts) => {
+            Msh::from_parts(parts, path.to_owned()).map(AnyMsh::Planar)
+        }
     }
 }
 
