@@ -3,53 +3,137 @@
 //!
 //! # The estimate
 //!
-//! `bytes = equations x B`, where `equations = D x nodes` (the free
-//! displacements; the prescribed dofs are fewer than the multipliers
-//! added, or negligible for the meshes this matters for) and `B` is
-//! [`LU_BYTES_PER_EQUATION`] or [`LDLT_BYTES_PER_EQUATION`], the memory of
-//! the model, its assembly and the first factorisation per equation. `B`
-//! is half the smallest peak per equation measured on the refined paper
-//! scene (`docs/scaling/scaling.md`, one Newton iteration, peak resident
-//! memory over equations): LU 7.3 to 8.6 KiB per equation from 1177 to
-//! 101725 equations, LDLᵀ 3.6 to 7.0 KiB from 1177 to 981254 equations.
-//! The factor's fill grows faster than the equations (`equations^1.19`
-//! there), so larger models need more per equation, not less; and a
-//! triangle mesh of the same nodes has a little less fill than a
-//! quadrilateral one, which the factor of two covers. The estimate is
-//! therefore a lower bound: a solve it refuses would not have fitted; one
-//! it lets through may still need more than it says.
+//! `bytes = equations x B(family, solver, equations)`, where `equations =
+//! D x nodes` (the free displacements; the prescribed dofs are fewer than
+//! the multipliers added, or negligible for the meshes this matters for)
+//! and `B` the memory of the model, its assembly and the first
+//! factorisation per equation, measured per [`MeshFamily`] and linear
+//! solver as half the smallest peak per equation (peak resident memory
+//! over equations), so that the estimate is a **lower bound**: a solve it
+//! refuses would not have fitted; one it lets through may still need more
+//! than it says.
+//!
+//! * **2D** ([`MeshFamily::Planar`]), one Newton iteration of the refined
+//!   paper scene (`docs/scaling/scaling.md`): LU 7.3 to 8.6 KiB per
+//!   equation from 1177 to 101725 equations, LDLᵀ 3.6 to 7.0 KiB from
+//!   1177 to 981254; `B` is [`LU_BYTES_PER_EQUATION`] or
+//!   [`LDLT_BYTES_PER_EQUATION`], half the smallest. A triangle mesh of the
+//!   same nodes has a little less fill than a quadrilateral one, which the
+//!   factor of two covers.
+//! * **3D** ([`MeshFamily::Hexahedra`], [`MeshFamily::Tetrahedra`]): a 3D
+//!   factor fills far more per equation, and more the larger the model (a
+//!   separator of a 3D mesh of `n` nodes has `n^(2/3)` of them). One Newton
+//!   iteration of `scenes/block3d.toml` refined (`docs/scaling/scaling3d.md`,
+//!   LDLᵀ): 18.2 KiB per equation at 9747 equations, 20.7 at 28431, 28.3 at
+//!   100860, peak memory growing as `equations^1.19`; a whole run of
+//!   `scenes/hertz3d.toml` with contact (87012 equations): 26.6 KiB with
+//!   the LDLᵀ on the hexahedral mesh. `B` is half the smallest,
+//!   [`LDLT_3D_BYTES_PER_EQUATION`] (the LU's [`LU_3D_BYTES_PER_EQUATION`]),
+//!   times `(equations / 9747)^0.19` above 9747 equations
+//!   ([`FILL_GROWTH_3D`]): 13.8 KiB per equation at 87012 equations, 27.1
+//!   KiB (83 GiB) for the 3.1e6 equations of a 100^3 block of hexahedra.
+//!   Tetrahedra take the hexahedra's figure: on the tetrahedral Hertz mesh
+//!   the measured peak per equation is not lower (see
+//!   [`MeshFamily::Tetrahedra`]).
 //!
 //! # When
 //!
-//! [`crate::scene::check_scene`] runs before a scene's model is built (also when a
-//! scene is loaded, which builds it once to validate it), with the nodes
-//! of its block bodies (`(nx rx + 1)(ny ry + 1)` each, from the scene
-//! alone: no mesh is allocated); a Gmsh body's nodes are known only once
-//! its file is read, so [`check_model`] runs again on the built model,
-//! before the first factorisation is prepared. Each compares the
-//! estimate with `MemAvailable` of `/proc/meminfo`; where that cannot be
-//! read (not Linux, or no such line), the check is skipped.
+//! [`crate::scene::check_scene`] runs before a scene's model is built (also
+//! when a scene is loaded, which builds it once to validate it), with the
+//! nodes of its block bodies (`(nx rx + 1)(ny ry + 1)` each in 2D,
+//! `(nx rx + 1)(ny ry + 1)(nz rz + 1)` in 3D, from the scene alone: no mesh
+//! is allocated); a Gmsh body's nodes are known only once its file is read,
+//! so [`check_model`] runs again on the built model, before the first
+//! factorisation is prepared. Each compares the estimate with
+//! `MemAvailable` of `/proc/meminfo`; where that cannot be read (not
+//! Linux, or no such line), the check is skipped.
 
+use crate::element::ElementKind;
 use crate::linear::LinearSolverKind;
 use crate::model::Model;
 use crate::model::{Dim, SurfaceDim};
 
-/// LU: the bytes per equation of the model and the first factorisation
-/// (module docs: half of the smallest measured 7.3 KiB).
+/// LU, 2D: the bytes per equation of the model and the first
+/// factorisation (module docs: half of the smallest measured 7.3 KiB).
 pub const LU_BYTES_PER_EQUATION: u64 = 3 * 1024 + 512;
 
-/// LDLᵀ: the bytes per equation of the model and the first factorisation
-/// (module docs: half of the smallest measured 3.6 KiB).
+/// LDLᵀ, 2D: the bytes per equation of the model and the first
+/// factorisation (module docs: half of the smallest measured 3.6 KiB).
 pub const LDLT_BYTES_PER_EQUATION: u64 = 1024 + 768;
 
-/// The memory estimate of a model of `equations` equations solved with
-/// `linear` (module docs), in bytes; saturates instead of overflowing.
-pub fn estimate(equations: u64, linear: LinearSolverKind) -> u64 {
-    let per = match linear {
+/// LDLᵀ, 3D, at [`FILL_GROWTH_3D`]'s reference size and below (module
+/// docs: half of the smallest measured 18.2 KiB).
+pub const LDLT_3D_BYTES_PER_EQUATION: u64 = 9 * 1024;
+
+/// LU, 3D, at [`FILL_GROWTH_3D`]'s reference size and below (module docs).
+pub const LU_3D_BYTES_PER_EQUATION: u64 = 18 * 1024;
+
+/// The growth of a 3D model's bytes per equation: `(equations /
+/// reference)^exponent` above the reference size (module docs).
+pub const FILL_GROWTH_3D: (f64, f64) = (9747.0, 0.19);
+
+/// The elements whose measured peaks the estimate scales.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFamily {
+    /// 2D quadrilaterals and triangles.
+    Planar,
+    /// 3D meshes with hexahedra (blocks, or hexahedra among tetrahedra).
+    Hexahedra,
+    /// 3D meshes of tetrahedra only. Measured peaks per equation (whole
+    /// run, `scenes/hertz3d.toml` on `scenes/hertz3d-tet.msh`) are not
+    /// below the hexahedra's, so they take the hexahedra's figure.
+    Tetrahedra,
+}
+
+impl MeshFamily {
+    /// The family of a mesh of dimension `D` whose elements have the kinds
+    /// `kinds`: 2D planar; 3D hexahedra when one is a hexahedron.
+    pub fn of<const D: usize>(mut kinds: impl Iterator<Item = ElementKind>) -> MeshFamily {
+        if D == 2 {
+            MeshFamily::Planar
+        } else if kinds.any(|k| k == ElementKind::Hex8) {
+            MeshFamily::Hexahedra
+        } else {
+            MeshFamily::Tetrahedra
+        }
+    }
+
+    /// Its name in messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            MeshFamily::Planar => "2D elements",
+            MeshFamily::Hexahedra => "3D hexahedra",
+            MeshFamily::Tetrahedra => "3D tetrahedra",
+        }
+    }
+}
+
+/// The bytes per equation of a model of `equations` equations of `family`
+/// solved with `linear` (module docs).
+pub fn bytes_per_equation(equations: u64, family: MeshFamily, linear: LinearSolverKind) -> u64 {
+    let planar = match linear {
         LinearSolverKind::Lu => LU_BYTES_PER_EQUATION,
         LinearSolverKind::Ldlt => LDLT_BYTES_PER_EQUATION,
     };
-    equations.saturating_mul(per)
+    let solid = match linear {
+        LinearSolverKind::Lu => LU_3D_BYTES_PER_EQUATION,
+        LinearSolverKind::Ldlt => LDLT_3D_BYTES_PER_EQUATION,
+    };
+    match family {
+        MeshFamily::Planar => planar,
+        MeshFamily::Hexahedra | MeshFamily::Tetrahedra => {
+            let (reference, exponent) = FILL_GROWTH_3D;
+            let growth = (equations as f64 / reference).max(1.0).powf(exponent);
+            (solid as f64 * growth) as u64
+        }
+    }
+}
+
+/// The memory estimate of a model of `equations` equations of `family`
+/// solved with `linear` (module docs), in bytes; saturates instead of
+/// overflowing.
+pub fn estimate(equations: u64, family: MeshFamily, linear: LinearSolverKind) -> u64 {
+    equations.saturating_mul(bytes_per_equation(equations, family, linear))
 }
 
 /// `MemAvailable` of `/proc/meminfo` in bytes, `None` where it cannot be
@@ -77,14 +161,18 @@ fn mem_available(meminfo: &str) -> Option<u64> {
 /// A model whose estimate exceeds the available memory.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "not enough memory: {equations} equations need at least {} MiB for the model and the first factorisation ({} bytes per equation with the {linear} solver, see solver::memory), but only {} MiB are available (MemAvailable in /proc/meminfo)",
+    "not enough memory: {equations} equations of {} need at least {} MiB for the model and the first factorisation ({} bytes per equation with the {linear} solver, a lower bound measured on this kind of model, see solver::memory), but only {} MiB are available (MemAvailable in /proc/meminfo){}",
+    family.name(),
     needed >> 20,
     needed / (*equations).max(1),
-    available >> 20
+    available >> 20,
+    if *linear == LinearSolverKind::Lu { "; the ldlt solver needs about half (`--linear ldlt`)" } else { "" }
 )]
 pub struct MemoryError {
-    /// The estimated equations (twice the nodes).
+    /// The estimated equations (the dimension times the nodes).
     pub equations: u64,
+    /// The elements the estimate is for.
+    pub family: MeshFamily,
     /// The linear solver the estimate is for.
     pub linear: LinearSolverKind,
     /// The estimate, bytes.
@@ -93,17 +181,19 @@ pub struct MemoryError {
     pub available: u64,
 }
 
-/// Refuses `equations` when their estimate exceeds `available` bytes;
-/// `None` (unknown) accepts.
+/// Refuses `equations` of `family` when their estimate exceeds
+/// `available` bytes; `None` (unknown) accepts.
 pub fn check(
     equations: u64,
+    family: MeshFamily,
     linear: LinearSolverKind,
     available: Option<u64>,
 ) -> Result<(), MemoryError> {
-    let needed = estimate(equations, linear);
+    let needed = estimate(equations, family, linear);
     match available {
         Some(available) if needed > available => Err(MemoryError {
             equations,
+            family,
             linear,
             needed,
             available,
@@ -122,7 +212,8 @@ where
     Dim<D>: SurfaceDim<D>,
 {
     let equations = (model.mesh.node_count() as u64).saturating_mul(D as u64);
-    check(equations, linear, available())
+    let family = MeshFamily::of::<D>(model.mesh.elements.iter().map(|e| e.kind()));
+    check(equations, family, linear, available())
 }
 
 #[cfg(test)]
@@ -162,7 +253,7 @@ mod tests {
             (LinearSolverKind::Ldlt, &ldlt[..]),
         ] {
             for &(n, mib) in table {
-                let e = estimate(n, kind);
+                let e = estimate(n, MeshFamily::Planar, kind);
                 assert!(e < mib * 1024 * 1024, "{kind} {n}: {e}");
                 // and not absurdly low: at least a third of the peak
                 assert!(3 * e > mib * 1024 * 1024 / 2, "{kind} {n}: {e}");
@@ -170,19 +261,85 @@ mod tests {
         }
     }
 
+    /// The 3D estimate stays below every measured 3D peak (one iteration
+    /// of the refined `scenes/block3d.toml`, LDLᵀ, and the extrapolated
+    /// peak of its 1045572-equation refinement) and not absurdly low.
+    #[test]
+    fn the_3d_estimate_is_below_every_measured_peak() {
+        // (equations, peak MiB) of docs/scaling/scaling3d.md; the last
+        // extrapolated there (49.1 GiB)
+        for (n, mib) in [(9747, 173), (28431, 576), (100860, 2785), (1045572, 50278)] {
+            let e = estimate(n, MeshFamily::Hexahedra, LinearSolverKind::Ldlt);
+            assert!(e < mib * 1024 * 1024, "{n}: {e}");
+            assert!(4 * e > mib * 1024 * 1024, "{n}: {e}");
+        }
+        // the 100^3 block of hexahedra (3 x 101^3 equations) needs more
+        // than this machine's 24 GiB; the 2D figure would have let it start
+        let n = 3 * 101_u64.pow(3);
+        assert!(estimate(n, MeshFamily::Hexahedra, LinearSolverKind::Ldlt) > 24 << 30);
+        assert!(estimate(n, MeshFamily::Planar, LinearSolverKind::Ldlt) < 24 << 30);
+        // the LU needs more than the LDLT, tetrahedra as much as hexahedra
+        assert!(
+            estimate(n, MeshFamily::Hexahedra, LinearSolverKind::Lu)
+                > estimate(n, MeshFamily::Hexahedra, LinearSolverKind::Ldlt)
+        );
+        assert_eq!(
+            estimate(n, MeshFamily::Tetrahedra, LinearSolverKind::Ldlt),
+            estimate(n, MeshFamily::Hexahedra, LinearSolverKind::Ldlt)
+        );
+    }
+
     #[test]
     fn too_large_is_refused_with_both_figures_and_unknown_memory_is_accepted() {
         let n = 18_006_002; // a 3000 x 3000 block: 2 x 3001^2
-        let err = check(n, LinearSolverKind::Lu, Some(16 << 30)).unwrap_err();
+        let planar = MeshFamily::Planar;
+        let err = check(n, planar, LinearSolverKind::Lu, Some(16 << 30)).unwrap_err();
         let msg = err.to_string();
-        let needed_mib = estimate(n, LinearSolverKind::Lu) >> 20;
+        let needed_mib = estimate(n, planar, LinearSolverKind::Lu) >> 20;
         assert!(
-            msg.contains(&format!("{n} equations"))
+            msg.contains(&format!("{n} equations of 2D elements"))
                 && msg.contains(&format!("{needed_mib} MiB"))
-                && msg.contains("16384 MiB"),
+                && msg.contains("16384 MiB")
+                && msg.contains("`--linear ldlt`"),
             "{msg}"
         );
-        assert!(check(n, LinearSolverKind::Lu, None).is_ok());
-        assert!(check(1000, LinearSolverKind::Ldlt, Some(16 << 30)).is_ok());
+        assert!(check(n, planar, LinearSolverKind::Lu, None).is_ok());
+        assert!(check(1000, planar, LinearSolverKind::Ldlt, Some(16 << 30)).is_ok());
+    }
+
+    /// At the edge: an estimate equal to the available memory is accepted,
+    /// one byte less available refuses it, in both dimensions.
+    #[test]
+    fn the_limit_is_the_available_memory_to_the_byte() {
+        for (n, family) in [
+            (300_000, MeshFamily::Planar),
+            (300_000, MeshFamily::Hexahedra),
+            (300_000, MeshFamily::Tetrahedra),
+        ] {
+            for linear in [LinearSolverKind::Lu, LinearSolverKind::Ldlt] {
+                let needed = estimate(n, family, linear);
+                assert!(check(n, family, linear, Some(needed)).is_ok());
+                let err = check(n, family, linear, Some(needed - 1)).unwrap_err();
+                assert_eq!((err.needed, err.available), (needed, needed - 1));
+                assert!(err.to_string().contains(family.name()), "{err}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_family_of_a_mesh() {
+        use ElementKind::*;
+        assert_eq!(
+            MeshFamily::of::<2>([Quad4, Tri3].into_iter()),
+            MeshFamily::Planar
+        );
+        assert_eq!(
+            MeshFamily::of::<3>([Tet4, Hex8].into_iter()),
+            MeshFamily::Hexahedra
+        );
+        assert_eq!(
+            MeshFamily::of::<3>([Tet4].into_iter()),
+            MeshFamily::Tetrahedra
+        );
     }
 }

@@ -3,7 +3,7 @@
 //! from the scene alone (no mesh is allocated).
 
 use crate::linear::LinearSolverKind;
-use crate::memory::{MemoryError, available, check};
+use crate::memory::{MemoryError, MeshFamily, available, check};
 
 use super::{MAX_BLOCK_ELEMENTS, Scene};
 
@@ -40,8 +40,82 @@ pub fn scene_equations(scene: &Scene) -> u64 {
 
 /// [`check`] on a scene's block bodies, before its model is built
 /// ([`Scene::build_model`] calls it first, so loading a scene checks it
-/// too). The linear solver may still be chosen after loading, so the
-/// estimate is the LDLᵀ's, the smaller one.
+/// too): 3D blocks as hexahedra, 2D blocks as planar elements. The linear
+/// solver may still be chosen after loading, so the estimate is the
+/// LDLᵀ's, the smaller one.
 pub fn check_scene(scene: &Scene) -> Result<(), MemoryError> {
-    check(scene_equations(scene), LinearSolverKind::Ldlt, available())
+    check_scene_within(scene, available())
+}
+
+/// [`check_scene`] against `available` bytes (`None`: unknown, accepted).
+pub fn check_scene_within(scene: &Scene, available: Option<u64>) -> Result<(), MemoryError> {
+    let family = if scene.bodies.iter().any(|b| b.nz.is_some()) {
+        MeshFamily::Hexahedra
+    } else {
+        MeshFamily::Planar
+    };
+    check(
+        scene_equations(scene),
+        family,
+        LinearSolverKind::Ldlt,
+        available,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::memory::estimate;
+
+    /// A 3D block of `n x n x n` hexahedra (scene text).
+    fn cube(n: usize) -> Scene {
+        let text = format!(
+            r#"
+[material]
+young = 1000.0
+poisson = 0.3
+
+[[body]]
+name = "block"
+origin = [0.0, 0.0, 0.0]
+size = [1.0, 1.0, 1.0]
+nx = {n}
+ny = {n}
+nz = {n}
+
+[[fix]]
+z = 0.0
+
+[loading]
+load_factor_end = 1.0
+steps = [1]
+"#
+        );
+        super::super::error::parse(&text, "cube.toml").unwrap()
+    }
+
+    /// A 3D block scene is estimated as hexahedra, refused one byte
+    /// below its estimate and accepted at it; the 100^3 block the 2D
+    /// figure let start (3.1e6 equations) is refused within 24 GiB, before
+    /// any mesh is allocated.
+    #[test]
+    fn a_3d_block_scene_is_refused_at_the_edge_of_its_estimate() {
+        let scene = cube(20);
+        let n = scene_equations(&scene);
+        assert_eq!(n, 3 * 21 * 21 * 21);
+        let needed = estimate(n, MeshFamily::Hexahedra, LinearSolverKind::Ldlt);
+        assert!(check_scene_within(&scene, Some(needed)).is_ok());
+        let err = check_scene_within(&scene, Some(needed - 1)).unwrap_err();
+        assert_eq!(err.family, MeshFamily::Hexahedra);
+        assert_eq!(err.needed, needed);
+
+        let big = cube(100);
+        let err = check_scene_within(&big, Some(24 << 30)).unwrap_err();
+        let msg = err.to_string();
+        assert!(
+            msg.starts_with("not enough memory: 3090903 equations of 3D hexahedra need at least ")
+                && msg.contains("but only 24576 MiB are available"),
+            "{msg}"
+        );
+    }
 }

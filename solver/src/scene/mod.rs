@@ -197,7 +197,7 @@ pub use build::SceneDim;
 pub use dimension::Dimension;
 pub use error::SceneError;
 pub use initial_contact::{FACING_TOL, OPEN_GAP_FRACTION, PENETRATION_FRACTION};
-pub use memory::{check_scene, scene_equations};
+pub use memory::{check_scene, check_scene_within, scene_equations};
 pub use spec::{
     BodySpec, ContactSpec, Coords, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MaterialSpec,
     MeshSpec, NewtonSpec, PrescribeSpec, RefineSpec, Scene, SideName, TractionSpec,
