@@ -1,7 +1,7 @@
 //! The 3D Hertz benchmark on both meshes: solves `scenes/hertz3d.toml` as
 //! written (hexahedra) and with `file` naming `hertz3d-tet.msh`
 //! (tetrahedra), complete formulation, one load step, the LDLᵀ; prints the
-//! measurement against Hertz (`gapsim::hertz::three`) as a Markdown table
+//! measurement against Hertz (`gapsim::hertz::sphere`) as a Markdown table
 //! (also `hertz3d.md`) and writes the pressure pictures
 //! (`pressure-hexahedra.png`, `pressure-tetrahedra.png`, and SVG).
 //!
@@ -12,7 +12,7 @@
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use gapsim::hertz::three::{plot_3d, solve_3d};
+use gapsim::hertz::sphere::{plot_3d, solve_3d};
 use solver::Scene;
 
 /// The element size near the contact (`scripts/make-hertz3d-mesh.py`).

@@ -1,7 +1,7 @@
 //! The 3D Hertz refinement table: `scenes/hertz3d.toml` (complete
 //! formulation, one load step, the LDLᵀ) on hexahedral and tetrahedral
 //! meshes of element sizes h at the contact, measured against Hertz
-//! (`gapsim::hertz::three`).
+//! (`gapsim::hertz::sphere`).
 //!
 //! ```text
 //! cargo run --release --example hertz3d_refinement -- MESH_DIR [--out docs/hertz3d] [--max-equations N]
@@ -23,7 +23,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use gapsim::hertz::three::{Solved3d, solve_3d};
+use gapsim::hertz::sphere::{Solved3d, solve_3d};
 use solver::Scene;
 use solver::model::Integration;
 

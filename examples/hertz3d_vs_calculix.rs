@@ -13,7 +13,7 @@
 //! time is the wall time of `Scene::from_file` (TOML and mesh reading),
 //! `build_model::<3>` and `solve_model`, in this process: what a user of
 //! `gapsim run` waits for, without process start-up and output. The
-//! pressures are measured by [`gapsim::hertz::three::measure_3d`] (`P` four
+//! pressures are measured by [`gapsim::hertz::sphere::measure_3d`] (`P` four
 //! times the bottom's z reaction, Hertz's `a` and `p0` from it, the peak
 //! nodal pressure, the contact radius of the farthest node above 1e-3 of
 //! the peak, current coordinates).
@@ -30,7 +30,7 @@ use std::time::Instant;
 
 use gapsim::timing::{load_average, median, process_cpu_seconds};
 
-use gapsim::hertz::three::{Hertz3d, measure_3d};
+use gapsim::hertz::sphere::{Hertz3d, measure_3d};
 use solver::{LinearSolverKind, Scene, SolveOptions, solve_model};
 
 /// The scene of the comparison (relative to `scenes/`).

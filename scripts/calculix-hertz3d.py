@@ -35,7 +35,7 @@ indenter_top, indenter_surface, block_top) and writes a CalculiX deck
 Then runs `ccx -i hertz3d` REPEAT times (default 1: one run takes minutes)
 with OMP_NUM_THREADS=THREADS, each timed as a whole process (wall clock,
 like `time`; also its CPU time, user plus system, of all threads), and
-measures the last run's results as gapsim::hertz::three::measure_3d does
+measures the last run's results as gapsim::hertz::sphere::measure_3d does
 gapsim's:
 
 - load: P = 4 |sum of RF_z over the bottom nodes| (last increment's FORC

@@ -116,7 +116,7 @@ class Writer:
     def body(self, name, position, ni, nj, nk, sides):
         """position(i, j, k) -> (x, y, z); sides: {name: (axis, high)} of
         the faces to group. Nodes (i, j, k), hexahedra and side quads as
-        in solver/src/mesh/block3d.rs."""
+        in solver/src/mesh/block.rs (3D)."""
         volume = self.entity(3, name)
         base = self.next_node
 

@@ -134,8 +134,7 @@ fn block_model(nx: usize, ny: usize, length: f64, height: f64, material: Materia
         Block {
             origin: [0.0, -height / 2.0],
             size: [length, height],
-            nx,
-            ny,
+            cells: [nx, ny],
         },
     )
     .unwrap();

@@ -12,8 +12,8 @@
 use solver::contact::FaceLayout;
 use solver::ids::{DofId, NodeId};
 use solver::mesh::Mesh;
-use solver::mesh::block3d::{Block3d, Side3d};
 use solver::mesh::volume::Face;
+use solver::mesh::{Block, Side};
 use solver::model::{ContactPair, Integration, Prescribed, SupportGroup};
 use solver::{
     ApproxType, ContactMode, Dim, Formulation, Kinematics, Material, Method, Model, PlaneModel,
@@ -34,27 +34,23 @@ const MATERIAL: Material = Material {
 /// `press` (held in x and y).
 fn pressed(press: f64, tri_slave: bool, reading: Formulation) -> Model<3> {
     let mut mesh = Mesh::<3>::new();
-    let base = Block3d {
+    let base = Block {
         origin: [0.0, 0.0, 0.0],
         size: [2.0, 2.0, 1.0],
-        nx: 2,
-        ny: 2,
-        nz: 1,
+        cells: [2, 2, 1],
     };
-    let cap = Block3d {
+    let cap = Block {
         origin: [0.3, 0.3, 1.0],
         size: [1.4, 1.4, 0.5],
-        nx: 3,
-        ny: 3,
-        nz: 1,
+        cells: [3, 3, 1],
     };
-    let b = mesh.add_block3d("base", MATERIAL, base).unwrap();
-    let c = mesh.add_block3d("cap", MATERIAL, cap).unwrap();
+    let b = mesh.add_block("base", MATERIAL, base).unwrap();
+    let c = mesh.add_block("cap", MATERIAL, cap).unwrap();
     let global = |body: usize, f: Face| {
         let start = mesh.bodies[body].nodes.start;
         f.map_nodes(|n| NodeId::new(start + n))
     };
-    let side = |block: &Block3d, body: usize, s: Side3d| -> Vec<Face<NodeId>> {
+    let side = |block: &Block<3>, body: usize, s: Side| -> Vec<Face<NodeId>> {
         block
             .side(s)
             .unwrap()
@@ -62,8 +58,8 @@ fn pressed(press: f64, tri_slave: bool, reading: Formulation) -> Model<3> {
             .map(|f| global(body, f))
             .collect()
     };
-    let master = side(&base, b, Side3d::Top);
-    let mut slave = side(&cap, c, Side3d::Bottom);
+    let master = side(&base, b, Side::Top);
+    let mut slave = side(&cap, c, Side::Bottom);
     if tri_slave {
         slave = slave
             .into_iter()
@@ -79,8 +75,8 @@ fn pressed(press: f64, tri_slave: bool, reading: Formulation) -> Model<3> {
         n.dedup();
         n
     };
-    let bottom = nodes_of(&side(&base, b, Side3d::Bottom));
-    let top = nodes_of(&side(&cap, c, Side3d::Top));
+    let bottom = nodes_of(&side(&base, b, Side::Bottom));
+    let top = nodes_of(&side(&cap, c, Side::Top));
     let mut prescribed = Vec::new();
     for &n in &bottom {
         for k in 0..3 {
@@ -456,21 +452,17 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
         ..MATERIAL
     };
     let mut mesh = Mesh::<3>::new();
-    let lower = Block3d {
+    let lower = Block {
         origin: [0.0, 0.0, 0.0],
         size: [1.0, 1.0, 0.5],
-        nx: 4,
-        ny: 4,
-        nz: 1,
+        cells: [4, 4, 1],
     };
-    let upper = Block3d {
+    let upper = Block {
         origin: [0.0, 0.0, 0.5],
         size: [1.0, 1.0, 0.5],
-        nx: 3,
-        ny: 3,
-        nz: 1,
+        cells: [3, 3, 1],
     };
-    mesh.add_block3d("lower", material, lower).unwrap();
+    mesh.add_block("lower", material, lower).unwrap();
     let x = upper.nodes().unwrap();
     let tets: Vec<Cell> = upper
         .cells()
@@ -493,7 +485,7 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
         .collect();
     assert_eq!(slave.len(), 18);
     let master: Vec<Face<NodeId>> = lower
-        .side(Side3d::Top)
+        .side(Side::Top)
         .unwrap()
         .into_iter()
         .map(|f| f.map_nodes(NodeId::new))

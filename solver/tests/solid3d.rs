@@ -8,7 +8,7 @@
 use solver::assembly::assemble_solid;
 use solver::element::{Element, ElementKind};
 use solver::ids::{DofId, NodeId};
-use solver::mesh::block3d::Block3d;
+use solver::mesh::Block;
 use solver::mesh::volume::Cell;
 use solver::mesh::{Mesh, MeshError};
 use solver::model::{ContactPair, Integration, ModelError, PointLoad, Prescribed, SupportGroup};
@@ -44,16 +44,14 @@ fn linear_field(x: [f64; 3]) -> [f64; 3] {
 /// The nodes of a `2 x 2 x 2` block over `[0, 1.2] x [0, 1] x [0, 0.8]`
 /// with its one interior node moved off centre (so the patch is not
 /// regular).
-fn patch_nodes() -> (Block3d, Vec<[f64; 3]>) {
-    let block = Block3d {
+fn patch_nodes() -> (Block<3>, Vec<[f64; 3]>) {
+    let block = Block {
         origin: [0.0, 0.0, 0.0],
         size: [1.2, 1.0, 0.8],
-        nx: 2,
-        ny: 2,
-        nz: 2,
+        cells: [2, 2, 2],
     };
     let mut nodes = block.nodes().unwrap();
-    let centre = block.node(1, 1, 1);
+    let centre = block.node([1, 1, 1]);
     nodes[centre] = [0.67, 0.46, 0.43];
     (block, nodes)
 }
@@ -81,7 +79,7 @@ fn kuhn(x: &[[f64; 3]], h: [usize; 8]) -> Vec<Element<usize>> {
         .collect()
 }
 
-fn hexes(block: &Block3d) -> Vec<[usize; 8]> {
+fn hexes(block: &Block<3>) -> Vec<[usize; 8]> {
     block
         .cells()
         .unwrap()
@@ -296,15 +294,13 @@ const L: f64 = 5.0;
 const NX: usize = 50;
 
 fn cantilever(kinematics: Kinematics, p: f64) -> (Model<3>, NodeId) {
-    let block = Block3d {
+    let block = Block {
         origin: [0.0, 0.0, 0.0],
         size: [L, 1.0, 1.0],
-        nx: NX,
-        ny: 2,
-        nz: 2,
+        cells: [NX, 2, 2],
     };
     let mut mesh = Mesh::<3>::new();
-    mesh.add_block3d("beam", material(0.0, kinematics), block)
+    mesh.add_block("beam", material(0.0, kinematics), block)
         .unwrap();
     let clamped = mesh.select_nodes_at(None, &[Some(0.0)]);
     assert_eq!(clamped.len(), 9);

@@ -19,7 +19,7 @@ use solver::material::Kinematics;
 use solver::scene::MeshSpec;
 use solver::{Scene, SceneError, SolveOptions, SolverError, solve};
 
-use super::{HertzMeasured, HertzProblem, SCENES, measure};
+use super::cylinder::{HertzMeasured, HertzProblem, SCENES, measure};
 
 /// The meshes of the study (relative to `scenes/`), coarse to fine: the
 /// `h` argument of `scripts/make-hertz-mesh.py` (the element size at the

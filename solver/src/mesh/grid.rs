@@ -1,6 +1,6 @@
-//! The structured grid behind the block generators of both dimensions
-//! ([`super::block`]: quadrilaterals in 2D, [`super::block3d`]: hexahedra
-//! in 3D), written once over the dimension `D`.
+//! The structured grid behind the block generator of both dimensions
+//! ([`super::block`]: quadrilaterals in 2D, hexahedra in 3D), written once
+//! over the dimension `D`.
 //!
 //! A grid with origin `x0`, size `s` and `n_d` cells along axis `d` has the
 //! nodes `p = (p_0, .., p_{D-1})`, `0 <= p_d <= n_d`, at
@@ -32,7 +32,7 @@ impl<const D: usize> Grid<D> {
     }
 
     /// Every index `p` with `p_d < extent_d`, axis 0 fastest.
-    fn indices(extent: [usize; D]) -> impl Iterator<Item = [usize; D]> {
+    pub fn indices(extent: [usize; D]) -> impl Iterator<Item = [usize; D]> {
         let count: usize = extent.iter().product();
         (0..count).map(move |mut r| {
             std::array::from_fn(|d| {
@@ -58,12 +58,5 @@ impl<const D: usize> Grid<D> {
     /// The cell `c`'s nodes, at the parent corners `corners`.
     pub fn cell<const C: usize>(&self, c: [usize; D], corners: &[[f64; D]; C]) -> [usize; C] {
         corners.map(|o| self.node(std::array::from_fn(|d| c[d] + usize::from(o[d] > 0.0))))
-    }
-
-    /// The cells' nodes, in cell order.
-    pub fn cells<const C: usize>(&self, corners: &[[f64; D]; C]) -> Vec<[usize; C]> {
-        Self::indices(self.cells)
-            .map(|c| self.cell(c, corners))
-            .collect()
     }
 }

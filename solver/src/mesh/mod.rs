@@ -26,21 +26,24 @@
 //! * node and element numbers are those of the order in which bodies were
 //!   appended, then the body-local order of the generator.
 //!
-//! Body generators live next to this file: [`block`] (structured
-//! rectangular blocks, with their sides as counter-clockwise segment
-//! chains). A reader of an unstructured mesh file is another generator that
-//! ends in [`Mesh::add_body`].
+//! Body generators live next to this file: [`block`] (structured blocks
+//! of either dimension, [`Mesh::add_block`], with their sides as the
+//! dimension's outward facets: counter-clockwise segment chains in 2D,
+//! quad4 faces in 3D). A reader of an unstructured mesh file is another
+//! generator that ends in [`Mesh::add_body`].
 //!
-//! The 3D generators and readers: volume cells and their outward faces
-//! ([`volume`]; a [`volume::Cell`] converts into an [`Element`]),
-//! boundary-face extraction ([`faces`]), structured hexahedral blocks with
-//! their six sides ([`block3d`]; [`Mesh::add_block3d`]) and the 3D Gmsh
-//! reader ([`gmsh::MshVolumeMesh`]); their cells go into a `Mesh<3>`
-//! through [`Mesh::add_body`].
+//! The 3D readers and what they share: volume cells and their outward
+//! faces ([`volume`]; a [`volume::Cell`] converts into an [`Element`]),
+//! boundary-face extraction ([`faces`]) and the 3D Gmsh reader
+//! ([`gmsh::MshVolumeMesh`]); their cells go into a `Mesh<3>` through
+//! [`Mesh::add_body`].
+//!
+//! The dimension as a type, [`Dim<D>`], is defined here: what differs
+//! between the dimensions beyond the sizes `D` fixes is a trait
+//! implemented for `Dim<2>` and `Dim<3>` ([`block::BlockDim`] here, the
+//! contact facet `crate::model::SurfaceDim` and the layers above).
 
 use std::ops::Range;
-
-use serde::Serialize;
 
 use crate::element::MAX_ELEMENT_DOFS;
 pub use crate::element::{Element, ElementGeometry, ElementKind};
@@ -49,7 +52,6 @@ use crate::ids::{DofId, ElementId, NodeId};
 use crate::material::Material;
 
 pub mod block;
-pub mod block3d;
 pub mod face_shape;
 pub mod faces;
 pub mod gmsh;
@@ -57,12 +59,16 @@ mod grid;
 pub mod inversion;
 pub mod volume;
 
-pub use block::{Block, Side};
+pub use block::{Block, BlockDim, BlockError, Side};
 pub use inversion::InvertedElement;
 
-/// One body of the mesh.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Body {
+/// The spatial dimension `D` as a type (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Dim<const D: usize>;
+
+/// One body of a mesh of `D` dimensions.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body<const D: usize = 2> {
     /// The body's name (unique in the mesh).
     pub name: String,
     /// Its material.
@@ -71,12 +77,11 @@ pub struct Body {
     pub nodes: Range<usize>,
     /// Its elements (raw [`ElementId`] indices).
     pub elements: Range<usize>,
-    /// The block it was generated from, if any.
-    pub block: Option<Block>,
+    /// The block it was generated from ([`Mesh::add_block`]), if any.
+    pub block: Option<Block<D>>,
     /// The mesh file's node tag of each of its nodes (in body order), for
     /// a body read from a mesh file; `None` for a generated body, whose
     /// nodes have only their internal numbers (see [`Mesh::node_number`]).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub node_tags: Option<Vec<u64>>,
 }
 
@@ -99,9 +104,9 @@ impl NodeNumbering {
     }
 }
 
-impl Body {
+impl<const D: usize> Body<D> {
     /// Its nodes, in increasing order.
-    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + use<> {
+    pub fn node_ids(&self) -> impl Iterator<Item = NodeId> + use<D> {
         self.nodes.clone().map(NodeId::new)
     }
 
@@ -114,11 +119,13 @@ impl Body {
 /// Why a mesh could not be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
-    /// A block has zero elements along a direction or a non-positive size.
-    #[error("block of body `{body}` is empty or has non-positive size")]
-    EmptyBlock {
+    /// A block that cannot be generated ([`Block::check`]).
+    #[error("block of body `{body}`: {error}")]
+    Block {
         /// The body.
         body: String,
+        /// Why.
+        error: BlockError,
     },
     /// An element's reference Jacobian is not positive (or, for a
     /// triangle, its area is at the level of rounding).
@@ -153,14 +160,6 @@ pub enum MeshError {
         /// The body.
         body: String,
     },
-    /// A 3D block that cannot be generated.
-    #[error("block of body `{body}`: {error}")]
-    Block3d {
-        /// The body.
-        body: String,
-        /// Why.
-        error: block3d::Block3dError,
-    },
     /// An element of another dimension than the mesh (a 2D element in a
     /// 3D mesh or the reverse).
     #[error(
@@ -191,7 +190,7 @@ pub struct Mesh<const D: usize = 2> {
     /// The body of each element.
     pub element_body: Vec<usize>,
     /// The bodies.
-    pub bodies: Vec<Body>,
+    pub bodies: Vec<Body<D>>,
     /// Reference geometry of each element (indexed by [`ElementId`]).
     pub geometry: Vec<ElementGeometry>,
 }
@@ -241,7 +240,7 @@ impl<const D: usize> Mesh<D> {
         material: Material,
         nodes_ref: &[[f64; D]],
         elements: &[E],
-        block: Option<Block>,
+        block: Option<Block<D>>,
     ) -> Result<usize, MeshError> {
         if nodes_ref.iter().flatten().any(|v| !v.is_finite()) {
             return Err(MeshError::NonFinite {

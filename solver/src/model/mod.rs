@@ -381,8 +381,7 @@ mod tests {
         let block = Block {
             origin: [0.0, 0.0],
             size: [1.0, 1.0],
-            nx: 1,
-            ny: 1,
+            cells: [1, 1],
         };
         mesh.add_block("a", material, block).unwrap();
         let fixed = |c| Prescribed {

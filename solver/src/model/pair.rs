@@ -17,12 +17,12 @@ use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::mesh::volume::Face;
 
-/// The spatial dimension `D` as a type: what differs between the
-/// dimensions beyond the sizes `D` fixes is a trait implemented for
+/// The spatial dimension `D` as a type (defined with the mesh, whose
+/// blocks are the first thing that differs by it): what differs between
+/// the dimensions beyond the sizes `D` fixes is a trait implemented for
 /// `Dim<2>` and `Dim<3>` ([`SurfaceDim`] here, `crate::dim::SpaceDim`
 /// above the contact element).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Dim<const D: usize>;
+pub use crate::mesh::Dim;
 
 /// The surface element of dimension `D` (module docs).
 pub trait SurfaceDim<const D: usize> {

@@ -24,7 +24,8 @@
 //! contacts), so the first error reported is stable.
 
 use super::source::is_block;
-use super::{Coords, FaceSpec, Scene, SceneError, SideName};
+use super::{Coords, FaceSpec, Scene, SceneError};
+use crate::mesh::Side;
 use crate::mesh::gmsh::{AnyMsh, read_any};
 
 /// A scene's dimension.
@@ -296,11 +297,11 @@ impl Scene {
     fn check_side(
         &self,
         field: String,
-        side: Option<SideName>,
+        side: Option<Side>,
         dim: Dimension,
     ) -> Result<(), SceneError> {
         match side {
-            Some(s) if dim == Dimension::Two && s.side_2d().is_none() => Err(self.invalid(
+            Some(s) if dim == Dimension::Two && s.axis::<2>().is_none() => Err(self.invalid(
                 field,
                 format!(
                     "`{}` is a side of a 3D block; a 2D block has the sides bottom, right, top and left",

@@ -200,7 +200,7 @@ pub use initial_contact::{FACING_TOL, OPEN_GAP_FRACTION, PENETRATION_FRACTION};
 pub use memory::{check_scene, check_scene_within, scene_equations};
 pub use spec::{
     BodySpec, ContactSpec, Coords, Dofs, FaceSpec, FixSpec, LoadSpec, LoadingSpec, MaterialSpec,
-    MeshSpec, NewtonSpec, PrescribeSpec, RefineSpec, Scene, SideName, TractionSpec,
+    MeshSpec, NewtonSpec, PrescribeSpec, RefineSpec, Scene, TractionSpec,
 };
 
 impl Scene {
@@ -354,7 +354,7 @@ steps = [2]
     /// `supports` (report names only), `amplitudes` only when there are
     /// curves, a prescribed dof's or a load's `amplitude` only when it has
     /// one, a material's `kinematics` only when small, a body's
-    /// `node_tags` only when it has them, each pair's `gauss_points` resolved (2 when absent) and its
+    /// `node_tags` only when it has them, a block's cells as `nx` and `ny`, each pair's `gauss_points` resolved (2 when absent) and its
     /// `integration` only when it is not Gauss.
     fn print(m: &Model) -> String {
         let pairs: Vec<String> = m
@@ -420,13 +420,20 @@ steps = [2]
                     .as_ref()
                     .map(|t| format!(", node_tags: {t:?}"))
                     .unwrap_or_default();
+                // a block with its counts by name, as the 2D block had them
+                let block = match b.block {
+                    Some(k) => format!(
+                        "Some(Block {{ origin: {:?}, size: {:?}, nx: {}, ny: {} }})",
+                        k.origin, k.size, k.cells[0], k.cells[1]
+                    ),
+                    None => "None".to_owned(),
+                };
                 format!(
-                    "Body {{ name: {:?}, material: {}, nodes: {:?}, elements: {:?}, block: {:?}{tags} }}",
+                    "Body {{ name: {:?}, material: {}, nodes: {:?}, elements: {:?}, block: {block}{tags} }}",
                     b.name,
                     material(&b.material),
                     b.nodes,
                     b.elements,
-                    b.block
                 )
             })
             .collect();

@@ -1,8 +1,8 @@
 //! What the model builder takes from a 2D scene ([`Build`] for `Dim<2>`,
-//! see `build.rs`): what its mesh sources make ([`SourceDim`]: blocks
-//! ([`Block`], sides as [`Mesh::block_side`]'s segments) and the physical
-//! surfaces of a 2D `[mesh]` file, whose triangles and quadrangles are the
-//! body's elements and whose physical curves are faces), tractions per
+//! see `build.rs`): what its mesh sources make ([`SourceDim`]: the
+//! physical surfaces of a 2D `[mesh]` file, whose triangles and
+//! quadrangles are the body's elements and whose physical curves are
+//! faces; a block's sides are [`Mesh::block_side`]'s segments), tractions per
 //! unit reference length on segments, and the pairs' reference geometry
 //! (`initial_contact.rs`: faces that face each other, no initial
 //! penetration, a persistent pair that does not start open, unless the
@@ -11,13 +11,12 @@
 use super::build::Build;
 use super::initial_contact::{Acknowledged, check_initial_contact, reference_pairings_2d};
 use super::source::{MeshFile, SourceDim, Sources};
-use super::{ContactSpec, Scene, SceneError, SideName, TractionSpec};
+use super::{ContactSpec, Scene, SceneError, TractionSpec};
 use crate::element::Element;
 use crate::ids::NodeId;
-use crate::material::Material;
+use crate::mesh::Mesh;
 use crate::mesh::gmsh::{AnyMsh, MshError, MshMesh};
 use crate::mesh::volume::Face;
-use crate::mesh::{Block, Mesh, Side};
 use crate::model::{ContactPair, Dim, Model};
 
 impl SourceDim<2> for Dim<2> {
@@ -28,51 +27,12 @@ impl SourceDim<2> for Dim<2> {
     const EXTENTS: &'static str = "width and height";
     const INVERTED: &'static str = "; its nodes must run counter-clockwise";
 
-    type Block = Block;
-    type Side = Side;
-
     fn mesh_file(scene: &Scene, file: AnyMsh) -> Result<MshMesh, SceneError> {
         match file {
             AnyMsh::Planar(msh) => Ok(msh),
             // `prepare` found the scene 2D, so its mesh file is 2D
             AnyMsh::Volume(_) => Err(scene.invalid("mesh.file", "is a 3D mesh in a 2D scene")),
         }
-    }
-
-    fn add_block(
-        mesh: &mut Mesh,
-        name: &str,
-        material: Material,
-        origin: [f64; 2],
-        size: [f64; 2],
-        [nx, ny]: [usize; 2],
-    ) -> Result<(usize, Block), String> {
-        let block = Block {
-            origin,
-            size,
-            nx,
-            ny,
-        };
-        let body = mesh
-            .add_block(name, material, block)
-            .map_err(|e| e.to_string())?;
-        Ok((body, block))
-    }
-
-    fn side(side: SideName) -> Result<Side, String> {
-        side.side_2d()
-            .ok_or_else(|| format!("`{}` is a side of a 3D block", side.name()))
-    }
-
-    /// The mesh keeps its block bodies' blocks: [`Mesh::block_side`].
-    fn block_side(
-        mesh: &Mesh,
-        body: usize,
-        _: &Block,
-        _: usize,
-        side: Side,
-    ) -> Option<Vec<[NodeId; 2]>> {
-        mesh.block_side(body, side)
     }
 
     /// The triangles and quadrangles of the physical surface `group`.

@@ -11,10 +11,11 @@
 //! ([`Sources::group_nodes`], [`Sources::group_facets`]).
 
 use super::source::{SourceDim, Sources};
-use super::{Scene, SceneError, SideName};
+use super::{Scene, SceneError};
 use crate::dim::SpaceDim;
 use crate::ids::NodeId;
 use crate::mesh::Mesh;
+use crate::mesh::Side;
 use crate::model::{Dim, FacetOf};
 
 impl Scene {
@@ -122,7 +123,7 @@ impl Scene {
         sources: &Sources<'_, D>,
         f: &str,
         body: &Option<String>,
-        side: Option<SideName>,
+        side: Option<Side>,
         group: &Option<String>,
     ) -> Result<(usize, Vec<FacetOf<D>>), SceneError>
     where

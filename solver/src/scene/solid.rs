@@ -1,9 +1,9 @@
 //! What the model builder takes from a 3D scene ([`Build`] for `Dim<3>`,
-//! see `build.rs`): what its mesh sources make ([`SourceDim`]: 3D blocks
-//! ([`Block3d`], `[refine] z`, the six sides as quad4 faces) and the
+//! see `build.rs`): what its mesh sources make ([`SourceDim`]: the
 //! physical volumes of a 3D `[mesh]` file, whose tetrahedra and hexahedra
 //! are the body's elements and whose physical surfaces are face groups
-//! on one body), tractions per unit reference
+//! on one body; a block's six sides are [`Mesh::block_side`]'s quad4
+//! faces), tractions per unit reference
 //! area on faces ([`nodal_forces`]), and each pair's reading and
 //! `gauss_points`: the `formulation` a reading of 3D faces
 //! (`slave-normal` or `closest-point`: any other is refused naming
@@ -23,14 +23,12 @@ use super::build::Build;
 use super::initial_contact::{Acknowledged, check_initial_contact};
 use super::source::{MeshFile, SourceDim, Sources};
 use super::traction::nodal_forces;
-use super::{ContactSpec, Scene, SceneError, SideName, TractionSpec};
+use super::{ContactSpec, Scene, SceneError, TractionSpec};
 use crate::contact::FaceLayout;
 use crate::contact::face_rules::face_rule;
 use crate::element::{Element, FaceKind};
 use crate::ids::NodeId;
-use crate::material::Material;
 use crate::mesh::Mesh;
-use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::gmsh::{AnyMsh, MshError, MshVolumeMesh};
 use crate::mesh::volume::Face;
 use crate::model::{ContactPair, Dim, Integration, Model};
@@ -43,61 +41,12 @@ impl SourceDim<3> for Dim<3> {
     const EXTENTS: &'static str = "every extent";
     const INVERTED: &'static str = "";
 
-    type Block = Block3d;
-    type Side = Side3d;
-
     fn mesh_file(scene: &Scene, file: AnyMsh) -> Result<MshVolumeMesh, SceneError> {
         match file {
             AnyMsh::Volume(msh) => Ok(msh),
             // `prepare` found the scene 3D, so its mesh file is 3D
             AnyMsh::Planar(_) => Err(scene.invalid("mesh.file", "is a 2D mesh in a 3D scene")),
         }
-    }
-
-    /// The block checked ([`Block3d::check`]), then appended
-    /// ([`Mesh::add_block3d`]).
-    fn add_block(
-        mesh: &mut Mesh<3>,
-        name: &str,
-        material: Material,
-        origin: [f64; 3],
-        size: [f64; 3],
-        [nx, ny, nz]: [usize; 3],
-    ) -> Result<(usize, Block3d), String> {
-        let block = Block3d {
-            origin,
-            size,
-            nx,
-            ny,
-            nz,
-        };
-        block.check().map_err(|e| e.to_string())?;
-        let body = mesh
-            .add_block3d(name, material, block)
-            .map_err(|e| e.to_string())?;
-        Ok((body, block))
-    }
-
-    fn side(side: SideName) -> Result<Side3d, String> {
-        Ok(side.side_3d())
-    }
-
-    /// [`Block3d::side`]'s body-local nodes plus the body's first node
-    /// ([`Mesh::add_block3d`] numbers the body so).
-    fn block_side(
-        _: &Mesh<3>,
-        _: usize,
-        block: &Block3d,
-        node0: usize,
-        side: Side3d,
-    ) -> Option<Vec<Face<NodeId>>> {
-        let faces = block.side(side).ok()?;
-        Some(
-            faces
-                .into_iter()
-                .map(|f| f.map_nodes(|n| NodeId::new(node0 + n)))
-                .collect(),
-        )
     }
 
     /// The tetrahedra and hexahedra of the physical volume `group`.

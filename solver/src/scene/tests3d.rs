@@ -5,8 +5,9 @@
 
 use std::path::PathBuf;
 
-use super::{Coords, Dimension, Dofs, Scene, SceneError, SideName};
+use super::{Coords, Dimension, Dofs, Scene, SceneError};
 use crate::ids::NodeId;
+use crate::mesh::Side;
 
 /// A 3D block cantilever: 4 x 1 x 1 hexahedra, clamped at x = 0, a
 /// traction on its free end.
@@ -341,18 +342,18 @@ fn dofs_are_any_set_of_x_y_z() {
 #[test]
 fn sides_have_six_names_and_four_in_2d() {
     for (name, side) in [
-        ("left", SideName::Left),
-        ("right", SideName::Right),
-        ("front", SideName::Front),
-        ("back", SideName::Back),
-        ("bottom", SideName::Bottom),
-        ("top", SideName::Top),
+        ("left", Side::Left),
+        ("right", Side::Right),
+        ("front", Side::Front),
+        ("back", Side::Back),
+        ("bottom", Side::Bottom),
+        ("top", Side::Top),
     ] {
         assert_eq!(side.name(), name);
-        assert_eq!(side.side_3d().name(), name);
+        assert!(side.axis::<3>().is_some());
         assert_eq!(
-            side.side_2d().is_none(),
-            matches!(side, SideName::Front | SideName::Back)
+            side.axis::<2>().is_none(),
+            matches!(side, Side::Front | Side::Back)
         );
     }
 }
@@ -549,20 +550,18 @@ steps = [1]
 
 #[test]
 fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
-    use crate::mesh::block3d::{Block3d, Side3d};
+    use crate::mesh::Block;
     use crate::mesh::volume::{Face, dot};
     use crate::model::{ContactMode, Integration};
     use contact_kernels::Formulation;
     let model = error_free(BLOCKS3D).build_model::<3>().unwrap();
     assert_eq!(model.contacts.len(), 2);
     // each block's side, its nodes offset by the body's first node
-    let side = |b: usize, size: [usize; 3], z: f64, s: Side3d| -> Vec<Face<NodeId>> {
-        let block = Block3d {
+    let side = |b: usize, size: [usize; 3], z: f64, s: Side| -> Vec<Face<NodeId>> {
+        let block = Block {
             origin: [0.0, 0.0, z],
             size: [2.0, 1.0, 0.5],
-            nx: size[0],
-            ny: size[1],
-            nz: size[2],
+            cells: size,
         };
         let first = model.mesh.bodies[b].nodes.start;
         block
@@ -572,8 +571,8 @@ fn a_3d_block_on_a_block_builds_its_face_pairs_in_order() {
             .map(|f| f.map_nodes(|n| NodeId::new(first + n)))
             .collect()
     };
-    let base_top = side(0, [2, 1, 1], 0.0, Side3d::Top);
-    let block_bottom = side(1, [3, 2, 1], 0.5, Side3d::Bottom);
+    let base_top = side(0, [2, 1, 1], 0.0, Side::Top);
+    let block_bottom = side(1, [3, 2, 1], 0.5, Side::Bottom);
     assert_eq!((base_top.len(), block_bottom.len()), (2, 6));
     let [first, second] = &model.contacts[..] else {
         unreachable!()

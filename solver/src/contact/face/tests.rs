@@ -10,8 +10,8 @@ use crate::contact::{ContactSpace, assemble_contact};
 use crate::element::material::{Kinematics, Material, PlaneModel};
 use crate::ids::{ContactPointIndex, MasterFaceIndex, NodeId};
 use crate::mesh::Mesh;
-use crate::mesh::block3d::{Block3d, Side3d};
 use crate::mesh::volume::Face;
+use crate::mesh::{Block, Side};
 use crate::model::{ContactMode, ContactPair, Integration};
 use crate::system::{DofMap, System};
 
@@ -31,34 +31,30 @@ const MATERIAL: Material = Material {
 /// faces, the base's top faces the master faces.
 fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, ContactPair<3>) {
     let mut mesh = Mesh::<3>::new();
-    let base = Block3d {
+    let base = Block {
         origin: [0.0, 0.0, 0.0],
         size: [2.0, 2.0, 1.0],
-        nx: 2,
-        ny: 2,
-        nz: 1,
+        cells: [2, 2, 1],
     };
-    let cap = Block3d {
+    let cap = Block {
         origin: [0.3, 0.3, 1.0 + gap],
         size: [1.4, 1.4, 0.5],
-        nx: 3,
-        ny: 3,
-        nz: 1,
+        cells: [3, 3, 1],
     };
-    let b = mesh.add_block3d("base", MATERIAL, base).unwrap();
-    let c = mesh.add_block3d("cap", MATERIAL, cap).unwrap();
+    let b = mesh.add_block("base", MATERIAL, base).unwrap();
+    let c = mesh.add_block("cap", MATERIAL, cap).unwrap();
     let global = |body: usize, f: Face| {
         let start = mesh.bodies[body].nodes.start;
         f.map_nodes(|n| NodeId::new(start + n))
     };
     let master = base
-        .side(Side3d::Top)
+        .side(Side::Top)
         .unwrap()
         .into_iter()
         .map(|f| global(b, f))
         .collect();
     let mut slave: Vec<Face<NodeId>> = cap
-        .side(Side3d::Bottom)
+        .side(Side::Bottom)
         .unwrap()
         .into_iter()
         .map(|f| global(c, f))

@@ -2,14 +2,14 @@
 //! `nx`, `ny` and, in 3D, `nz` (any of them: the others are then missing;
 //! `D` numbers in `origin` and `size`) becomes a block of `nx rx` by
 //! `ny ry` (by `nz rz`) elements (`[refine]`'s factors; [`crate::mesh::block`]
-//! and [`crate::mesh::block3d`] have the numbering), and its facets are
-//! the block's sides (through [`SourceDim`]). A block has at most
+//! has the numbering), and its facets are the block's sides
+//! ([`Mesh::block_side`]). A block has at most
 //! [`MAX_BLOCK_ELEMENTS`] elements (refinement included), so that no scene
 //! value overflows the counts or asks for more memory than a machine has.
 
 use super::SourceDim;
 use crate::material::Material;
-use crate::mesh::Mesh;
+use crate::mesh::{Block, Mesh};
 use crate::model::Dim;
 use crate::scene::{BodySpec, Scene, SceneError};
 
@@ -35,14 +35,15 @@ pub(super) fn fields<const D: usize>(sep: &str, last: &str) -> String {
 /// Appends the scene's block `body[i]` with its checked `material`,
 /// checked first: every field given, at least one element along each
 /// axis, a positive finite size, a finite origin and far corner, at most
-/// [`MAX_BLOCK_ELEMENTS`] elements. Returns the mesh body's index, and
-/// the block with the body's first node. Errors name the field.
+/// [`MAX_BLOCK_ELEMENTS`] elements; then appended
+/// ([`Mesh::add_block`]). Returns the mesh body's index. Errors name the
+/// field.
 pub(super) fn add_block<const D: usize>(
     scene: &Scene,
     mesh: &mut Mesh<D>,
     i: usize,
     material: Material,
-) -> Result<(usize, (<Dim<D> as SourceDim<D>>::Block, usize)), SceneError>
+) -> Result<usize, SceneError>
 where
     Dim<D>: SourceDim<D>,
 {
@@ -123,12 +124,13 @@ where
             ),
         ));
     }
-    let n = refined.map(|k| k.unwrap_or(0));
-    let node0 = mesh.node_count();
-    let (body, block) =
-        <Dim<D> as SourceDim<D>>::add_block(mesh, &b.name, material, origin, size, n)
-            .map_err(|m| scene.invalid(&f, m))?;
-    Ok((body, (block, node0)))
+    let block = Block {
+        origin,
+        size,
+        cells: refined.map(|k| k.unwrap_or(0)),
+    };
+    mesh.add_block(&b.name, material, block)
+        .map_err(|e| scene.invalid(&f, e.to_string()))
 }
 
 /// Whether `body` gives any of the block fields (`origin`, `size`, `nx`,

@@ -12,10 +12,13 @@
 //!   surface (2D) or volume (3D) of the `[mesh] file`; its physical groups
 //!   are facets, node groups and (in 2D) loaded curves, asked for by name.
 //!
-//! What differs between the dimensions (the block and its sides, which
-//! file elements make a body, a group's facets, the words of messages)
-//! comes from [`SourceDim`], implemented for `Dim<2>` in `planar.rs` and
-//! for `Dim<3>` in `solid.rs`.
+//! A block and its sides are [`crate::mesh::Block`]'s, one generator for
+//! both dimensions (its dimension's part through
+//! [`crate::mesh::BlockDim`]); the mesh remembers each block body's block.
+//! What else differs between the dimensions (which file elements make a
+//! body, a group's facets, the words of messages) comes from
+//! [`SourceDim`], implemented for `Dim<2>` in `planar.rs` and for `Dim<3>`
+//! in `solid.rs`.
 //!
 //! Selection by reference coordinates does not depend on the source and
 //! stays with the mesh ([`Mesh::select_nodes_at`]).
@@ -30,13 +33,13 @@
 //!   tri3 and quad4 faces counter-clockwise seen from outside their body
 //!   in 3D (outward normal `t_1 x t_2`).
 
-use super::{Scene, SceneError, SideName};
+use super::{Scene, SceneError};
 use crate::dim::SpaceDim;
 use crate::element::Element;
 use crate::ids::NodeId;
 use crate::material::Material;
-use crate::mesh::Mesh;
 use crate::mesh::gmsh::{AnyMsh, Msh, MshError};
+use crate::mesh::{BlockDim, Mesh, Side};
 use crate::model::{Dim, FacetOf, SurfaceDim};
 
 mod blocks;
@@ -59,8 +62,11 @@ pub(super) fn resolve(origin: &str, file: &str) -> std::path::PathBuf {
     }
 }
 
-/// What the mesh sources take from the dimension (module docs).
-pub(in crate::scene) trait SourceDim<const D: usize>: SpaceDim<D> {
+/// What the mesh sources take from the dimension (module docs); a block's
+/// side is made of the dimension's contact facets.
+pub(in crate::scene) trait SourceDim<const D: usize>:
+    SpaceDim<D> + BlockDim<D, Facet<NodeId> = <Self as SurfaceDim<D>>::Facet>
+{
     /// How many numbers a point has, in words (`two`, `three`).
     const NUMBERS: &'static str;
     /// What a physical group of facets is (`curve`, `surface`).
@@ -75,42 +81,9 @@ pub(in crate::scene) trait SourceDim<const D: usize>: SpaceDim<D> {
     /// What the message for an inverted element of the mesh file adds.
     const INVERTED: &'static str;
 
-    /// A structured block of the dimension.
-    type Block: Copy;
-    /// A side of a block of the dimension.
-    type Side: Copy;
-
     /// The mesh file of a scene of this dimension, out of the file read;
     /// an error naming `mesh.file` if it is of the other dimension.
     fn mesh_file(scene: &Scene, file: AnyMsh) -> Result<Msh<D>, SceneError>;
-
-    /// Appends the checked block (`origin`, `size`, elements along each
-    /// axis, refinement included) as the body `name`: the body's index
-    /// and the block, or the mesh's message.
-    fn add_block(
-        mesh: &mut Mesh<D>,
-        name: &str,
-        material: Material,
-        origin: [f64; D],
-        size: [f64; D],
-        n: [usize; D],
-    ) -> Result<(usize, Self::Block), String>;
-
-    /// The side `side` names, or a message if the dimension's blocks have
-    /// no such side.
-    fn side(side: SideName) -> Result<Self::Side, String>;
-
-    /// The facets of `side` of the block body `body` (`block`, its first
-    /// node `node0`), outward; `None` if the block has no such facets.
-    fn block_side(
-        mesh: &Mesh<D>,
-        body: usize,
-        block: &Self::Block,
-        node0: usize,
-        side: Self::Side,
-    ) -> Option<Vec<FacetOf<D>>>
-    where
-        Dim<D>: SurfaceDim<D>;
 
     /// The elements (with their tags) of the file's physical surface (2D)
     /// or volume (3D) `group`, in file order and node order.
@@ -123,16 +96,13 @@ pub(in crate::scene) trait SourceDim<const D: usize>: SpaceDim<D> {
         Dim<D>: SurfaceDim<D>;
 }
 
-/// A scene's mesh sources in dimension `D` (module docs), and the block
-/// of each block body.
+/// A scene's mesh sources in dimension `D` (module docs).
 pub(in crate::scene) struct Sources<'s, const D: usize>
 where
     Dim<D>: SourceDim<D>,
 {
     scene: &'s Scene,
     file: Option<MeshFile<D>>,
-    /// Per mesh body: its block and first node, for a block body.
-    blocks: Vec<Option<(<Dim<D> as SourceDim<D>>::Block, usize)>>,
 }
 
 impl<'s, const D: usize> Sources<'s, D>
@@ -150,7 +120,6 @@ where
         Ok(Sources {
             scene,
             file: file.map(MeshFile::new),
-            blocks: Vec::new(),
         })
     }
 
@@ -165,9 +134,7 @@ where
     ) -> Result<usize, SceneError> {
         let scene = self.scene;
         if is_block(&scene.bodies[i]) {
-            let (body, block) = blocks::add_block::<D>(scene, mesh, i, material)?;
-            self.blocks.push(Some(block));
-            return Ok(body);
+            return blocks::add_block::<D>(scene, mesh, i, material);
         }
         let Some(file) = &mut self.file else {
             return Err(scene.invalid(
@@ -181,27 +148,23 @@ where
                 ),
             ));
         };
-        let body = file.add_body(scene, mesh, i, material)?;
-        self.blocks.push(None);
-        Ok(body)
+        file.add_body(scene, mesh, i, material)
     }
 
-    /// The facets of `side` of the mesh body `body`, outward: `Ok(None)`
-    /// if the body is not a block body, `Err` (a message) if `side` is
-    /// not a side of the dimension's blocks.
+    /// The facets of `side` of the mesh body `body`, outward
+    /// ([`Mesh::block_side`]): `Ok(None)` if the body is not a block body,
+    /// `Err` (a message) if `side` is not a side of the dimension's blocks
+    /// (only 2D blocks lack sides: `front` and `back`).
     pub(in crate::scene) fn side(
         &self,
         mesh: &Mesh<D>,
         body: usize,
-        side: SideName,
+        side: Side,
     ) -> Result<Option<Vec<FacetOf<D>>>, String> {
-        let side = <Dim<D> as SourceDim<D>>::side(side)?;
-        let Some(Some((block, node0))) = self.blocks.get(body) else {
-            return Ok(None);
-        };
-        Ok(<Dim<D> as SourceDim<D>>::block_side(
-            mesh, body, block, *node0, side,
-        ))
+        if side.axis::<D>().is_none() {
+            return Err(format!("`{}` is a side of a 3D block", side.name()));
+        }
+        Ok(mesh.block_side(body, side))
     }
 
     /// The answer of the mesh file, or an error for `field` if there is

@@ -7,11 +7,11 @@
 use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
 
+use crate::mesh::Side;
 use crate::model::{ContactMode, Integration};
 
 use super::values::{
-    Coords, Dofs, SideName, de_amplitude, de_formulation, de_opt_pair, de_opt_triple,
-    ser_formulation,
+    Coords, Dofs, de_amplitude, de_formulation, de_opt_pair, de_opt_triple, ser_formulation,
 };
 
 /// Supports (`[[fix]]`): zero displacement of the selected nodes. Select
@@ -156,10 +156,10 @@ pub struct FaceSpec {
     /// it must name the group's body).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
-    /// `side`: a block's side ([`SideName`]: `bottom`, `right`, `top`,
+    /// `side`: a block's side ([`Side`]: `bottom`, `right`, `top`,
     /// `left`; in 3D also `front`, `back`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub side: Option<SideName>,
+    pub side: Option<Side>,
     /// `group`: a physical curve (2D) or surface (3D) of the `[mesh]`
     /// file (instead of `side`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -189,7 +189,7 @@ pub struct TractionSpec {
     pub body: Option<String>,
     /// `side`: a side of the block `body` (instead of `group`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub side: Option<SideName>,
+    pub side: Option<Side>,
     /// `group`: the physical curve (2D) or surface (3D) of the `[mesh]`
     /// file loaded (instead of `side`).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -17,8 +17,8 @@
 //! * `items.rs`: the entries that select nodes or faces of the bodies
 //!   (`[[fix]]`, `[[load]]`, `[[prescribe]]`, `[[traction]]`,
 //!   `[[contact]]` and its faces);
-//! * `values.rs`: the values written inside them ([`Coords`], [`Dofs`],
-//!   [`SideName`]) and the serde helpers of the fields that do not derive
+//! * `values.rs`: the values written inside them ([`Coords`], [`Dofs`];
+//!   a block's side is a [`crate::mesh::Side`]) and the serde helpers of the fields that do not derive
 //!   their reading or writing.
 //!
 //! Everything is re-exported here: `spec::X` names every type.
@@ -35,7 +35,7 @@ mod items;
 mod values;
 
 pub use items::{ContactSpec, FaceSpec, FixSpec, LoadSpec, PrescribeSpec, TractionSpec};
-pub use values::{Coords, Dofs, SideName};
+pub use values::{Coords, Dofs};
 use values::{de_linear, de_method, is_default_linear, ser_linear, ser_method};
 
 /// A scene (see the module docs for the file format).
@@ -150,7 +150,7 @@ impl From<Material> for MaterialSpec {
 }
 
 /// A body (`[[body]]`): either a structured block (see
-/// [`crate::mesh::block`] and [`crate::mesh::block3d`]; `origin`, `size`,
+/// [`crate::mesh::block`]; `origin`, `size`,
 /// `nx` and `ny` all given, and `nz` with three numbers in `origin` and
 /// `size`: `nx` by `ny` 4-node quadrilaterals in 2D, `nx` by `ny` by `nz`
 /// 8-node hexahedra in 3D), or, without any of those fields, the physical

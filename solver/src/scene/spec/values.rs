@@ -1,7 +1,7 @@
 //! The values written inside the scene's tables: points and vectors
-//! ([`Coords`]), sets of displacement components ([`Dofs`]) and block
-//! sides ([`SideName`]), and the serde helpers that the other files' fields
-//! name (`deserialize_with = "de_..."`, `serialize_with = "ser_..."`):
+//! ([`Coords`]) and sets of displacement components ([`Dofs`]) (a block's
+//! side is a [`crate::mesh::Side`]), and the serde helpers that the other
+//! files' fields name (`deserialize_with = "de_..."`, `serialize_with = "ser_..."`):
 //! number lists of an exact length, load curves, formulations, linear
 //! solvers and methods.
 
@@ -9,8 +9,6 @@ use contact_kernels::Formulation;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::linear::LinearSolverKind;
-use crate::mesh::Side;
-use crate::mesh::block3d::Side3d;
 use crate::options::Method;
 
 /// A point or a vector as written: two numbers `[x, y]` in a 2D scene,
@@ -165,69 +163,6 @@ impl<'de> Deserialize<'de> for Dofs {
         String::deserialize(d)?
             .parse()
             .map_err(serde::de::Error::custom)
-    }
-}
-
-/// A side of a block as written (`side`): `bottom`, `right`, `top` or
-/// `left` of a 2D block ([`Side`]: bottom and top at the smallest and
-/// largest y); of a 3D block also `front` and `back` ([`Side3d`]: left and
-/// right at the smallest and largest x, front and back y, bottom and top
-/// z).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum SideName {
-    /// 2D: the smallest y; 3D: the smallest z.
-    Bottom,
-    /// The largest x.
-    Right,
-    /// 2D: the largest y; 3D: the largest z.
-    Top,
-    /// The smallest x.
-    Left,
-    /// The smallest y (3D only).
-    Front,
-    /// The largest y (3D only).
-    Back,
-}
-
-impl SideName {
-    /// The side of a 2D block; `None` for `front` and `back`.
-    pub fn side_2d(self) -> Option<Side> {
-        match self {
-            SideName::Bottom => Some(Side::Bottom),
-            SideName::Right => Some(Side::Right),
-            SideName::Top => Some(Side::Top),
-            SideName::Left => Some(Side::Left),
-            SideName::Front | SideName::Back => None,
-        }
-    }
-
-    /// The side of a 3D block.
-    pub fn side_3d(self) -> Side3d {
-        match self {
-            SideName::Bottom => Side3d::Bottom,
-            SideName::Right => Side3d::Right,
-            SideName::Top => Side3d::Top,
-            SideName::Left => Side3d::Left,
-            SideName::Front => Side3d::Front,
-            SideName::Back => Side3d::Back,
-        }
-    }
-
-    /// The name as written.
-    pub fn name(self) -> &'static str {
-        self.side_3d().name()
-    }
-}
-
-impl From<Side> for SideName {
-    fn from(side: Side) -> SideName {
-        match side {
-            Side::Bottom => SideName::Bottom,
-            Side::Right => SideName::Right,
-            Side::Top => SideName::Top,
-            Side::Left => SideName::Left,
-        }
     }
 }
 

@@ -1,6 +1,6 @@
-//! The 3D Hertz benchmark (`scenes/hertz3d.toml`, issue "The solver in 3D",
-//! section 4): its measurement from a solved quarter model and the picture
-//! of its pressure.
+//! The 3D Hertz benchmark (point contact; `scenes/hertz3d.toml`, issue
+//! "The solver in 3D", section 4): a sphere on a block, its measurement
+//! from a solved quarter model and the picture of its pressure.
 //!
 //! The scene is a quarter model (symmetry planes `x = 0` and `y = 0`) of a
 //! sphere of radius `R` pressed onto a block of the same material. The
@@ -12,6 +12,8 @@
 //! p(r) = p0 sqrt(1 - r^2 / a^2)   (r < a),
 //! ```
 //!
+//! (`E*` is [`super::contact_modulus`], `p(r)` [`super::half_ellipse`])
+//!
 //! and are compared with the nodal contact table of the final state
 //! ([`solver::report::ContactTable::rows`]): the peak pressure is the largest
 //! nodal pressure, the contact radius the largest `hypot(x, y)` of a node
@@ -21,6 +23,8 @@ use std::path::Path;
 
 use plotters::prelude::*;
 use solver::Solution;
+
+use super::{contact_modulus, fit_half_ellipse, half_ellipse};
 
 /// The measured benchmark.
 #[derive(Debug, Clone, PartialEq)]
@@ -77,7 +81,7 @@ pub fn measure_3d(
         .last()
         .ok_or("the solution has no step")?;
     let load = 4.0 * last.reactions[bottom][2].abs();
-    let e_star = young / (2.0 * (1.0 - poisson * poisson));
+    let e_star = contact_modulus(young, poisson);
     let a = (3.0 * load * sphere_radius / (4.0 * e_star)).cbrt();
     let p0 = 3.0 * load / (2.0 * std::f64::consts::PI * a * a);
     let rows =
@@ -99,7 +103,7 @@ pub fn measure_3d(
         p0,
         peak,
         radius,
-        fit: super::fit_half_ellipse(points.iter().copied().filter(|p| p.1 > 0.0)),
+        fit: fit_half_ellipse(points.iter().copied().filter(|p| p.1 > 0.0)),
         without_projection: rows.iter().filter(|r| r.gap.is_none()).count(),
         points,
     })
@@ -147,7 +151,7 @@ fn draw<DB: DrawingBackend>(
     let hertz: Vec<(f64, f64)> = (0..=400)
         .map(|k| {
             let r = m.a * k as f64 / 400.0;
-            (r, m.p0 * (1.0 - (r / m.a).powi(2)).max(0.0).sqrt())
+            (r, half_ellipse(m.p0, m.a, r))
         })
         .chain([(r_max, 0.0)])
         .collect();
