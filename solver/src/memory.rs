@@ -284,9 +284,19 @@ mod tests {
         // whole runs of scenes/hertz3d.toml (one step): (family, solver,
         // equations, peak KiB)
         for (family, linear, n, kib) in [
-            (MeshFamily::Hexahedra, LinearSolverKind::Ldlt, 87012, 2311252),
+            (
+                MeshFamily::Hexahedra,
+                LinearSolverKind::Ldlt,
+                87012,
+                2311252,
+            ),
             (MeshFamily::Hexahedra, LinearSolverKind::Lu, 87012, 9957388),
-            (MeshFamily::Tetrahedra, LinearSolverKind::Ldlt, 21818, 680260),
+            (
+                MeshFamily::Tetrahedra,
+                LinearSolverKind::Ldlt,
+                21818,
+                680260,
+            ),
             (MeshFamily::Tetrahedra, LinearSolverKind::Lu, 21818, 1243284),
         ] {
             let e = estimate(n, family, linear);

@@ -243,13 +243,15 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
         );
         assert_eq!(
             <Dim<3> as solver::report::ContactTable<3>>::HEADER,
-            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area"
+            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering"
         );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
         assert_eq!(rows.len(), 16, "{text}");
         let mut resultant = 0.0;
         for r in &rows {
-            assert_eq!(r.len(), 15, "{r:?}");
+            assert_eq!(r.len(), 17, "{r:?}");
+            // both blocks: internal indices, slave and master alike
+            assert_eq!((r[15], r[16]), ("internal", "internal"), "{r:?}");
             assert_eq!(r[0], "cap-on-base");
             let z: f64 = r[4].parse().unwrap();
             // the cap's bottom moved down, by less than the press
@@ -285,6 +287,108 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
 /// energy lies between the 2D scene's plane-stress and plane-strain
 /// values (measured 0.55048 between 0.56498 and 0.52165), and Type 3 at
 /// the scene's 4 steps is within 2e-4 of it (measured 1.1e-4).
+/// A mesh-file cube (the reader's fixture `cube.msh`, node tags 1-8) on
+/// a block base: its `contact.csv` numbers the slave nodes by their tags
+/// (`msh`) and the master nodes by their internal indices (`internal`),
+/// and says so in each row.
+#[test]
+fn the_3d_contact_csv_says_how_slave_and_master_are_numbered() {
+    use solver::{Scene, solve};
+    let dir = std::env::temp_dir().join(format!("gapsim-numbering-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fixture = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/src/mesh/gmsh/testdata/cube.msh"
+    );
+    std::fs::copy(fixture, dir.join("cube.msh")).unwrap();
+    let text = r#"
+[mesh]
+file = "cube.msh"
+
+[material]
+young = 1000.0
+poisson = 0.3
+kinematics = "small"
+
+[[body]]
+name = "base"
+origin = [0.0, 0.0, -0.5]
+size = [1.0, 1.0, 0.5]
+nx = 2
+ny = 2
+nz = 1
+
+[[body]]
+name = "body"
+
+[[fix]]
+body = "base"
+z = -0.5
+
+[[fix]]
+body = "body"
+x = 0.0
+dofs = "x"
+
+[[fix]]
+body = "body"
+y = 0.0
+dofs = "y"
+
+[[traction]]
+body = "body"
+group = "top"
+force_per_area = [0.0, 0.0, -1.0]
+
+[[contact]]
+name = "seat"
+slave = { body = "body", group = "bottom" }
+master = { body = "base", side = "top" }
+
+[loading]
+load_factor_end = 1.0
+steps = [1]
+"#;
+    let path = dir.join("mixed.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+    let sol =
+        solve::<3>(&scene, &SolveOptions::from_scene(&scene)).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::remove_dir_all(&dir).unwrap();
+    let csv = solver::report::contact_csv(&sol, &sol.final_state).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 4, "{csv}");
+    let base_nodes = 3 * 3 * 2; // the block is the first body
+    let (mut resultant, mut projected) = (0.0, 0);
+    for r in &rows {
+        let node: u64 = r[1].parse().unwrap();
+        assert!((1..=8).contains(&node), "a tag of cube.msh: {r:?}");
+        assert_eq!(r[15], "msh", "{r:?}");
+        let p: f64 = r[6].parse().unwrap();
+        let area: f64 = r[14].parse().unwrap();
+        resultant += p * area;
+        if r[5].is_empty() {
+            // a corner pushed past the base's edge: no projection, and no
+            // master numbering with no master nodes
+            assert_eq!(r[16], "", "{r:?}");
+            continue;
+        }
+        projected += 1;
+        assert_eq!(r[16], "internal", "{r:?}");
+        for k in 10..=13 {
+            let m: usize = r[k].parse().unwrap();
+            assert!(m < base_nodes, "an internal index of the base: {r:?}");
+        }
+    }
+    assert!(projected >= 1, "{csv}");
+    // the unit load on the unit top is carried by the contact alone
+    assert!((resultant - 1.0).abs() < 1e-9, "{resultant}");
+}
+
 #[test]
 fn the_paper_scene_in_3d_lies_between_plane_stress_and_plane_strain() {
     use solver::{Scene, solve};

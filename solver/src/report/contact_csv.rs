@@ -41,7 +41,7 @@
 //! order the nodes first appear on the slave faces), with the header
 //!
 //! ```text
-//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area
+//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering
 //! ```
 //!
 //! `pair` is the pair's name (quoted as in 2D), `node` the slave node's
@@ -56,8 +56,12 @@
 //! projects into no master face; `master_node_4` is empty on a tri3
 //! master face. `tributary_area` is `sum w J0 N_a` over the node's
 //! integration points: `sum pressure x tributary_area` over a pair is the
-//! pressure's resultant. Numbers in Rust's shortest round-trip form, as
-//! the 2D file.
+//! pressure's resultant. `node_numbering` says how `node` is numbered
+//! (`msh` or `internal`, as in 2D) and `master_numbering` how the master
+//! face's nodes are (empty with them): in a scene of a block body and a
+//! mesh-file body, one side's numbers are mesh tags and the other's
+//! internal indices. Numbers in Rust's shortest round-trip form, as the 2D
+//! file.
 
 use crate::model::Dim;
 use crate::solution::{Solution, State};

@@ -9,7 +9,7 @@
 //!
 //! ```text
 //! 2D: pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering
-//! 3D: pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area
+//! 3D: pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering
 //! ```
 //!
 //! (every column is described in [`super::contact_csv`]).
@@ -19,6 +19,7 @@ use crate::contact::{
     NodalState, nodal_contact,
 };
 use crate::dim::SpaceDim;
+use crate::ids::NodeId;
 use crate::model::{Dim, SurfaceDim};
 use crate::solution::{Solution, State};
 
@@ -116,7 +117,7 @@ impl ContactTable<2> for Dim<2> {
 
 impl ContactTable<3> for Dim<3> {
     type Row = FaceNodalRow;
-    const HEADER: &'static str = "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area";
+    const HEADER: &'static str = "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering";
 
     fn rows(
         solution: &Solution<3>,
@@ -134,6 +135,7 @@ impl ContactTable<3> for Dim<3> {
 
     fn csv_line(solution: &Solution<3>, row: &FaceNodalRow) -> String {
         let number = |n: usize| solution.mesh.node_number(n).0.to_string();
+        let numbering = |n: NodeId| solution.mesh.node_number(n.index()).1.as_str();
         let name = field(&solution.contact_pairs[row.pair.index()].name);
         let [x, y, z] = row.x.map(num);
         // gap, pressure, xi_m_u, xi_m_v, master_face, 4 master nodes
@@ -148,11 +150,15 @@ impl ContactTable<3> for Dim<3> {
                 fields[5 + k] = number(n.index());
             }
         }
+        let master_numbering = row
+            .master
+            .map_or("", |(_, face)| numbering(face.nodes()[0]));
         format!(
-            "{name},{},{x},{y},{z},{},{}",
+            "{name},{},{x},{y},{z},{},{},{},{master_numbering}",
             number(row.node.index()),
             fields.join(","),
-            num(row.tributary_area)
+            num(row.tributary_area),
+            numbering(row.node),
         )
     }
 }
