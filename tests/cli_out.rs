@@ -292,7 +292,7 @@ fn a_model_too_large_for_the_memory_is_refused_before_it_is_built() {
     let equations = 100 * 2 * 3001 * 3001_u64;
     assert!(
         stderr.contains(&format!(
-            "not enough memory: {equations} equations need at least "
+            "not enough memory: {equations} equations of 2D elements need at least "
         )) && stderr.contains("MiB are available (MemAvailable in /proc/meminfo)"),
         "{stderr}"
     );

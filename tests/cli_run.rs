@@ -150,6 +150,13 @@ fn a_scene_without_contact_writes_no_contact_csv() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert_eq!(entries(&out_dir), ["final.vtu", "reactions.csv"]);
+    // the method line says there is no contact (no empty formulation list)
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let method = stdout
+        .lines()
+        .find(|l| l.starts_with("method "))
+        .unwrap_or_else(|| panic!("{stdout}"));
+    assert!(method.ends_with("load steps, no contact)"), "{method}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -230,8 +237,10 @@ steps = [2]
     // the mortar gap is zero on average, not node by node: small against
     // the press of 0.01
     assert!(p.abs() < 1e-4, "{line}");
+    // every node with a projection counts, pressed or not
     assert!(
-        line.contains("over the 12 slave nodes with pressure"),
+        line.contains("slave nodes with a projection")
+            && line.contains(" of them with pressure, 0 without pressure inside the master)"),
         "{line}"
     );
     assert_eq!(
@@ -247,9 +256,10 @@ steps = [2]
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 12, "{csv}");
     for r in &rows {
-        assert_eq!(r.len(), 15, "{r:?}");
+        assert_eq!(r.len(), 17, "{r:?}");
         let pressure: f64 = r[6].parse().unwrap();
         assert!(pressure > 0.0, "{r:?}");
+        assert_eq!(r[15], "internal", "{r:?}");
     }
     // Types 1-6 in 3D: the step-end summary, with adaptive stepping
     let approx = |args: &[&str]| {

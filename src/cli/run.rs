@@ -230,20 +230,28 @@ impl RunDim<3> for Dim<3> {
     fn contact_summary(sol: &Solution<3>) -> CommandResult {
         let rows = <Dim<3> as ContactTable<3>>::rows(sol, &sol.final_state)
             .map_err(|e| format!("cannot tabulate the contact nodes: {e}"))?;
-        let pressed: Vec<_> = rows.iter().filter(|r| r.pressure != 0.0).collect();
-        let penetration = pressed
+        // every node with a projection, pressed or not: a node the active
+        // set left free may still penetrate
+        let projected: Vec<_> = rows.iter().filter(|r| r.gap.is_some()).collect();
+        let penetration = projected
             .iter()
             .filter_map(|r| r.gap)
             .fold(None, |m: Option<f64>, g| Some(m.map_or(-g, |m| m.max(-g))));
+        let pressed = projected.iter().filter(|r| r.pressure != 0.0).count();
+        let free_inside = projected
+            .iter()
+            .filter(|r| r.pressure == 0.0 && r.gap.is_some_and(|g| g < 0.0))
+            .count();
         match penetration {
             Some(p) => println!(
-                "max penetration {p:.3e} (largest -gap over the {} slave nodes with pressure, \
-                 each a point of its first slave face; {} nodes without pressure)",
-                pressed.len(),
-                rows.len() - pressed.len()
+                "max penetration {:.3e} (largest -gap over the {} slave nodes with a projection, \
+                 each a point of its first slave face, 0 when none penetrates; {pressed} of them \
+                 with pressure, {free_inside} without pressure inside the master)",
+                p.max(0.0),
+                projected.len(),
             ),
             None => println!(
-                "max penetration none (no slave node with pressure and a projection; {} slave nodes)",
+                "max penetration none (no slave node projects into a master face; {} slave nodes)",
                 rows.len()
             ),
         }
@@ -532,12 +540,15 @@ where
     Dim<D>: SurfaceDim<D>,
 {
     let forms: Vec<String> = sol.formulations.iter().map(|f| f.to_string()).collect();
+    let contact = if forms.is_empty() {
+        "no contact".to_owned()
+    } else {
+        format!("formulation {}", forms.join(", "))
+    };
     println!("scene           {name}");
     println!(
-        "method          {} ({} load steps, formulation {})",
-        sol.method,
-        sol.steps,
-        forms.join(", ")
+        "method          {} ({} load steps, {contact})",
+        sol.method, sol.steps
     );
     println!(
         "equations       {} (free dofs and multipliers)",
