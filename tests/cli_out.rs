@@ -207,7 +207,8 @@ fn out_is_checked_before_the_solve() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Every converged load step prints one line on stderr, none on stdout.
+/// Every converged load step prints one line on stderr, none on stdout;
+/// piped, stderr gets no live iteration line (no carriage return).
 #[test]
 fn each_load_step_prints_a_progress_line_on_stderr() {
     let out = gapsim(&[
@@ -220,6 +221,7 @@ fn each_load_step_prints_a_progress_line_on_stderr() {
     let stderr = String::from_utf8(out.stderr).unwrap();
     let lines: Vec<&str> = stderr.lines().collect();
     assert_eq!(lines.len(), 3, "{stderr}");
+    assert!(!stderr.contains('\r'), "{stderr:?}");
     for (k, line) in lines.iter().enumerate() {
         let lf = ["0.3333333333333333", "0.6666666666666666", "1"][k];
         assert!(

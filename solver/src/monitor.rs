@@ -3,9 +3,10 @@
 //! ([`crate::solve_monitored`]).
 //!
 //! A [`Monitor`] is told when a scheduled step has converged
-//! ([`Monitor::step_done`]) and when an attempt failed and its increment
-//! is halved ([`Monitor::cut_back`]), so that a long run can show where it
-//! is. [`Monitor::stop_requested`] is asked before every Newton iteration
+//! ([`Monitor::step_done`]), when an attempt failed and its increment
+//! is halved ([`Monitor::cut_back`]) and of every Newton iterate's residual
+//! ([`Monitor::iteration`]), so that a long run can show where it is, also
+//! inside a step. [`Monitor::stop_requested`] is asked before every Newton iteration
 //! and before every attempt; once it returns `true`, the solve stops with
 //! [`crate::SolverError::Interrupted`] (the converged load factor reached
 //! so far in it) and returns no solution. A monitor never changes a
@@ -34,6 +35,19 @@ pub struct StepProgress {
     pub elapsed: Duration,
 }
 
+/// Where a solve is inside an attempt: one evaluated Newton iterate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IterationProgress {
+    /// The load factor the attempt is heading for.
+    pub target: f64,
+    /// The iterate's number in this Newton solve (0: its start).
+    pub iteration: usize,
+    /// Its residual norm.
+    pub residual: f64,
+    /// Time since the solve started.
+    pub elapsed: Duration,
+}
+
 /// What a solve reports to, and asks of, its caller (module docs). Every
 /// method has a default that does nothing.
 pub trait Monitor: Sync {
@@ -43,6 +57,9 @@ pub trait Monitor: Sync {
     /// An attempt failed; its increment is halved (or, past the cut-back
     /// limit, the solve gives up after this call).
     fn cut_back(&self, _cutback: &Cutback) {}
+
+    /// A Newton iterate has been evaluated (its residual assembled).
+    fn iteration(&self, _progress: &IterationProgress) {}
 
     /// Whether the solve should stop now.
     fn stop_requested(&self) -> bool {
@@ -66,12 +83,17 @@ mod tests {
     /// Records every report; stops once `stop_after` steps are done.
     struct Recorder {
         steps: Mutex<Vec<StepProgress>>,
+        iterates: Mutex<Vec<IterationProgress>>,
         stop_after: usize,
     }
 
     impl Monitor for Recorder {
         fn step_done(&self, progress: &StepProgress) {
             self.steps.lock().unwrap().push(progress.clone());
+        }
+
+        fn iteration(&self, progress: &IterationProgress) {
+            self.iterates.lock().unwrap().push(progress.clone());
         }
 
         fn stop_requested(&self) -> bool {
@@ -92,6 +114,7 @@ mod tests {
         let (scene, options) = paper();
         let recorder = Recorder {
             steps: Mutex::new(Vec::new()),
+            iterates: Mutex::new(Vec::new()),
             stop_after: usize::MAX,
         };
         let watched = solve_monitored::<2>(&scene, &options, &recorder).unwrap();
@@ -108,6 +131,20 @@ mod tests {
             assert_eq!(p.iterations, plain.step_records[k].iterations);
             assert_eq!(p.load_factor, plain.step_records[k].load_factor);
         }
+        // every iterate is reported: a step's converged attempt ends with
+        // the reports of its residual history, bit for bit, in time order
+        let iterates = recorder.iterates.into_inner().unwrap();
+        for record in &plain.step_records {
+            let toward: Vec<u64> = iterates
+                .iter()
+                .filter(|i| i.target == record.load_factor)
+                .map(|i| i.residual.to_bits())
+                .collect();
+            let tail = &toward[toward.len() - record.residuals.len()..];
+            let expected: Vec<u64> = record.residuals.iter().map(|r| r.to_bits()).collect();
+            assert_eq!(tail, expected.as_slice());
+        }
+        assert!(iterates.windows(2).all(|w| w[0].elapsed <= w[1].elapsed));
     }
 
     /// Asked to stop after the first step, the solve stops at once with
@@ -117,6 +154,7 @@ mod tests {
         let (scene, options) = paper();
         let recorder = Recorder {
             steps: Mutex::new(Vec::new()),
+            iterates: Mutex::new(Vec::new()),
             stop_after: 1,
         };
         let err = solve_monitored::<2>(&scene, &options, &recorder).unwrap_err();

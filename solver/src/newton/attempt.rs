@@ -30,6 +30,7 @@ use std::time::Instant;
 use crate::contact::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
+use crate::monitor::IterationProgress;
 use crate::solution::CutbackReason;
 
 use super::iterate::Iterate;
@@ -164,6 +165,12 @@ where
 
             let norm = sys.residual_norm();
             residuals.push(norm);
+            self.monitor.iteration(&IterationProgress {
+                target: to,
+                iteration: it,
+                residual: norm,
+                elapsed: self.started.elapsed(),
+            });
             if !norm.is_finite() {
                 return Ok(AttemptOutcome::cut_back(
                     CutbackReason::NonFiniteResidual,

@@ -261,9 +261,11 @@ where
     Dim<D>: SurfaceDim<D>,
 {
     opts: &'a SolveOptions,
-    /// Told of every finished step and cut-back; asked before every
-    /// attempt and iteration whether to stop.
+    /// Told of every finished step, cut-back and iterate; asked before
+    /// every attempt and iteration whether to stop.
     monitor: &'a dyn Monitor,
+    /// When the solve started (the monitor's times).
+    started: Instant,
     setup: Setup<'a, D, S>,
     timings: Timings,
     counts: KernelCounts,
@@ -331,6 +333,7 @@ where
         Ok(Run {
             opts,
             monitor,
+            started: Instant::now(),
             timings: Timings::default(),
             counts: KernelCounts::default(),
             u: vec![0.0; model.dof_count()],
@@ -367,6 +370,7 @@ where
     /// Runs the whole schedule.
     pub(crate) fn execute(mut self) -> Result<Solution<D>, SolverError> {
         let start = Instant::now();
+        self.started = start;
         // initial pairing in the reference configuration
         let t = Instant::now();
         let (initial, counts) = self
