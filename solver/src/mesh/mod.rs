@@ -52,6 +52,7 @@ use crate::ids::{DofId, ElementId, NodeId};
 use crate::material::Material;
 
 pub mod block;
+pub mod coincident;
 pub mod face_shape;
 pub mod faces;
 pub mod gmsh;

@@ -910,3 +910,44 @@ fn a_3d_solid_needs_poisson_below_one_half() {
     // plane stress admits 0.6 in 2D
     error_free(&BLOCK2D.replace("poisson = 0.3", "poisson = 0.6"));
 }
+
+/// A volume whose two tetrahedra meet at three doubled nodes (a face
+/// meshed twice and not merged) falls apart: the scene is refused naming
+/// the file's two tags, the point and what to do; with the nodes merged
+/// (the reader's fixture `tets.msh`) it builds.
+#[test]
+fn a_body_that_falls_apart_at_unmerged_nodes_is_refused() {
+    let fixture = include_str!("../mesh/gmsh/testdata/tets.msh");
+    let split = fixture
+        .replace("1 5 1 5\n3 1 0 5\n", "1 8 1 8\n3 1 0 8\n")
+        .replace("5\n0 0 0\n", "5\n6\n7\n8\n0 0 0\n")
+        .replace("1 1 1\n$EndNodes", "1 1 1\n1 0 0\n0 1 0\n0 0 1\n$EndNodes")
+        .replace("2 2 3 4 5\n", "2 6 7 8 5\n")
+        .replace("4 3 5 2\n", "4 7 5 6\n");
+    let dir = std::env::temp_dir().join(format!("gapsim-falls-apart-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene_text = |file: &str| {
+        format!(
+            "[mesh]\nfile = \"{file}\"\n[material]\nyoung = 100.0\npoisson = 0.3\n\
+             [[body]]\nname = \"solid\"\n[[fix]]\nz = 0.0\n\
+             [loading]\nload_factor_end = 1.0\nsteps = [1]\n"
+        )
+    };
+    let build = |msh: &str, name: &str| {
+        std::fs::write(dir.join(name), msh).unwrap();
+        let origin = dir.join("scene.toml");
+        Scene::from_toml_str(&scene_text(name), origin.to_str().unwrap())
+            .and_then(|s| s.build_model::<3>())
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    build(fixture, "tets.msh").unwrap();
+    let e = build(&split, "split.msh").unwrap_err();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(
+        e.contains("physical volume `solid` falls apart: nodes 2 and 6 sit at the same point (1, 0, 0)")
+            && e.contains("(the body is in 2 pieces)")
+            && e.contains("removeDuplicateNodes"),
+        "{e}"
+    );
+}

@@ -34,14 +34,18 @@
 //! error naming its tag and kind, as the file's elements are used as drawn
 //! (in 2D Gmsh draws them counter-clockwise about the surface's normal, +z
 //! for a plane surface); other element types are refused by the reader,
-//! naming the type; errors name the file and the group or element, the
-//! scene field is added by the caller.
+//! naming the type; a body that falls apart at unmerged nodes (two nodes
+//! at one point in pieces its elements do not connect,
+//! [`crate::mesh::coincident`]) is an error naming the two tags and the
+//! point; errors name the file and the group or element, the scene field
+//! is added by the caller.
 
 use std::collections::{HashMap, HashSet};
 
 use super::SourceDim;
 use crate::ids::NodeId;
 use crate::material::Material;
+use crate::mesh::coincident::falls_apart;
 use crate::mesh::gmsh::Msh;
 use crate::mesh::volume::Face;
 use crate::mesh::{Mesh, MeshError};
@@ -124,6 +128,20 @@ impl<const D: usize> MeshFile<D> {
             .iter()
             .map(|(_, e)| e.map_nodes(|n| local[&n]))
             .collect();
+        let local_elements: Vec<&[usize]> = conn.iter().map(|e| e.nodes()).collect();
+        if let Some(f) = falls_apart(&coords, &local_elements) {
+            let at: Vec<String> = coords[f.a].iter().map(|c| format!("{c}")).collect();
+            return Err(scene.invalid(
+                &field,
+                format!(
+                    "{file}: physical {what} `{group}` falls apart: nodes {} and {} sit at the same point ({}) but are different nodes, so the elements on either side are not connected (the body is in {} pieces); merge the duplicate nodes in Gmsh (`Coherence Mesh;` in a .geo file, `gmsh.model.mesh.removeDuplicateNodes()` in the API) or make the pieces separate bodies",
+                    self.tag(nodes[f.a]),
+                    self.tag(nodes[f.b]),
+                    at.join(", "),
+                    f.pieces
+                ),
+            ));
+        }
         let elem0 = mesh.element_count();
         let node0 = mesh.node_count();
         let body = mesh
