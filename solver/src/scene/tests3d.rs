@@ -945,8 +945,9 @@ fn a_body_that_falls_apart_at_unmerged_nodes_is_refused() {
     let e = build(&split, "split.msh").unwrap_err();
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(
-        e.contains("physical volume `solid` falls apart: nodes 2 and 6 sit at the same point (1, 0, 0)")
-            && e.contains("(the body is in 2 pieces)")
+        e.contains(
+            "physical volume `solid` falls apart: nodes 2 and 6 sit at the same point (1, 0, 0)"
+        ) && e.contains("(the body is in 2 pieces)")
             && e.contains("removeDuplicateNodes"),
         "{e}"
     );

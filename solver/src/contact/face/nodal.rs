@@ -27,7 +27,7 @@ use crate::mesh::volume::Face;
 
 use super::pairing::Probe;
 use crate::contact::term::WeightedPoint;
-use crate::contact::{FaceLayout, KernelCounts};
+use crate::contact::{FaceLayout, KernelCounts, MultiplierDof};
 
 /// One slave node's row (module docs).
 #[derive(Debug, Clone, PartialEq)]
@@ -63,7 +63,7 @@ pub struct FaceNodalError {
 }
 
 /// The parametric coordinates of corner `k` of a face of `kind`'s shape.
-pub(super) fn corner(face: &Face<NodeId>, k: usize) -> [f64; 2] {
+fn corner(face: &Face<NodeId>, k: usize) -> [f64; 2] {
     match face {
         Face::Tri3(_) => [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]][k],
         Face::Quad4(_) => QUAD4_CORNERS[k],
@@ -71,6 +71,21 @@ pub(super) fn corner(face: &Face<NodeId>, k: usize) -> [f64; 2] {
 }
 
 impl FaceLayout {
+    /// The slave node of multiplier `dof` as a point: at its corner of the
+    /// first slave face of its pair that has it (`None`: no face has it).
+    pub(super) fn corner_probe(&self, dof: &MultiplierDof) -> Option<Probe> {
+        self.slaves[dof.pair.index()].iter().find_map(|f| {
+            f.nodes()
+                .iter()
+                .position(|&n| n == dof.node)
+                .map(|k| Probe {
+                    pair: dof.pair,
+                    slave: *f,
+                    xi_s: corner(f, k),
+                })
+        })
+    }
+
     /// The nodal table (module docs) at displacements `u` and multipliers
     /// `lambda`, with the projection calls made.
     pub fn nodal_table(
@@ -90,21 +105,10 @@ impl FaceLayout {
         let mut counts = KernelCounts::default();
         let mut rows = Vec::with_capacity(self.multipliers.len());
         for (m, dof) in self.multipliers.iter().enumerate() {
-            let faces = &self.slaves[dof.pair.index()];
-            // the first slave face that has the node, at its corner
-            let probe = faces.iter().find_map(|f| {
-                f.nodes()
-                    .iter()
-                    .position(|&n| n == dof.node)
-                    .map(|k| Probe {
-                        pair: dof.pair,
-                        slave: *f,
-                        xi_s: corner(f, k),
-                    })
-            });
+            let probe = self.corner_probe(dof);
             let found = match &probe {
                 Some(p) => self
-                    .find_master(mesh, u, p, &indexes, &mut counts)
+                    .find_master(mesh, u, p, &indexes, &mut counts, true)
                     .map_err(|(_, error)| FaceNodalError {
                         pair: dof.pair.index(),
                         node: dof.node.index(),

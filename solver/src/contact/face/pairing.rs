@@ -238,22 +238,10 @@ impl FaceLayout {
     }
 
     /// Projects probe `pt` onto master face `master`: `Ok(Some((g, xi_m)))`
-    /// when it projects into the face and the faces face each other,
-    /// `Ok(None)` when not (or on a master-side kernel failure), `Err` on a
-    /// slave-side failure.
+    /// when it projects into the face and (when `require_facing`) the faces
+    /// face each other, `Ok(None)` when not (or on a master-side kernel
+    /// failure), `Err` on a slave-side failure.
     pub(super) fn project_into(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        pt: &Probe,
-        master: MasterFaceIndex,
-        counts: &mut KernelCounts,
-    ) -> Result<Option<(f64, [f64; 2])>, Failure> {
-        self.project_onto(mesh, u, pt, master, counts, true)
-    }
-
-    /// [`Self::project_into`], the faces' facing required or not.
-    fn project_onto(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],
@@ -306,22 +294,10 @@ impl FaceLayout {
     /// The master face probe `pt` projects into with the smallest `|g|`
     /// (module docs), with the gap and projection there, through the
     /// pair's index (`None` in `indexes`: a configuration the index
-    /// refuses, e.g. non-finite, scanned face by face).
+    /// refuses, e.g. non-finite, scanned face by face); the two faces must
+    /// face each other when `require_facing` (the pairing's rule), or not
+    /// (the reference checks of a scene).
     pub(super) fn find_master(
-        &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
-        pt: &Probe,
-        indexes: &[Option<MasterFaces>],
-        counts: &mut KernelCounts,
-    ) -> Result<Option<(MasterFaceIndex, f64, [f64; 2])>, Failure> {
-        self.find_master_where(mesh, u, pt, indexes, counts, true)
-    }
-
-    /// [`Self::find_master`], the faces' facing required or not (not: the
-    /// master face the point projects into with the smallest `|g|`, facing
-    /// or not, as the reference checks of a scene want it).
-    pub(super) fn find_master_where(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],
@@ -336,7 +312,7 @@ impl FaceLayout {
             let mut best: Best = None;
             for &f in cands {
                 if let Some((g, xi)) =
-                    self.project_onto(mesh, u, pt, MasterFaceIndex::new(f), counts, require_facing)?
+                    self.project_into(mesh, u, pt, MasterFaceIndex::new(f), counts, require_facing)?
                     && best.is_none_or(|(_, b, _)| g.abs() < b.abs())
                 {
                     best = Some((f, g, xi));
@@ -402,7 +378,7 @@ impl FaceLayout {
     ) -> Result<(Vec<Option<MasterFaceIndex>>, KernelCounts), PointFailure<MasterFaceIndex>> {
         par::try_map_counted(self.points.len(), PAR_MIN_LEN, |k, c| {
             let i = ContactPointIndex::new(k);
-            self.find_master(mesh, u, &self.probe(i), indexes, c)
+            self.find_master(mesh, u, &self.probe(i), indexes, c, true)
                 .map(|f| f.map(|(m, _, _)| m))
                 .map_err(|(m, error)| PointFailure {
                     point: i,

@@ -9,8 +9,7 @@ use crate::mesh::Mesh;
 use crate::mesh::volume::dot;
 
 use super::FaceLayout;
-use super::nodal::{FaceNodalError, corner};
-use super::pairing::Probe;
+use super::nodal::FaceNodalError;
 
 /// `v / |v|` (zero for a zero vector).
 fn unit(v: [f64; 3]) -> [f64; 3] {
@@ -32,21 +31,11 @@ impl FaceLayout {
         let mut counts = KernelCounts::default();
         let mut out = Vec::new();
         for dof in self.multipliers.iter().filter(|m| m.pair.index() == pair) {
-            let faces = &self.slaves[pair];
-            let Some(probe) = faces.iter().find_map(|f| {
-                f.nodes()
-                    .iter()
-                    .position(|&n| n == dof.node)
-                    .map(|k| Probe {
-                        pair: dof.pair,
-                        slave: *f,
-                        xi_s: corner(f, k),
-                    })
-            }) else {
+            let Some(probe) = self.corner_probe(dof) else {
                 continue;
             };
             let found = self
-                .find_master_where(mesh, &u, &probe, &indexes, &mut counts, false)
+                .find_master(mesh, &u, &probe, &indexes, &mut counts, false)
                 .map_err(|(_, error)| FaceNodalError {
                     pair,
                     node: dof.node.index(),

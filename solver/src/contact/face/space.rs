@@ -128,7 +128,7 @@ impl ContactSpace<3> for FaceLayout {
             }
         }
         let found = self
-            .find_master(mesh, u, &self.probe(i), indexes, counts)
+            .find_master(mesh, u, &self.probe(i), indexes, counts, true)
             .map_err(|(m, e)| fail(m, e))?;
         match found {
             None => Ok(None),
@@ -174,13 +174,14 @@ impl ContactSpace<3> for FaceLayout {
             };
             let pt = self.probe(i);
             if let Some(m) = pairing[k]
-                && let Some((gap, xi_m)) = self.project_into(mesh, u, &pt, m, c).map_err(fail)?
+                && let Some((gap, xi_m)) =
+                    self.project_into(mesh, u, &pt, m, c, true).map_err(fail)?
             {
                 return Ok(Some(self.found(&pt, m, gap, xi_m)));
             }
             let indexes = indexes.get_or_init(|| self.master_indexes(mesh, u));
             Ok(self
-                .find_master(mesh, u, &pt, indexes, c)
+                .find_master(mesh, u, &pt, indexes, c, true)
                 .map_err(fail)?
                 .map(|(m, gap, xi_m)| self.found(&pt, m, gap, xi_m)))
         })
@@ -224,7 +225,7 @@ impl ContactSpace<3> for FaceLayout {
             let indexes = indexes.get_or_insert_with(|| self.master_indexes(mesh, u));
             let pt = self.probe(i);
             let found = self
-                .find_master(mesh, u, &pt, indexes, &mut counts)
+                .find_master(mesh, u, &pt, indexes, &mut counts, true)
                 .map_err(|(m, error)| PointFailure {
                     point: i,
                     master_segment: m,

@@ -449,14 +449,18 @@ fn bodies_share_no_nodes() {
         msg.contains("body[1].group") && msg.contains("shares node 1 with body `a`"),
         "{msg}"
     );
-    // one group over both surfaces is one body
+    // one group over both surfaces is one body, and the two surfaces
+    // touch at doubled nodes: the body falls apart there
     let scene = SCENE
         .replace("[[body]]\nname = \"upper\"\ngroup = \"b\"\n", "")
         .replace("name = \"a\"", "name = \"a\"\ngroup = \"ab\"")
         .replace(", body = \"a\"", "");
     let msg = error("one-body", &scene);
     assert!(
-        msg.contains("contact[0]") && msg.contains("different bodies"),
+        msg.contains("body[0].group")
+            && msg.contains("physical surface `ab` falls apart")
+            && msg.contains("(the body is in 2 pieces)")
+            && msg.contains("make the pieces separate bodies"),
         "{msg}"
     );
 }
