@@ -119,22 +119,16 @@ impl MeshFamily {
 /// The bytes per equation of a model of `equations` equations of `family`
 /// solved with `linear` (module docs).
 pub fn bytes_per_equation(equations: u64, family: MeshFamily, linear: LinearSolverKind) -> u64 {
-    let planar = match linear {
-        LinearSolverKind::Lu => LU_BYTES_PER_EQUATION,
-        LinearSolverKind::Ldlt => LDLT_BYTES_PER_EQUATION,
+    use LinearSolverKind::{Ldlt, Lu};
+    let solid = match (family, linear) {
+        (MeshFamily::Planar, Lu) => return LU_BYTES_PER_EQUATION,
+        (MeshFamily::Planar, Ldlt) => return LDLT_BYTES_PER_EQUATION,
+        (_, Lu) => LU_3D_BYTES_PER_EQUATION,
+        (_, Ldlt) => LDLT_3D_BYTES_PER_EQUATION,
     };
-    let solid = match linear {
-        LinearSolverKind::Lu => LU_3D_BYTES_PER_EQUATION,
-        LinearSolverKind::Ldlt => LDLT_3D_BYTES_PER_EQUATION,
-    };
-    match family {
-        MeshFamily::Planar => planar,
-        MeshFamily::Hexahedra | MeshFamily::Tetrahedra => {
-            let (reference, exponent) = FILL_GROWTH_3D;
-            let growth = (equations as f64 / reference).max(1.0).powf(exponent);
-            (solid as f64 * growth) as u64
-        }
-    }
+    let (reference, exponent) = FILL_GROWTH_3D;
+    let growth = (equations as f64 / reference).max(1.0).powf(exponent);
+    (solid as f64 * growth) as u64
 }
 
 /// The memory estimate of a model of `equations` equations of `family`

@@ -34,7 +34,7 @@
 use std::fmt;
 use std::marker::PhantomData;
 
-use super::kinematics::{check_dims, det};
+use super::kinematics::{check_dims, det, displacement_gradient};
 use super::material::Material;
 use super::solid::{SolidResponse, add_point, point_energy, point_stress};
 use super::stress::Stress;
@@ -286,21 +286,14 @@ where
         Stress::mean(&self.point_stresses(u, material))
     }
 
-    /// `det(I + sum_a u_a G_a^T)` at each point, the smallest (NaN as
-    /// soon as one is NaN).
+    /// `det(I + H)` at each point ([`displacement_gradient`]), the
+    /// smallest (NaN as soon as one is NaN).
     fn min_det_f(&self, u: &[f64; M]) -> f64 {
         let mut worst = f64::INFINITY;
         for grads in &self.grads_ref {
-            let mut f = [[0.0; D]; D];
+            let mut f = displacement_gradient(grads, u);
             for (i, row) in f.iter_mut().enumerate() {
-                row[i] = 1.0;
-            }
-            for (a, g) in grads.iter().enumerate() {
-                for i in 0..D {
-                    for j in 0..D {
-                        f[i][j] += u[D * a + i] * g[j];
-                    }
-                }
+                row[i] += 1.0;
             }
             let d = det(&f);
             if d.is_nan() {

@@ -83,6 +83,25 @@ pub(crate) fn det<const D: usize>(m: &[[f64; D]; D]) -> f64 {
     }
 }
 
+/// The displacement gradient `H = du/dX = sum_a u_a G_a^T` at a point
+/// with reference gradients `grads` of `N` nodes and displacements `u`
+/// (`D N` values), summed node by node from zero.
+pub(crate) fn displacement_gradient<const D: usize, const N: usize>(
+    grads: &[[f64; D]; N],
+    u: &[f64],
+) -> [[f64; D]; D] {
+    let u = &u[..D * N];
+    let mut h = [[0.0; D]; D];
+    for a in 0..N {
+        for i in 0..D {
+            for j in 0..D {
+                h[i][j] += u[D * a + i] * grads[a][j];
+            }
+        }
+    }
+    h
+}
+
 /// Deformation gradient, strain and stress at one point.
 pub(crate) struct PointState<const D: usize, const V: usize> {
     /// `F = I + H` (`I` with small kinematics).
@@ -105,16 +124,8 @@ pub(crate) fn point_state<const D: usize, const V: usize, const N: usize>(
 ) -> PointState<D, V> {
     const { check_dims::<D, V>(N, D * N) };
     let pairs = voigt::<V>();
-    let u = &u[..D * N];
-    // displacement gradient H = du/dX; F = I + H
-    let mut h = [[0.0; D]; D];
-    for a in 0..N {
-        for i in 0..D {
-            for j in 0..D {
-                h[i][j] += u[D * a + i] * grads[a][j];
-            }
-        }
-    }
+    // F = I + H
+    let h = displacement_gradient(grads, u);
     if kinematics == Kinematics::Small {
         let e_v = pairs.map(|(i, j)| if i == j { h[i][i] } else { h[i][j] + h[j][i] });
         let f = std::array::from_fn(|i| std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 }));
