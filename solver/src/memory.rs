@@ -74,6 +74,11 @@ pub const LDLT_3D_BYTES_PER_EQUATION: u64 = 9 * 1024;
 /// reference size, the smaller of the two LU runs).
 pub const LU_3D_BYTES_PER_EQUATION: u64 = 24 * 1024;
 
+/// PETSc's Krylov solve, any family (module docs: half of the smallest
+/// measured peak per equation; multigrid's memory grows linearly, so no
+/// growth with the size).
+pub const PETSC_BYTES_PER_EQUATION: u64 = 2 * 1024;
+
 /// The growth of a 3D model's bytes per equation: `(equations /
 /// reference)^exponent` above the reference size (module docs).
 pub const FILL_GROWTH_3D: (f64, f64) = (9747.0, 0.19);
@@ -119,8 +124,9 @@ impl MeshFamily {
 /// The bytes per equation of a model of `equations` equations of `family`
 /// solved with `linear` (module docs).
 pub fn bytes_per_equation(equations: u64, family: MeshFamily, linear: LinearSolverKind) -> u64 {
-    use LinearSolverKind::{Ldlt, Lu};
+    use LinearSolverKind::{Ldlt, Lu, Petsc};
     let solid = match (family, linear) {
+        (_, Petsc) => return PETSC_BYTES_PER_EQUATION,
         (MeshFamily::Planar, Lu) => return LU_BYTES_PER_EQUATION,
         (MeshFamily::Planar, Ldlt) => return LDLT_BYTES_PER_EQUATION,
         (_, Lu) => LU_3D_BYTES_PER_EQUATION,

@@ -107,6 +107,10 @@ pub struct SolveOptions {
     pub regularization: f64,
     /// The linear solver of the Newton iterations.
     pub linear: LinearSolverKind,
+    /// PETSc options of [`LinearSolverKind::Petsc`] (PETSc's syntax, after
+    /// its defaults and the `PETSC_OPTIONS` environment; `[newton]
+    /// petsc_options`, `--petsc-options`); ignored by the other solvers.
+    pub petsc_options: String,
     /// Types 1–6: re-pair at every converged step end and repeat the step
     /// with the new pairing's Taylor expansion when a point changed its
     /// master segment (see [`crate::newton`], "Re-pairing at the step
@@ -138,6 +142,7 @@ impl Default for SolveOptions {
             tolerance: DEFAULT_TOLERANCE,
             regularization: DEFAULT_REGULARIZATION,
             linear: LinearSolverKind::default(),
+            petsc_options: String::new(),
             repair: DEFAULT_REPAIR,
             taylor_tolerance: None,
         }

@@ -17,6 +17,7 @@ use contact_kernels::{Formulation, KernelError};
 
 use crate::element::{ElementStress, Stress};
 use crate::ids::NodeId;
+use crate::linear::KrylovCounts;
 use crate::mesh::{InvertedElement, Mesh};
 use crate::model::{ContactPair, Dim, SurfaceDim};
 use crate::options::Method;
@@ -266,6 +267,9 @@ where
     /// of `L`, diagonal included, with LDL^T; `None` with LU, whose factors
     /// faer does not expose.
     pub factor_nonzeros: Option<usize>,
+    /// An iterative linear solver's iterations (`None` for a direct one;
+    /// [`crate::linear::LinearSolver::krylov`]).
+    pub krylov: Option<KrylovCounts>,
     /// Number of equations (free dofs plus multipliers).
     pub equations: usize,
     /// The mesh (reference coordinates, connectivity, bodies, materials).

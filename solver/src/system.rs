@@ -10,6 +10,7 @@
 
 use crate::element::MAX_ELEMENT_DOFS;
 use crate::ids::{DofId, EquationIndex, MultiplierIndex, NodeId};
+use crate::linear::SystemLayout;
 use crate::model::Model;
 use crate::model::{Dim, SurfaceDim};
 
@@ -60,6 +61,25 @@ impl DofMap {
             eq: (0..ndof).collect(),
             n_free: ndof,
             n_mult,
+        }
+    }
+
+    /// What the equations are, for the linear solver: the dof of each free
+    /// equation and `model`'s reference coordinates.
+    pub fn layout<const D: usize>(&self, model: &Model<D>) -> SystemLayout
+    where
+        Dim<D>: SurfaceDim<D>,
+    {
+        let mut free_dofs = vec![0; self.n_free];
+        for (dof, &e) in self.eq.iter().enumerate() {
+            if e != PRESCRIBED {
+                free_dofs[e] = dof;
+            }
+        }
+        SystemLayout {
+            dim: D,
+            free_dofs,
+            coordinates: model.mesh.nodes_ref.iter().flatten().copied().collect(),
         }
     }
 

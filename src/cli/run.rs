@@ -1,7 +1,7 @@
 //! `gapsim run`: solve one scene and print a summary.
 //!
 //! ```text
-//! gapsim run [SCENE.toml] [--type T|complete] [--steps N] [--formulation F] [--linear lu|ldlt] [--out DIR] [--every-step]
+//! gapsim run [SCENE.toml] [--type T|complete] [--steps N] [--formulation F] [--linear lu|ldlt|petsc] [--petsc-options "..."] [--out DIR] [--every-step]
 //! ```
 //!
 //! Without `SCENE` the embedded paper scene is solved. With `--out DIR` the
@@ -150,9 +150,15 @@ pub struct RunArgs {
     pub formulation: Option<Formulation>,
 
     /// The linear solver of the Newton iterations (default: the scene's
-    /// `[newton] linear`, LU unless set).
-    #[arg(long, value_name = "lu|ldlt")]
+    /// `[newton] linear`, LU unless set; `petsc` in a build with the
+    /// `petsc` feature, docs/petsc.md).
+    #[arg(long, value_name = "lu|ldlt|petsc")]
     pub linear: Option<LinearSolverKind>,
+
+    /// PETSc options of `--linear petsc`, in PETSc's syntax (quoted), applied
+    /// after the scene's `[newton] petsc_options`.
+    #[arg(long, value_name = "OPTIONS", allow_hyphen_values = true)]
+    pub petsc_options: Option<String>,
 
     /// Types 1-6: halve a step whose largest Taylor remainder (over the
     /// slave segment's or face's size) exceeds this (default: the scene's
@@ -201,6 +207,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     if let Some(k) = args.linear {
         options.linear = k;
+    }
+    if let Some(o) = &args.petsc_options {
+        options.petsc_options = format!("{} {o}", options.petsc_options);
     }
     if let Some(t) = args.taylor_tolerance {
         options.taylor_tolerance = Some(t);
@@ -659,18 +668,26 @@ where
             .saturating_sub(t.symbolic_factorisation)
             .as_secs_f64()
     );
-    match sol.factor_nonzeros {
-        Some(nnz) => println!(
+    match (&sol.krylov, sol.factor_nonzeros) {
+        (Some(k), _) => println!(
+            "krylov          {} ({} solves, {} iterations, {:.1} per solve, at most {})",
+            k.method,
+            k.solves,
+            k.iterations,
+            k.iterations as f64 / k.solves.max(1) as f64,
+            k.max_iterations
+        ),
+        (None, Some(nnz)) => println!(
             "fill            {nnz} nonzeros in L ({:.1} per equation, {} equations)",
             nnz as f64 / sol.equations.max(1) as f64,
             sol.equations
         ),
-        None => println!(
+        (None, None) => println!(
             "fill            not reported for {} (faer's sparse LU does not expose its factors)",
             options.linear
         ),
     }
-    if options.linear != LinearSolverKind::Lu {
+    if options.linear == LinearSolverKind::Ldlt {
         println!(
             "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
             options.linear, sol.symbolic_factorisations, sol.linear_fallbacks

@@ -5,7 +5,7 @@
 //! cost against complete: [`gapsim::study::errors`]).
 //!
 //! ```text
-//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt] [--readme PAGE.md]
+//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt|petsc] [--readme PAGE.md]
 //! ```
 //!
 //! `--readme` splices the results section into any Markdown page that has
@@ -62,7 +62,7 @@ pub struct StudyArgs {
     /// The linear solver of every solve, the contact-heavy variant's too
     /// (default: the scene's `[newton] linear`, LU unless set). With the
     /// LDLᵀ the linear solve hides less of what the types save.
-    #[arg(long, value_name = "lu|ldlt")]
+    #[arg(long, value_name = "lu|ldlt|petsc")]
     pub linear: Option<solver::LinearSolverKind>,
 
     /// Replace the section between `<!-- study:begin -->` and

@@ -19,14 +19,24 @@
 //! singular, since a direct factorisation of a numerically singular matrix
 //! may succeed with round-off pivots.
 //!
-//! Implementations: [`lu::SparseLu`] (faer's sparse LU; the default) and
+//! Implementations: [`lu::SparseLu`] (faer's sparse LU; the default),
 //! [`ldlt::SparseLdlt`] (faer's sparse symmetric LDL^T of the quasi-definite
 //! system, refined against the assembled matrix, falling back to LU for a
-//! solve it cannot do safely). Selected by [`LinearSolverKind`]; a new solver
-//! is a new file here, a new variant there, and nothing in Newton changes.
+//! solve it cannot do safely) and, with the `petsc` feature,
+//! `petsc::PetscKrylov` (PETSc's Krylov methods and preconditioners, by
+//! default FGMRES with a Schur-complement field split and algebraic
+//! multigrid). Selected by [`LinearSolverKind`]; a new solver is a new file
+//! here, a new variant there, and nothing in Newton changes.
+//!
+//! Newton also hands a solver the [`SystemLayout`] (which dof each
+//! equation is, the nodes' coordinates: what algebraic multigrid needs) and,
+//! before each solve, the relative residual it needs
+//! ([`LinearSolver::set_forcing`]); a direct solver ignores both.
 
 pub mod ldlt;
 pub mod lu;
+#[cfg(feature = "petsc")]
+pub mod petsc;
 #[cfg(test)]
 mod scene_tests;
 
@@ -47,6 +57,39 @@ pub enum LinearError {
     /// numerically singular), or the solution is not finite.
     #[error("singular system: {0}")]
     Singular(String),
+    /// An iterative solve stopped without reaching its tolerance (what the
+    /// library reported: its reason, iterations, residual).
+    #[error("the iterative linear solve did not converge: {0}")]
+    NotConverged(String),
+    /// A call into PETSc failed (PETSc's message).
+    #[error("{0}")]
+    Petsc(String),
+}
+
+/// What Newton's equations are, for a solver that needs more than the
+/// matrix (algebraic multigrid: whole nodes, rigid-body modes).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SystemLayout {
+    /// The dimension `D` (dofs per node).
+    pub dim: usize,
+    /// The dof (`D node + component`) of each free equation `0..n_free`;
+    /// equations from `free_dofs.len()` on are constraint rows.
+    pub free_dofs: Vec<usize>,
+    /// Every node's reference coordinates, node-major (`D` per node).
+    pub coordinates: Vec<f64>,
+}
+
+/// An iterative solver's work so far.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct KrylovCounts {
+    /// The method and preconditioner (`fgmres/fieldsplit`).
+    pub method: String,
+    /// Solves.
+    pub solves: usize,
+    /// Iterations over all solves.
+    pub iterations: usize,
+    /// The most iterations of one solve.
+    pub max_iterations: usize,
 }
 
 /// A sparse direct solver for the Newton system, with the symbolic analysis
@@ -98,6 +141,24 @@ pub trait LinearSolver: Send {
         let _ = first;
     }
 
+    /// Tells the solver what the equations are (module docs); the default
+    /// passes on the first constraint row to
+    /// [`set_constraints_from`](Self::set_constraints_from).
+    fn set_layout(&mut self, layout: &SystemLayout) {
+        self.set_constraints_from(layout.free_dofs.len());
+    }
+
+    /// The relative residual `|b - A x| / |b|` the next solve must reach
+    /// (Newton's forcing term); a direct solver ignores it.
+    fn set_forcing(&mut self, rtol: f64) {
+        let _ = rtol;
+    }
+
+    /// An iterative solver's iteration counts; `None` for a direct one.
+    fn krylov(&self) -> Option<KrylovCounts> {
+        None
+    }
+
     /// Solves `A x = b` for the `n x n` matrix given by the triplets
     /// `(rows[k], cols[k], vals[k])`: [`analyse`](Self::analyse),
     /// [`factor`](Self::factor), [`solve`](Self::solve), then
@@ -125,18 +186,42 @@ pub enum LinearSolverKind {
     Lu,
     /// [`SparseLdlt`].
     Ldlt,
+    /// PETSc's Krylov solve (`petsc::PetscKrylov`); parsed only when the
+    /// `petsc` feature is compiled in.
+    Petsc,
 }
 
 impl LinearSolverKind {
-    /// Every kind (the tests run each).
-    pub const ALL: [LinearSolverKind; 2] = [LinearSolverKind::Lu, LinearSolverKind::Ldlt];
+    /// Every kind compiled in (the tests run each).
+    #[cfg(not(feature = "petsc"))]
+    pub const ALL: &[LinearSolverKind] = &[LinearSolverKind::Lu, LinearSolverKind::Ldlt];
+    /// Every kind compiled in (the tests run each).
+    #[cfg(feature = "petsc")]
+    pub const ALL: &[LinearSolverKind] = &[
+        LinearSolverKind::Lu,
+        LinearSolverKind::Ldlt,
+        LinearSolverKind::Petsc,
+    ];
 
-    /// A new solver of this kind with nothing cached.
-    pub fn build(self) -> Box<dyn LinearSolver> {
+    /// A new solver of this kind with nothing cached; `options` are the
+    /// PETSc options of [`LinearSolverKind::Petsc`] (ignored by the others).
+    /// Without the `petsc` feature, `Petsc` (which no parse gives) builds
+    /// the LDL^T.
+    pub fn build(self, options: &str) -> Box<dyn LinearSolver> {
+        let _ = options;
         match self {
             LinearSolverKind::Lu => Box::new(SparseLu::new()),
             LinearSolverKind::Ldlt => Box::new(SparseLdlt::new()),
+            #[cfg(feature = "petsc")]
+            LinearSolverKind::Petsc => Box::new(petsc::PetscKrylov::new(options)),
+            #[cfg(not(feature = "petsc"))]
+            LinearSolverKind::Petsc => Box::new(SparseLdlt::new()),
         }
+    }
+
+    /// Whether this solver is compiled in.
+    pub fn available(self) -> bool {
+        self != LinearSolverKind::Petsc || cfg!(feature = "petsc")
     }
 }
 
@@ -145,26 +230,42 @@ impl std::fmt::Display for LinearSolverKind {
         f.write_str(match self {
             LinearSolverKind::Lu => "lu",
             LinearSolverKind::Ldlt => "ldlt",
+            LinearSolverKind::Petsc => "petsc",
         })
     }
 }
 
 /// Error parsing a [`LinearSolverKind`].
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("unknown linear solver `{0}` (expected `lu` or `ldlt`)")]
-pub struct ParseLinearSolverError(pub String);
+pub enum ParseLinearSolverError {
+    /// Not a solver's name.
+    #[error("unknown linear solver `{0}` (expected `lu`, `ldlt` or `petsc`)")]
+    Unknown(String),
+    /// `petsc` in a build without the `petsc` feature.
+    #[error(
+        "the `petsc` linear solver is not compiled into this build: build with `--features petsc` \
+         (PETSc >= 3.18 found by pkg-config; docs/petsc.md)"
+    )]
+    NotCompiled,
+}
 
 impl std::str::FromStr for LinearSolverKind {
     type Err = ParseLinearSolverError;
-    /// `"lu"` or `"ldlt"`.
+    /// `"lu"`, `"ldlt"` or (with the `petsc` feature) `"petsc"`.
     fn from_str(s: &str) -> Result<LinearSolverKind, ParseLinearSolverError> {
         let t = s.trim();
-        if t.eq_ignore_ascii_case("lu") {
-            Ok(LinearSolverKind::Lu)
-        } else if t.eq_ignore_ascii_case("ldlt") {
-            Ok(LinearSolverKind::Ldlt)
+        let kind = [
+            LinearSolverKind::Lu,
+            LinearSolverKind::Ldlt,
+            LinearSolverKind::Petsc,
+        ]
+        .into_iter()
+        .find(|k| t.eq_ignore_ascii_case(&k.to_string()))
+        .ok_or_else(|| ParseLinearSolverError::Unknown(s.to_owned()))?;
+        if kind.available() {
+            Ok(kind)
         } else {
-            Err(ParseLinearSolverError(s.to_owned()))
+            Err(ParseLinearSolverError::NotCompiled)
         }
     }
 }
@@ -202,12 +303,12 @@ mod tests {
     /// pattern (one symbolic factorisation), and a singular one rejected.
     #[test]
     fn saddle_point_and_reuse() {
-        for kind in LinearSolverKind::ALL {
+        for &kind in LinearSolverKind::ALL {
             // [2 1 1; 1 3 0; 1 0 0] x = [1, 2, 3]
             let rows = [0, 0, 0, 1, 1, 2, 2];
             let cols = [0, 1, 2, 0, 1, 0, 2];
             let vals = [2.0, 1.0, 1.0, 1.0, 3.0, 1.0, 0.0];
-            let mut s = kind.build();
+            let mut s = kind.build("");
             let x = s
                 .solve_system(3, &rows, &cols, &vals, &[1.0, 2.0, 3.0])
                 .unwrap();
@@ -236,8 +337,8 @@ mod tests {
     /// factor, no factorisation to solve with (one solve per factorisation).
     #[test]
     fn phases_out_of_order_are_errors() {
-        for kind in LinearSolverKind::ALL {
-            let mut s = kind.build();
+        for &kind in LinearSolverKind::ALL {
+            let mut s = kind.build("");
             assert!(s.factor(&[1.0]).is_err());
             assert!(s.solve(&[1.0]).is_err());
             s.analyse(1, &[0], &[0]).unwrap();
@@ -246,5 +347,9 @@ mod tests {
             assert!(s.solve(&[1.0]).is_err());
         }
         assert!("qr".parse::<LinearSolverKind>().is_err());
+        assert_eq!(
+            "petsc".parse::<LinearSolverKind>().is_ok(),
+            cfg!(feature = "petsc")
+        );
     }
 }

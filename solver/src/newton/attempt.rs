@@ -231,9 +231,12 @@ where
                 ));
             }
             let t = Instant::now();
-            let solved = self
-                .setup
-                .solve(&mut sys, &active, self.opts.regularization);
+            let solved = self.setup.solve(
+                &mut sys,
+                &active,
+                self.opts.regularization,
+                (norm, residuals[phase_start.min(last)], tol_abs),
+            );
             self.timings.linear_solve += t.elapsed();
             self.setup.recycle(sys);
             let dx = match solved {

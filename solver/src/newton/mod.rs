@@ -516,6 +516,7 @@ where
             symbolic_factorisations: self.setup.linear.symbolic_factorisations(),
             linear_fallbacks: self.setup.linear.fallbacks(),
             factor_nonzeros: self.setup.linear.factor_nonzeros(),
+            krylov: self.setup.linear.krylov(),
             equations: self.setup.dofs.n_eq(),
             mesh: self.setup.model.mesh.clone(),
             multiplier_dofs: layout.multiplier_dofs(),

@@ -198,12 +198,17 @@ where
             .add_solid(&self.u, None, self.load_factor, system)
     }
 
-    /// Phase 3: regularisation and the sparse LU solve of the assembled
+    /// Phase 3: regularisation and the linear solve of the assembled
     /// system (contact then solid, as in a solve); returns the Newton
-    /// correction `dx` with `K dx = r`.
+    /// correction `dx` with `K dx = r` (an iterative solver to the forcing
+    /// term of an attempt's first iteration, as a Newton step from this
+    /// state would ask).
     pub fn linear_solve(&mut self, assembled: ContactPhase) -> Result<Vec<f64>, SolverError> {
         let ContactPhase { mut system, active } = assembled;
-        let solved = self.setup.solve(&mut system, &active, self.regularization);
+        let norm = system.residual_norm();
+        let solved = self
+            .setup
+            .solve(&mut system, &active, self.regularization, (norm, norm, 0.0));
         self.setup.recycle(system);
         solved.map_err(|e| SolverError::Singular {
             load_factor: self.load_factor,

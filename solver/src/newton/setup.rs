@@ -74,8 +74,8 @@ where
         model.check()?;
         let layout = S::build(model, options.formulation)?;
         let dofs = DofMap::new(model, layout.multiplier_count());
-        let mut linear = options.linear.build();
-        linear.set_constraints_from(dofs.n_free);
+        let mut linear = options.linear.build(&options.petsc_options);
+        linear.set_layout(&dofs.layout(model));
         Ok(Setup {
             model,
             layout,
@@ -214,14 +214,19 @@ where
     }
 
     /// Adds the multiplier regularisation `delta` (see
-    /// [`super::regularize`]) to `sys` and solves `K dx = r`.
+    /// [`super::regularize`]) to `sys` and solves `K dx = r`, an iterative
+    /// solver to the relative residual [`forcing`] gives for Newton's
+    /// residual `norm` against the convergence bound `tol_abs` and the
+    /// attempt's first residual `first`.
     pub(super) fn solve(
         &mut self,
         sys: &mut System,
         active: &[bool],
         delta: f64,
+        (norm, first, tol_abs): (f64, f64, f64),
     ) -> Result<Vec<f64>, LinearError> {
         regularize(sys, &self.dofs, active, delta);
+        self.linear.set_forcing(forcing(norm, first, tol_abs));
         self.linear.solve_system(
             sys.residual.len(),
             &sys.rows,
@@ -230,4 +235,36 @@ where
             &sys.residual,
         )
     }
+}
+
+/// The largest relative residual asked of an iterative linear solve.
+pub(super) const FORCING_MAX: f64 = 1e-6;
+/// The smallest (below it a solve is round-off).
+pub(super) const FORCING_MIN: f64 = 1e-12;
+
+/// Newton's forcing term: the relative residual `|b - A dx| / |b|` an
+/// iterative solve must reach at a Newton residual `norm`, when the
+/// attempt started at `first` and converges at `tol_abs`.
+///
+/// `norm / first`, so that the linear error shrinks with the residual and
+/// Newton stays quadratic near the solution (Eisenstat and Walker's
+/// choice for quadratic convergence: `eta_k ~ |r_k|`), at most
+/// [`FORCING_MAX`]; but never tighter than the `0.1 tol_abs / norm` that
+/// already takes the next residual below a tenth of the bound, so the last
+/// solve is not over-solved; at least [`FORCING_MIN`].
+pub(super) fn forcing(norm: f64, first: f64, tol_abs: f64) -> f64 {
+    let quadratic = if first > 0.0 {
+        norm / first
+    } else {
+        FORCING_MAX
+    };
+    let enough = if norm > 0.0 {
+        0.1 * tol_abs / norm
+    } else {
+        FORCING_MAX
+    };
+    quadratic
+        .min(FORCING_MAX)
+        .max(enough.min(FORCING_MAX))
+        .max(FORCING_MIN)
 }

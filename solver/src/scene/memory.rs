@@ -42,7 +42,7 @@ pub fn scene_equations(scene: &Scene) -> u64 {
 /// ([`Scene::build_model`] calls it first, so loading a scene checks it
 /// too): 3D blocks as hexahedra, 2D blocks as planar elements. The linear
 /// solver may still be chosen after loading, so the estimate is the
-/// LDLᵀ's, the smaller one.
+/// smallest of the solvers compiled in.
 pub fn check_scene(scene: &Scene) -> Result<(), MemoryError> {
     check_scene_within(scene, available())
 }
@@ -54,12 +54,13 @@ pub fn check_scene_within(scene: &Scene, available: Option<u64>) -> Result<(), M
     } else {
         MeshFamily::Planar
     };
-    check(
-        scene_equations(scene),
-        family,
-        LinearSolverKind::Ldlt,
-        available,
-    )
+    let equations = scene_equations(scene);
+    let smallest = LinearSolverKind::ALL
+        .iter()
+        .copied()
+        .min_by_key(|&k| crate::memory::estimate(equations, family, k))
+        .unwrap_or(LinearSolverKind::Ldlt);
+    check(equations, family, smallest, available)
 }
 
 #[cfg(test)]

@@ -83,7 +83,8 @@
 //! tolerance = 1e-10           # |r| <= tolerance * max(1, |f_ext|)
 //! max_iterations = 30         # per attempt
 //! max_cutbacks = 8            # bisections per scheduled step
-//! linear = "lu"               # linear solver: "lu" (default) or "ldlt"
+//! linear = "lu"               # linear solver: "lu" (default), "ldlt", "petsc" (feature)
+//! petsc_options = ""          # PETSc options of "petsc" (docs/petsc.md)
 //! repair = true               # Types 1-6: repeat a step whose points end on
 //!                             # other master segments (default true; the
 //!                             # paper scene sets false, the paper's scheme)
@@ -275,6 +276,7 @@ impl SolveOptions {
             tolerance: scene.newton.tolerance,
             regularization: DEFAULT_REGULARIZATION,
             linear: scene.newton.linear,
+            petsc_options: scene.newton.petsc_options.clone(),
             repair: scene.newton.repair,
             taylor_tolerance: scene.newton.taylor_tolerance,
         }

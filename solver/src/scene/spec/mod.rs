@@ -248,7 +248,7 @@ impl Default for RefineSpec {
 }
 
 /// Newton settings (`[newton]`).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct NewtonSpec {
     /// `tolerance`: converged when `|r| <= tolerance * max(1, |f_ext|)`
@@ -263,8 +263,9 @@ pub struct NewtonSpec {
     /// [`crate::options::DEFAULT_MAX_CUTBACKS`]).
     #[serde(default = "default_max_cutbacks")]
     pub max_cutbacks: usize,
-    /// `linear`: the linear solver, `"lu"` (default) or `"ldlt"` (not
-    /// written when it is the default).
+    /// `linear`: the linear solver, `"lu"` (default), `"ldlt"` or, in a
+    /// build with the `petsc` feature, `"petsc"` (not written when it is the
+    /// default).
     #[serde(
         default,
         deserialize_with = "de_linear",
@@ -272,6 +273,12 @@ pub struct NewtonSpec {
         skip_serializing_if = "is_default_linear"
     )]
     pub linear: LinearSolverKind,
+    /// `petsc_options`: PETSc options of `linear = "petsc"`, in PETSc's
+    /// syntax (`"-fieldsplit_u_pc_type hypre"`), applied after the defaults
+    /// and the `PETSC_OPTIONS` environment (docs/petsc.md); default none
+    /// (not written).
+    #[serde(default, skip_serializing_if = "String::is_empty")]
+    pub petsc_options: String,
     /// `repair`: Types 1–6 only. At a converged step end every integration
     /// point is re-paired by projection; when a point's master segment
     /// changed (or it became paired or unpaired), the step is repeated from
@@ -305,6 +312,7 @@ impl Default for NewtonSpec {
             max_iterations: default_max_iterations(),
             max_cutbacks: default_max_cutbacks(),
             linear: LinearSolverKind::default(),
+            petsc_options: String::new(),
             repair: default_repair(),
             taylor_tolerance: None,
         }

@@ -1,0 +1,419 @@
+//! PETSc's Krylov solvers and preconditioners behind [`LinearSolver`]
+//! (feature `petsc`; `[newton] linear = "petsc"`, `--linear petsc`).
+//!
+//! # The system PETSc sees
+//!
+//! Newton's system has the free displacement dofs first (in dof order),
+//! then the constraint rows (multipliers, node ties). Algebraic multigrid
+//! on elasticity wants whole nodes (block size = dimension) and the
+//! rigid-body modes of their coordinates, so the system is re-numbered from
+//! the [`SystemLayout`]: equation `i < n_free` becomes its dof `D node +
+//! component`, a prescribed dof becomes a decoupled row `d u = 0` (`d` the
+//! mean absolute diagonal of the free block, so that it does not disturb the
+//! multigrid's scaling), and constraint `k` becomes `D nodes + k`:
+//!
+//! ```text
+//! [ K   G^T ] [du]   [r_u]      field "u":      D nodes equations, block size D,
+//! [ G   C   ] [dl] = [r_l]                      near-null space: rigid-body modes
+//!                               field "lambda": the constraint rows
+//! ```
+//!
+//! # The default: FGMRES on the saddle point, Schur-complement field split
+//!
+//! [`DEFAULT_OPTIONS`]: a right-preconditioned FGMRES (its residual is the
+//! true one) preconditioned by PCFIELDSPLIT's full Schur factorisation: the
+//! displacement block by one V-cycle of smoothed-aggregation multigrid
+//! (GAMG, given the rigid-body near-null space), the multipliers' Schur
+//! complement approximated by `C - G diag(K)^-1 G^T` (`selfp`). A system
+//! without constraint rows (no contact) is solved by FGMRES with GAMG on the
+//! displacements. Why this route (and not the condensation of the
+//! multipliers) is in docs/petsc.md, with the measurements.
+//!
+//! # Options and tolerance
+//!
+//! Options are applied in this order, a later one overriding an earlier:
+//! the defaults, the `PETSC_OPTIONS` environment, the solver's own string
+//! (`[newton] petsc_options`, then `--petsc-options`). They are installed
+//! into PETSc's options database before every set-up and solve, so two
+//! solvers in one process (tests) do not see each other's. Each solve stops
+//! at the relative residual Newton asks for ([`LinearSolver::set_forcing`]);
+//! a solve that does not converge is a [`LinearError::NotConverged`] with
+//! PETSc's reason.
+
+mod ffi;
+pub mod objects;
+
+use std::time::{Duration, Instant};
+
+use objects::{IndexSet, Ksp, Matrix, NearNullSpace, PetscError, Serial, Vector, serial};
+
+use super::{KrylovCounts, LinearError, LinearSolver, SystemLayout};
+
+/// The Krylov method and preconditioner of a system with constraint rows
+/// (module docs). `-ksp_max_it` bounds one solve.
+pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 \
+     -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full \
+     -pc_fieldsplit_schur_precondition selfp \
+     -fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type gamg \
+     -fieldsplit_lambda_ksp_type preonly -fieldsplit_lambda_pc_type jacobi";
+
+/// The defaults of a system without constraint rows.
+pub const DEFAULT_OPTIONS_UNCONSTRAINED: &str =
+    "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 -pc_type gamg";
+
+impl From<PetscError> for LinearError {
+    fn from(e: PetscError) -> LinearError {
+        LinearError::Petsc(e.to_string())
+    }
+}
+
+/// Where each of Newton's equations sits in PETSc's numbering.
+struct Numbering {
+    /// PETSc's row of each of Newton's equations.
+    rows: Vec<usize>,
+    /// PETSc's size.
+    n: usize,
+    /// The displacement rows (`D nodes`; `first` when no layout was given).
+    n_u: usize,
+    /// PETSc's rows of the prescribed dofs (decoupled).
+    decoupled: Vec<usize>,
+    /// Block size of the displacement rows.
+    dim: usize,
+}
+
+impl Numbering {
+    fn new(
+        n: usize,
+        layout: Option<&SystemLayout>,
+        first: usize,
+    ) -> Result<Numbering, LinearError> {
+        let Some(l) = layout else {
+            // no layout: Newton's numbering, the constraint rows from `first`
+            return Ok(Numbering {
+                rows: (0..n).collect(),
+                n,
+                n_u: first.min(n),
+                decoupled: vec![],
+                dim: 1,
+            });
+        };
+        let n_free = l.free_dofs.len();
+        let n_u = l.coordinates.len();
+        if n < n_free || l.dim == 0 || n_u % l.dim != 0 {
+            return Err(LinearError::Petsc(format!(
+                "the layout ({n_free} free dofs of {n_u} coordinates in {}D) does not fit {n} equations",
+                l.dim
+            )));
+        }
+        let mut rows = Vec::with_capacity(n);
+        let mut free = vec![false; n_u];
+        for &dof in &l.free_dofs {
+            if dof >= n_u || free[dof] {
+                return Err(LinearError::Petsc(format!(
+                    "dof {dof} listed twice or out of range"
+                )));
+            }
+            free[dof] = true;
+            rows.push(dof);
+        }
+        rows.extend((n_free..n).map(|i| n_u + i - n_free));
+        Ok(Numbering {
+            rows,
+            n: n_u + n - n_free,
+            n_u,
+            decoupled: (0..n_u).filter(|&d| !free[d]).collect(),
+            dim: l.dim,
+        })
+    }
+}
+
+/// PETSc's objects of one pattern. Declared so that the solver goes before
+/// the matrix and the splits it refers to.
+struct Objects {
+    ksp: Ksp,
+    _splits: Vec<IndexSet>,
+    _near_null: Option<NearNullSpace>,
+    a: Matrix,
+    b: Vector,
+    x: Vector,
+}
+
+/// The cached pattern: Newton's triplet indices, the numbering, the
+/// objects.
+struct Pattern {
+    rows: Vec<usize>,
+    cols: Vec<usize>,
+    numbering: Numbering,
+    /// The values in PETSc's triplet order: Newton's, then one diagonal per
+    /// decoupled row.
+    values: Vec<f64>,
+    objects: Objects,
+}
+
+/// PETSc's Krylov solve of the Newton system (module docs).
+pub struct PetscKrylov {
+    options: String,
+    layout: Option<SystemLayout>,
+    first_constraint: Option<usize>,
+    pattern: Option<Pattern>,
+    factored: bool,
+    rtol: f64,
+    counts: KrylovCounts,
+    symbolic_factorisations: usize,
+    symbolic_time: Duration,
+}
+
+// SAFETY: PETSc's objects are only touched under `serial()`'s process-wide
+// guard (every method below takes it first, `Drop` too), so moving the owner
+// to another thread is sound.
+unsafe impl Send for PetscKrylov {}
+
+impl PetscKrylov {
+    /// A solver with PETSc options `options` (PETSc's syntax; after the
+    /// defaults and `PETSC_OPTIONS`) and nothing cached.
+    pub fn new(options: &str) -> PetscKrylov {
+        PetscKrylov {
+            options: options.to_owned(),
+            layout: None,
+            first_constraint: None,
+            pattern: None,
+            factored: false,
+            rtol: 1e-8,
+            counts: KrylovCounts::default(),
+            symbolic_factorisations: 0,
+            symbolic_time: Duration::ZERO,
+        }
+    }
+
+    /// The options string installed for a system with or without constraint
+    /// rows (module docs, "Options and tolerance").
+    fn options_for(&self, constrained: bool) -> String {
+        let defaults = if constrained {
+            DEFAULT_OPTIONS
+        } else {
+            DEFAULT_OPTIONS_UNCONSTRAINED
+        };
+        let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
+        format!("{defaults} {env} {}", self.options)
+    }
+
+    /// The options of the cached pattern's system.
+    fn pattern_options(&self) -> String {
+        let constrained = self
+            .pattern
+            .as_ref()
+            .is_some_and(|p| p.numbering.n > p.numbering.n_u);
+        self.options_for(constrained)
+    }
+
+    fn build(
+        &self,
+        s: &Serial,
+        n: usize,
+        rows: &[usize],
+        cols: &[usize],
+    ) -> Result<Pattern, LinearError> {
+        let first = self
+            .layout
+            .as_ref()
+            .map(|l| l.free_dofs.len())
+            .or(self.first_constraint)
+            .unwrap_or(n);
+        let numbering = Numbering::new(n, self.layout.as_ref(), first)?;
+        let mut prow: Vec<usize> = rows.iter().map(|&r| numbering.rows[r]).collect();
+        let mut pcol: Vec<usize> = cols.iter().map(|&c| numbering.rows[c]).collect();
+        prow.extend(&numbering.decoupled);
+        pcol.extend(&numbering.decoupled);
+        let constrained = numbering.n > numbering.n_u;
+        s.replace_options(&self.options_for(constrained))?;
+        let a = Matrix::from_coo(s, numbering.n, &prow, &pcol)?;
+        let mut ksp = Ksp::new(s, &a)?;
+        let mut splits = vec![];
+        let mut near_null = None;
+        let coords = self.layout.as_ref().map(|l| &l.coordinates);
+        if constrained && ksp.is_fieldsplit(s)? {
+            let mut u = IndexSet::range(s, 0, numbering.n_u, numbering.dim)?;
+            if let Some(c) = coords.filter(|_| numbering.dim > 1) {
+                let sp = NearNullSpace::rigid_body(s, c, numbering.dim)?;
+                u.attach_near_null_space(s, &sp)?;
+                near_null = Some(sp);
+            }
+            let lambda = IndexSet::range(s, numbering.n_u, numbering.n - numbering.n_u, 1)?;
+            ksp.add_split(s, "u", &u)?;
+            ksp.add_split(s, "lambda", &lambda)?;
+            splits = vec![u, lambda];
+        }
+        let b = Vector::new(s, numbering.n, 1)?;
+        let x = Vector::new(s, numbering.n, 1)?;
+        let values = vec![0.0; prow.len()];
+        Ok(Pattern {
+            rows: rows.to_vec(),
+            cols: cols.to_vec(),
+            numbering,
+            values,
+            objects: Objects {
+                ksp,
+                _splits: splits,
+                _near_null: near_null,
+                a,
+                b,
+                x,
+            },
+        })
+    }
+}
+
+impl Drop for PetscKrylov {
+    fn drop(&mut self) {
+        // PETSc's objects are destroyed under the guard (module docs of
+        // `objects`); without PETSc there is nothing to destroy
+        if self.pattern.is_some()
+            && let Ok(_s) = serial()
+        {
+            self.pattern = None;
+        }
+    }
+}
+
+impl LinearSolver for PetscKrylov {
+    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
+        let same = self
+            .pattern
+            .as_ref()
+            .is_some_and(|p| p.rows == rows && p.cols == cols && p.numbering.rows.len() == n);
+        if same {
+            return Ok(());
+        }
+        let s = serial()?;
+        let t = Instant::now();
+        self.pattern = None;
+        self.factored = false;
+        self.pattern = Some(self.build(&s, n, rows, cols)?);
+        self.symbolic_factorisations += 1;
+        self.symbolic_time += t.elapsed();
+        Ok(())
+    }
+
+    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.factored = false;
+        let s = serial()?;
+        let options = self.pattern_options();
+        let Some(p) = self.pattern.as_mut() else {
+            return Err(LinearError::Singular("no pattern".into()));
+        };
+        if vals.len() != p.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "{} values for {} triplets",
+                vals.len(),
+                p.rows.len()
+            )));
+        }
+        let m = vals.len();
+        p.values[..m].copy_from_slice(vals);
+        if !p.numbering.decoupled.is_empty() {
+            // the mean absolute diagonal of the free displacement rows
+            let (mut sum, mut count) = (0.0, 0usize);
+            for k in 0..m {
+                if p.rows[k] == p.cols[k] && p.numbering.rows[p.rows[k]] < p.numbering.n_u {
+                    sum += vals[k].abs();
+                    count += 1;
+                }
+            }
+            let d = if count > 0 && sum > 0.0 {
+                sum / count as f64
+            } else {
+                1.0
+            };
+            p.values[m..].fill(d);
+        }
+        p.objects.a.set_values(&s, &p.values)?;
+        s.replace_options(&options)?;
+        p.objects.ksp.set_up(&s)?;
+        self.factored = true;
+        Ok(())
+    }
+
+    fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
+        if !std::mem::take(&mut self.factored) {
+            return Err(LinearError::Singular("no factorisation".into()));
+        }
+        let s = serial()?;
+        let rtol = self.rtol;
+        let options = self.pattern_options();
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        if rhs.len() != p.numbering.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "right-hand side of {} for {} equations",
+                rhs.len(),
+                p.numbering.rows.len()
+            )));
+        }
+        let mut b = vec![0.0; p.numbering.n];
+        for (i, &v) in rhs.iter().enumerate() {
+            b[p.numbering.rows[i]] = v;
+        }
+        let o = &mut p.objects;
+        o.b.set(&s, &b)?;
+        o.ksp.set_rtol(&s, rtol)?;
+        s.replace_options(&options)?;
+        let out = o.ksp.solve(&s, &o.b, &mut o.x)?;
+        self.counts.solves += 1;
+        self.counts.iterations += out.iterations;
+        self.counts.max_iterations = self.counts.max_iterations.max(out.iterations);
+        if self.counts.method.is_empty() {
+            self.counts.method = o.ksp.describe(&s)?;
+        }
+        if !out.converged {
+            return Err(LinearError::NotConverged(format!(
+                "PETSc's {} reported {} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e})",
+                o.ksp.describe(&s)?,
+                out.reason,
+                out.iterations,
+                out.residual
+            )));
+        }
+        let x = o.x.get(&s)?;
+        Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
+    }
+
+    fn symbolic_factorisations(&self) -> usize {
+        self.symbolic_factorisations
+    }
+
+    fn symbolic_time(&self) -> Duration {
+        self.symbolic_time
+    }
+
+    fn set_constraints_from(&mut self, first: usize) {
+        self.first_constraint = Some(first);
+    }
+
+    fn set_layout(&mut self, layout: &SystemLayout) {
+        self.layout = Some(layout.clone());
+        self.pattern_reset();
+    }
+
+    fn set_forcing(&mut self, rtol: f64) {
+        self.rtol = rtol;
+    }
+
+    fn krylov(&self) -> Option<KrylovCounts> {
+        Some(self.counts.clone())
+    }
+}
+
+impl PetscKrylov {
+    fn pattern_reset(&mut self) {
+        if self.pattern.is_some()
+            && let Ok(_s) = serial()
+        {
+            self.pattern = None;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

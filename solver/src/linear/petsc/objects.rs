@@ -1,0 +1,517 @@
+//! The few PETSc objects the `petsc` linear solver uses, each an owning
+//! wrapper whose every call returns a [`Result`].
+//!
+//! # How it binds PETSc
+//!
+//! Every PETSc call is made in a small C shim (`solver/c/petsc_shim.c`), one function per
+//! wrapper method, compiled with `cc` against the PETSc found by pkg-config
+//! (`solver/build.rs`). The C compiler checks each call against the installed
+//! headers, the shim's static assertions check the sizes Rust assumes
+//! (`PetscScalar` a real `f64`, `PetscInt` 32-bit), and PETSc's macros
+//! (`PETSC_COMM_SELF`, type names, `KSPConvergedReasons`) stay in C. Rust
+//! declares only the shim's plain-C functions ([`ffi`]): no bindgen, so no
+//! libclang at build time.
+//!
+//! # Errors
+//!
+//! [`serial`] initialises PETSc once per process with an error handler that
+//! keeps the failing call's message instead of printing a traceback; each
+//! wrapper turns a nonzero error code into a [`PetscError`] holding it.
+//!
+//! # One thread at a time
+//!
+//! PETSc is not thread-safe. Every object is created, used and dropped while
+//! the caller holds the process-wide guard of [`serial`] (the constructors
+//! take it by reference; an owner that drops objects takes it in its own
+//! `Drop`). MPI is initialised with `MPI_THREAD_SERIALIZED` for the same
+//! reason: calls come from one thread at a time, not always the same one.
+
+use std::ffi::{CStr, CString, c_char, c_int};
+use std::sync::{Mutex, MutexGuard, OnceLock};
+
+use super::ffi;
+use ffi::PetscInt;
+
+/// A PETSc call that failed: which call, PETSc's error code and message.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("PETSc {call} failed (error {code}): {message}")]
+pub struct PetscError {
+    /// The wrapper method (the shim function without its prefix).
+    pub call: &'static str,
+    /// PETSc's error code.
+    pub code: i32,
+    /// PETSc's message for the failing call.
+    pub message: String,
+}
+
+fn check(call: &'static str, code: ffi::PetscErrorCode) -> Result<(), PetscError> {
+    if code == 0 {
+        return Ok(());
+    }
+    // SAFETY: the shim returns a pointer to its static, NUL-terminated buffer
+    let message = unsafe { CStr::from_ptr(ffi::gapsim_petsc_last_error()) }
+        .to_string_lossy()
+        .into_owned();
+    Err(PetscError {
+        call,
+        code,
+        message,
+    })
+}
+
+fn index(call: &'static str, n: usize) -> Result<PetscInt, PetscError> {
+    PetscInt::try_from(n).map_err(|_| PetscError {
+        call,
+        code: -1,
+        message: format!("{n} exceeds PETSc's 32-bit index range"),
+    })
+}
+
+static LOCK: Mutex<()> = Mutex::new(());
+static INIT: OnceLock<Result<(), PetscError>> = OnceLock::new();
+
+/// The process-wide guard every PETSc call is made under (module docs).
+pub struct Serial {
+    _guard: MutexGuard<'static, ()>,
+}
+
+/// Takes the process-wide PETSc guard, initialising PETSc (and MPI, unless
+/// already initialised) on the first call; PETSc and MPI are finalised when
+/// the process exits. A failed initialisation is reported by every call.
+pub fn serial() -> Result<Serial, PetscError> {
+    let guard = LOCK.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    // SAFETY: called under the lock; the shim initialises at most once
+    INIT.get_or_init(|| check("initialize", unsafe { ffi::gapsim_petsc_initialize() }))
+        .clone()?;
+    Ok(Serial { _guard: guard })
+}
+
+impl Serial {
+    /// PETSc's version `(major, minor, subminor)`, from its headers.
+    pub fn version(&self) -> (i32, i32, i32) {
+        let (mut a, mut b, mut c) = (0, 0, 0);
+        // SAFETY: writes three ints
+        unsafe { ffi::gapsim_petsc_version(&mut a, &mut b, &mut c) };
+        (a, b, c)
+    }
+
+    /// The number of MPI ranks of `PETSC_COMM_WORLD`.
+    pub fn world_size(&self) -> Result<usize, PetscError> {
+        let mut n: c_int = 0;
+        // SAFETY: writes one int
+        check("comm_size", unsafe { ffi::gapsim_petsc_comm_size(&mut n) })?;
+        Ok(n.max(0) as usize)
+    }
+
+    /// Empties PETSc's options database and fills it from `text` (PETSc's
+    /// option syntax, `-ksp_type cg -pc_type gamg`); the solvers created or
+    /// set up afterwards read them.
+    pub fn replace_options(&self, text: &str) -> Result<(), PetscError> {
+        let c = CString::new(text).map_err(|_| PetscError {
+            call: "options_replace",
+            code: -1,
+            message: "the options contain a NUL character".into(),
+        })?;
+        // SAFETY: a NUL-terminated string
+        check("options_replace", unsafe {
+            ffi::gapsim_petsc_options_replace(c.as_ptr())
+        })
+    }
+
+    /// The options of the database no PETSc object has read so far.
+    pub fn unused_options(&self) -> Result<Vec<String>, PetscError> {
+        let mut buf = vec![0 as c_char; 4096];
+        // SAFETY: the shim writes at most `len` bytes, NUL-terminated
+        check("options_unused", unsafe {
+            ffi::gapsim_petsc_options_unused(buf.as_mut_ptr(), buf.len())
+        })?;
+        // SAFETY: NUL-terminated within the buffer
+        let text = unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy();
+        Ok(text.split_whitespace().map(str::to_owned).collect())
+    }
+}
+
+/// A sequential AIJ matrix assembled from coordinate triplets (`Mat`):
+/// the pattern is fixed at creation, the values set (duplicates added)
+/// any number of times.
+pub struct Matrix {
+    raw: ffi::Mat,
+    nnz: usize,
+}
+
+impl Matrix {
+    /// An `n x n` matrix with the triplet pattern `(rows[k], cols[k])`.
+    pub fn from_coo(
+        _: &Serial,
+        n: usize,
+        rows: &[usize],
+        cols: &[usize],
+    ) -> Result<Matrix, PetscError> {
+        let call = "mat_create_coo";
+        let n = index(call, n)?;
+        let mut r = rows
+            .iter()
+            .map(|&i| index(call, i))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut c = cols
+            .iter()
+            .map(|&i| index(call, i))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: PETSc may permute the index arrays it is given (ours to lose)
+        let code = unsafe {
+            ffi::gapsim_petsc_mat_create_coo(
+                n,
+                r.len() as i64,
+                r.as_mut_ptr(),
+                c.as_mut_ptr(),
+                &mut raw,
+            )
+        };
+        let m = Matrix {
+            raw,
+            nnz: rows.len(),
+        };
+        check(call, code)?;
+        Ok(m)
+    }
+
+    /// Sets the values, in the order of the creation's triplets.
+    pub fn set_values(&mut self, _: &Serial, vals: &[f64]) -> Result<(), PetscError> {
+        if vals.len() != self.nnz {
+            return Err(PetscError {
+                call: "mat_set_values_coo",
+                code: -1,
+                message: format!("{} values for {} triplets", vals.len(), self.nnz),
+            });
+        }
+        // SAFETY: one value per triplet
+        check("mat_set_values_coo", unsafe {
+            ffi::gapsim_petsc_mat_set_values_coo(self.raw, vals.as_ptr())
+        })
+    }
+}
+
+impl Drop for Matrix {
+    fn drop(&mut self) {
+        // SAFETY: the owner holds the guard (module docs); a null is ignored
+        unsafe { ffi::gapsim_petsc_mat_destroy(&mut self.raw) };
+    }
+}
+
+/// A sequential vector (`Vec`).
+pub struct Vector {
+    raw: ffi::Vec,
+    len: usize,
+}
+
+impl Vector {
+    /// A vector of `len` entries with block size `bs`.
+    pub fn new(_: &Serial, len: usize, bs: usize) -> Result<Vector, PetscError> {
+        let call = "vec_create";
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: writes the handle
+        let code =
+            unsafe { ffi::gapsim_petsc_vec_create(index(call, len)?, index(call, bs)?, &mut raw) };
+        let v = Vector { raw, len };
+        check(call, code)?;
+        Ok(v)
+    }
+
+    /// Copies `vals` (as many as the vector has entries) in.
+    pub fn set(&mut self, _: &Serial, vals: &[f64]) -> Result<(), PetscError> {
+        let n = index("vec_set", vals.len())?;
+        // SAFETY: the shim checks the length before copying
+        check("vec_set", unsafe {
+            ffi::gapsim_petsc_vec_set(self.raw, vals.as_ptr(), n)
+        })
+    }
+
+    /// The entries.
+    pub fn get(&self, _: &Serial) -> Result<Vec<f64>, PetscError> {
+        let mut out = vec![0.0; self.len];
+        let n = index("vec_get", self.len)?;
+        // SAFETY: the shim checks the length before copying
+        check("vec_get", unsafe {
+            ffi::gapsim_petsc_vec_get(self.raw, out.as_mut_ptr(), n)
+        })?;
+        Ok(out)
+    }
+}
+
+impl Drop for Vector {
+    fn drop(&mut self) {
+        // SAFETY: the owner holds the guard
+        unsafe { ffi::gapsim_petsc_vec_destroy(&mut self.raw) };
+    }
+}
+
+/// A contiguous range of equations (`IS`), with a block size.
+pub struct IndexSet {
+    raw: ffi::Is,
+}
+
+impl IndexSet {
+    /// The equations `first..first + len`, in blocks of `bs`.
+    pub fn range(_: &Serial, first: usize, len: usize, bs: usize) -> Result<IndexSet, PetscError> {
+        let call = "is_create_range";
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: writes the handle
+        let code = unsafe {
+            ffi::gapsim_petsc_is_create_range(
+                index(call, first)?,
+                index(call, len)?,
+                index(call, bs)?,
+                &mut raw,
+            )
+        };
+        let is = IndexSet { raw };
+        check(call, code)?;
+        Ok(is)
+    }
+
+    /// Gives `space` to this set's split as its near-null space (PCFIELDSPLIT
+    /// hands it to the split's matrix, where algebraic multigrid finds it).
+    pub fn attach_near_null_space(
+        &mut self,
+        _: &Serial,
+        space: &NearNullSpace,
+    ) -> Result<(), PetscError> {
+        // SAFETY: both handles valid; PETSc takes its own reference
+        check("is_compose_near_null_space", unsafe {
+            ffi::gapsim_petsc_is_compose_near_null_space(self.raw, space.raw)
+        })
+    }
+}
+
+impl Drop for IndexSet {
+    fn drop(&mut self) {
+        // SAFETY: the owner holds the guard
+        unsafe { ffi::gapsim_petsc_is_destroy(&mut self.raw) };
+    }
+}
+
+/// The rigid-body modes of a set of nodes (`MatNullSpace`): 3 in 2D, 6 in
+/// 3D, from their coordinates.
+pub struct NearNullSpace {
+    raw: ffi::NullSpace,
+}
+
+impl NearNullSpace {
+    /// The rigid-body modes of nodes with coordinates `coords` (node-major,
+    /// `dim` per node).
+    pub fn rigid_body(s: &Serial, coords: &[f64], dim: usize) -> Result<NearNullSpace, PetscError> {
+        let mut v = Vector::new(s, coords.len(), dim)?;
+        v.set(s, coords)?;
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: a vector of block size `dim`
+        let code = unsafe { ffi::gapsim_petsc_nullspace_rigid_body(v.raw, &mut raw) };
+        let sp = NearNullSpace { raw };
+        check("nullspace_rigid_body", code)?;
+        Ok(sp)
+    }
+}
+
+impl Drop for NearNullSpace {
+    fn drop(&mut self) {
+        // SAFETY: the owner holds the guard
+        unsafe { ffi::gapsim_petsc_nullspace_destroy(&mut self.raw) };
+    }
+}
+
+/// How a Krylov solve ended.
+#[derive(Debug, Clone, PartialEq)]
+pub struct KrylovOutcome {
+    /// Converged (PETSc's reason > 0).
+    pub converged: bool,
+    /// PETSc's reason, by name (`CONVERGED_RTOL`, `DIVERGED_ITS`, ...).
+    pub reason: String,
+    /// Iterations taken.
+    pub iterations: usize,
+    /// The last residual norm PETSc computed (preconditioned or not, as
+    /// the method's norm type says).
+    pub residual: f64,
+}
+
+/// A linear solver (`KSP`): a Krylov method and its preconditioner.
+pub struct Ksp {
+    raw: ffi::Ksp,
+}
+
+impl Ksp {
+    /// A solver of `a` (also its preconditioning matrix), configured from
+    /// the options database.
+    pub fn new(_: &Serial, a: &Matrix) -> Result<Ksp, PetscError> {
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: writes the handle
+        let code = unsafe { ffi::gapsim_petsc_ksp_create(&mut raw) };
+        let k = Ksp { raw };
+        check("ksp_create", code)?;
+        // SAFETY: valid handles
+        check("ksp_set_operators", unsafe {
+            ffi::gapsim_petsc_ksp_set_operators(k.raw, a.raw)
+        })?;
+        // SAFETY: valid handle
+        check("ksp_set_from_options", unsafe {
+            ffi::gapsim_petsc_ksp_set_from_options(k.raw)
+        })?;
+        Ok(k)
+    }
+
+    /// Whether the preconditioner is PCFIELDSPLIT.
+    pub fn is_fieldsplit(&self, _: &Serial) -> Result<bool, PetscError> {
+        let mut yes: c_int = 0;
+        // SAFETY: writes one int
+        check("ksp_pc_is_fieldsplit", unsafe {
+            ffi::gapsim_petsc_ksp_pc_is_fieldsplit(self.raw, &mut yes)
+        })?;
+        Ok(yes != 0)
+    }
+
+    /// Adds the split `name` of the equations in `is` (PCFIELDSPLIT).
+    pub fn add_split(&mut self, _: &Serial, name: &str, is: &IndexSet) -> Result<(), PetscError> {
+        let c = CString::new(name).expect("split names have no NUL");
+        // SAFETY: valid handles, NUL-terminated name
+        check("ksp_fieldsplit_set_is", unsafe {
+            ffi::gapsim_petsc_ksp_fieldsplit_set_is(self.raw, c.as_ptr(), is.raw)
+        })
+    }
+
+    /// The Krylov method and preconditioner, `"fgmres/fieldsplit"`.
+    pub fn describe(&self, _: &Serial) -> Result<String, PetscError> {
+        let mut buf = vec![0 as c_char; 128];
+        // SAFETY: the shim writes at most `len` bytes, NUL-terminated
+        check("ksp_describe", unsafe {
+            ffi::gapsim_petsc_ksp_describe(self.raw, buf.as_mut_ptr(), buf.len())
+        })?;
+        // SAFETY: NUL-terminated within the buffer
+        Ok(unsafe { CStr::from_ptr(buf.as_ptr()) }
+            .to_string_lossy()
+            .into_owned())
+    }
+
+    /// The relative residual the next solves stop at.
+    pub fn set_rtol(&mut self, _: &Serial, rtol: f64) -> Result<(), PetscError> {
+        // SAFETY: valid handle
+        check("ksp_set_rtol", unsafe {
+            ffi::gapsim_petsc_ksp_set_rtol(self.raw, rtol)
+        })
+    }
+
+    /// Sets up the preconditioner for the matrix's current values (the
+    /// setup of an algebraic multigrid, or a factorisation).
+    pub fn set_up(&mut self, _: &Serial) -> Result<(), PetscError> {
+        // SAFETY: valid handle
+        check("ksp_setup", unsafe {
+            ffi::gapsim_petsc_ksp_setup(self.raw)
+        })
+    }
+
+    /// Solves `A x = b` from a zero guess.
+    pub fn solve(
+        &mut self,
+        _: &Serial,
+        b: &Vector,
+        x: &mut Vector,
+    ) -> Result<KrylovOutcome, PetscError> {
+        let (mut reason, mut text, mut its, mut res) = (0, std::ptr::null(), 0, 0.0);
+        // SAFETY: valid handles; the reason text is a static string of PETSc's
+        check("ksp_solve", unsafe {
+            ffi::gapsim_petsc_ksp_solve(
+                self.raw,
+                b.raw,
+                x.raw,
+                &mut reason,
+                &mut text,
+                &mut its,
+                &mut res,
+            )
+        })?;
+        let reason_text = if text.is_null() {
+            format!("reason {reason}")
+        } else {
+            // SAFETY: PETSc's NUL-terminated reason name
+            unsafe { CStr::from_ptr(text) }
+                .to_string_lossy()
+                .into_owned()
+        };
+        Ok(KrylovOutcome {
+            converged: reason > 0,
+            reason: reason_text,
+            iterations: its.max(0) as usize,
+            residual: res,
+        })
+    }
+}
+
+impl Drop for Ksp {
+    fn drop(&mut self) {
+        // SAFETY: the owner holds the guard
+        unsafe { ffi::gapsim_petsc_ksp_destroy(&mut self.raw) };
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 1D Laplacian (tridiagonal, SPD) solved by CG with Jacobi from the
+    /// options database, and the exact solution of a known right-hand side.
+    #[test]
+    fn cg_solves_a_laplacian() {
+        let s = serial().unwrap();
+        assert!(s.version() >= (3, 18, 0));
+        let n: usize = 50;
+        let (mut rows, mut cols, mut vals) = (vec![], vec![], vec![]);
+        for i in 0..n {
+            for (j, v) in [(i.wrapping_sub(1), -1.0), (i, 2.0), (i + 1, -1.0)] {
+                if j < n {
+                    rows.push(i);
+                    cols.push(j);
+                    vals.push(v);
+                }
+            }
+        }
+        // x_i = i + 1: b = A x
+        let x_true: Vec<f64> = (0..n).map(|i| i as f64 + 1.0).collect();
+        let mut b = vec![0.0; n];
+        for k in 0..rows.len() {
+            b[rows[k]] += vals[k] * x_true[cols[k]];
+        }
+        s.replace_options("-ksp_type cg -pc_type jacobi").unwrap();
+        let mut a = Matrix::from_coo(&s, n, &rows, &cols).unwrap();
+        a.set_values(&s, &vals).unwrap();
+        let mut ksp = Ksp::new(&s, &a).unwrap();
+        assert_eq!(ksp.describe(&s).unwrap(), "cg/jacobi");
+        ksp.set_rtol(&s, 1e-12).unwrap();
+        ksp.set_up(&s).unwrap();
+        let mut bv = Vector::new(&s, n, 1).unwrap();
+        bv.set(&s, &b).unwrap();
+        let mut xv = Vector::new(&s, n, 1).unwrap();
+        let out = ksp.solve(&s, &bv, &mut xv).unwrap();
+        assert!(out.converged, "{out:?}");
+        assert!(out.iterations <= n);
+        let x = xv.get(&s).unwrap();
+        for i in 0..n {
+            assert!((x[i] - x_true[i]).abs() < 1e-8, "{i}: {}", x[i]);
+        }
+        assert!(xv.set(&s, &[1.0]).is_err(), "a wrong length is an error");
+        assert!(a.set_values(&s, &[1.0]).is_err());
+    }
+
+    /// A PETSc error comes back as a `PetscError` with PETSc's message, no
+    /// traceback and no abort: an unknown Krylov type.
+    #[test]
+    fn errors_carry_petscs_message() {
+        let s = serial().unwrap();
+        s.replace_options("-ksp_type no_such_method").unwrap();
+        let mut a = Matrix::from_coo(&s, 1, &[0], &[0]).unwrap();
+        a.set_values(&s, &[1.0]).unwrap();
+        let e = Ksp::new(&s, &a)
+            .err()
+            .expect("an unknown KSP type is refused");
+        assert_eq!(e.call, "ksp_set_from_options");
+        assert!(e.message.contains("no_such_method"), "{e}");
+        s.replace_options("").unwrap();
+    }
+}

@@ -1,0 +1,133 @@
+//! The PETSc solver against the LU: a saddle point through the layout,
+//! whole contact solves in 2D and 3D (energy, Newton iterations), options
+//! from the scene, and PETSc's failures as errors.
+
+use super::*;
+use crate::SceneDim;
+use crate::linear::LinearSolverKind;
+use crate::model::Dim;
+use crate::{Method, Scene, Solution, SolveOptions, solve};
+
+fn run<const D: usize>(
+    scene: &Scene,
+    linear: LinearSolverKind,
+    petsc_options: &str,
+) -> Result<Solution<D>, crate::SolverError>
+where
+    Dim<D>: SceneDim<D>,
+{
+    solve(
+        scene,
+        &SolveOptions {
+            method: Method::Complete,
+            linear,
+            petsc_options: petsc_options.to_owned(),
+            ..SolveOptions::from_scene(scene)
+        },
+    )
+}
+
+/// A 2-node bar in 2D (node 0 fixed in x, node 1 free) with one constraint
+/// row: the field split gets whole nodes, the prescribed dof a decoupled row,
+/// and the solution in Newton's numbering.
+#[test]
+fn layout_renumbers_and_decouples() {
+    // unknowns: u0y (dof 1), u1x (dof 2), u1y (dof 3), lambda
+    let layout = SystemLayout {
+        dim: 2,
+        free_dofs: vec![1, 2, 3],
+        coordinates: vec![0.0, 0.0, 1.0, 0.0],
+    };
+    // K = diag(2, 3, 4), G = [0, 1, 0]: u1x fixed to 0.5 by the constraint
+    let rows = [0, 1, 2, 3, 1];
+    let cols = [0, 1, 2, 1, 3];
+    let vals = [2.0, 3.0, 4.0, 1.0, 1.0];
+    let b = [1.0, 0.0, 2.0, 0.5];
+    let mut s = PetscKrylov::new("-ksp_rtol 1e-12");
+    s.set_layout(&layout);
+    s.set_forcing(1e-12);
+    let x = s.solve_system(4, &rows, &cols, &vals, &b).unwrap();
+    let expect = [0.5, 0.5, 0.5, -1.5];
+    for (a, e) in x.iter().zip(expect) {
+        assert!((a - e).abs() < 1e-9, "{x:?}");
+    }
+    let k = s.krylov().unwrap();
+    assert_eq!(k.solves, 1);
+    assert_eq!(k.method, "fgmres/fieldsplit");
+}
+
+/// The paper scene (2D, persistent contact, multipliers) and a 3D block
+/// pressed on a base: the PETSc default's energy within 1e-8 of the LU's,
+/// at most one Newton iteration more per step, the Krylov iterations
+/// reported.
+#[test]
+fn contact_solves_match_the_lu() {
+    let paper =
+        Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml").unwrap();
+    compare::<2>(&paper, "paper");
+    let cube = Scene::from_toml_str(
+        include_str!("../../../../scenes/block3d.toml"),
+        "block3d.toml",
+    )
+    .unwrap();
+    compare::<3>(&cube, "block3d");
+}
+
+fn compare<const D: usize>(scene: &Scene, what: &str)
+where
+    Dim<D>: SceneDim<D>,
+{
+    {
+        let lu = run::<D>(scene, LinearSolverKind::Lu, "").unwrap();
+        let petsc = run::<D>(scene, LinearSolverKind::Petsc, "").unwrap();
+        let rel = (petsc.strain_energy / lu.strain_energy - 1.0).abs();
+        assert!(rel <= 1e-8, "{what}: energy differs by {rel:e}");
+        assert_eq!(lu.step_records.len(), petsc.step_records.len(), "{what}");
+        for (a, b) in lu.step_records.iter().zip(&petsc.step_records) {
+            assert!(
+                b.iterations <= a.iterations + 1,
+                "{what}, step {}: {:?} vs {:?}",
+                a.step,
+                a.residuals,
+                b.residuals
+            );
+        }
+        let k = petsc.krylov.expect("iterations reported");
+        assert!(
+            k.solves >= petsc.newton_iterations && k.iterations >= k.solves,
+            "{what}: {k:?}"
+        );
+        assert!(lu.krylov.is_none());
+    }
+}
+
+/// Options from the scene reach PETSc (a direct LU through PETSc gives one
+/// iteration per solve), and a Krylov solve held to too few iterations is
+/// an error that names PETSc's reason, never a step taken.
+#[test]
+fn options_reach_petsc_and_failures_are_errors() {
+    let scene =
+        Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml").unwrap();
+    let direct = run::<2>(
+        &scene,
+        LinearSolverKind::Petsc,
+        "-pc_type lu -pc_factor_mat_solver_type mumps",
+    )
+    .unwrap();
+    let k = direct.krylov.unwrap();
+    assert_eq!(k.method, "fgmres/lu");
+    assert_eq!(k.max_iterations, 1, "{k:?}");
+    let err = run::<2>(
+        &scene,
+        LinearSolverKind::Petsc,
+        "-ksp_max_it 1 -pc_type jacobi",
+    )
+    .err()
+    .expect("one Jacobi iteration cannot solve the saddle point");
+    let text = err.to_string();
+    assert!(text.contains("DIVERGED_ITS"), "{text}");
+    let bad = run::<2>(&scene, LinearSolverKind::Petsc, "-pc_type no_such_pc")
+        .err()
+        .expect("an unknown preconditioner is refused");
+    assert!(bad.to_string().contains("no_such_pc"), "{bad}");
+}
