@@ -74,6 +74,10 @@ pub enum SolverError {
     /// is available ([`crate::memory`]: the estimate is a lower bound).
     #[error(transparent)]
     Memory(#[from] MemoryError),
+    /// The linear solver cannot run in this process (the `petsc` solver
+    /// launched across several MPI ranks, [`crate::linear::check_launch`]).
+    #[error("linear solver: {0}")]
+    Linear(#[from] crate::linear::LinearError),
     /// The [`crate::monitor::Monitor`] asked the solve to stop (Ctrl-C in
     /// `gapsim run`); there is no solution.
     #[error("interrupted at load factor {load_factor} (the last converged state)")]

@@ -151,5 +151,6 @@ where
     Dim<D>: SpaceDim<D>,
 {
     memory::check_model(model, options.linear)?;
+    linear::check_launch(options.linear)?;
     newton::Run::<D, <Dim<D> as SpaceDim<D>>::Contact>::new(model, options, monitor)?.execute()
 }

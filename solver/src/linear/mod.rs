@@ -270,6 +270,18 @@ impl std::str::FromStr for LinearSolverKind {
     }
 }
 
+/// Refuses a solve that `kind` cannot do in this process, before any work:
+/// the `petsc` solver solves on one MPI rank (a launch under `mpiexec -n N`
+/// with `N > 1` would solve the whole model on every rank).
+pub fn check_launch(kind: LinearSolverKind) -> Result<(), LinearError> {
+    #[cfg(feature = "petsc")]
+    if kind == LinearSolverKind::Petsc {
+        return petsc::check_one_rank();
+    }
+    let _ = kind;
+    Ok(())
+}
+
 /// The checks shared by every solver: `x` is returned when it is finite and
 /// `|A| |x| / |b|` (an estimate of the condition number seen by this
 /// right-hand side) stays below `1 /` [`NEAR_SINGULAR`].

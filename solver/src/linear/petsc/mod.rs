@@ -21,10 +21,17 @@
 //! # The default: FGMRES on the saddle point, Schur-complement field split
 //!
 //! [`DEFAULT_OPTIONS`]: a right-preconditioned FGMRES (its residual is the
-//! true one) preconditioned by PCFIELDSPLIT's full Schur factorisation: the
-//! displacement block by one V-cycle of smoothed-aggregation multigrid
-//! (GAMG, given the rigid-body near-null space), the multipliers' Schur
-//! complement approximated by `C - G diag(K)^-1 G^T` (`selfp`). A system
+//! true one; restarted every 30 iterations) preconditioned by PCFIELDSPLIT's
+//! upper block-triangular Schur factorisation
+//!
+//! ```text
+//! P^-1 = [ K^-1  0 ] [ I  -G^T ] [ I  0    ]
+//!        [ 0     I ] [ 0   I   ] [ 0  S^-1 ],   S ~ Sp = C - G diag(K)^-1 G^T  (`selfp`)
+//! ```
+//!
+//! with `K^-1` one V-cycle of smoothed-aggregation multigrid (GAMG, given
+//! the rigid-body near-null space) and `Sp^-1` block Jacobi with ILU(0)
+//! (one block per rank). A system
 //! without constraint rows (no contact) is solved by FGMRES with GAMG on the
 //! displacements. Why this route (and not the condensation of the
 //! multipliers) is in docs/petsc.md, with the measurements.
@@ -51,15 +58,27 @@ use super::{KrylovCounts, LinearError, LinearSolver, SystemLayout};
 
 /// The Krylov method and preconditioner of a system with constraint rows
 /// (module docs). `-ksp_max_it` bounds one solve.
-pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 \
-     -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type full \
+pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 30 -ksp_max_it 1000 \
+     -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type upper \
      -pc_fieldsplit_schur_precondition selfp \
      -fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type gamg \
-     -fieldsplit_lambda_ksp_type preonly -fieldsplit_lambda_pc_type jacobi";
+     -fieldsplit_lambda_ksp_type preonly -fieldsplit_lambda_pc_type bjacobi";
 
 /// The defaults of a system without constraint rows.
 pub const DEFAULT_OPTIONS_UNCONSTRAINED: &str =
     "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 -pc_type gamg";
+
+/// Refuses a launch across several MPI ranks (see [`super::check_launch`]).
+pub fn check_one_rank() -> Result<(), LinearError> {
+    let ranks = serial()?.world_size()?;
+    if ranks > 1 {
+        return Err(LinearError::Petsc(format!(
+            "the petsc solver solves on one MPI rank in this version, and this run was launched on {ranks} \
+             (mpiexec -n {ranks}): run it without mpiexec"
+        )));
+    }
+    Ok(())
+}
 
 impl From<PetscError> for LinearError {
     fn from(e: PetscError) -> LinearError {
