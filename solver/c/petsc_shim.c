@@ -120,8 +120,9 @@ int gapsim_petsc_options_unused(char *buf, size_t len)
   return PetscOptionsLeftRestore(NULL, &n, &names, &values);
 }
 
-/* ---- Mat: sequential AIJ assembled from coordinate triplets ---- */
-int gapsim_petsc_mat_create_coo(PetscInt n, PetscCount nnz, PetscInt *rows, PetscInt *cols, Mat *out)
+/* ---- Mat: sequential AIJ of a compressed-row pattern (row_ptr, cols:
+ * sorted, unique columns per row), its values written in place ---- */
+int gapsim_petsc_mat_create_csr(PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, Mat *out)
 {
   Mat a;
   PetscErrorCode ierr = MatCreate(PETSC_COMM_SELF, &a);
@@ -131,10 +132,14 @@ int gapsim_petsc_mat_create_coo(PetscInt n, PetscCount nnz, PetscInt *rows, Pets
   if (ierr) return ierr;
   ierr = MatSetType(a, MATSEQAIJ);
   if (ierr) return ierr;
-  return MatSetPreallocationCOO(a, nnz, rows, cols);
+  return MatSeqAIJSetPreallocationCSR(a, row_ptr, cols, NULL);
 }
 
-int gapsim_petsc_mat_set_values_coo(Mat a, const PetscScalar *vals) { return MatSetValuesCOO(a, vals, INSERT_VALUES); }
+/* The values in the pattern's order, to be written and handed back with
+ * gapsim_petsc_mat_restore_values (which marks the matrix changed). */
+int gapsim_petsc_mat_get_values(Mat a, PetscScalar **vals) { return MatSeqAIJGetArray(a, vals); }
+
+int gapsim_petsc_mat_restore_values(Mat a, PetscScalar **vals) { return MatSeqAIJRestoreArray(a, vals); }
 
 int gapsim_petsc_mat_destroy(Mat *a) { return MatDestroy(a); }
 

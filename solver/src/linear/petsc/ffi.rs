@@ -1,6 +1,6 @@
 //! The C shim's functions (`c/shim.c`), declared by hand: plain C types
 //! only (`PetscInt` is `i32`, `PetscScalar` and `PetscReal` `f64`,
-//! `PetscCount` `i64`, `PetscErrorCode` `i32`: the shim's static assertions
+//! `PetscErrorCode` `i32`: the shim's static assertions
 //! check each at build time), PETSc's objects as opaque pointers.
 
 use std::ffi::{c_char, c_int, c_void};
@@ -25,14 +25,14 @@ unsafe extern "C" {
     pub fn gapsim_petsc_options_replace(text: *const c_char) -> PetscErrorCode;
     pub fn gapsim_petsc_options_unused(buf: *mut c_char, len: usize) -> PetscErrorCode;
 
-    pub fn gapsim_petsc_mat_create_coo(
+    pub fn gapsim_petsc_mat_create_csr(
         n: PetscInt,
-        nnz: i64,
-        rows: *mut PetscInt,
-        cols: *mut PetscInt,
+        row_ptr: *const PetscInt,
+        cols: *const PetscInt,
         out: *mut Mat,
     ) -> PetscErrorCode;
-    pub fn gapsim_petsc_mat_set_values_coo(a: Mat, vals: *const f64) -> PetscErrorCode;
+    pub fn gapsim_petsc_mat_get_values(a: Mat, vals: *mut *mut f64) -> PetscErrorCode;
+    pub fn gapsim_petsc_mat_restore_values(a: Mat, vals: *mut *mut f64) -> PetscErrorCode;
     pub fn gapsim_petsc_mat_destroy(a: *mut Mat) -> PetscErrorCode;
 
     pub fn gapsim_petsc_vec_create(n: PetscInt, bs: PetscInt, out: *mut Vec) -> PetscErrorCode;

@@ -131,64 +131,56 @@ impl Serial {
     }
 }
 
-/// A sequential AIJ matrix assembled from coordinate triplets (`Mat`):
-/// the pattern is fixed at creation, the values set (duplicates added)
-/// any number of times.
+/// A sequential AIJ matrix (`Mat`) of a compressed-row pattern, its values
+/// written in place in the pattern's order.
 pub struct Matrix {
     raw: ffi::Mat,
     nnz: usize,
 }
 
 impl Matrix {
-    /// An `n x n` matrix with the triplet pattern `(rows[k], cols[k])`.
-    pub fn from_coo(
-        _: &Serial,
-        n: usize,
-        rows: &[usize],
-        cols: &[usize],
-    ) -> Result<Matrix, PetscError> {
-        let call = "mat_create_coo";
-        let n = index(call, n)?;
-        let mut r = rows
-            .iter()
-            .map(|&i| index(call, i))
-            .collect::<Result<Vec<_>, _>>()?;
-        let mut c = cols
-            .iter()
-            .map(|&i| index(call, i))
-            .collect::<Result<Vec<_>, _>>()?;
+    /// An `n x n` matrix whose row `i` has the columns `cols[row_ptr[i]..
+    /// row_ptr[i + 1]]` (sorted and unique in each row, so that PETSc's
+    /// storage order is this one), all values zero.
+    pub fn from_csr(_: &Serial, n: usize, row_ptr: &[PetscInt], cols: &[PetscInt]) -> Result<Matrix, PetscError> {
+        let call = "mat_create_csr";
+        let sorted = row_ptr.len() == n + 1
+            && row_ptr[0] == 0
+            && row_ptr[n] as usize == cols.len()
+            && row_ptr.windows(2).all(|w| {
+                w[0] <= w[1]
+                    && cols[w[0] as usize..w[1] as usize]
+                        .windows(2)
+                        .all(|c| c[0] < c[1])
+            })
+            && cols.iter().all(|&c| c >= 0 && (c as usize) < n);
+        if !sorted {
+            return Err(PetscError {
+                call,
+                code: -1,
+                message: "the pattern is not compressed rows of sorted, unique columns".into(),
+            });
+        }
         let mut raw = std::ptr::null_mut();
-        // SAFETY: PETSc may permute the index arrays it is given (ours to lose)
-        let code = unsafe {
-            ffi::gapsim_petsc_mat_create_coo(
-                n,
-                r.len() as i64,
-                r.as_mut_ptr(),
-                c.as_mut_ptr(),
-                &mut raw,
-            )
-        };
-        let m = Matrix {
-            raw,
-            nnz: rows.len(),
-        };
+        // SAFETY: checked arrays of n + 1 and row_ptr[n] entries; PETSc copies them
+        let code = unsafe { ffi::gapsim_petsc_mat_create_csr(index(call, n)?, row_ptr.as_ptr(), cols.as_ptr(), &mut raw) };
+        let m = Matrix { raw, nnz: cols.len() };
         check(call, code)?;
         Ok(m)
     }
 
-    /// Sets the values, in the order of the creation's triplets.
-    pub fn set_values(&mut self, _: &Serial, vals: &[f64]) -> Result<(), PetscError> {
-        if vals.len() != self.nnz {
-            return Err(PetscError {
-                call: "mat_set_values_coo",
-                code: -1,
-                message: format!("{} values for {} triplets", vals.len(), self.nnz),
-            });
+    /// Lets `write` set the values (in the pattern's order), then marks the
+    /// matrix changed, so the solver sets its preconditioner up again.
+    pub fn write_values(&mut self, _: &Serial, write: impl FnOnce(&mut [f64])) -> Result<(), PetscError> {
+        let mut ptr = std::ptr::null_mut();
+        // SAFETY: PETSc hands out its value array of `nnz` entries
+        check("mat_get_values", unsafe { ffi::gapsim_petsc_mat_get_values(self.raw, &mut ptr) })?;
+        if self.nnz > 0 {
+            // SAFETY: the array of the pattern's nnz values, ours until restored
+            write(unsafe { std::slice::from_raw_parts_mut(ptr, self.nnz) });
         }
-        // SAFETY: one value per triplet
-        check("mat_set_values_coo", unsafe {
-            ffi::gapsim_petsc_mat_set_values_coo(self.raw, vals.as_ptr())
-        })
+        // SAFETY: hands the array back
+        check("mat_restore_values", unsafe { ffi::gapsim_petsc_mat_restore_values(self.raw, &mut ptr) })
     }
 }
 
@@ -479,8 +471,17 @@ mod tests {
             b[rows[k]] += vals[k] * x_true[cols[k]];
         }
         s.replace_options("-ksp_type cg -pc_type jacobi").unwrap();
-        let mut a = Matrix::from_coo(&s, n, &rows, &cols).unwrap();
-        a.set_values(&s, &vals).unwrap();
+        // the triplets are in row order with sorted columns: their CSR
+        let mut row_ptr = vec![0; n + 1];
+        for &r in &rows {
+            row_ptr[r + 1] += 1;
+        }
+        for i in 0..n {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        let cols32: Vec<i32> = cols.iter().map(|&c| c as i32).collect();
+        let mut a = Matrix::from_csr(&s, n, &row_ptr, &cols32).unwrap();
+        a.write_values(&s, |v| v.copy_from_slice(&vals)).unwrap();
         let mut ksp = Ksp::new(&s, &a).unwrap();
         assert_eq!(ksp.describe(&s).unwrap(), "cg/jacobi");
         ksp.set_rtol(&s, 1e-12).unwrap();
@@ -496,7 +497,8 @@ mod tests {
             assert!((x[i] - x_true[i]).abs() < 1e-8, "{i}: {}", x[i]);
         }
         assert!(xv.set(&s, &[1.0]).is_err(), "a wrong length is an error");
-        assert!(a.set_values(&s, &[1.0]).is_err());
+        let unsorted = Matrix::from_csr(&s, 2, &[0, 2, 2], &[1, 0]);
+        assert!(unsorted.is_err(), "columns out of order are refused");
     }
 
     /// A PETSc error comes back as a `PetscError` with PETSc's message, no
@@ -505,8 +507,8 @@ mod tests {
     fn errors_carry_petscs_message() {
         let s = serial().unwrap();
         s.replace_options("-ksp_type no_such_method").unwrap();
-        let mut a = Matrix::from_coo(&s, 1, &[0], &[0]).unwrap();
-        a.set_values(&s, &[1.0]).unwrap();
+        let mut a = Matrix::from_csr(&s, 1, &[0, 1], &[0]).unwrap();
+        a.write_values(&s, |v| v[0] = 1.0).unwrap();
         let e = Ksp::new(&s, &a)
             .err()
             .expect("an unknown KSP type is refused");
