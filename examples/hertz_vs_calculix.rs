@@ -200,7 +200,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let load_before = load_average();
     let mut rows = Vec::new();
     for (scene, solids) in RUNS {
-        for linear in LinearSolverKind::ALL {
+        for &linear in LinearSolverKind::ALL {
             rows.push(run(&root.join("scenes"), scene, solids, linear, repeat)?);
         }
     }

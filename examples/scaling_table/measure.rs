@@ -121,7 +121,7 @@ pub(crate) fn measure_fill_3d(
     let equations = probe.equations();
     let mut phase = probe.contact()?;
     probe.solid(&mut phase.system);
-    let mut solver = kind.build();
+    let mut solver = kind.build("");
     solver.set_constraints_from(equations);
     let t = Instant::now();
     solver.analyse(equations, &phase.system.rows, &phase.system.cols)?;

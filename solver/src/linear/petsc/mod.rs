@@ -192,7 +192,7 @@ impl Pattern {
 /// merged; and each triplet's entry. A counting sort by row, then each
 /// row's few entries sorted by column: linear in the triplets, with 4 bytes
 /// of work space per triplet.
-fn compress(nb: &Numbering, rows: &[usize], cols: &[usize]) -> Result<(Vec<i32>, Vec<i32>, Vec<u32>), LinearError> {
+fn compress(nb: &Numbering, rows: &[usize], cols: &[usize]) -> Result<Compressed, LinearError> {
     let m = rows.len();
     let total = m + nb.decoupled.len();
     let too_big = || LinearError::Petsc(format!("{total} triplets exceed the 32-bit index range"));
@@ -240,7 +240,19 @@ fn compress(nb: &Numbering, rows: &[usize], cols: &[usize]) -> Result<(Vec<i32>,
         }
         row_ptr.push(i32::try_from(pcols.len()).map_err(|_| too_big())?);
     }
-    Ok((row_ptr, pcols, slot))
+    Ok(Compressed {
+        row_ptr,
+        cols: pcols,
+        slot,
+    })
+}
+
+/// [`compress`]'s result: PETSc's row pointers and columns, each triplet's
+/// entry.
+struct Compressed {
+    row_ptr: Vec<i32>,
+    cols: Vec<i32>,
+    slot: Vec<u32>,
 }
 
 /// PETSc's Krylov solve of the Newton system (module docs).
@@ -313,7 +325,11 @@ impl PetscKrylov {
             .or(self.first_constraint)
             .unwrap_or(n);
         let numbering = Numbering::new(n, self.layout.as_ref(), first)?;
-        let (row_ptr, cols, slot) = compress(&numbering, rows, cols)?;
+        let Compressed {
+            row_ptr,
+            cols,
+            slot,
+        } = compress(&numbering, rows, cols)?;
         let mut decoupled = vec![false; numbering.n_u];
         for &d in &numbering.decoupled {
             decoupled[d] = true;
@@ -322,7 +338,10 @@ impl PetscKrylov {
             .filter(|&r| !decoupled[r])
             .filter_map(|r| {
                 let (a, b) = (row_ptr[r] as usize, row_ptr[r + 1] as usize);
-                cols[a..b].binary_search(&(r as i32)).ok().map(|k| (a + k) as u32)
+                cols[a..b]
+                    .binary_search(&(r as i32))
+                    .ok()
+                    .map(|k| (a + k) as u32)
             })
             .collect();
         let constrained = numbering.n > numbering.n_u;
@@ -378,7 +397,10 @@ impl Drop for PetscKrylov {
 
 impl LinearSolver for PetscKrylov {
     fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
-        let same = self.pattern.as_ref().is_some_and(|p| p.holds(n, rows, cols));
+        let same = self
+            .pattern
+            .as_ref()
+            .is_some_and(|p| p.holds(n, rows, cols));
         if same {
             return Ok(());
         }
@@ -416,7 +438,11 @@ impl LinearSolver for PetscKrylov {
             }
             if m < slot.len() {
                 let sum: f64 = diagonal.iter().map(|&k| a[k as usize].abs()).sum();
-                let d = if sum > 0.0 { sum / diagonal.len() as f64 } else { 1.0 };
+                let d = if sum > 0.0 {
+                    sum / diagonal.len() as f64
+                } else {
+                    1.0
+                };
                 for &k in &slot[m..] {
                     a[k as usize] = d;
                 }
@@ -463,7 +489,9 @@ impl LinearSolver for PetscKrylov {
         }
         if !out.converged {
             return Err(LinearError::NotConverged(format!(
-                "PETSc's {} reported {} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e})",
+                "PETSc's {} reported {} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e}); \
+                 other PETSc options (--petsc-options, docs/petsc.md), a direct solve through PETSc \
+                 (\"-pc_type lu -pc_factor_mat_solver_type mumps\") or --linear ldlt may solve it",
                 o.ksp.describe(&s)?,
                 out.reason,
                 out.iterations,

@@ -142,7 +142,12 @@ impl Matrix {
     /// An `n x n` matrix whose row `i` has the columns `cols[row_ptr[i]..
     /// row_ptr[i + 1]]` (sorted and unique in each row, so that PETSc's
     /// storage order is this one), all values zero.
-    pub fn from_csr(_: &Serial, n: usize, row_ptr: &[PetscInt], cols: &[PetscInt]) -> Result<Matrix, PetscError> {
+    pub fn from_csr(
+        _: &Serial,
+        n: usize,
+        row_ptr: &[PetscInt],
+        cols: &[PetscInt],
+    ) -> Result<Matrix, PetscError> {
         let call = "mat_create_csr";
         let sorted = row_ptr.len() == n + 1
             && row_ptr[0] == 0
@@ -163,24 +168,42 @@ impl Matrix {
         }
         let mut raw = std::ptr::null_mut();
         // SAFETY: checked arrays of n + 1 and row_ptr[n] entries; PETSc copies them
-        let code = unsafe { ffi::gapsim_petsc_mat_create_csr(index(call, n)?, row_ptr.as_ptr(), cols.as_ptr(), &mut raw) };
-        let m = Matrix { raw, nnz: cols.len() };
+        let code = unsafe {
+            ffi::gapsim_petsc_mat_create_csr(
+                index(call, n)?,
+                row_ptr.as_ptr(),
+                cols.as_ptr(),
+                &mut raw,
+            )
+        };
+        let m = Matrix {
+            raw,
+            nnz: cols.len(),
+        };
         check(call, code)?;
         Ok(m)
     }
 
     /// Lets `write` set the values (in the pattern's order), then marks the
     /// matrix changed, so the solver sets its preconditioner up again.
-    pub fn write_values(&mut self, _: &Serial, write: impl FnOnce(&mut [f64])) -> Result<(), PetscError> {
+    pub fn write_values(
+        &mut self,
+        _: &Serial,
+        write: impl FnOnce(&mut [f64]),
+    ) -> Result<(), PetscError> {
         let mut ptr = std::ptr::null_mut();
         // SAFETY: PETSc hands out its value array of `nnz` entries
-        check("mat_get_values", unsafe { ffi::gapsim_petsc_mat_get_values(self.raw, &mut ptr) })?;
+        check("mat_get_values", unsafe {
+            ffi::gapsim_petsc_mat_get_values(self.raw, &mut ptr)
+        })?;
         if self.nnz > 0 {
             // SAFETY: the array of the pattern's nnz values, ours until restored
             write(unsafe { std::slice::from_raw_parts_mut(ptr, self.nnz) });
         }
         // SAFETY: hands the array back
-        check("mat_restore_values", unsafe { ffi::gapsim_petsc_mat_restore_values(self.raw, &mut ptr) })
+        check("mat_restore_values", unsafe {
+            ffi::gapsim_petsc_mat_restore_values(self.raw, &mut ptr)
+        })
     }
 }
 

@@ -122,12 +122,10 @@ fn options_reach_petsc_and_failures_are_errors() {
         LinearSolverKind::Petsc,
         "-ksp_max_it 1 -pc_type jacobi",
     )
-    .err()
-    .expect("one Jacobi iteration cannot solve the saddle point");
+    .expect_err("one Jacobi iteration cannot solve the saddle point");
     let text = err.to_string();
     assert!(text.contains("DIVERGED_ITS"), "{text}");
     let bad = run::<2>(&scene, LinearSolverKind::Petsc, "-pc_type no_such_pc")
-        .err()
-        .expect("an unknown preconditioner is refused");
+        .expect_err("an unknown preconditioner is refused");
     assert!(bad.to_string().contains("no_such_pc"), "{bad}");
 }
