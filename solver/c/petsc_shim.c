@@ -104,22 +104,6 @@ int gapsim_petsc_options_replace(const char *text)
   return PetscOptionsInsertString(NULL, text);
 }
 
-/* Unused options of the database, as one string ("-a -b"), into buf. */
-int gapsim_petsc_options_unused(char *buf, size_t len)
-{
-  PetscInt n = 0;
-  char **names = NULL, **values = NULL;
-  PetscErrorCode ierr = PetscOptionsLeftGet(NULL, &n, &names, &values);
-  size_t used = 0;
-  if (ierr) return ierr;
-  if (len) buf[0] = 0;
-  for (PetscInt k = 0; k < n; k++) {
-    int w = snprintf(buf + used, used < len ? len - used : 0, "%s-%s", k ? " " : "", names[k]);
-    if (w > 0) used += (size_t)w;
-  }
-  return PetscOptionsLeftRestore(NULL, &n, &names, &values);
-}
-
 /* ---- Mat: sequential AIJ of a compressed-row pattern (row_ptr, cols:
  * sorted, unique columns per row), its values written in place ---- */
 int gapsim_petsc_mat_create_csr(PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, Mat *out)

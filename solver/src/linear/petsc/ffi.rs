@@ -23,7 +23,6 @@ unsafe extern "C" {
     ) -> PetscErrorCode;
     pub fn gapsim_petsc_comm_size(size: *mut c_int) -> PetscErrorCode;
     pub fn gapsim_petsc_options_replace(text: *const c_char) -> PetscErrorCode;
-    pub fn gapsim_petsc_options_unused(buf: *mut c_char, len: usize) -> PetscErrorCode;
 
     pub fn gapsim_petsc_mat_create_csr(
         n: PetscInt,

@@ -385,13 +385,7 @@ impl PetscKrylov {
 
 impl Drop for PetscKrylov {
     fn drop(&mut self) {
-        // PETSc's objects are destroyed under the guard (module docs of
-        // `objects`); without PETSc there is nothing to destroy
-        if self.pattern.is_some()
-            && let Ok(_s) = serial()
-        {
-            self.pattern = None;
-        }
+        self.pattern_reset();
     }
 }
 
@@ -529,6 +523,8 @@ impl LinearSolver for PetscKrylov {
 }
 
 impl PetscKrylov {
+    /// Drops the cached pattern's PETSc objects under the guard (module
+    /// docs of `objects`); without PETSc there is nothing to destroy.
     fn pattern_reset(&mut self) {
         if self.pattern.is_some()
             && let Ok(_s) = serial()

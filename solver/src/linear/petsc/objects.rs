@@ -117,18 +117,6 @@ impl Serial {
             ffi::gapsim_petsc_options_replace(c.as_ptr())
         })
     }
-
-    /// The options of the database no PETSc object has read so far.
-    pub fn unused_options(&self) -> Result<Vec<String>, PetscError> {
-        let mut buf = vec![0 as c_char; 4096];
-        // SAFETY: the shim writes at most `len` bytes, NUL-terminated
-        check("options_unused", unsafe {
-            ffi::gapsim_petsc_options_unused(buf.as_mut_ptr(), buf.len())
-        })?;
-        // SAFETY: NUL-terminated within the buffer
-        let text = unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy();
-        Ok(text.split_whitespace().map(str::to_owned).collect())
-    }
 }
 
 /// A sequential AIJ matrix (`Mat`) of a compressed-row pattern, its values
