@@ -96,6 +96,78 @@ int gapsim_petsc_version(int *major, int *minor, int *subminor)
 
 int gapsim_petsc_comm_size(int *size) { return MPI_Comm_size(PETSC_COMM_WORLD, size) == MPI_SUCCESS ? 0 : PETSC_ERR_MPI; }
 
+int gapsim_petsc_comm_rank(int *rank) { return MPI_Comm_rank(PETSC_COMM_WORLD, rank) == MPI_SUCCESS ? 0 : PETSC_ERR_MPI; }
+
+/* The communicator of an object: one rank (0) or every rank (1). */
+static MPI_Comm comm_of(int world) { return world ? PETSC_COMM_WORLD : PETSC_COMM_SELF; }
+
+/* Every rank's `vals` summed (op 0) or their maximum taken (op 1), entry by
+ * entry, in place on every rank. */
+int gapsim_petsc_allreduce(double *vals, PetscInt n, int op)
+{
+  if (MPI_Allreduce(MPI_IN_PLACE, vals, (int)n, MPI_DOUBLE, op ? MPI_MAX : MPI_SUM, PETSC_COMM_WORLD) != MPI_SUCCESS) {
+    snprintf(last_error, sizeof last_error, "MPI_Allreduce of %d values failed", (int)n);
+    return PETSC_ERR_MPI;
+  }
+  return 0;
+}
+
+/* ---- MatPartitioning: the graph whose rows first..first+n_local this rank
+ * holds (ia, ja: compressed rows, global columns, no self-loops) cut into one
+ * part per rank (PT-Scotch, else ParMETIS, unless -mat_partitioning_type says
+ * otherwise); every row's part, all n_total of them, into part on every
+ * rank. ---- */
+int gapsim_petsc_partition(PetscInt n_local, PetscInt n_total, const PetscInt *ia, const PetscInt *ja, PetscInt *part)
+{
+  Mat adj;
+  MatPartitioning mp;
+  IS local, all;
+  const PetscInt *ids;
+  PetscInt *i, *j, nnz = ia[n_local], k;
+  int size;
+  PetscErrorCode ierr;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  ierr = PetscMalloc1(n_local + 1, &i);
+  if (ierr) return ierr;
+  ierr = PetscMalloc1(nnz > 0 ? nnz : 1, &j);
+  if (ierr) return ierr;
+  for (k = 0; k <= n_local; k++) i[k] = ia[k];
+  for (k = 0; k < nnz; k++) j[k] = ja[k];
+  /* the adjacency matrix owns i and j from here */
+  ierr = MatCreateMPIAdj(PETSC_COMM_WORLD, n_local, n_total, i, j, NULL, &adj);
+  if (ierr) return ierr;
+  ierr = MatPartitioningCreate(PETSC_COMM_WORLD, &mp);
+  if (ierr) return ierr;
+  ierr = MatPartitioningSetAdjacency(mp, adj);
+  if (ierr) return ierr;
+  ierr = MatPartitioningSetNParts(mp, size);
+  if (ierr) return ierr;
+#if defined(PETSC_HAVE_PTSCOTCH)
+  ierr = MatPartitioningSetType(mp, MATPARTITIONINGPTSCOTCH);
+#elif defined(PETSC_HAVE_PARMETIS)
+  ierr = MatPartitioningSetType(mp, MATPARTITIONINGPARMETIS);
+#endif
+  if (ierr) return ierr;
+  ierr = MatPartitioningSetFromOptions(mp);
+  if (ierr) return ierr;
+  ierr = MatPartitioningApply(mp, &local);
+  if (ierr) return ierr;
+  ierr = ISAllGather(local, &all);
+  if (ierr) return ierr;
+  ierr = ISGetIndices(all, &ids);
+  if (ierr) return ierr;
+  for (k = 0; k < n_total; k++) part[k] = ids[k];
+  ierr = ISRestoreIndices(all, &ids);
+  if (ierr) return ierr;
+  ierr = ISDestroy(&all);
+  if (ierr) return ierr;
+  ierr = ISDestroy(&local);
+  if (ierr) return ierr;
+  ierr = MatPartitioningDestroy(&mp);
+  if (ierr) return ierr;
+  return MatDestroy(&adj);
+}
+
 /* The options database: emptied, then given `text` (PETSc's option syntax). */
 int gapsim_petsc_options_replace(const char *text)
 {
@@ -127,10 +199,80 @@ int gapsim_petsc_mat_restore_values(Mat a, PetscScalar **vals) { return MatSeqAI
 
 int gapsim_petsc_mat_destroy(Mat *a) { return MatDestroy(a); }
 
-/* ---- Vec ---- */
-int gapsim_petsc_vec_create(PetscInt n, PetscInt bs, Vec *out)
+/* ---- Mat: an AIJ matrix over every rank, n_local of its n rows on this
+ * rank (the ranks' rows contiguous in rank order), with the entries this rank
+ * adds: row r's columns cols[row_ptr[r]..row_ptr[r + 1]] (global rows, every
+ * one of the n listed, any rank's: PETSc sends the others' rows to their
+ * owner). The pattern is gathered on each row's owner through a
+ * MATPREALLOCATOR, so the matrix is preallocated exactly; an entry outside
+ * it is an error afterwards. ---- */
+int gapsim_petsc_mat_create_rows(PetscInt n_local, PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, Mat *out)
 {
-  PetscErrorCode ierr = VecCreateSeq(PETSC_COMM_SELF, n, out);
+  Mat pre, a;
+  PetscScalar *zeros;
+  PetscInt r, longest = 0;
+  PetscErrorCode ierr;
+  for (r = 0; r < n; r++)
+    if (row_ptr[r + 1] - row_ptr[r] > longest) longest = row_ptr[r + 1] - row_ptr[r];
+  ierr = PetscCalloc1(longest > 0 ? longest : 1, &zeros);
+  if (ierr) return ierr;
+  ierr = MatCreate(PETSC_COMM_WORLD, &pre);
+  if (ierr) return ierr;
+  ierr = MatSetSizes(pre, n_local, n_local, n, n);
+  if (ierr) return ierr;
+  ierr = MatSetType(pre, MATPREALLOCATOR);
+  if (ierr) return ierr;
+  ierr = MatSetUp(pre);
+  if (ierr) return ierr;
+  for (r = 0; r < n; r++) {
+    PetscInt len = row_ptr[r + 1] - row_ptr[r];
+    if (len == 0) continue;
+    ierr = MatSetValues(pre, 1, &r, len, cols + row_ptr[r], zeros, INSERT_VALUES);
+    if (ierr) return ierr;
+  }
+  ierr = PetscFree(zeros);
+  if (ierr) return ierr;
+  ierr = MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY);
+  if (ierr) return ierr;
+  ierr = MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY);
+  if (ierr) return ierr;
+  ierr = MatCreate(PETSC_COMM_WORLD, &a);
+  if (ierr) return ierr;
+  *out = a;
+  ierr = MatSetSizes(a, n_local, n_local, n, n);
+  if (ierr) return ierr;
+  ierr = MatSetType(a, MATAIJ);
+  if (ierr) return ierr;
+  ierr = MatPreallocatorPreallocate(pre, PETSC_TRUE, a);
+  if (ierr) return ierr;
+  ierr = MatDestroy(&pre);
+  if (ierr) return ierr;
+  return MatSetOption(a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE);
+}
+
+/* The values of a gapsim_petsc_mat_create_rows matrix: zeroed, then this
+ * rank's rows (the same row_ptr and cols, vals beside cols) added, every
+ * rank's contributions to an entry summed on its owner. Collective. */
+int gapsim_petsc_mat_add_rows(Mat a, PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, const PetscScalar *vals)
+{
+  PetscInt r;
+  PetscErrorCode ierr = MatZeroEntries(a);
+  if (ierr) return ierr;
+  for (r = 0; r < n; r++) {
+    PetscInt len = row_ptr[r + 1] - row_ptr[r];
+    if (len == 0) continue;
+    ierr = MatSetValues(a, 1, &r, len, cols + row_ptr[r], vals + row_ptr[r], ADD_VALUES);
+    if (ierr) return ierr;
+  }
+  ierr = MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY);
+  if (ierr) return ierr;
+  return MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY);
+}
+
+/* ---- Vec ---- */
+int gapsim_petsc_vec_create(int world, PetscInt n, PetscInt bs, Vec *out)
+{
+  PetscErrorCode ierr = world ? VecCreateMPI(PETSC_COMM_WORLD, n, PETSC_DETERMINE, out) : VecCreateSeq(PETSC_COMM_SELF, n, out);
   if (ierr) return ierr;
   return bs > 1 ? VecSetBlockSize(*out, bs) : 0;
 }
@@ -161,12 +303,38 @@ int gapsim_petsc_vec_get(Vec v, PetscScalar *vals, PetscInt n)
   return VecRestoreArrayRead(v, &a);
 }
 
+/* Every rank's entries, in order, into vals (n: the global size) on every rank. */
+int gapsim_petsc_vec_gather_all(Vec v, PetscScalar *vals, PetscInt n)
+{
+  VecScatter ctx;
+  Vec all;
+  const PetscScalar *a;
+  PetscInt len;
+  PetscErrorCode ierr = VecScatterCreateToAll(v, &ctx, &all);
+  if (ierr) return ierr;
+  ierr = VecScatterBegin(ctx, v, all, INSERT_VALUES, SCATTER_FORWARD);
+  if (ierr) return ierr;
+  ierr = VecScatterEnd(ctx, v, all, INSERT_VALUES, SCATTER_FORWARD);
+  if (ierr) return ierr;
+  ierr = VecGetLocalSize(all, &len);
+  if (ierr) return ierr;
+  if (len != n) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "gathered vector of %d entries read into %d values", (int)len, (int)n);
+  ierr = VecGetArrayRead(all, &a);
+  if (ierr) return ierr;
+  memcpy(vals, a, (size_t)n * sizeof(PetscScalar));
+  ierr = VecRestoreArrayRead(all, &a);
+  if (ierr) return ierr;
+  ierr = VecScatterDestroy(&ctx);
+  if (ierr) return ierr;
+  return VecDestroy(&all);
+}
+
 int gapsim_petsc_vec_destroy(Vec *v) { return VecDestroy(v); }
 
 /* ---- IS: a contiguous range of equations, with a block size ---- */
-int gapsim_petsc_is_create_range(PetscInt first, PetscInt n, PetscInt bs, IS *out)
+int gapsim_petsc_is_create_range(int world, PetscInt first, PetscInt n, PetscInt bs, IS *out)
 {
-  PetscErrorCode ierr = ISCreateStride(PETSC_COMM_SELF, n, first, 1, out);
+  PetscErrorCode ierr = ISCreateStride(comm_of(world), n, first, 1, out);
   if (ierr) return ierr;
   return bs > 1 ? ISSetBlockSize(*out, bs) : 0;
 }
@@ -186,7 +354,7 @@ int gapsim_petsc_is_compose_near_null_space(IS is, MatNullSpace sp)
 int gapsim_petsc_nullspace_destroy(MatNullSpace *sp) { return MatNullSpaceDestroy(sp); }
 
 /* ---- KSP ---- */
-int gapsim_petsc_ksp_create(KSP *out) { return KSPCreate(PETSC_COMM_SELF, out); }
+int gapsim_petsc_ksp_create(int world, KSP *out) { return KSPCreate(comm_of(world), out); }
 
 int gapsim_petsc_ksp_set_operators(KSP ksp, Mat a) { return KSPSetOperators(ksp, a, a); }
 

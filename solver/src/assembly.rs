@@ -52,16 +52,35 @@ pub fn assemble_solid_lifted<const D: usize>(
 ) where
     Dim<D>: SurfaceDim<D>,
 {
+    assemble_solid_of(model, dofs, u, lift, None, sys);
+}
+
+/// [`assemble_solid_lifted`] over the elements `elements` only (in their
+/// order; `None`: every element, bit for bit [`assemble_solid_lifted`]):
+/// one MPI rank's part of the solid elements (`crate::partition`).
+pub fn assemble_solid_of<const D: usize>(
+    model: &Model<D>,
+    dofs: &DofMap,
+    u: &[f64],
+    lift: Option<&[f64]>,
+    elements: Option<&[ElementId]>,
+    sys: &mut System,
+) where
+    Dim<D>: SurfaceDim<D>,
+{
     let mesh = &model.mesh;
-    let responses: Vec<ElementResponse> = par::map(mesh.element_count(), PAR_MIN_LEN, |e| {
-        let e = ElementId::new(e);
+    let count = elements.map_or(mesh.element_count(), <[ElementId]>::len);
+    let element = |k: usize| elements.map_or(ElementId::new(k), |list| list[k]);
+    let responses: Vec<ElementResponse> = par::map(count, PAR_MIN_LEN, |k| {
+        let e = element(k);
         let material = &mesh.bodies[mesh.element_body[e.index()]].material;
         mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material)
     });
     sys.rows.reserve(64 * responses.len());
     sys.cols.reserve(64 * responses.len());
     sys.vals.reserve(64 * responses.len());
-    for (el, resp) in mesh.elements.iter().zip(&responses) {
+    for (k, resp) in responses.iter().enumerate() {
+        let el = &mesh.elements[element(k).index()];
         let eqs = dofs.element_eqs::<D>(el);
         let f_int = resp.f_int();
         let n = f_int.len();
@@ -97,14 +116,36 @@ pub fn add_external<const D: usize>(
 where
     Dim<D>: SurfaceDim<D>,
 {
-    let mut f = vec![0.0; model.dof_count()];
-    for l in &model.loads {
-        f[l.dof.index()] += model.factor(l.amplitude, load_factor) * l.value;
-    }
+    let f = external_force(model, load_factor);
     for (dof, v) in f.iter().enumerate() {
         if let Some(e) = dofs.eq(DofId::new(dof)) {
             sys.residual[e.index()] -= v;
         }
     }
+    norm(&f)
+}
+
+/// The norm of the external force at `load_factor` (what [`add_external`]
+/// returns, without adding it).
+pub fn external_force_norm<const D: usize>(model: &Model<D>, load_factor: f64) -> f64
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    norm(&external_force(model, load_factor))
+}
+
+/// The external force at `load_factor` at every dof.
+fn external_force<const D: usize>(model: &Model<D>, load_factor: f64) -> Vec<f64>
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    let mut f = vec![0.0; model.dof_count()];
+    for l in &model.loads {
+        f[l.dof.index()] += model.factor(l.amplitude, load_factor) * l.value;
+    }
+    f
+}
+
+fn norm(f: &[f64]) -> f64 {
     f.iter().map(|v| v * v).sum::<f64>().sqrt()
 }

@@ -69,6 +69,7 @@ pub mod monitor;
 pub mod newton;
 pub mod options;
 mod par;
+pub mod partition;
 pub mod report;
 pub mod scene;
 pub mod solution;

@@ -65,7 +65,8 @@ impl DofMap {
     }
 
     /// What the equations are, for the linear solver: the dof of each free
-    /// equation and `model`'s reference coordinates.
+    /// equation and `model`'s reference coordinates (no node ranks: one
+    /// rank's layout).
     pub fn layout<const D: usize>(&self, model: &Model<D>) -> SystemLayout
     where
         Dim<D>: SurfaceDim<D>,
@@ -80,6 +81,7 @@ impl DofMap {
             dim: D,
             free_dofs,
             coordinates: model.mesh.nodes_ref.iter().flatten().copied().collect(),
+            node_rank: Vec::new(),
         }
     }
 

@@ -71,6 +71,9 @@ struct Progress<'a> {
     /// [`LIVE_INTERVAL`]): when it was last written. `None` when stderr
     /// is not a terminal (piped or redirected: only the step lines).
     live: Option<Mutex<Option<Instant>>>,
+    /// Whether this process reports (not a rank other than 0 of a run
+    /// across MPI ranks).
+    root: bool,
 }
 
 impl Progress<'_> {
@@ -106,6 +109,9 @@ impl Monitor for Progress<'_> {
 
     fn step_done(&self, p: &StepProgress) {
         self.clear_live();
+        if !self.root {
+            return;
+        }
         eprintln!(
             "step {}/{}: load factor {}, {} iterations, {} cut-backs, {:.1} s",
             p.step,
@@ -119,6 +125,9 @@ impl Monitor for Progress<'_> {
 
     fn cut_back(&self, c: &Cutback) {
         self.clear_live();
+        if !self.root {
+            return;
+        }
         eprintln!(
             "step {}/{}: cut back, {} -> {} failed: {}",
             c.step, self.steps, c.from_load_factor, c.attempted_load_factor, c.reason
@@ -216,22 +225,36 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     options.formulation = args.formulation;
     options.record_steps = args.every_step;
+    // across MPI ranks (mpiexec, --linear petsc) rank 0 reports and writes
+    let root = solver::linear::launch_rank(options.linear).map_err(|e| e.to_string())? == 0;
     let out = match &args.out {
-        Some(dir) => Some(OutDir::check(dir, is_result_file)?),
-        None => None,
+        Some(dir) if root => Some(OutDir::check(dir, is_result_file)?),
+        _ => None,
     };
     let interrupt = Interrupt::install().map_err(|e| format!("cannot catch Ctrl-C: {e}"))?;
     let progress = Progress {
         interrupt: &interrupt,
         steps: options.steps,
-        live: std::io::stderr().is_terminal().then(|| Mutex::new(None)),
+        live: (root && std::io::stderr().is_terminal()).then(|| Mutex::new(None)),
+        root,
+    };
+    let at = Outputs {
+        out: out.as_ref(),
+        root,
     };
     match scene.dimension()? {
-        Dimension::Two => run_in::<2>(args, &scene, &options, out.as_ref(), &interrupt, &progress),
-        Dimension::Three => {
-            run_in::<3>(args, &scene, &options, out.as_ref(), &interrupt, &progress)
-        }
+        Dimension::Two => run_in::<2>(args, &scene, &options, at, &interrupt, &progress),
+        Dimension::Three => run_in::<3>(args, &scene, &options, at, &interrupt, &progress),
     }
+}
+
+/// Where `gapsim run` reports: the output folder (`--out`), and whether
+/// this process prints and writes at all (every process of a one-rank run;
+/// rank 0 of a run across MPI ranks, whose other ranks solve silently).
+#[derive(Clone, Copy)]
+struct Outputs<'a> {
+    out: Option<&'a OutDir>,
+    root: bool,
 }
 
 /// What `gapsim run` reports of the contact of dimension `D` beyond what
@@ -328,7 +351,7 @@ fn run_in<const D: usize>(
     args: &RunArgs,
     scene: &Scene,
     options: &SolveOptions,
-    out: Option<&OutDir>,
+    at: Outputs,
     interrupt: &Interrupt,
     progress: &Progress,
 ) -> CommandResult
@@ -343,6 +366,10 @@ where
         }
         result => result?,
     };
+    if !at.root {
+        return Ok(());
+    }
+    let out = at.out;
     let name = scene.name.clone().unwrap_or_else(|| scene.origin.clone());
     print_header(&name, &sol);
     let facet = FacetOf::<D>::NAME;
@@ -670,8 +697,13 @@ where
     );
     match (&sol.krylov, sol.factor_nonzeros) {
         (Some(k), _) => println!(
-            "krylov          {} ({} solves, {} iterations, {:.1} per solve, at most {})",
+            "krylov          {}{} ({} solves, {} iterations, {:.1} per solve, at most {})",
             k.method,
+            if k.ranks > 1 {
+                format!(" on {} MPI ranks", k.ranks)
+            } else {
+                String::new()
+            },
             k.solves,
             k.iterations,
             k.iterations as f64 / k.solves.max(1) as f64,

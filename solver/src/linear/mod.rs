@@ -77,6 +77,38 @@ pub struct SystemLayout {
     pub free_dofs: Vec<usize>,
     /// Every node's reference coordinates, node-major (`D` per node).
     pub coordinates: Vec<f64>,
+    /// The rank that owns each node's equations across MPI ranks (see
+    /// [`Ranks`]); empty on one rank.
+    pub node_rank: Vec<usize>,
+}
+
+/// The MPI ranks a solve runs on: `size` processes launched together
+/// (`mpiexec -n size`), this one `rank`. One rank unless the solver is
+/// PETSc's and the launch had several.
+///
+/// Across ranks every rank holds the whole model and state; each assembles
+/// its own elements (and rank 0 the contact), the residual and the energy
+/// are summed over the ranks ([`LinearSolver::sum_over_ranks`]) and the
+/// linear solve runs on all of them, each owning a contiguous range of the
+/// equations; every rank gets the whole correction, so every decision of
+/// Newton's loop is the same on every rank.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Ranks {
+    /// This process's rank, `0..size`.
+    pub rank: usize,
+    /// How many ranks the launch has.
+    pub size: usize,
+}
+
+impl Ranks {
+    /// One rank.
+    pub const ONE: Ranks = Ranks { rank: 0, size: 1 };
+
+    /// Whether this is rank 0 (which assembles the contact and writes the
+    /// output).
+    pub fn is_root(&self) -> bool {
+        self.rank == 0
+    }
 }
 
 /// An iterative solver's work so far.
@@ -90,6 +122,8 @@ pub struct KrylovCounts {
     pub iterations: usize,
     /// The most iterations of one solve.
     pub max_iterations: usize,
+    /// The MPI ranks the solves ran across (0 and 1: one process).
+    pub ranks: usize,
 }
 
 /// A sparse direct solver for the Newton system, with the symbolic analysis
@@ -159,6 +193,42 @@ pub trait LinearSolver: Send {
         None
     }
 
+    /// The ranks this solver spans ([`Ranks`]; one for every solver but
+    /// PETSc's launched on several).
+    fn ranks(&self) -> Ranks {
+        Ranks::ONE
+    }
+
+    /// Every rank's `values` summed entry by entry, on every rank
+    /// (collective across [`LinearSolver::ranks`]; nothing on one rank).
+    fn sum_over_ranks(&self, values: &mut [f64]) -> Result<(), LinearError> {
+        let _ = values;
+        Ok(())
+    }
+
+    /// Every rank's `values`' largest entry by entry, on every rank
+    /// (collective; nothing on one rank).
+    fn max_over_ranks(&self, values: &mut [f64]) -> Result<(), LinearError> {
+        let _ = values;
+        Ok(())
+    }
+
+    /// The rank of each vertex of a graph of `n_total` vertices (the
+    /// elements, adjacent when they share a facet), of which this rank
+    /// gives the rows `first..first + row_ptr.len() - 1` (compressed rows,
+    /// global columns; the ranks' rows in rank order): a graph partition
+    /// across the ranks, cutting few edges. Collective; every vertex on
+    /// rank 0 on one rank.
+    fn partition(
+        &self,
+        n_total: usize,
+        row_ptr: &[i32],
+        cols: &[i32],
+    ) -> Result<Vec<usize>, LinearError> {
+        let _ = (row_ptr, cols);
+        Ok(vec![0; n_total])
+    }
+
     /// Solves `A x = b` for the `n x n` matrix given by the triplets
     /// `(rows[k], cols[k], vals[k])`: [`analyse`](Self::analyse),
     /// [`factor`](Self::factor), [`solve`](Self::solve), then
@@ -213,7 +283,7 @@ impl LinearSolverKind {
             LinearSolverKind::Lu => Box::new(SparseLu::new()),
             LinearSolverKind::Ldlt => Box::new(SparseLdlt::new()),
             #[cfg(feature = "petsc")]
-            LinearSolverKind::Petsc => Box::new(petsc::PetscKrylov::new(options)),
+            LinearSolverKind::Petsc => petsc::build(options),
             #[cfg(not(feature = "petsc"))]
             LinearSolverKind::Petsc => Box::new(SparseLdlt::new()),
         }
@@ -271,15 +341,43 @@ impl std::str::FromStr for LinearSolverKind {
 }
 
 /// Refuses a solve that `kind` cannot do in this process, before any work:
-/// the `petsc` solver solves on one MPI rank (a launch under `mpiexec -n N`
-/// with `N > 1` would solve the whole model on every rank).
+/// only the `petsc` solver runs across MPI ranks; any other under
+/// `mpiexec -n N` with `N > 1` would solve the whole model on every rank
+/// and write the same files from each.
 pub fn check_launch(kind: LinearSolverKind) -> Result<(), LinearError> {
+    if kind == LinearSolverKind::Petsc {
+        return Ok(());
+    }
+    match launched_ranks() {
+        Some(n) if n > 1 => Err(LinearError::Petsc(format!(
+            "this run was launched on {n} MPI ranks (mpiexec -n {n}), and only the petsc linear solver \
+             runs across ranks (--linear petsc, in a build with the petsc feature); the {kind} solver \
+             would solve the whole scene on every rank: run it without mpiexec"
+        ))),
+        _ => Ok(()),
+    }
+}
+
+/// How many processes the MPI launcher started together, from its
+/// environment (Open MPI's `OMPI_COMM_WORLD_SIZE`, MPICH's and Intel MPI's
+/// `PMI_SIZE`); `None` outside a launch. Read without initialising MPI, so
+/// a build without the `petsc` feature knows it too.
+pub fn launched_ranks() -> Option<usize> {
+    ["OMPI_COMM_WORLD_SIZE", "PMI_SIZE"]
+        .iter()
+        .find_map(|v| std::env::var(v).ok()?.trim().parse().ok())
+}
+
+/// This process's rank for `kind`'s solve: PETSc's rank in its world
+/// (initialising MPI), 0 for the others (which refuse a launch on several
+/// ranks, [`check_launch`]).
+pub fn launch_rank(kind: LinearSolverKind) -> Result<usize, LinearError> {
     #[cfg(feature = "petsc")]
     if kind == LinearSolverKind::Petsc {
-        return petsc::check_one_rank();
+        return petsc::world_rank();
     }
     let _ = kind;
-    Ok(())
+    Ok(0)
 }
 
 /// The checks shared by every solver: `x` is returned when it is finite and

@@ -161,6 +161,7 @@ where
             // solid
             let t = Instant::now();
             let f_ext = self.setup.add_solid(&x.u, lift.as_deref(), to, &mut sys);
+            self.setup.sum_over_ranks(&mut sys)?;
             self.timings.solid_assembly += t.elapsed();
 
             let norm = sys.residual_norm();

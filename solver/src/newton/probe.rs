@@ -113,6 +113,13 @@ where
             )));
         }
         let setup = Setup::new(model, options)?;
+        if setup.partition.ranks.size > 1 {
+            return Err(SolverError::Options(format!(
+                "the iteration probe measures one process, and this one is rank {} of {} (mpiexec): \
+                 run it without mpiexec",
+                setup.partition.ranks.rank, setup.partition.ranks.size
+            )));
+        }
         let n_mult = setup.dofs.n_mult;
         let nodes = model.mesh.node_count();
         if state.displacements.len() != nodes || state.multipliers.len() != n_mult {

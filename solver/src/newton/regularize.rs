@@ -8,16 +8,26 @@
 //! active set.
 
 use crate::ids::MultiplierIndex;
+use crate::linear::LinearError;
 use crate::system::{DofMap, System};
 
 /// Adds the tangent-only multiplier regularisation (module docs): `-eps` on
 /// the diagonal of the active multiplier rows (an explicit zero on the
 /// inactive ones, so the pattern does not depend on the active set), with
 /// `eps = delta max|G|^2 / max|K_uu|`. Nothing when `delta` is 0 or there
-/// are no multipliers.
-pub(super) fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta: f64) {
+/// are no multipliers. Across MPI ranks the maxima are taken over every
+/// rank's triplets (`max_over_ranks`, collective) and only the rank that
+/// assembles the contact (`adds`) adds the diagonal.
+pub(super) fn regularize(
+    sys: &mut System,
+    dofs: &DofMap,
+    active: &[bool],
+    delta: f64,
+    max_over_ranks: impl FnOnce(&mut [f64]) -> Result<(), LinearError>,
+    adds: bool,
+) -> Result<(), LinearError> {
     if !(delta > 0.0) || dofs.n_mult == 0 {
-        return;
+        return Ok(());
     }
     let n_free = dofs.n_free;
     let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
@@ -28,6 +38,12 @@ pub(super) fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta
             g_max = g_max.max(v.abs());
         }
     }
+    let mut maxima = [k_max, g_max];
+    max_over_ranks(&mut maxima)?;
+    let [k_max, g_max] = maxima;
+    if !adds {
+        return Ok(());
+    }
     let eps = if k_max > 0.0 {
         delta * g_max * g_max / k_max
     } else {
@@ -37,4 +53,5 @@ pub(super) fn regularize(sys: &mut System, dofs: &DofMap, active: &[bool], delta
         let row = dofs.mult_eq(MultiplierIndex::new(m));
         sys.push(row, row, if on { -eps } else { 0.0 });
     }
+    Ok(())
 }

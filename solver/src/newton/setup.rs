@@ -23,7 +23,7 @@
 
 use std::cell::Cell;
 
-use crate::assembly::{add_external, assemble_solid_lifted};
+use crate::assembly::{add_external, assemble_solid_of, external_force_norm};
 use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
 use crate::error::SolverError;
@@ -31,6 +31,7 @@ use crate::ids::ContactPointIndex;
 use crate::linear::{LinearError, LinearSolver};
 use crate::model::Model;
 use crate::options::SolveOptions;
+use crate::partition::Partition;
 use crate::solution::ContactPointId;
 use crate::system::{DofMap, System};
 
@@ -53,6 +54,8 @@ where
     pub(super) linear: Box<dyn LinearSolver>,
     /// The mesh size (scales the active-set threshold).
     pub(super) length_scale: f64,
+    /// This MPI rank's elements (every element on one rank).
+    pub(super) partition: Partition,
     /// The buffers of the last solved system, handed back by
     /// [`Setup::recycle`] and reused by the next [`Setup::contact_system`]
     /// (the triplet count barely changes between iterations; at 10^6
@@ -75,13 +78,17 @@ where
         let layout = S::build(model, options.formulation)?;
         let dofs = DofMap::new(model, layout.multiplier_count());
         let mut linear = options.linear.build(&options.petsc_options);
-        linear.set_layout(&dofs.layout(model));
+        let partition = Partition::of(model, linear.as_ref())?;
+        let mut system_layout = dofs.layout(model);
+        system_layout.node_rank = partition.node_rank.clone();
+        linear.set_layout(&system_layout);
         Ok(Setup {
             model,
             layout,
             dofs,
             linear,
             length_scale: model.mesh.size(),
+            partition,
             spare: Cell::new(None),
         })
     }
@@ -187,16 +194,20 @@ where
             }
             None => System::new(n_sys),
         };
-        self.layout
-            .assemble(evals, lambda, &active, &self.dofs, &mut sys);
-        S::assemble_ties(ties, evals, others, &self.dofs, &mut sys);
+        if self.partition.assembles_contact() {
+            self.layout
+                .assemble(evals, lambda, &active, &self.dofs, &mut sys);
+            S::assemble_ties(ties, evals, others, &self.dofs, &mut sys);
+        }
         (sys, active)
     }
 
     /// Adds the solid elements at displacements `u` (with a `lift`, the
     /// linearised effect of that prescribed increment,
-    /// [`assemble_solid_lifted`]) and the external force at load factor
-    /// `to` to `sys`; returns `|f_ext|`.
+    /// [`crate::assembly::assemble_solid_lifted`]) and the external force at
+    /// load factor `to` to `sys`; returns `|f_ext|`. Across MPI ranks, this
+    /// rank's elements, and the external force on rank 0 only
+    /// ([`Setup::sum_over_ranks`] then makes the system whole).
     pub(super) fn add_solid(
         &self,
         u: &[f64],
@@ -204,8 +215,26 @@ where
         to: f64,
         sys: &mut System,
     ) -> f64 {
-        assemble_solid_lifted(self.model, &self.dofs, u, lift, sys);
-        add_external(self.model, &self.dofs, to, sys)
+        let elements = self.partition.elements();
+        assemble_solid_of(self.model, &self.dofs, u, lift, elements, sys);
+        if self.partition.assembles_contact() {
+            add_external(self.model, &self.dofs, to, sys)
+        } else {
+            external_force_norm(self.model, to)
+        }
+    }
+
+    /// Sums the residual and the energy of `sys` over the MPI ranks, so
+    /// that every rank holds the whole residual (its own triplets stay its
+    /// own: the linear solver sums them); nothing on one rank.
+    pub(super) fn sum_over_ranks(&self, sys: &mut System) -> Result<(), SolverError> {
+        if self.partition.ranks.size <= 1 {
+            return Ok(());
+        }
+        sys.residual.push(sys.energy);
+        let summed = self.linear.sum_over_ranks(&mut sys.residual);
+        sys.energy = sys.residual.pop().unwrap_or(0.0);
+        Ok(summed?)
     }
 
     /// Keeps `sys`'s buffers for the next [`Setup::contact_system`].
@@ -225,7 +254,14 @@ where
         delta: f64,
         (norm, first, tol_abs): (f64, f64, f64),
     ) -> Result<Vec<f64>, LinearError> {
-        regularize(sys, &self.dofs, active, delta);
+        regularize(
+            sys,
+            &self.dofs,
+            active,
+            delta,
+            |m| self.linear.max_over_ranks(m),
+            self.partition.assembles_contact(),
+        )?;
         self.linear.set_forcing(forcing(norm, first, tol_abs));
         self.linear.solve_system(
             sys.residual.len(),

@@ -1,4 +1,4 @@
-//! The C shim's functions (`c/shim.c`), declared by hand: plain C types
+//! The C shim's functions (`solver/c/petsc_shim.c`), declared by hand: plain C types
 //! only (`PetscInt` is `i32`, `PetscScalar` and `PetscReal` `f64`,
 //! `PetscErrorCode` `i32`: the shim's static assertions
 //! check each at build time), PETSc's objects as opaque pointers.
@@ -22,6 +22,15 @@ unsafe extern "C" {
         sub: *mut c_int,
     ) -> PetscErrorCode;
     pub fn gapsim_petsc_comm_size(size: *mut c_int) -> PetscErrorCode;
+    pub fn gapsim_petsc_comm_rank(rank: *mut c_int) -> PetscErrorCode;
+    pub fn gapsim_petsc_allreduce(vals: *mut f64, n: PetscInt, op: c_int) -> PetscErrorCode;
+    pub fn gapsim_petsc_partition(
+        n_local: PetscInt,
+        n_total: PetscInt,
+        ia: *const PetscInt,
+        ja: *const PetscInt,
+        part: *mut PetscInt,
+    ) -> PetscErrorCode;
     pub fn gapsim_petsc_options_replace(text: *const c_char) -> PetscErrorCode;
 
     pub fn gapsim_petsc_mat_create_csr(
@@ -33,13 +42,34 @@ unsafe extern "C" {
     pub fn gapsim_petsc_mat_get_values(a: Mat, vals: *mut *mut f64) -> PetscErrorCode;
     pub fn gapsim_petsc_mat_restore_values(a: Mat, vals: *mut *mut f64) -> PetscErrorCode;
     pub fn gapsim_petsc_mat_destroy(a: *mut Mat) -> PetscErrorCode;
+    pub fn gapsim_petsc_mat_create_rows(
+        n_local: PetscInt,
+        n: PetscInt,
+        row_ptr: *const PetscInt,
+        cols: *const PetscInt,
+        out: *mut Mat,
+    ) -> PetscErrorCode;
+    pub fn gapsim_petsc_mat_add_rows(
+        a: Mat,
+        n: PetscInt,
+        row_ptr: *const PetscInt,
+        cols: *const PetscInt,
+        vals: *const f64,
+    ) -> PetscErrorCode;
 
-    pub fn gapsim_petsc_vec_create(n: PetscInt, bs: PetscInt, out: *mut Vec) -> PetscErrorCode;
+    pub fn gapsim_petsc_vec_create(
+        world: c_int,
+        n: PetscInt,
+        bs: PetscInt,
+        out: *mut Vec,
+    ) -> PetscErrorCode;
+    pub fn gapsim_petsc_vec_gather_all(v: Vec, vals: *mut f64, n: PetscInt) -> PetscErrorCode;
     pub fn gapsim_petsc_vec_set(v: Vec, vals: *const f64, n: PetscInt) -> PetscErrorCode;
     pub fn gapsim_petsc_vec_get(v: Vec, vals: *mut f64, n: PetscInt) -> PetscErrorCode;
     pub fn gapsim_petsc_vec_destroy(v: *mut Vec) -> PetscErrorCode;
 
     pub fn gapsim_petsc_is_create_range(
+        world: c_int,
         first: PetscInt,
         n: PetscInt,
         bs: PetscInt,
@@ -51,7 +81,7 @@ unsafe extern "C" {
     pub fn gapsim_petsc_is_compose_near_null_space(is: Is, sp: NullSpace) -> PetscErrorCode;
     pub fn gapsim_petsc_nullspace_destroy(sp: *mut NullSpace) -> PetscErrorCode;
 
-    pub fn gapsim_petsc_ksp_create(out: *mut Ksp) -> PetscErrorCode;
+    pub fn gapsim_petsc_ksp_create(world: c_int, out: *mut Ksp) -> PetscErrorCode;
     pub fn gapsim_petsc_ksp_set_operators(ksp: Ksp, a: Mat) -> PetscErrorCode;
     pub fn gapsim_petsc_ksp_set_from_options(ksp: Ksp) -> PetscErrorCode;
     pub fn gapsim_petsc_ksp_pc_is_fieldsplit(ksp: Ksp, yes: *mut c_int) -> PetscErrorCode;

@@ -49,10 +49,11 @@
 
 mod ffi;
 pub mod objects;
+pub mod ranks;
 
 use std::time::{Duration, Instant};
 
-use objects::{IndexSet, Ksp, Matrix, NearNullSpace, PetscError, Serial, Vector, serial};
+use objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, PetscError, Serial, Vector, serial};
 
 use super::{KrylovCounts, LinearError, LinearSolver, SystemLayout};
 
@@ -68,16 +69,49 @@ pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 30 -ksp_m
 pub const DEFAULT_OPTIONS_UNCONSTRAINED: &str =
     "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 -pc_type gamg";
 
-/// Refuses a launch across several MPI ranks (see [`super::check_launch`]).
-pub fn check_one_rank() -> Result<(), LinearError> {
-    let ranks = serial()?.world_size()?;
-    if ranks > 1 {
-        return Err(LinearError::Petsc(format!(
-            "the petsc solver solves on one MPI rank in this version, and this run was launched on {ranks} \
-             (mpiexec -n {ranks}): run it without mpiexec"
-        )));
+/// This process's rank in PETSc's world (initialising MPI and PETSc).
+pub fn world_rank() -> Result<usize, LinearError> {
+    Ok(serial()?.world_rank()?)
+}
+
+/// The PETSc solver of options `options`: [`PetscKrylov`] on one rank,
+/// [`ranks::PetscRanks`] across several (a launch under `mpiexec -n N`).
+/// A PETSc that cannot start gives the one-rank solver, which reports why
+/// at its first call.
+pub fn build(options: &str) -> Box<dyn LinearSolver> {
+    let ranks = serial().and_then(|s| {
+        Ok(super::Ranks {
+            rank: s.world_rank()?,
+            size: s.world_size()?,
+        })
+    });
+    match ranks {
+        Ok(r) if r.size > 1 => Box::new(ranks::PetscRanks::new(options, r)),
+        _ => Box::new(PetscKrylov::new(options)),
     }
-    Ok(())
+}
+
+/// The options string installed for a system with or without constraint
+/// rows, with the solver's own `options` (module docs, "Options and
+/// tolerance").
+fn options_for(options: &str, constrained: bool) -> String {
+    let defaults = if constrained {
+        DEFAULT_OPTIONS
+    } else {
+        DEFAULT_OPTIONS_UNCONSTRAINED
+    };
+    let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
+    format!("{defaults} {env} {options}")
+}
+
+/// The error of a Krylov solve that ended without converging.
+fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> LinearError {
+    LinearError::NotConverged(format!(
+        "PETSc's {method} reported {} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e}); \
+         other PETSc options (--petsc-options, docs/petsc.md), a direct solve through PETSc \
+         (\"-pc_type lu -pc_factor_mat_solver_type mumps\") or --linear ldlt may solve it",
+        out.reason, out.iterations, out.residual
+    ))
 }
 
 impl From<PetscError> for LinearError {
@@ -293,13 +327,7 @@ impl PetscKrylov {
     /// The options string installed for a system with or without constraint
     /// rows (module docs, "Options and tolerance").
     fn options_for(&self, constrained: bool) -> String {
-        let defaults = if constrained {
-            DEFAULT_OPTIONS
-        } else {
-            DEFAULT_OPTIONS_UNCONSTRAINED
-        };
-        let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
-        format!("{defaults} {env} {}", self.options)
+        options_for(&self.options, constrained)
     }
 
     /// The options of the cached pattern's system.
@@ -347,24 +375,25 @@ impl PetscKrylov {
         let constrained = numbering.n > numbering.n_u;
         s.replace_options(&self.options_for(constrained))?;
         let a = Matrix::from_csr(s, numbering.n, &row_ptr, &cols)?;
-        let mut ksp = Ksp::new(s, &a)?;
+        let mut ksp = Ksp::new(s, Comm::One, &a)?;
         let mut splits = vec![];
         let mut near_null = None;
         let coords = self.layout.as_ref().map(|l| &l.coordinates);
         if constrained && ksp.is_fieldsplit(s)? {
-            let mut u = IndexSet::range(s, 0, numbering.n_u, numbering.dim)?;
+            let mut u = IndexSet::range(s, Comm::One, 0, numbering.n_u, numbering.dim)?;
             if let Some(c) = coords.filter(|_| numbering.dim > 1) {
-                let sp = NearNullSpace::rigid_body(s, c, numbering.dim)?;
+                let sp = NearNullSpace::rigid_body(s, Comm::One, c, numbering.dim)?;
                 u.attach_near_null_space(s, &sp)?;
                 near_null = Some(sp);
             }
-            let lambda = IndexSet::range(s, numbering.n_u, numbering.n - numbering.n_u, 1)?;
+            let lambda =
+                IndexSet::range(s, Comm::One, numbering.n_u, numbering.n - numbering.n_u, 1)?;
             ksp.add_split(s, "u", &u)?;
             ksp.add_split(s, "lambda", &lambda)?;
             splits = vec![u, lambda];
         }
-        let b = Vector::new(s, numbering.n, 1)?;
-        let x = Vector::new(s, numbering.n, 1)?;
+        let b = Vector::new(s, Comm::One, numbering.n, 1)?;
+        let x = Vector::new(s, Comm::One, numbering.n, 1)?;
         Ok(Pattern {
             numbering,
             row_ptr,
@@ -482,15 +511,7 @@ impl LinearSolver for PetscKrylov {
             self.counts.method = o.ksp.describe(&s)?;
         }
         if !out.converged {
-            return Err(LinearError::NotConverged(format!(
-                "PETSc's {} reported {} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e}); \
-                 other PETSc options (--petsc-options, docs/petsc.md), a direct solve through PETSc \
-                 (\"-pc_type lu -pc_factor_mat_solver_type mumps\") or --linear ldlt may solve it",
-                o.ksp.describe(&s)?,
-                out.reason,
-                out.iterations,
-                out.residual
-            )));
+            return Err(not_converged(&o.ksp.describe(&s)?, &out, rtol));
         }
         let x = o.x.get(&s)?;
         Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())

@@ -67,6 +67,26 @@ fn index(call: &'static str, n: usize) -> Result<PetscInt, PetscError> {
     })
 }
 
+/// Which ranks an object spans: this rank alone (`PETSC_COMM_SELF`) or
+/// every rank of the launch (`PETSC_COMM_WORLD`, each holding its own
+/// contiguous part of the rows).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Comm {
+    /// This rank alone.
+    One,
+    /// Every rank.
+    World,
+}
+
+impl Comm {
+    fn flag(self) -> c_int {
+        match self {
+            Comm::One => 0,
+            Comm::World => 1,
+        }
+    }
+}
+
 static LOCK: Mutex<()> = Mutex::new(());
 static INIT: OnceLock<Result<(), PetscError>> = OnceLock::new();
 
@@ -103,6 +123,74 @@ impl Serial {
         Ok(n.max(0) as usize)
     }
 
+    /// This process's rank in `PETSC_COMM_WORLD`.
+    pub fn world_rank(&self) -> Result<usize, PetscError> {
+        let mut r: c_int = 0;
+        // SAFETY: writes one int
+        check("comm_rank", unsafe { ffi::gapsim_petsc_comm_rank(&mut r) })?;
+        Ok(r.max(0) as usize)
+    }
+
+    /// Every rank's `vals` summed entry by entry, on every rank (collective:
+    /// every rank calls it with as many values).
+    pub fn sum(&self, vals: &mut [f64]) -> Result<(), PetscError> {
+        self.allreduce(vals, 0)
+    }
+
+    /// Every rank's `vals`' largest entry by entry, on every rank
+    /// (collective).
+    pub fn max(&self, vals: &mut [f64]) -> Result<(), PetscError> {
+        self.allreduce(vals, 1)
+    }
+
+    fn allreduce(&self, vals: &mut [f64], op: c_int) -> Result<(), PetscError> {
+        let n = index("allreduce", vals.len())?;
+        // SAFETY: n values, reduced in place
+        check("allreduce", unsafe {
+            ffi::gapsim_petsc_allreduce(vals.as_mut_ptr(), n, op)
+        })
+    }
+
+    /// The part (one per rank) of every vertex of a graph of `n_total`
+    /// vertices, of which this rank passes the rows `first..first +
+    /// row_ptr.len() - 1` (the ranks' rows in rank order, together every
+    /// vertex once; compressed rows `row_ptr`, global `cols`, no self-loop):
+    /// PETSc's `MatPartitioning` (PT-Scotch, else ParMETIS; the option
+    /// `-mat_partitioning_type` picks another). Collective.
+    pub fn partition(
+        &self,
+        n_total: usize,
+        row_ptr: &[PetscInt],
+        cols: &[PetscInt],
+    ) -> Result<Vec<usize>, PetscError> {
+        let call = "partition";
+        let n_local = row_ptr.len().saturating_sub(1);
+        let sound = !row_ptr.is_empty()
+            && row_ptr[0] == 0
+            && row_ptr.windows(2).all(|w| w[0] <= w[1])
+            && row_ptr[n_local] as usize == cols.len()
+            && cols.iter().all(|&c| c >= 0 && (c as usize) < n_total);
+        if !sound {
+            return Err(PetscError {
+                call,
+                code: -1,
+                message: "the graph is not compressed rows of vertices in range".into(),
+            });
+        }
+        let mut part = vec![0 as PetscInt; n_total];
+        // SAFETY: checked arrays; the shim copies them and writes n_total parts
+        check(call, unsafe {
+            ffi::gapsim_petsc_partition(
+                index(call, n_local)?,
+                index(call, n_total)?,
+                row_ptr.as_ptr(),
+                cols.as_ptr(),
+                part.as_mut_ptr(),
+            )
+        })?;
+        Ok(part.into_iter().map(|p| p.max(0) as usize).collect())
+    }
+
     /// Empties PETSc's options database and fills it from `text` (PETSc's
     /// option syntax, `-ksp_type cg -pc_type gamg`); the solvers created or
     /// set up afterwards read them.
@@ -119,8 +207,9 @@ impl Serial {
     }
 }
 
-/// A sequential AIJ matrix (`Mat`) of a compressed-row pattern, its values
-/// written in place in the pattern's order.
+/// An AIJ matrix (`Mat`) of a compressed-row pattern: sequential, its
+/// values written in place in the pattern's order ([`Matrix::from_csr`]),
+/// or over every rank, its values added row by row ([`Matrix::from_rows`]).
 pub struct Matrix {
     raw: ffi::Mat,
     nnz: usize,
@@ -137,17 +226,7 @@ impl Matrix {
         cols: &[PetscInt],
     ) -> Result<Matrix, PetscError> {
         let call = "mat_create_csr";
-        let sorted = row_ptr.len() == n + 1
-            && row_ptr[0] == 0
-            && row_ptr[n] as usize == cols.len()
-            && row_ptr.windows(2).all(|w| {
-                w[0] <= w[1]
-                    && cols[w[0] as usize..w[1] as usize]
-                        .windows(2)
-                        .all(|c| c[0] < c[1])
-            })
-            && cols.iter().all(|&c| c >= 0 && (c as usize) < n);
-        if !sorted {
+        if !compressed_rows(n, row_ptr, cols) {
             return Err(PetscError {
                 call,
                 code: -1,
@@ -170,6 +249,80 @@ impl Matrix {
         };
         check(call, code)?;
         Ok(m)
+    }
+
+    /// A matrix over every rank, `n_local` of its `n` rows on this one (the
+    /// ranks' rows contiguous, in rank order), whose pattern is the union
+    /// of every rank's entries: this rank's row `r` has the columns
+    /// `cols[row_ptr[r]..row_ptr[r + 1]]` (all `n` rows listed, sorted unique
+    /// columns, any rank's rows: PETSc sends them to their owner), all
+    /// values zero. Collective.
+    pub fn from_rows(
+        _: &Serial,
+        n_local: usize,
+        n: usize,
+        row_ptr: &[PetscInt],
+        cols: &[PetscInt],
+    ) -> Result<Matrix, PetscError> {
+        let call = "mat_create_rows";
+        if !compressed_rows(n, row_ptr, cols) {
+            return Err(PetscError {
+                call,
+                code: -1,
+                message: "the pattern is not compressed rows of sorted, unique columns".into(),
+            });
+        }
+        let mut raw = std::ptr::null_mut();
+        // SAFETY: checked arrays of n + 1 and row_ptr[n] entries; PETSc copies them
+        let code = unsafe {
+            ffi::gapsim_petsc_mat_create_rows(
+                index(call, n_local)?,
+                index(call, n)?,
+                row_ptr.as_ptr(),
+                cols.as_ptr(),
+                &mut raw,
+            )
+        };
+        let m = Matrix {
+            raw,
+            nnz: cols.len(),
+        };
+        check(call, code)?;
+        Ok(m)
+    }
+
+    /// The values of a [`Matrix::from_rows`] matrix: this rank's
+    /// contributions `vals` beside the pattern's `cols` (the same `row_ptr`
+    /// and `cols`), every rank's summed into each entry. Collective.
+    pub fn add_rows(
+        &mut self,
+        _: &Serial,
+        row_ptr: &[PetscInt],
+        cols: &[PetscInt],
+        vals: &[f64],
+    ) -> Result<(), PetscError> {
+        let call = "mat_add_rows";
+        if vals.len() != self.nnz
+            || cols.len() != self.nnz
+            || row_ptr.is_empty()
+            || !compressed_rows(row_ptr.len() - 1, row_ptr, cols)
+        {
+            return Err(PetscError {
+                call,
+                code: -1,
+                message: format!("{} values for {} entries", vals.len(), self.nnz),
+            });
+        }
+        // SAFETY: the pattern the matrix was made from, and as many values
+        check(call, unsafe {
+            ffi::gapsim_petsc_mat_add_rows(
+                self.raw,
+                index(call, row_ptr.len() - 1)?,
+                row_ptr.as_ptr(),
+                cols.as_ptr(),
+                vals.as_ptr(),
+            )
+        })
     }
 
     /// Lets `write` set the values (in the pattern's order), then marks the
@@ -195,6 +348,21 @@ impl Matrix {
     }
 }
 
+/// Whether `row_ptr`, `cols` are `n` compressed rows of sorted, unique
+/// columns in `0..n`.
+fn compressed_rows(n: usize, row_ptr: &[PetscInt], cols: &[PetscInt]) -> bool {
+    row_ptr.len() == n + 1
+        && row_ptr[0] == 0
+        && row_ptr[n] as usize == cols.len()
+        && row_ptr.windows(2).all(|w| {
+            w[0] <= w[1]
+                && cols[w[0] as usize..w[1] as usize]
+                    .windows(2)
+                    .all(|c| c[0] < c[1])
+        })
+        && cols.iter().all(|&c| c >= 0 && (c as usize) < n)
+}
+
 impl Drop for Matrix {
     fn drop(&mut self) {
         // SAFETY: the owner holds the guard (module docs); a null is ignored
@@ -202,26 +370,41 @@ impl Drop for Matrix {
     }
 }
 
-/// A sequential vector (`Vec`).
+/// A vector (`Vec`) on one rank or spread over every rank.
 pub struct Vector {
     raw: ffi::Vec,
+    /// The entries on this rank.
     len: usize,
 }
 
 impl Vector {
-    /// A vector of `len` entries with block size `bs`.
-    pub fn new(_: &Serial, len: usize, bs: usize) -> Result<Vector, PetscError> {
+    /// A vector with `len` entries on this rank (on `Comm::World` the
+    /// ranks' parts in rank order make the vector) and block size `bs`.
+    /// Collective on `Comm::World`.
+    pub fn new(_: &Serial, comm: Comm, len: usize, bs: usize) -> Result<Vector, PetscError> {
         let call = "vec_create";
         let mut raw = std::ptr::null_mut();
         // SAFETY: writes the handle
-        let code =
-            unsafe { ffi::gapsim_petsc_vec_create(index(call, len)?, index(call, bs)?, &mut raw) };
+        let code = unsafe {
+            ffi::gapsim_petsc_vec_create(comm.flag(), index(call, len)?, index(call, bs)?, &mut raw)
+        };
         let v = Vector { raw, len };
         check(call, code)?;
         Ok(v)
     }
 
-    /// Copies `vals` (as many as the vector has entries) in.
+    /// Every rank's entries, `n` in all, on every rank. Collective.
+    pub fn gather_all(&self, _: &Serial, n: usize) -> Result<Vec<f64>, PetscError> {
+        let mut out = vec![0.0; n];
+        let len = index("vec_gather_all", n)?;
+        // SAFETY: the shim checks the length before copying
+        check("vec_gather_all", unsafe {
+            ffi::gapsim_petsc_vec_gather_all(self.raw, out.as_mut_ptr(), len)
+        })?;
+        Ok(out)
+    }
+
+    /// Copies `vals` (as many as the vector has entries on this rank) in.
     pub fn set(&mut self, _: &Serial, vals: &[f64]) -> Result<(), PetscError> {
         let n = index("vec_set", vals.len())?;
         // SAFETY: the shim checks the length before copying
@@ -230,7 +413,7 @@ impl Vector {
         })
     }
 
-    /// The entries.
+    /// The entries on this rank.
     pub fn get(&self, _: &Serial) -> Result<Vec<f64>, PetscError> {
         let mut out = vec![0.0; self.len];
         let n = index("vec_get", self.len)?;
@@ -255,13 +438,21 @@ pub struct IndexSet {
 }
 
 impl IndexSet {
-    /// The equations `first..first + len`, in blocks of `bs`.
-    pub fn range(_: &Serial, first: usize, len: usize, bs: usize) -> Result<IndexSet, PetscError> {
+    /// The equations `first..first + len`, in blocks of `bs` (on
+    /// `Comm::World`, this rank's part of the set).
+    pub fn range(
+        _: &Serial,
+        comm: Comm,
+        first: usize,
+        len: usize,
+        bs: usize,
+    ) -> Result<IndexSet, PetscError> {
         let call = "is_create_range";
         let mut raw = std::ptr::null_mut();
         // SAFETY: writes the handle
         let code = unsafe {
             ffi::gapsim_petsc_is_create_range(
+                comm.flag(),
                 index(call, first)?,
                 index(call, len)?,
                 index(call, bs)?,
@@ -302,9 +493,14 @@ pub struct NearNullSpace {
 
 impl NearNullSpace {
     /// The rigid-body modes of nodes with coordinates `coords` (node-major,
-    /// `dim` per node).
-    pub fn rigid_body(s: &Serial, coords: &[f64], dim: usize) -> Result<NearNullSpace, PetscError> {
-        let mut v = Vector::new(s, coords.len(), dim)?;
+    /// `dim` per node; on `Comm::World` this rank's nodes).
+    pub fn rigid_body(
+        s: &Serial,
+        comm: Comm,
+        coords: &[f64],
+        dim: usize,
+    ) -> Result<NearNullSpace, PetscError> {
+        let mut v = Vector::new(s, comm, coords.len(), dim)?;
         v.set(s, coords)?;
         let mut raw = std::ptr::null_mut();
         // SAFETY: a vector of block size `dim`
@@ -342,12 +538,12 @@ pub struct Ksp {
 }
 
 impl Ksp {
-    /// A solver of `a` (also its preconditioning matrix), configured from
-    /// the options database.
-    pub fn new(_: &Serial, a: &Matrix) -> Result<Ksp, PetscError> {
+    /// A solver of `a` (also its preconditioning matrix, on the ranks
+    /// `comm`), configured from the options database.
+    pub fn new(_: &Serial, comm: Comm, a: &Matrix) -> Result<Ksp, PetscError> {
         let mut raw = std::ptr::null_mut();
         // SAFETY: writes the handle
-        let code = unsafe { ffi::gapsim_petsc_ksp_create(&mut raw) };
+        let code = unsafe { ffi::gapsim_petsc_ksp_create(comm.flag(), &mut raw) };
         let k = Ksp { raw };
         check("ksp_create", code)?;
         // SAFETY: valid handles
@@ -493,13 +689,13 @@ mod tests {
         let cols32: Vec<i32> = cols.iter().map(|&c| c as i32).collect();
         let mut a = Matrix::from_csr(&s, n, &row_ptr, &cols32).unwrap();
         a.write_values(&s, |v| v.copy_from_slice(&vals)).unwrap();
-        let mut ksp = Ksp::new(&s, &a).unwrap();
+        let mut ksp = Ksp::new(&s, Comm::One, &a).unwrap();
         assert_eq!(ksp.describe(&s).unwrap(), "cg/jacobi");
         ksp.set_rtol(&s, 1e-12).unwrap();
         ksp.set_up(&s).unwrap();
-        let mut bv = Vector::new(&s, n, 1).unwrap();
+        let mut bv = Vector::new(&s, Comm::One, n, 1).unwrap();
         bv.set(&s, &b).unwrap();
-        let mut xv = Vector::new(&s, n, 1).unwrap();
+        let mut xv = Vector::new(&s, Comm::One, n, 1).unwrap();
         let out = ksp.solve(&s, &bv, &mut xv).unwrap();
         assert!(out.converged, "{out:?}");
         assert!(out.iterations <= n);
@@ -520,7 +716,7 @@ mod tests {
         s.replace_options("-ksp_type no_such_method").unwrap();
         let mut a = Matrix::from_csr(&s, 1, &[0, 1], &[0]).unwrap();
         a.write_values(&s, |v| v[0] = 1.0).unwrap();
-        let e = Ksp::new(&s, &a)
+        let e = Ksp::new(&s, Comm::One, &a)
             .err()
             .expect("an unknown KSP type is refused");
         assert_eq!(e.call, "ksp_set_from_options");

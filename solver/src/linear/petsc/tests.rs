@@ -37,6 +37,7 @@ fn layout_renumbers_and_decouples() {
         dim: 2,
         free_dofs: vec![1, 2, 3],
         coordinates: vec![0.0, 0.0, 1.0, 0.0],
+        node_rank: vec![],
     };
     // K = diag(2, 3, 4), G = [0, 1, 0]: u1x fixed to 0.5 by the constraint
     let rows = [0, 1, 2, 3, 1];
