@@ -148,11 +148,15 @@ mod tests {
     use crate::assembly::{assemble_solid_lifted, assemble_solid_of};
     use crate::system::{DofMap, System};
 
+    /// A graph as `LinearSolver::partition` receives it: the vertex count,
+    /// this rank's row pointers and columns.
+    type Graph = (usize, Vec<i32>, Vec<i32>);
+
     /// A solver that only plays rank `rank` of `size`: its partition puts
     /// element `e` on rank `e % size` and keeps the graph it was given.
     struct Playing {
         ranks: Ranks,
-        graph: RefCell<Option<(usize, Vec<i32>, Vec<i32>)>>,
+        graph: RefCell<Option<Graph>>,
     }
 
     impl LinearSolver for Playing {
