@@ -200,54 +200,21 @@ int gapsim_petsc_mat_restore_values(Mat a, PetscScalar **vals) { return MatSeqAI
 int gapsim_petsc_mat_destroy(Mat *a) { return MatDestroy(a); }
 
 /* ---- Mat: an AIJ matrix over every rank, n_local of its n rows on this
- * rank (the ranks' rows contiguous in rank order), with the entries this rank
- * adds: row r's columns cols[row_ptr[r]..row_ptr[r + 1]] (global rows, every
- * one of the n listed, any rank's: PETSc sends the others' rows to their
- * owner). The pattern is gathered on each row's owner through a
- * MATPREALLOCATOR, so the matrix is preallocated exactly; an entry outside
- * it is an error afterwards. ---- */
-int gapsim_petsc_mat_create_rows(PetscInt n_local, PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, Mat *out)
+ * rank (the ranks' rows contiguous in rank order), preallocated with at most
+ * d_nnz[i] entries of this rank's row i in its own columns and o_nnz[i] in
+ * the others' (upper bounds: space not filled is released at the first
+ * assembly). ---- */
+int gapsim_petsc_mat_create_rows(PetscInt n_local, PetscInt n, const PetscInt *d_nnz, const PetscInt *o_nnz, Mat *out)
 {
-  Mat pre, a;
-  PetscScalar *zeros;
-  PetscInt r, longest = 0;
-  PetscErrorCode ierr;
-  for (r = 0; r < n; r++)
-    if (row_ptr[r + 1] - row_ptr[r] > longest) longest = row_ptr[r + 1] - row_ptr[r];
-  ierr = PetscCalloc1(longest > 0 ? longest : 1, &zeros);
-  if (ierr) return ierr;
-  ierr = MatCreate(PETSC_COMM_WORLD, &pre);
-  if (ierr) return ierr;
-  ierr = MatSetSizes(pre, n_local, n_local, n, n);
-  if (ierr) return ierr;
-  ierr = MatSetType(pre, MATPREALLOCATOR);
-  if (ierr) return ierr;
-  ierr = MatSetUp(pre);
-  if (ierr) return ierr;
-  for (r = 0; r < n; r++) {
-    PetscInt len = row_ptr[r + 1] - row_ptr[r];
-    if (len == 0) continue;
-    ierr = MatSetValues(pre, 1, &r, len, cols + row_ptr[r], zeros, INSERT_VALUES);
-    if (ierr) return ierr;
-  }
-  ierr = PetscFree(zeros);
-  if (ierr) return ierr;
-  ierr = MatAssemblyBegin(pre, MAT_FINAL_ASSEMBLY);
-  if (ierr) return ierr;
-  ierr = MatAssemblyEnd(pre, MAT_FINAL_ASSEMBLY);
-  if (ierr) return ierr;
-  ierr = MatCreate(PETSC_COMM_WORLD, &a);
+  Mat a;
+  PetscErrorCode ierr = MatCreate(PETSC_COMM_WORLD, &a);
   if (ierr) return ierr;
   *out = a;
   ierr = MatSetSizes(a, n_local, n_local, n, n);
   if (ierr) return ierr;
   ierr = MatSetType(a, MATAIJ);
   if (ierr) return ierr;
-  ierr = MatPreallocatorPreallocate(pre, PETSC_TRUE, a);
-  if (ierr) return ierr;
-  ierr = MatDestroy(&pre);
-  if (ierr) return ierr;
-  return MatSetOption(a, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE);
+  return MatXAIJSetPreallocation(a, 1, d_nnz, o_nnz, NULL, NULL);
 }
 
 /* The values of a gapsim_petsc_mat_create_rows matrix: zeroed, then this

@@ -9,8 +9,9 @@
 //!
 //! and the tangent its exact derivative (see [`crate::element::solid`] and
 //! [`crate::contact`]). Element matrices are computed in parallel
-//! (`crate::par`), collected in element order and scattered sequentially
-//! into coordinate triplets, so the result is deterministic. The triplet index order depends
+//! (`crate::par`), a chunk of elements at a time, collected in element
+//! order and scattered sequentially into coordinate triplets, so the result
+//! is deterministic. The triplet index order depends
 //! only on the mesh, the prescribed set, the pairing and the presence of
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
@@ -23,6 +24,10 @@ use crate::system::{DofMap, System};
 
 /// Elements per rayon task.
 pub(crate) const PAR_MIN_LEN: usize = 64;
+
+/// Elements whose matrices are computed together before they are scattered
+/// (in element order: the result does not depend on it).
+const ASSEMBLY_CHUNK: usize = 4096;
 
 /// Adds the solid elements' internal forces, tangents and energies at
 /// displacements `u`, element after element, each through the element seam
@@ -71,36 +76,50 @@ pub fn assemble_solid_of<const D: usize>(
     let mesh = &model.mesh;
     let count = elements.map_or(mesh.element_count(), <[ElementId]>::len);
     let element = |k: usize| elements.map_or(ElementId::new(k), |list| list[k]);
-    let responses: Vec<ElementResponse> = par::map(count, PAR_MIN_LEN, |k| {
-        let e = element(k);
-        let material = &mesh.bodies[mesh.element_body[e.index()]].material;
-        mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material)
-    });
-    sys.rows.reserve(64 * responses.len());
-    sys.cols.reserve(64 * responses.len());
-    sys.vals.reserve(64 * responses.len());
-    for (k, resp) in responses.iter().enumerate() {
-        let el = &mesh.elements[element(k).index()];
-        let eqs = dofs.element_eqs::<D>(el);
-        let f_int = resp.f_int();
-        let n = f_int.len();
-        for p in 0..n {
-            let Some(ep) = eqs[p] else { continue };
-            sys.residual[ep.index()] += f_int[p];
-            let k = resp.k_row(p);
-            for q in 0..n {
-                if let Some(eq) = eqs[q] {
-                    sys.push(ep, eq, k[q]);
+    // exactly the triplets this assembly adds, so that a first assembly
+    // never holds an old and a doubled buffer at once
+    let triplets: usize = (0..count)
+        .map(|k| {
+            let eqs = dofs.element_eqs::<D>(&mesh.elements[element(k).index()]);
+            let n = eqs.iter().flatten().count();
+            n * n
+        })
+        .sum();
+    sys.rows.reserve_exact(triplets);
+    sys.cols.reserve_exact(triplets);
+    sys.vals.reserve_exact(triplets);
+    // the element matrices of one chunk at a time (a hexahedron's is 4.6
+    // kB: all of a 10^6-equation mesh's at once would be 1.7 GB)
+    for start in (0..count).step_by(ASSEMBLY_CHUNK) {
+        let len = ASSEMBLY_CHUNK.min(count - start);
+        let responses: Vec<ElementResponse> = par::map(len, PAR_MIN_LEN, |k| {
+            let e = element(start + k);
+            let material = &mesh.bodies[mesh.element_body[e.index()]].material;
+            mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material)
+        });
+        for (k, resp) in responses.iter().enumerate() {
+            let el = &mesh.elements[element(start + k).index()];
+            let eqs = dofs.element_eqs::<D>(el);
+            let f_int = resp.f_int();
+            let n = f_int.len();
+            for p in 0..n {
+                let Some(ep) = eqs[p] else { continue };
+                sys.residual[ep.index()] += f_int[p];
+                let k = resp.k_row(p);
+                for q in 0..n {
+                    if let Some(eq) = eqs[q] {
+                        sys.push(ep, eq, k[q]);
+                    }
+                }
+                if let Some(du) = lift {
+                    for q in (0..n).filter(|&q| eqs[q].is_none()) {
+                        sys.residual[ep.index()] +=
+                            k[q] * du[DofId::in_dim::<D>(el[q / D], q % D).index()];
+                    }
                 }
             }
-            if let Some(du) = lift {
-                for q in (0..n).filter(|&q| eqs[q].is_none()) {
-                    sys.residual[ep.index()] +=
-                        k[q] * du[DofId::in_dim::<D>(el[q / D], q % D).index()];
-                }
-            }
+            sys.energy += resp.energy();
         }
-        sys.energy += resp.energy();
     }
 }
 

@@ -49,6 +49,10 @@ pub(super) fn regularize(
     } else {
         0.0
     };
+    // exactly these, so that a full buffer is not doubled for them
+    sys.rows.reserve_exact(active.len());
+    sys.cols.reserve_exact(active.len());
+    sys.vals.reserve_exact(active.len());
     for (m, &on) in active.iter().enumerate() {
         let row = dofs.mult_eq(MultiplierIndex::new(m));
         sys.push(row, row, if on { -eps } else { 0.0 });

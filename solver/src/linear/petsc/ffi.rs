@@ -45,8 +45,8 @@ unsafe extern "C" {
     pub fn gapsim_petsc_mat_create_rows(
         n_local: PetscInt,
         n: PetscInt,
-        row_ptr: *const PetscInt,
-        cols: *const PetscInt,
+        d_nnz: *const PetscInt,
+        o_nnz: *const PetscInt,
         out: *mut Mat,
     ) -> PetscErrorCode;
     pub fn gapsim_petsc_mat_add_rows(

@@ -252,48 +252,52 @@ impl Matrix {
     }
 
     /// A matrix over every rank, `n_local` of its `n` rows on this one (the
-    /// ranks' rows contiguous, in rank order), whose pattern is the union
-    /// of every rank's entries: this rank's row `r` has the columns
-    /// `cols[row_ptr[r]..row_ptr[r + 1]]` (all `n` rows listed, sorted unique
-    /// columns, any rank's rows: PETSc sends them to their owner), all
-    /// values zero. Collective.
+    /// ranks' rows contiguous, in rank order), with room for at most
+    /// `d_nnz[i]` entries of its row `i` in this rank's columns and
+    /// `o_nnz[i]` in the others' (upper bounds; what is not filled is
+    /// released at the first assembly), `nnz` of them added by this rank
+    /// (in any rank's rows, [`Matrix::add_rows`]). Collective.
     pub fn from_rows(
         _: &Serial,
         n_local: usize,
         n: usize,
-        row_ptr: &[PetscInt],
-        cols: &[PetscInt],
+        d_nnz: &[PetscInt],
+        o_nnz: &[PetscInt],
+        nnz: usize,
     ) -> Result<Matrix, PetscError> {
         let call = "mat_create_rows";
-        if !compressed_rows(n, row_ptr, cols) {
+        if d_nnz.len() != n_local || o_nnz.len() != n_local || n_local > n {
             return Err(PetscError {
                 call,
                 code: -1,
-                message: "the pattern is not compressed rows of sorted, unique columns".into(),
+                message: format!(
+                    "{} and {} row counts for {n_local} rows of {n}",
+                    d_nnz.len(),
+                    o_nnz.len()
+                ),
             });
         }
         let mut raw = std::ptr::null_mut();
-        // SAFETY: checked arrays of n + 1 and row_ptr[n] entries; PETSc copies them
+        // SAFETY: two arrays of n_local counts; PETSc copies them
         let code = unsafe {
             ffi::gapsim_petsc_mat_create_rows(
                 index(call, n_local)?,
                 index(call, n)?,
-                row_ptr.as_ptr(),
-                cols.as_ptr(),
+                d_nnz.as_ptr(),
+                o_nnz.as_ptr(),
                 &mut raw,
             )
         };
-        let m = Matrix {
-            raw,
-            nnz: cols.len(),
-        };
+        let m = Matrix { raw, nnz };
         check(call, code)?;
         Ok(m)
     }
 
-    /// The values of a [`Matrix::from_rows`] matrix: this rank's
-    /// contributions `vals` beside the pattern's `cols` (the same `row_ptr`
-    /// and `cols`), every rank's summed into each entry. Collective.
+    /// The values of a [`Matrix::from_rows`] matrix: zero, then this rank's
+    /// contributions, row `r`'s columns `cols[row_ptr[r]..row_ptr[r + 1]]`
+    /// (every row listed, sorted unique columns, any rank's rows: PETSc
+    /// sends them to their owner) with the values `vals` beside them, every
+    /// rank's summed into each entry. Collective.
     pub fn add_rows(
         &mut self,
         _: &Serial,

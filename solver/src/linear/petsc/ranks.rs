@@ -27,8 +27,10 @@
 //! Each rank hands this solver its own triplets (its elements', and on rank
 //! 0 the contact's and the regularisation's) in Newton's numbering. They are
 //! compressed into rows once per pattern (the one-rank path's `compress`);
-//! PETSc learns the union of the ranks' patterns once (a `MATPREALLOCATOR`)
-//! and, each iteration, sums every rank's rows into their owner's. A
+//! each row's owner preallocates the sum of the ranks' entry counts in that
+//! row (an upper bound: two ranks adding to one entry count it twice, and
+//! PETSc releases what is not filled at the first assembly), and each
+//! iteration PETSc sums every rank's rows into their owner's. A
 //! prescribed dof's decoupled row gets the mean absolute diagonal of the
 //! free rows, summed over the ranks, as on one rank.
 //!
@@ -52,6 +54,8 @@ struct RankNumbering {
     /// equation, the global size, the displacement rows, this rank's
     /// decoupled rows (prescribed dofs of its nodes), the block size.
     numbering: Numbering,
+    /// Every rank's first row, and the global size last (`size + 1`).
+    starts: Vec<usize>,
     /// This rank's first row and row count.
     first: usize,
     n_local: usize,
@@ -119,6 +123,15 @@ impl RankNumbering {
             .filter(|&d| !free[d] && mine(d / dim))
             .map(petsc_dof)
             .collect();
+        let starts = (0..=ranks.size)
+            .map(|r| {
+                if r == ranks.size {
+                    n_total
+                } else {
+                    dim * start[r]
+                }
+            })
+            .collect();
         let mut coordinates = vec![0.0; n_local_u];
         for p in (0..nodes).filter(|&p| mine(p)) {
             let at = dim * position[p] - first;
@@ -132,12 +145,51 @@ impl RankNumbering {
                 decoupled,
                 dim,
             },
+            starts,
             first,
             n_local,
             n_local_u,
             n_free,
             coordinates,
         })
+    }
+
+    /// The preallocation of this rank's rows: for each, at most how many
+    /// entries fall in its own columns and in the others' (every rank's
+    /// distinct entries of the row added up: exact but where two ranks add
+    /// to one entry). Collective.
+    fn row_counts(
+        &self,
+        s: &Serial,
+        row_ptr: &[i32],
+        cols: &[i32],
+    ) -> Result<(Vec<i32>, Vec<i32>), LinearError> {
+        let n = self.numbering.n;
+        // [own columns of every row | others' columns of every row]
+        let mut counts = vec![0.0; 2 * n];
+        for r in 0..n {
+            let (a, b) = (row_ptr[r] as usize, row_ptr[r + 1] as usize);
+            if a == b {
+                continue;
+            }
+            let owner = self.starts.partition_point(|&f| f <= r) - 1;
+            let own = self.starts[owner] as i32..self.starts[owner + 1] as i32;
+            let inside = cols[a..b].iter().filter(|c| own.contains(c)).count();
+            counts[r] += inside as f64;
+            counts[n + r] += (b - a - inside) as f64;
+        }
+        s.sum(&mut counts)?;
+        let mine = self.first..self.first + self.n_local;
+        let cap = |v: f64, most: usize| v.min(most as f64) as i32;
+        let d = counts[mine.clone()]
+            .iter()
+            .map(|&v| cap(v, self.n_local))
+            .collect();
+        let o = counts[n + mine.start..n + mine.end]
+            .iter()
+            .map(|&v| cap(v, n - self.n_local))
+            .collect();
+        Ok((d, o))
     }
 }
 
@@ -232,7 +284,9 @@ impl PetscRanks {
         } = compress(nb, rows, cols)?;
         let constrained = nb.n > nb.n_u;
         s.replace_options(&options_for(&self.options, constrained))?;
-        let a = Matrix::from_rows(s, numbering.n_local, nb.n, &row_ptr, &cols)?;
+        let (d_nnz, o_nnz) = numbering.row_counts(s, &row_ptr, &cols)?;
+        let a = Matrix::from_rows(s, numbering.n_local, nb.n, &d_nnz, &o_nnz, cols.len())?;
+        drop((d_nnz, o_nnz));
         let mut ksp = Ksp::new(s, Comm::World, &a)?;
         let mut splits = vec![];
         let mut near_null = None;
@@ -465,7 +519,10 @@ impl LinearSolver for PetscRanks {
         row_ptr: &[i32],
         cols: &[i32],
     ) -> Result<Vec<usize>, LinearError> {
-        Ok(serial()?.partition(n_total, row_ptr, cols)?)
+        let s = serial()?;
+        // the partitioner reads the options too (`-mat_partitioning_type`)
+        s.replace_options(&options_for(&self.options, true))?;
+        Ok(s.partition(n_total, row_ptr, cols)?)
     }
 }
 
