@@ -191,6 +191,52 @@ struct Objects {
     x: Vector,
 }
 
+impl Objects {
+    /// Solves with right-hand side `b` (this rank's part) to the relative
+    /// residual `rtol` under `options`, counting into `counts`; the solution
+    /// is left in `x`. A solve that does not converge is the error naming
+    /// PETSc's reason.
+    fn solve(
+        &mut self,
+        s: &Serial,
+        b: &[f64],
+        rtol: f64,
+        options: &str,
+        counts: &mut KrylovCounts,
+    ) -> Result<(), LinearError> {
+        self.b.set(s, b)?;
+        self.ksp.set_rtol(s, rtol)?;
+        s.replace_options(options)?;
+        let out = self.ksp.solve(s, &self.b, &mut self.x)?;
+        counts.solves += 1;
+        counts.iterations += out.iterations;
+        counts.max_iterations = counts.max_iterations.max(out.iterations);
+        if counts.method.is_empty() {
+            counts.method = self.ksp.describe(s)?;
+        }
+        if !out.converged {
+            return Err(not_converged(&self.ksp.describe(s)?, &out, rtol));
+        }
+        Ok(())
+    }
+}
+
+/// Whether Newton's triplets `(rows, cols)` fall, through the numbering's
+/// `rows`, on the entries `slot` of the compressed rows `row_ptr`, `cols`
+/// (always when they are the triplets those were built from).
+fn triplets_hold(
+    numbering: &[usize],
+    (row_ptr, pattern_cols, slot): (&[i32], &[i32], &[u32]),
+    rows: &[usize],
+    cols: &[usize],
+) -> bool {
+    rows.iter().zip(cols).zip(slot).all(|((&r, &c), &k)| {
+        let (pr, pc, k) = (numbering[r], numbering[c], k as usize);
+        (row_ptr[pr] as usize..row_ptr[pr + 1] as usize).contains(&k)
+            && pattern_cols[k] as usize == pc
+    })
+}
+
 /// The cached pattern: the numbering, PETSc's objects, and the entry of
 /// PETSc's compressed rows each triplet adds into (Newton's triplets, then
 /// one diagonal per decoupled row).
@@ -213,11 +259,12 @@ impl Pattern {
         let nb = &self.numbering;
         nb.rows.len() == n
             && self.slot.len() == rows.len() + nb.decoupled.len()
-            && rows.iter().zip(cols).zip(&self.slot).all(|((&r, &c), &k)| {
-                let (pr, pc, k) = (nb.rows[r], nb.rows[c], k as usize);
-                (self.row_ptr[pr] as usize..self.row_ptr[pr + 1] as usize).contains(&k)
-                    && self.cols[k] as usize == pc
-            })
+            && triplets_hold(
+                &nb.rows,
+                (&self.row_ptr, &self.cols, &self.slot),
+                rows,
+                cols,
+            )
     }
 }
 
@@ -500,19 +547,7 @@ impl LinearSolver for PetscKrylov {
             b[p.numbering.rows[i]] = v;
         }
         let o = &mut p.objects;
-        o.b.set(&s, &b)?;
-        o.ksp.set_rtol(&s, rtol)?;
-        s.replace_options(&options)?;
-        let out = o.ksp.solve(&s, &o.b, &mut o.x)?;
-        self.counts.solves += 1;
-        self.counts.iterations += out.iterations;
-        self.counts.max_iterations = self.counts.max_iterations.max(out.iterations);
-        if self.counts.method.is_empty() {
-            self.counts.method = o.ksp.describe(&s)?;
-        }
-        if !out.converged {
-            return Err(not_converged(&o.ksp.describe(&s)?, &out, rtol));
-        }
+        o.solve(&s, &b, rtol, &options, &mut self.counts)?;
         let x = o.x.get(&s)?;
         Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
     }

@@ -39,14 +39,15 @@
 //! Each call is collective: the pattern is rebuilt when any rank's changed
 //! (a maximum over the ranks), the right-hand side is the replicated
 //! residual's owned part, the correction is gathered on every rank, and the
-//! singularity check takes the largest matrix entry over all ranks. So the
+//! singularity check takes the largest matrix entry over all ranks
+//! ([`LinearSolver::solve_system`]). So the
 //! Newton loops of all ranks take the same branch at every step.
 
 use std::time::{Duration, Instant};
 
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
-use super::{Compressed, Numbering, Objects, compress, not_converged, options_for};
-use crate::linear::{KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout, check_solution};
+use super::{Compressed, Numbering, Objects, compress, options_for, triplets_hold};
+use crate::linear::{KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout};
 
 /// PETSc's numbering across the ranks (module docs), and this rank's part.
 struct RankNumbering {
@@ -213,11 +214,12 @@ impl RankPattern {
         let nb = &self.numbering.numbering;
         nb.rows.len() == n
             && self.triplets == rows.len()
-            && rows.iter().zip(cols).zip(&self.slot).all(|((&r, &c), &k)| {
-                let (pr, pc, k) = (nb.rows[r], nb.rows[c], k as usize);
-                (self.row_ptr[pr] as usize..self.row_ptr[pr + 1] as usize).contains(&k)
-                    && self.cols[k] as usize == pc
-            })
+            && triplets_hold(
+                &nb.rows,
+                (&self.row_ptr, &self.cols, &self.slot),
+                rows,
+                cols,
+            )
     }
 }
 
@@ -444,40 +446,9 @@ impl LinearSolver for PetscRanks {
             }
         }
         let o = &mut p.objects;
-        o.b.set(&s, &b)?;
-        o.ksp.set_rtol(&s, rtol)?;
-        s.replace_options(&options)?;
-        let out = o.ksp.solve(&s, &o.b, &mut o.x)?;
-        self.counts.solves += 1;
-        self.counts.iterations += out.iterations;
-        self.counts.max_iterations = self.counts.max_iterations.max(out.iterations);
-        if self.counts.method.is_empty() {
-            self.counts.method = o.ksp.describe(&s)?;
-        }
-        if !out.converged {
-            return Err(not_converged(&o.ksp.describe(&s)?, &out, rtol));
-        }
+        o.solve(&s, &b, rtol, &options, &mut self.counts)?;
         let x = o.x.gather_all(&s, nb.numbering.n)?;
         Ok(nb.numbering.rows.iter().map(|&r| x[r]).collect())
-    }
-
-    /// [`LinearSolver::solve_system`], the singularity check with the
-    /// largest entry over all ranks (module docs, "Every rank decides the
-    /// same").
-    fn solve_system(
-        &mut self,
-        n: usize,
-        rows: &[usize],
-        cols: &[usize],
-        vals: &[f64],
-        b: &[f64],
-    ) -> Result<Vec<f64>, LinearError> {
-        self.analyse(n, rows, cols)?;
-        self.factor(vals)?;
-        let x = self.solve(b)?;
-        let mut largest = [vals.iter().fold(0.0_f64, |m, v| m.max(v.abs()))];
-        self.max_over_ranks(&mut largest)?;
-        check_solution(&largest, b, x)
     }
 
     fn symbolic_factorisations(&self) -> usize {
