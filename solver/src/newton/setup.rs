@@ -16,6 +16,12 @@
 //! 3. the solid elements and the external force ([`Setup::add_solid`]);
 //! 4. the regularised linear solve ([`Setup::solve`]).
 //!
+//! Across MPI ranks (`crate::partition`) each rank adds its own elements in
+//! phase 3, rank 0 alone the contact, the ties, the external force and the
+//! regularisation; [`Setup::sum_over_ranks`] then sums the residual and the
+//! energy, so that every rank tests convergence on the whole residual, and
+//! the linear solver sums the ranks' triplets. On one rank nothing changes.
+//!
 //! Invariant: the order of the contributions in the system (contact, ties,
 //! solid, external force, regularisation) is fixed here, for the solve and
 //! the probe alike; it fixes the triplet order and so every floating-point
