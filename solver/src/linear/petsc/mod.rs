@@ -158,18 +158,7 @@ impl Numbering {
                 l.dim
             )));
         }
-        let mut rows = Vec::with_capacity(n);
-        let mut free = vec![false; n_u];
-        for &dof in &l.free_dofs {
-            if dof >= n_u || free[dof] {
-                return Err(LinearError::Petsc(format!(
-                    "dof {dof} listed twice or out of range"
-                )));
-            }
-            free[dof] = true;
-            rows.push(dof);
-        }
-        rows.extend((n_free..n).map(|i| n_u + i - n_free));
+        let (rows, free) = petsc_rows(n, l, |dof| dof)?;
         Ok(Numbering {
             rows,
             n: n_u + n - n_free,
@@ -235,6 +224,30 @@ fn triplets_hold(
         (row_ptr[pr] as usize..row_ptr[pr + 1] as usize).contains(&k)
             && pattern_cols[k] as usize == pc
     })
+}
+
+/// PETSc's row of each of `n` Newton equations of the layout `l`: a free
+/// dof's `petsc_dof(dof)`, constraint `k` row `D nodes + k`; and which dofs
+/// are free. A dof listed twice or out of range is refused.
+fn petsc_rows(
+    n: usize,
+    l: &SystemLayout,
+    petsc_dof: impl Fn(usize) -> usize,
+) -> Result<(Vec<usize>, Vec<bool>), LinearError> {
+    let (n_free, n_u) = (l.free_dofs.len(), l.coordinates.len());
+    let mut rows = Vec::with_capacity(n);
+    let mut free = vec![false; n_u];
+    for &dof in &l.free_dofs {
+        if dof >= n_u || free[dof] {
+            return Err(LinearError::Petsc(format!(
+                "dof {dof} listed twice or out of range"
+            )));
+        }
+        free[dof] = true;
+        rows.push(petsc_dof(dof));
+    }
+    rows.extend((n_free..n).map(|i| n_u + i - n_free));
+    Ok((rows, free))
 }
 
 /// The cached pattern: the numbering, PETSc's objects, and the entry of

@@ -46,7 +46,7 @@
 use std::time::{Duration, Instant};
 
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
-use super::{Compressed, Numbering, Objects, compress, options_for, triplets_hold};
+use super::{Compressed, Numbering, Objects, compress, options_for, petsc_rows, triplets_hold};
 use crate::linear::{KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout};
 
 /// PETSc's numbering across the ranks (module docs), and this rank's part.
@@ -102,18 +102,7 @@ impl RankNumbering {
             next[r] += 1;
         }
         let petsc_dof = |dof: usize| dim * position[dof / dim] + dof % dim;
-        let mut free = vec![false; n_u];
-        let mut rows = Vec::with_capacity(n);
-        for &dof in &l.free_dofs {
-            if dof >= n_u || free[dof] {
-                return Err(LinearError::Petsc(format!(
-                    "dof {dof} listed twice or out of range"
-                )));
-            }
-            free[dof] = true;
-            rows.push(petsc_dof(dof));
-        }
-        rows.extend((n_free..n).map(|i| n_u + i - n_free));
+        let (rows, free) = petsc_rows(n, l, petsc_dof)?;
         let n_total = n_u + n - n_free;
         let first = dim * start[ranks.rank];
         let n_local_u = dim * (start[ranks.rank + 1] - start[ranks.rank]);
@@ -205,6 +194,9 @@ struct RankPattern {
     slot: Vec<u32>,
     /// This rank's values beside `cols`.
     values: Vec<f64>,
+    /// Each free Newton row's diagonal entry where this rank has one: the
+    /// row and the entry.
+    diagonal: Vec<(u32, u32)>,
     objects: Objects,
 }
 
@@ -314,6 +306,14 @@ impl PetscRanks {
         let b = Vector::new(s, Comm::World, numbering.n_local, 1)?;
         let x = Vector::new(s, Comm::World, numbering.n_local, 1)?;
         let values = vec![0.0; cols.len()];
+        let diagonal = (0..numbering.n_free)
+            .filter_map(|r| {
+                let pr = nb.rows[r];
+                let (a, b) = (row_ptr[pr] as usize, row_ptr[pr + 1] as usize);
+                let k = cols[a..b].binary_search(&(pr as i32)).ok()?;
+                Some((r as u32, (a + k) as u32))
+            })
+            .collect();
         Ok(RankPattern {
             numbering,
             triplets: rows.len(),
@@ -321,6 +321,7 @@ impl PetscRanks {
             cols,
             slot,
             values,
+            diagonal,
             objects: Objects {
                 ksp,
                 _splits: splits,
@@ -385,21 +386,15 @@ impl LinearSolver for PetscRanks {
             )));
         }
         let nb = &p.numbering;
-        // the decoupled rows' diagonal: the mean absolute diagonal of the
-        // free displacement rows, every rank's contributions summed
-        let mut diagonal = vec![0.0; nb.n_free];
-        let layout_rows = &nb.numbering.rows;
         p.values.fill(0.0);
         for (&k, &v) in p.slot.iter().zip(vals) {
             p.values[k as usize] += v;
         }
-        // Newton's free row r's diagonal entry, wherever this rank has one
-        for r in 0..nb.n_free {
-            let pr = layout_rows[r];
-            let (a, b) = (p.row_ptr[pr] as usize, p.row_ptr[pr + 1] as usize);
-            if let Ok(k) = p.cols[a..b].binary_search(&(pr as i32)) {
-                diagonal[r] = p.values[a + k];
-            }
+        // the decoupled rows' diagonal: the mean absolute diagonal of the
+        // free displacement rows, every rank's contributions summed
+        let mut diagonal = vec![0.0; nb.n_free];
+        for &(r, k) in &p.diagonal {
+            diagonal[r as usize] = p.values[k as usize];
         }
         s.sum(&mut diagonal)?;
         let sum: f64 = diagonal.iter().map(|d| d.abs()).sum();
