@@ -697,7 +697,7 @@ where
     );
     match (&sol.krylov, sol.factor_nonzeros) {
         (Some(k), _) => println!(
-            "krylov          {}{} ({} solves, {} iterations, {:.1} per solve, at most {})",
+            "krylov          {}{} ({} solves, {} iterations, {:.1} per solve, at most {}){}",
             k.method,
             if k.ranks > 1 {
                 format!(" on {} MPI ranks", k.ranks)
@@ -707,7 +707,10 @@ where
             k.solves,
             k.iterations,
             k.iterations as f64 / k.solves.max(1) as f64,
-            k.max_iterations
+            k.max_iterations,
+            k.switched_at.map_or(String::new(), |n| format!(
+                "; solve {n} did not converge with GAMG, retried and continued with BoomerAMG"
+            ))
         ),
         (None, Some(nnz)) => println!(
             "fill            {nnz} nonzeros in L ({:.1} per equation, {} equations)",

@@ -124,6 +124,10 @@ pub struct KrylovCounts {
     pub max_iterations: usize,
     /// The MPI ranks the solves ran across (0 and 1: one process).
     pub ranks: usize,
+    /// The solve (counted from 1) after which the default's multigrid on
+    /// the displacements gave way to the fallback's (the PETSc solver's
+    /// module docs, "When the multigrid stalls"); `None` while it has not.
+    pub switched_at: Option<usize>,
 }
 
 /// A sparse direct solver for the Newton system, with the symbolic analysis

@@ -36,6 +36,18 @@
 //! displacements. Why this route (and not the condensation of the
 //! multipliers) is in docs/petsc.md, with the measurements.
 //!
+//! # When the multigrid stalls
+//!
+//! GAMG's smoothed aggregation does not converge on every mesh (the graded
+//! hexahedral 3D Hertz mesh stalls it, docs/petsc.md). A solve the default
+//! does not converge is therefore retried once, from a solver rebuilt with
+//! [`FALLBACK_OPTIONS`] after the defaults (BoomerAMG, hypre's classical
+//! algebraic multigrid, on the displacements), and the run keeps the
+//! fallback from then on ([`KrylovCounts::switched_at`], printed by
+//! `gapsim run`). A user who names a `pc_type` (in the solver's options or
+//! `PETSC_OPTIONS`) chose the preconditioner: nothing is retried. A solve
+//! that does not converge after the switch is the error, saying so.
+//!
 //! # Options and tolerance
 //!
 //! Options are applied in this order, a later one overriding an earlier:
@@ -69,6 +81,16 @@ pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 30 -ksp_m
 pub const DEFAULT_OPTIONS_UNCONSTRAINED: &str =
     "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 -pc_type gamg";
 
+/// What the defaults become after a solve they did not converge (module
+/// docs, "When the multigrid stalls"): BoomerAMG (hypre's classical
+/// algebraic multigrid) on the displacements instead of GAMG. Not the
+/// default: on the 3D scaling scene it takes more memory and time than
+/// GAMG (docs/petsc.md).
+pub const FALLBACK_OPTIONS: &str = "-fieldsplit_u_pc_type hypre";
+
+/// [`FALLBACK_OPTIONS`] of a system without constraint rows.
+pub const FALLBACK_OPTIONS_UNCONSTRAINED: &str = "-pc_type hypre";
+
 /// This process's rank in PETSc's world (initialising MPI and PETSc).
 pub fn world_rank() -> Result<usize, LinearError> {
     Ok(serial()?.world_rank()?)
@@ -93,15 +115,29 @@ pub fn build(options: &str) -> Box<dyn LinearSolver> {
 
 /// The options string installed for a system with or without constraint
 /// rows, with the solver's own `options` (module docs, "Options and
-/// tolerance").
-fn options_for(options: &str, constrained: bool) -> String {
-    let defaults = if constrained {
-        DEFAULT_OPTIONS
+/// tolerance"); with `switched`, the defaults followed by the fallback's.
+fn options_for(options: &str, constrained: bool, switched: bool) -> String {
+    let (defaults, fallback) = if constrained {
+        (DEFAULT_OPTIONS, FALLBACK_OPTIONS)
     } else {
-        DEFAULT_OPTIONS_UNCONSTRAINED
+        (
+            DEFAULT_OPTIONS_UNCONSTRAINED,
+            FALLBACK_OPTIONS_UNCONSTRAINED,
+        )
     };
+    let fallback = if switched { fallback } else { "" };
     let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
-    format!("{defaults} {env} {options}")
+    format!("{defaults} {fallback} {env} {options}")
+}
+
+/// The options a solve that did not converge is retried with: the
+/// fallback's, when the preconditioner is the default's (neither the
+/// solver's `options` nor `PETSC_OPTIONS` name a `pc_type`) and the switch
+/// has not happened yet; `None` otherwise.
+fn retry_options(options: &str, constrained: bool, counts: &KrylovCounts) -> Option<String> {
+    let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
+    let chosen = options.contains("pc_type") || env.contains("pc_type");
+    (counts.switched_at.is_none() && !chosen).then(|| options_for(options, constrained, true))
 }
 
 /// The error of a Krylov solve that ended without converging.
@@ -173,27 +209,69 @@ impl Numbering {
 /// the matrix and the splits it refers to.
 struct Objects {
     ksp: Ksp,
-    _splits: Vec<IndexSet>,
+    /// The field split's `u` and `lambda` (empty unless PCFIELDSPLIT).
+    splits: Vec<IndexSet>,
     _near_null: Option<NearNullSpace>,
     a: Matrix,
     b: Vector,
     x: Vector,
+    comm: Comm,
 }
 
 impl Objects {
     /// Solves with right-hand side `b` (this rank's part) to the relative
     /// residual `rtol` under `options`, counting into `counts`; the solution
-    /// is left in `x`. A solve that does not converge is the error naming
-    /// PETSc's reason.
+    /// is left in `x`. A solve that does not converge is retried once with
+    /// the solver rebuilt from `retry` (the fallback's options, module
+    /// docs), which it keeps; a solve that still does not converge, or had
+    /// no retry, is the error naming PETSc's reason.
     fn solve(
         &mut self,
         s: &Serial,
         b: &[f64],
         rtol: f64,
-        options: &str,
+        (options, retry): (&str, Option<String>),
         counts: &mut KrylovCounts,
     ) -> Result<(), LinearError> {
         self.b.set(s, b)?;
+        let failed = match self.run(s, rtol, options, counts)? {
+            None => return Ok(()),
+            Some(e) => e,
+        };
+        let Some(retry) = retry else {
+            return Err(match counts.switched_at {
+                Some(n) => LinearError::NotConverged(format!(
+                    "{failed} (with BoomerAMG on the displacements, the default's since GAMG \
+                     did not converge solve {n})"
+                )),
+                None => failed,
+            });
+        };
+        s.replace_options(&retry)?;
+        self.ksp = Ksp::new(s, self.comm, &self.a)?;
+        if let [u, lambda] = &self.splits[..] {
+            self.ksp.add_split(s, "u", u)?;
+            self.ksp.add_split(s, "lambda", lambda)?;
+        }
+        self.ksp.set_up(s)?;
+        counts.switched_at = Some(counts.solves);
+        match self.run(s, rtol, &retry, counts)? {
+            None => Ok(()),
+            Some(e) => Err(LinearError::NotConverged(format!(
+                "{failed}; retried with BoomerAMG on the displacements ({FALLBACK_OPTIONS}): {e}"
+            ))),
+        }
+    }
+
+    /// One Krylov solve of `b` into `x` under `options`, counted; the
+    /// error it ended with when it did not converge.
+    fn run(
+        &mut self,
+        s: &Serial,
+        rtol: f64,
+        options: &str,
+        counts: &mut KrylovCounts,
+    ) -> Result<Option<LinearError>, LinearError> {
         self.ksp.set_rtol(s, rtol)?;
         s.replace_options(options)?;
         let out = self.ksp.solve(s, &self.b, &mut self.x)?;
@@ -203,10 +281,10 @@ impl Objects {
         if counts.method.is_empty() {
             counts.method = self.ksp.describe(s)?;
         }
-        if !out.converged {
-            return Err(not_converged(&self.ksp.describe(s)?, &out, rtol));
+        if out.converged {
+            return Ok(None);
         }
-        Ok(())
+        Ok(Some(not_converged(&self.ksp.describe(s)?, &out, rtol)))
     }
 }
 
@@ -387,7 +465,11 @@ impl PetscKrylov {
     /// The options string installed for a system with or without constraint
     /// rows (module docs, "Options and tolerance").
     fn options_for(&self, constrained: bool) -> String {
-        options_for(&self.options, constrained)
+        options_for(
+            &self.options,
+            constrained,
+            self.counts.switched_at.is_some(),
+        )
     }
 
     /// The options of the cached pattern's system.
@@ -462,11 +544,12 @@ impl PetscKrylov {
             diagonal,
             objects: Objects {
                 ksp,
-                _splits: splits,
+                splits,
                 _near_null: near_null,
                 a,
                 b,
                 x,
+                comm: Comm::One,
             },
         })
     }
@@ -559,8 +642,10 @@ impl LinearSolver for PetscKrylov {
         for (i, &v) in rhs.iter().enumerate() {
             b[p.numbering.rows[i]] = v;
         }
+        let constrained = p.numbering.n > p.numbering.n_u;
+        let retry = retry_options(&self.options, constrained, &self.counts);
         let o = &mut p.objects;
-        o.solve(&s, &b, rtol, &options, &mut self.counts)?;
+        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
         let x = o.x.get(&s)?;
         Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
     }

@@ -46,7 +46,9 @@
 use std::time::{Duration, Instant};
 
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
-use super::{Compressed, Numbering, Objects, compress, options_for, petsc_rows, triplets_hold};
+use super::{
+    Compressed, Numbering, Objects, compress, options_for, petsc_rows, retry_options, triplets_hold,
+};
 use crate::linear::{KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout};
 
 /// PETSc's numbering across the ranks (module docs), and this rank's part.
@@ -256,7 +258,11 @@ impl PetscRanks {
             .pattern
             .as_ref()
             .is_some_and(|p| p.numbering.numbering.n > p.numbering.numbering.n_u);
-        options_for(&self.options, constrained)
+        options_for(
+            &self.options,
+            constrained,
+            self.counts.switched_at.is_some(),
+        )
     }
 
     fn build(
@@ -277,7 +283,11 @@ impl PetscRanks {
             slot,
         } = compress(nb, rows, cols)?;
         let constrained = nb.n > nb.n_u;
-        s.replace_options(&options_for(&self.options, constrained))?;
+        s.replace_options(&options_for(
+            &self.options,
+            constrained,
+            self.counts.switched_at.is_some(),
+        ))?;
         let (d_nnz, o_nnz) = numbering.row_counts(s, &row_ptr, &cols)?;
         let a = Matrix::from_rows(s, numbering.n_local, nb.n, &d_nnz, &o_nnz, cols.len())?;
         drop((d_nnz, o_nnz));
@@ -324,11 +334,12 @@ impl PetscRanks {
             diagonal,
             objects: Objects {
                 ksp,
-                _splits: splits,
+                splits,
                 _near_null: near_null,
                 a,
                 b,
                 x,
+                comm: Comm::World,
             },
         })
     }
@@ -440,8 +451,10 @@ impl LinearSolver for PetscRanks {
                 b[r - nb.first] = v;
             }
         }
+        let constrained = nb.numbering.n > nb.numbering.n_u;
+        let retry = retry_options(&self.options, constrained, &self.counts);
         let o = &mut p.objects;
-        o.solve(&s, &b, rtol, &options, &mut self.counts)?;
+        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
         let x = o.x.gather_all(&s, nb.numbering.n)?;
         Ok(nb.numbering.rows.iter().map(|&r| x[r]).collect())
     }
@@ -487,7 +500,7 @@ impl LinearSolver for PetscRanks {
     ) -> Result<Vec<usize>, LinearError> {
         let s = serial()?;
         // the partitioner reads the options too (`-mat_partitioning_type`)
-        s.replace_options(&options_for(&self.options, true))?;
+        s.replace_options(&options_for(&self.options, true, false))?;
         Ok(s.partition(n_total, row_ptr, cols)?)
     }
 }

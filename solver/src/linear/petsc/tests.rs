@@ -126,7 +126,42 @@ fn options_reach_petsc_and_failures_are_errors() {
     .expect_err("one Jacobi iteration cannot solve the saddle point");
     let text = err.to_string();
     assert!(text.contains("DIVERGED_ITS"), "{text}");
+    // the user's own preconditioner is not retried with another
+    assert!(!text.contains("retried"), "{text}");
     let bad = run::<2>(&scene, LinearSolverKind::Petsc, "-pc_type no_such_pc")
         .expect_err("an unknown preconditioner is refused");
     assert!(bad.to_string().contains("no_such_pc"), "{bad}");
+}
+
+/// A solve the default's GAMG does not converge (here made to stall by
+/// Chebyshev bounds far below the displacement block's spectrum, which
+/// only GAMG's smoothers read) is retried with BoomerAMG on the
+/// displacements, which the run keeps: the default's energy and Newton
+/// path, the switch reported at solve 1. A solve that fails after the retry
+/// too is the error saying so, and so is a later one.
+#[test]
+fn a_stalled_multigrid_is_retried_with_boomeramg() {
+    let scene =
+        Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml").unwrap();
+    let default = run::<2>(&scene, LinearSolverKind::Petsc, "").unwrap();
+    assert_eq!(default.krylov.as_ref().unwrap().switched_at, None);
+    let stalled = run::<2>(
+        &scene,
+        LinearSolverKind::Petsc,
+        "-ksp_max_it 60 -fieldsplit_u_mg_levels_ksp_chebyshev_esteig 0,0.0001,0,0.0002",
+    )
+    .unwrap();
+    let rel = (stalled.strain_energy / default.strain_energy - 1.0).abs();
+    assert!(rel <= 1e-8, "energy differs by {rel:e}");
+    assert_eq!(stalled.newton_iterations, default.newton_iterations);
+    let k = stalled.krylov.unwrap();
+    assert_eq!(k.switched_at, Some(1), "{k:?}");
+    assert_eq!(k.solves, default.krylov.unwrap().solves + 1, "{k:?}");
+    let err = run::<2>(&scene, LinearSolverKind::Petsc, "-ksp_max_it 1")
+        .expect_err("one iteration cannot solve the saddle point");
+    let text = err.to_string();
+    assert!(
+        text.contains("DIVERGED_ITS") && text.contains("BoomerAMG"),
+        "{text}"
+    );
 }
