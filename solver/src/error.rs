@@ -70,6 +70,16 @@ pub enum SolverError {
         /// The kernel's error.
         error: KernelError,
     },
+    /// The Newton system would have more equations than its 32-bit triplet
+    /// indices hold ([`crate::system::MAX_EQUATIONS`]).
+    #[error(
+        "the model has {equations} equations (with the node ties it may have), more than the {} a Newton system holds",
+        crate::system::MAX_EQUATIONS
+    )]
+    TooManyEquations {
+        /// The free dofs and multipliers, and a bound on the node ties.
+        equations: usize,
+    },
     /// The model and its first factorisation would need more memory than
     /// is available ([`crate::memory`]: the estimate is a lower bound).
     #[error(transparent)]

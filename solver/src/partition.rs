@@ -160,7 +160,7 @@ mod tests {
     }
 
     impl LinearSolver for Playing {
-        fn analyse(&mut self, _: usize, _: &[usize], _: &[usize]) -> Result<(), LinearError> {
+        fn analyse(&mut self, _: usize, _: &[u32], _: &[u32]) -> Result<(), LinearError> {
             unreachable!("the partition solves nothing")
         }
         fn factor(&mut self, _: &[f64]) -> Result<(), LinearError> {

@@ -127,15 +127,20 @@ impl DofMap {
     }
 }
 
+/// The most equations a [`System`] holds (its triplet indices are 32-bit).
+pub const MAX_EQUATIONS: usize = u32::MAX as usize;
+
 /// The assembled Newton system at one state.
 #[derive(Debug, Clone, Default)]
 pub struct System {
     /// The residual (length [`DofMap::n_eq`]).
     pub residual: Vec<f64>,
-    /// Triplet rows.
-    pub rows: Vec<usize>,
-    /// Triplet columns.
-    pub cols: Vec<usize>,
+    /// Triplet rows (32-bit: the triplets are the largest buffer of a 3D
+    /// run; a system of more equations is refused when Newton sets up,
+    /// [`MAX_EQUATIONS`]).
+    pub rows: Vec<u32>,
+    /// Triplet columns (32-bit, as the rows).
+    pub cols: Vec<u32>,
     /// Triplet values.
     pub vals: Vec<f64>,
     /// Strain energy of all solid elements.
@@ -166,8 +171,9 @@ impl System {
 
     /// Appends the triplet `(r, c, v)`.
     pub fn push(&mut self, r: EquationIndex, c: EquationIndex, v: f64) {
-        self.rows.push(r.index());
-        self.cols.push(c.index());
+        // below MAX_EQUATIONS (checked when Newton sets up): exact
+        self.rows.push(r.index() as u32);
+        self.cols.push(c.index() as u32);
         self.vals.push(v);
     }
 

@@ -38,7 +38,7 @@ fn system_at(
     let n = dofs.n_eq();
     let mut k = vec![vec![0.0; n]; n];
     for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
-        k[r][c] += v;
+        k[r as usize][c as usize] += v;
     }
     (sys.residual, k)
 }
@@ -1049,7 +1049,7 @@ fn node_tie_tangent_matches_finite_differences() {
             add_external(&model, &dofs, 1.0, &mut sys);
             let mut k = vec![vec![0.0; n]; n];
             for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
-                k[r][c] += v;
+                k[r as usize][c as usize] += v;
             }
             (sys.residual, k)
         };

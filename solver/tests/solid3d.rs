@@ -262,7 +262,7 @@ fn assembled_tangent_is_the_residual_derivative() {
     let at = residual(&u);
     let mut k = vec![vec![0.0; n]; n];
     for ((&r, &c), &v) in at.rows.iter().zip(&at.cols).zip(&at.vals) {
-        k[r][c] += v;
+        k[r as usize][c as usize] += v;
     }
     let scale = k.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
     let h = 1e-6;

@@ -227,7 +227,7 @@ pub(super) mod mixed {
         assemble_solid(model, dofs, u, &mut sys);
         let mut k = vec![vec![0.0; dofs.n_eq()]; dofs.n_eq()];
         for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
-            k[r][c] += v;
+            k[r as usize][c as usize] += v;
         }
         (sys.residual, k)
     }

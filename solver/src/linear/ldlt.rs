@@ -92,8 +92,8 @@ pub const MAX_REFINEMENTS: usize = 3;
 /// The cached symbolic data of one pattern.
 struct Pattern {
     n: usize,
-    rows: Vec<usize>,
-    cols: Vec<usize>,
+    rows: Vec<u32>,
+    cols: Vec<u32>,
     /// Indices of the triplets in the lower triangle (`row >= col`).
     lower: Vec<usize>,
     /// Compressed-column structure of the lower triangle.
@@ -190,7 +190,7 @@ impl SparseLdlt {
         for (&k, &slot) in p.lower.iter().zip(&p.slot) {
             lower_vals[slot] += vals[k];
             if p.rows[k] == p.cols[k] {
-                diagonal[p.rows[k]] += vals[k];
+                diagonal[p.rows[k] as usize] += vals[k];
             }
         }
         let expected_positive = diagonal.iter().filter(|&&d| d > 0.0).count();
@@ -269,12 +269,13 @@ impl SparseLdlt {
             let a_inf = match a_norm {
                 Some(a) => {
                     for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(vals) {
-                        r[row] -= v * x[col];
+                        r[row as usize] -= v * x[col as usize];
                     }
                     a
                 }
                 None => {
                     for ((&row, &col), &v) in p.rows.iter().zip(&p.cols).zip(vals) {
+                        let (row, col) = (row as usize, col as usize);
                         r[row] -= v * x[col];
                         row_sums[row] += v.abs();
                     }
@@ -454,7 +455,7 @@ fn pivots_have_expected_inertia(
 }
 
 impl LinearSolver for SparseLdlt {
-    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
         let same = self
             .pattern
             .as_ref()
@@ -462,7 +463,8 @@ impl LinearSolver for SparseLdlt {
         if !same {
             let t = Instant::now();
             self.pattern = None;
-            if let Some(k) = rows.iter().zip(cols).position(|(&r, &c)| r >= n || c >= n) {
+            if let Some(k) = rows.iter().zip(cols).position(|(&r, &c)| r as usize >= n || c as usize >= n)
+            {
                 return Err(LinearError::Singular(format!(
                     "pattern: entry {k} outside the {n} x {n} matrix"
                 )));
@@ -471,8 +473,8 @@ impl LinearSolver for SparseLdlt {
             let idx: Vec<Pair<usize, usize>> = lower
                 .iter()
                 .map(|&k| Pair {
-                    row: rows[k],
-                    col: cols[k],
+                    row: rows[k] as usize,
+                    col: cols[k] as usize,
                 })
                 .collect();
             let (symbolic, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
@@ -554,8 +556,8 @@ impl LinearSolver for SparseLdlt {
     fn solve_system(
         &mut self,
         n: usize,
-        rows: &[usize],
-        cols: &[usize],
+        rows: &[u32],
+        cols: &[u32],
         vals: &[f64],
         b: &[f64],
     ) -> Result<Vec<f64>, LinearError> {

@@ -11,8 +11,8 @@ use faer::sparse::linalg::SupernodalThreshold;
 /// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
 /// the LDL^T solver.
 fn both(n: usize, t: &[(usize, usize, f64)], b: &[f64]) -> (Vec<f64>, Vec<f64>, SparseLdlt) {
-    let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
-    let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+    let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
+    let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
     let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
     let mut ldlt = SparseLdlt::new();
     let x = ldlt.solve_system(n, &rows, &cols, &vals, b).unwrap();
@@ -106,8 +106,8 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
         (2, 1, 1.0),
         (2, 2, -1e-8),
     ];
-    let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
-    let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+    let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
+    let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
     let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
     let b = [1.0, 0.5, -0.25];
     let mut s = SparseLdlt::new();
@@ -136,8 +136,8 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
         (3, 2, 1.0),
         (3, 3, -1e-8),
     ];
-    let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
-    let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+    let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
+    let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
     let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
     let b = [1.0, 0.5, -0.25, 0.125];
     s.set_constraints_from(3);
@@ -157,8 +157,8 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
 #[test]
 fn factor_nonzeros_counts_the_lower_triangle_of_l() {
     let analysed = |n: usize, t: &[(usize, usize)]| {
-        let rows: Vec<usize> = t.iter().map(|e| e.0).collect();
-        let cols: Vec<usize> = t.iter().map(|e| e.1).collect();
+        let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
+        let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
         let mut s = SparseLdlt::new();
         assert_eq!(s.factor_nonzeros(), None);
         s.analyse(n, &rows, &cols).unwrap();

@@ -25,8 +25,8 @@ use super::{LinearError, LinearSolver};
 /// The cached symbolic data of one pattern.
 struct Pattern {
     n: usize,
-    rows: Vec<usize>,
-    cols: Vec<usize>,
+    rows: Vec<u32>,
+    cols: Vec<u32>,
     symbolic: SymbolicSparseColMat<usize>,
     argsort: Argsort<usize>,
     lu: SymbolicLu<usize>,
@@ -49,7 +49,7 @@ impl SparseLu {
 }
 
 impl LinearSolver for SparseLu {
-    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
         let same = self
             .pattern
             .as_ref()
@@ -60,7 +60,10 @@ impl LinearSolver for SparseLu {
             let idx: Vec<Pair<usize, usize>> = rows
                 .iter()
                 .zip(cols)
-                .map(|(&r, &c)| Pair { row: r, col: c })
+                .map(|(&r, &c)| Pair {
+                    row: r as usize,
+                    col: c as usize,
+                })
                 .collect();
             let (symbolic, argsort) = SymbolicSparseColMat::try_new_from_indices(n, n, &idx)
                 .map_err(|e| LinearError::Singular(format!("pattern: {e:?}")))?;

@@ -139,7 +139,7 @@ pub trait LinearSolver: Send {
     /// [`symbolic_factorisations`](Self::symbolic_factorisations) and
     /// [`symbolic_time`](Self::symbolic_time)). After an error no pattern is
     /// cached.
-    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError>;
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError>;
 
     /// Factorises the matrix with values `vals` (in the order of the
     /// analysed triplets).
@@ -240,8 +240,8 @@ pub trait LinearSolver: Send {
     fn solve_system(
         &mut self,
         n: usize,
-        rows: &[usize],
-        cols: &[usize],
+        rows: &[u32],
+        cols: &[u32],
         vals: &[f64],
         b: &[f64],
     ) -> Result<Vec<f64>, LinearError> {

@@ -32,6 +32,7 @@ pub(super) fn regularize(
     let n_free = dofs.n_free;
     let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
     for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+        let (r, c) = (r as usize, c as usize);
         if r < n_free && c < n_free {
             k_max = k_max.max(v.abs());
         } else if r < n_free || c < n_free {

@@ -39,7 +39,7 @@ use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::partition::Partition;
 use crate::solution::ContactPointId;
-use crate::system::{DofMap, System};
+use crate::system::{DofMap, MAX_EQUATIONS, System};
 
 use super::regularize::regularize;
 use crate::model::{Dim, SurfaceDim};
@@ -83,6 +83,11 @@ where
         model.check()?;
         let layout = S::build(model, options.formulation)?;
         let dofs = DofMap::new(model, layout.multiplier_count());
+        // the node ties come after the multipliers: at most one per dof
+        let equations = dofs.n_eq().saturating_add(model.dof_count());
+        if equations > MAX_EQUATIONS {
+            return Err(SolverError::TooManyEquations { equations });
+        }
         let mut linear = options.linear.build(&options.petsc_options);
         let partition = Partition::of(model, linear.as_ref())?;
         let mut system_layout = dofs.layout(model);

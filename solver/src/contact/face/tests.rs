@@ -180,7 +180,7 @@ fn potential(
     assemble_contact(&layout.points, &evals, lambda, &active, &dofs, &mut sys);
     let mut k = DMatrix::zeros(n, n);
     for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
-        k[(r, c)] += v;
+        k[(r as usize, c as usize)] += v;
     }
     (pi, DVector::from_vec(sys.residual.clone()), k)
 }

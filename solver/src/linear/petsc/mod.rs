@@ -294,11 +294,11 @@ impl Objects {
 fn triplets_hold(
     numbering: &[usize],
     (row_ptr, pattern_cols, slot): (&[i32], &[i32], &[u32]),
-    rows: &[usize],
-    cols: &[usize],
+    rows: &[u32],
+    cols: &[u32],
 ) -> bool {
     rows.iter().zip(cols).zip(slot).all(|((&r, &c), &k)| {
-        let (pr, pc, k) = (numbering[r], numbering[c], k as usize);
+        let (pr, pc, k) = (numbering[r as usize], numbering[c as usize], k as usize);
         (row_ptr[pr] as usize..row_ptr[pr + 1] as usize).contains(&k)
             && pattern_cols[k] as usize == pc
     })
@@ -346,7 +346,7 @@ impl Pattern {
     /// Whether Newton's triplets `(rows, cols)` of `n` equations each fall
     /// on their entry of this pattern (always when they are the triplets it
     /// was built from): then only the values change.
-    fn holds(&self, n: usize, rows: &[usize], cols: &[usize]) -> bool {
+    fn holds(&self, n: usize, rows: &[u32], cols: &[u32]) -> bool {
         let nb = &self.numbering;
         nb.rows.len() == n
             && self.slot.len() == rows.len() + nb.decoupled.len()
@@ -364,7 +364,7 @@ impl Pattern {
 /// merged; and each triplet's entry. A counting sort by row, then each
 /// row's few entries sorted by column: linear in the triplets, with 4 bytes
 /// of work space per triplet.
-fn compress(nb: &Numbering, rows: &[usize], cols: &[usize]) -> Result<Compressed, LinearError> {
+fn compress(nb: &Numbering, rows: &[u32], cols: &[u32]) -> Result<Compressed, LinearError> {
     let m = rows.len();
     let total = m + nb.decoupled.len();
     let too_big = || LinearError::Petsc(format!("{total} triplets exceed the 32-bit index range"));
@@ -373,7 +373,7 @@ fn compress(nb: &Numbering, rows: &[usize], cols: &[usize]) -> Result<Compressed
     }
     let at = |t: usize| -> (usize, usize) {
         if t < m {
-            (nb.rows[rows[t]], nb.rows[cols[t]])
+            (nb.rows[rows[t] as usize], nb.rows[cols[t] as usize])
         } else {
             let d = nb.decoupled[t - m];
             (d, d)
@@ -485,8 +485,8 @@ impl PetscKrylov {
         &self,
         s: &Serial,
         n: usize,
-        rows: &[usize],
-        cols: &[usize],
+        rows: &[u32],
+        cols: &[u32],
     ) -> Result<Pattern, LinearError> {
         let first = self
             .layout
@@ -562,7 +562,7 @@ impl Drop for PetscKrylov {
 }
 
 impl LinearSolver for PetscKrylov {
-    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
         let same = self
             .pattern
             .as_ref()

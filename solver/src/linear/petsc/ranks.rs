@@ -204,7 +204,7 @@ struct RankPattern {
 
 impl RankPattern {
     /// Whether this rank's triplets fall on their entries of this pattern.
-    fn holds(&self, n: usize, rows: &[usize], cols: &[usize]) -> bool {
+    fn holds(&self, n: usize, rows: &[u32], cols: &[u32]) -> bool {
         let nb = &self.numbering.numbering;
         nb.rows.len() == n
             && self.triplets == rows.len()
@@ -269,8 +269,8 @@ impl PetscRanks {
         &self,
         s: &Serial,
         n: usize,
-        rows: &[usize],
-        cols: &[usize],
+        rows: &[u32],
+        cols: &[u32],
     ) -> Result<RankPattern, LinearError> {
         let layout = self.layout.as_ref().ok_or_else(|| {
             LinearError::Petsc("a solve across ranks needs the system's layout".into())
@@ -361,7 +361,7 @@ impl Drop for PetscRanks {
 }
 
 impl LinearSolver for PetscRanks {
-    fn analyse(&mut self, n: usize, rows: &[usize], cols: &[usize]) -> Result<(), LinearError> {
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
         let s = serial()?;
         let here = self
             .pattern
