@@ -42,9 +42,10 @@
 //!
 //! * **PETSc** (`--linear petsc`, feature `petsc`), whole runs of
 //!   `scenes/pressed-block3d.toml` refined 4, 6 and 9 times
-//!   (`scripts/petsc-scaling.sh`, docs/petsc.md): 13.5, 11.8 and 11.7 KiB
-//!   per equation at 103813, 343207 and 1142398 equations, not growing (no
-//!   fill): `B` is [`PETSC_3D_BYTES_PER_EQUATION`], half the smallest,
+//!   (`scripts/petsc-scaling.sh`, docs/petsc.md): 9.1, 8.5 and 8.4 KiB
+//!   per equation at 103813, 343207 and 1142398 equations (13.5, 11.8 and
+//!   11.7 before the triplet indices became 32-bit), not growing (no
+//!   fill): `B` is [`PETSC_3D_BYTES_PER_EQUATION`], 0.7 of the smallest,
 //!   at every size. In 2D it takes the LDLᵀ's figure, a lower bound (a 2D
 //!   block pressed on a base peaked at 6.7 KiB per equation through PETSc).
 //!

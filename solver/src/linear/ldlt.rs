@@ -463,7 +463,10 @@ impl LinearSolver for SparseLdlt {
         if !same {
             let t = Instant::now();
             self.pattern = None;
-            if let Some(k) = rows.iter().zip(cols).position(|(&r, &c)| r as usize >= n || c as usize >= n)
+            if let Some(k) = rows
+                .iter()
+                .zip(cols)
+                .position(|(&r, &c)| r as usize >= n || c as usize >= n)
             {
                 return Err(LinearError::Singular(format!(
                     "pattern: entry {k} outside the {n} x {n} matrix"
