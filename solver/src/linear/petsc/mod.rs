@@ -84,8 +84,8 @@ pub const DEFAULT_OPTIONS_UNCONSTRAINED: &str =
 /// What the defaults become after a solve they did not converge (module
 /// docs, "When the multigrid stalls"): BoomerAMG (hypre's classical
 /// algebraic multigrid) on the displacements instead of GAMG. Not the
-/// default: on the 3D scaling scene it takes more memory and time than
-/// GAMG (docs/petsc.md).
+/// default: on the 3D scaling scene it takes more memory than GAMG
+/// (docs/petsc.md).
 pub const FALLBACK_OPTIONS: &str = "-fieldsplit_u_pc_type hypre";
 
 /// [`FALLBACK_OPTIONS`] of a system without constraint rows.
