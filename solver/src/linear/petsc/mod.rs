@@ -258,7 +258,7 @@ impl Objects {
         match self.run(s, rtol, &retry, counts)? {
             None => Ok(()),
             Some(e) => Err(LinearError::NotConverged(format!(
-                "{failed}; retried with BoomerAMG on the displacements ({FALLBACK_OPTIONS}): {e}"
+                "{failed}; retried with BoomerAMG on the displacements: {e}"
             ))),
         }
     }
