@@ -176,38 +176,17 @@ int gapsim_petsc_options_replace(const char *text)
   return PetscOptionsInsertString(NULL, text);
 }
 
-/* ---- Mat: sequential AIJ of a compressed-row pattern (row_ptr, cols:
- * sorted, unique columns per row), its values written in place ---- */
-int gapsim_petsc_mat_create_csr(PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, Mat *out)
-{
-  Mat a;
-  PetscErrorCode ierr = MatCreate(PETSC_COMM_SELF, &a);
-  if (ierr) return ierr;
-  *out = a;
-  ierr = MatSetSizes(a, n, n, n, n);
-  if (ierr) return ierr;
-  ierr = MatSetType(a, MATSEQAIJ);
-  if (ierr) return ierr;
-  return MatSeqAIJSetPreallocationCSR(a, row_ptr, cols, NULL);
-}
-
-/* The values in the pattern's order, to be written and handed back with
- * gapsim_petsc_mat_restore_values (which marks the matrix changed). */
-int gapsim_petsc_mat_get_values(Mat a, PetscScalar **vals) { return MatSeqAIJGetArray(a, vals); }
-
-int gapsim_petsc_mat_restore_values(Mat a, PetscScalar **vals) { return MatSeqAIJRestoreArray(a, vals); }
-
 int gapsim_petsc_mat_destroy(Mat *a) { return MatDestroy(a); }
 
-/* ---- Mat: an AIJ matrix over every rank, n_local of its n rows on this
- * rank (the ranks' rows contiguous in rank order), preallocated with at most
- * d_nnz[i] entries of this rank's row i in its own columns and o_nnz[i] in
- * the others' (upper bounds: space not filled is released at the first
- * assembly). ---- */
-int gapsim_petsc_mat_create_rows(PetscInt n_local, PetscInt n, const PetscInt *d_nnz, const PetscInt *o_nnz, Mat *out)
+/* ---- Mat: an AIJ matrix on this rank alone (world = 0) or over every rank
+ * (world = 1), n_local of its n rows on this rank (the ranks' rows
+ * contiguous in rank order), preallocated with at most d_nnz[i] entries of
+ * this rank's row i in its own columns and o_nnz[i] in the others' (upper
+ * bounds: space not filled is released at the first assembly). ---- */
+int gapsim_petsc_mat_create_rows(int world, PetscInt n_local, PetscInt n, const PetscInt *d_nnz, const PetscInt *o_nnz, Mat *out)
 {
   Mat a;
-  PetscErrorCode ierr = MatCreate(PETSC_COMM_WORLD, &a);
+  PetscErrorCode ierr = MatCreate(world ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &a);
   if (ierr) return ierr;
   *out = a;
   ierr = MatSetSizes(a, n_local, n_local, n, n);
@@ -217,21 +196,19 @@ int gapsim_petsc_mat_create_rows(PetscInt n_local, PetscInt n, const PetscInt *d
   return MatXAIJSetPreallocation(a, 1, d_nnz, o_nnz, NULL, NULL);
 }
 
-/* The values of a gapsim_petsc_mat_create_rows matrix: zeroed, then this
- * rank's rows (the same row_ptr and cols, vals beside cols) added, every
- * rank's contributions to an entry summed on its owner. Collective. */
-int gapsim_petsc_mat_add_rows(Mat a, PetscInt n, const PetscInt *row_ptr, const PetscInt *cols, const PetscScalar *vals)
+/* Every entry zero (the pattern kept), before the rows are added. */
+int gapsim_petsc_mat_zero(Mat a) { return MatZeroEntries(a); }
+
+/* Adds vals to row `row`'s columns `cols` (len of them, any rank's row). */
+int gapsim_petsc_mat_add_row(Mat a, PetscInt row, PetscInt len, const PetscInt *cols, const PetscScalar *vals)
 {
-  PetscInt r;
-  PetscErrorCode ierr = MatZeroEntries(a);
-  if (ierr) return ierr;
-  for (r = 0; r < n; r++) {
-    PetscInt len = row_ptr[r + 1] - row_ptr[r];
-    if (len == 0) continue;
-    ierr = MatSetValues(a, 1, &r, len, cols + row_ptr[r], vals + row_ptr[r], ADD_VALUES);
-    if (ierr) return ierr;
-  }
-  ierr = MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY);
+  return MatSetValues(a, 1, &row, len, cols, vals, ADD_VALUES);
+}
+
+/* Sends the added rows to their owners and sums them there. Collective. */
+int gapsim_petsc_mat_assemble(Mat a)
+{
+  PetscErrorCode ierr = MatAssemblyBegin(a, MAT_FINAL_ASSEMBLY);
   if (ierr) return ierr;
   return MatAssemblyEnd(a, MAT_FINAL_ASSEMBLY);
 }

@@ -10,13 +10,15 @@
 //! and the tangent its exact derivative (see [`crate::element::solid`] and
 //! [`crate::contact`]). Element matrices are computed in parallel
 //! (`crate::par`), a chunk of elements at a time, collected in element
-//! order and scattered sequentially into coordinate triplets, so the result
-//! is deterministic. The triplet index order depends
+//! order and scattered sequentially into coordinate triplets (or the
+//! system's solid block, [`crate::system::Block`]), so the result is
+//! deterministic. The triplet index order depends
 //! only on the mesh, the prescribed set, the pairing and the presence of
 //! Hessians, which lets [`crate::linear`] reuse the symbolic factorisation.
 
 use crate::element::ElementResponse;
-use crate::ids::{DofId, ElementId};
+use crate::ids::{DofId, ElementId, NodeId};
+use crate::linear::{BlockPattern, LinearError};
 use crate::model::Model;
 use crate::model::{Dim, SurfaceDim};
 use crate::par;
@@ -77,8 +79,10 @@ pub fn assemble_solid_of<const D: usize>(
     let count = elements.map_or(mesh.element_count(), <[ElementId]>::len);
     let element = |k: usize| elements.map_or(ElementId::new(k), |list| list[k]);
     // exactly the triplets this assembly adds, so that a first assembly
-    // never holds an old and a doubled buffer at once
+    // never holds an old and a doubled buffer at once (none into a block,
+    // which holds these elements' entries)
     let triplets: usize = (0..count)
+        .filter(|_| sys.block.is_none())
         .map(|k| {
             let eqs = dofs.element_eqs::<D>(&mesh.elements[element(k).index()]);
             let n = eqs.iter().flatten().count();
@@ -106,9 +110,23 @@ pub fn assemble_solid_of<const D: usize>(
                 let Some(ep) = eqs[p] else { continue };
                 sys.residual[ep.index()] += f_int[p];
                 let k = resp.k_row(p);
-                for q in 0..n {
-                    if let Some(eq) = eqs[q] {
-                        sys.push(ep, eq, k[q]);
+                match &mut sys.block {
+                    // what the block does not hold, as triplets in order
+                    // (`System::push`'s split, a node's columns together)
+                    Some(block) => {
+                        let (rows, cols, vals) = (&mut sys.rows, &mut sys.cols, &mut sys.vals);
+                        block.add_row(ep, &eqs[..n], k, D, |eq, v| {
+                            rows.push(ep.index() as u32);
+                            cols.push(eq.index() as u32);
+                            vals.push(v);
+                        });
+                    }
+                    None => {
+                        for q in 0..n {
+                            if let Some(eq) = eqs[q] {
+                                sys.push(ep, eq, k[q]);
+                            }
+                        }
                     }
                 }
                 if let Some(du) = lift {
@@ -121,6 +139,84 @@ pub fn assemble_solid_of<const D: usize>(
             sys.energy += resp.energy();
         }
     }
+}
+
+/// The solid block's pattern ([`crate::linear::BlockPattern`]): the
+/// entries the solid elements `elements` of `model` (`None`: all)
+/// couple among the free dofs of `dofs`: row `r` (a free dof of node
+/// `a`) holds the free dofs of every node sharing an element with `a`,
+/// in equation order.
+pub fn solid_pattern<const D: usize>(
+    model: &Model<D>,
+    dofs: &DofMap,
+    elements: Option<&[ElementId]>,
+) -> Result<BlockPattern, LinearError>
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    let mesh = &model.mesh;
+    let nodes = mesh.node_count();
+    let count = elements.map_or(mesh.element_count(), <[_]>::len);
+    let element = |k: usize| -> &[NodeId] {
+        let e = elements.map_or(k, |list| list[k].index());
+        &mesh.elements[e]
+    };
+    // the elements of each node
+    let mut start = vec![0usize; nodes + 1];
+    for k in 0..count {
+        for n in element(k) {
+            start[n.index() + 1] += 1;
+        }
+    }
+    for a in 0..nodes {
+        start[a + 1] += start[a];
+    }
+    let mut next = start.clone();
+    let mut of_node = vec![0u32; start[nodes]];
+    for k in 0..count {
+        for n in element(k) {
+            of_node[next[n.index()]] = k as u32;
+            next[n.index()] += 1;
+        }
+    }
+    drop(next);
+    let eqs = |a: usize| (0..D).filter_map(move |c| dofs.eq(DofId::in_dim::<D>(NodeId::new(a), c)));
+    let mut row_ptr = Vec::with_capacity(dofs.n_free + 1);
+    row_ptr.push(0);
+    let mut cols: Vec<u32> = Vec::new();
+    let mut seen = vec![usize::MAX; nodes];
+    let mut neighbours: Vec<usize> = Vec::new();
+    let mut columns: Vec<u32> = Vec::new();
+    for a in 0..nodes {
+        if eqs(a).next().is_none() {
+            continue;
+        }
+        neighbours.clear();
+        for &k in &of_node[start[a]..start[a + 1]] {
+            for n in element(k as usize) {
+                if seen[n.index()] != a {
+                    seen[n.index()] = a;
+                    neighbours.push(n.index());
+                }
+            }
+        }
+        // free equations follow the dof order: sorted nodes give
+        // sorted columns
+        neighbours.sort_unstable();
+        columns.clear();
+        columns.extend(
+            neighbours
+                .iter()
+                .flat_map(|&b| eqs(b))
+                .map(|e| e.index() as u32),
+        );
+        for _ in eqs(a) {
+            cols.extend_from_slice(&columns);
+            row_ptr.push(cols.len());
+        }
+    }
+    cols.shrink_to_fit();
+    BlockPattern::new(row_ptr, cols)
 }
 
 /// Subtracts the external force at `load_factor` (`load_factor f_ref`, each

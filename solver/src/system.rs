@@ -1,7 +1,8 @@
 //! The Newton system's numbering and sink: [`DofMap`] (the equation of
 //! every free displacement dof, multiplier and node tie) and [`System`]
-//! (the residual and the tangent's coordinate triplets), filled by the
-//! solid elements (`crate::assembly`) and the contact element
+//! (the residual and the tangent: coordinate triplets, and for a solver
+//! that takes it the solid elements' entries in a compressed [`Block`]),
+//! filled by the solid elements (`crate::assembly`) and the contact element
 //! (`crate::contact`).
 //!
 //! Unknowns: the free displacement dofs (in node order) followed by the
@@ -11,6 +12,7 @@
 use crate::element::MAX_ELEMENT_DOFS;
 use crate::ids::{DofId, EquationIndex, MultiplierIndex, NodeId};
 use crate::linear::SystemLayout;
+use crate::linear::{Block, BlockPattern};
 use crate::model::Model;
 use crate::model::{Dim, SurfaceDim};
 
@@ -143,6 +145,9 @@ pub struct System {
     pub cols: Vec<u32>,
     /// Triplet values.
     pub vals: Vec<f64>,
+    /// The solid block: with one, every contribution to an entry of its
+    /// pattern is added there instead of becoming a triplet ([`Block`]).
+    pub block: Option<Block>,
     /// Strain energy of all solid elements.
     pub energy: f64,
 }
@@ -156,9 +161,19 @@ impl System {
         }
     }
 
+    /// An empty system with `n` equations and a zero solid block over
+    /// `pattern`.
+    pub fn with_block(n: usize, pattern: std::sync::Arc<BlockPattern>) -> System {
+        System {
+            block: Some(Block::new(pattern)),
+            ..System::new(n)
+        }
+    }
+
     /// Empties `self` into a system of `n` equations with zero residual and
-    /// energy and no triplets, keeping its buffers' capacity: the same
-    /// system as [`System::new`], without allocating (and touching fresh
+    /// energy, no triplets and a zero block (if it has one), keeping its
+    /// buffers' capacity: the same system as [`System::new`] (or
+    /// [`System::with_block`]), without allocating (and touching fresh
     /// pages for) the triplets again every Newton iteration.
     pub fn reset(&mut self, n: usize) {
         self.residual.clear();
@@ -166,11 +181,20 @@ impl System {
         self.rows.clear();
         self.cols.clear();
         self.vals.clear();
+        if let Some(b) = &mut self.block {
+            b.clear();
+        }
         self.energy = 0.0;
     }
 
-    /// Appends the triplet `(r, c, v)`.
+    /// Adds `v` to entry `(r, c)`: into the block when its pattern holds
+    /// the entry, otherwise as the triplet `(r, c, v)`.
     pub fn push(&mut self, r: EquationIndex, c: EquationIndex, v: f64) {
+        if let Some(b) = &mut self.block
+            && b.add(r, c, v)
+        {
+            return;
+        }
         // below MAX_EQUATIONS (checked when Newton sets up): exact
         self.rows.push(r.index() as u32);
         self.cols.push(c.index() as u32);

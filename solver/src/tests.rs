@@ -4,7 +4,7 @@
 
 use contact_kernels::ApproxType;
 
-use crate::assembly::{add_external, assemble_solid};
+use crate::assembly::{add_external, assemble_solid, solid_pattern};
 use crate::contact::assemble_contact;
 use crate::contact::{ContactLayout, ContactSpace, PointEval, SegmentTaylor, Taylor};
 use crate::ids::{ContactPointIndex, DofId, EquationIndex, MasterSegmentIndex, NodeId, PairId};
@@ -494,6 +494,82 @@ fn contact_tangent_matches_finite_differences() {
             );
         }
     }
+}
+
+/// The solid block ([`crate::linear::Block`]) takes every contribution to
+/// an entry of its pattern, the contact's included: each entry is the sum
+/// of the same terms in the same order as the triplets it replaces (bit for
+/// bit), the triplets left are the others in their order, and the largest
+/// contribution and the residual are those of the triplets.
+#[test]
+fn the_solid_block_sums_as_the_triplets_do() {
+    use std::collections::BTreeMap;
+    let model = paper_model();
+    let layout = ContactLayout::new(&model, None);
+    let mut rng = Lcg::new(7);
+    let (u, lam) = random_state(&model, &layout, &mut rng, 0.05, 50.0);
+    let dofs = DofMap::new(&model, layout.multipliers.len());
+    let none = vec![None; layout.points.len()];
+    let (evals, _) = layout
+        .evaluate_all(&model.mesh, &u, &none, ApproxType::Type6)
+        .unwrap();
+    let active = layout
+        .active_set_view()
+        .active_multipliers(&evals, &lam, model.mesh.size());
+    assert!(active.iter().any(|&a| a), "some contact contributes");
+    let pattern = std::sync::Arc::new(solid_pattern(&model, &dofs, None).unwrap());
+    pattern.check_invariants().unwrap();
+    assert_eq!(pattern.rows(), dofs.n_free);
+    let assemble = |sys: &mut System| {
+        assemble_contact(&layout.points, &evals, &lam, &active, &dofs, sys);
+        assemble_solid(&model, &dofs, &u, sys);
+    };
+    let mut plain = System::new(dofs.n_eq());
+    assemble(&mut plain);
+    let mut blocked = System::with_block(dofs.n_eq(), pattern.clone());
+    assemble(&mut blocked);
+    let eq = |i: u32| EquationIndex::new(i as usize);
+    let triplets = |s: &System| -> Vec<(u32, u32, u64)> {
+        s.rows
+            .iter()
+            .zip(&s.cols)
+            .zip(&s.vals)
+            .map(|((&r, &c), &v)| (r, c, v.to_bits()))
+            .collect()
+    };
+    let (mut sums, mut inside_max) = (BTreeMap::new(), 0.0_f64);
+    let mut outside = Vec::new();
+    for (r, c, v) in triplets(&plain) {
+        let v = f64::from_bits(v);
+        if pattern.find(eq(r), eq(c)).is_some() {
+            *sums.entry((r, c)).or_insert(0.0) += v;
+            inside_max = inside_max.max(v.abs());
+        } else {
+            outside.push((r, c, v.to_bits()));
+        }
+    }
+    assert!(
+        !outside.is_empty(),
+        "the contact couples outside the pattern"
+    );
+    assert_eq!(triplets(&blocked), outside);
+    let block = blocked.block.as_ref().unwrap();
+    let from_block: BTreeMap<(u32, u32), u64> = pattern
+        .entry_rows()
+        .zip(pattern.cols())
+        .zip(&block.values)
+        .map(|((r, &c), v)| ((r, c), v.to_bits()))
+        .collect();
+    let summed: BTreeMap<(u32, u32), u64> = sums.iter().map(|(&k, v)| (k, v.to_bits())).collect();
+    // the solid elements add to every entry of their pattern
+    assert_eq!(from_block, summed);
+    assert_eq!(block.max_abs.to_bits(), inside_max.to_bits());
+    assert_eq!(plain.residual, blocked.residual);
+    assert_eq!(plain.energy.to_bits(), blocked.energy.to_bits());
+    // a reset keeps the pattern and zeroes the values
+    blocked.reset(dofs.n_eq());
+    let block = blocked.block.as_ref().unwrap();
+    assert!(block.values.iter().all(|&v| v == 0.0) && block.max_abs == 0.0);
 }
 
 fn paper_scene() -> Scene {

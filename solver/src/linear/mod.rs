@@ -33,6 +33,7 @@
 //! before each solve, the relative residual it needs
 //! ([`LinearSolver::set_forcing`]); a direct solver ignores both.
 
+mod block;
 pub mod ldlt;
 pub mod lu;
 #[cfg(feature = "petsc")]
@@ -42,6 +43,7 @@ mod scene_tests;
 
 use std::time::Duration;
 
+pub use block::{Block, BlockPattern};
 pub use ldlt::SparseLdlt;
 pub use lu::SparseLu;
 
@@ -231,6 +233,64 @@ pub trait LinearSolver: Send {
     ) -> Result<Vec<usize>, LinearError> {
         let _ = (row_ptr, cols);
         Ok(vec![0; n_total])
+    }
+
+    /// Whether Newton hands this solver the tangent's solid entries as a
+    /// compressed [`Block`] beside the triplets
+    /// ([`solve_system_with`](Self::solve_system_with)) rather than as
+    /// triplets: for a solver whose own matrix is in compressed rows, the
+    /// triplets (16 bytes per element entry) would be the largest buffer of
+    /// a 3D run. `false` by default.
+    fn takes_block(&self) -> bool {
+        false
+    }
+
+    /// [`analyse`](Self::analyse) of the matrix whose entries are `block`'s
+    /// and the triplets' `(rows[k], cols[k])` (duplicates add). By default
+    /// the block's entries are handed to [`analyse`](Self::analyse) as
+    /// triplets before the others.
+    fn analyse_with_block(
+        &mut self,
+        n: usize,
+        block: &BlockPattern,
+        rows: &[u32],
+        cols: &[u32],
+    ) -> Result<(), LinearError> {
+        let all_rows: Vec<u32> = block.entry_rows().chain(rows.iter().copied()).collect();
+        let all_cols: Vec<u32> = block.cols().iter().chain(cols).copied().collect();
+        self.analyse(n, &all_rows, &all_cols)
+    }
+
+    /// [`factor`](Self::factor) with the block `block` (over the last
+    /// [`analyse_with_block`](Self::analyse_with_block)'s pattern) and the
+    /// triplets' `vals`. By default the block's values go to
+    /// [`factor`](Self::factor) before the triplets'.
+    fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
+        let all: Vec<f64> = block.values.iter().chain(vals).copied().collect();
+        self.factor(&all)
+    }
+
+    /// [`solve_system`](Self::solve_system) of the matrix of `block` (if
+    /// any) and the triplets: [`analyse_with_block`](Self::analyse_with_block),
+    /// [`factor_with_block`](Self::factor_with_block), [`solve`](Self::solve),
+    /// then [`check_solution`] with the largest contribution over the block
+    /// and the triplets of all ranks.
+    fn solve_system_with(
+        &mut self,
+        n: usize,
+        block: Option<&Block>,
+        (rows, cols, vals): (&[u32], &[u32], &[f64]),
+        b: &[f64],
+    ) -> Result<Vec<f64>, LinearError> {
+        let Some(block) = block else {
+            return self.solve_system(n, rows, cols, vals, b);
+        };
+        self.analyse_with_block(n, &block.pattern, rows, cols)?;
+        self.factor_with_block(block, vals)?;
+        let x = self.solve(b)?;
+        let mut largest = [vals.iter().fold(block.max_abs, |m, v| m.max(v.abs()))];
+        self.max_over_ranks(&mut largest)?;
+        check_solution(&largest, b, x)
     }
 
     /// Solves `A x = b` for the `n x n` matrix given by the triplets
@@ -447,6 +507,50 @@ mod tests {
                     .is_err()
             );
             assert_eq!(kind.to_string().parse::<LinearSolverKind>(), Ok(kind));
+        }
+    }
+
+    /// Every solver solves the matrix of a block beside triplets as that
+    /// of the same contributions in triplets (to round-off: a solver
+    /// without a block of its own gets the block's sums as triplets), and
+    /// the block's largest contribution counts in the singularity check.
+    #[test]
+    fn a_block_beside_triplets_is_their_matrix() {
+        use crate::ids::EquationIndex;
+        // [2 1 1; 1 3 0; 1 0 0] x = [1, 2, 3]: the 2 x 2 block of the first
+        // two rows in the block, the constraint row and column as triplets
+        let pattern =
+            std::sync::Arc::new(BlockPattern::from_rows(&[vec![0, 1], vec![0, 1]]).unwrap());
+        for &kind in LinearSolverKind::ALL {
+            let mut block = Block::new(pattern.clone());
+            for (r, c, v) in [
+                (0, 0, 1.5),
+                (0, 1, 1.0),
+                (1, 0, 1.0),
+                (1, 1, 3.0),
+                (0, 0, 0.5),
+            ] {
+                assert!(block.add(EquationIndex::new(r), EquationIndex::new(c), v));
+            }
+            let (rows, cols, vals) = ([0, 2, 2], [2, 0, 2], [1.0, 1.0, 0.0]);
+            let mut s = kind.build("");
+            let x = s
+                .solve_system_with(3, Some(&block), (&rows, &cols, &vals), &[1.0, 2.0, 3.0])
+                .unwrap();
+            assert!((x[0] - 3.0).abs() < 1e-12, "{kind}: {x:?}");
+            assert!((x[1] + 1.0 / 3.0).abs() < 1e-12, "{kind}: {x:?}");
+            assert!(
+                (2.0 * x[0] + x[1] + x[2] - 1.0).abs() < 1e-12,
+                "{kind}: {x:?}"
+            );
+            // a block of a huge entry makes the same solution numerically
+            // singular
+            block.max_abs = 1e20;
+            assert!(
+                s.solve_system_with(3, Some(&block), (&rows, &cols, &vals), &[1.0, 2.0, 3.0])
+                    .is_err(),
+                "{kind}"
+            );
         }
     }
 

@@ -30,7 +30,9 @@ pub(super) fn regularize(
         return Ok(());
     }
     let n_free = dofs.n_free;
-    let (mut k_max, mut g_max) = (0.0_f64, 0.0_f64);
+    // the block's entries are all K_uu's
+    let block_max = sys.block.as_ref().map_or(0.0, |b| b.max_abs);
+    let (mut k_max, mut g_max) = (block_max, 0.0_f64);
     for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
         let (r, c) = (r as usize, c as usize);
         if r < n_free && c < n_free {

@@ -29,12 +29,14 @@
 
 use std::cell::Cell;
 
-use crate::assembly::{add_external, assemble_solid_of, external_force_norm};
+use std::sync::Arc;
+
+use crate::assembly::{add_external, assemble_solid_of, external_force_norm, solid_pattern};
 use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
-use crate::linear::{LinearError, LinearSolver};
+use crate::linear::{BlockPattern, LinearError, LinearSolver};
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::partition::Partition;
@@ -62,6 +64,10 @@ where
     pub(super) length_scale: f64,
     /// This MPI rank's elements (every element on one rank).
     pub(super) partition: Partition,
+    /// The pattern of this rank's solid elements' entries, when the linear
+    /// solver takes the solid block ([`LinearSolver::takes_block`]): every
+    /// system gets a block over it.
+    block: Option<Arc<BlockPattern>>,
     /// The buffers of the last solved system, handed back by
     /// [`Setup::recycle`] and reused by the next [`Setup::contact_system`]
     /// (the triplet count barely changes between iterations; at 10^6
@@ -93,6 +99,11 @@ where
         let mut system_layout = dofs.layout(model);
         system_layout.node_rank = partition.node_rank.clone();
         linear.set_layout(&system_layout);
+        let block = if linear.takes_block() {
+            Some(Arc::new(solid_pattern(model, &dofs, partition.elements())?))
+        } else {
+            None
+        };
         Ok(Setup {
             model,
             layout,
@@ -100,6 +111,7 @@ where
             linear,
             length_scale: model.mesh.size(),
             partition,
+            block,
             spare: Cell::new(None),
         })
     }
@@ -203,7 +215,10 @@ where
                 sys.reset(n_sys);
                 sys
             }
-            None => System::new(n_sys),
+            None => match &self.block {
+                Some(pattern) => System::with_block(n_sys, pattern.clone()),
+                None => System::new(n_sys),
+            },
         };
         if self.partition.assembles_contact() {
             self.layout
@@ -274,11 +289,10 @@ where
             self.partition.assembles_contact(),
         )?;
         self.linear.set_forcing(forcing(norm, first, tol_abs));
-        self.linear.solve_system(
+        self.linear.solve_system_with(
             sys.residual.len(),
-            &sys.rows,
-            &sys.cols,
-            &sys.vals,
+            sys.block.as_ref(),
+            (&sys.rows, &sys.cols, &sys.vals),
             &sys.residual,
         )
     }

@@ -33,29 +33,24 @@ unsafe extern "C" {
     ) -> PetscErrorCode;
     pub fn gapsim_petsc_options_replace(text: *const c_char) -> PetscErrorCode;
 
-    pub fn gapsim_petsc_mat_create_csr(
-        n: PetscInt,
-        row_ptr: *const PetscInt,
-        cols: *const PetscInt,
-        out: *mut Mat,
-    ) -> PetscErrorCode;
-    pub fn gapsim_petsc_mat_get_values(a: Mat, vals: *mut *mut f64) -> PetscErrorCode;
-    pub fn gapsim_petsc_mat_restore_values(a: Mat, vals: *mut *mut f64) -> PetscErrorCode;
     pub fn gapsim_petsc_mat_destroy(a: *mut Mat) -> PetscErrorCode;
     pub fn gapsim_petsc_mat_create_rows(
+        world: c_int,
         n_local: PetscInt,
         n: PetscInt,
         d_nnz: *const PetscInt,
         o_nnz: *const PetscInt,
         out: *mut Mat,
     ) -> PetscErrorCode;
-    pub fn gapsim_petsc_mat_add_rows(
+    pub fn gapsim_petsc_mat_zero(a: Mat) -> PetscErrorCode;
+    pub fn gapsim_petsc_mat_add_row(
         a: Mat,
-        n: PetscInt,
-        row_ptr: *const PetscInt,
+        row: PetscInt,
+        len: PetscInt,
         cols: *const PetscInt,
         vals: *const f64,
     ) -> PetscErrorCode;
+    pub fn gapsim_petsc_mat_assemble(a: Mat) -> PetscErrorCode;
 
     pub fn gapsim_petsc_vec_create(
         world: c_int,

@@ -60,14 +60,16 @@
 //! PETSc's reason.
 
 mod ffi;
+mod fill;
 pub mod objects;
 pub mod ranks;
 
 use std::time::{Duration, Instant};
 
+use fill::Fill;
 use objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, PetscError, Serial, Vector, serial};
 
-use super::{KrylovCounts, LinearError, LinearSolver, SystemLayout};
+use super::{Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, SystemLayout};
 
 /// The Krylov method and preconditioner of a system with constraint rows
 /// (module docs). `-ksp_max_it` bounds one solve.
@@ -288,22 +290,6 @@ impl Objects {
     }
 }
 
-/// Whether Newton's triplets `(rows, cols)` fall, through the numbering's
-/// `rows`, on the entries `slot` of the compressed rows `row_ptr`, `cols`
-/// (always when they are the triplets those were built from).
-fn triplets_hold(
-    numbering: &[usize],
-    (row_ptr, pattern_cols, slot): (&[i32], &[i32], &[u32]),
-    rows: &[u32],
-    cols: &[u32],
-) -> bool {
-    rows.iter().zip(cols).zip(slot).all(|((&r, &c), &k)| {
-        let (pr, pc, k) = (numbering[r as usize], numbering[c as usize], k as usize);
-        (row_ptr[pr] as usize..row_ptr[pr + 1] as usize).contains(&k)
-            && pattern_cols[k] as usize == pc
-    })
-}
-
 /// PETSc's row of each of `n` Newton equations of the layout `l`: a free
 /// dof's `petsc_dof(dof)`, constraint `k` row `D nodes + k`; and which dofs
 /// are free. A dof listed twice or out of range is refused.
@@ -328,35 +314,12 @@ fn petsc_rows(
     Ok((rows, free))
 }
 
-/// The cached pattern: the numbering, PETSc's objects, and the entry of
-/// PETSc's compressed rows each triplet adds into (Newton's triplets, then
-/// one diagonal per decoupled row).
+/// The cached pattern: the numbering, what fills PETSc's matrix, PETSc's
+/// objects.
 struct Pattern {
     numbering: Numbering,
-    /// PETSc's row pointers (`n + 1`) and columns (sorted in each row).
-    row_ptr: Vec<i32>,
-    cols: Vec<i32>,
-    slot: Vec<u32>,
-    /// The entries of the free displacement rows' diagonals.
-    diagonal: Vec<u32>,
+    fill: Fill,
     objects: Objects,
-}
-
-impl Pattern {
-    /// Whether Newton's triplets `(rows, cols)` of `n` equations each fall
-    /// on their entry of this pattern (always when they are the triplets it
-    /// was built from): then only the values change.
-    fn holds(&self, n: usize, rows: &[u32], cols: &[u32]) -> bool {
-        let nb = &self.numbering;
-        nb.rows.len() == n
-            && self.slot.len() == rows.len() + nb.decoupled.len()
-            && triplets_hold(
-                &nb.rows,
-                (&self.row_ptr, &self.cols, &self.slot),
-                rows,
-                cols,
-            )
-    }
 }
 
 /// The compressed rows of PETSc's matrix from Newton's triplets (and the
@@ -485,8 +448,8 @@ impl PetscKrylov {
         &self,
         s: &Serial,
         n: usize,
-        rows: &[u32],
-        cols: &[u32],
+        block: Option<&BlockPattern>,
+        (rows, cols): (&[u32], &[u32]),
     ) -> Result<Pattern, LinearError> {
         let first = self
             .layout
@@ -495,28 +458,16 @@ impl PetscKrylov {
             .or(self.first_constraint)
             .unwrap_or(n);
         let numbering = Numbering::new(n, self.layout.as_ref(), first)?;
-        let Compressed {
-            row_ptr,
-            cols,
-            slot,
-        } = compress(&numbering, rows, cols)?;
-        let mut decoupled = vec![false; numbering.n_u];
-        for &d in &numbering.decoupled {
-            decoupled[d] = true;
-        }
-        let diagonal = (0..numbering.n_u)
-            .filter(|&r| !decoupled[r])
-            .filter_map(|r| {
-                let (a, b) = (row_ptr[r] as usize, row_ptr[r + 1] as usize);
-                cols[a..b]
-                    .binary_search(&(r as i32))
-                    .ok()
-                    .map(|k| (a + k) as u32)
-            })
-            .collect();
+        let n_free = first.min(n);
+        let fill = Fill::new(&numbering, n_free, block, rows, cols)?;
+        // every row's entries (all in this rank's columns)
+        let mut counts = vec![0i32; numbering.n];
+        fill.entries(&numbering, block, |r, _| counts[r] += 1);
         let constrained = numbering.n > numbering.n_u;
         s.replace_options(&self.options_for(constrained))?;
-        let a = Matrix::from_csr(s, numbering.n, &row_ptr, &cols)?;
+        let zeros = vec![0; numbering.n];
+        let a = Matrix::new(s, Comm::One, numbering.n, numbering.n, (&counts, &zeros))?;
+        drop((counts, zeros));
         let mut ksp = Ksp::new(s, Comm::One, &a)?;
         let mut splits = vec![];
         let mut near_null = None;
@@ -538,10 +489,7 @@ impl PetscKrylov {
         let x = Vector::new(s, Comm::One, numbering.n, 1)?;
         Ok(Pattern {
             numbering,
-            row_ptr,
-            cols,
-            slot,
-            diagonal,
+            fill,
             objects: Objects {
                 ksp,
                 splits,
@@ -561,12 +509,19 @@ impl Drop for PetscKrylov {
     }
 }
 
-impl LinearSolver for PetscKrylov {
-    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
+impl PetscKrylov {
+    /// [`LinearSolver::analyse_with_block`] with the block optional.
+    fn analyse_parts(
+        &mut self,
+        n: usize,
+        block: Option<&BlockPattern>,
+        rows: &[u32],
+        cols: &[u32],
+    ) -> Result<(), LinearError> {
         let same = self
             .pattern
             .as_ref()
-            .is_some_and(|p| p.holds(n, rows, cols));
+            .is_some_and(|p| p.numbering.rows.len() == n && p.fill.holds(block, rows, cols));
         if same {
             return Ok(());
         }
@@ -574,50 +529,77 @@ impl LinearSolver for PetscKrylov {
         let t = Instant::now();
         self.pattern = None;
         self.factored = false;
-        self.pattern = Some(self.build(&s, n, rows, cols)?);
+        self.pattern = Some(self.build(&s, n, block, (rows, cols))?);
         self.symbolic_factorisations += 1;
         self.symbolic_time += t.elapsed();
         Ok(())
     }
 
-    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+    /// [`LinearSolver::factor_with_block`] with the block optional.
+    fn factor_parts(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
         self.factored = false;
         let s = serial()?;
         let options = self.pattern_options();
         let Some(p) = self.pattern.as_mut() else {
             return Err(LinearError::Singular("no pattern".into()));
         };
-        let m = vals.len();
-        if m + p.numbering.decoupled.len() != p.slot.len() {
-            return Err(LinearError::Singular(format!(
-                "{m} values for {} triplets",
-                p.slot.len() - p.numbering.decoupled.len()
-            )));
+        let pattern = block.map(|b| &*b.pattern);
+        if !p.fill.has_block(pattern) {
+            return Err(LinearError::Singular(
+                "the block is not over the analysed pattern".into(),
+            ));
         }
+        p.fill.sum_triplets(vals)?;
+        let values = block.map_or(&[][..], |b| &b.values[..]);
         // the decoupled rows' diagonal: the mean absolute diagonal of the
         // free displacement rows
-        let (slot, diagonal) = (&p.slot, &p.diagonal);
-        p.objects.a.write_values(&s, |a| {
-            a.fill(0.0);
-            for (&k, &v) in slot.iter().zip(vals) {
-                a[k as usize] += v;
-            }
-            if m < slot.len() {
-                let sum: f64 = diagonal.iter().map(|&k| a[k as usize].abs()).sum();
-                let d = if sum > 0.0 {
-                    sum / diagonal.len() as f64
-                } else {
-                    1.0
-                };
-                for &k in &slot[m..] {
-                    a[k as usize] = d;
-                }
-            }
+        let sum: f64 = p.fill.diagonal(values).map(|(_, v)| v.abs()).sum();
+        let d = if sum > 0.0 {
+            sum / p.fill.diagonal_count() as f64
+        } else {
+            1.0
+        };
+        p.fill.set_decoupled(d);
+        let Pattern {
+            numbering,
+            fill,
+            objects,
+        } = p;
+        objects.a.fill(&s, |add| {
+            fill.add_to(add, numbering, block.map(|b| (&*b.pattern, values)))
         })?;
         s.replace_options(&options)?;
-        p.objects.ksp.set_up(&s)?;
+        objects.ksp.set_up(&s)?;
         self.factored = true;
         Ok(())
+    }
+}
+
+impl LinearSolver for PetscKrylov {
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
+        self.analyse_parts(n, None, rows, cols)
+    }
+
+    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.factor_parts(None, vals)
+    }
+
+    fn takes_block(&self) -> bool {
+        true
+    }
+
+    fn analyse_with_block(
+        &mut self,
+        n: usize,
+        block: &BlockPattern,
+        rows: &[u32],
+        cols: &[u32],
+    ) -> Result<(), LinearError> {
+        self.analyse_parts(n, Some(block), rows, cols)
+    }
+
+    fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
+        self.factor_parts(Some(block), vals)
     }
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {

@@ -207,63 +207,26 @@ impl Serial {
     }
 }
 
-/// An AIJ matrix (`Mat`) of a compressed-row pattern: sequential, its
-/// values written in place in the pattern's order ([`Matrix::from_csr`]),
-/// or over every rank, its values added row by row ([`Matrix::from_rows`]).
+/// An AIJ matrix (`Mat`) on one rank or over every rank, preallocated by
+/// row counts ([`Matrix::new`]) and filled row by row each time
+/// ([`Matrix::fill`]).
 pub struct Matrix {
     raw: ffi::Mat,
-    nnz: usize,
 }
 
 impl Matrix {
-    /// An `n x n` matrix whose row `i` has the columns `cols[row_ptr[i]..
-    /// row_ptr[i + 1]]` (sorted and unique in each row, so that PETSc's
-    /// storage order is this one), all values zero.
-    pub fn from_csr(
+    /// A matrix on `comm`, `n_local` of its `n` rows on this rank (the
+    /// ranks' rows contiguous, in rank order; all of them on
+    /// [`Comm::One`]), with room for at most `d_nnz[i]` entries of its row
+    /// `i` in this rank's columns and `o_nnz[i]` in the others' (upper
+    /// bounds; what is not filled is released at the first assembly).
+    /// Collective on `comm`.
+    pub fn new(
         _: &Serial,
-        n: usize,
-        row_ptr: &[PetscInt],
-        cols: &[PetscInt],
-    ) -> Result<Matrix, PetscError> {
-        let call = "mat_create_csr";
-        if !compressed_rows(n, row_ptr, cols) {
-            return Err(PetscError {
-                call,
-                code: -1,
-                message: "the pattern is not compressed rows of sorted, unique columns".into(),
-            });
-        }
-        let mut raw = std::ptr::null_mut();
-        // SAFETY: checked arrays of n + 1 and row_ptr[n] entries; PETSc copies them
-        let code = unsafe {
-            ffi::gapsim_petsc_mat_create_csr(
-                index(call, n)?,
-                row_ptr.as_ptr(),
-                cols.as_ptr(),
-                &mut raw,
-            )
-        };
-        let m = Matrix {
-            raw,
-            nnz: cols.len(),
-        };
-        check(call, code)?;
-        Ok(m)
-    }
-
-    /// A matrix over every rank, `n_local` of its `n` rows on this one (the
-    /// ranks' rows contiguous, in rank order), with room for at most
-    /// `d_nnz[i]` entries of its row `i` in this rank's columns and
-    /// `o_nnz[i]` in the others' (upper bounds; what is not filled is
-    /// released at the first assembly), `nnz` of them added by this rank
-    /// (in any rank's rows, [`Matrix::add_rows`]). Collective.
-    pub fn from_rows(
-        _: &Serial,
+        comm: Comm,
         n_local: usize,
         n: usize,
-        d_nnz: &[PetscInt],
-        o_nnz: &[PetscInt],
-        nnz: usize,
+        (d_nnz, o_nnz): (&[PetscInt], &[PetscInt]),
     ) -> Result<Matrix, PetscError> {
         let call = "mat_create_rows";
         if d_nnz.len() != n_local || o_nnz.len() != n_local || n_local > n {
@@ -281,6 +244,7 @@ impl Matrix {
         // SAFETY: two arrays of n_local counts; PETSc copies them
         let code = unsafe {
             ffi::gapsim_petsc_mat_create_rows(
+                comm.flag(),
                 index(call, n_local)?,
                 index(call, n)?,
                 d_nnz.as_ptr(),
@@ -288,83 +252,59 @@ impl Matrix {
                 &mut raw,
             )
         };
-        let m = Matrix { raw, nnz };
+        let m = Matrix { raw };
         check(call, code)?;
         Ok(m)
     }
 
-    /// The values of a [`Matrix::from_rows`] matrix: zero, then this rank's
-    /// contributions, row `r`'s columns `cols[row_ptr[r]..row_ptr[r + 1]]`
-    /// (every row listed, sorted unique columns, any rank's rows: PETSc
-    /// sends them to their owner) with the values `vals` beside them, every
-    /// rank's summed into each entry. Collective.
-    pub fn add_rows(
+    /// The values: every entry zero, then the rows `add` adds
+    /// ([`RowAdder::add`]: any rank's rows, in the preallocated pattern),
+    /// every rank's contributions to an entry summed on its owner, the
+    /// matrix marked changed so the solver sets its preconditioner up
+    /// again. Collective.
+    pub fn fill(
         &mut self,
         _: &Serial,
-        row_ptr: &[PetscInt],
-        cols: &[PetscInt],
-        vals: &[f64],
+        add: impl FnOnce(&mut RowAdder<'_>) -> Result<(), PetscError>,
     ) -> Result<(), PetscError> {
-        let call = "mat_add_rows";
-        if vals.len() != self.nnz
-            || cols.len() != self.nnz
-            || row_ptr.is_empty()
-            || !compressed_rows(row_ptr.len() - 1, row_ptr, cols)
-        {
+        // SAFETY: a matrix of ours
+        check("mat_zero", unsafe { ffi::gapsim_petsc_mat_zero(self.raw) })?;
+        add(&mut RowAdder { matrix: self })?;
+        // SAFETY: as above
+        check("mat_assemble", unsafe {
+            ffi::gapsim_petsc_mat_assemble(self.raw)
+        })
+    }
+}
+
+/// Adds rows to a [`Matrix`] being filled ([`Matrix::fill`]).
+pub struct RowAdder<'a> {
+    matrix: &'a mut Matrix,
+}
+
+impl RowAdder<'_> {
+    /// Adds `vals` to row `row`'s columns `cols` (as many; a column given
+    /// twice adds twice).
+    pub fn add(&mut self, row: usize, cols: &[PetscInt], vals: &[f64]) -> Result<(), PetscError> {
+        let call = "mat_add_row";
+        if cols.len() != vals.len() {
             return Err(PetscError {
                 call,
                 code: -1,
-                message: format!("{} values for {} entries", vals.len(), self.nnz),
+                message: format!("{} columns for {} values", cols.len(), vals.len()),
             });
         }
-        // SAFETY: the pattern the matrix was made from, and as many values
+        // SAFETY: two arrays of cols.len() entries, read during the call
         check(call, unsafe {
-            ffi::gapsim_petsc_mat_add_rows(
-                self.raw,
-                index(call, row_ptr.len() - 1)?,
-                row_ptr.as_ptr(),
+            ffi::gapsim_petsc_mat_add_row(
+                self.matrix.raw,
+                index(call, row)?,
+                index(call, cols.len())?,
                 cols.as_ptr(),
                 vals.as_ptr(),
             )
         })
     }
-
-    /// Lets `write` set the values (in the pattern's order), then marks the
-    /// matrix changed, so the solver sets its preconditioner up again.
-    pub fn write_values(
-        &mut self,
-        _: &Serial,
-        write: impl FnOnce(&mut [f64]),
-    ) -> Result<(), PetscError> {
-        let mut ptr = std::ptr::null_mut();
-        // SAFETY: PETSc hands out its value array of `nnz` entries
-        check("mat_get_values", unsafe {
-            ffi::gapsim_petsc_mat_get_values(self.raw, &mut ptr)
-        })?;
-        if self.nnz > 0 {
-            // SAFETY: the array of the pattern's nnz values, ours until restored
-            write(unsafe { std::slice::from_raw_parts_mut(ptr, self.nnz) });
-        }
-        // SAFETY: hands the array back
-        check("mat_restore_values", unsafe {
-            ffi::gapsim_petsc_mat_restore_values(self.raw, &mut ptr)
-        })
-    }
-}
-
-/// Whether `row_ptr`, `cols` are `n` compressed rows of sorted, unique
-/// columns in `0..n`.
-fn compressed_rows(n: usize, row_ptr: &[PetscInt], cols: &[PetscInt]) -> bool {
-    row_ptr.len() == n + 1
-        && row_ptr[0] == 0
-        && row_ptr[n] as usize == cols.len()
-        && row_ptr.windows(2).all(|w| {
-            w[0] <= w[1]
-                && cols[w[0] as usize..w[1] as usize]
-                    .windows(2)
-                    .all(|c| c[0] < c[1])
-        })
-        && cols.iter().all(|&c| c >= 0 && (c as usize) < n)
 }
 
 impl Drop for Matrix {
@@ -682,17 +622,19 @@ mod tests {
             b[rows[k]] += vals[k] * x_true[cols[k]];
         }
         s.replace_options("-ksp_type cg -pc_type jacobi").unwrap();
-        // the triplets are in row order with sorted columns: their CSR
-        let mut row_ptr = vec![0; n + 1];
-        for &r in &rows {
-            row_ptr[r + 1] += 1;
-        }
-        for i in 0..n {
-            row_ptr[i + 1] += row_ptr[i];
-        }
-        let cols32: Vec<i32> = cols.iter().map(|&c| c as i32).collect();
-        let mut a = Matrix::from_csr(&s, n, &row_ptr, &cols32).unwrap();
-        a.write_values(&s, |v| v.copy_from_slice(&vals)).unwrap();
+        let counts: Vec<i32> = (0..n)
+            .map(|i| 3 - i32::from(i == 0 || i == n - 1))
+            .collect();
+        let zeros = vec![0; n];
+        let mut a = Matrix::new(&s, Comm::One, n, n, (&counts, &zeros)).unwrap();
+        // one triplet at a time: a row of one column, added
+        a.fill(&s, |add| {
+            for k in 0..rows.len() {
+                add.add(rows[k], &[cols[k] as i32], &[vals[k]])?;
+            }
+            Ok(())
+        })
+        .unwrap();
         let mut ksp = Ksp::new(&s, Comm::One, &a).unwrap();
         assert_eq!(ksp.describe(&s).unwrap(), "cg/jacobi");
         ksp.set_rtol(&s, 1e-12).unwrap();
@@ -708,8 +650,10 @@ mod tests {
             assert!((x[i] - x_true[i]).abs() < 1e-8, "{i}: {}", x[i]);
         }
         assert!(xv.set(&s, &[1.0]).is_err(), "a wrong length is an error");
-        let unsorted = Matrix::from_csr(&s, 2, &[0, 2, 2], &[1, 0]);
-        assert!(unsorted.is_err(), "columns out of order are refused");
+        let short = Matrix::new(&s, Comm::One, 2, 2, (&[1], &[0, 0]));
+        assert!(short.is_err(), "a row count missing is refused");
+        let mismatched = a.fill(&s, |add| add.add(0, &[0, 1], &[1.0]));
+        assert!(mismatched.is_err(), "two columns for one value are refused");
     }
 
     /// A PETSc error comes back as a `PetscError` with PETSc's message, no
@@ -718,8 +662,8 @@ mod tests {
     fn errors_carry_petscs_message() {
         let s = serial().unwrap();
         s.replace_options("-ksp_type no_such_method").unwrap();
-        let mut a = Matrix::from_csr(&s, 1, &[0, 1], &[0]).unwrap();
-        a.write_values(&s, |v| v[0] = 1.0).unwrap();
+        let mut a = Matrix::new(&s, Comm::One, 1, 1, (&[1], &[0])).unwrap();
+        a.fill(&s, |add| add.add(0, &[0], &[1.0])).unwrap();
         let e = Ksp::new(&s, Comm::One, &a)
             .err()
             .expect("an unknown KSP type is refused");

@@ -45,11 +45,12 @@
 
 use std::time::{Duration, Instant};
 
+use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
-use super::{
-    Compressed, Numbering, Objects, compress, options_for, petsc_rows, retry_options, triplets_hold,
+use super::{Numbering, Objects, options_for, petsc_rows, retry_options};
+use crate::linear::{
+    Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout,
 };
-use crate::linear::{KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout};
 
 /// PETSc's numbering across the ranks (module docs), and this rank's part.
 struct RankNumbering {
@@ -148,28 +149,22 @@ impl RankNumbering {
 
     /// The preallocation of this rank's rows: for each, at most how many
     /// entries fall in its own columns and in the others' (every rank's
-    /// distinct entries of the row added up: exact but where two ranks add
-    /// to one entry). Collective.
+    /// distinct entries of the row, `fill`'s with the block `block`, added
+    /// up: exact but where two ranks add to one entry). Collective.
     fn row_counts(
         &self,
         s: &Serial,
-        row_ptr: &[i32],
-        cols: &[i32],
+        fill: &Fill,
+        block: Option<&BlockPattern>,
     ) -> Result<(Vec<i32>, Vec<i32>), LinearError> {
         let n = self.numbering.n;
         // [own columns of every row | others' columns of every row]
         let mut counts = vec![0.0; 2 * n];
-        for r in 0..n {
-            let (a, b) = (row_ptr[r] as usize, row_ptr[r + 1] as usize);
-            if a == b {
-                continue;
-            }
+        fill.entries(&self.numbering, block, |r, c| {
             let owner = self.starts.partition_point(|&f| f <= r) - 1;
-            let own = self.starts[owner] as i32..self.starts[owner + 1] as i32;
-            let inside = cols[a..b].iter().filter(|c| own.contains(c)).count();
-            counts[r] += inside as f64;
-            counts[n + r] += (b - a - inside) as f64;
-        }
+            let own = self.starts[owner]..self.starts[owner + 1];
+            counts[if own.contains(&c) { r } else { n + r }] += 1.0;
+        });
         s.sum(&mut counts)?;
         let mine = self.first..self.first + self.n_local;
         let cap = |v: f64, most: usize| v.min(most as f64) as i32;
@@ -185,36 +180,12 @@ impl RankNumbering {
     }
 }
 
-/// The cached pattern across ranks: the numbering, this rank's rows
-/// (compressed, every triplet's entry), PETSc's objects.
+/// The cached pattern across ranks: the numbering, what fills this rank's
+/// part of PETSc's matrix, PETSc's objects.
 struct RankPattern {
     numbering: RankNumbering,
-    /// This rank's triplets (the decoupled diagonals not counted).
-    triplets: usize,
-    row_ptr: Vec<i32>,
-    cols: Vec<i32>,
-    slot: Vec<u32>,
-    /// This rank's values beside `cols`.
-    values: Vec<f64>,
-    /// Each free Newton row's diagonal entry where this rank has one: the
-    /// row and the entry.
-    diagonal: Vec<(u32, u32)>,
+    fill: Fill,
     objects: Objects,
-}
-
-impl RankPattern {
-    /// Whether this rank's triplets fall on their entries of this pattern.
-    fn holds(&self, n: usize, rows: &[u32], cols: &[u32]) -> bool {
-        let nb = &self.numbering.numbering;
-        nb.rows.len() == n
-            && self.triplets == rows.len()
-            && triplets_hold(
-                &nb.rows,
-                (&self.row_ptr, &self.cols, &self.slot),
-                rows,
-                cols,
-            )
-    }
 }
 
 /// PETSc's Krylov solve of the Newton system across MPI ranks (module docs).
@@ -269,27 +240,23 @@ impl PetscRanks {
         &self,
         s: &Serial,
         n: usize,
-        rows: &[u32],
-        cols: &[u32],
+        block: Option<&BlockPattern>,
+        (rows, cols): (&[u32], &[u32]),
     ) -> Result<RankPattern, LinearError> {
         let layout = self.layout.as_ref().ok_or_else(|| {
             LinearError::Petsc("a solve across ranks needs the system's layout".into())
         })?;
         let numbering = RankNumbering::new(n, layout, self.ranks)?;
         let nb = &numbering.numbering;
-        let Compressed {
-            row_ptr,
-            cols,
-            slot,
-        } = compress(nb, rows, cols)?;
+        let fill = Fill::new(nb, numbering.n_free, block, rows, cols)?;
         let constrained = nb.n > nb.n_u;
         s.replace_options(&options_for(
             &self.options,
             constrained,
             self.counts.switched_at.is_some(),
         ))?;
-        let (d_nnz, o_nnz) = numbering.row_counts(s, &row_ptr, &cols)?;
-        let a = Matrix::from_rows(s, numbering.n_local, nb.n, &d_nnz, &o_nnz, cols.len())?;
+        let (d_nnz, o_nnz) = numbering.row_counts(s, &fill, block)?;
+        let a = Matrix::new(s, Comm::World, numbering.n_local, nb.n, (&d_nnz, &o_nnz))?;
         drop((d_nnz, o_nnz));
         let mut ksp = Ksp::new(s, Comm::World, &a)?;
         let mut splits = vec![];
@@ -315,23 +282,9 @@ impl PetscRanks {
         }
         let b = Vector::new(s, Comm::World, numbering.n_local, 1)?;
         let x = Vector::new(s, Comm::World, numbering.n_local, 1)?;
-        let values = vec![0.0; cols.len()];
-        let diagonal = (0..numbering.n_free)
-            .filter_map(|r| {
-                let pr = nb.rows[r];
-                let (a, b) = (row_ptr[pr] as usize, row_ptr[pr + 1] as usize);
-                let k = cols[a..b].binary_search(&(pr as i32)).ok()?;
-                Some((r as u32, (a + k) as u32))
-            })
-            .collect();
         Ok(RankPattern {
             numbering,
-            triplets: rows.len(),
-            row_ptr,
-            cols,
-            slot,
-            values,
-            diagonal,
+            fill,
             objects: Objects {
                 ksp,
                 splits,
@@ -360,13 +313,19 @@ impl Drop for PetscRanks {
     }
 }
 
-impl LinearSolver for PetscRanks {
-    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
+impl PetscRanks {
+    /// [`LinearSolver::analyse_with_block`] with the block optional.
+    fn analyse_parts(
+        &mut self,
+        n: usize,
+        block: Option<&BlockPattern>,
+        rows: &[u32],
+        cols: &[u32],
+    ) -> Result<(), LinearError> {
         let s = serial()?;
-        let here = self
-            .pattern
-            .as_ref()
-            .is_some_and(|p| p.holds(n, rows, cols));
+        let here = self.pattern.as_ref().is_some_and(|p| {
+            p.numbering.numbering.rows.len() == n && p.fill.holds(block, rows, cols)
+        });
         // rebuilt (collectively) when any rank's pattern changed
         let mut changed = [if here { 0.0 } else { 1.0 }];
         s.max(&mut changed)?;
@@ -376,36 +335,33 @@ impl LinearSolver for PetscRanks {
         let t = Instant::now();
         self.pattern = None;
         self.factored = false;
-        self.pattern = Some(self.build(&s, n, rows, cols)?);
+        self.pattern = Some(self.build(&s, n, block, (rows, cols))?);
         self.symbolic_factorisations += 1;
         self.symbolic_time += t.elapsed();
         Ok(())
     }
 
-    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+    /// [`LinearSolver::factor_with_block`] with the block optional.
+    fn factor_parts(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
         self.factored = false;
         let s = serial()?;
         let options = self.pattern_options();
         let Some(p) = self.pattern.as_mut() else {
             return Err(LinearError::Singular("no pattern".into()));
         };
-        let m = vals.len();
-        if m != p.triplets {
-            return Err(LinearError::Singular(format!(
-                "{m} values for {} triplets",
-                p.triplets
-            )));
+        if !p.fill.has_block(block.map(|b| &*b.pattern)) {
+            return Err(LinearError::Singular(
+                "the block is not over the analysed pattern".into(),
+            ));
         }
+        p.fill.sum_triplets(vals)?;
+        let values = block.map_or(&[][..], |b| &b.values[..]);
         let nb = &p.numbering;
-        p.values.fill(0.0);
-        for (&k, &v) in p.slot.iter().zip(vals) {
-            p.values[k as usize] += v;
-        }
         // the decoupled rows' diagonal: the mean absolute diagonal of the
         // free displacement rows, every rank's contributions summed
         let mut diagonal = vec![0.0; nb.n_free];
-        for &(r, k) in &p.diagonal {
-            diagonal[r as usize] = p.values[k as usize];
+        for (r, v) in p.fill.diagonal(values) {
+            diagonal[r] = v;
         }
         s.sum(&mut diagonal)?;
         let sum: f64 = diagonal.iter().map(|d| d.abs()).sum();
@@ -414,14 +370,51 @@ impl LinearSolver for PetscRanks {
         } else {
             1.0
         };
-        for &k in &p.slot[m..] {
-            p.values[k as usize] = d;
-        }
-        p.objects.a.add_rows(&s, &p.row_ptr, &p.cols, &p.values)?;
+        p.fill.set_decoupled(d);
+        let RankPattern {
+            numbering,
+            fill,
+            objects,
+        } = p;
+        objects.a.fill(&s, |add| {
+            fill.add_to(
+                add,
+                &numbering.numbering,
+                block.map(|b| (&*b.pattern, values)),
+            )
+        })?;
         s.replace_options(&options)?;
-        p.objects.ksp.set_up(&s)?;
+        objects.ksp.set_up(&s)?;
         self.factored = true;
         Ok(())
+    }
+}
+
+impl LinearSolver for PetscRanks {
+    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
+        self.analyse_parts(n, None, rows, cols)
+    }
+
+    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+        self.factor_parts(None, vals)
+    }
+
+    fn takes_block(&self) -> bool {
+        true
+    }
+
+    fn analyse_with_block(
+        &mut self,
+        n: usize,
+        block: &BlockPattern,
+        rows: &[u32],
+        cols: &[u32],
+    ) -> Result<(), LinearError> {
+        self.analyse_parts(n, Some(block), rows, cols)
+    }
+
+    fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
+        self.factor_parts(Some(block), vals)
     }
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {

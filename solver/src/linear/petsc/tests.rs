@@ -57,6 +57,83 @@ fn layout_renumbers_and_decouples() {
     assert_eq!(k.method, "fgmres/fieldsplit");
 }
 
+/// The matrix handed over as a solid block beside triplets is the matrix of
+/// the same contributions as triplets, bit for bit (the same solution to
+/// the last bit), the pattern is analysed once while the block and the
+/// triplets stay, and a block over another pattern is refused.
+#[test]
+fn a_block_fills_the_matrix_of_its_triplets() {
+    use crate::ids::EquationIndex;
+    use crate::linear::{Block, BlockPattern};
+    use std::sync::Arc;
+    let layout = SystemLayout {
+        dim: 2,
+        // dof 0 prescribed: a decoupled row
+        free_dofs: vec![1, 2, 3],
+        coordinates: vec![0.0, 0.0, 1.0, 0.0],
+        node_rank: vec![],
+    };
+    // a symmetric K over the free dofs (contributions that round), G = [0, 1, 0]
+    let contributions = [
+        (0, 0, 2.1),
+        (1, 1, 3.3),
+        (0, 1, -0.7),
+        (1, 0, -0.7),
+        (3, 1, 1.0),
+        (1, 3, 1.0),
+        (1, 1, 0.1),
+        (2, 2, 4.7),
+        (1, 2, 0.3),
+        (2, 1, 0.3),
+        (2, 2, 1e-3),
+    ];
+    let b = [1.0, 0.0, 2.0, 0.5];
+    let plain = {
+        let (r, c, v): (Vec<u32>, Vec<u32>, Vec<f64>) = (
+            contributions.iter().map(|t| t.0).collect(),
+            contributions.iter().map(|t| t.1).collect(),
+            contributions.iter().map(|t| t.2).collect(),
+        );
+        let mut s = PetscKrylov::new("-ksp_rtol 1e-12");
+        s.set_layout(&layout);
+        s.set_forcing(1e-12);
+        s.solve_system(4, &r, &c, &v, &b).unwrap()
+    };
+    let pattern =
+        Arc::new(BlockPattern::from_rows(&[vec![0, 1], vec![0, 1, 2], vec![1, 2]]).unwrap());
+    let mut block = Block::new(pattern.clone());
+    let (mut r, mut c, mut v) = (vec![], vec![], vec![]);
+    for &(i, j, x) in &contributions {
+        if !block.add(
+            EquationIndex::new(i as usize),
+            EquationIndex::new(j as usize),
+            x,
+        ) {
+            r.push(i);
+            c.push(j);
+            v.push(x);
+        }
+    }
+    assert_eq!(r.len(), 2, "G and its transpose outside the block");
+    let mut s = PetscKrylov::new("-ksp_rtol 1e-12");
+    s.set_layout(&layout);
+    s.set_forcing(1e-12);
+    for _ in 0..2 {
+        let x = s
+            .solve_system_with(4, Some(&block), (&r, &c, &v), &b)
+            .unwrap();
+        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&x), bits(&plain));
+    }
+    assert_eq!(s.symbolic_factorisations(), 1);
+    // analysed with one pattern, factored with another's block: refused
+    let other = Block::new(Arc::new(
+        BlockPattern::from_rows(&[vec![0, 1], vec![0, 1, 2], vec![1, 2]]).unwrap(),
+    ));
+    s.analyse_with_block(4, &pattern, &r, &c).unwrap();
+    assert!(s.factor_with_block(&other, &v).is_err());
+}
+
 /// The paper scene (2D, persistent contact, multipliers) and a 3D block
 /// pressed on a base: the PETSc default's energy within 1e-8 of the LU's,
 /// at most one Newton iteration more per step, the Krylov iterations
