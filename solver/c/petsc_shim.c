@@ -361,3 +361,67 @@ int gapsim_petsc_ksp_solve(KSP ksp, Vec b, Vec x, int *reason, const char **reas
 }
 
 int gapsim_petsc_ksp_destroy(KSP *ksp) { return KSPDestroy(ksp); }
+
+/* ---- The stall test: PETSc's default convergence test, and a solve whose
+ * residual norm has not fallen below `factor` times its value `window`
+ * iterations earlier ends as DIVERGED_ITS, marked stalled. ---- */
+typedef struct {
+  void *dflt;
+  PetscInt window;
+  PetscReal factor;
+  PetscReal *history; /* the last window + 1 norms, a ring */
+  int stalled;
+} Stall;
+
+static PetscErrorCode stall_test(KSP ksp, PetscInt n, PetscReal rnorm, KSPConvergedReason *reason, void *ctx)
+{
+  Stall *st = (Stall *)ctx;
+  PetscErrorCode ierr = KSPConvergedDefault(ksp, n, rnorm, reason, st->dflt);
+  if (ierr) return ierr;
+  if (n == 0) st->stalled = 0;
+  st->history[n % (st->window + 1)] = rnorm;
+  if (*reason == KSP_CONVERGED_ITERATING && n >= st->window &&
+      !(rnorm < st->factor * st->history[(n - st->window) % (st->window + 1)])) {
+    *reason = KSP_DIVERGED_ITS;
+    st->stalled = 1;
+  }
+  return 0;
+}
+
+static PetscErrorCode stall_destroy(void *ctx)
+{
+  Stall *st = (Stall *)ctx;
+  PetscErrorCode ierr = KSPConvergedDefaultDestroy(st->dflt);
+  if (ierr) return ierr;
+  ierr = PetscFree(st->history);
+  if (ierr) return ierr;
+  return PetscFree(st);
+}
+
+/* Installs the stall test (after set_from_options, which would replace it). */
+int gapsim_petsc_ksp_watch_stall(KSP ksp, PetscInt window, PetscReal factor)
+{
+  Stall *st;
+  PetscErrorCode ierr;
+  if (window < 1) SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "a stall window of %d iterations", (int)window);
+  ierr = PetscNew(&st);
+  if (ierr) return ierr;
+  st->window = window;
+  st->factor = factor;
+  ierr = PetscCalloc1(window + 1, &st->history);
+  if (ierr) return ierr;
+  ierr = KSPConvergedDefaultCreate(&st->dflt);
+  if (ierr) return ierr;
+  return KSPSetConvergenceTest(ksp, stall_test, st, stall_destroy);
+}
+
+/* Whether the last solve ended on the stall test (0 without one). */
+int gapsim_petsc_ksp_stalled(KSP ksp, int *stalled)
+{
+  void *ctx = NULL;
+  PetscErrorCode (*test)(KSP, PetscInt, PetscReal, KSPConvergedReason *, void *) = NULL;
+  PetscErrorCode ierr = KSPGetConvergenceTest(ksp, &test, &ctx, NULL);
+  if (ierr) return ierr;
+  *stalled = (test == stall_test && ctx) ? ((Stall *)ctx)->stalled : 0;
+  return 0;
+}

@@ -97,5 +97,7 @@ unsafe extern "C" {
         iterations: *mut PetscInt,
         residual: *mut f64,
     ) -> PetscErrorCode;
+    pub fn gapsim_petsc_ksp_watch_stall(ksp: Ksp, window: PetscInt, factor: f64) -> PetscErrorCode;
+    pub fn gapsim_petsc_ksp_stalled(ksp: Ksp, stalled: *mut c_int) -> PetscErrorCode;
     pub fn gapsim_petsc_ksp_destroy(ksp: *mut Ksp) -> PetscErrorCode;
 }

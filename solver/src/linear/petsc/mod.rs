@@ -44,9 +44,13 @@
 //! [`FALLBACK_OPTIONS`] after the defaults (BoomerAMG, hypre's classical
 //! algebraic multigrid, on the displacements), and the run keeps the
 //! fallback from then on ([`KrylovCounts::switched_at`], printed by
-//! `gapsim run`). A user who names a `pc_type` (in the solver's options or
-//! `PETSC_OPTIONS`) chose the preconditioner: nothing is retried. A solve
-//! that does not converge after the switch is the error, saying so.
+//! `gapsim run`). A solve that has this fallback also ends early when it
+//! stalls ([`STALL_WINDOW`]: its residual has not fallen by 10 % over 100
+//! iterations), instead of running to `-ksp_max_it` before the retry. A
+//! user who names a `pc_type` (in the solver's options or `PETSC_OPTIONS`)
+//! chose the preconditioner: nothing is retried and no stall test is
+//! installed. A solve that does not converge after the switch is the
+//! error, saying so.
 //!
 //! # Options and tolerance
 //!
@@ -92,6 +96,13 @@ pub const FALLBACK_OPTIONS: &str = "-fieldsplit_u_pc_type hypre";
 
 /// [`FALLBACK_OPTIONS`] of a system without constraint rows.
 pub const FALLBACK_OPTIONS_UNCONSTRAINED: &str = "-pc_type hypre";
+
+/// The stall test of a solve that has a fallback (module docs, "When the
+/// multigrid stalls"): it ends when its residual norm has not fallen below
+/// [`STALL_FACTOR`] times its value [`STALL_WINDOW`] iterations earlier.
+pub const STALL_WINDOW: usize = 100;
+/// See [`STALL_WINDOW`].
+pub const STALL_FACTOR: f64 = 0.9;
 
 /// This process's rank in PETSc's world (initialising MPI and PETSc).
 pub fn world_rank() -> Result<usize, LinearError> {
@@ -144,11 +155,19 @@ fn retry_options(options: &str, constrained: bool, counts: &KrylovCounts) -> Opt
 
 /// The error of a Krylov solve that ended without converging.
 fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> LinearError {
+    let what = if out.stalled {
+        format!(
+            "stalled (its residual fell by less than {:.0} % over {STALL_WINDOW} iterations)",
+            100.0 * (1.0 - STALL_FACTOR)
+        )
+    } else {
+        format!("reported {}", out.reason)
+    };
     LinearError::NotConverged(format!(
-        "PETSc's {method} reported {} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e}); \
+        "PETSc's {method} {what} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e}); \
          other PETSc options (--petsc-options, docs/petsc.md), a direct solve through PETSc \
          (\"-pc_type lu -pc_factor_mat_solver_type mumps\") or --linear ldlt may solve it",
-        out.reason, out.iterations, out.residual
+        out.iterations, out.residual
     ))
 }
 
@@ -469,6 +488,9 @@ impl PetscKrylov {
         let a = Matrix::new(s, Comm::One, numbering.n, numbering.n, (&counts, &zeros))?;
         drop((counts, zeros));
         let mut ksp = Ksp::new(s, Comm::One, &a)?;
+        if retry_options(&self.options, constrained, &self.counts).is_some() {
+            ksp.watch_stall(s, STALL_WINDOW, STALL_FACTOR)?;
+        }
         let mut splits = vec![];
         let mut near_null = None;
         let coords = self.layout.as_ref().map(|l| &l.coordinates);

@@ -474,6 +474,9 @@ pub struct KrylovOutcome {
     /// The last residual norm PETSc computed (preconditioned or not, as
     /// the method's norm type says).
     pub residual: f64,
+    /// Ended by the stall test ([`Ksp::watch_stall`]; its reason is then
+    /// `DIVERGED_ITS`).
+    pub stalled: bool,
 }
 
 /// A linear solver (`KSP`): a Krylov method and its preconditioner.
@@ -533,6 +536,24 @@ impl Ksp {
             .into_owned())
     }
 
+    /// Ends a solve whose residual norm has not fallen below `factor` times
+    /// its value `window` iterations earlier, as not converged
+    /// ([`KrylovOutcome::stalled`]), beside PETSc's own tests; for a solve
+    /// that has a fallback, so that a stalled one does not run to
+    /// `-ksp_max_it` first.
+    pub fn watch_stall(
+        &mut self,
+        _: &Serial,
+        window: usize,
+        factor: f64,
+    ) -> Result<(), PetscError> {
+        let call = "ksp_watch_stall";
+        // SAFETY: valid handle; the shim owns the test's context
+        check(call, unsafe {
+            ffi::gapsim_petsc_ksp_watch_stall(self.raw, index(call, window)?, factor)
+        })
+    }
+
     /// The relative residual the next solves stop at.
     pub fn set_rtol(&mut self, _: &Serial, rtol: f64) -> Result<(), PetscError> {
         // SAFETY: valid handle
@@ -570,6 +591,11 @@ impl Ksp {
                 &mut res,
             )
         })?;
+        let mut stalled: c_int = 0;
+        // SAFETY: writes one int
+        check("ksp_stalled", unsafe {
+            ffi::gapsim_petsc_ksp_stalled(self.raw, &mut stalled)
+        })?;
         let reason_text = if text.is_null() {
             format!("reason {reason}")
         } else {
@@ -583,6 +609,7 @@ impl Ksp {
             reason: reason_text,
             iterations: its.max(0) as usize,
             residual: res,
+            stalled: stalled != 0,
         })
     }
 }
@@ -654,6 +681,47 @@ mod tests {
         assert!(short.is_err(), "a row count missing is refused");
         let mismatched = a.fill(&s, |add| add.add(0, &[0, 1], &[1.0]));
         assert!(mismatched.is_err(), "two columns for one value are refused");
+    }
+
+    /// The stall test ends a solve whose residual stopped falling (a
+    /// Richardson iteration damped to almost nothing) after its window, as
+    /// not converged and marked stalled; without it the same solve runs to
+    /// `-ksp_max_it`; a converging solve is not touched by it.
+    #[test]
+    fn a_stalled_solve_ends_after_its_window() {
+        let s = serial().unwrap();
+        let n = 20;
+        let diag = vec![1; n];
+        let zeros = vec![0; n];
+        let b: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
+        let solve = |options: &str, watch: bool| {
+            s.replace_options(options).unwrap();
+            let mut a = Matrix::new(&s, Comm::One, n, n, (&diag, &zeros)).unwrap();
+            a.fill(&s, |add| {
+                (0..n).try_for_each(|i| add.add(i, &[i as i32], &[2.0]))
+            })
+            .unwrap();
+            let mut ksp = Ksp::new(&s, Comm::One, &a).unwrap();
+            if watch {
+                ksp.watch_stall(&s, 100, 0.9).unwrap();
+            }
+            ksp.set_rtol(&s, 1e-10).unwrap();
+            ksp.set_up(&s).unwrap();
+            let mut bv = Vector::new(&s, Comm::One, n, 1).unwrap();
+            bv.set(&s, &b).unwrap();
+            let mut xv = Vector::new(&s, Comm::One, n, 1).unwrap();
+            ksp.solve(&s, &bv, &mut xv).unwrap()
+        };
+        let crawl = "-ksp_type richardson -ksp_richardson_scale 1e-6 -pc_type none -ksp_max_it 150";
+        let stalled = solve(crawl, true);
+        assert!(!stalled.converged && stalled.stalled, "{stalled:?}");
+        assert_eq!(stalled.iterations, 100);
+        let ran = solve(crawl, false);
+        assert!(!ran.converged && !ran.stalled, "{ran:?}");
+        assert_eq!(ran.iterations, 150);
+        let fine = solve("-ksp_type cg -pc_type jacobi", true);
+        assert!(fine.converged && !fine.stalled, "{fine:?}");
+        s.replace_options("").unwrap();
     }
 
     /// A PETSc error comes back as a `PetscError` with PETSc's message, no

@@ -47,7 +47,9 @@ use std::time::{Duration, Instant};
 
 use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
-use super::{Numbering, Objects, options_for, petsc_rows, retry_options};
+use super::{
+    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, retry_options,
+};
 use crate::linear::{
     Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout,
 };
@@ -259,6 +261,9 @@ impl PetscRanks {
         let a = Matrix::new(s, Comm::World, numbering.n_local, nb.n, (&d_nnz, &o_nnz))?;
         drop((d_nnz, o_nnz));
         let mut ksp = Ksp::new(s, Comm::World, &a)?;
+        if retry_options(&self.options, constrained, &self.counts).is_some() {
+            ksp.watch_stall(s, STALL_WINDOW, STALL_FACTOR)?;
+        }
         let mut splits = vec![];
         let mut near_null = None;
         if constrained && ksp.is_fieldsplit(s)? {
