@@ -21,9 +21,9 @@
 //! entries per contact point. The block's rows go to PETSc from Newton's
 //! buffer with one row of mapped columns as work space.
 
-use super::objects::{PetscError, RowAdder};
+use super::objects::{Matrix, PetscError, RowAdder, Serial};
 use super::{Compressed, Numbering, compress};
-use crate::linear::{BlockPattern, LinearError};
+use crate::linear::{Block, BlockPattern, LinearError};
 
 /// Where a free row's diagonal entry is.
 #[derive(Debug, Clone, Copy)]
@@ -151,8 +151,36 @@ impl Fill {
         }
     }
 
+    /// Fills PETSc's matrix `a` (this rank's part) from the block `block`
+    /// (over this fill's pattern) and the triplets' values `vals`: the
+    /// triplets summed into their entries, the decoupled rows' diagonal set
+    /// to `decoupled` of this rank's free diagonal entries (`(row, value)`
+    /// in row order), every row added.
+    pub(super) fn fill_matrix(
+        &mut self,
+        s: &Serial,
+        a: &mut Matrix,
+        nb: &Numbering,
+        (block, vals): (Option<&Block>, &[f64]),
+        decoupled: impl FnOnce(&mut dyn Iterator<Item = (usize, f64)>) -> Result<f64, LinearError>,
+    ) -> Result<(), LinearError> {
+        if !self.has_block(block.map(|b| &*b.pattern)) {
+            return Err(LinearError::Singular(
+                "the block is not over the analysed pattern".into(),
+            ));
+        }
+        self.sum_triplets(vals)?;
+        let values = block.map_or(&[][..], |b| &b.values[..]);
+        let d = decoupled(&mut self.diagonal(values))?;
+        self.set_decoupled(d);
+        a.fill(s, |add| {
+            self.add_to(add, nb, block.map(|b| (&*b.pattern, values)))
+        })?;
+        Ok(())
+    }
+
     /// Sums the triplets' values `vals` into their entries.
-    pub(super) fn sum_triplets(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+    fn sum_triplets(&mut self, vals: &[f64]) -> Result<(), LinearError> {
         if vals.len() != self.rows.len() {
             return Err(LinearError::Singular(format!(
                 "{} values for {} triplets",
@@ -170,10 +198,7 @@ impl Fill {
     /// The free rows' diagonal entries this rank holds, with the block's
     /// values `block` (after [`Fill::sum_triplets`]): `(row, value)` in
     /// row order.
-    pub(super) fn diagonal<'a>(
-        &'a self,
-        block: &'a [f64],
-    ) -> impl Iterator<Item = (usize, f64)> + 'a {
+    fn diagonal<'a>(&'a self, block: &'a [f64]) -> impl Iterator<Item = (usize, f64)> + 'a {
         self.diagonal.iter().map(|&(r, d)| {
             let v = match d {
                 Diagonal::Block(k) => block[k],
@@ -183,13 +208,8 @@ impl Fill {
         })
     }
 
-    /// How many free rows have a diagonal entry on this rank.
-    pub(super) fn diagonal_count(&self) -> usize {
-        self.diagonal.len()
-    }
-
     /// Sets the decoupled rows' diagonal to `d`.
-    pub(super) fn set_decoupled(&mut self, d: f64) {
+    fn set_decoupled(&mut self, d: f64) {
         for &k in &self.slot[self.rows.len()..] {
             self.values[k as usize] = d;
         }
@@ -198,7 +218,7 @@ impl Fill {
     /// Adds this rank's rows to PETSc's matrix being filled: the block's
     /// (`block`: its pattern and values) with their columns mapped, then the
     /// compressed triplets'.
-    pub(super) fn add_to(
+    fn add_to(
         &self,
         add: &mut RowAdder<'_>,
         nb: &Numbering,

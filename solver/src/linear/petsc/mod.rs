@@ -153,6 +153,40 @@ fn retry_options(options: &str, constrained: bool, counts: &KrylovCounts) -> Opt
     (counts.switched_at.is_none() && !chosen).then(|| options_for(options, constrained, true))
 }
 
+/// The [`LinearSolver`] methods that take the matrix, for a solver with
+/// `analyse_parts` and `factor_parts` (the block optional): the block
+/// taken, the triplets alone as no block.
+macro_rules! through_parts {
+    () => {
+        fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
+            self.analyse_parts(n, None, rows, cols)
+        }
+
+        fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+            self.factor_parts(None, vals)
+        }
+
+        fn takes_block(&self) -> bool {
+            true
+        }
+
+        fn analyse_with_block(
+            &mut self,
+            n: usize,
+            block: &BlockPattern,
+            rows: &[u32],
+            cols: &[u32],
+        ) -> Result<(), LinearError> {
+            self.analyse_parts(n, Some(block), rows, cols)
+        }
+
+        fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
+            self.factor_parts(Some(block), vals)
+        }
+    };
+}
+use through_parts;
+
 /// The error of a Krylov solve that ended without converging.
 fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> LinearError {
     let what = if out.stalled {
@@ -565,31 +599,22 @@ impl PetscKrylov {
         let Some(p) = self.pattern.as_mut() else {
             return Err(LinearError::Singular("no pattern".into()));
         };
-        let pattern = block.map(|b| &*b.pattern);
-        if !p.fill.has_block(pattern) {
-            return Err(LinearError::Singular(
-                "the block is not over the analysed pattern".into(),
-            ));
-        }
-        p.fill.sum_triplets(vals)?;
-        let values = block.map_or(&[][..], |b| &b.values[..]);
         // the decoupled rows' diagonal: the mean absolute diagonal of the
         // free displacement rows
-        let sum: f64 = p.fill.diagonal(values).map(|(_, v)| v.abs()).sum();
-        let d = if sum > 0.0 {
-            sum / p.fill.diagonal_count() as f64
-        } else {
-            1.0
+        let mean = |diagonal: &mut dyn Iterator<Item = (usize, f64)>| {
+            let (mut sum, mut count) = (0.0_f64, 0usize);
+            for (_, v) in diagonal {
+                sum += v.abs();
+                count += 1;
+            }
+            Ok(if sum > 0.0 { sum / count as f64 } else { 1.0 })
         };
-        p.fill.set_decoupled(d);
         let Pattern {
             numbering,
             fill,
             objects,
         } = p;
-        objects.a.fill(&s, |add| {
-            fill.add_to(add, numbering, block.map(|b| (&*b.pattern, values)))
-        })?;
+        fill.fill_matrix(&s, &mut objects.a, numbering, (block, vals), mean)?;
         s.replace_options(&options)?;
         objects.ksp.set_up(&s)?;
         self.factored = true;
@@ -598,31 +623,7 @@ impl PetscKrylov {
 }
 
 impl LinearSolver for PetscKrylov {
-    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
-        self.analyse_parts(n, None, rows, cols)
-    }
-
-    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
-        self.factor_parts(None, vals)
-    }
-
-    fn takes_block(&self) -> bool {
-        true
-    }
-
-    fn analyse_with_block(
-        &mut self,
-        n: usize,
-        block: &BlockPattern,
-        rows: &[u32],
-        cols: &[u32],
-    ) -> Result<(), LinearError> {
-        self.analyse_parts(n, Some(block), rows, cols)
-    }
-
-    fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
-        self.factor_parts(Some(block), vals)
-    }
+    through_parts!();
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
         if !std::mem::take(&mut self.factored) {

@@ -49,6 +49,7 @@ use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
 use super::{
     Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, retry_options,
+    through_parts,
 };
 use crate::linear::{
     Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout,
@@ -354,40 +355,25 @@ impl PetscRanks {
         let Some(p) = self.pattern.as_mut() else {
             return Err(LinearError::Singular("no pattern".into()));
         };
-        if !p.fill.has_block(block.map(|b| &*b.pattern)) {
-            return Err(LinearError::Singular(
-                "the block is not over the analysed pattern".into(),
-            ));
-        }
-        p.fill.sum_triplets(vals)?;
-        let values = block.map_or(&[][..], |b| &b.values[..]);
-        let nb = &p.numbering;
-        // the decoupled rows' diagonal: the mean absolute diagonal of the
-        // free displacement rows, every rank's contributions summed
-        let mut diagonal = vec![0.0; nb.n_free];
-        for (r, v) in p.fill.diagonal(values) {
-            diagonal[r] = v;
-        }
-        s.sum(&mut diagonal)?;
-        let sum: f64 = diagonal.iter().map(|d| d.abs()).sum();
-        let d = if sum > 0.0 {
-            sum / nb.n_free as f64
-        } else {
-            1.0
-        };
-        p.fill.set_decoupled(d);
         let RankPattern {
             numbering,
             fill,
             objects,
         } = p;
-        objects.a.fill(&s, |add| {
-            fill.add_to(
-                add,
-                &numbering.numbering,
-                block.map(|b| (&*b.pattern, values)),
-            )
-        })?;
+        let n_free = numbering.n_free;
+        // the decoupled rows' diagonal: the mean absolute diagonal of the
+        // free displacement rows, every rank's contributions summed
+        let mean = |entries: &mut dyn Iterator<Item = (usize, f64)>| {
+            let mut diagonal = vec![0.0; n_free];
+            for (r, v) in entries {
+                diagonal[r] = v;
+            }
+            s.sum(&mut diagonal)?;
+            let sum: f64 = diagonal.iter().map(|d| d.abs()).sum();
+            Ok(if sum > 0.0 { sum / n_free as f64 } else { 1.0 })
+        };
+        let nb = &numbering.numbering;
+        fill.fill_matrix(&s, &mut objects.a, nb, (block, vals), mean)?;
         s.replace_options(&options)?;
         objects.ksp.set_up(&s)?;
         self.factored = true;
@@ -396,31 +382,7 @@ impl PetscRanks {
 }
 
 impl LinearSolver for PetscRanks {
-    fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
-        self.analyse_parts(n, None, rows, cols)
-    }
-
-    fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
-        self.factor_parts(None, vals)
-    }
-
-    fn takes_block(&self) -> bool {
-        true
-    }
-
-    fn analyse_with_block(
-        &mut self,
-        n: usize,
-        block: &BlockPattern,
-        rows: &[u32],
-        cols: &[u32],
-    ) -> Result<(), LinearError> {
-        self.analyse_parts(n, Some(block), rows, cols)
-    }
-
-    fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
-        self.factor_parts(Some(block), vals)
-    }
+    through_parts!();
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
         if !std::mem::take(&mut self.factored) {
