@@ -98,7 +98,7 @@ steps = [1]
     /// A 3D block scene is estimated as hexahedra with the smallest figure
     /// of the solvers compiled in, refused one byte below its estimate and
     /// accepted at it; the 100^3 block the 2D figure let start (3.1e6
-    /// equations) is refused within 16 GiB (with any solver), before any
+    /// equations) is refused within 8 GiB (with any solver), before any
     /// mesh is allocated.
     #[test]
     fn a_3d_block_scene_is_refused_at_the_edge_of_its_estimate() {
@@ -116,11 +116,11 @@ steps = [1]
         assert_eq!(err.needed, needed);
 
         let big = cube(100);
-        let err = check_scene_within(&big, Some(16 << 30)).unwrap_err();
+        let err = check_scene_within(&big, Some(8 << 30)).unwrap_err();
         let msg = err.to_string();
         assert!(
             msg.starts_with("not enough memory: 3090903 equations of 3D hexahedra need at least ")
-                && msg.contains("but only 16384 MiB are available"),
+                && msg.contains("but only 8192 MiB are available"),
             "{msg}"
         );
     }
