@@ -23,7 +23,9 @@
 //!
 //! The group `solver_scaling_3d` times `solid_assembly/<n>` and
 //! `linear_solve/<n>` the same way on `scenes/block3d.toml` refined 9-fold
-//! (18 x 18 x 9 hexahedra, about 1e4 equations, no contact). `cargo run --release --example scaling_table -- --3d` gives
+//! (18 x 18 x 9 hexahedra, about 1e4 equations, no contact), and
+//! `solid_assembly_block/<n>`: the same assembly into the solid block a
+//! PETSc solve takes (`solver::linear::Block`) instead of triplets. `cargo run --release --example scaling_table -- --3d` gives
 //! the 3D sizes up to 3e5 equations.
 //!
 //! Each routine's input (the system after the previous phase) is cloned in
@@ -34,10 +36,14 @@
 //! prints the same measurement as a table without criterion.
 
 use std::hint::black_box;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use criterion::{BatchSize, BenchmarkId, Criterion, SamplingMode, criterion_group, criterion_main};
+use solver::assembly::solid_pattern;
+use solver::linear::Block;
 use solver::newton::IterationProbe;
+use solver::system::DofMap;
 use solver::{Dim, Method, Model, Scene, SolveOptions, SpaceDim, State, solve_model};
 
 /// Measurement time per benchmark (the linear solve's is raised to fit 10
@@ -195,6 +201,23 @@ fn solver_scaling_3d(c: &mut Criterion) {
     group.bench_with_input(BenchmarkId::new("solid_assembly", n), &n, |b, _| {
         b.iter_batched(
             || empty.system.clone(),
+            |mut system| {
+                probe.solid(&mut system);
+                system
+            },
+            BatchSize::LargeInput,
+        )
+    });
+    // the same assembly into the solid block a PETSc solve takes
+    // (`solver::linear::Block`) instead of triplets
+    let dofs = DofMap::new(&model, 0);
+    assert_eq!(dofs.n_eq(), n, "no contact, no multipliers");
+    let pattern = solid_pattern(&model, &dofs, None).expect("the pattern builds");
+    let mut blocked = empty.system.clone();
+    blocked.block = Some(Block::new(Arc::new(pattern)));
+    group.bench_with_input(BenchmarkId::new("solid_assembly_block", n), &n, |b, _| {
+        b.iter_batched(
+            || blocked.clone(),
             |mut system| {
                 probe.solid(&mut system);
                 system
