@@ -140,6 +140,9 @@ pub struct Formulation {
     pub entities: Vec<Entity>,
     /// The gap expression (entities only).
     pub gap: syn::Expr,
+    /// The slip expression (entities only; `slip!`), if the file defines
+    /// one: a scalar (2D) or a 3-vector (3D).
+    pub slip: Option<syn::Expr>,
     /// Where each `let` name is defined: `(name, line, column)`, 1-based,
     /// in file order (for errors found after parsing).
     pub lets: Vec<(String, usize, usize)>,
@@ -173,9 +176,13 @@ fn misplaced_macro(m: &syn::Macro, origin: &str) -> Error {
     let path = &m.path;
     let name = quote::quote!(#path).to_string().replace(' ', "");
     let msg = match name.as_str() {
-        "implicit" | "entity" => format!("`{name}!` must be the whole value of a `let`"),
-        "inputs" | "gap" => format!("`{name}!(..);` is a statement of its own"),
-        _ => format!("unknown macro `{name}!` (known: inputs!, implicit!, entity!, gap!)"),
+        "implicit" | "entity" | "previous" => {
+            format!("`{name}!` must be the whole value of a `let`")
+        }
+        "inputs" | "gap" | "slip" => format!("`{name}!(..);` is a statement of its own"),
+        _ => format!(
+            "unknown macro `{name}!` (known: inputs!, implicit!, previous!, entity!, gap!, slip!)"
+        ),
     };
     err(m.span(), origin, msg)
 }
@@ -224,6 +231,7 @@ impl Formulation {
         let mut implicit: Option<Implicit> = None;
         let mut entities: Vec<Entity> = Vec::new();
         let mut gap: Option<syn::Expr> = None;
+        let mut slip: Option<syn::Expr> = None;
         let mut lets: Vec<(String, usize, usize)> = Vec::new();
 
         for stmt in &stmts {
@@ -242,6 +250,14 @@ impl Formulation {
                     let e: syn::Expr = syn::parse2(m.mac.tokens.clone())
                         .map_err(|e| err(e.span(), &origin, e.to_string()))?;
                     gap = Some(e);
+                }
+                syn::Stmt::Macro(m) if m.mac.path.is_ident("slip") => {
+                    if slip.is_some() {
+                        return Err(err(m.span(), &origin, "`slip!` given twice"));
+                    }
+                    let e: syn::Expr = syn::parse2(m.mac.tokens.clone())
+                        .map_err(|e| err(e.span(), &origin, e.to_string()))?;
+                    slip = Some(e);
                 }
                 syn::Stmt::Local(local) => {
                     if !inputs_seen {
@@ -290,6 +306,11 @@ impl Formulation {
                             implicit = Some(imp);
                             v
                         }
+                        syn::Expr::Macro(m) if m.mac.path.is_ident("previous") => b.previous(
+                            &m.mac.tokens,
+                            m.span(),
+                            implicit.as_ref().map(|i| i.name.as_str()),
+                        )?,
                         syn::Expr::Macro(m) if m.mac.path.is_ident("entity") => {
                             let e: syn::Expr = syn::parse2(m.mac.tokens.clone())
                                 .map_err(|e| err(e.span(), &origin, e.to_string()))?;
@@ -309,7 +330,7 @@ impl Formulation {
                     return Err(err(
                         other.span(),
                         &origin,
-                        "expected `inputs!(..)`, `let name = ...;` or `gap!(..)`",
+                        "expected `inputs!(..)`, `let name = ...;`, `gap!(..)` or `slip!(..)`",
                     ));
                 }
             }
@@ -340,8 +361,67 @@ impl Formulation {
             implicit,
             entities,
             gap,
+            slip,
             lets,
         })
+    }
+
+    /// The entities a derivation of `quantity` needs: all of them for the
+    /// slip, all but the slip's entity ([`crate::truncation::SLIP_ENTITY`])
+    /// for the gap (which may not use it).
+    pub fn entities_for(
+        &self,
+        quantity: crate::truncation::Quantity,
+    ) -> impl Iterator<Item = &Entity> {
+        self.entities.iter().filter(move |e| {
+            quantity == crate::truncation::Quantity::Slip
+                || e.name != crate::truncation::SLIP_ENTITY
+        })
+    }
+
+    /// The slip's components (1 for a scalar, 3 for a 3-vector), 0 when
+    /// the file has no `slip!`.
+    pub fn slip_components(&self) -> usize {
+        match self.slip {
+            None => 0,
+            Some(_) if self.signature.dim() == 2 => 1,
+            Some(_) => 3,
+        }
+    }
+
+    /// Interprets the slip expression in `domain` (as [`Formulation::eval_gap`]):
+    /// its components, a scalar in 2D and a 3-vector in 3D. `Ok(vec![])`
+    /// without `slip!`.
+    pub fn eval_slip<D: Domain>(
+        &self,
+        domain: &mut D,
+        entity_values: &HashMap<String, Value<D::S>>,
+    ) -> Result<Vec<D::S>, Error> {
+        let Some(slip) = &self.slip else {
+            return Ok(Vec::new());
+        };
+        let origin = format!("{}.rs", self.name);
+        let v = eval_expr(
+            domain,
+            entity_values,
+            slip,
+            &origin,
+            "the slip may only use entities",
+        )?;
+        match (v, self.signature.dim()) {
+            (Value::Scalar(s), 2) => Ok(vec![s]),
+            (Value::Vec3(c), 3) => Ok(c.to_vec()),
+            (_, 2) => Err(err(
+                slip.span(),
+                &origin,
+                "a 2D slip must be a scalar (the component along the tangent)",
+            )),
+            _ => Err(err(
+                slip.span(),
+                &origin,
+                "a 3D slip must be a 3-vector (its global components)",
+            )),
+        }
     }
 
     /// Interprets the gap expression in `domain`, with each entity name bound

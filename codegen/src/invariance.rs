@@ -7,7 +7,11 @@
 //! proves it, exactly, for the projection residual `r(q, xi)`, every
 //! entity `E(q, xi)` and the gap; then `xi_m(q)`, every truncated
 //! derivative the kernels compute (polynomials in the partial derivatives
-//! of invariant functions) and the gap are invariant too.
+//! of invariant functions) and the gap are invariant too. The slip
+//! (`slip!`) is an expression of the entities only (the language refuses
+//! anything else in it), so it is invariant once they are; it is not
+//! expanded itself (a 3D tangential projection `s_m - (n . s_m) n` exceeds
+//! [`MAX_TERMS`]).
 //!
 //! ## The argument
 //!
@@ -270,6 +274,7 @@ type Position = (usize, usize);
 pub fn check(f: &Formulation) -> Result<(), Error> {
     let mut dag = f.dag.clone();
     let gap = crate::truncation::gap_value(f, &mut dag)?;
+
     let at = |name: &str| {
         f.lets
             .iter()
@@ -299,6 +304,7 @@ pub fn check(f: &Formulation) -> Result<(), Error> {
         gap,
         Some((start.line, start.column + 1)),
     ));
+
     let mut prover = Prover::new(&dag, f);
     for (what, id, position) in targets {
         let why = match prover.poly(id) {

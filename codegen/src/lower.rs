@@ -20,7 +20,7 @@
 //! | instruction | meaning | counted as |
 //! |---|---|---|
 //! | `Load(Coord(i))` | `d[i]` | — |
-//! | `Load(Param(i))` | parameter `i` (`xi_s`) | — |
+//! | `Load(Param(i))` | parameter component `i` (`xi_s`; after the parameters, `xi_m0`'s components in a slip program) | — |
 //! | `Load(Implicit)` | `xi_m` (or `xi` in the residual) | — |
 //! | `Load(ImplicitComponent(k))` | component `k` of a 2-vector `xi_m` | — |
 //! | `Add(a, b)`, `Sub(a, b)` | `a + b`, `a - b` | add |
@@ -41,7 +41,9 @@ use crate::signature::Signature;
 pub enum Source {
     /// Relative coordinate `d[i]`.
     Coord(usize),
-    /// Scalar parameter `i` of the signature (`xi_s`).
+    /// Parameter component `i` of the signature (`xi_s`); the components
+    /// after the signature's parameters are the last converged projection
+    /// `xi_m0`'s ([`Signature::previous_syms`], slip programs only).
     Param(usize),
     /// The implicit variable's value.
     Implicit,
@@ -159,7 +161,12 @@ impl Program {
     /// by zero; coordinate `i` is loaded from `d[i]`.
     pub fn lower(dag: &Dag, outputs: &[Option<Id>], sig: &Signature) -> Program {
         let coords = sig.coord_syms();
-        let params: Vec<Sym> = (0..sig.param_count()).map(|i| sig.param_sym(i)).collect();
+        // The parameters' components, then the last converged projection's
+        // (`xi_m0`, loaded by the slip's programs after the parameters).
+        let params: Vec<Sym> = (0..sig.param_count())
+            .map(|i| sig.param_sym(i))
+            .chain(sig.previous_syms())
+            .collect();
         let implicit = sig.implicit_sym();
         let vector = sig.implicit_syms();
         let vector = if vector.len() > 1 { vector } else { Vec::new() };

@@ -14,7 +14,8 @@
 //!   [`Signature::packed`]; emitters store the full symmetric matrix).
 //! * Every [`Input`] loaded by a program's `Load` instructions is listed:
 //!   [`InputKind::Coords`] for `Load(Coord(i))` (`i < n`),
-//!   [`InputKind::Param`] for `Load(Param(i))`, [`InputKind::Implicit`] or
+//!   [`InputKind::Param`] for `Load(Param(i))` (a slip function's `xi_m0`
+//!   is the parameter after the signature's), [`InputKind::Implicit`] or
 //!   [`InputKind::ImplicitInOut`] for `Load(Implicit)`.
 //! * A function has at least one [`Delivery::Return`] output; the kernel
 //!   functions return the gap.
@@ -78,6 +79,14 @@ pub struct KernelSetPlan {
     pub gap: FunctionPlan,
     /// Types 1..=6.
     pub kernels: Vec<FunctionPlan>,
+    /// The slip's components (1 in 2D, 3 in 3D; 0 without `slip!`).
+    pub slip_components: usize,
+    /// The slip under types 1..=6 (`{ident}_slip_type{t}`; empty without
+    /// `slip!`). Inputs: the kernels' with the last converged projection
+    /// `xi_m0` (its components, as many as `xi_m`'s) after the parameters;
+    /// outputs `s0 .. s{c-1}` returned, `grad0 ..` and, with a second-order
+    /// term, `hess0 ..` stored.
+    pub slips: Vec<FunctionPlan>,
     /// The projection kernel's cost: the gap, plus one residual evaluation
     /// per Newton iteration when not in closed form.
     pub projection_ops: OpCount,
@@ -116,6 +125,14 @@ pub enum Role {
         /// Whether any second-order term survives (else no Hessian output).
         hessian: bool,
     },
+    /// An approximation type's slip (its components) with their kept
+    /// derivatives.
+    Slip {
+        /// The type, 1..=6.
+        ty: usize,
+        /// Whether any second-order term survives (else no Hessian outputs).
+        hessian: bool,
+    },
 }
 
 /// A function input.
@@ -134,7 +151,9 @@ pub struct Input {
 pub enum InputKind {
     /// The relative coordinates (`len = n`), read by `Load(Coord(i))`.
     Coords,
-    /// Scalar parameter `i` of the signature.
+    /// Parameter `i` of the signature (`len` components); `i =
+    /// params().len()` is a slip function's last converged projection
+    /// `xi_m0`, loaded as the parameter components after the signature's.
     Param(usize),
     /// The implicit unknown's value, by value.
     Implicit,
@@ -429,6 +448,69 @@ impl KernelSetPlan {
             })
             .collect();
 
+        let c = f.slip_components();
+        let previous = Input {
+            name: format!("{}0", sig.implicit()),
+            len: k,
+            kind: InputKind::Param(sig.params().len()),
+        };
+        // The kernels' inputs with `xi_m0` before the projection.
+        let mut slip_inputs = inputs.clone();
+        slip_inputs.insert(slip_inputs.len() - 1, previous);
+        let slips: Vec<FunctionPlan> = p
+            .slips
+            .iter()
+            .enumerate()
+            .map(|(t, (prog, has_hess))| {
+                let ops = prog.op_count();
+                let orders = TYPES[t].map(|o| o.name().to_lowercase()).join(", ");
+                let doc = format!(
+                    "`{name}`, type {} (xi_m, x_ms and s_m, n: {orders}): the slip ({c} \
+                     component{}), gradient{}. `xi_m0` is the last converged projection.{}",
+                    t + 1,
+                    if c == 1 { "" } else { "s" },
+                    if *has_hess {
+                        " and Hessian"
+                    } else {
+                        " (no second-order term)"
+                    },
+                    ops_doc(&ops)
+                );
+                let mut outputs: Vec<Output> = (0..c)
+                    .map(|i| scalar(&format!("s{i}"), i, Delivery::Return))
+                    .collect();
+                outputs.extend((0..c).map(|i| Output {
+                    name: format!("grad{i}"),
+                    len: n,
+                    first: c + i * n,
+                    layout: Layout::Vector,
+                    delivery: Delivery::Store,
+                }));
+                if *has_hess {
+                    outputs.extend((0..c).map(|i| Output {
+                        name: format!("hess{i}"),
+                        len: nh,
+                        first: c + c * n + i * nh,
+                        layout: Layout::PackedSymmetric { n },
+                        delivery: Delivery::Store,
+                    }));
+                }
+                outputs.extend(implicit_out(prog));
+                FunctionPlan {
+                    name: format!("{ident}_slip_type{}", t + 1),
+                    doc,
+                    role: Role::Slip {
+                        ty: t + 1,
+                        hessian: *has_hess,
+                    },
+                    inputs: slip_inputs.clone(),
+                    outputs,
+                    program: prog.clone(),
+                    ops,
+                }
+            })
+            .collect();
+
         // The projection kernel: the gap kernel, plus one residual
         // evaluation per Newton iteration when not in closed form.
         let mut projection_ops = gap.ops;
@@ -443,6 +525,8 @@ impl KernelSetPlan {
             residual,
             gap,
             kernels,
+            slip_components: if slips.is_empty() { 0 } else { c },
+            slips,
             projection_ops,
         }
     }

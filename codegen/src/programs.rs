@@ -6,7 +6,7 @@
 //! implicit unknown of the formulation's [`crate::signature::Signature`];
 //! the output layouts are documented on [`FormulationPrograms`].
 
-use crate::truncation::{self, TYPES};
+use crate::truncation::{self, Quantity, TYPES};
 use crate::{Error, Formulation, Program, diff, expr};
 
 /// The programs of one formulation.
@@ -29,6 +29,15 @@ pub struct FormulationPrograms {
     /// `n` from the formulation's signature), and whether any Hessian entry
     /// survives.
     pub kernels: Vec<(Program, bool)>,
+    /// Per type (1..=6), when the formulation has a slip (`slip!`; else
+    /// empty): the slip's `c` components
+    /// ([`Formulation::slip_components`]), outputs `[s_0 .. s_c-1,
+    /// grad_0 (n) .. grad_c-1, hess_0 (n (n + 1) / 2) .. hess_c-1]` (all
+    /// structurally zero without second-order term; `xi_m` last when
+    /// affine, as the kernels), and whether any Hessian entry survives. The last converged
+    /// projection `xi_m0` is loaded as the parameter components after the
+    /// signature's ([`crate::signature::Signature::previous_syms`]).
+    pub slips: Vec<(Program, bool)>,
 }
 
 /// Derives and lowers every program of a formulation, once its translation
@@ -91,24 +100,62 @@ fn assemble(
     let g = truncation::gap_value(f, &mut dag)?;
     let outs = finish(&mut dag, vec![Some(g)]);
     let gap = lower(&dag, &outs)?;
+    for (what, program) in [("projection residual", &residual), ("gap", &gap)] {
+        if loads_previous(f, program) {
+            return Err(Error::Truncation {
+                file: format!("{}.rs", f.name),
+                message: format!(
+                    "the {what} depends on the last converged projection (`previous!`), which \
+                     only the slip may use"
+                ),
+            });
+        }
+    }
     let mut kernels = Vec::new();
+    let mut slips = Vec::new();
     for row in TYPES {
-        // A fresh DAG per type: nothing of another type's chains leaks in.
-        let mut dag = f.dag.clone();
-        let k = truncation::derive(f, &mut dag, row)?;
-        let has_hessian = k.has_hessian();
-        let mut outs = vec![Some(k.gap)];
-        outs.extend(k.grad);
-        outs.extend(k.hess);
-        let outs = finish(&mut dag, outs);
-        kernels.push((lower(&dag, &outs)?, has_hessian));
+        for quantity in [Quantity::Gap, Quantity::Slip] {
+            if quantity == Quantity::Slip && f.slip.is_none() {
+                continue;
+            }
+            // A fresh DAG per type and quantity: nothing of another type's
+            // chains leaks in.
+            let mut dag = f.dag.clone();
+            let ks = truncation::derive(f, &mut dag, row, quantity)?;
+            let has_hessian = ks.iter().any(truncation::KernelExprs::has_hessian);
+            let mut outs: Vec<Option<expr::Id>> = ks.iter().map(|k| Some(k.gap)).collect();
+            for k in &ks {
+                outs.extend(k.grad.iter().copied());
+            }
+            for k in &ks {
+                outs.extend(k.hess.iter().copied());
+            }
+            let outs = finish(&mut dag, outs);
+            let program = lower(&dag, &outs)?;
+            match quantity {
+                Quantity::Gap => kernels.push((program, has_hessian)),
+                Quantity::Slip => slips.push((program, has_hessian)),
+            }
+        }
     }
     Ok(FormulationPrograms {
         affine,
         residual,
         gap,
         kernels,
+        slips,
     })
+}
+
+/// Whether `program` loads the last converged projection `xi_m0` (the
+/// parameter components after the signature's).
+fn loads_previous(f: &Formulation, program: &Program) -> bool {
+    use crate::lower::{Instr, Source};
+    let params = f.signature.param_count();
+    program
+        .instrs
+        .iter()
+        .any(|i| matches!(*i, Instr::Load(Source::Param(p)) if p >= params))
 }
 
 /// `program`, or an error if a constant of it is not finite (a fold such as

@@ -17,7 +17,8 @@
 //! (`Sym(0..n)`, point-major: `x1, y1, x2, y2, ...`), then the parameters'
 //! components (`Sym(n..n+m)`, `m` = [`Signature::param_count`], parameter
 //! after parameter), then the implicit unknown's components
-//! (`Sym(n+m..)`).
+//! (`Sym(n+m..n+m+k)`), then, if `previous!` declares it, the last
+//! converged projection `xi_m0` (`k` more: the slip's input).
 //!
 //! ## Packed symmetric matrices
 //!
@@ -41,6 +42,9 @@ pub struct Signature {
     implicit: String,
     /// Components of the implicit unknown (1 or 2).
     implicit_len: usize,
+    /// Whether `previous!` declared the last converged projection `xi_m0`
+    /// (as many components as the implicit unknown; the slip's input).
+    previous: bool,
 }
 
 impl Signature {
@@ -56,6 +60,7 @@ impl Signature {
             param_lens,
             implicit,
             implicit_len: 1,
+            previous: false,
         }
     }
 
@@ -79,6 +84,7 @@ impl Signature {
             param_lens,
             implicit: String::new(),
             implicit_len: 1,
+            previous: false,
         }
     }
 
@@ -138,6 +144,32 @@ impl Signature {
     /// Sizes the implicit unknown (known only once `implicit!` is read).
     pub(crate) fn set_implicit_len(&mut self, len: usize) {
         self.implicit_len = len;
+    }
+
+    /// Declares the last converged projection `xi_m0` (`previous!`).
+    pub(crate) fn set_previous(&mut self) {
+        self.previous = true;
+    }
+
+    /// Whether the formulation declares the last converged projection
+    /// `xi_m0` (`previous!`, which the slip reads).
+    pub fn has_previous(&self) -> bool {
+        self.previous
+    }
+
+    /// The symbols of the last converged projection `xi_m0`, one per
+    /// component of the implicit unknown, after the unknown's (none
+    /// without `previous!`). The slip's programs load them as parameter
+    /// components `param_count()..` ([`crate::lower::Source::Param`]):
+    /// they follow the parameters in a slip function's arguments.
+    pub fn previous_syms(&self) -> Vec<Sym> {
+        if !self.previous {
+            return Vec::new();
+        }
+        let first = self.coords() + self.param_count() + self.implicit_len;
+        (0..self.implicit_len)
+            .map(|k| Sym((first + k) as u16))
+            .collect()
     }
 
     /// The coordinate count `n = dim * points`.

@@ -80,6 +80,24 @@ impl EntityOrder {
 /// The entity names the truncation table refers to, in column order.
 pub const ENTITY_NAMES: [&str; 3] = ["xi_m", "x_ms", "n"];
 
+/// The slip's entity: the master point's motion `s_m = x_m(xi_m) -
+/// x_m(xi_m0)` since the last converged state. It takes `x_ms`'s column
+/// (it differs from `x_ms` by `x_s - x_m(xi_m0)`, which does not depend on
+/// `xi`: the same kind of quantity, the same chains).
+pub const SLIP_ENTITY: &str = "s_m";
+
+/// The column of the truncation table [`SLIP_ENTITY`] follows (`x_ms`'s).
+pub const SLIP_ENTITY_COLUMN: usize = 1;
+
+/// What a kernel computes: the gap or the slip (`slip!`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// The gap `g` (one component).
+    Gap,
+    /// The slip: one component in 2D, three in 3D.
+    Slip,
+}
+
 /// The truncation table: row `t - 1` gives type `t`'s order for
 /// `[xi_m, x_ms, n]`.
 pub const TYPES: [[EntityOrder; 3]; 6] = {
@@ -114,16 +132,20 @@ impl KernelExprs {
     }
 }
 
-/// Builds the kernel expressions of `formulation` under the truncation row
-/// `orders` (for `[xi_m, x_ms, n]`, see [`TYPES`]), adding nodes to `dag`
-/// (which must be the formulation's DAG or a clone of it).
+/// Builds the kernel expressions of `formulation`'s `quantity` under the
+/// truncation row `orders` (for `[xi_m, x_ms, n]`, see [`TYPES`]; the slip's
+/// entity [`SLIP_ENTITY`] takes `x_ms`'s), one per component (the gap: one;
+/// the slip: [`Formulation::slip_components`]), adding nodes to `dag`
+/// (which must be the formulation's DAG or a clone of it). The gap's
+/// derivation never builds the slip entity's chains.
 pub fn derive(
     formulation: &Formulation,
     dag: &mut Dag,
     orders: [EntityOrder; 3],
-) -> Result<KernelExprs, Error> {
+    quantity: Quantity,
+) -> Result<Vec<KernelExprs>, Error> {
     if formulation.implicit.is_vector() {
-        return vector::derive(formulation, dag, orders);
+        return vector::derive(formulation, dag, orders, quantity);
     }
     let origin = format!("{}.rs", formulation.name);
     let order_of = |name: &str| order_of(formulation, orders, name);
@@ -205,7 +227,7 @@ pub fn derive(
     }
 
     // Entity jets by the truncated chain rule.
-    for entity in &formulation.entities {
+    for entity in formulation.entities_for(quantity) {
         let order = order_of(&entity.name)?;
         let mut comp = |arena: &mut JetArena, e: Id| -> JetId {
             let mut parts = Parts::default();
@@ -247,9 +269,27 @@ pub fn derive(
         jets.insert(entity.name.clone(), v);
     }
 
-    let gap = formulation.eval_gap(&mut arena, &jets)?;
-    let (v, grad, hess) = arena.materialize(gap);
-    Ok(KernelExprs { gap: v, grad, hess })
+    finish(formulation, &mut arena, &jets, quantity)
+}
+
+/// The quantity's components from the entity jets, materialized.
+fn finish(
+    formulation: &Formulation,
+    arena: &mut JetArena,
+    jets: &HashMap<String, Value<JetId>>,
+    quantity: Quantity,
+) -> Result<Vec<KernelExprs>, Error> {
+    let components = match quantity {
+        Quantity::Gap => vec![formulation.eval_gap(arena, jets)?],
+        Quantity::Slip => formulation.eval_slip(arena, jets)?,
+    };
+    Ok(components
+        .into_iter()
+        .map(|c| {
+            let (gap, grad, hess) = arena.materialize(c);
+            KernelExprs { gap, grad, hess }
+        })
+        .collect())
 }
 
 /// The order row `orders` gives entity `name`, or an error naming it.
@@ -261,11 +301,13 @@ fn order_of(
     ENTITY_NAMES
         .iter()
         .position(|n| *n == name)
+        .or((name == SLIP_ENTITY).then_some(SLIP_ENTITY_COLUMN))
         .map(|i| orders[i])
         .ok_or_else(|| Error::Truncation {
             file: format!("{}.rs", formulation.name),
             message: format!(
-                "entity `{name}` has no column in the truncation table (known: {})",
+                "entity `{name}` has no column in the truncation table (known: {}, and the \
+                 slip's `{SLIP_ENTITY}`)",
                 ENTITY_NAMES.join(", ")
             ),
         })
@@ -341,6 +383,18 @@ fn add_pair(dag: &mut Dag, hp: &mut Vec<((usize, usize), Id)>, key: (usize, usiz
 
 /// The value of the formulation's gap (no derivatives).
 pub fn gap_value(formulation: &Formulation, dag: &mut Dag) -> Result<Id, Error> {
+    let env = entity_values(formulation, dag);
+    formulation.eval_gap(dag, &env)
+}
+
+/// The values of the formulation's slip components (none without `slip!`).
+pub fn slip_value(formulation: &Formulation, dag: &mut Dag) -> Result<Vec<Id>, Error> {
+    let env = entity_values(formulation, dag);
+    formulation.eval_slip(dag, &env)
+}
+
+/// Every entity's value and the implicit unknown's, by name.
+fn entity_values(formulation: &Formulation, dag: &mut Dag) -> HashMap<String, Value<Id>> {
     let mut env: HashMap<String, Value<Id>> = formulation
         .entities
         .iter()
@@ -348,7 +402,7 @@ pub fn gap_value(formulation: &Formulation, dag: &mut Dag) -> Result<Id, Error> 
         .collect();
     let x = formulation.implicit.value(dag);
     env.insert(formulation.implicit.name.clone(), x);
-    formulation.eval_gap(dag, &env)
+    env
 }
 
 /// The vector projection residual `[r_0, r_1]` and its Jacobian `A_ac =

@@ -9,7 +9,7 @@
 use std::collections::HashMap;
 
 use codegen::expr::Sym;
-use codegen::truncation::derive;
+use codegen::truncation::{Quantity, derive};
 use codegen::{Formulation, TYPES};
 
 fn load(name: &str) -> Formulation {
@@ -40,7 +40,7 @@ fn programs_agree_with_direct_evaluation() {
         let sig = &f.signature;
         for (t, row) in TYPES.iter().enumerate() {
             let mut dag = f.dag.clone();
-            let k = derive(&f, &mut dag, *row).unwrap();
+            let k = derive(&f, &mut dag, *row, Quantity::Gap).unwrap().remove(0);
             dag.check_invariants();
             let prog = &programs.kernels[t].0;
             for _ in 0..20 {

@@ -25,3 +25,10 @@ let n = entity!(
 );
 
 gap!(dot(n, x_ms));
+
+// The slip: the motion of the master point the slave point faces, since the
+// last converged state (where it faced `xi_m0`), in the tangent plane of n
+// (global components).
+let xi_m0 = previous!(xi_m);
+let s_m = entity!(tri3_point(xm1, xm2, xm3, xi_m) - tri3_point(xm1, xm2, xm3, xi_m0));
+slip!(s_m - dot(n, s_m) * n);

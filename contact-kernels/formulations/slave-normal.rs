@@ -15,3 +15,10 @@ let x_ms = entity!(lerp(xm1, xm2, xi_m) - x_s);
 let n = entity!(perp(t_s) / norm(t_s));
 
 gap!(dot(n, x_ms));
+
+// The slip: the motion of the master point the slave point faces, since the
+// last converged state (where it faced `xi_m0`), along the unit tangent
+// `(-n.y, n.x)` (n turned a quarter counter-clockwise: along `t_s`).
+let xi_m0 = previous!(xi_m);
+let s_m = entity!(lerp(xm1, xm2, xi_m) - lerp(xm1, xm2, xi_m0));
+slip!(dot(vec2(-n.y, n.x), s_m));

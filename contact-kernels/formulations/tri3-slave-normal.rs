@@ -23,3 +23,10 @@ let x_ms = entity!(tri3_point(xm1, xm2, xm3, xi_m) - x_s);
 let n = entity!(cross(ts1, ts2) / norm(cross(ts1, ts2)));
 
 gap!(dot(n, x_ms));
+
+// The slip: the motion of the master point the slave point faces, since the
+// last converged state (where it faced `xi_m0`), in the tangent plane of n
+// (global components).
+let xi_m0 = previous!(xi_m);
+let s_m = entity!(tri3_point(xm1, xm2, xm3, xi_m) - tri3_point(xm1, xm2, xm3, xi_m0));
+slip!(s_m - dot(n, s_m) * n);

@@ -42,11 +42,13 @@ fn degenerate_message(segment: Segment, length: f64, threshold: f64) -> String {
 /// never returns NaN or infinity for input it accepted.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum KernelError {
-    /// A coordinate or `xi_s` is NaN or infinite.
+    /// A coordinate, `xi_s` or `xi_m0` is NaN or infinite.
     #[error("non-finite input: coordinate {index} is {value}")]
     NonFinite {
         /// Index into `q` (`0..n`), or `n + k` (`q.len()`: 8 for two-node
-        /// and 12 for three-node segment pairs) for component `k` of `xi_s`.
+        /// and 12 for three-node segment pairs) for component `k` of `xi_s`,
+        /// `n + P + k` for component `k` of the last converged projection
+        /// `xi_m0` ([`crate::Slip::eval`]; `P` the parametric dimension).
         index: usize,
         /// The offending value.
         value: f64,
@@ -213,6 +215,9 @@ pub enum OutputKind {
     Gradient,
     /// The Hessian.
     Hessian,
+    /// The slip ([`crate::Slip::eval`]; its gradient and Hessian are
+    /// reported as [`OutputKind::Gradient`] and [`OutputKind::Hessian`]).
+    Slip,
 }
 
 impl std::fmt::Display for OutputKind {
@@ -221,6 +226,7 @@ impl std::fmt::Display for OutputKind {
             OutputKind::Gap => "gap",
             OutputKind::Gradient => "gradient",
             OutputKind::Hessian => "Hessian",
+            OutputKind::Slip => "slip",
         })
     }
 }

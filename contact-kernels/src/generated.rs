@@ -31,6 +31,55 @@ pub(crate) enum Kernel {
     Hessian(HessianFn),
 }
 
+/// `(d, xi_s, xi_m0, xi_m, grad) -> s`: the slip of a segment pair
+/// (`xi_m` as for [`GapFn`], `xi_m0` the last converged projection).
+pub(crate) type SlipGradientFn = fn(&[f64], f64, f64, &mut f64, &mut [f64]) -> f64;
+/// `(d, xi_s, xi_m0, xi_m, grad, hess) -> s`.
+pub(crate) type SlipHessianFn = fn(&[f64], f64, f64, &mut f64, &mut [f64], &mut [f64]) -> f64;
+
+/// One approximation type's slip kernel (segments: one component).
+#[derive(Clone, Copy)]
+pub(crate) enum SlipKernel {
+    /// First-order only.
+    Gradient(SlipGradientFn),
+    /// With the second-order term.
+    Hessian(SlipHessianFn),
+}
+
+/// `(d, xi_s, xi_m0, xi_m, grad0, grad1, grad2) -> [s0, s1, s2]`: the slip
+/// of a face pair, its three global components.
+pub(crate) type FaceSlipGradientFn =
+    fn(&[f64], &[f64], &[f64], &mut [f64], &mut [f64], &mut [f64], &mut [f64]) -> [f64; 3];
+/// `(d, xi_s, xi_m0, xi_m, grad0, grad1, grad2, hess0, hess1, hess2) -> [s0, s1, s2]`.
+pub(crate) type FaceSlipHessianFn = fn(
+    &[f64],
+    &[f64],
+    &[f64],
+    &mut [f64],
+    &mut [f64],
+    &mut [f64],
+    &mut [f64],
+    &mut [f64],
+    &mut [f64],
+    &mut [f64],
+) -> [f64; 3];
+
+/// One approximation type's slip kernel for faces (three components).
+#[derive(Clone, Copy)]
+#[cfg_attr(not(feature = "faces"), allow(dead_code))]
+pub(crate) enum FaceSlipKernel {
+    /// First-order only.
+    Gradient(FaceSlipGradientFn),
+    /// With the second-order term.
+    Hessian(FaceSlipHessianFn),
+}
+
+/// A formulation's slip kernels, types 1..=6, and their costs.
+pub(crate) struct SlipSet<K> {
+    pub(crate) kernels: [K; 6],
+    pub(crate) ops: [OpCount; 6],
+}
+
 /// The generated kernels of one formulation.
 pub(crate) struct KernelSet {
     /// The dimension of every point.
@@ -45,6 +94,8 @@ pub(crate) struct KernelSet {
     pub(crate) kernels: [Kernel; 6],
     pub(crate) ops: [OpCount; 6],
     pub(crate) projection_ops: OpCount,
+    /// The slip's kernels, if the formulation defines a slip.
+    pub(crate) slip: Option<SlipSet<SlipKernel>>,
 }
 
 /// `(d, xi, out)`: a face projection's residuals and their Jacobian at
@@ -86,6 +137,8 @@ pub(crate) struct FaceKernelSet {
     pub(crate) kernels: [FaceKernel; 6],
     pub(crate) ops: [OpCount; 6],
     pub(crate) projection_ops: OpCount,
+    /// The slip's kernels, if the formulation defines a slip.
+    pub(crate) slip: Option<SlipSet<FaceSlipKernel>>,
 }
 
 include!(concat!(env!("OUT_DIR"), "/kernels.rs"));

@@ -75,6 +75,7 @@ enum Imp {
 pub(crate) struct Segments {
     set: &'static KernelSet,
     kernel: generated::Kernel,
+    slip: Option<generated::SlipKernel>,
     lane_set: &'static LaneSet,
     lanes: LaneKernel,
     lane_isa: LaneIsa,
@@ -85,6 +86,7 @@ pub(crate) struct Segments {
 pub(crate) struct Faces {
     set: &'static generated::FaceKernelSet,
     kernel: generated::FaceKernel,
+    slip: Option<generated::FaceSlipKernel>,
     lane_set: &'static LaneSet<FaceLaneKernel>,
     lanes: FaceLaneKernel,
     lane_isa: LaneIsa,
@@ -92,6 +94,9 @@ pub(crate) struct Faces {
 
 mod batch;
 mod param_kernel;
+mod slip;
+
+pub use slip::{Slip, SlipOut};
 
 impl std::fmt::Debug for Kernel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -311,6 +316,7 @@ impl Kernel {
                 imp: Imp::Faces(Faces {
                     set,
                     kernel: set.kernels[ty.index() - 1],
+                    slip: set.slip.as_ref().map(|s| s.kernels[ty.index() - 1]),
                     lane_set,
                     lanes,
                     lane_isa,
@@ -326,6 +332,7 @@ impl Kernel {
             imp: Imp::Segments(Segments {
                 set,
                 kernel: set.kernels[ty.index() - 1],
+                slip: set.slip.as_ref().map(|s| s.kernels[ty.index() - 1]),
                 lane_set,
                 lanes,
                 lane_isa,

@@ -96,6 +96,7 @@ fn code(e: &KernelError) -> i32 {
             OutputKind::Gap => 7,
             OutputKind::Gradient => 8,
             OutputKind::Hessian => 9,
+            OutputKind::Slip => unreachable!("the C files have no slip kernels"),
         },
         KernelError::FoldedSegment {
             segment: Segment::Slave,

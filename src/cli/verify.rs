@@ -83,7 +83,7 @@ pub enum VerifyCommandError {
 pub fn run(args: &VerifyArgs) -> CommandResult {
     let file = read_source(&args.file)?;
     let result = verify::verify_source(&file.source.name, &file.source.text, args.flip_sign);
-    let (report, flip) = match result {
+    let source = match result {
         Ok(r) => r,
         Err(VerifyError::Formulation(e)) => {
             return Err(VerifyCommandError::File(locate(e, std::slice::from_ref(&file))).into());
@@ -96,16 +96,33 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
             .into());
         }
     };
-    if let Some(f) = &flip {
+    if let Some(f) = &source.flip {
         println!(
             "mutated on purpose: type {} instruction {}: {} -> {}\n",
             f.ty, f.instr, f.before, f.after
         );
     }
-    print!("{report}");
-    if report.passed() {
+    print!("{}", source.gap);
+    if let Some(slip) = &source.slip {
+        println!();
+        print!("{slip}");
+    }
+    if source.passed() {
         return Ok(());
     }
+    let mut why = Vec::new();
+    if !source.gap.passed() {
+        why.push(failure(&source.gap));
+    }
+    if let Some(slip) = source.slip.as_ref().filter(|r| !r.passed()) {
+        why.push(format!("the slip's {}", failure(slip)));
+    }
+    Err(VerifyCommandError::Failed(why.join("; ")).into())
+}
+
+/// Why `report` fails, type by type (types failing for the same reason
+/// named together).
+fn failure(report: &verify::Report) -> String {
     let why: Vec<(usize, String)> = report
         .failures()
         .iter()
@@ -154,10 +171,9 @@ pub fn run(args: &VerifyArgs) -> CommandResult {
             format!("{label} {}: {what}", names.join(", "))
         })
         .collect();
-    let why = if report.checked == 0 {
+    if report.checked == 0 {
         "no configuration could be projected".to_owned()
     } else {
         why.join("; ")
-    };
-    Err(VerifyCommandError::Failed(why).into())
+    }
 }

@@ -139,6 +139,53 @@ impl InterpretedKernels {
         })
     }
 
+    /// Whether the formulation defines a slip (`slip!`).
+    pub fn has_slip(&self) -> bool {
+        !self.programs.slips.is_empty()
+    }
+
+    /// Runs type `ty`'s slip program at relative coordinates `d`; `params`
+    /// ends with the last converged projection `xi_m0`. One output per slip
+    /// component (its value in [`KernelOutput::gap`]); `None` when the
+    /// projection fails or the formulation has no slip.
+    pub fn eval_slip(&self, ty: usize, d: &[f64], params: &[f64]) -> Option<Vec<KernelOutput>> {
+        let (n, k) = (self.n, self.k);
+        let (prog, has_hessian) = self.programs.slips.get(ty.checked_sub(1)?)?;
+        let xi = if self.programs.affine {
+            vec![0.0; k]
+        } else {
+            self.project(d, params)?
+        };
+        let out = prog.run_vector(d, params, &xi);
+        let xi_m = if self.programs.affine {
+            out[out.len() - k..].to_vec()
+        } else {
+            xi
+        };
+        let c = (out.len() - if self.programs.affine { k } else { 0 }) / (1 + n + n * (n + 1) / 2);
+        let packed = n * (n + 1) / 2;
+        Some(
+            (0..c)
+                .map(|i| {
+                    let grad = out[c + i * n..c + (i + 1) * n].to_vec();
+                    let hess = has_hessian.then(|| {
+                        let mut h = vec![0.0; n * n];
+                        let first = c + c * n + i * packed;
+                        unpack_hessian(&out[first..first + packed], n, &mut h);
+                        h
+                    });
+                    KernelOutput {
+                        gap: out[i],
+                        xi_m: xi_m[0],
+                        xi_rest: xi_m[1..].to_vec(),
+                        grad,
+                        hess,
+                    }
+                })
+                .collect(),
+        )
+    }
+
     /// Newton's method on the residual program from `xi = 0` (a 2-vector
     /// unknown: the residual program's `[r_0, r_1, A_00, A_01, A_10, A_11]`,
     /// the step by Cramer's rule, until `max|dxi| <= tol (1 + max|xi|)`).

@@ -49,7 +49,7 @@ use std::fmt;
 
 pub use families::Config;
 pub use interpreted::{Flip, InterpretedKernels};
-pub use reference::AdFormulation;
+pub use reference::{AdFormulation, Quantity};
 
 /// The default tolerance on every scaled error (see the module
 /// documentation).
@@ -344,6 +344,20 @@ impl fmt::Display for Report {
 /// configuration).
 pub type KernelFn<'a> = dyn Fn(usize, &[f64], &[f64]) -> Option<KernelOutput> + 'a;
 
+/// The slip kernels under test: type (1..=6), absolute coordinates `q`
+/// and the parameters followed by the last converged projection `xi_m0`
+/// in, one output per slip component out (its value in
+/// [`KernelOutput::gap`]; `None` when the kernel refuses the
+/// configuration).
+pub type SlipKernelFn<'a> = dyn Fn(usize, &[f64], &[f64]) -> Option<Vec<KernelOutput>> + 'a;
+
+/// The last converged projection the slip is verified at: the
+/// configuration's projection moved by `(0.15, -0.1)` (per component), so
+/// that the master point has moved and every term of the slip is alive.
+pub fn previous_projection(xi_m: &[f64]) -> Vec<f64> {
+    xi_m.iter().zip([0.15, -0.1]).map(|(x, d)| x + d).collect()
+}
+
 /// Verifies `kernel` against the AD reference of the same formulation on
 /// `configs`.
 pub fn verify(
@@ -351,6 +365,31 @@ pub fn verify(
     kernel: &KernelFn<'_>,
     configs: &[Config],
     tol: f64,
+) -> Result<Report, VerifyError> {
+    let run = |ty: usize, q: &[f64], p: &[f64]| kernel(ty, q, p).map(|o| vec![o]);
+    compare(reference, &run, configs, tol, Quantity::Gap)
+}
+
+/// Verifies the slip `kernel` against the AD reference of the same
+/// formulation's slip on `configs`, at the last converged projection
+/// [`previous_projection`] of each (the worst component of each block per
+/// type; the report's `g` column is the slip).
+pub fn verify_slip(
+    reference: &AdFormulation,
+    kernel: &SlipKernelFn<'_>,
+    configs: &[Config],
+    tol: f64,
+) -> Result<Report, VerifyError> {
+    compare(reference, kernel, configs, tol, Quantity::Slip)
+}
+
+/// [`verify`] and [`verify_slip`]: every component of `quantity`.
+fn compare(
+    reference: &AdFormulation,
+    kernel: &SlipKernelFn<'_>,
+    configs: &[Config],
+    tol: f64,
+    quantity: Quantity,
 ) -> Result<Report, VerifyError> {
     let f = reference.formulation();
     let dim = f.signature.dim();
@@ -378,22 +417,32 @@ pub fn verify(
             continue;
         };
         checked += 1;
-        let refs = reference.references(at, &c.params, &xi0)?;
+        let mut params = c.params.clone();
+        if quantity == Quantity::Slip {
+            params.extend(previous_projection(&xi0));
+        }
+        let refs = reference.references_of(at, &params, &xi0, quantity)?;
         for (row, r) in rows.iter_mut().zip(&refs) {
-            match kernel(row.ty, &q, &c.params) {
-                Some(out) => {
-                    let e = scaled_errors(&out, r, l);
-                    row.gap.update(e.gap, &c.label);
-                    row.xi_m.update(e.xi_m, &c.label);
-                    row.grad.update(e.grad, &c.label);
-                    row.hess.update(e.hess, &c.label);
+            match kernel(row.ty, &q, &params) {
+                Some(outs) if outs.len() == r.len() => {
+                    for (out, r) in outs.iter().zip(r) {
+                        let e = scaled_errors(out, r, l);
+                        row.gap.update(e.gap, &c.label);
+                        row.xi_m.update(e.xi_m, &c.label);
+                        row.grad.update(e.grad, &c.label);
+                        row.hess.update(e.hess, &c.label);
+                    }
                 }
-                None => row.refused.push(c.label.clone()),
+                Some(_) | None => row.refused.push(c.label.clone()),
             }
         }
     }
+    let name = match quantity {
+        Quantity::Gap => f.name.clone(),
+        Quantity::Slip => format!("{} (slip)", f.name),
+    };
     Ok(Report {
-        name: f.name.clone(),
+        name,
         rows,
         checked,
         skipped,
@@ -425,15 +474,34 @@ pub fn configurations(reference: &AdFormulation) -> Result<Vec<Config>, VerifyEr
     }
 }
 
+/// What [`verify_source`] found: the gap kernels' report, the slip
+/// kernels' (when the file has a `slip!`) and the mutation applied.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SourceReport {
+    /// The gap kernels.
+    pub gap: Report,
+    /// The slip kernels, if the formulation defines a slip.
+    pub slip: Option<Report>,
+    /// The instruction `flip` changed, if any.
+    pub flip: Option<Flip>,
+}
+
+impl SourceReport {
+    /// Whether every report passed.
+    pub fn passed(&self) -> bool {
+        self.gap.passed() && self.slip.as_ref().is_none_or(Report::passed)
+    }
+}
+
 /// Verifies the generated kernels of one formulation file (its name and
-/// text), run by codegen's interpreter, on every family; `flip` mutates
-/// one instruction first ([`InterpretedKernels::flip_sign`]: type,
-/// instruction).
+/// text), run by codegen's interpreter, on every family, and its slip
+/// kernels when it defines a slip; `flip` mutates one instruction of a gap
+/// kernel first ([`InterpretedKernels::flip_sign`]: type, instruction).
 pub fn verify_source(
     name: &str,
     text: &str,
     flip: Option<(usize, usize)>,
-) -> Result<(Report, Option<Flip>), VerifyError> {
+) -> Result<SourceReport, VerifyError> {
     let reference = AdFormulation::parse(name, text)?;
     let configs = configurations(&reference)?;
     let mut kernels = InterpretedKernels::new(reference.formulation())?;
@@ -442,8 +510,21 @@ pub fn verify_source(
         let d = kernels.relative(q);
         kernels.eval(ty, &d, params)
     };
-    let report = verify(&reference, &run, &configs, TOL)?;
-    Ok((report, flipped))
+    let gap = verify(&reference, &run, &configs, TOL)?;
+    let slip = if kernels.has_slip() {
+        let run = |ty: usize, q: &[f64], params: &[f64]| {
+            let d = kernels.relative(q);
+            kernels.eval_slip(ty, &d, params)
+        };
+        Some(verify_slip(&reference, &run, &configs, TOL)?)
+    } else {
+        None
+    };
+    Ok(SourceReport {
+        gap,
+        slip,
+        flip: flipped,
+    })
 }
 
 #[cfg(test)]
@@ -546,9 +627,12 @@ mod tests {
     fn the_quadratic_formulation_verifies_and_a_flipped_sign_fails() {
         const QUADRATIC: &str =
             include_str!("../../contact-kernels/formulations/quadratic-slave-normal.rs");
-        let (report, flip) = verify_source("quadratic-slave-normal", QUADRATIC, None).unwrap();
-        assert!(flip.is_none());
+        let source = verify_source("quadratic-slave-normal", QUADRATIC, None).unwrap();
+        assert!(source.flip.is_none());
+        let report = source.gap;
         assert!(report.passed(), "{report}");
+        let slip = source.slip.expect("the shipped file defines a slip");
+        assert!(slip.passed(), "{slip}");
         let configs = families::quadratic();
         assert!(
             configs
@@ -611,7 +695,8 @@ mod tests {
                 "inputs!(xs1, xs2, xm1; xi_s);",
             )
             .replace("lerp(xm1, xm2, xi)", "lerp(xm1, xs1, xi)")
-            .replace("lerp(xm1, xm2, xi_m)", "lerp(xm1, xs1, xi_m)");
+            .replace("lerp(xm1, xm2, xi_m)", "lerp(xm1, xs1, xi_m)")
+            .replace("lerp(xm1, xm2, xi_m0)", "lerp(xm1, xs1, xi_m0)");
         let r = AdFormulation::parse("three", &three_points).unwrap();
         let e = configurations(&r).unwrap_err();
         assert!(

@@ -63,6 +63,30 @@ pub const TABLE: [[EntityOrder; 3]; 6] = {
 /// The entity names the table's columns refer to.
 pub const TABLE_ENTITIES: [&str; 3] = ["xi_m", "x_ms", "n"];
 
+/// The slip's entity (the master point's motion `s_m = x_m(xi_m) -
+/// x_m(xi_m0)`) and the column it takes: `x_ms`'s (docs/conventions.md,
+/// "The slip").
+pub const SLIP_ENTITY: (&str, usize) = ("s_m", 1);
+
+/// What a reference is computed for: the gap, or the slip's components.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// The gap `g`.
+    Gap,
+    /// The slip (`slip!`): its components.
+    Slip,
+}
+
+impl Quantity {
+    /// codegen's name for it (for the parse-level entity filter only).
+    fn codegen(self) -> codegen::truncation::Quantity {
+        match self {
+            Quantity::Gap => codegen::truncation::Quantity::Gap,
+            Quantity::Slip => codegen::truncation::Quantity::Slip,
+        }
+    }
+}
+
 /// Newton iterations of the `f64` projection solve.
 const ITERATIONS: usize = 50;
 /// A Newton correction below this (relative to `1 + |xi|`) ends the solve.
@@ -194,6 +218,7 @@ impl AdFormulation {
         TABLE_ENTITIES
             .iter()
             .position(|e| *e == name)
+            .or((name == SLIP_ENTITY.0).then_some(SLIP_ENTITY.1))
             .map(|i| row[i])
             .ok_or_else(|| VerifyError::Entity {
                 file: format!("{}.rs", self.f.name),
@@ -207,22 +232,25 @@ impl AdFormulation {
     }
 
     /// The symbol values: `q`, the parameters, the implicit unknown's
-    /// components.
+    /// components, then the last converged projection `xi_m0` (the slip's
+    /// input), which `params` holds after the parameters.
     fn input<'a, D: Scalar>(
         &self,
         q: &'a [D],
         params: &'a [f64],
         xi: &'a [D],
     ) -> impl Fn(Sym) -> D + 'a {
-        let (n, m) = (self.n, self.params);
+        let (n, m, k) = (self.n, self.params, self.k);
         move |s: Sym| {
             let i = s.0 as usize;
             if i < n {
                 q[i]
             } else if i < n + m {
                 D::from(params[i - n])
-            } else {
+            } else if i < n + m + k {
                 xi[i - n - m]
+            } else {
+                D::from(params[m + i - n - m - k])
             }
         }
     }
@@ -302,18 +330,24 @@ impl AdFormulation {
         xi
     }
 
-    /// The entity values at `(q, xi)`, by name (the implicit one included).
-    fn entities<D: Scalar>(&self, q: &[D], params: &[f64], xi: &[D]) -> HashMap<String, Value<D>> {
+    /// The entity values at `(q, xi)` that `quantity` uses, by name (the
+    /// implicit one included).
+    fn entities<D: Scalar>(
+        &self,
+        q: &[D],
+        params: &[f64],
+        xi: &[D],
+        quantity: Quantity,
+    ) -> HashMap<String, Value<D>> {
         let roots: Vec<Id> = self
             .f
-            .entities
-            .iter()
+            .entities_for(quantity.codegen())
             .flat_map(|e| e.value.components())
             .collect();
         let vals = eval_nodes(&self.f, &roots, &self.input(q, params, xi));
         let mut at = 0;
         let mut out = HashMap::new();
-        for e in &self.f.entities {
+        for e in self.f.entities_for(quantity.codegen()) {
             let len = e.value.components().len();
             out.insert(e.name.clone(), e.value.like(&vals[at..at + len]));
             at += len;
@@ -322,9 +356,17 @@ impl AdFormulation {
         out
     }
 
-    /// The gap of the entity values.
-    fn gap<D: Scalar>(&self, entities: &HashMap<String, Value<D>>) -> Result<D, VerifyError> {
-        Ok(self.f.eval_gap(&mut AdDomain::<D>(PhantomData), entities)?)
+    /// The components of `quantity` (the gap: one) of the entity values.
+    fn outputs<D: Scalar>(
+        &self,
+        entities: &HashMap<String, Value<D>>,
+        quantity: Quantity,
+    ) -> Result<Vec<D>, VerifyError> {
+        let mut domain = AdDomain::<D>(PhantomData);
+        Ok(match quantity {
+            Quantity::Gap => vec![self.f.eval_gap(&mut domain, entities)?],
+            Quantity::Slip => self.f.eval_slip(&mut domain, entities)?,
+        })
     }
 
     /// Type 6's reference: the gap, `xi_m`, the exact gradient and Hessian
@@ -332,24 +374,42 @@ impl AdFormulation {
     /// ([`AdFormulation::project`]). `q` should be relative to the first
     /// point (the kernels' own coordinates).
     pub fn exact(&self, q: &[f64], params: &[f64], xi0: &[f64]) -> Result<Reference, VerifyError> {
+        Ok(self.exact_of(q, params, xi0, Quantity::Gap)?.remove(0))
+    }
+
+    /// [`AdFormulation::exact`] of every component of `quantity` (each
+    /// [`Reference::gap`] holds the component's value). For the slip,
+    /// `params` ends with the last converged projection `xi_m0`.
+    pub fn exact_of(
+        &self,
+        q: &[f64],
+        params: &[f64],
+        xi0: &[f64],
+        quantity: Quantity,
+    ) -> Result<Vec<Reference>, VerifyError> {
         let n = self.n;
-        let mut r = Reference::zeros(n);
-        r.set_xi(xi0);
+        let mut out: Vec<Reference> = Vec::new();
         for j in 0..n {
             for k in j..n {
                 let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
                 let xi = self.xi_dual(&qd, params, xi0);
-                let g = self.gap(&self.entities(&qd, params, &xi))?;
-                if j == k {
-                    r.grad[j] = g.eps1;
-                    r.gap = g.re;
-                    r.set_xi(&xi.iter().map(|x| x.re).collect::<Vec<_>>());
+                let gs = self.outputs(&self.entities(&qd, params, &xi, quantity), quantity)?;
+                if out.is_empty() {
+                    out = vec![Reference::zeros(n); gs.len()];
+                    out.iter_mut().for_each(|r| r.set_xi(xi0));
                 }
-                r.hess[j * n + k] = g.eps1eps2;
-                r.hess[k * n + j] = g.eps1eps2;
+                for (r, g) in out.iter_mut().zip(&gs) {
+                    if j == k {
+                        r.grad[j] = g.eps1;
+                        r.gap = g.re;
+                        r.set_xi(&xi.iter().map(|x| x.re).collect::<Vec<_>>());
+                    }
+                    r.hess[j * n + k] = g.eps1eps2;
+                    r.hess[k * n + j] = g.eps1eps2;
+                }
             }
         }
-        Ok(r)
+        Ok(out)
     }
 
     /// The references of all six types: Types 1–5 from the truncated
@@ -360,12 +420,29 @@ impl AdFormulation {
         params: &[f64],
         xi0: &[f64],
     ) -> Result<[Reference; 6], VerifyError> {
-        let parts = self.partials(q, params, xi0)?;
-        let mut out: [Reference; 6] = std::array::from_fn(|_| Reference::zeros(self.n));
+        let refs = self.references_of(q, params, xi0, Quantity::Gap)?;
+        Ok(refs.map(|mut r| r.remove(0)))
+    }
+
+    /// [`AdFormulation::references`] of every component of `quantity`:
+    /// per type, one [`Reference`] per component (the value in
+    /// [`Reference::gap`]). For the slip, `params` ends with the last
+    /// converged projection `xi_m0`.
+    pub fn references_of(
+        &self,
+        q: &[f64],
+        params: &[f64],
+        xi0: &[f64],
+        quantity: Quantity,
+    ) -> Result<[Vec<Reference>; 6], VerifyError> {
+        let parts = self.partials(q, params, xi0, quantity)?;
+        let mut out: [Vec<Reference>; 6] = std::array::from_fn(|_| Vec::new());
         for (t, row) in TABLE.iter().enumerate().take(5) {
-            out[t] = self.assemble(&parts, *row)?;
+            out[t] = (0..parts.outputs.len())
+                .map(|c| self.assemble(&parts, *row, c))
+                .collect::<Result<_, _>>()?;
         }
-        out[5] = self.exact(q, params, xi0)?;
+        out[5] = self.exact_of(q, params, xi0, quantity)?;
         Ok(out)
     }
 
@@ -379,12 +456,18 @@ impl AdFormulation {
         xi0: &[f64],
         row: [EntityOrder; 3],
     ) -> Result<Reference, VerifyError> {
-        let parts = self.partials(q, params, xi0)?;
-        self.assemble(&parts, row)
+        let parts = self.partials(q, params, xi0, Quantity::Gap)?;
+        self.assemble(&parts, row, 0)
     }
 
-    /// Every partial derivative the truncated formula needs.
-    fn partials(&self, q: &[f64], params: &[f64], xi0: &[f64]) -> Result<Partials, VerifyError> {
+    /// Every partial derivative the truncated formula of `quantity` needs.
+    fn partials(
+        &self,
+        q: &[f64],
+        params: &[f64],
+        xi0: &[f64],
+        quantity: Quantity,
+    ) -> Result<Partials, VerifyError> {
         let (n, kx) = (self.n, self.k);
         // xi_b' and xi_b'' of the implicit function, per component b.
         let mut xi1 = vec![vec![0.0; n]; kx];
@@ -407,8 +490,7 @@ impl AdFormulation {
         // Entity components as functions of z = (q, xi) at fixed xi.
         let names: Vec<(String, usize)> = self
             .f
-            .entities
-            .iter()
+            .entities_for(quantity.codegen())
             .flat_map(|e| (0..e.value.components().len()).map(move |c| (e.name.clone(), c)))
             .collect();
         let m = names.len();
@@ -418,11 +500,10 @@ impl AdFormulation {
             for k in j..nz {
                 let qd: Vec<HyperDual64> = (0..n).map(|i| seeded(q[i], i, j, k)).collect();
                 let xi: Vec<HyperDual64> = (0..kx).map(|b| seeded(xi_m[b], n + b, j, k)).collect();
-                let e = self.entities(&qd, params, &xi);
+                let e = self.entities(&qd, params, &xi, quantity);
                 let comps: Vec<HyperDual64> = self
                     .f
-                    .entities
-                    .iter()
+                    .entities_for(quantity.codegen())
                     .flat_map(|x| e[&x.name].components())
                     .collect();
                 for (c, v) in comps.iter().enumerate() {
@@ -430,14 +511,15 @@ impl AdFormulation {
                 }
             }
         }
-        // The gap as a function of [xi components, entity components].
+        // The quantity's components as functions of [xi components, entity
+        // components].
         let values: Vec<f64> = xi_m
             .iter()
             .copied()
             .chain(ent.iter().map(|h| h.value))
             .collect();
         let ng = values.len();
-        let mut gap = Hd::zeros(ng);
+        let mut outputs: Vec<Hd> = Vec::new();
         for j in 0..ng {
             for k in j..ng {
                 let v: Vec<HyperDual64> = (0..ng).map(|i| seeded(values[i], i, j, k)).collect();
@@ -447,12 +529,18 @@ impl AdFormulation {
                     Value::from_components(&v[..kx]),
                 );
                 let mut at = kx;
-                for e in &self.f.entities {
+                for e in self.f.entities_for(quantity.codegen()) {
                     let len = e.value.components().len();
                     map.insert(e.name.clone(), e.value.like(&v[at..at + len]));
                     at += len;
                 }
-                gap.record(&self.gap(&map)?, j, k);
+                let gs = self.outputs(&map, quantity)?;
+                if outputs.is_empty() {
+                    outputs = vec![Hd::zeros(ng); gs.len()];
+                }
+                for (o, g) in outputs.iter_mut().zip(&gs) {
+                    o.record(g, j, k);
+                }
             }
         }
         Ok(Partials {
@@ -462,15 +550,22 @@ impl AdFormulation {
             xi2,
             names,
             ent,
-            gap,
+            outputs,
         })
     }
 
-    /// The truncated `g`, `g'`, `g''` of one table row:
+    /// The truncated `g`, `g'`, `g''` of one table row (of the quantity's
+    /// component `c`):
     /// `E' = E_q + [xi not constant] sum_b E_xi_b xi_b'`,
     /// `E'' = E_qq + [xi not constant] sum_b (E_qxi_b xi_b'^T + xi_b' E_xi_bq
     /// + sum_c E_xi_bxi_c xi_b' xi_c'^T) + [xi quadratic] sum_b E_xi_b xi_b''`.
-    fn assemble(&self, p: &Partials, row: [EntityOrder; 3]) -> Result<Reference, VerifyError> {
+    fn assemble(
+        &self,
+        p: &Partials,
+        row: [EntityOrder; 3],
+        c: usize,
+    ) -> Result<Reference, VerifyError> {
+        let out = &p.outputs[c];
         let (n, kx) = (p.n, self.k);
         let xi_order = self.order(&self.f.implicit.name, row)?;
         let xi_varies = xi_order != EntityOrder::Constant;
@@ -505,9 +600,9 @@ impl AdFormulation {
                         for k in 0..n {
                             let e_qxi_k = e.hess[k * nz + n + b];
                             h[j * n + k] += e_qxi_j * p.xi1[b][k] + p.xi1[b][j] * e_qxi_k;
-                            for c in 0..kx {
-                                let e_bc = e.hess[(n + b) * nz + n + c];
-                                h[j * n + k] += e_bc * p.xi1[b][j] * p.xi1[c][k];
+                            for cc in 0..kx {
+                                let e_bc = e.hess[(n + b) * nz + n + cc];
+                                h[j * n + k] += e_bc * p.xi1[b][j] * p.xi1[cc][k];
                             }
                         }
                     }
@@ -533,11 +628,11 @@ impl AdFormulation {
             d2.push(h);
         }
         let mut r = Reference::zeros(n);
-        r.gap = p.gap.value;
+        r.gap = out.value;
         r.set_xi(&p.xi_m);
         let ng = d1.len();
         for a in 0..ng {
-            let ga = p.gap.grad[a];
+            let ga = out.grad[a];
             for (g, e1) in r.grad.iter_mut().zip(&d1[a]) {
                 *g += ga * e1;
             }
@@ -545,7 +640,7 @@ impl AdFormulation {
                 *h += ga * e2;
             }
             for b in 0..ng {
-                let gab = p.gap.hess[a * ng + b];
+                let gab = out.hess[a * ng + b];
                 if gab == 0.0 {
                     continue;
                 }
@@ -603,6 +698,7 @@ struct Partials {
     names: Vec<(String, usize)>,
     /// Per component, over `(q, xi)`.
     ent: Vec<Hd>,
-    /// The gap over `[xi, components...]`.
-    gap: Hd,
+    /// The quantity's components (the gap: one), each over `[xi,
+    /// entity components...]`.
+    outputs: Vec<Hd>,
 }

@@ -9,7 +9,9 @@
 //! * `enum Formulation` (one variant per source), `Formulation::{ALL, name,
 //!   doc}`, the truncation table `TRUNCATION` and `kernel_set`;
 //! * per compiled formulation, its functions and one `static` `KernelSet`
-//!   (types of the run-time crate) with the signature's `dim` and `coords`.
+//!   (types of the run-time crate) with the signature's `dim` and `coords`,
+//!   and its slip's functions (`slip: Some(SlipSet { .. })`) when the
+//!   formulation has one.
 //!
 //! Functions take the relative coordinates as `d: &[f64]` and store into
 //! `grad: &mut [f64]` (`n`) and `hess: &mut [f64]` (`n * n`, the full
@@ -161,6 +163,31 @@ fn kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
         });
         op_lits.push(ops_literal(&k.ops));
     }
+    // The slip under every type, when the formulation has one.
+    let slip = if set.slips.is_empty() {
+        quote!(None)
+    } else {
+        let slip_kernel = format_ident!(
+            "{}",
+            if faces {
+                "FaceSlipKernel"
+            } else {
+                "SlipKernel"
+            }
+        );
+        let mut refs = Vec::new();
+        let mut ops = Vec::new();
+        for k in &set.slips {
+            items.push(function(k));
+            let kfn = format_ident!("{}", k.name);
+            refs.push(match k.role {
+                Role::Slip { hessian: true, .. } => quote!(#slip_kernel::Hessian(#kfn)),
+                _ => quote!(#slip_kernel::Gradient(#kfn)),
+            });
+            ops.push(ops_literal(&k.ops));
+        }
+        quote!(Some(SlipSet { kernels: [#(#refs),*], ops: [#(#ops),*] }))
+    };
     let (res_fn, gap_fn) = (
         format_ident!("{}", set.residual.name),
         format_ident!("{}", set.gap.name),
@@ -197,6 +224,7 @@ fn kernel_set(set: &KernelSetPlan, static_name: &Ident) -> TokenStream {
             kernels: [#(#kernel_refs),*],
             ops: [#(#op_lits),*],
             projection_ops: #proj_ops,
+            slip: #slip,
         };
     }
 }

@@ -233,6 +233,50 @@ impl Builder {
         Ok(residuals)
     }
 
+    /// `previous!(xi_m)`: the last converged value of the implicit unknown
+    /// `implicit` (already defined, and named by the argument), as new
+    /// input symbols after the unknown's ([`Signature::previous_syms`]).
+    pub(super) fn previous(
+        &mut self,
+        tokens: &TokenStream,
+        span: Span,
+        implicit: Option<&str>,
+    ) -> Result<Value<Id>, Error> {
+        let named = syn::parse2::<syn::Ident>(tokens.clone())
+            .map_err(|e| err(e.span(), &self.origin, e.to_string()))?
+            .to_string();
+        let Some(implicit) = implicit else {
+            return Err(err(
+                span,
+                &self.origin,
+                "`previous!` needs the projection first: `let xi_m = implicit!(..)`",
+            ));
+        };
+        if named != implicit {
+            return Err(err(
+                span,
+                &self.origin,
+                format!(
+                    "`previous!({named})`: only the projection `{implicit}` has a previous value"
+                ),
+            ));
+        }
+        let sig = self
+            .signature
+            .as_mut()
+            .expect("`inputs!` precedes every `let`");
+        if sig.has_previous() {
+            return Err(err(span, &self.origin, "`previous!` given twice"));
+        }
+        sig.set_previous();
+        let c: Vec<Id> = sig
+            .previous_syms()
+            .into_iter()
+            .map(|s| self.dag.input(s))
+            .collect();
+        Ok(Value::from_components(&c))
+    }
+
     pub(super) fn eval(&mut self, e: &syn::Expr) -> Result<Value<Id>, Error> {
         eval_expr(&mut self.dag, &self.env, e, &self.origin, "unknown name")
     }

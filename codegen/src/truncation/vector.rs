@@ -16,7 +16,10 @@
 
 use std::collections::HashMap;
 
-use super::{EntityOrder, KernelExprs, add_pair, add_rank2, check_entities, hessian_q, order_of};
+use super::{
+    EntityOrder, KernelExprs, Quantity, add_pair, add_rank2, check_entities, finish, hessian_q,
+    order_of,
+};
 use crate::Error;
 use crate::diff::{Differentiator, add_opt, mul_opt};
 use crate::expr::{Dag, Id, Sym};
@@ -29,7 +32,8 @@ pub(super) fn derive(
     formulation: &Formulation,
     dag: &mut Dag,
     orders: [EntityOrder; 3],
-) -> Result<KernelExprs, Error> {
+    quantity: Quantity,
+) -> Result<Vec<KernelExprs>, Error> {
     check_entities(formulation, orders)?;
     let origin = format!("{}.rs", formulation.name);
     let sig = &formulation.signature;
@@ -184,7 +188,7 @@ pub(super) fn derive(
         );
     }
 
-    for entity in &formulation.entities {
+    for entity in formulation.entities_for(quantity) {
         let order = order_of(formulation, orders, &entity.name)?;
         let mut comp = |arena: &mut JetArena, e: Id| -> JetId {
             let mut parts = Parts::default();
@@ -243,7 +247,5 @@ pub(super) fn derive(
         jets.insert(entity.name.clone(), entity.value.like(&c));
     }
 
-    let gap = formulation.eval_gap(&mut arena, &jets)?;
-    let (v, grad, hess) = arena.materialize(gap);
-    Ok(KernelExprs { gap: v, grad, hess })
+    finish(formulation, &mut arena, &jets, quantity)
 }

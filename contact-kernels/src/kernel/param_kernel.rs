@@ -50,6 +50,19 @@ pub(crate) trait ParamKernel<const P: usize> {
         hess: &mut [f64],
     ) -> (f64, bool);
 
+    /// The slip kernel (if the formulation has a slip): its components
+    /// into `slip`, `grad` (`c n`: component after component) and `hess`
+    /// (`c n n`, when the kernel has a second-order term: the second value).
+    /// `None` without a slip.
+    fn run_slip(
+        &self,
+        d: &[f64],
+        xi_s: [f64; P],
+        xi_m0: [f64; P],
+        xi_m: &mut [f64; P],
+        out: SlipBuffers<'_>,
+    ) -> Option<bool>;
+
     /// The lane validation of a group whose coordinates `d` holds (a lane
     /// the lanes cannot decide alone is `false`: the scalar path validates
     /// it again), and whether the projection of a passing lane must still
@@ -103,6 +116,72 @@ pub(crate) fn eval_point<K: ParamKernel<P>, const P: usize>(
         return Err(non_finite(gap, grad, xi_m[0]));
     }
     Ok((gap, xi_m))
+}
+
+/// Where a slip kernel writes: its components, gradients (`c n`) and
+/// Hessians (`c n n`), each component's run after the previous one's.
+pub(crate) struct SlipBuffers<'a> {
+    pub(crate) slip: &'a mut [f64; 3],
+    pub(crate) grad: &'a mut [f64],
+    pub(crate) hess: &'a mut [f64],
+}
+
+/// The slip of one point: the steps of [`eval_point`] (validation,
+/// projection start, kernel, projection check, finite outputs) with the
+/// slip kernel, `xi_m0` checked finite first (its component `k` reported as
+/// index `n + P + k`). Returns `(xi_m, has_hessian)`. The formulation has
+/// a slip (the caller's guarantee; [`ParamKernel::run_slip`] returns
+/// `None` otherwise, and this panics).
+pub(crate) fn slip_point<K: ParamKernel<P>, const P: usize>(
+    k: &K,
+    q: &[f64],
+    xi_s: [f64; P],
+    xi_m0: [f64; P],
+    d: &mut [f64],
+    out: SlipBuffers<'_>,
+    components: usize,
+) -> Result<([f64; P], bool), KernelError> {
+    k.relative_coordinates(q, xi_s, d)?;
+    if let Some(c) = xi_m0.iter().position(|x| !x.is_finite()) {
+        return Err(KernelError::NonFinite {
+            index: q.len() + P + c,
+            value: xi_m0[c],
+        });
+    }
+    let mut xi_m = k.start(d, xi_s)?;
+    let SlipBuffers { slip, grad, hess } = out;
+    let hessian = k
+        .run_slip(
+            d,
+            xi_s,
+            xi_m0,
+            &mut xi_m,
+            SlipBuffers {
+                slip: &mut *slip,
+                grad: &mut *grad,
+                hess: &mut *hess,
+            },
+        )
+        .expect("the caller checked that the formulation has a slip");
+    k.check(d, xi_s, xi_m)?;
+    let n = k.coords();
+    let slip = &slip[..components];
+    let (grad, hess) = (&grad[..components * n], &hess[..components * n * n]);
+    let finite = all_finite(grad) && (!hessian || all_finite(hess));
+    if !(finite && all_finite(slip)) {
+        let output = if !all_finite(slip) {
+            OutputKind::Slip
+        } else if !all_finite(grad) {
+            OutputKind::Gradient
+        } else {
+            OutputKind::Hessian
+        };
+        return Err(KernelError::NonFiniteOutput {
+            output,
+            xi_m: xi_m[0],
+        });
+    }
+    Ok((xi_m, hessian))
 }
 
 /// The error of a kernel output that is not finite: the first non-finite
@@ -163,6 +242,26 @@ impl ParamKernel<1> for Segments {
             generated::Kernel::Gradient(k) => (k(d, xi_s, xi_m, grad), false),
             generated::Kernel::Hessian(k) => (k(d, xi_s, xi_m, grad, hess), true),
         }
+    }
+
+    fn run_slip(
+        &self,
+        d: &[f64],
+        [xi_s]: [f64; 1],
+        [xi_m0]: [f64; 1],
+        [xi_m]: &mut [f64; 1],
+        out: SlipBuffers<'_>,
+    ) -> Option<bool> {
+        Some(match self.slip? {
+            generated::SlipKernel::Gradient(k) => {
+                out.slip[0] = k(d, xi_s, xi_m0, xi_m, out.grad);
+                false
+            }
+            generated::SlipKernel::Hessian(k) => {
+                out.slip[0] = k(d, xi_s, xi_m0, xi_m, out.grad, out.hess);
+                true
+            }
+        })
     }
 
     #[inline(always)]
@@ -242,6 +341,31 @@ impl ParamKernel<2> for Faces {
             FaceKernel::Gradient(k) => (k(d, &xi_s, xi_m, grad), false),
             FaceKernel::Hessian(k) => (k(d, &xi_s, xi_m, grad, hess), true),
         }
+    }
+
+    fn run_slip(
+        &self,
+        d: &[f64],
+        xi_s: [f64; 2],
+        xi_m0: [f64; 2],
+        xi_m: &mut [f64; 2],
+        out: SlipBuffers<'_>,
+    ) -> Option<bool> {
+        let n = self.set.coords;
+        let (g0, rest) = out.grad.split_at_mut(n);
+        let (g1, g2) = rest.split_at_mut(n);
+        Some(match self.slip? {
+            generated::FaceSlipKernel::Gradient(k) => {
+                *out.slip = k(d, &xi_s, &xi_m0, xi_m, g0, g1, g2);
+                false
+            }
+            generated::FaceSlipKernel::Hessian(k) => {
+                let (h0, rest) = out.hess.split_at_mut(n * n);
+                let (h1, h2) = rest.split_at_mut(n * n);
+                *out.slip = k(d, &xi_s, &xi_m0, xi_m, g0, g1, g2, h0, h1, h2);
+                true
+            }
+        })
     }
 
     /// Faces have no lane validation: every point is validated, and its
