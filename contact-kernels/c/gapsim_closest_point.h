@@ -76,6 +76,64 @@ int gapsim_closest_point_type5(const double q[8], double xi_s, double *gap, doub
  */
 int gapsim_closest_point_type6(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_CLOSEST_POINT_SLIP_COMPONENTS 1
+
+/*
+ * `closest-point`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (1 component), gradient (no second-order term). `xi_m0`
+ * is the last converged projection. Cost: 68 ops (23 add, 36 mul, 2 div, 1
+ * sqrt, 6 neg). xi_m0 is the last converged projection. slip: c values; grad:
+ * c * n values (component after component); hess is not used and may be NULL.
+ */
+int gapsim_closest_point_slip_type1(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double *hess);
+
+/*
+ * `closest-point`, type 2 (xi_m, x_ms and s_m, n: linear, linear, linear):
+ * the slip (1 component), gradient and Hessian. `xi_m0` is the last converged
+ * projection. Cost: 194 ops (69 add, 111 mul, 2 div, 1 sqrt, 11 neg). xi_m0
+ * is the last converged projection. slip: c values; grad: c * n values
+ * (component after component); hess: c * n * n values.
+ */
+int gapsim_closest_point_slip_type2(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `closest-point`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic, linear):
+ * the slip (1 component), gradient and Hessian. `xi_m0` is the last converged
+ * projection. Cost: 198 ops (71 add, 113 mul, 2 div, 1 sqrt, 11 neg). xi_m0
+ * is the last converged projection. slip: c values; grad: c * n values
+ * (component after component); hess: c * n * n values.
+ */
+int gapsim_closest_point_slip_type3(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `closest-point`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 264 ops (97 add, 151 mul, 2 div, 1 sqrt, 13
+ * neg). xi_m0 is the last converged projection. slip: c values; grad: c * n
+ * values (component after component); hess: c * n * n values.
+ */
+int gapsim_closest_point_slip_type4(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `closest-point`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 271 ops (103 add, 150 mul, 2 div, 1 sqrt,
+ * 15 neg). xi_m0 is the last converged projection. slip: c values; grad: c *
+ * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_closest_point_slip_type5(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `closest-point`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 329 ops (129 add, 184 mul, 2 div, 1 sqrt,
+ * 13 neg). xi_m0 is the last converged projection. slip: c values; grad: c *
+ * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_closest_point_slip_type6(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

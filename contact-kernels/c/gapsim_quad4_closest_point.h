@@ -84,6 +84,69 @@ int gapsim_quad4_closest_point_type5(const double q[24], double xi_s_u, double x
  */
 int gapsim_quad4_closest_point_type6(const double q[24], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[24], double hess[576]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_QUAD4_CLOSEST_POINT_SLIP_COMPONENTS 3
+
+/*
+ * `quad4-closest-point`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (3 components), gradient (no second-order term).
+ * `xi_m0` is the last converged projection. Cost: 237 ops (73 add, 138 mul, 1
+ * div, 1 sqrt, 24 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess is not
+ * used and may be NULL.
+ */
+int gapsim_quad4_closest_point_slip_type1(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double *hess);
+
+/*
+ * `quad4-closest-point`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 9871 ops (4112 add, 5701 mul, 2 div, 1 sqrt, 55
+ * neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_quad4_closest_point_slip_type2(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-closest-point`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 10262 ops (4166 add, 5716 mul, 2 div, 1 sqrt,
+ * 377 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_closest_point_slip_type3(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-closest-point`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 12512 ops (5488 add, 6657 mul, 2 div, 1 sqrt,
+ * 364 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_closest_point_slip_type4(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-closest-point`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 13343 ops (5684 add, 7603 mul, 2 div, 1
+ * sqrt, 53 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_closest_point_slip_type5(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-closest-point`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 17022 ops (7558 add, 9108 mul, 2 div, 1
+ * sqrt, 353 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip:
+ * c values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_closest_point_slip_type6(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -84,6 +84,70 @@ int gapsim_quad4_slave_normal_type5(const double q[24], double xi_s_u, double xi
  */
 int gapsim_quad4_slave_normal_type6(const double q[24], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[24], double hess[576]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_QUAD4_SLAVE_NORMAL_SLIP_COMPONENTS 3
+
+/*
+ * `quad4-slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (3 components), gradient (no second-order term).
+ * `xi_m0` is the last converged projection. Cost: 229 ops (71 add, 132 mul, 1
+ * div, 1 sqrt, 24 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess is not
+ * used and may be NULL.
+ */
+int gapsim_quad4_slave_normal_slip_type1(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double *hess);
+
+/*
+ * `quad4-slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 7254 ops (2919 add, 4148 mul, 2 div, 1 sqrt,
+ * 184 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_slave_normal_slip_type2(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 10373 ops (4511 add, 5609 mul, 2 div, 1 sqrt,
+ * 250 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_slave_normal_slip_type3(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 12701 ops (6023 add, 6423 mul, 2 div, 1 sqrt,
+ * 252 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_slave_normal_slip_type4(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 13168 ops (5693 add, 7216 mul, 2 div, 1
+ * sqrt, 256 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip:
+ * c values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_slave_normal_slip_type5(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
+/*
+ * `quad4-slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 15418 ops (7205 add, 7958 mul, 2 div, 1
+ * sqrt, 252 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip:
+ * c values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_slave_normal_slip_type6(const double q[24], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[72], double hess[1728]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -86,6 +86,69 @@ int gapsim_quad4_tri3_closest_point_type5(const double q[21], double xi_s_u, dou
  */
 int gapsim_quad4_tri3_closest_point_type6(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_QUAD4_TRI3_CLOSEST_POINT_SLIP_COMPONENTS 3
+
+/*
+ * `quad4-tri3-closest-point`, type 1 (xi_m, x_ms and s_m, n: constant,
+ * linear, constant): the slip (3 components), gradient (no second-order
+ * term). `xi_m0` is the last converged projection. Cost: 192 ops (73 add, 110
+ * mul, 2 div, 1 sqrt, 6 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess is not used and may be NULL.
+ */
+int gapsim_quad4_tri3_closest_point_slip_type1(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double *hess);
+
+/*
+ * `quad4-tri3-closest-point`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 3894 ops (1493 add, 2355 mul, 2 div, 1 sqrt, 43
+ * neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_quad4_tri3_closest_point_slip_type2(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-closest-point`, type 3 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 3964 ops (1517 add, 2355 mul, 2
+ * div, 1 sqrt, 89 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_quad4_tri3_closest_point_slip_type3(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-closest-point`, type 4 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 4937 ops (2100 add, 2694 mul, 2
+ * div, 1 sqrt, 140 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_quad4_tri3_closest_point_slip_type4(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-closest-point`, type 5 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 5290 ops (2102 add, 3094
+ * mul, 2 div, 1 sqrt, 91 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_quad4_tri3_closest_point_slip_type5(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-closest-point`, type 6 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 6253 ops (2685 add, 3427
+ * mul, 2 div, 1 sqrt, 138 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_quad4_tri3_closest_point_slip_type6(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

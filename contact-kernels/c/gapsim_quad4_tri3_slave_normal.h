@@ -85,6 +85,70 @@ int gapsim_quad4_tri3_slave_normal_type5(const double q[21], double xi_s_u, doub
  */
 int gapsim_quad4_tri3_slave_normal_type6(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_QUAD4_TRI3_SLAVE_NORMAL_SLIP_COMPONENTS 3
+
+/*
+ * `quad4-tri3-slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (3 components), gradient (no second-order term).
+ * `xi_m0` is the last converged projection. Cost: 231 ops (87 add, 135 mul, 2
+ * div, 1 sqrt, 6 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess is not
+ * used and may be NULL.
+ */
+int gapsim_quad4_tri3_slave_normal_slip_type1(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double *hess);
+
+/*
+ * `quad4-tri3-slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 6310 ops (2554 add, 3590 mul, 2 div, 1 sqrt,
+ * 163 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quad4_tri3_slave_normal_slip_type2(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 7343 ops (3181 add, 4001 mul, 2
+ * div, 1 sqrt, 158 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_quad4_tri3_slave_normal_slip_type3(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 9620 ops (4430 add, 5015 mul, 2
+ * div, 1 sqrt, 172 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_quad4_tri3_slave_normal_slip_type4(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 10138 ops (4363 add, 5608
+ * mul, 2 div, 1 sqrt, 164 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_quad4_tri3_slave_normal_slip_type5(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `quad4-tri3-slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 12337 ops (5612 add, 6550
+ * mul, 2 div, 1 sqrt, 172 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_quad4_tri3_slave_normal_slip_type6(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

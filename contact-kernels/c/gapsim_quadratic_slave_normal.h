@@ -81,6 +81,65 @@ int gapsim_quadratic_slave_normal_type5(const double q[12], double xi_s, double 
  */
 int gapsim_quadratic_slave_normal_type6(const double q[12], double xi_s, double *gap, double *xi_m, double grad[12], double hess[144]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_QUADRATIC_SLAVE_NORMAL_SLIP_COMPONENTS 1
+
+/*
+ * `quadratic-slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (1 component), gradient (no second-order term). `xi_m0`
+ * is the last converged projection. Cost: 63 ops (24 add, 37 mul, 1 div, 1
+ * sqrt, 0 neg). xi_m0 is the last converged projection. slip: c values; grad:
+ * c * n values (component after component); hess is not used and may be NULL.
+ */
+int gapsim_quadratic_slave_normal_slip_type1(const double q[12], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[12], double *hess);
+
+/*
+ * `quadratic-slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 418 ops (127 add, 275 mul, 2 div, 1 sqrt, 13
+ * neg). xi_m0 is the last converged projection. slip: c values; grad: c * n
+ * values (component after component); hess: c * n * n values.
+ */
+int gapsim_quadratic_slave_normal_slip_type2(const double q[12], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[12], double hess[144]);
+
+/*
+ * `quadratic-slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 594 ops (195 add, 377 mul, 2 div, 1 sqrt, 19
+ * neg). xi_m0 is the last converged projection. slip: c values; grad: c * n
+ * values (component after component); hess: c * n * n values.
+ */
+int gapsim_quadratic_slave_normal_slip_type3(const double q[12], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[12], double hess[144]);
+
+/*
+ * `quadratic-slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 752 ops (256 add, 476 mul, 2 div, 1
+ * sqrt, 17 neg). xi_m0 is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_quadratic_slave_normal_slip_type4(const double q[12], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[12], double hess[144]);
+
+/*
+ * `quadratic-slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 902 ops (312 add, 570 mul, 2 div, 1 sqrt,
+ * 17 neg). xi_m0 is the last converged projection. slip: c values; grad: c *
+ * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_quadratic_slave_normal_slip_type5(const double q[12], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[12], double hess[144]);
+
+/*
+ * `quadratic-slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, quadratic): the slip (1 component), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 1064 ops (373 add, 669 mul,
+ * 2 div, 1 sqrt, 19 neg). xi_m0 is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_quadratic_slave_normal_slip_type6(const double q[12], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[12], double hess[144]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

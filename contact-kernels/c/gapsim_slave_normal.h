@@ -76,6 +76,64 @@ int gapsim_slave_normal_type5(const double q[8], double xi_s, double *gap, doubl
  */
 int gapsim_slave_normal_type6(const double q[8], double xi_s, double *gap, double *xi_m, double grad[8], double hess[64]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_SLAVE_NORMAL_SLIP_COMPONENTS 1
+
+/*
+ * `slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear, constant):
+ * the slip (1 component), gradient (no second-order term). `xi_m0` is the
+ * last converged projection. Cost: 68 ops (23 add, 36 mul, 2 div, 1 sqrt, 6
+ * neg). xi_m0 is the last converged projection. slip: c values; grad: c * n
+ * values (component after component); hess is not used and may be NULL.
+ */
+int gapsim_slave_normal_slip_type1(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double *hess);
+
+/*
+ * `slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear, linear): the
+ * slip (1 component), gradient and Hessian. `xi_m0` is the last converged
+ * projection. Cost: 186 ops (63 add, 109 mul, 2 div, 1 sqrt, 11 neg). xi_m0
+ * is the last converged projection. slip: c values; grad: c * n values
+ * (component after component); hess: c * n * n values.
+ */
+int gapsim_slave_normal_slip_type2(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic, linear):
+ * the slip (1 component), gradient and Hessian. `xi_m0` is the last converged
+ * projection. Cost: 236 ops (89 add, 131 mul, 2 div, 1 sqrt, 13 neg). xi_m0
+ * is the last converged projection. slip: c values; grad: c * n values
+ * (component after component); hess: c * n * n values.
+ */
+int gapsim_slave_normal_slip_type3(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 302 ops (113 add, 175 mul, 2 div, 1 sqrt, 11
+ * neg). xi_m0 is the last converged projection. slip: c values; grad: c * n
+ * values (component after component); hess: c * n * n values.
+ */
+int gapsim_slave_normal_slip_type4(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 298 ops (117 add, 164 mul, 2 div, 1 sqrt,
+ * 14 neg). xi_m0 is the last converged projection. slip: c values; grad: c *
+ * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_slave_normal_slip_type5(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
+/*
+ * `slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 364 ops (141 add, 208 mul, 2 div, 1 sqrt,
+ * 12 neg). xi_m0 is the last converged projection. slip: c values; grad: c *
+ * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_slave_normal_slip_type6(const double q[8], double xi_s, double xi_m0, double slip[1], double *xi_m, double grad[8], double hess[64]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

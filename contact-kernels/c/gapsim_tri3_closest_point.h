@@ -83,6 +83,67 @@ int gapsim_tri3_closest_point_type5(const double q[18], double xi_s_u, double xi
  */
 int gapsim_tri3_closest_point_type6(const double q[18], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[18], double hess[324]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_TRI3_CLOSEST_POINT_SLIP_COMPONENTS 3
+
+/*
+ * `tri3-closest-point`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (3 components), gradient (no second-order term).
+ * `xi_m0` is the last converged projection. Cost: 176 ops (66 add, 101 mul, 2
+ * div, 1 sqrt, 6 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess is not
+ * used and may be NULL.
+ */
+int gapsim_tri3_closest_point_slip_type1(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double *hess);
+
+/*
+ * `tri3-closest-point`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 3584 ops (1392 add, 2146 mul, 2 div, 1 sqrt, 43
+ * neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_tri3_closest_point_slip_type2(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-closest-point`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 3633 ops (1416 add, 2146 mul, 2 div, 1 sqrt, 68
+ * neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_tri3_closest_point_slip_type3(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-closest-point`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 4534 ops (1960 add, 2473 mul, 2 div, 1 sqrt, 98
+ * neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_tri3_closest_point_slip_type4(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-closest-point`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 4959 ops (2001 add, 2885 mul, 2 div, 1
+ * sqrt, 70 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_closest_point_slip_type5(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-closest-point`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 5850 ops (2545 add, 3206 mul, 2 div, 1
+ * sqrt, 96 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_closest_point_slip_type6(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

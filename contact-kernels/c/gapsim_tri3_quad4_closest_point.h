@@ -86,6 +86,69 @@ int gapsim_tri3_quad4_closest_point_type5(const double q[21], double xi_s_u, dou
  */
 int gapsim_tri3_quad4_closest_point_type6(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_TRI3_QUAD4_CLOSEST_POINT_SLIP_COMPONENTS 3
+
+/*
+ * `tri3-quad4-closest-point`, type 1 (xi_m, x_ms and s_m, n: constant,
+ * linear, constant): the slip (3 components), gradient (no second-order
+ * term). `xi_m0` is the last converged projection. Cost: 237 ops (73 add, 138
+ * mul, 1 div, 1 sqrt, 24 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess is not used and may be NULL.
+ */
+int gapsim_tri3_quad4_closest_point_slip_type1(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double *hess);
+
+/*
+ * `tri3-quad4-closest-point`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 8346 ops (3480 add, 4808 mul, 2 div, 1 sqrt, 55
+ * neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c values;
+ * grad: c * n values (component after component); hess: c * n * n values.
+ */
+int gapsim_tri3_quad4_closest_point_slip_type2(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-closest-point`, type 3 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 8656 ops (3534 add, 4823 mul, 2
+ * div, 1 sqrt, 296 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_tri3_quad4_closest_point_slip_type3(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-closest-point`, type 4 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 10689 ops (4724 add, 5661 mul, 2
+ * div, 1 sqrt, 301 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_tri3_quad4_closest_point_slip_type4(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-closest-point`, type 5 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 11818 ops (5052 add, 6710
+ * mul, 2 div, 1 sqrt, 53 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_tri3_quad4_closest_point_slip_type5(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-closest-point`, type 6 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 15073 ops (6740 add, 8040
+ * mul, 2 div, 1 sqrt, 290 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_tri3_quad4_closest_point_slip_type6(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

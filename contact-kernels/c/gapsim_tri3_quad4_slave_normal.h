@@ -85,6 +85,70 @@ int gapsim_tri3_quad4_slave_normal_type5(const double q[21], double xi_s_u, doub
  */
 int gapsim_tri3_quad4_slave_normal_type6(const double q[21], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[21], double hess[441]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_TRI3_QUAD4_SLAVE_NORMAL_SLIP_COMPONENTS 3
+
+/*
+ * `tri3-quad4-slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (3 components), gradient (no second-order term).
+ * `xi_m0` is the last converged projection. Cost: 191 ops (55 add, 110 mul, 1
+ * div, 1 sqrt, 24 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess is not
+ * used and may be NULL.
+ */
+int gapsim_tri3_quad4_slave_normal_slip_type1(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double *hess);
+
+/*
+ * `tri3-quad4-slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 5030 ops (2011 add, 2900 mul, 2 div, 1 sqrt,
+ * 116 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_quad4_slave_normal_slip_type2(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 7753 ops (3378 add, 4190 mul, 2
+ * div, 1 sqrt, 182 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_tri3_quad4_slave_normal_slip_type3(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, linear): the slip (3 components), gradient and Hessian. `xi_m0`
+ * is the last converged projection. Cost: 9139 ops (4250 add, 4715 mul, 2
+ * div, 1 sqrt, 171 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess: c * n
+ * * n values.
+ */
+int gapsim_tri3_quad4_slave_normal_slip_type4(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 9363 ops (4053 add, 5118
+ * mul, 2 div, 1 sqrt, 189 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_tri3_quad4_slave_normal_slip_type5(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
+/*
+ * `tri3-quad4-slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic,
+ * quadratic, quadratic): the slip (3 components), gradient and Hessian.
+ * `xi_m0` is the last converged projection. Cost: 10688 ops (4925 add, 5589
+ * mul, 2 div, 1 sqrt, 171 neg). (xi_m0_u, xi_m0_v) is the last converged
+ * projection. slip: c values; grad: c * n values (component after component);
+ * hess: c * n * n values.
+ */
+int gapsim_tri3_quad4_slave_normal_slip_type6(const double q[21], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[63], double hess[1323]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

@@ -84,6 +84,70 @@ int gapsim_tri3_slave_normal_type5(const double q[18], double xi_s_u, double xi_
  */
 int gapsim_tri3_slave_normal_type6(const double q[18], double xi_s_u, double xi_s_v, double *gap, double *xi_m_u, double *xi_m_v, double grad[18], double hess[324]);
 
+/* The slip's component count c: 1 (along the tangent) for segments, 3
+ * (global x, y, z) for faces (docs/conventions.md, "The slip"). */
+#define GAPSIM_TRI3_SLAVE_NORMAL_SLIP_COMPONENTS 3
+
+/*
+ * `tri3-slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear,
+ * constant): the slip (3 components), gradient (no second-order term).
+ * `xi_m0` is the last converged projection. Cost: 181 ops (68 add, 104 mul, 2
+ * div, 1 sqrt, 6 neg). (xi_m0_u, xi_m0_v) is the last converged projection.
+ * slip: c values; grad: c * n values (component after component); hess is not
+ * used and may be NULL.
+ */
+int gapsim_tri3_slave_normal_slip_type1(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double *hess);
+
+/*
+ * `tri3-slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 4299 ops (1727 add, 2459 mul, 2 div, 1 sqrt,
+ * 110 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_slave_normal_slip_type2(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 5181 ops (2246 add, 2816 mul, 2 div, 1 sqrt,
+ * 116 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_slave_normal_slip_type3(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * linear): the slip (3 components), gradient and Hessian. `xi_m0` is the last
+ * converged projection. Cost: 6538 ops (2927 add, 3503 mul, 2 div, 1 sqrt,
+ * 105 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip: c
+ * values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_slave_normal_slip_type4(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 6793 ops (2921 add, 3744 mul, 2 div, 1
+ * sqrt, 125 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip:
+ * c values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_slave_normal_slip_type5(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
+/*
+ * `tri3-slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic,
+ * quadratic): the slip (3 components), gradient and Hessian. `xi_m0` is the
+ * last converged projection. Cost: 8087 ops (3602 add, 4377 mul, 2 div, 1
+ * sqrt, 105 neg). (xi_m0_u, xi_m0_v) is the last converged projection. slip:
+ * c values; grad: c * n values (component after component); hess: c * n * n
+ * values.
+ */
+int gapsim_tri3_slave_normal_slip_type6(const double q[18], double xi_s_u, double xi_s_v, double xi_m0_u, double xi_m0_v, double slip[3], double *xi_m_u, double *xi_m_v, double grad[54], double hess[972]);
+
 #ifdef __cplusplus
 } /* extern "C" */
 #endif

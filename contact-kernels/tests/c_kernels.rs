@@ -42,7 +42,7 @@ use std::process::{Command, Stdio};
 use contact_kernels::Formulation;
 use contact_kernels::{
     ApproxType, DEGENERATE_LENGTH, GapOut, Kernel, KernelError, OutputKind, Projector, Segment,
-    XI_M_LIMIT,
+    SlipOut, XI_M_LIMIT,
 };
 #[cfg(feature = "quadratic-slave-normal")]
 use gapsim_families::seeded;
@@ -96,7 +96,7 @@ fn code(e: &KernelError) -> i32 {
             OutputKind::Gap => 7,
             OutputKind::Gradient => 8,
             OutputKind::Hessian => 9,
-            OutputKind::Slip => unreachable!("the C files have no slip kernels"),
+            OutputKind::Slip => 17,
         },
         KernelError::FoldedSegment {
             segment: Segment::Slave,
@@ -118,9 +118,58 @@ struct Outcome {
     bits: Vec<u64>,
 }
 
+/// The last converged projection the slip functions get for configuration
+/// `k` of slave point `xi_s`: a value near the segment, or NaN for every
+/// 29th configuration (a non-finite input of the slip's own).
+fn previous(k: usize, xi_s: f64) -> f64 {
+    if k % 29 == 7 {
+        f64::NAN
+    } else {
+        0.3 * xi_s - 0.1
+    }
+}
+
+/// [`previous`] for a face's slave point: `INFINITY` in the second
+/// component for every 29th.
+fn previous_face(k: usize, [u, v]: [f64; 2]) -> [f64; 2] {
+    if k % 29 == 7 {
+        [0.1, f64::INFINITY]
+    } else {
+        [0.3 * u - 0.1, 0.2 * v + 0.05]
+    }
+}
+
+/// The Rust side of the slip of type `ty` of `f`: status and bits of the
+/// slip's components, `xi_m`, the gradients and the Hessians.
+fn rust_slip(f: Formulation, ty: ApproxType, q: &[f64], xi_s: &[f64], xi_m0: &[f64]) -> Outcome {
+    let slip = Kernel::new(f, ty).unwrap().slip().unwrap();
+    let mut o = SlipOut::new(&slip);
+    match slip.eval(q, xi_s, xi_m0, &mut o) {
+        Ok(()) => {
+            let c = slip.components();
+            let mut bits: Vec<u64> = o.slip().iter().map(|v| v.to_bits()).collect();
+            bits.extend(o.xi_m_all().iter().map(|v| v.to_bits()));
+            for i in 0..c {
+                bits.extend(o.grad(i).iter().map(|v| v.to_bits()));
+            }
+            for i in 0..c {
+                if let Some(h) = o.hess(i) {
+                    bits.extend(h.iter().map(|v| v.to_bits()));
+                }
+            }
+            Outcome { status: 0, bits }
+        }
+        Err(e) => Outcome {
+            status: code(&e),
+            bits: Vec::new(),
+        },
+    }
+}
+
 /// The Rust side: per formulation (slave-normal, closest-point), the
-/// projection and types 1..=6, in the driver's order.
-fn rust_outcomes(c: &Config) -> Vec<Outcome> {
+/// projection, types 1..=6 and the slip's types 1..=6 (at `xi_m0`), in
+/// the driver's order.
+fn rust_outcomes(c: &Config, xi_m0: f64) -> Vec<Outcome> {
     let mut out = Vec::new();
     let mut scratch = [0.0; 8];
     for f in BOTH {
@@ -156,6 +205,9 @@ fn rust_outcomes(c: &Config) -> Vec<Outcome> {
                     bits: Vec::new(),
                 },
             });
+        }
+        for ty in ApproxType::ALL {
+            out.push(rust_slip(f, ty, &c.q, &[c.xi_s], &[xi_m0]));
         }
     }
     out
@@ -275,22 +327,16 @@ fn compile_each(sources: &[PathBuf], dir: &Path, out: &Path) {
     );
 }
 
-const NAMES: [&str; 14] = [
-    "slave-normal project",
-    "slave-normal type 1",
-    "slave-normal type 2",
-    "slave-normal type 3",
-    "slave-normal type 4",
-    "slave-normal type 5",
-    "slave-normal type 6",
-    "closest-point project",
-    "closest-point type 1",
-    "closest-point type 2",
-    "closest-point type 3",
-    "closest-point type 4",
-    "closest-point type 5",
-    "closest-point type 6",
-];
+/// The driver's functions per configuration, in its order.
+fn names() -> Vec<String> {
+    let mut names = Vec::new();
+    for f in ["slave-normal", "closest-point"] {
+        names.push(format!("{f} project"));
+        names.extend((1..=6).map(|t| format!("{f} type {t}")));
+        names.extend((1..=6).map(|t| format!("{f} slip type {t}")));
+    }
+    names
+}
 
 #[test]
 fn c_kernels_equal_rust_kernels_bit_for_bit() {
@@ -315,9 +361,14 @@ fn c_kernels_equal_rust_kernels_bit_for_bit() {
     );
 
     let configs = configurations();
+    let names = names();
     let mut input = String::new();
-    for c in &configs {
-        input.push_str(&format!("{:016x}", c.xi_s.to_bits()));
+    for (k, c) in configs.iter().enumerate() {
+        input.push_str(&format!(
+            "{:016x} {:016x}",
+            c.xi_s.to_bits(),
+            previous(k, c.xi_s).to_bits()
+        ));
         for v in c.q {
             input.push_str(&format!(" {:016x}", v.to_bits()));
         }
@@ -337,16 +388,16 @@ fn c_kernels_equal_rust_kernels_bit_for_bit() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines.len(),
-        configs.len() * NAMES.len(),
+        configs.len() * names.len(),
         "driver output lines"
     );
 
     let (mut values, mut errors, mut differences) = (0usize, 0usize, Vec::new());
-    let mut statuses = [0usize; 10];
+    let mut statuses = [0usize; 18];
     for (k, c) in configs.iter().enumerate() {
-        let rust = rust_outcomes(c);
+        let rust = rust_outcomes(c, previous(k, c.xi_s));
         for (j, r) in rust.into_iter().enumerate() {
-            let cside = parse_outcome(lines[k * NAMES.len() + j]);
+            let cside = parse_outcome(lines[k * names.len() + j]);
             statuses[r.status as usize] += 1;
             if r.status == 0 {
                 values += r.bits.len();
@@ -356,16 +407,16 @@ fn c_kernels_equal_rust_kernels_bit_for_bit() {
             if cside != r {
                 differences.push(format!(
                     "{} #{k} ({}, q = {:?}, xi_s = {}): C {cside:?}, Rust {r:?}",
-                    NAMES[j], c.label, c.q, c.xi_s
+                    names[j], c.label, c.q, c.xi_s
                 ));
             }
         }
     }
     eprintln!(
         "{} configurations x {} functions: {values} output values compared bit for bit, \
-         {errors} error codes compared; statuses (0..=9) {statuses:?}; {} differences",
+         {errors} error codes compared; statuses (0..=17) {statuses:?}; {} differences",
         configs.len(),
-        NAMES.len(),
+        names.len(),
         differences.len()
     );
     assert!(
@@ -660,8 +711,9 @@ fn c_quadratic_kernels_equal_rust_kernels_bit_for_bit() {
 // ---------------------------------------------------------------------------
 
 /// The Rust side for one face configuration of formulation `f`: the
-/// projection and types 1..=6, in the face driver's order.
-fn rust_face_outcomes(f: Formulation, c: &FaceConfig) -> Vec<Outcome> {
+/// projection, types 1..=6 and the slip's types 1..=6 (at `xi_m0`), in the
+/// face driver's order.
+fn rust_face_outcomes(f: Formulation, c: &FaceConfig, xi_m0: [f64; 2]) -> Vec<Outcome> {
     let projector = Projector::new(f).unwrap();
     let mut scratch = vec![0.0; projector.coords()];
     let mut out = vec![match projector.project(&c.q, c.xi_s, &mut scratch) {
@@ -696,6 +748,9 @@ fn rust_face_outcomes(f: Formulation, c: &FaceConfig) -> Vec<Outcome> {
             },
         });
     }
+    for ty in ApproxType::ALL {
+        out.push(rust_slip(f, ty, &c.q, &c.xi_s, &xi_m0));
+    }
     out
 }
 
@@ -728,9 +783,10 @@ fn c_face_kernels_equal_rust_kernels_bit_for_bit() {
         .flat_map(|(i, &(_, _, s, m))| face_configurations(s, m).into_iter().map(move |c| (i, c)))
         .collect();
     let mut input = String::new();
-    for (i, c) in &configs {
+    for (k, (i, c)) in configs.iter().enumerate() {
         input.push_str(&i.to_string());
-        for v in c.xi_s.iter().chain(&c.q) {
+        let xi_m0 = previous_face(k, c.xi_s);
+        for v in c.xi_s.iter().chain(&xi_m0).chain(&c.q) {
             input.push_str(&format!(" {:016x}", v.to_bits()));
         }
         input.push('\n');
@@ -747,14 +803,15 @@ fn c_face_kernels_equal_rust_kernels_bit_for_bit() {
     assert!(output.status.success(), "the face driver failed");
     let text = String::from_utf8(output.stdout).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), configs.len() * 7, "driver output lines");
+    assert_eq!(lines.len(), configs.len() * 13, "driver output lines");
 
     let (mut values, mut errors, mut differences) = (0usize, 0usize, Vec::new());
-    let mut statuses = [[0usize; 17]; 8];
+    let mut statuses = [[0usize; 18]; 8];
     for (k, (i, c)) in configs.iter().enumerate() {
         let f = FACES[*i].0;
-        for (j, r) in rust_face_outcomes(f, c).into_iter().enumerate() {
-            let cside = parse_outcome(lines[k * 7 + j]);
+        let xi_m0 = previous_face(k, c.xi_s);
+        for (j, r) in rust_face_outcomes(f, c, xi_m0).into_iter().enumerate() {
+            let cside = parse_outcome(lines[k * 13 + j]);
             statuses[*i][r.status as usize] += 1;
             values += r.bits.len();
             errors += usize::from(r.status != 0);
@@ -770,10 +827,10 @@ fn c_face_kernels_equal_rust_kernels_bit_for_bit() {
         }
     }
     for (i, (f, ..)) in FACES.iter().enumerate() {
-        eprintln!("{}: statuses (0..=16) {:?}", f.name(), statuses[i]);
+        eprintln!("{}: statuses (0..=17) {:?}", f.name(), statuses[i]);
     }
     eprintln!(
-        "faces: {} configurations x 7 functions: {values} output values compared bit for bit, \
+        "faces: {} configurations x 13 functions: {values} output values compared bit for bit, \
          {errors} error codes compared; {} differences",
         configs.len(),
         differences.len()

@@ -16,7 +16,9 @@
 //!   and linked once, beside the formulations' sources).
 //! * `gapsim_{ident}.h`: per formulation, `GAPSIM_{IDENT}_COORDS` and the
 //!   public functions `gapsim_{ident}_project` and
-//!   `gapsim_{ident}_type1` .. `_type6`, declared `extern "C"` under C++.
+//!   `gapsim_{ident}_type1` .. `_type6`, and with a slip
+//!   `GAPSIM_{IDENT}_SLIP_COMPONENTS` and `gapsim_{ident}_slip_type1` ..
+//!   `_type6`, declared `extern "C"` under C++.
 //! * `gapsim_{ident}.c`: the generated kernels as `static` functions (the
 //!   residual only when the projection is not in closed form; one
 //!   `const double vN = ...;` per instruction, in order, with the same
@@ -184,6 +186,7 @@ last bits.",
         .into_iter()
         .chain([&set.gap])
         .chain(&set.kernels)
+        .chain(&set.slips)
         .collect::<Vec<_>>();
     if functions.iter().any(|k| {
         k.program

@@ -74,7 +74,11 @@ enum gapsim_status {
     GAPSIM_FOLDED_MASTER_FACE = 15,
     /* The slave point (u, v) lies outside its face (tri3: u, v >= 0 and
      * u + v <= 1; quad4: [-1, 1]^2) (KernelError::SlavePointOutside). */
-    GAPSIM_SLAVE_POINT_OUTSIDE = 16
+    GAPSIM_SLAVE_POINT_OUTSIDE = 16,
+    /* A slip function's slip is not finite (KernelError::NonFiniteOutput
+     * with OutputKind::Slip; its gradient and Hessian report
+     * GAPSIM_NON_FINITE_GRADIENT and GAPSIM_NON_FINITE_HESSIAN). */
+    GAPSIM_NON_FINITE_SLIP = 17
 };
 
 /* A segment shorter than this times the configuration's size (its largest
@@ -109,6 +113,7 @@ static inline const char *gapsim_status_name(int status)
     case GAPSIM_FOLDED_SLAVE_FACE: return "GAPSIM_FOLDED_SLAVE_FACE";
     case GAPSIM_FOLDED_MASTER_FACE: return "GAPSIM_FOLDED_MASTER_FACE";
     case GAPSIM_SLAVE_POINT_OUTSIDE: return "GAPSIM_SLAVE_POINT_OUTSIDE";
+    case GAPSIM_NON_FINITE_SLIP: return "GAPSIM_NON_FINITE_SLIP";
     default: return "unknown";
     }
 }

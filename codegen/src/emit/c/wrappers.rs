@@ -101,6 +101,29 @@ fn kernel_prototype(set: &KernelSetPlan, k: &FunctionPlan, ty: usize, hessian: b
     )
 }
 
+/// The public prototype of a type's slip function.
+fn slip_prototype(set: &KernelSetPlan, k: &FunctionPlan, ty: usize, hessian: bool) -> String {
+    let n = set.signature.coords();
+    let c = set.slip_components;
+    let hess = if hessian {
+        format!("double hess[{}]", c * n * n)
+    } else {
+        "double *hess".into()
+    };
+    let previous: String = suffixes(set)
+        .iter()
+        .map(|s| format!(", double {}0{s}", set.signature.implicit()))
+        .collect();
+    format!(
+        "int gapsim_{}_slip_type{ty}(const double q[{n}]{}{previous}, double slip[{c}], {}, \
+         double grad[{}], {hess})",
+        set.ident,
+        param_args(set),
+        out_args(set, &k_implicit(set, k)),
+        c * n,
+    )
+}
+
 /// A face kind's name from its node count.
 fn kind(nodes: usize) -> &'static str {
     if nodes == 3 { "tri3" } else { "quad4" }
@@ -202,6 +225,33 @@ for the same bits as the Rust kernels).\n\n{inputs}",
         }
         out.push_str(&comment(&doc, ""));
         let _ = writeln!(out, "{};\n", kernel_prototype(set, k, ty, hessian));
+    }
+    if !set.slips.is_empty() {
+        let c = set.slip_components;
+        let _ = write!(
+            out,
+            "/* The slip's component count c: 1 (along the tangent) for segments, 3\n \
+             * (global x, y, z) for faces (docs/conventions.md, \"The slip\"). */\n\
+             #define GAPSIM_{upper}_SLIP_COMPONENTS {c}\n\n"
+        );
+    }
+    for k in &set.slips {
+        let Role::Slip { ty, hessian } = k.role else {
+            continue;
+        };
+        let mut doc = k.doc.clone();
+        doc.push_str(&format!(
+            " {m0} is the last converged projection. slip: c values; grad: c * n values \
+             (component after component); {}",
+            if hessian {
+                "hess: c * n * n values."
+            } else {
+                "hess is not used and may be NULL."
+            },
+            m0 = point_text(set, &format!("{}0", set.signature.implicit())),
+        ));
+        out.push_str(&comment(&doc, ""));
+        let _ = writeln!(out, "{};\n", slip_prototype(set, k, ty, hessian));
     }
     let _ = write!(
         out,
@@ -326,6 +376,102 @@ fn public_function(
     out
 }
 
+/// One public slip function (type `ty`): the steps of
+/// [`public_function`] with the last converged projection checked finite
+/// after the validation (`GAPSIM_NON_FINITE_INPUT`), the slip's `c`
+/// components into `slip` (the generated function returns the first and
+/// writes the others through pointers), `c` gradients into `grad` and `c`
+/// Hessians into `hess`, component after component.
+fn public_slip(set: &KernelSetPlan, k: &FunctionPlan, ty: usize, hessian: bool) -> String {
+    let sig = &set.signature;
+    let n = sig.coords();
+    let c = set.slip_components;
+    let p = &sig.params()[0];
+    let m0 = format!("{}0", sig.implicit());
+    let m = k_implicit(set, k);
+    let steps = steps(set);
+    let sfx = suffixes(set);
+    let kk = sfx.len();
+    let mut out = format!(
+        "{}\n{{\n    double d[{n}];\n    double s[{kk}];\n    double m0[{kk}];\n    double xi[{kk}];\n    double sl[{c}];\n    int status;\n    int i;\n",
+        slip_prototype(set, k, ty, hessian)
+    );
+    if !hessian {
+        out.push_str("    (void)hess;\n");
+    }
+    for (i, suffix) in sfx.iter().enumerate() {
+        let _ = writeln!(out, "    s[{i}] = {p}{suffix};");
+        let _ = writeln!(out, "    m0[{i}] = {m0}{suffix};");
+    }
+    // The generated function's arguments after the projection.
+    let mut args: Vec<String> = (1..c).map(|i| format!("&sl[{i}]")).collect();
+    for i in 0..c {
+        args.push(if i == 0 {
+            "grad".to_owned()
+        } else {
+            format!("grad + {}", i * n)
+        });
+    }
+    if hessian {
+        for i in 0..c {
+            args.push(if i == 0 {
+                "hess".to_owned()
+            } else {
+                format!("hess + {}", i * n * n)
+            });
+        }
+    }
+    let previous = if kk == 1 { "m0[0]" } else { "m0" };
+    let _ = write!(
+        out,
+        "    status = {validate};
+    if (status != GAPSIM_OK) {{
+        return status;
+    }}
+    if (!gapsim_all_finite(m0, {kk})) {{
+        return GAPSIM_NON_FINITE_INPUT;
+    }}
+    status = {start};
+    if (status != GAPSIM_OK) {{
+        return status;
+    }}
+    sl[0] = {call}(d, {slave}, {previous}, xi, {args});
+    status = gapsim_check_projection(xi, {kk});
+    if (status != GAPSIM_OK) {{
+        return status;
+    }}
+    if (!gapsim_all_finite(sl, {c})) {{
+        return GAPSIM_NON_FINITE_SLIP;
+    }}
+    if (!gapsim_all_finite(grad, {cn})) {{
+        return GAPSIM_NON_FINITE_GRADIENT;
+    }}
+",
+        validate = steps.validate,
+        start = steps.start,
+        slave = steps.slave,
+        call = k.name,
+        args = args.join(", "),
+        cn = c * n,
+    );
+    if hessian {
+        let _ = write!(
+            out,
+            "    if (!gapsim_all_finite(hess, {})) {{\n        return GAPSIM_NON_FINITE_HESSIAN;\n    }}\n",
+            c * n * n
+        );
+    }
+    let _ = write!(
+        out,
+        "    for (i = 0; i < {c}; ++i) {{\n        slip[i] = sl[i];\n    }}\n"
+    );
+    for (i, suffix) in sfx.iter().enumerate() {
+        let _ = writeln!(out, "    *{m}{suffix} = xi[{i}];");
+    }
+    out.push_str("    return GAPSIM_OK;\n}\n");
+    out
+}
+
 /// The public functions of one formulation (module docs).
 pub(super) fn wrappers(set: &KernelSetPlan) -> String {
     let mut out = public_function(
@@ -347,6 +493,13 @@ pub(super) fn wrappers(set: &KernelSetPlan) -> String {
             &k_implicit(set, k),
             Some(hessian),
         ));
+    }
+    for k in &set.slips {
+        let Role::Slip { ty, hessian } = k.role else {
+            continue;
+        };
+        out.push('\n');
+        out.push_str(&public_slip(set, k, ty, hessian));
     }
     out
 }
