@@ -34,6 +34,15 @@
 //! with `cargo bench --bench kernels -- faces`, then
 //! `cargo run --release --example bench_table -- --faces` for its table.
 //!
+//! The groups `slip-slave-normal` and `slip-quad4-slave-normal` time the
+//! slip kernels against the gap kernels of the same type in one run
+//! (`gap-type{1,3,6}`: `Kernel::eval`; `slip-type{1,3,6}`: `Slip::eval`,
+//! one point, the slip's worked examples of docs/conventions.md, "The
+//! slip"), and for segments num-dual's `hessian` of the same slip written
+//! generically (`num-dual-slip-hessian`). Run them with `cargo bench
+//! --bench kernels -- slip`, then `cargo run --release --example
+//! bench_table -- --slip`.
+//!
 //! Warm-up and measurement are 1 s each so the whole run takes about a
 //! minute of measurement (44 benchmarks).
 
@@ -51,7 +60,7 @@ mod sympy_kernel;
 mod sympy_kernel_3d;
 
 use contact_kernels::{
-    ApproxType, Formulation, GapBatch, GapOut, Kernel, LaneIsa, Projector, evaluate,
+    ApproxType, Formulation, GapBatch, GapOut, Kernel, LaneIsa, Projector, SlipOut, evaluate,
     pair_formulations, project,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
@@ -155,6 +164,87 @@ fn kernels(c: &mut Criterion) {
                 )
             })
         });
+        group.finish();
+    }
+}
+
+/// The slip's last converged projection in the 2D worked example.
+const XI_M0: f64 = -0.2;
+
+/// slave-normal's slip written generically: `tau . (x_m(xi_m) -
+/// x_m(xi_m0))`, `tau = (-n.y, n.x)`, with the closed-form projection of
+/// `gap` (docs/conventions.md, "The slip").
+fn slip_slave_normal<D: DualNum<Primitive = f64> + Copy>(q: &[D; 8], xi_s: f64, xi_m0: f64) -> D {
+    let node = |k: usize| [q[2 * k], q[2 * k + 1]];
+    let (xs1, xs2, xm1, xm2) = (node(0), node(1), node(2), node(3));
+    let x_s = lerp(xs1, xs2, D::from(xi_s));
+    let (t_s, t_m) = (sub(xs2, xs1), sub(xm2, xm1));
+    let c_m = lerp(xm1, xm2, D::from(0.0));
+    let len = dot(t_s, t_s).sqrt();
+    let n = [t_s[1] / len, -t_s[0] / len];
+    let xi = -(dot(sub(c_m, x_s), t_s) * 2.0) / dot(t_m, t_s);
+    let s_m = sub(lerp(xm1, xm2, xi), lerp(xm1, xm2, D::from(xi_m0)));
+    dot([-n[1], n[0]], s_m)
+}
+
+/// The 3D worked example (docs/conventions.md, "3D faces").
+const Q3: [f64; 24] = [
+    0.0, 0.0, 1.0, 0.0, 1.0, 1.1, 1.0, 1.0, 1.0, 1.0, 0.0, 0.9, -0.2, -0.1, 0.8, 1.2, 0.0, 0.85,
+    1.1, 1.3, 0.75, -0.1, 1.2, 0.8,
+];
+
+/// The slip against the gap, type by type, one point (module docs).
+fn slip(c: &mut Criterion) {
+    let cases: [(Formulation, &[f64], [f64; 2], [f64; 2]); 2] = [
+        (Formulation::SlaveNormal, &Q, [XI_S, 0.0], [XI_M0, 0.0]),
+        (Formulation::Quad4SlaveNormal, &Q3, [0.2, -0.1], [0.0, 0.0]),
+    ];
+    for (f, q, xi_s, xi_m0) in cases {
+        let mut group = c.benchmark_group(format!("slip-{}", f.name()));
+        let p = if q.len() == 8 { 1 } else { 2 };
+        for ty in [ApproxType::Type1, ApproxType::Type3, ApproxType::Type6] {
+            let kernel = Kernel::new(f, ty).unwrap();
+            let mut out = GapOut::new(&kernel);
+            group.bench_function(format!("gap-type{}", ty.index()), |b| {
+                b.iter(|| {
+                    kernel
+                        .eval(black_box(q), black_box(&xi_s[..p]), &mut out)
+                        .unwrap();
+                    black_box(&out);
+                })
+            });
+            let slip = kernel.slip().unwrap();
+            let mut out = SlipOut::new(&slip);
+            group.bench_function(format!("slip-type{}", ty.index()), |b| {
+                b.iter(|| {
+                    slip.eval(
+                        black_box(q),
+                        black_box(&xi_s[..p]),
+                        black_box(&xi_m0[..p]),
+                        &mut out,
+                    )
+                    .unwrap();
+                    black_box(&out);
+                })
+            });
+        }
+        if p == 1 {
+            let qv = SVector::<f64, 8>::from(Q);
+            group.bench_function("num-dual-slip-hessian", |b| {
+                b.iter(|| {
+                    hessian(
+                        |v: SVector<Dual2SVec64<8>, 8>| {
+                            slip_slave_normal(
+                                &std::array::from_fn(|i| v[i]),
+                                black_box(XI_S),
+                                black_box(XI_M0),
+                            )
+                        },
+                        black_box(&qv),
+                    )
+                })
+            });
+        }
         group.finish();
     }
 }
@@ -406,6 +496,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = kernels, many_points, faces
+    targets = kernels, many_points, faces, slip
 }
 criterion_main!(benches);

@@ -5,6 +5,11 @@
 //! cargo bench --bench kernels -- faces && cargo run --release --example bench_table -- --faces
 //! ```
 //!
+//! With `--slip` (after `cargo bench --bench kernels -- slip`) it prints
+//! only the slip table: the slip kernels against the gap kernels of the
+//! same type, and num-dual's Hessian of the 2D slip (docs/kernels.md, "The
+//! slip kernels").
+//!
 //! With `--faces` it prints only the 3D face table (group
 //! `faces-tri3-slave-normal`, docs/kernels.md's `bench-faces` section),
 //! with the CPU model of `/proc/cpuinfo` and the load average of
@@ -27,7 +32,10 @@ use contact_kernels::{ApproxType, OpCount, op_count, pair_formulations};
 
 /// Where criterion wrote its results.
 fn criterion_dir() -> PathBuf {
-    if let Some(arg) = std::env::args_os().skip(1).find(|a| a != "--faces") {
+    if let Some(arg) = std::env::args_os()
+        .skip(1)
+        .find(|a| a != "--faces" && a != "--slip")
+    {
         return PathBuf::from(arg);
     }
     if let Some(home) = std::env::var_os("CRITERION_HOME") {
@@ -304,8 +312,58 @@ fn faces_table(dir: &Path) -> Result<String, String> {
     Ok(out)
 }
 
+/// The slip table (groups `slip-slave-normal`, `slip-quad4-slave-normal`).
+fn slip_table(dir: &Path) -> Result<String, String> {
+    let mut out = format!(
+        "Median time per point (criterion, one run; CPU: {}; load average over 1 / 5 / 15 \
+         minutes: {}): the slip kernel (`Slip::eval`) against the gap kernel of the same \
+         type (`Kernel::eval`), both with validation and projection, at the slip's worked \
+         examples of docs/conventions.md.\n\n\
+         | formulation | type | gap (ns) | slip (ns) | slip / gap | ops gap | ops slip |\n\
+         |---|---|---:|---:|---:|---:|---:|\n",
+        cpu(),
+        load_average()
+    );
+    for name in ["slave-normal", "quad4-slave-normal"] {
+        let group = format!("slip-{name}");
+        let f: contact_kernels::Formulation = name.parse().map_err(|e| format!("{e}"))?;
+        for ty in [ApproxType::Type1, ApproxType::Type3, ApproxType::Type6] {
+            let t = ty.index();
+            let gap = median_ns(dir, &group, &format!("gap-type{t}"))?;
+            let slip = median_ns(dir, &group, &format!("slip-type{t}"))?;
+            let kernel = contact_kernels::Kernel::new(f, ty).map_err(|e| e.to_string())?;
+            let slip_ops = kernel.slip().map_or(0, |s| s.op_count().total());
+            out.push_str(&format!(
+                "| {name} | {t} | {gap:.1} | {slip:.1} | {:.2} | {} | {slip_ops} |\n",
+                slip / gap,
+                kernel.op_count().total()
+            ));
+        }
+    }
+    let dual = median_ns(dir, "slip-slave-normal", "num-dual-slip-hessian")?;
+    let six = median_ns(dir, "slip-slave-normal", "slip-type6")?;
+    out.push_str(&format!(
+        "\nnum-dual's `hessian` of the same 2D slip: {dual:.1} ns, {:.1} times Type 6's slip \
+         kernel.\n",
+        dual / six
+    ));
+    Ok(out)
+}
+
 fn main() -> ExitCode {
     let dir = criterion_dir();
+    if std::env::args().any(|a| a == "--slip") {
+        return match slip_table(&dir) {
+            Ok(t) => {
+                print!("{t}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("bench_table: {e}");
+                ExitCode::FAILURE
+            }
+        };
+    }
     if std::env::args().any(|a| a == "--faces") {
         return match faces_table(&dir) {
             Ok(t) => {

@@ -21,6 +21,8 @@ cargo run -q --release --example bench_table > target/bench-table.md
 splice bench target/bench-table.md docs/kernels.md
 cargo run -q --release --example bench_table -- --faces > target/bench-faces-table.md
 splice bench-faces target/bench-faces-table.md docs/kernels.md
+cargo run -q --release --example bench_table -- --slip > target/bench-slip-table.md
+splice bench-slip target/bench-slip-table.md docs/kernels.md
 
 # one iteration from 1e3 to 1e6 equations with the LDL^T, against the LU up
 # to 1e5 (several minutes; docs/scaling/scaling.md is the committed copy)

@@ -248,7 +248,9 @@ fn verify_a_formulation_whose_projection_needs_newton() {
     let o = gapsim(&["verify", file.to_str().unwrap()]);
     let table = text(&o.stdout);
     assert!(o.status.success(), "{table}{}", text(&o.stderr));
-    assert_eq!(table.matches("| ok |").count(), 6, "{table}");
+    // Six gap kernels, then the file's six slip kernels.
+    assert_eq!(table.matches("| ok |").count(), 12, "{table}");
+    assert!(table.contains("curved-residual (slip): "), "{table}");
 }
 
 #[test]
@@ -309,7 +311,8 @@ fn generate_and_verify_take_face_formulations() {
     let stdout = text(&out.stdout);
     assert!(out.status.success(), "{stdout}{}", text(&out.stderr));
     assert!(stdout.contains("my-face: 1"), "{stdout}");
-    assert_eq!(stdout.matches("| ok |").count(), 6, "{stdout}");
+    assert!(stdout.contains("my-face (slip): 1"), "{stdout}");
+    assert_eq!(stdout.matches("| ok |").count(), 12, "{stdout}");
     let gen_dir = dir.join("out");
     let out = gapsim(&[
         "generate",
