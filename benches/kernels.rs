@@ -193,9 +193,13 @@ const Q3: [f64; 24] = [
     1.1, 1.3, 0.75, -0.1, 1.2, 0.8,
 ];
 
+/// One case of the slip groups: the formulation, `q`, `xi_s` and `xi_m0`
+/// (a segment's in the first component).
+type SlipCase<'a> = (Formulation, &'a [f64], [f64; 2], [f64; 2]);
+
 /// The slip against the gap, type by type, one point (module docs).
 fn slip(c: &mut Criterion) {
-    let cases: [(Formulation, &[f64], [f64; 2], [f64; 2]); 2] = [
+    let cases: [SlipCase; 2] = [
         (Formulation::SlaveNormal, &Q, [XI_S, 0.0], [XI_M0, 0.0]),
         (Formulation::Quad4SlaveNormal, &Q3, [0.2, -0.1], [0.0, 0.0]),
     ];

@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
+const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped";
 
 fn scene() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/pressed-blocks.toml")
@@ -56,8 +56,9 @@ fn contact_csv_balances_the_load() {
     assert_eq!(rows.len(), 5, "{csv}");
     let mut integral = 0.0;
     for row in &rows {
-        assert_eq!(row.len(), 13, "{row:?}");
+        assert_eq!(row.len(), 14, "{row:?}");
         assert_eq!(row[0], "interface");
+        assert_eq!(row[13], "0", "{row:?}");
         // block bodies: internal node numbers
         assert_eq!((row[11], row[12]), ("internal", "internal"), "{row:?}");
         let num = |k: usize| row[k].parse::<f64>().unwrap();
@@ -117,6 +118,55 @@ fn contact_csv_balances_the_load() {
         "{pvd}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The paper scene's slave node at `x = 0`, fixed on the fixed master
+/// node, is marked: `gapsim run` names it in a `clamped` line and its
+/// `contact.csv` row ends in `1` (every other row in `0`); a scene without
+/// such a node prints no such line.
+#[test]
+fn the_paper_scene_marks_its_clamped_slave_node() {
+    let dir = std::env::temp_dir().join(format!("gapsim-cli-clamped-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
+        .args(["run", "--steps", "4", "--out"])
+        .arg(&dir)
+        .output()
+        .expect("run gapsim");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("clamped "))
+        .unwrap_or_else(|| panic!("no clamped line: {stdout}"));
+    assert!(
+        line.contains("1 slave node(s) held by supports on both sides"),
+        "{line}"
+    );
+    let csv = std::fs::read_to_string(dir.join("contact.csv")).unwrap();
+    let rows: Vec<Vec<&str>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').collect())
+        .collect();
+    assert_eq!(rows.len(), 8, "{csv}");
+    let clamped: Vec<&Vec<&str>> = rows.iter().filter(|r| r[13] == "1").collect();
+    assert_eq!(clamped.len(), 1, "{csv}");
+    assert_eq!(clamped[0][2], "0", "{csv}");
+    let pressure: f64 = clamped[0][5].parse().unwrap();
+    assert!(pressure < -100.0, "{csv}");
+    assert!(rows.iter().all(|r| r[13] == "0" || r[13] == "1"), "{csv}");
+    let _ = std::fs::remove_dir_all(&dir);
+    // pressed-blocks: its slave nodes are not held
+    let dir = std::env::temp_dir().join(format!("gapsim-cli-unclamped-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let stdout = run(&dir, &[]);
+    assert!(!stdout.contains("clamped "), "{stdout}");
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -256,7 +306,8 @@ steps = [2]
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 12, "{csv}");
     for r in &rows {
-        assert_eq!(r.len(), 17, "{r:?}");
+        assert_eq!(r.len(), 18, "{r:?}");
+        assert_eq!(r[17], "0", "{r:?}");
         let pressure: f64 = r[6].parse().unwrap();
         assert!(pressure > 0.0, "{r:?}");
         assert_eq!(r[15], "internal", "{r:?}");

@@ -164,7 +164,8 @@ fn a_file_named_self_generates_and_verifies() {
     assert!(rust.contains("fn self_type6"), "kernels written");
     let o = gapsim(&["verify", file.to_str().unwrap()]);
     assert!(o.status.success(), "{}", text(&o.stderr));
-    assert_eq!(text(&o.stdout).matches("| ok |").count(), 6);
+    // the gap's six types, then the slip's
+    assert_eq!(text(&o.stdout).matches("| ok |").count(), 12);
 }
 
 #[test]

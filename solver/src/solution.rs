@@ -290,6 +290,11 @@ where
     /// holds (a scene's `[[fix]]` and `[[prescribe]]` items: their `group`,
     /// or `fix[i]` / `prescribe[i]`).
     pub support_groups: Vec<String>,
+    /// Per mesh node, whether supports hold it: every one of its `D` dofs
+    /// is prescribed (fixed or moved by a `[[prescribe]]`). The nodal
+    /// contact table marks a slave node held on both sides with it
+    /// ([`crate::report::ContactTable::clamped`]).
+    pub held_nodes: Vec<bool>,
 }
 
 impl Solution<2> {

@@ -225,7 +225,7 @@ fn a_pressed_cap_converges_balances_and_every_type_matches_the_complete_formulat
     }
 }
 
-/// The 3D `contact.csv`: its header, one row per slave node with 15
+/// The 3D `contact.csv`: its header, one row per slave node with 18
 /// fields, every node projected onto a quad4 master face (four master
 /// nodes), the pressures' resultant the base's reaction; the `.vtu`
 /// contact fields of the same table.
@@ -243,15 +243,18 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
         );
         assert_eq!(
             <Dim<3> as solver::report::ContactTable<3>>::HEADER,
-            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering"
+            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped"
         );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
         assert_eq!(rows.len(), 16, "{text}");
         let mut resultant = 0.0;
         for r in &rows {
-            assert_eq!(r.len(), 17, "{r:?}");
+            assert_eq!(r.len(), 18, "{r:?}");
             // both blocks: internal indices, slave and master alike
             assert_eq!((r[15], r[16]), ("internal", "internal"), "{r:?}");
+            // the cap is pressed by prescribed displacements of its top,
+            // not held at its bottom: no row is clamped
+            assert_eq!(r[17], "0", "{r:?}");
             assert_eq!(r[0], "cap-on-base");
             let z: f64 = r[4].parse().unwrap();
             // the cap's bottom moved down, by less than the press
@@ -286,7 +289,10 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
 /// cantilever extruded 1.0 in z): its complete formulation's strain
 /// energy lies between the 2D scene's plane-stress and plane-strain
 /// values (measured 0.55048 between 0.56498 and 0.52165), and Type 3 at
-/// the scene's 4 steps is within 2e-4 of it (measured 1.1e-4).
+/// the scene's 4 steps is within 2e-4 of it (measured 1.1e-4). In both
+/// dimensions exactly the slave nodes at `x = 0`, fixed on a fixed master
+/// point, are marked `clamped` in the nodal table (their multipliers are
+/// reactions between supports: -724.6 in 2D, docs/conventions.md).
 /// A mesh-file cube (the reader's fixture `cube.msh`, node tags 1-8) on
 /// a block base: its `contact.csv` numbers the slave nodes by their tags
 /// (`msh`) and the master nodes by their internal indices (`internal`),
@@ -397,17 +403,39 @@ fn the_paper_scene_in_3d_lies_between_plane_stress_and_plane_strain() {
     let model = plates.build_model::<3>().unwrap();
     let options = SolveOptions::from_scene(&plates);
     let complete = solver::solve_model(&model, &options).unwrap();
-    let energy_2d = |m: PlaneModel| {
+    let solve_2d = |m: PlaneModel| {
         let mut scene = Scene::from_file(root.join("scenes/stacked-cantilever.toml")).unwrap();
         scene.material.as_mut().unwrap().model = Some(m);
-        solve::<2>(&scene, &SolveOptions::from_scene(&scene))
-            .unwrap()
-            .strain_energy
+        solve::<2>(&scene, &SolveOptions::from_scene(&scene)).unwrap()
     };
+    let plane_stress = solve_2d(PlaneModel::PlaneStress);
     let (stress, strain) = (
-        energy_2d(PlaneModel::PlaneStress),
-        energy_2d(PlaneModel::PlaneStrain),
+        plane_stress.strain_energy,
+        solve_2d(PlaneModel::PlaneStrain).strain_energy,
     );
+    // The clamped rows: the slave nodes at x = 0, in 2D and in 3D.
+    use solver::report::ContactTable;
+    let rows = <Dim<2> as ContactTable<2>>::rows(&plane_stress, &plane_stress.final_state).unwrap();
+    let clamped: Vec<_> = rows
+        .iter()
+        .filter(|r| <Dim<2> as ContactTable<2>>::clamped(&plane_stress, r))
+        .collect();
+    assert_eq!(clamped.len(), 1, "{clamped:?}");
+    assert!(clamped[0].position[0].abs() < 1e-12, "{clamped:?}");
+    assert!(clamped[0].pressure < -700.0, "{clamped:?}");
+    let csv = solver::report::contact_csv(&plane_stress, &plane_stress.final_state).unwrap();
+    assert_eq!(
+        csv.lines().filter(|l| l.ends_with(",1")).count(),
+        1,
+        "{csv}"
+    );
+    let rows = <Dim<3> as ContactTable<3>>::rows(&complete, &complete.final_state).unwrap();
+    let clamped: Vec<_> = rows
+        .iter()
+        .filter(|r| <Dim<3> as ContactTable<3>>::clamped(&complete, r))
+        .collect();
+    assert_eq!(clamped.len(), 3, "{clamped:?}");
+    assert!(clamped.iter().all(|r| r.x[0].abs() < 1e-12), "{clamped:?}");
     let e = complete.strain_energy;
     eprintln!("3D {e:.10}, plane stress {stress:.10}, plane strain {strain:.10}");
     assert!(strain < e && e < stress, "{strain} < {e} < {stress}");

@@ -344,6 +344,39 @@ impl RunDim<3> for Dim<3> {
     }
 }
 
+/// The summary line of the slave nodes held by supports on both sides
+/// (`ContactTable::clamped`, `contact.csv`'s `clamped` column), when there
+/// are any: their pressure is a reaction between supports. Nothing when
+/// the nodal table cannot be made (`contact.csv` reports that error).
+fn clamped_summary<const D: usize>(sol: &Solution<D>)
+where
+    Dim<D>: RunDim<D>,
+{
+    let Ok(rows) = <Dim<D> as ContactTable<D>>::rows(sol, &sol.final_state) else {
+        return;
+    };
+    let nodes: Vec<String> = rows
+        .iter()
+        .filter(|r| <Dim<D> as ContactTable<D>>::clamped(sol, r))
+        .map(|r| {
+            let (node, _) = <Dim<D> as ContactTable<D>>::node_gap(r);
+            sol.mesh.node_number(node).0.to_string()
+        })
+        .collect();
+    if !nodes.is_empty() {
+        // the first ten named
+        let shown = nodes.len().min(10);
+        let more = if nodes.len() > shown { ", ..." } else { "" };
+        println!(
+            "clamped         {} slave node(s) held by supports on both sides (node {}{more}): \
+             their pressure is a reaction between supports, not a contact pressure \
+             (contact.csv: clamped = 1)",
+            nodes.len(),
+            nodes[..shown].join(", ")
+        );
+    }
+}
+
 /// `gapsim run` on a scene of dimension `D`: the solve, the summary, each
 /// loaded node's displacement, and with `--out` the `.vtu` files,
 /// `reactions.csv` and, with contact pairs, `contact.csv`.
@@ -395,6 +428,7 @@ where
     }
     if contact {
         Dim::<D>::contact_summary(&sol)?;
+        clamped_summary::<D>(&sol);
     }
     for load in &scene.loads {
         // a load on a physical group has no position to report

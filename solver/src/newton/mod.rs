@@ -541,6 +541,20 @@ where
                 .iter()
                 .map(|g| g.name.clone())
                 .collect(),
+            held_nodes: held_nodes::<D>(self.setup.model),
         })
     }
+}
+
+/// Per node of `model`'s mesh, whether every one of its `D` dofs is
+/// prescribed ([`Solution::held_nodes`]).
+fn held_nodes<const D: usize>(model: &Model<D>) -> Vec<bool>
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    let mut prescribed = vec![0usize; model.mesh.node_count()];
+    for p in &model.prescribed {
+        prescribed[p.dof.node_in::<D>().index()] += 1;
+    }
+    prescribed.into_iter().map(|c| c == D).collect()
 }

@@ -8,7 +8,7 @@
 //! order, with the header
 //!
 //! ```text
-//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering
+//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped
 //! ```
 //!
 //! `pair` is the pair's name (quoted when it holds a comma, quote or line
@@ -24,7 +24,11 @@
 //! a body read from the scene's `[mesh] file`, the internal 0-based index
 //! for a block body; `node_numbering` says which `node` is (`msh` or
 //! `internal`), `master_numbering` which the two master nodes are (empty
-//! with them; the master face is one body). The gap is
+//! with them; the master face is one body). `clamped` is `1` where the
+//! slave node and the master point it projects onto are both held by
+//! supports (every dof prescribed; [`super::ContactTable::clamped`]): its
+//! `pressure` is then a reaction between supports, not a contact pressure
+//! (docs/conventions.md); `0` elsewhere. The gap is
 //! that of the node itself projected onto the master face; with
 //! `slave-normal`, along the normal of the slave segment that starts at
 //! the node (the last node of an open face: the segment ending there); a
@@ -41,7 +45,7 @@
 //! order the nodes first appear on the slave faces), with the header
 //!
 //! ```text
-//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering
+//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped
 //! ```
 //!
 //! `pair` is the pair's name (quoted as in 2D), `node` the slave node's
@@ -60,8 +64,8 @@
 //! (`msh` or `internal`, as in 2D) and `master_numbering` how the master
 //! face's nodes are (empty with them): in a scene of a block body and a
 //! mesh-file body, one side's numbers are mesh tags and the other's
-//! internal indices. Numbers in Rust's shortest round-trip form, as the 2D
-//! file.
+//! internal indices. `clamped` as in 2D. Numbers in Rust's shortest
+//! round-trip form, as the 2D file.
 
 use crate::model::Dim;
 use crate::solution::{Solution, State};
@@ -108,7 +112,7 @@ mod tests {
         assert_eq!(text.lines().count(), table.len() + 1);
         for (line, row) in text.lines().skip(1).zip(&table) {
             let f: Vec<&str> = line.split(',').collect();
-            assert_eq!(f.len(), 13, "{line}");
+            assert_eq!(f.len(), 14, "{line}");
             assert_eq!(f[11], "msh", "{line}");
             assert_eq!(at_tag(f[1]), sol.mesh.nodes_ref[row.node], "{line}");
             differs += usize::from(f[1] != row.node.to_string());

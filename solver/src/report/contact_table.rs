@@ -8,18 +8,29 @@
 //! The columns of `contact.csv` come from the dimension:
 //!
 //! ```text
-//! 2D: pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering
-//! 3D: pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering
+//! 2D: pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped
+//! 3D: pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped
 //! ```
 //!
 //! (every column is described in [`super::contact_csv`]).
+//!
+//! **Clamped rows.** A slave node that supports hold (every dof
+//! prescribed, [`Solution::held_nodes`]) and whose projection lies on a
+//! master point the supports hold too (every master node of its facet with
+//! a shape-function weight above [`HELD_WEIGHT`] at `xi_m` held) has its
+//! motion fixed on both sides: its multiplier is a reaction between two
+//! supports, not a contact pressure (docs/conventions.md, "A slave node
+//! fixed on a fixed master point"). [`ContactTable::clamped`] marks it;
+//! `contact.csv`'s last column is `1` there, `0` elsewhere.
 
 use crate::contact::{
     FaceLayout, FaceLayoutError, FaceNodalError, FaceNodalRow, NodalContactError, NodalContactRow,
     NodalState, nodal_contact,
 };
 use crate::dim::SpaceDim;
+use crate::element::FaceKind;
 use crate::ids::NodeId;
+use crate::mesh::face_shape::FaceShape;
 use crate::model::{Dim, SurfaceDim};
 use crate::solution::{Solution, State};
 
@@ -39,6 +50,30 @@ pub enum ContactTableError {
     /// A slave-side kernel failure at a node of a 3D pair.
     #[error(transparent)]
     Faces(#[from] FaceNodalError),
+}
+
+/// A master node whose shape-function weight at the projection is at most
+/// this does not move the master point (module docs, clamped rows).
+pub const HELD_WEIGHT: f64 = 1e-9;
+
+/// Whether slave node `slave` and the master point of `master` (the
+/// facet's nodes and kind, the projection's parametric coordinates) are
+/// both held by supports (module docs, clamped rows): the one decision of
+/// both dimensions.
+fn held_on_both_sides(
+    held: &[bool],
+    slave: usize,
+    master: Option<(&[usize], FaceKind, [f64; 2])>,
+) -> bool {
+    let Some((nodes, kind, xi)) = master else {
+        return false;
+    };
+    let shape = FaceShape::at(kind, xi);
+    held[slave]
+        && nodes
+            .iter()
+            .zip(shape.n)
+            .all(|(&n, w)| w.abs() <= HELD_WEIGHT || held[n])
 }
 
 /// The nodal contact table of dimension `D` (module docs).
@@ -62,11 +97,18 @@ pub trait ContactTable<const D: usize>: SpaceDim<D> {
     fn csv_line(solution: &Solution<D>, row: &Self::Row) -> String
     where
         Dim<D>: SurfaceDim<D>;
+
+    /// Whether the row's slave node is held by supports on both sides
+    /// (module docs, clamped rows): its pressure is a reaction between
+    /// supports.
+    fn clamped(solution: &Solution<D>, row: &Self::Row) -> bool
+    where
+        Dim<D>: SurfaceDim<D>;
 }
 
 impl ContactTable<2> for Dim<2> {
     type Row = NodalContactRow;
-    const HEADER: &'static str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering";
+    const HEADER: &'static str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped";
 
     fn rows(solution: &Solution, state: &State) -> Result<Vec<NodalContactRow>, ContactTableError> {
         Ok(nodal_contact(&NodalState {
@@ -106,18 +148,27 @@ impl ContactTable<2> for Dim<2> {
         };
         let (node, numbering) = number(row.node);
         format!(
-            "{name},{node},{},{},{projection},{},{},{master_numbering}",
+            "{name},{node},{},{},{projection},{},{},{master_numbering},{}",
             num(row.position[0]),
             num(row.position[1]),
             num(row.tributary_length),
             numbering.as_str(),
+            u8::from(Self::clamped(solution, row)),
         )
+    }
+
+    fn clamped(solution: &Solution, row: &NodalContactRow) -> bool {
+        let master = row
+            .projection
+            .as_ref()
+            .map(|p| (&p.master_nodes[..], FaceKind::Segment, [p.xi_m, 0.0]));
+        held_on_both_sides(&solution.held_nodes, row.node, master)
     }
 }
 
 impl ContactTable<3> for Dim<3> {
     type Row = FaceNodalRow;
-    const HEADER: &'static str = "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering";
+    const HEADER: &'static str = "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped";
 
     fn rows(
         solution: &Solution<3>,
@@ -154,11 +205,23 @@ impl ContactTable<3> for Dim<3> {
             .master
             .map_or("", |(_, face)| numbering(face.nodes()[0]));
         format!(
-            "{name},{},{x},{y},{z},{},{},{},{master_numbering}",
+            "{name},{},{x},{y},{z},{},{},{},{master_numbering},{}",
             number(row.node.index()),
             fields.join(","),
             num(row.tributary_area),
             numbering(row.node),
+            u8::from(Self::clamped(solution, row)),
         )
+    }
+
+    fn clamped(solution: &Solution<3>, row: &FaceNodalRow) -> bool {
+        let nodes: Option<Vec<usize>> = row
+            .master
+            .map(|(_, face)| face.nodes().iter().map(|n| n.index()).collect());
+        let master = match (&nodes, row.master, row.xi_m) {
+            (Some(nodes), Some((_, face)), Some(xi)) => Some((&nodes[..], face.kind(), xi)),
+            _ => None,
+        };
+        held_on_both_sides(&solution.held_nodes, row.node.index(), master)
     }
 }

@@ -13,7 +13,9 @@
 //!   of the node projected onto the master face,
 //!   [`crate::contact::nodal_contact`]), `contact_slave` (1 at a slave node of any
 //!   pair, 0 elsewhere) and `contact_paired` (1 where the node projects
-//!   into a master segment, 0 elsewhere). `contact_gap` is 0 where
+//!   into a master segment, 0 elsewhere), `contact_clamped` (1 at a slave
+//!   node held by supports on both sides, whose multiplier is a reaction
+//!   between supports: [`ContactTable::clamped`]). `contact_gap` is 0 where
 //!   `contact_paired` is 0. A node that is a slave node of two pairs
 //!   carries the sum of its pressures (as `multiplier`) and the gap of the
 //!   pair where `|g|` is smallest (the first such pair on a tie);
@@ -133,14 +135,19 @@ where
         multiplier[dof.node] += value;
     }
     let mut slave = vec![0u8; n];
+    let mut clamped = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
-    // (node, gap) of every row of the nodal contact table
-    let rows: Vec<(usize, Option<f64>)> = <Dim<D> as ContactTable<D>>::rows(solution, state)?
+    // (node, gap, clamped) of every row of the nodal contact table
+    let rows: Vec<(usize, Option<f64>, bool)> = <Dim<D> as ContactTable<D>>::rows(solution, state)?
         .iter()
-        .map(<Dim<D> as ContactTable<D>>::node_gap)
+        .map(|r| {
+            let (node, g) = <Dim<D> as ContactTable<D>>::node_gap(r);
+            (node, g, <Dim<D> as ContactTable<D>>::clamped(solution, r))
+        })
         .collect();
-    for (node, g) in rows {
+    for (node, g, c) in rows {
         slave[node] = 1;
+        clamped[node] |= u8::from(c);
         if let Some(g) = g
             && gap[node].is_none_or(|old| g.abs() < old.abs())
         {
@@ -201,6 +208,13 @@ where
         "contact_paired",
         1,
         gap.iter().map(|g| u8::from(g.is_some()).to_string()),
+    );
+    array(
+        &mut out,
+        "UInt8",
+        "contact_clamped",
+        1,
+        clamped.iter().map(|c| c.to_string()),
     );
     let numbers: Vec<(u64, NodeNumbering)> = (0..n).map(|k| mesh.node_number(k)).collect();
     array(
