@@ -352,29 +352,22 @@ fn slip_table(dir: &Path) -> Result<String, String> {
 
 fn main() -> ExitCode {
     let dir = criterion_dir();
+    // One table alone: printed, or its error.
+    let alone = |table: Result<String, String>| match table {
+        Ok(t) => {
+            print!("{t}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("bench_table: {e}");
+            ExitCode::FAILURE
+        }
+    };
     if std::env::args().any(|a| a == "--slip") {
-        return match slip_table(&dir) {
-            Ok(t) => {
-                print!("{t}");
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("bench_table: {e}");
-                ExitCode::FAILURE
-            }
-        };
+        return alone(slip_table(&dir));
     }
     if std::env::args().any(|a| a == "--faces") {
-        return match faces_table(&dir) {
-            Ok(t) => {
-                print!("{t}");
-                ExitCode::SUCCESS
-            }
-            Err(e) => {
-                eprintln!("bench_table: {e}");
-                ExitCode::FAILURE
-            }
-        };
+        return alone(faces_table(&dir));
     }
     // Each table is printed when its group's results exist (`cargo bench
     // --bench kernels -- points64` runs only the second group).

@@ -17,9 +17,15 @@ fn scene() -> PathBuf {
 
 /// Runs `gapsim run SCENE --out DIR ARGS` and returns its stdout.
 fn run(dir: &Path, args: &[&str]) -> String {
+    run_scene(Some(&scene()), dir, args)
+}
+
+/// Runs `gapsim run [SCENE] --out DIR ARGS` (no scene: the embedded paper
+/// scene) and returns its stdout.
+fn run_scene(scene: Option<&Path>, dir: &Path, args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
         .arg("run")
-        .arg(scene())
+        .args(scene)
         .arg("--out")
         .arg(dir)
         .args(args)
@@ -128,17 +134,7 @@ fn contact_csv_balances_the_load() {
 fn the_paper_scene_marks_its_clamped_slave_node() {
     let dir = std::env::temp_dir().join(format!("gapsim-cli-clamped-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let out = Command::new(env!("CARGO_BIN_EXE_gapsim"))
-        .args(["run", "--steps", "4", "--out"])
-        .arg(&dir)
-        .output()
-        .expect("run gapsim");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let stdout = String::from_utf8(out.stdout).unwrap();
+    let stdout = run_scene(None, &dir, &["--steps", "4"]);
     let line = stdout
         .lines()
         .find(|l| l.starts_with("clamped "))

@@ -396,6 +396,46 @@ impl KernelSetPlan {
             ops,
         };
 
+        // The outputs of a kernel of `c` components (`None`: the gap, one
+        // component named `g`, `grad`, `hess`; `Some(c)`: the slip's,
+        // numbered `s0`, `grad0`, `hess0`, ...): the values returned, the
+        // gradients and (with a second-order term) the packed Hessians
+        // stored, component after component, then the closed-form
+        // projection.
+        let derivatives = |c: Option<usize>, hessian: bool, prog: &Program| {
+            let count = c.unwrap_or(1);
+            let label = |s: &str, i: usize| match c {
+                None => s.to_owned(),
+                Some(_) => format!("{s}{i}"),
+            };
+            let mut outputs: Vec<Output> = (0..count)
+                .map(|i| {
+                    scalar(
+                        &label(if c.is_some() { "s" } else { "g" }, i),
+                        i,
+                        Delivery::Return,
+                    )
+                })
+                .collect();
+            outputs.extend((0..count).map(|i| Output {
+                name: label("grad", i),
+                len: n,
+                first: count + i * n,
+                layout: Layout::Vector,
+                delivery: Delivery::Store,
+            }));
+            if hessian {
+                outputs.extend((0..count).map(|i| Output {
+                    name: label("hess", i),
+                    len: nh,
+                    first: count + count * n + i * nh,
+                    layout: Layout::PackedSymmetric { n },
+                    delivery: Delivery::Store,
+                }));
+            }
+            outputs.extend(implicit_out(prog));
+            outputs
+        };
         let kernels: Vec<FunctionPlan> = p
             .kernels
             .iter()
@@ -406,33 +446,10 @@ impl KernelSetPlan {
                 let doc = format!(
                     "`{name}`, type {} (xi_m, x_ms, n: {orders}): gap, gradient{}.{}",
                     t + 1,
-                    if *has_hess {
-                        " and Hessian"
-                    } else {
-                        " (no second-order term)"
-                    },
+                    second_order(*has_hess),
                     ops_doc(&ops)
                 );
-                let mut outputs = vec![
-                    scalar("g", 0, Delivery::Return),
-                    Output {
-                        name: "grad".into(),
-                        len: n,
-                        first: 1,
-                        layout: Layout::Vector,
-                        delivery: Delivery::Store,
-                    },
-                ];
-                if *has_hess {
-                    outputs.push(Output {
-                        name: "hess".into(),
-                        len: nh,
-                        first: 1 + n,
-                        layout: Layout::PackedSymmetric { n },
-                        delivery: Delivery::Store,
-                    });
-                }
-                outputs.extend(implicit_out(prog));
+                let outputs = derivatives(None, *has_hess, prog);
                 FunctionPlan {
                     name: format!("{ident}_type{}", t + 1),
                     doc,
@@ -469,33 +486,10 @@ impl KernelSetPlan {
                      component{}), gradient{}. `xi_m0` is the last converged projection.{}",
                     t + 1,
                     if c == 1 { "" } else { "s" },
-                    if *has_hess {
-                        " and Hessian"
-                    } else {
-                        " (no second-order term)"
-                    },
+                    second_order(*has_hess),
                     ops_doc(&ops)
                 );
-                let mut outputs: Vec<Output> = (0..c)
-                    .map(|i| scalar(&format!("s{i}"), i, Delivery::Return))
-                    .collect();
-                outputs.extend((0..c).map(|i| Output {
-                    name: format!("grad{i}"),
-                    len: n,
-                    first: c + i * n,
-                    layout: Layout::Vector,
-                    delivery: Delivery::Store,
-                }));
-                if *has_hess {
-                    outputs.extend((0..c).map(|i| Output {
-                        name: format!("hess{i}"),
-                        len: nh,
-                        first: c + c * n + i * nh,
-                        layout: Layout::PackedSymmetric { n },
-                        delivery: Delivery::Store,
-                    }));
-                }
-                outputs.extend(implicit_out(prog));
+                let outputs = derivatives(Some(c), *has_hess, prog);
                 FunctionPlan {
                     name: format!("{ident}_slip_type{}", t + 1),
                     doc,
@@ -536,6 +530,15 @@ impl FunctionPlan {
     /// The output named `name`, if any.
     pub fn output(&self, name: &str) -> Option<&Output> {
         self.outputs.iter().find(|o| o.name == name)
+    }
+}
+
+/// How a kernel's documentation names its second-order term.
+fn second_order(hessian: bool) -> &'static str {
+    if hessian {
+        " and Hessian"
+    } else {
+        " (no second-order term)"
     }
 }
 

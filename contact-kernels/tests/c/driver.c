@@ -41,6 +41,8 @@ static void print_bits(double x)
     printf(" %016" PRIx64, u);
 }
 
+/* One type's line: the status and, on GAPSIM_OK, the bits of the value
+ * (the gap or the slip), xi_m, grad[8] and (types 2..6) hess[64]. */
 static void print_outputs(int status, double value, double xi_m, const double grad[8],
                           const double hess[64], int t)
 {
@@ -65,7 +67,7 @@ static void run(project_fn project, const type_fn types[6], const slip_fn slips[
                 const double q[8], double xi_s, double xi_m0)
 {
     double gap = 0.0, xi_m = 0.0, grad[8], hess[64];
-    int status, t, i;
+    int status, t;
     status = project(q, xi_s, &gap, &xi_m);
     printf("%d", status);
     if (status == GAPSIM_OK) {
@@ -76,20 +78,7 @@ static void run(project_fn project, const type_fn types[6], const slip_fn slips[
     for (t = 0; t < 6; ++t) {
         /* Type 1 gets NULL for hess (documented as accepted). */
         status = types[t](q, xi_s, &gap, &xi_m, grad, t == 0 ? NULL : hess);
-        printf("%d", status);
-        if (status == GAPSIM_OK) {
-            print_bits(gap);
-            print_bits(xi_m);
-            for (i = 0; i < 8; ++i) {
-                print_bits(grad[i]);
-            }
-            if (t > 0) {
-                for (i = 0; i < 64; ++i) {
-                    print_bits(hess[i]);
-                }
-            }
-        }
-        printf("\n");
+        print_outputs(status, gap, xi_m, grad, hess, t);
     }
     for (t = 0; t < 6; ++t) {
         double slip[1] = {0.0};
