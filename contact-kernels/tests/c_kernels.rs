@@ -598,7 +598,7 @@ fn quadratic_configurations() -> Vec<(String, [f64; 12], f64)> {
 /// The Rust side for one 3-node configuration: the projection and types
 /// 1..=6, in the driver's order.
 #[cfg(feature = "quadratic-slave-normal")]
-fn rust_quadratic_outcomes(q: &[f64; 12], xi_s: f64) -> Vec<Outcome> {
+fn rust_quadratic_outcomes(q: &[f64; 12], xi_s: f64, xi_m0: f64) -> Vec<Outcome> {
     let f = Formulation::QuadraticSlaveNormal;
     let mut out = vec![
         match Projector::new(f).unwrap().project(q, xi_s, &mut [0.0; 12]) {
@@ -630,6 +630,9 @@ fn rust_quadratic_outcomes(q: &[f64; 12], xi_s: f64) -> Vec<Outcome> {
             },
         });
     }
+    for ty in ApproxType::ALL {
+        out.push(rust_slip(f, ty, q, &[xi_s], &[xi_m0]));
+    }
     out
 }
 
@@ -655,8 +658,12 @@ fn c_quadratic_kernels_equal_rust_kernels_bit_for_bit() {
     );
     let configs = quadratic_configurations();
     let mut input = String::new();
-    for (_, q, xi_s) in &configs {
-        input.push_str(&format!("{:016x}", xi_s.to_bits()));
+    for (k, (_, q, xi_s)) in configs.iter().enumerate() {
+        input.push_str(&format!(
+            "{:016x} {:016x}",
+            xi_s.to_bits(),
+            previous(k, *xi_s).to_bits()
+        ));
         for v in q {
             input.push_str(&format!(" {:016x}", v.to_bits()));
         }
@@ -674,12 +681,13 @@ fn c_quadratic_kernels_equal_rust_kernels_bit_for_bit() {
     assert!(output.status.success(), "the driver failed");
     let text = String::from_utf8(output.stdout).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    assert_eq!(lines.len(), configs.len() * 7, "driver output lines");
+    assert_eq!(lines.len(), configs.len() * 13, "driver output lines");
     let (mut values, mut differences) = (0usize, Vec::new());
-    let mut statuses = [0usize; 12];
+    let mut statuses = [0usize; 18];
     for (k, (family, q, xi_s)) in configs.iter().enumerate() {
-        for (j, r) in rust_quadratic_outcomes(q, *xi_s).into_iter().enumerate() {
-            let cside = parse_outcome(lines[k * 7 + j]);
+        let rust = rust_quadratic_outcomes(q, *xi_s, previous(k, *xi_s));
+        for (j, r) in rust.into_iter().enumerate() {
+            let cside = parse_outcome(lines[k * 13 + j]);
             statuses[r.status as usize] += 1;
             values += r.bits.len();
             if cside != r {
@@ -690,8 +698,8 @@ fn c_quadratic_kernels_equal_rust_kernels_bit_for_bit() {
         }
     }
     eprintln!(
-        "quadratic-slave-normal: {} configurations x 7 functions: {values} output values \
-         compared bit for bit; statuses (0..=11) {statuses:?}; {} differences",
+        "quadratic-slave-normal: {} configurations x 13 functions: {values} output values \
+         compared bit for bit; statuses (0..=17) {statuses:?}; {} differences",
         configs.len(),
         differences.len()
     );

@@ -5,11 +5,13 @@
  * hexadecimal bits of each double, for a bit-for-bit comparison with the
  * Rust kernels.
  *
- * Input, one configuration per line: xi_s then q[0..12], each as 16 hex
- * digits (the bits of the double).
- * Output, per configuration, 7 lines: the projection and types 1..6, each
- * "status" followed, when the status is GAPSIM_OK, by the bits of gap, xi_m
- * and (types) grad[12] and (types 2..6) hess[144].
+ * Input, one configuration per line: xi_s, xi_m0 (the slip's last
+ * converged projection) then q[0..12], each as 16 hex digits (the bits of
+ * the double).
+ * Output, per configuration, 13 lines: the projection, types 1..6 and the
+ * slip's types 1..6, each "status" followed, when the status is GAPSIM_OK,
+ * by the bits of gap (the slip), xi_m and (types) grad[12] and (types
+ * 2..6) hess[144].
  */
 #include <inttypes.h>
 #include <stdint.h>
@@ -23,6 +25,8 @@
 
 typedef int (*type_fn)(const double q[N], double xi_s, double *gap, double *xi_m,
                        double grad[N], double *hess);
+typedef int (*slip_fn)(const double q[N], double xi_s, double xi_m0, double slip[1],
+                       double *xi_m, double grad[N], double *hess);
 
 static double from_bits(uint64_t u)
 {
@@ -38,6 +42,28 @@ static void print_bits(double x)
     printf(" %016" PRIx64, u);
 }
 
+/* One type's line: the status and, on GAPSIM_OK, the bits of the value
+ * (the gap or the slip), xi_m, grad[N] and (types 2..6) hess[N * N]. */
+static void print_outputs(int status, double value, double xi_m, const double *grad,
+                          const double *hess, int t)
+{
+    int i;
+    printf("%d", status);
+    if (status == GAPSIM_OK) {
+        print_bits(value);
+        print_bits(xi_m);
+        for (i = 0; i < N; ++i) {
+            print_bits(grad[i]);
+        }
+        if (t > 0) {
+            for (i = 0; i < N * N; ++i) {
+                print_bits(hess[i]);
+            }
+        }
+    }
+    printf("\n");
+}
+
 int main(void)
 {
     static const type_fn types[6] = {
@@ -45,12 +71,17 @@ int main(void)
         gapsim_quadratic_slave_normal_type3, gapsim_quadratic_slave_normal_type4,
         gapsim_quadratic_slave_normal_type5, gapsim_quadratic_slave_normal_type6,
     };
+    static const slip_fn slips[6] = {
+        gapsim_quadratic_slave_normal_slip_type1, gapsim_quadratic_slave_normal_slip_type2,
+        gapsim_quadratic_slave_normal_slip_type3, gapsim_quadratic_slave_normal_slip_type4,
+        gapsim_quadratic_slave_normal_slip_type5, gapsim_quadratic_slave_normal_slip_type6,
+    };
     char line[1024];
     while (fgets(line, sizeof line, stdin) != NULL) {
-        double v[N + 1], gap = 0.0, xi_m = 0.0, grad[N], hess[N * N];
+        double v[N + 2], gap = 0.0, xi_m = 0.0, grad[N], hess[N * N];
         char *at = line;
         int i, t, status;
-        for (i = 0; i < N + 1; ++i) {
+        for (i = 0; i < N + 2; ++i) {
             char *end;
             v[i] = from_bits((uint64_t)strtoull(at, &end, 16));
             if (end == at) {
@@ -59,7 +90,7 @@ int main(void)
             }
             at = end;
         }
-        status = gapsim_quadratic_slave_normal_project(v + 1, v[0], &gap, &xi_m);
+        status = gapsim_quadratic_slave_normal_project(v + 2, v[0], &gap, &xi_m);
         printf("%d", status);
         if (status == GAPSIM_OK) {
             print_bits(gap);
@@ -68,21 +99,13 @@ int main(void)
         printf("\n");
         for (t = 0; t < 6; ++t) {
             /* Type 1 gets NULL for hess (documented as accepted). */
-            status = types[t](v + 1, v[0], &gap, &xi_m, grad, t == 0 ? NULL : hess);
-            printf("%d", status);
-            if (status == GAPSIM_OK) {
-                print_bits(gap);
-                print_bits(xi_m);
-                for (i = 0; i < N; ++i) {
-                    print_bits(grad[i]);
-                }
-                if (t > 0) {
-                    for (i = 0; i < N * N; ++i) {
-                        print_bits(hess[i]);
-                    }
-                }
-            }
-            printf("\n");
+            status = types[t](v + 2, v[0], &gap, &xi_m, grad, t == 0 ? NULL : hess);
+            print_outputs(status, gap, xi_m, grad, hess, t);
+        }
+        for (t = 0; t < 6; ++t) {
+            double slip[1] = {0.0};
+            status = slips[t](v + 2, v[0], v[1], slip, &xi_m, grad, t == 0 ? NULL : hess);
+            print_outputs(status, slip[0], xi_m, grad, hess, t);
         }
     }
     return 0;
