@@ -387,12 +387,6 @@ pub fn gap_value(formulation: &Formulation, dag: &mut Dag) -> Result<Id, Error> 
     formulation.eval_gap(dag, &env)
 }
 
-/// The values of the formulation's slip components (none without `slip!`).
-pub fn slip_value(formulation: &Formulation, dag: &mut Dag) -> Result<Vec<Id>, Error> {
-    let env = entity_values(formulation, dag);
-    formulation.eval_slip(dag, &env)
-}
-
 /// Every entity's value and the implicit unknown's, by name.
 fn entity_values(formulation: &Formulation, dag: &mut Dag) -> HashMap<String, Value<Id>> {
     let mut env: HashMap<String, Value<Id>> = formulation

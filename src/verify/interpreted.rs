@@ -27,6 +27,8 @@ pub struct InterpretedKernels {
     dim: usize,
     /// Components of the implicit unknown (1, or 2 for faces).
     k: usize,
+    /// The slip's components (0 without `slip!`).
+    slip_components: usize,
 }
 
 /// What [`InterpretedKernels::flip_sign`] changed.
@@ -50,6 +52,7 @@ impl InterpretedKernels {
             n: f.signature.coords(),
             dim: f.signature.dim(),
             k: f.implicit.dim(),
+            slip_components: f.slip_components(),
         })
     }
 
@@ -110,33 +113,8 @@ impl InterpretedKernels {
     /// Runs type `ty` (1..=6) at relative coordinates `d`. `None` when the
     /// projection (Newton on the residual program) fails.
     pub fn eval(&self, ty: usize, d: &[f64], params: &[f64]) -> Option<KernelOutput> {
-        let (n, k) = (self.n, self.k);
-        let xi = if self.programs.affine {
-            vec![0.0; k]
-        } else {
-            self.project(d, params)?
-        };
         let (prog, has_hessian) = &self.programs.kernels[ty - 1];
-        let out = prog.run_vector(d, params, &xi);
-        let xi_m = if self.programs.affine {
-            // The closed-form projection is the last `k` outputs.
-            out[out.len() - k..].to_vec()
-        } else {
-            xi
-        };
-        let grad = out[1..1 + n].to_vec();
-        let hess = has_hessian.then(|| {
-            let mut h = vec![0.0; n * n];
-            unpack_hessian(&out[1 + n..], n, &mut h);
-            h
-        });
-        Some(KernelOutput {
-            gap: out[0],
-            xi_m: xi_m[0],
-            xi_rest: xi_m[1..].to_vec(),
-            grad,
-            hess,
-        })
+        self.run(prog, *has_hessian, 1, d, params)?.pop()
     }
 
     /// Whether the formulation defines a slip (`slip!`).
@@ -149,8 +127,24 @@ impl InterpretedKernels {
     /// component (its value in [`KernelOutput::gap`]); `None` when the
     /// projection fails or the formulation has no slip.
     pub fn eval_slip(&self, ty: usize, d: &[f64], params: &[f64]) -> Option<Vec<KernelOutput>> {
-        let (n, k) = (self.n, self.k);
         let (prog, has_hessian) = self.programs.slips.get(ty.checked_sub(1)?)?;
+        self.run(prog, *has_hessian, self.slip_components, d, params)
+    }
+
+    /// Runs a kernel program of `c` components (the gap's: 1; the layout
+    /// `[values, gradients, packed Hessians]` of
+    /// [`FormulationPrograms::kernels`] and `slips`, the closed-form
+    /// projection last), the projection solved first unless the program
+    /// solves it. `None` when the projection fails.
+    fn run(
+        &self,
+        prog: &Program,
+        has_hessian: bool,
+        c: usize,
+        d: &[f64],
+        params: &[f64],
+    ) -> Option<Vec<KernelOutput>> {
+        let (n, k) = (self.n, self.k);
         let xi = if self.programs.affine {
             vec![0.0; k]
         } else {
@@ -158,11 +152,11 @@ impl InterpretedKernels {
         };
         let out = prog.run_vector(d, params, &xi);
         let xi_m = if self.programs.affine {
+            // The closed-form projection is the last `k` outputs.
             out[out.len() - k..].to_vec()
         } else {
             xi
         };
-        let c = (out.len() - if self.programs.affine { k } else { 0 }) / (1 + n + n * (n + 1) / 2);
         let packed = n * (n + 1) / 2;
         Some(
             (0..c)

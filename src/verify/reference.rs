@@ -68,24 +68,10 @@ pub const TABLE_ENTITIES: [&str; 3] = ["xi_m", "x_ms", "n"];
 /// "The slip").
 pub const SLIP_ENTITY: (&str, usize) = ("s_m", 1);
 
-/// What a reference is computed for: the gap, or the slip's components.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Quantity {
-    /// The gap `g`.
-    Gap,
-    /// The slip (`slip!`): its components.
-    Slip,
-}
-
-impl Quantity {
-    /// codegen's name for it (for the parse-level entity filter only).
-    fn codegen(self) -> codegen::truncation::Quantity {
-        match self {
-            Quantity::Gap => codegen::truncation::Quantity::Gap,
-            Quantity::Slip => codegen::truncation::Quantity::Slip,
-        }
-    }
-}
+/// What a reference is computed for: the gap, or the slip's components
+/// (codegen's enum: the reference filters the parsed entities by it, and
+/// uses none of codegen's derivative pipeline).
+pub use codegen::truncation::Quantity;
 
 /// Newton iterations of the `f64` projection solve.
 const ITERATIONS: usize = 50;
@@ -341,13 +327,13 @@ impl AdFormulation {
     ) -> HashMap<String, Value<D>> {
         let roots: Vec<Id> = self
             .f
-            .entities_for(quantity.codegen())
+            .entities_for(quantity)
             .flat_map(|e| e.value.components())
             .collect();
         let vals = eval_nodes(&self.f, &roots, &self.input(q, params, xi));
         let mut at = 0;
         let mut out = HashMap::new();
-        for e in self.f.entities_for(quantity.codegen()) {
+        for e in self.f.entities_for(quantity) {
             let len = e.value.components().len();
             out.insert(e.name.clone(), e.value.like(&vals[at..at + len]));
             at += len;
@@ -490,7 +476,7 @@ impl AdFormulation {
         // Entity components as functions of z = (q, xi) at fixed xi.
         let names: Vec<(String, usize)> = self
             .f
-            .entities_for(quantity.codegen())
+            .entities_for(quantity)
             .flat_map(|e| (0..e.value.components().len()).map(move |c| (e.name.clone(), c)))
             .collect();
         let m = names.len();
@@ -503,7 +489,7 @@ impl AdFormulation {
                 let e = self.entities(&qd, params, &xi, quantity);
                 let comps: Vec<HyperDual64> = self
                     .f
-                    .entities_for(quantity.codegen())
+                    .entities_for(quantity)
                     .flat_map(|x| e[&x.name].components())
                     .collect();
                 for (c, v) in comps.iter().enumerate() {
@@ -529,7 +515,7 @@ impl AdFormulation {
                     Value::from_components(&v[..kx]),
                 );
                 let mut at = kx;
-                for e in self.f.entities_for(quantity.codegen()) {
+                for e in self.f.entities_for(quantity) {
                     let len = e.value.components().len();
                     map.insert(e.name.clone(), e.value.like(&v[at..at + len]));
                     at += len;

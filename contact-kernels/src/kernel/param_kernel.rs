@@ -113,7 +113,7 @@ pub(crate) fn eval_point<K: ParamKernel<P>, const P: usize>(
     };
     k.check(d, xi_s, xi_m)?;
     if !(finite && gap.is_finite()) {
-        return Err(non_finite(gap, grad, xi_m[0]));
+        return Err(non_finite(&[gap], OutputKind::Gap, grad, xi_m[0]));
     }
     Ok((gap, xi_m))
 }
@@ -169,27 +169,18 @@ pub(crate) fn slip_point<K: ParamKernel<P>, const P: usize>(
     let (grad, hess) = (&grad[..components * n], &hess[..components * n * n]);
     let finite = all_finite(grad) && (!hessian || all_finite(hess));
     if !(finite && all_finite(slip)) {
-        let output = if !all_finite(slip) {
-            OutputKind::Slip
-        } else if !all_finite(grad) {
-            OutputKind::Gradient
-        } else {
-            OutputKind::Hessian
-        };
-        return Err(KernelError::NonFiniteOutput {
-            output,
-            xi_m: xi_m[0],
-        });
+        return Err(non_finite(slip, OutputKind::Slip, grad, xi_m[0]));
     }
     Ok((xi_m, hessian))
 }
 
 /// The error of a kernel output that is not finite: the first non-finite
-/// one, in the order gap, gradient, Hessian (cold path).
+/// one, in the order value (`kind`: the gap or the slip), gradient,
+/// Hessian (cold path).
 #[cold]
-fn non_finite(gap: f64, grad: &[f64], xi_m: f64) -> KernelError {
-    let output = if !gap.is_finite() {
-        OutputKind::Gap
+fn non_finite(value: &[f64], kind: OutputKind, grad: &[f64], xi_m: f64) -> KernelError {
+    let output = if !all_finite(value) {
+        kind
     } else if !all_finite(grad) {
         OutputKind::Gradient
     } else {
