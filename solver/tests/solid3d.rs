@@ -479,6 +479,7 @@ fn a_3d_model_refuses_a_pair_sharing_nodes_and_nu_one_half_and_2d_elements() {
         master: vec![face],
         formulation: Formulation::SlaveNormal,
         mode: ContactMode::Unilateral,
+        friction: 0.0,
         gauss_points: None,
         integration: Integration::Gauss,
     });

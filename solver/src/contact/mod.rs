@@ -238,6 +238,7 @@ pub mod clip;
 pub mod face;
 pub mod face_index;
 pub mod face_rules;
+pub mod friction;
 mod layout_error;
 pub mod reference;
 mod report;

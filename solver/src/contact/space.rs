@@ -42,6 +42,7 @@ use crate::model::{Dim, SurfaceDim};
 use crate::par;
 use crate::system::{DofMap, System};
 
+use super::friction::{Anchor, FrictionState, NodalFriction};
 use super::layout_error::FaceLayoutError;
 use super::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 use super::{KernelCounts, MultiplierDof, NodeTie, PAR_MIN_LEN, PointFailure, slave_side};
@@ -86,9 +87,93 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     fn point_count(&self) -> usize;
     /// The multiplier dofs, in multiplier order.
     fn multipliers(&self) -> &[MultiplierDof];
-    /// The number of multiplier dofs.
+    /// The number of multiplier dofs: the normal ones, then the
+    /// tangential ones of the pairs with friction ([`super::friction`]).
     fn multiplier_count(&self) -> usize {
         self.multipliers().len()
+    }
+    /// Whether a pair has friction (default: none; friction is an
+    /// optional capability, 2D's only for now).
+    fn has_friction(&self) -> bool {
+        false
+    }
+    /// Whether point `i`'s pair has friction (default: never).
+    fn point_has_friction(&self, _i: ContactPointIndex) -> bool {
+        false
+    }
+    /// The anchor of an evaluation: its master and projection (default:
+    /// none, an element without friction).
+    fn anchor(_e: &Self::Eval) -> Option<Anchor<Self::Master>> {
+        None
+    }
+    /// The anchor of a projection (default: none).
+    fn found_anchor(_f: &Self::Found) -> Option<Anchor<Self::Master>> {
+        None
+    }
+    /// Adds to `e`, point `i`'s evaluation at displacements `u`, its slip
+    /// (the kernel of type `ty`) measured from `anchor` (module docs of
+    /// [`super::friction`]). Default: nothing (no friction).
+    #[allow(clippy::too_many_arguments)] // one point's evaluation
+    fn add_slip(
+        &self,
+        _mesh: &Mesh<D>,
+        _u: &[f64],
+        _i: ContactPointIndex,
+        _e: &mut Self::Eval,
+        _anchor: Anchor<Self::Master>,
+        _ty: ApproxType,
+    ) -> Result<(), KernelError> {
+        Ok(())
+    }
+    /// [`add_slip`](Self::add_slip) at every evaluated point of a pair
+    /// with friction that has an anchor, in point order; the first failure
+    /// names its point.
+    fn add_slips(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+        evals: &mut [Option<Self::Eval>],
+        anchors: &[Option<Anchor<Self::Master>>],
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<(), PointFailure<Self::Master>> {
+        for (k, (e, anchor)) in evals.iter_mut().zip(anchors).enumerate() {
+            let i = ContactPointIndex::new(k);
+            let (Some(e), Some(anchor)) = (e, anchor) else {
+                continue;
+            };
+            if !self.point_has_friction(i) {
+                continue;
+            }
+            counts.evaluate += 1;
+            self.add_slip(mesh, u, i, e, *anchor, ty)
+                .map_err(|error| PointFailure {
+                    point: i,
+                    master_segment: Some(Self::master(e)),
+                    error,
+                })?;
+        }
+        Ok(())
+    }
+    /// Each tangential multiplier's state at `(evals, lambda)` with the
+    /// active set `active` (default: none).
+    fn friction_states(
+        &self,
+        _evals: &[Option<Self::Eval>],
+        _lambda: &[f64],
+        _active: &[bool],
+    ) -> Vec<FrictionState> {
+        Vec::new()
+    }
+    /// Each tangential multiplier's node, state and step slip at a
+    /// converged iterate (default: none).
+    fn nodal_friction(
+        &self,
+        _evals: &[Option<Self::Eval>],
+        _lambda: &[f64],
+        _active: &[bool],
+    ) -> Vec<NodalFriction> {
+        Vec::new()
     }
     /// The slave node and pair of every multiplier.
     fn multiplier_dofs(&self) -> Vec<MultiplierDofInfo> {

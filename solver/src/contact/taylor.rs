@@ -10,8 +10,9 @@
 //! gradient is the derivative of its gap and its Hessian that of its
 //! gradient, so Newton's tangent is exact within a step.
 
-use nalgebra::SVector;
+use nalgebra::{SMatrix, SVector};
 
+use super::friction::SlipTerm;
 use super::term::GapTerm;
 
 /// Frozen Taylor coefficients of one integration point for one load step,
@@ -44,24 +45,46 @@ impl<E: GapTerm<N>, const N: usize> Taylor<E, N> {
         }
     }
 
-    /// The second-order expansion at displacements `u` (global vector).
+    /// The second-order expansion at displacements `u` (global vector):
+    /// the gap's and, when the point has one, the slip's (the same
+    /// expansion of its own coefficients, [`crate::contact::friction`]).
     pub fn expand(&self, u: &[f64]) -> E {
         let s = &self.at_start;
         let d = local(s, u) - self.u0;
-        match s.hess() {
-            Some(h) => {
-                let hd = h * d;
-                s.with_gap(s.gap() + s.grad().dot(&d) + 0.5 * d.dot(&hd), s.grad() + hd)
+        let (gap, grad) = expand_value(s.gap(), s.grad(), s.hess(), &d);
+        let e = s.with_gap(gap, grad);
+        match s.slip() {
+            Some(st) => {
+                let (slip, grad) = expand_value(st.slip, &st.grad, st.hess.as_ref(), &d);
+                e.with_slip(SlipTerm {
+                    slip,
+                    grad,
+                    hess: st.hess,
+                })
             }
-            None => s.with_gap(s.gap() + s.grad().dot(&d), *s.grad()),
+            None => e,
         }
+    }
+}
+
+/// `f0 + f'0 . d + 1/2 d . f''0 d` and its gradient `f'0 + f''0 d`.
+fn expand_value<const N: usize>(
+    f0: f64,
+    grad: &SVector<f64, N>,
+    hess: Option<&SMatrix<f64, N, N>>,
+    d: &SVector<f64, N>,
+) -> (f64, SVector<f64, N>) {
+    match hess {
+        Some(h) => {
+            let hd = h * d;
+            (f0 + grad.dot(d) + 0.5 * d.dot(&hd), grad + hd)
+        }
+        None => (f0 + grad.dot(d), *grad),
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use nalgebra::SMatrix;
-
     use super::*;
     use crate::contact::{PointEval, SegmentTaylor};
     use crate::ids::MasterSegmentIndex;
@@ -77,6 +100,7 @@ mod tests {
             xi_m: 0.1,
             grad: SVector::<f64, 8>::from_fn(|i, _| i as f64 * 0.1 - 0.3),
             hess: Some(h),
+            slip: None,
         };
         let u0 = SVector::<f64, 8>::from_fn(|i, _| 0.01 * i as f64);
         let t: SegmentTaylor = Taylor { at_start, u0 };

@@ -23,6 +23,8 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::ids::{DofId, MultiplierIndex};
 
+use super::friction::SlipTerm;
+
 /// The most multipliers one point's slave face carries (a quad4's four
 /// nodes).
 pub const MAX_POINT_MULTIPLIERS: usize = 4;
@@ -78,4 +80,15 @@ pub trait GapTerm<const N: usize>: Clone {
     /// The same evaluation with gap `gap` and gradient `grad` (the Hessian
     /// kept): the Taylor expansion's value at another displacement.
     fn with_gap(&self, gap: f64, grad: SVector<f64, N>) -> Self;
+    /// The point's slip, when its pair has friction and the slip was
+    /// evaluated (default: none; [`super::friction`]).
+    fn slip(&self) -> Option<&SlipTerm<N>> {
+        None
+    }
+    /// The same evaluation with the slip `slip` (default: unchanged, an
+    /// evaluation that carries no slip).
+    fn with_slip(&self, slip: SlipTerm<N>) -> Self {
+        let _ = slip;
+        self.clone()
+    }
 }

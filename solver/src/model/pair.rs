@@ -160,6 +160,8 @@ where
     pub formulation: Formulation,
     /// Persistent or unilateral.
     pub mode: ContactMode,
+    /// Coulomb's coefficient `mu` (0: frictionless; finite, `>= 0`).
+    pub friction: f64,
     /// `gauss_points`: on a segment `n` points (1..=8), on a quad4 `n x n`,
     /// on a tri3 `n` (1, 3, 4, 6 or 7); with segmented integration the
     /// rule on each piece (3D: each clipped triangle, 1, 3 or 7). `None`:

@@ -17,6 +17,7 @@ use std::time::Instant;
 use contact_kernels::ApproxType;
 
 use crate::contact::ContactSpace;
+use crate::contact::friction::Anchor;
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
 use crate::error::SolverError;
 use crate::solution::{ContactPointId, CutbackReason};
@@ -33,16 +34,26 @@ use crate::model::{Dim, SurfaceDim};
 pub(super) const DERIVATIVES: ApproxType = ApproxType::Type6;
 
 /// The complete formulation (module docs); its state is the current
-/// attempt's pairing guard.
+/// attempt's pairing guard and, with friction, every point's projection
+/// at the run's converged state: the slip's anchors
+/// ([`crate::contact::friction`]), taken at the first attempt from each
+/// converged state.
 pub(super) struct Complete<M> {
     /// The pairing changes of the current attempt.
     guard: PairingGuard<M>,
+    /// Each point's anchor at the converged state (`None`: it projects
+    /// nowhere); empty without friction.
+    anchors: Vec<Option<Anchor<M>>>,
+    /// Whether `anchors` belong to the run's converged state.
+    anchored: bool,
 }
 
 impl<M> Default for Complete<M> {
     fn default() -> Self {
         Complete {
             guard: PairingGuard::default(),
+            anchors: Vec::new(),
+            anchored: false,
         }
     }
 }
@@ -51,12 +62,29 @@ impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Complete<S::
 where
     Dim<D>: SurfaceDim<D>,
 {
+    /// Starts the pairing guard; with friction, projects every point at the
+    /// converged state once per converged state (the slip's anchors).
     fn begin_attempt(
         &mut self,
-        _cx: &mut Context<'_, '_, D, S>,
-        _start: StepStart<'_, S::Master>,
+        cx: &mut Context<'_, '_, D, S>,
+        start: StepStart<'_, S::Master>,
     ) -> Result<(), SolverError> {
         self.guard = PairingGuard::default();
+        if cx.setup.layout.has_friction() && !self.anchored {
+            let t = Instant::now();
+            let (found, counts) = cx
+                .setup
+                .layout
+                .project_all(&cx.setup.model.mesh, start.u, start.pairing)
+                .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
+            *cx.counts += counts;
+            self.anchors = found
+                .iter()
+                .map(|f| f.as_ref().and_then(S::found_anchor))
+                .collect();
+            self.anchored = true;
+            cx.timings.contact_evaluation += t.elapsed();
+        }
         Ok(())
     }
 
@@ -69,7 +97,22 @@ where
         x: &mut Iterate<S::Master>,
         at_once: bool,
     ) -> Result<Evaluations<D, S>, CutbackReason> {
-        match evaluate(cx.setup, &x.u, &x.pairing, &x.ties, at_once, cx.counts) {
+        let evaluated = evaluate(cx.setup, &x.u, &x.pairing, &x.ties, at_once, cx.counts).and_then(
+            |(mut evals, others)| {
+                if self.anchored {
+                    cx.setup.layout.add_slips(
+                        &cx.setup.model.mesh,
+                        &x.u,
+                        &mut evals,
+                        &self.anchors,
+                        DERIVATIVES,
+                        cx.counts,
+                    )?;
+                }
+                Ok((evals, others))
+            },
+        );
+        match evaluated {
             Ok((evals, others)) => {
                 x.pairing = evals.iter().map(|e| e.as_ref().map(S::master)).collect();
                 Ok((evals, others))
@@ -128,7 +171,9 @@ where
         Ok(SolveEnd::Done(Box::new(AttemptOutcome::Converged(c))))
     }
 
-    fn committed(&mut self) {}
+    fn committed(&mut self) {
+        self.anchored = false;
+    }
 
     fn step_end_projections(&self) -> u64 {
         0

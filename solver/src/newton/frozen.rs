@@ -21,6 +21,7 @@ use std::time::Instant;
 use contact_kernels::ApproxType;
 
 use crate::contact::ContactSpace;
+use crate::contact::friction::Anchor;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::solution::CutbackReason;
@@ -46,6 +47,9 @@ pub(super) struct Frozen<const D: usize, S: ContactSpace<D>> {
     pub(super) check: Check<S::Master>,
     /// Projection and kernel calls of the step-end checks.
     pub(super) step_end_projections: u64,
+    /// With friction, each point's anchor at the converged state (its
+    /// projection there, where its slip is measured from); empty without.
+    pub(super) anchors: Vec<Option<Anchor<S::Master>>>,
 }
 
 /// The step-end check's state within one attempt (`repair.rs`).
@@ -92,6 +96,7 @@ where
             current: false,
             check: Check::default(),
             step_end_projections: 0,
+            anchors: Vec::new(),
         }
     }
 
@@ -106,12 +111,21 @@ where
         start.ties.clear();
         self.ties.clear();
         let t = Instant::now();
-        let (evals, counts) = cx
-            .setup
-            .layout
-            .evaluate_all(&cx.setup.model.mesh, start.u, start.pairing, self.ty)
+        let layout = &cx.setup.layout;
+        let mesh = &cx.setup.model.mesh;
+        let (mut evals, counts) = layout
+            .evaluate_all(mesh, start.u, start.pairing, self.ty)
             .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
         *cx.counts += counts;
+        if layout.has_friction() {
+            self.anchors = evals
+                .iter()
+                .map(|e| e.as_ref().and_then(S::anchor))
+                .collect();
+            layout
+                .add_slips(mesh, start.u, &mut evals, &self.anchors, self.ty, cx.counts)
+                .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
+        }
         *start.pairing = evals.iter().map(|e| e.as_ref().map(S::master)).collect();
         self.points = evals
             .into_iter()
@@ -120,6 +134,31 @@ where
         self.current = true;
         cx.timings.contact_evaluation += t.elapsed();
         Ok(())
+    }
+}
+
+impl<const D: usize, S: ContactSpace<D>> Frozen<D, S>
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    /// Point `i`'s evaluation `e` at displacements `u` with its slip from
+    /// the step's anchor, when its pair has friction (`repair.rs`'s new
+    /// expansions); a slip the kernel cannot evaluate is its error.
+    pub(super) fn with_slip(
+        &self,
+        cx: &mut Context<'_, '_, D, S>,
+        u: &[f64],
+        i: ContactPointIndex,
+        mut e: S::Eval,
+    ) -> Result<S::Eval, contact_kernels::KernelError> {
+        let layout = &cx.setup.layout;
+        if let Some(Some(anchor)) = self.anchors.get(i.index())
+            && layout.point_has_friction(i)
+        {
+            cx.counts.evaluate += 1;
+            layout.add_slip(&cx.setup.model.mesh, u, i, &mut e, *anchor, self.ty)?;
+        }
+        Ok(e)
     }
 }
 

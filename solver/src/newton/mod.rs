@@ -215,6 +215,8 @@ mod treatment;
 
 use std::time::Instant;
 
+use contact_kernels::ApproxType;
+
 use crate::contact::ContactSpace;
 use crate::contact::{KernelCounts, NodeTie};
 use crate::error::SolverError;
@@ -324,6 +326,7 @@ where
             return Err(SolverError::Options(why));
         }
         let setup = Setup::<D, S>::new(model, opts)?;
+        check_friction(model, setup.layout.has_friction(), opts.method)?;
         let n_points = setup.layout.point_count();
         // the one place that matches on the method
         let treatment: Box<dyn ContactTreatment<D, S>> = match opts.method {
@@ -557,4 +560,41 @@ where
         prescribed[p.dof.node_in::<D>().index()] += 1;
     }
     prescribed.into_iter().map(|c| c == D).collect()
+}
+
+/// The pairs' friction against what the solve can do (see
+/// [`crate::contact::friction`]): a coefficient finite and `>= 0`; above 0
+/// only on unilateral pairs of an element that solves friction (2D
+/// segments), with the complete formulation or Types 2–6 (Type 1 keeps
+/// `xi_m` constant, so its slip is zero within a step: it would carry no
+/// friction, and its stick rows would be empty).
+fn check_friction<const D: usize>(
+    model: &Model<D>,
+    solves_friction: bool,
+    method: Method,
+) -> Result<(), SolverError>
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    for pair in &model.contacts {
+        let mu = pair.friction;
+        let why = if !(mu.is_finite() && mu >= 0.0) {
+            format!("friction must be a finite number >= 0, got {mu}")
+        } else if mu == 0.0 {
+            continue;
+        } else if pair.mode != crate::model::ContactMode::Unilateral {
+            "friction needs a unilateral pair".to_owned()
+        } else if !solves_friction {
+            "friction between 3D faces is not solved yet".to_owned()
+        } else if method == Method::Approx(ApproxType::Type1) {
+            "Type 1 cannot carry friction: it keeps xi_m constant, so its slip is zero within a load step (every point held to the master point it faced, docs/conventions.md, \"The slip\"); use Types 2-6 or the complete formulation".to_owned()
+        } else {
+            continue;
+        };
+        return Err(SolverError::Options(format!(
+            "contact pair `{}`: {why}",
+            pair.name
+        )));
+    }
+    Ok(())
 }

@@ -271,6 +271,12 @@ where
             ) else {
                 continue;
             };
+            let (Ok(on_p), Ok(on_o)) = (
+                self.with_slip(cx, anchor, i, on_p),
+                self.with_slip(cx, anchor, i, on_o),
+            ) else {
+                continue;
+            };
             self.points[i.index()] = Some(S::expand_at(on_p, anchor));
             start.pairing[i.index()] = Some(p);
             start.ties.push(NodeTie {
@@ -306,6 +312,12 @@ where
             let (Ok(on_p), Ok(on_o)) = (
                 layout.evaluate_on(mesh, u, i, tie.paired, self.ty, cx.counts),
                 layout.evaluate_on(mesh, u, i, tie.other, self.ty, cx.counts),
+            ) else {
+                continue;
+            };
+            let (Ok(on_p), Ok(on_o)) = (
+                self.with_slip(cx, u, i, on_p),
+                self.with_slip(cx, u, i, on_o),
             ) else {
                 continue;
             };
@@ -405,7 +417,10 @@ where
                         .layout
                         .evaluate_on(mesh, u0, i, m, self.ty, cx.counts)
                     {
-                        Ok(at_start) => Some(S::expand_at(at_start, u0)),
+                        Ok(at_start) => match self.with_slip(cx, u0, i, at_start) {
+                            Ok(at_start) => Some(S::expand_at(at_start, u0)),
+                            Err(_) => continue,
+                        },
                         Err(_) => continue,
                     }
                 }

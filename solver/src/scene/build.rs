@@ -332,6 +332,7 @@ impl Scene {
         if slave_body == master_body {
             return Err(self.invalid(f, "slave and master must be different bodies"));
         }
+        self.check_friction(f, c)?;
         <Dim<D> as Build<D>>::check_spec(self, f, c, &slave)?;
         let pair = ContactPair {
             name: c.pair_name(f),
@@ -339,6 +340,7 @@ impl Scene {
             master,
             formulation: c.formulation,
             mode: c.mode,
+            friction: c.friction,
             gauss_points: c.gauss_points,
             integration: c.integration,
         };

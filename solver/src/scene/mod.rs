@@ -363,10 +363,13 @@ steps = [2]
             .contacts
             .iter()
             .map(|c| {
-                let integration = match c.integration {
+                let mut integration = match c.integration {
                     crate::model::Integration::Gauss => String::new(),
                     i => format!(", integration: {i:?}"),
                 };
+                if c.friction != 0.0 {
+                    integration += &format!(", friction: {:?}", c.friction);
+                }
                 format!(
                     "ContactPair {{ name: {:?}, slave: {:?}, master: {:?}, formulation: {:?}, mode: {:?}, gauss_points: {}{integration} }}",
                     c.name,

@@ -19,6 +19,7 @@ use super::dimension::Dimension;
 use super::{ContactSpec, LoadSpec, PrescribeSpec, Scene, SceneError, TractionSpec};
 use crate::amplitude::Amplitude;
 use crate::material::Material;
+use crate::model::ContactMode;
 
 impl Scene {
     /// An [`SceneError::Invalid`] for `field` of this scene.
@@ -143,6 +144,28 @@ impl Scene {
     pub(super) fn check_contact(&self, f: &str, c: &ContactSpec) -> Result<(), SceneError> {
         if c.gauss_points.is_some_and(|n| !(1..=8).contains(&n)) {
             return Err(self.invalid(format!("{f}.gauss_points"), "must be in 1..=8"));
+        }
+        Ok(())
+    }
+
+    /// `contact[i].friction` (named `f`) in either dimension: a finite
+    /// number `>= 0`; above 0 only on a unilateral pair (a persistent pair
+    /// holds its faces together, and Coulomb's bound `mu p` of a pair that
+    /// may pull has no meaning). That the dimension solves friction is
+    /// checked by `solid.rs` (3D refuses it).
+    pub(super) fn check_friction(&self, f: &str, c: &ContactSpec) -> Result<(), SceneError> {
+        let mu = c.friction;
+        if !(mu.is_finite() && mu >= 0.0) {
+            return Err(self.invalid(
+                format!("{f}.friction"),
+                format!("must be a finite number >= 0 (Coulomb's coefficient), got {mu}"),
+            ));
+        }
+        if mu > 0.0 && c.mode != ContactMode::Unilateral {
+            return Err(self.invalid(
+                format!("{f}.friction"),
+                "friction needs `mode = \"unilateral\"`: a persistent pair holds its faces together, so Coulomb's bound `mu p` has no meaning where the pair pulls",
+            ));
         }
         Ok(())
     }

@@ -74,6 +74,7 @@ fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, Contact
         master,
         formulation: reading,
         mode: ContactMode::Unilateral,
+        friction: 0.0,
         gauss_points: None,
         integration: Integration::Gauss,
     };

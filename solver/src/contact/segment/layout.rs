@@ -22,6 +22,7 @@ use crate::model::{ContactMode, Integration, Model};
 use super::segmented::{segmented_rule, split_coordinates};
 use crate::contact::active_set::ActiveSetView;
 use crate::contact::face_rules::default_points;
+use crate::contact::friction::Friction;
 use crate::contact::{ContactPoint, MultiplierDof, gauss_legendre};
 use crate::element::FaceKind as RuleKind;
 
@@ -43,6 +44,9 @@ pub struct ContactLayout {
     pub(super) adjacency: Vec<Vec<[Option<MasterSegmentIndex>; 2]>>,
     /// Active-set constant `c` per pair (unilateral mode).
     pub complementarity: Vec<f64>,
+    /// The tangential multipliers of the pairs with friction (numbered
+    /// after every normal multiplier).
+    pub friction: Friction,
     /// Pairs with at least this many master segments search them through
     /// the spatial index (`master_search`; default
     /// [`super::master_search::INDEX_MIN_SEGMENTS`]); the choices are the same either
@@ -137,9 +141,14 @@ impl ContactLayout {
                 .map_or(1.0, |b| b.material.young);
             complementarity.push(young / (total_len / pair.slave.len() as f64));
         }
+        let friction = Friction::new(
+            &multipliers,
+            model.contacts.iter().map(|c| c.friction).collect(),
+        );
         ContactLayout {
             points,
             multipliers,
+            friction,
             formulations: model
                 .contacts
                 .iter()
@@ -164,6 +173,7 @@ impl ContactLayout {
             masters: Vec::new(),
             adjacency: Vec::new(),
             complementarity: Vec::new(),
+            friction: Friction::default(),
             index_min_segments: super::master_search::INDEX_MIN_SEGMENTS,
         }
     }

@@ -13,6 +13,7 @@ pub mod master_search;
 mod nodal;
 mod search;
 mod segmented;
+mod slip;
 mod space;
 mod ties;
 
@@ -21,6 +22,7 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::ids::{ContactPointIndex, DofId, MasterSegmentIndex, MultiplierIndex, NodeId, PairId};
 
+use super::friction::SlipTerm;
 use super::taylor::Taylor;
 use super::term::{GapTerm, MultiplierShape, WeightedPoint};
 
@@ -85,6 +87,9 @@ pub struct PointEval {
     pub grad: SVector<f64, 8>,
     /// `d2g/du2`, `None` when the type has none (Type 1).
     pub hess: Option<SMatrix<f64, 8, 8>>,
+    /// The slip on the same 8 dofs, when the pair has friction
+    /// ([`super::friction`]; added after the gap's evaluation).
+    pub slip: Option<SlipTerm<8>>,
 }
 
 impl WeightedPoint for ContactPoint {
@@ -126,5 +131,16 @@ impl GapTerm<8> for PointEval {
 
     fn with_gap(&self, gap: f64, grad: SVector<f64, 8>) -> PointEval {
         PointEval { gap, grad, ..*self }
+    }
+
+    fn slip(&self) -> Option<&SlipTerm<8>> {
+        self.slip.as_ref()
+    }
+
+    fn with_slip(&self, slip: SlipTerm<8>) -> PointEval {
+        PointEval {
+            slip: Some(slip),
+            ..*self
+        }
     }
 }

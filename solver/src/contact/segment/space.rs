@@ -20,6 +20,7 @@ use super::SegmentTaylor;
 use super::ties::assemble_ties;
 use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
+use crate::contact::friction::{Anchor, FrictionState, NodalFriction};
 use crate::contact::report::{ContactPointId, ContactPointReport};
 use crate::contact::space::{ContactSpace, Update};
 use crate::contact::{
@@ -44,6 +45,84 @@ impl ContactSpace<2> for ContactLayout {
 
     fn multipliers(&self) -> &[MultiplierDof] {
         &self.multipliers
+    }
+
+    fn multiplier_count(&self) -> usize {
+        self.multipliers.len() + self.friction.count()
+    }
+
+    fn has_friction(&self) -> bool {
+        self.friction.any()
+    }
+
+    fn point_has_friction(&self, i: ContactPointIndex) -> bool {
+        self.friction.on_pair(self.point(i).pair.index())
+    }
+
+    fn anchor(e: &PointEval) -> Option<Anchor<MasterSegmentIndex>> {
+        Some(Anchor {
+            master: e.master,
+            xi_m: e.xi_m,
+        })
+    }
+
+    fn found_anchor(f: &Paired) -> Option<Anchor<MasterSegmentIndex>> {
+        Some(Anchor {
+            master: f.0,
+            xi_m: f.1.xi_m,
+        })
+    }
+
+    fn add_slip(
+        &self,
+        mesh: &Mesh<2>,
+        u: &[f64],
+        i: ContactPointIndex,
+        e: &mut PointEval,
+        anchor: Anchor<MasterSegmentIndex>,
+        ty: ApproxType,
+    ) -> Result<(), KernelError> {
+        self.slip_at(mesh, u, i, e, anchor, ty)
+    }
+
+    fn nodal_friction(
+        &self,
+        evals: &[Option<PointEval>],
+        lambda: &[f64],
+        active: &[bool],
+    ) -> Vec<NodalFriction> {
+        let states = self.friction_states(evals, lambda, active);
+        let (weight, slip) = self.friction.nodal_slips(&self.points, evals);
+        self.friction
+            .normal
+            .iter()
+            .enumerate()
+            .map(|(k, &multiplier)| NodalFriction {
+                multiplier,
+                state: states[k],
+                step_slip: if weight[k] > 0.0 {
+                    slip[k] / weight[k]
+                } else {
+                    0.0
+                },
+            })
+            .collect()
+    }
+
+    fn friction_states(
+        &self,
+        evals: &[Option<PointEval>],
+        lambda: &[f64],
+        active: &[bool],
+    ) -> Vec<FrictionState> {
+        self.friction.states(
+            &self.points,
+            evals,
+            lambda,
+            active,
+            &self.multipliers,
+            &self.complementarity,
+        )
     }
 
     fn formulations(&self) -> Vec<Formulation> {
@@ -181,6 +260,7 @@ impl ContactSpace<2> for ContactLayout {
             xi_m: k.xi_m,
             grad: k.grad,
             hess: k.hess,
+            slip: None,
         })
     }
 
@@ -283,6 +363,10 @@ impl ContactSpace<2> for ContactLayout {
         if first {
             view.close_touching(evals, lambda, &mut active);
         }
+        if self.friction.any() {
+            let states = self.friction_states(evals, lambda, &active);
+            active.extend(states.iter().map(|s| *s != FrictionState::Open));
+        }
         active
     }
 
@@ -295,6 +379,18 @@ impl ContactSpace<2> for ContactLayout {
         sys: &mut System,
     ) {
         assemble_contact(&self.points, evals, lambda, active, dofs, sys);
+        if self.friction.any() {
+            let states = self.friction_states(evals, lambda, active);
+            self.friction.assemble(
+                &self.points,
+                evals,
+                lambda,
+                &states,
+                &self.multipliers,
+                dofs,
+                sys,
+            );
+        }
     }
 
     fn assemble_ties(

@@ -251,6 +251,14 @@ pub struct ContactSpec {
     /// `mode`: `persistent` (default) or `unilateral`.
     #[serde(default)]
     pub mode: ContactMode,
+    /// `friction`: Coulomb's coefficient `mu` between the faces (default
+    /// 0: frictionless). A finite number `>= 0`; 0 gives the frictionless
+    /// solve bit for bit. Above 0 the pair must be `mode = "unilateral"`
+    /// and two-dimensional, and the scene solved with the complete
+    /// formulation (see [`crate::contact`], "Coulomb friction"). Not
+    /// written when 0.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub friction: f64,
     /// `gauss_points`: the rule on each slave face. In 2D, Gauss points
     /// per slave segment, 1..=8, per piece of a slave segment with
     /// `integration = "segmented"`. In 3D, `n x n` points on a quad4 slave
@@ -327,6 +335,10 @@ fn is_default_integration(i: &Integration) -> bool {
 
 fn is_false(b: &bool) -> bool {
     !*b
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0 && v.is_sign_positive()
 }
 fn default_formulation() -> Formulation {
     Formulation::SlaveNormal
