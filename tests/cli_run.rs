@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped";
+const HEADER: &str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped,shear_x,shear_y,state,slip";
 
 fn scene() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/pressed-blocks.toml")
@@ -62,9 +62,11 @@ fn contact_csv_balances_the_load() {
     assert_eq!(rows.len(), 5, "{csv}");
     let mut integral = 0.0;
     for row in &rows {
-        assert_eq!(row.len(), 14, "{row:?}");
+        assert_eq!(row.len(), 18, "{row:?}");
         assert_eq!(row[0], "interface");
         assert_eq!(row[13], "0", "{row:?}");
+        // frictionless and pressed: no shear, sliding freely, no slip
+        assert_eq!(&row[14..], ["0", "0", "slip", ""], "{row:?}");
         // block bodies: internal node numbers
         assert_eq!((row[11], row[12]), ("internal", "internal"), "{row:?}");
         let num = |k: usize| row[k].parse::<f64>().unwrap();
@@ -302,7 +304,7 @@ steps = [2]
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert_eq!(rows.len(), 12, "{csv}");
     for r in &rows {
-        assert_eq!(r.len(), 18, "{r:?}");
+        assert_eq!(r.len(), 23, "{r:?}");
         assert_eq!(r[17], "0", "{r:?}");
         let pressure: f64 = r[6].parse().unwrap();
         assert!(pressure > 0.0, "{r:?}");

@@ -15,6 +15,7 @@ use std::time::Duration;
 
 use contact_kernels::{Formulation, KernelError};
 
+use crate::contact::friction::NodalFriction;
 use crate::element::{ElementStress, Stress};
 use crate::ids::NodeId;
 use crate::linear::KrylovCounts;
@@ -209,8 +210,14 @@ pub struct State<const D: usize = 2> {
     pub load_factor: f64,
     /// Nodal displacements (reference frame, `D` components).
     pub displacements: Vec<[f64; D]>,
-    /// Multipliers in [`Solution::multiplier_dofs`] order (`p = -lambda`).
+    /// Multipliers: the normal ones in [`Solution::multiplier_dofs`] order
+    /// (`p = -lambda`), then the tangential ones of the pairs with friction
+    /// in [`State::friction`]'s order.
     pub multipliers: Vec<f64>,
+    /// Every node of a pair with friction: its state, last step's slip and
+    /// accumulated slip, in the order of its tangential multiplier (empty
+    /// without friction; [`crate::contact::friction`]).
+    pub friction: Vec<NodalFriction>,
 }
 
 /// Kernel-call counts, and the contact element's point reports.

@@ -244,13 +244,16 @@ fn the_3d_contact_csv_has_a_row_per_slave_node() {
         );
         assert_eq!(
             <Dim<3> as solver::report::ContactTable<3>>::HEADER,
-            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped"
+            "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped,shear_x,shear_y,shear_z,state,slip"
         );
         let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
         assert_eq!(rows.len(), 16, "{text}");
         let mut resultant = 0.0;
         for r in &rows {
-            assert_eq!(r.len(), 18, "{r:?}");
+            assert_eq!(r.len(), 23, "{r:?}");
+            // frictionless: no shear, every pressed node sliding freely,
+            // no slip tracked
+            assert_eq!(&r[18..], ["0", "0", "0", "slip", ""], "{r:?}");
             // both blocks: internal indices, slave and master alike
             assert_eq!((r[15], r[16]), ("internal", "internal"), "{r:?}");
             // the cap is pressed by prescribed displacements of its top,
@@ -425,8 +428,11 @@ fn the_paper_scene_in_3d_lies_between_plane_stress_and_plane_strain() {
     assert!(clamped[0].position[0].abs() < 1e-12, "{clamped:?}");
     assert!(clamped[0].pressure < -700.0, "{clamped:?}");
     let csv = solver::report::contact_csv(&plane_stress, &plane_stress.final_state).unwrap();
+    // the `clamped` column (the 14th of 18: the friction columns follow)
     assert_eq!(
-        csv.lines().filter(|l| l.ends_with(",1")).count(),
+        csv.lines()
+            .filter(|l| l.split(',').nth(13) == Some("1"))
+            .count(),
         1,
         "{csv}"
     );

@@ -344,6 +344,26 @@ impl RunDim<3> for Dim<3> {
     }
 }
 
+/// The summary line of the frictional nodes at the final state, when a
+/// pair has friction: how many stick, slip and are open
+/// ([`solver::State::friction`], `contact.csv`'s `state`).
+fn friction_summary<const D: usize>(sol: &Solution<D>)
+where
+    Dim<D>: RunDim<D>,
+{
+    let nodes = &sol.final_state.friction;
+    if nodes.is_empty() {
+        return;
+    }
+    let count = |name: &str| nodes.iter().filter(|f| f.state.name() == name).count();
+    println!(
+        "friction        {} stick, {} slip, {} open node(s) of the pairs with friction (contact.csv: state, shear, slip)",
+        count("stick"),
+        count("slip"),
+        count("open")
+    );
+}
+
 /// The summary line of the slave nodes held by supports on both sides
 /// (`ContactTable::clamped`, `contact.csv`'s `clamped` column), when there
 /// are any: their pressure is a reaction between supports. Nothing when
@@ -429,6 +449,7 @@ where
     if contact {
         Dim::<D>::contact_summary(&sol)?;
         clamped_summary::<D>(&sol);
+        friction_summary::<D>(&sol);
     }
     for load in &scene.loads {
         // a load on a physical group has no position to report

@@ -55,26 +55,12 @@
 //! `mu = 0` has none, so a frictionless model's system is unchanged to the
 //! bit; sums over points are in point order.
 
-use nalgebra::{SMatrix, SVector};
-
 use crate::ids::{EquationIndex, MultiplierIndex};
 use crate::system::{DofMap, System};
 
 use super::MultiplierDof;
+pub use super::term::SlipTerm;
 use super::term::{GapTerm, WeightedPoint};
-
-/// The slip of one point and its derivatives on the evaluation's `N`
-/// coordinates (2D: one component, along the tangent of
-/// docs/conventions.md, "The slip").
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SlipTerm<const N: usize> {
-    /// The slip `s` since the last converged state.
-    pub slip: f64,
-    /// `ds/du` on the `N` coordinates.
-    pub grad: SVector<f64, N>,
-    /// `d2s/du2`, `None` when the kernel's type has none.
-    pub hess: Option<SMatrix<f64, N, N>>,
-}
 
 /// Where a point's slip is measured from: the master and the projection
 /// onto it at the last converged state (2D: `xi_m0` on a segment).
@@ -86,16 +72,22 @@ pub struct Anchor<M> {
     pub xi_m: f64,
 }
 
-/// A frictional node's state at a converged iterate, for reports: its
-/// normal multiplier, the state and the slip of the step `S_a / W_a`.
+/// A frictional node at a converged state, for reports: its normal
+/// multiplier, its state, the slip of the last step `S_a / W_a` and the
+/// accumulated slip length (the sum of `|S_a / W_a|` over the converged
+/// steps).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodalFriction {
-    /// The node's normal multiplier.
+    /// The node's normal multiplier (its tangential one is the state's
+    /// multiplier at the normal count plus this entry's index).
     pub multiplier: MultiplierIndex,
     /// Open, stick or slip.
     pub state: FrictionState,
-    /// The weighted mean slip of the step, `S_a / W_a` (0 without slip).
+    /// The weighted mean slip of the last step, `S_a / W_a` (0 where no
+    /// point of the node has a slip).
     pub step_slip: f64,
+    /// The accumulated slip length since the start of the solve.
+    pub slip: f64,
 }
 
 /// A frictional node's state at an iterate (module docs).

@@ -195,6 +195,16 @@
 //!   node also activates the nodes that touch (`active_set`,
 //!   `CLOSING_GAP`), so that a body held only by contact does not float.
 //!
+//! # Coulomb friction
+//!
+//! A unilateral 2D pair with `friction = mu > 0` gives each slave node a
+//! tangential multiplier beside its normal one; every point adds
+//! `w J0 t s` (`s` the generated slip kernel's value, measured from the
+//! point's projection at the last converged state) and each node sticks,
+//! slips or is open by a primal–dual active set on Coulomb's law; see
+//! [`friction`] for the mathematics and docs/conventions.md, "Coulomb
+//! friction", for the definitions and outputs.
+//!
 //! # Parts
 //!
 //! * this module: the per-point types ([`ContactPoint`], [`PointEval`],

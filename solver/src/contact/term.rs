@@ -23,8 +23,6 @@ use nalgebra::{SMatrix, SVector};
 
 use crate::ids::{DofId, MultiplierIndex};
 
-use super::friction::SlipTerm;
-
 /// The most multipliers one point's slave face carries (a quad4's four
 /// nodes).
 pub const MAX_POINT_MULTIPLIERS: usize = 4;
@@ -55,6 +53,19 @@ impl MultiplierShape {
     pub fn iter(&self) -> impl Iterator<Item = (MultiplierIndex, f64)> + '_ {
         (0..self.count).map(|a| (self.multipliers[a], self.shape[a]))
     }
+}
+
+/// The slip of one point and its derivatives on the evaluation's `N`
+/// coordinates (2D: one component, along the tangent of
+/// docs/conventions.md, "The slip"; [`super::friction`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SlipTerm<const N: usize> {
+    /// The slip `s` since the last converged state.
+    pub slip: f64,
+    /// `ds/du` on the `N` coordinates.
+    pub grad: SVector<f64, N>,
+    /// `d2s/du2`, `None` when the kernel's type has none.
+    pub hess: Option<SMatrix<f64, N, N>>,
 }
 
 /// An integration point as the assembly and the active set see it.

@@ -196,6 +196,7 @@ where
                     Err(reason) => return Ok(AttemptOutcome::cut_back(reason, residuals, it)),
                 };
                 let points = self.accept(&mut x, &evals, &active, kept);
+                let friction = self.setup.layout.nodal_friction(&evals, &x.lambda, &active);
                 let t = Instant::now();
                 let reactions = self
                     .setup
@@ -210,6 +211,7 @@ where
                     points,
                     reactions,
                     active,
+                    friction,
                     step_end: None,
                 }));
             }

@@ -218,6 +218,7 @@ use std::time::Instant;
 use contact_kernels::ApproxType;
 
 use crate::contact::ContactSpace;
+use crate::contact::friction::NodalFriction;
 use crate::contact::{KernelCounts, NodeTie};
 use crate::error::SolverError;
 use crate::model::Model;
@@ -284,6 +285,9 @@ where
     /// The converged displacements before the last commit (the secant
     /// predictor's, "Prescribed increments").
     previous_u: Option<Vec<f64>>,
+    /// With friction, every frictional node at the converged state (its
+    /// accumulated slip).
+    friction: Vec<NodalFriction>,
     // history
     records: Vec<StepRecord<D>>,
     cutbacks: Vec<Cutback>,
@@ -348,6 +352,7 @@ where
             energy: 0.0,
             treatment,
             previous_u: None,
+            friction: Vec::new(),
             records: Vec::new(),
             cutbacks: Vec::new(),
             snapshots: Vec::new(),
@@ -367,6 +372,7 @@ where
                 .map(|c| std::array::from_fn(|i| c[i]))
                 .collect(),
             multipliers: self.lambda.clone(),
+            friction: self.friction.clone(),
         }
     }
 
@@ -468,6 +474,12 @@ where
         self.load_factor = to;
         self.energy = c.energy;
         self.iterations += c.iterations;
+        let mut friction = c.friction;
+        for (k, node) in friction.iter_mut().enumerate() {
+            let before = self.friction.get(k).map_or(0.0, |n| n.slip);
+            node.slip = before + node.step_slip.abs();
+        }
+        self.friction = friction;
         self.treatment.committed();
         let step_end = c.step_end.unwrap_or_default();
         self.records.push(StepRecord {

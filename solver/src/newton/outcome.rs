@@ -8,6 +8,7 @@
 //! `taylor_tolerance` ([`AttemptOutcome::TooCoarse`]). These types hold data
 //! only; who produces and who consumes them is in the modules above.
 
+use crate::contact::friction::NodalFriction;
 use crate::solution::{ContactPointId, CutbackReason};
 
 use super::iterate::Iterate;
@@ -31,6 +32,9 @@ pub(super) struct Converged<const D: usize, M> {
     pub(super) reactions: Vec<[f64; D]>,
     /// Which multipliers carry a constraint row at the converged iterate.
     pub(super) active: Vec<bool>,
+    /// With friction, every frictional node's state and step slip at the
+    /// converged iterate (its `slip` not yet accumulated).
+    pub(super) friction: Vec<NodalFriction>,
     /// Types 1–6: what the step-end check found (`repair.rs`); `None` for
     /// the complete formulation.
     pub(super) step_end: Option<StepEnd>,

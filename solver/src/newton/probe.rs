@@ -276,6 +276,7 @@ mod tests {
         let n = model.mesh.node_count();
         let zero = State {
             load_factor: 0.0,
+            friction: Vec::new(),
             displacements: vec![[0.0; 2]; n],
             multipliers: vec![0.0; solution.multiplier_dofs.len()],
         };
@@ -298,6 +299,7 @@ mod tests {
         }
         let next = State {
             load_factor: 0.0,
+            friction: Vec::new(),
             displacements: u.chunks(2).map(|c| [c[0], c[1]]).collect(),
             multipliers: (0..dofs.n_mult)
                 .map(|m| -dx[dofs.mult_eq(MultiplierIndex::new(m)).index()])
@@ -334,6 +336,7 @@ mod tests {
         let n = model.mesh.node_count();
         let zero = State::<3> {
             load_factor: 0.0,
+            friction: Vec::new(),
             displacements: vec![[0.0; 3]; n],
             multipliers: Vec::new(),
         };
@@ -358,6 +361,7 @@ mod tests {
         }
         let next = State::<3> {
             load_factor: 0.0,
+            friction: Vec::new(),
             displacements: u.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
             multipliers: Vec::new(),
         };

@@ -8,7 +8,7 @@
 //! order, with the header
 //!
 //! ```text
-//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped
+//! pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped,shear_x,shear_y,state,slip
 //! ```
 //!
 //! `pair` is the pair's name (quoted when it holds a comma, quote or line
@@ -28,7 +28,12 @@
 //! slave node and the master point it projects onto are both held by
 //! supports (every dof prescribed; [`super::ContactTable::clamped`]): its
 //! `pressure` is then a reaction between supports, not a contact pressure
-//! (docs/conventions.md); `0` elsewhere. The gap is
+//! (docs/conventions.md); `0` elsewhere. `shear_x`, `shear_y`, `state`
+//! and `slip` are the friction columns (docs/conventions.md, "Coulomb
+//! friction", [`super::contact_table::FrictionTable`]): the tangential
+//! traction on the slave node exerted by the master, in global components
+//! and the units of `pressure`; `open`, `stick` or `slip`; the accumulated
+//! slip length (empty on a pair without friction). The gap is
 //! that of the node itself projected onto the master face; with
 //! `slave-normal`, along the normal of the slave segment that starts at
 //! the node (the last node of an open face: the segment ending there); a
@@ -45,7 +50,7 @@
 //! order the nodes first appear on the slave faces), with the header
 //!
 //! ```text
-//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped
+//! pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped,shear_x,shear_y,shear_z,state,slip
 //! ```
 //!
 //! `pair` is the pair's name (quoted as in 2D), `node` the slave node's
@@ -64,13 +69,15 @@
 //! (`msh` or `internal`, as in 2D) and `master_numbering` how the master
 //! face's nodes are (empty with them): in a scene of a block body and a
 //! mesh-file body, one side's numbers are mesh tags and the other's
-//! internal indices. `clamped` as in 2D. Numbers in Rust's shortest
+//! internal indices. `clamped` as in 2D; the friction columns as in 2D
+//! with `shear_z` (3D pairs have no friction yet: no shear, `open` or
+//! `slip`, no slip). Numbers in Rust's shortest
 //! round-trip form, as the 2D file.
 
 use crate::model::Dim;
 use crate::solution::{Solution, State};
 
-use super::contact_table::{ContactTable, ContactTableError};
+use super::contact_table::{ContactTable, ContactTableError, FrictionTable};
 
 /// The `contact.csv` text of `state` (one of `solution`'s states), or why
 /// its nodal contact table does not exist.
@@ -82,8 +89,12 @@ where
     Dim<D>: ContactTable<D>,
 {
     let mut out = format!("{}\n", <Dim<D> as ContactTable<D>>::HEADER);
+    let friction = FrictionTable::new(solution, state);
     for row in <Dim<D> as ContactTable<D>>::rows(solution, state)? {
-        out.push_str(&<Dim<D> as ContactTable<D>>::csv_line(solution, &row));
+        let columns = friction.columns(solution, state, &row);
+        out.push_str(&<Dim<D> as ContactTable<D>>::csv_line(
+            solution, &row, &columns,
+        ));
         out.push('\n');
     }
     Ok(out)
@@ -112,7 +123,7 @@ mod tests {
         assert_eq!(text.lines().count(), table.len() + 1);
         for (line, row) in text.lines().skip(1).zip(&table) {
             let f: Vec<&str> = line.split(',').collect();
-            assert_eq!(f.len(), 14, "{line}");
+            assert_eq!(f.len(), 18, "{line}");
             assert_eq!(f[11], "msh", "{line}");
             assert_eq!(at_tag(f[1]), sol.mesh.nodes_ref[row.node], "{line}");
             differs += usize::from(f[1] != row.node.to_string());

@@ -8,8 +8,8 @@
 //! The columns of `contact.csv` come from the dimension:
 //!
 //! ```text
-//! 2D: pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped
-//! 3D: pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped
+//! 2D: pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped,shear_x,shear_y,state,slip
+//! 3D: pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped,shear_x,shear_y,shear_z,state,slip
 //! ```
 //!
 //! (every column is described in [`super::contact_csv`]).
@@ -21,8 +21,23 @@
 //! motion fixed on both sides: its multiplier is a reaction between two
 //! supports, not a contact pressure (docs/conventions.md, "A slave node
 //! fixed on a fixed master point"). [`ContactTable::clamped`] marks it;
-//! `contact.csv`'s last column is `1` there, `0` elsewhere.
+//! `contact.csv`'s `clamped` column is `1` there, `0` elsewhere.
+//!
+//! **Friction columns** ([`FrictionTable`], docs/conventions.md, "Coulomb
+//! friction"): `shear_x`, `shear_y` (, `shear_z`) `= -t_a tau`, the
+//! tangential traction the master exerts on the slave node (`t_a` its
+//! tangential multiplier, `tau` the slip's unit tangent at the row's
+//! projection: 2D `slave-normal` the direction of the slave segment the
+//! row is evaluated on, `closest-point` the reverse of its master
+//! segment's); `state` the node's `open`, `stick` or `slip` at the state;
+//! `slip` its accumulated slip length. A pair without friction has no
+//! shear, `state` `open` where the multiplier is exactly zero (an inactive
+//! node) and `slip` elsewhere (frictionless contact slides freely), and an
+//! empty `slip`.
 
+use std::collections::HashMap;
+
+use crate::contact::friction::FrictionState;
 use crate::contact::{
     FaceLayout, FaceLayoutError, FaceNodalError, FaceNodalRow, NodalContactError, NodalContactRow,
     NodalState, nodal_contact,
@@ -93,8 +108,19 @@ pub trait ContactTable<const D: usize>: SpaceDim<D> {
     /// A row's slave node and its gap (`None`: it projects nowhere).
     fn node_gap(row: &Self::Row) -> (usize, Option<f64>);
 
-    /// A row's line of `contact.csv` (without the line break).
-    fn csv_line(solution: &Solution<D>, row: &Self::Row) -> String
+    /// A row's pair and slave node.
+    fn pair_node(row: &Self::Row) -> (usize, usize);
+
+    /// The unit tangent `tau` of the slip at a row's node in `state`
+    /// (module docs, friction columns); zero where the dimension solves no
+    /// friction.
+    fn tangent(solution: &Solution<D>, state: &State<D>, row: &Self::Row) -> [f64; D]
+    where
+        Dim<D>: SurfaceDim<D>;
+
+    /// A row's line of `contact.csv` (without the line break), its
+    /// friction columns `friction`.
+    fn csv_line(solution: &Solution<D>, row: &Self::Row, friction: &RowFriction<D>) -> String
     where
         Dim<D>: SurfaceDim<D>;
 
@@ -108,7 +134,7 @@ pub trait ContactTable<const D: usize>: SpaceDim<D> {
 
 impl ContactTable<2> for Dim<2> {
     type Row = NodalContactRow;
-    const HEADER: &'static str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped";
+    const HEADER: &'static str = "pair,node,x,y,gap,pressure,xi_m,master_segment,master_node_1,master_node_2,tributary_length,node_numbering,master_numbering,clamped,shear_x,shear_y,state,slip";
 
     fn rows(solution: &Solution, state: &State) -> Result<Vec<NodalContactRow>, ContactTableError> {
         Ok(nodal_contact(&NodalState {
@@ -125,7 +151,36 @@ impl ContactTable<2> for Dim<2> {
         (row.node, row.projection.map(|p| p.gap))
     }
 
-    fn csv_line(solution: &Solution, row: &NodalContactRow) -> String {
+    fn pair_node(row: &NodalContactRow) -> (usize, usize) {
+        (row.pair, row.node)
+    }
+
+    /// `slave-normal`: the direction of the slave segment the row is
+    /// evaluated on; `closest-point`: the reverse of its master segment's
+    /// (the slave's direction where none is paired).
+    fn tangent(solution: &Solution, state: &State, row: &NodalContactRow) -> [f64; 2] {
+        let x = |n: NodeId| {
+            let (r, d) = (solution.mesh.node_ref(n), state.displacements[n.index()]);
+            [r[0] + d[0], r[1] + d[1]]
+        };
+        let [a, b] = solution.contact_pairs[row.pair].slave[row.slave_segment].map(x);
+        let [a, b] = match (solution.formulations[row.pair], row.projection) {
+            (contact_kernels::Formulation::ClosestPoint, Some(p)) => {
+                let [m1, m2] = p.master_nodes.map(|n| x(NodeId::new(n)));
+                [m2, m1]
+            }
+            _ => [a, b],
+        };
+        let d = [b[0] - a[0], b[1] - a[1]];
+        let l = d[0].hypot(d[1]);
+        if l > 0.0 {
+            [d[0] / l, d[1] / l]
+        } else {
+            [0.0; 2]
+        }
+    }
+
+    fn csv_line(solution: &Solution, row: &NodalContactRow, friction: &RowFriction<2>) -> String {
         let number = |n: usize| solution.mesh.node_number(n);
         let name = field(&solution.contact_pairs[row.pair].name);
         let (projection, master_numbering) = match row.projection {
@@ -148,12 +203,13 @@ impl ContactTable<2> for Dim<2> {
         };
         let (node, numbering) = number(row.node);
         format!(
-            "{name},{node},{},{},{projection},{},{},{master_numbering},{}",
+            "{name},{node},{},{},{projection},{},{},{master_numbering},{},{}",
             num(row.position[0]),
             num(row.position[1]),
             num(row.tributary_length),
             numbering.as_str(),
             u8::from(Self::clamped(solution, row)),
+            friction.csv_fields(),
         )
     }
 
@@ -168,7 +224,7 @@ impl ContactTable<2> for Dim<2> {
 
 impl ContactTable<3> for Dim<3> {
     type Row = FaceNodalRow;
-    const HEADER: &'static str = "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped";
+    const HEADER: &'static str = "pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,master_node_2,master_node_3,master_node_4,tributary_area,node_numbering,master_numbering,clamped,shear_x,shear_y,shear_z,state,slip";
 
     fn rows(
         solution: &Solution<3>,
@@ -184,7 +240,16 @@ impl ContactTable<3> for Dim<3> {
         (row.node.index(), row.gap)
     }
 
-    fn csv_line(solution: &Solution<3>, row: &FaceNodalRow) -> String {
+    fn pair_node(row: &FaceNodalRow) -> (usize, usize) {
+        (row.pair.index(), row.node.index())
+    }
+
+    /// 3D pairs have no friction (refused by the scene and the solve).
+    fn tangent(_: &Solution<3>, _: &State<3>, _: &FaceNodalRow) -> [f64; 3] {
+        [0.0; 3]
+    }
+
+    fn csv_line(solution: &Solution<3>, row: &FaceNodalRow, friction: &RowFriction<3>) -> String {
         let number = |n: usize| solution.mesh.node_number(n).0.to_string();
         let numbering = |n: NodeId| solution.mesh.node_number(n.index()).1.as_str();
         let name = field(&solution.contact_pairs[row.pair.index()].name);
@@ -205,12 +270,13 @@ impl ContactTable<3> for Dim<3> {
             .master
             .map_or("", |(_, face)| numbering(face.nodes()[0]));
         format!(
-            "{name},{},{x},{y},{z},{},{},{},{master_numbering},{}",
+            "{name},{},{x},{y},{z},{},{},{},{master_numbering},{},{}",
             number(row.node.index()),
             fields.join(","),
             num(row.tributary_area),
             numbering(row.node),
             u8::from(Self::clamped(solution, row)),
+            friction.csv_fields(),
         )
     }
 
@@ -223,5 +289,107 @@ impl ContactTable<3> for Dim<3> {
             _ => None,
         };
         held_on_both_sides(&solution.held_nodes, row.node.index(), master)
+    }
+}
+
+/// A row's friction columns (module docs): the shear traction on the slave
+/// node in global components, its state, and its accumulated slip length
+/// (`None`: a frictionless pair, whose slip is not tracked).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RowFriction<const D: usize> {
+    /// `-t_a tau`: the tangential traction the master exerts on the slave
+    /// node (0 on a frictionless pair).
+    pub shear: [f64; D],
+    /// `open`, `stick` or `slip`.
+    pub state: FrictionState,
+    /// The accumulated slip length, `None` on a frictionless pair.
+    pub slip: Option<f64>,
+}
+
+impl<const D: usize> RowFriction<D> {
+    /// `shear_x,shear_y(,shear_z),state,slip` (slip empty when `None`).
+    fn csv_fields(&self) -> String {
+        let shear: Vec<String> = self.shear.iter().map(|&v| num(v)).collect();
+        format!(
+            "{},{},{}",
+            shear.join(","),
+            self.state.name(),
+            self.slip.map_or(String::new(), num)
+        )
+    }
+}
+
+/// The friction of a state's nodes by `(pair, node)`: the normal multiplier
+/// and, with friction, the index into [`State::friction`].
+pub struct FrictionTable {
+    normal: HashMap<(usize, usize), usize>,
+    tangential: HashMap<usize, usize>,
+}
+
+impl FrictionTable {
+    /// The lookup of `state` (one of `solution`'s states).
+    pub fn new<const D: usize>(solution: &Solution<D>, state: &State<D>) -> FrictionTable
+    where
+        Dim<D>: SurfaceDim<D>,
+    {
+        FrictionTable {
+            normal: solution
+                .multiplier_dofs
+                .iter()
+                .enumerate()
+                .map(|(m, d)| ((d.pair, d.node), m))
+                .collect(),
+            tangential: state
+                .friction
+                .iter()
+                .enumerate()
+                .map(|(k, f)| (f.multiplier.index(), k))
+                .collect(),
+        }
+    }
+
+    /// The friction columns of `row` (module docs): on a pair with friction
+    /// `-t_a tau`, the node's state and accumulated slip; on a frictionless
+    /// one no shear, `open` where the multiplier is exactly zero (an
+    /// inactive node) and `slip` elsewhere (frictionless contact slides
+    /// freely), no slip.
+    pub fn columns<const D: usize>(
+        &self,
+        solution: &Solution<D>,
+        state: &State<D>,
+        row: &<Dim<D> as ContactTable<D>>::Row,
+    ) -> RowFriction<D>
+    where
+        Dim<D>: ContactTable<D> + SurfaceDim<D>,
+    {
+        let (pair, node) = <Dim<D> as ContactTable<D>>::pair_node(row);
+        let Some(&m) = self.normal.get(&(pair, node)) else {
+            return RowFriction {
+                shear: [0.0; D],
+                state: FrictionState::Open,
+                slip: None,
+            };
+        };
+        match self.tangential.get(&m) {
+            Some(&k) => {
+                let f = &state.friction[k];
+                let t = state.multipliers[solution.multiplier_dofs.len() + k];
+                let tau = <Dim<D> as ContactTable<D>>::tangent(solution, state, row);
+                RowFriction {
+                    shear: tau.map(|c| -t * c),
+                    state: f.state,
+                    slip: Some(f.slip),
+                }
+            }
+            None => RowFriction {
+                shear: [0.0; D],
+                state: if state.multipliers[m] == 0.0 {
+                    FrictionState::Open
+                } else {
+                    FrictionState::Slip { direction: 1.0 }
+                },
+                slip: None,
+            },
+        }
     }
 }

@@ -15,7 +15,12 @@
 //!   pair, 0 elsewhere) and `contact_paired` (1 where the node projects
 //!   into a master segment, 0 elsewhere), `contact_clamped` (1 at a slave
 //!   node held by supports on both sides, whose multiplier is a reaction
-//!   between supports: [`ContactTable::clamped`]). `contact_gap` is 0 where
+//!   between supports: [`ContactTable::clamped`]), the friction columns of
+//!   `contact.csv` ([`super::contact_table`]): `contact_shear` (3
+//!   components, z 0 in 2D; summed over a node's pairs), `contact_state`
+//!   (0 open, 1 stick, 2 slip; the largest over a node's pairs) and
+//!   `contact_slip` (the accumulated slip length, 0 on a frictionless
+//!   pair; the largest over a node's pairs). `contact_gap` is 0 where
 //!   `contact_paired` is 0. A node that is a slave node of two pairs
 //!   carries the sum of its pressures (as `multiplier`) and the gap of the
 //!   pair where `|g|` is smallest (the first such pair on a tie);
@@ -46,7 +51,8 @@ use crate::model::Dim;
 use crate::solution::{Solution, State};
 
 use super::atomic::write_atomic;
-use super::contact_table::{ContactTable, ContactTableError};
+use super::contact_table::{ContactTable, ContactTableError, FrictionTable};
+use crate::contact::friction::FrictionState;
 
 /// Writes the final state of `solution` to `path`.
 pub fn write_vtu<const D: usize>(
@@ -137,17 +143,31 @@ where
     let mut slave = vec![0u8; n];
     let mut clamped = vec![0u8; n];
     let mut gap: Vec<Option<f64>> = vec![None; n];
-    // (node, gap, clamped) of every row of the nodal contact table
-    let rows: Vec<(usize, Option<f64>, bool)> = <Dim<D> as ContactTable<D>>::rows(solution, state)?
+    let mut shear = vec![[0.0; 3]; n];
+    let mut friction_state = vec![0u8; n];
+    let mut slip = vec![0.0; n];
+    let friction = FrictionTable::new(solution, state);
+    // (node, gap, clamped, friction) of every row of the nodal contact table
+    let rows: Vec<_> = <Dim<D> as ContactTable<D>>::rows(solution, state)?
         .iter()
         .map(|r| {
             let (node, g) = <Dim<D> as ContactTable<D>>::node_gap(r);
-            (node, g, <Dim<D> as ContactTable<D>>::clamped(solution, r))
+            let c = <Dim<D> as ContactTable<D>>::clamped(solution, r);
+            (node, g, c, friction.columns(solution, state, r))
         })
         .collect();
-    for (node, g, c) in rows {
+    for (node, g, c, f) in rows {
         slave[node] = 1;
         clamped[node] |= u8::from(c);
+        for (k, v) in f.shear.iter().enumerate() {
+            shear[node][k] += v;
+        }
+        friction_state[node] = friction_state[node].max(match f.state {
+            FrictionState::Open => 0,
+            FrictionState::Stick => 1,
+            FrictionState::Slip { .. } => 2,
+        });
+        slip[node] = f64::max(slip[node], f.slip.unwrap_or(0.0));
         if let Some(g) = g
             && gap[node].is_none_or(|old| g.abs() < old.abs())
         {
@@ -215,6 +235,27 @@ where
         "contact_clamped",
         1,
         clamped.iter().map(|c| c.to_string()),
+    );
+    array(
+        &mut out,
+        "Float64",
+        "contact_shear",
+        3,
+        shear.iter().flat_map(|s| s.map(num)),
+    );
+    array(
+        &mut out,
+        "UInt8",
+        "contact_state",
+        1,
+        friction_state.iter().map(|s| s.to_string()),
+    );
+    array(
+        &mut out,
+        "Float64",
+        "contact_slip",
+        1,
+        slip.iter().map(|&s| num(s)),
     );
     let numbers: Vec<(u64, NodeNumbering)> = (0..n).map(|k| mesh.node_number(k)).collect();
     array(

@@ -1,7 +1,7 @@
 //! The nodal contact table of a 3D state: one row per slave node (per
 //! multiplier), what the 3D `contact.csv` is written from
 //! (`crate::report::ContactTable` for `Dim<3>`, header
-//! `pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,...,master_node_4,tributary_area,node_numbering,master_numbering,clamped`).
+//! `pair,node,x,y,z,gap,pressure,xi_m_u,xi_m_v,master_face,master_node_1,...,master_node_4,tributary_area,node_numbering,master_numbering,clamped,...`: the friction columns follow).
 //!
 //! - `pressure`: `p = -lambda` of the node's multiplier;
 //! - `gap`, `xi_m_u`, `xi_m_v`, `master_face` and its nodes: the node

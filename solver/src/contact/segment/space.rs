@@ -105,6 +105,7 @@ impl ContactSpace<2> for ContactLayout {
                 } else {
                     0.0
                 },
+                slip: 0.0,
             })
             .collect()
     }
