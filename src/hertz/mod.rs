@@ -12,7 +12,9 @@
 //!   contact: the radius `a = (3 P R / (4 E*))^(1/3)`), the load read from
 //!   the support's reaction, the pressure from the nodal contact table,
 //!   the contact radius, the picture of the pressure;
-//! * `refinement.rs`: the 2D benchmark on meshes refined at the contact.
+//! * `refinement.rs`: the 2D benchmark on meshes refined at the contact;
+//! * `mindlin.rs`: Cattaneo–Mindlin partial slip in 2D (friction), the
+//!   stick zone and the shear against Mindlin's solution.
 //!
 //! What both use, written once here: the contact modulus `E*` of two
 //! bodies of one material ([`contact_modulus`]), Hertz's pressure, a half
@@ -21,6 +23,7 @@
 //! pressures ([`fit_half_ellipse`]).
 
 pub mod cylinder;
+pub mod mindlin;
 pub mod refinement;
 pub mod sphere;
 

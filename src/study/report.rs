@@ -418,8 +418,8 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
     let _ = writeln!(
         out,
         "Scene: {}. Times are medians of {} repeated solves (release build, linear solver: {}); \
-         errors are `100 (U_type - U_complete) / U_complete` at load factor 10 with the same \
-         number of steps.\n",
+         errors are `100 (U_type - U_complete) / U_complete` at the scene's last load factor \
+         with the same number of steps.\n",
         results.scene_name, results.repeats, results.linear
     );
 
@@ -492,7 +492,7 @@ pub fn markdown(results: &StudyResults, link_prefix: &str, command: &str) -> Str
     }
     let _ = writeln!(
         out,
-        "#### Cost on the paper scene ({}, {lo} and {hi} steps; every step count in the CSV)\n",
+        "#### Cost on the scene ({}, {lo} and {hi} steps; every step count in the CSV)\n",
         results.formulations[0].formulation
     );
     cost_table(&mut out, &results.formulations[0], Some(&[lo, hi]));
