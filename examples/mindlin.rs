@@ -7,11 +7,14 @@
 //! cargo run --release --example mindlin
 //! ```
 //!
-//! prints the Markdown table of docs/benchmarks.md ("Cattaneo–Mindlin").
+//! prints the Markdown tables of docs/benchmarks.md ("Cattaneo–Mindlin"):
+//! the stick zone and shear against Mindlin's, then the hysteresis loop of
+//! a cyclic shift on each mesh (its closure, and the work of the
+//! tangential load over the cycle against the friction's dissipation).
 
 use std::path::PathBuf;
 
-use gapsim::hertz::mindlin::{MESHES, markdown, solve_on};
+use gapsim::hertz::mindlin::{MESHES, hysteresis, markdown, solve_on};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scenes = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scenes");
@@ -27,5 +30,21 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         rows.push(row);
     }
     print!("{}", markdown(&rows));
+    // the hysteresis loop: shift +d, -d, +d with the press held
+    println!(
+        "\n| mesh | steps | loop points | closure | work of Q over the cycle | friction's dissipation | difference |\n|---|---|---|---|---|---|---|"
+    );
+    for (_, file) in MESHES {
+        let steps = 80;
+        let h = hysteresis(&scenes, file, steps)?;
+        println!(
+            "| {file} | {steps} | {} | {:.1e} | {:.5e} | {:.5e} | {:+.2} % |",
+            h.points.len(),
+            h.closure,
+            h.external_work,
+            h.friction_work,
+            100.0 * (h.friction_work - h.external_work) / h.external_work
+        );
+    }
     Ok(())
 }

@@ -44,6 +44,14 @@ splice hertz target/hertz-table.md docs/benchmarks.md
 cargo run -q --release --example patch_table > target/patch-table.md
 splice patch target/patch-table.md docs/benchmarks.md
 
+# friction: Cattaneo-Mindlin (stick zone, shear, hysteresis loop) and the
+# types under friction on the dragged block (docs/friction, PNG plots only)
+cargo run -q --release --example mindlin > target/mindlin-table.md
+splice mindlin target/mindlin-table.md docs/benchmarks.md
+cargo run -q --release -- study scenes/dragged-block.toml --out docs/friction \
+  --repeats 3 --steps 10,20,40 --no-heavy
+rm -f docs/friction/*.svg
+
 cargo run -q --release --example stability_sweep > target/stability-table.md
 splice stability target/stability-table.md docs/kernels.md
 splice stability-faces docs/stability/stability-faces.md docs/kernels.md

@@ -234,3 +234,70 @@ fn bad_coefficients_persistent_pairs_and_type_1_are_refused_with_the_reason() {
         "{err}"
     );
 }
+
+#[test]
+fn a_pair_that_never_touches_stays_open_without_shear() {
+    // the block 0.1 above the base, pressed only 0.01: it never touches
+    let scene = scene_with(|s| {
+        s.replace("origin = [1.0, 1.0]", "origin = [1.0, 1.1]")
+            .replace("y = 1.5", "y = 1.6")
+    });
+    let sol = solve_with(&scene, Method::Complete);
+    for r in rows(&sol) {
+        assert_eq!(r.state, "open");
+        assert_eq!(r.shear, [0.0; 2]);
+        assert_eq!(r.pressure, 0.0);
+        assert_eq!(r.slip, Some(0.0));
+    }
+    assert!(sol.final_state.multipliers.iter().all(|&l| l == 0.0));
+}
+
+#[test]
+fn a_node_leaving_contact_while_sliding_drops_its_shear() {
+    // pressed, dragged, then lifted 0.02 while the drag goes on
+    let scene = scene_with(|s| {
+        s.replace(
+            "uy = -0.01\namplitude = [[0.0, 0.0], [0.2, 1.0], [1.0, 1.0]]",
+            "uy = -0.01\namplitude = [[0.0, 0.0], [0.2, 1.0], [0.6, 1.0], [1.0, -2.0]]",
+        )
+    });
+    let sol = solve_with(&scene, Method::Complete);
+    let middle = sol
+        .step_records
+        .iter()
+        .position(|r| (r.load_factor - 0.6).abs() < 1e-12)
+        .unwrap();
+    // sliding before the lift, all open after it
+    assert!(sol.step_records[middle].reactions[0][0].abs() > 0.05);
+    for r in rows(&sol) {
+        assert_eq!(
+            (r.state.as_str(), r.shear, r.pressure),
+            ("open", [0.0; 2], 0.0)
+        );
+        assert!(r.slip.unwrap() > 0.1);
+    }
+}
+
+#[test]
+fn a_reversal_within_one_step_converges_to_the_reversed_slip() {
+    // four steps of 0.25: the third (0.5 to 0.75) drags forward to 0.6 and
+    // back; at its end every node slips backwards
+    let scene = scene_with(|s| {
+        s.replace(
+            "amplitude = [[0.0, 0.0], [0.2, 0.0], [1.0, 1.0]]",
+            "amplitude = [[0.0, 0.0], [0.2, 0.0], [0.6, 1.0], [1.0, 0.0]]",
+        )
+        .replace("steps = [20]", "steps = [4]")
+    });
+    let sol = solve_with(&scene, Method::Complete);
+    let third = &sol.step_records[2];
+    assert!(
+        (third.load_factor - 0.75).abs() < 1e-12,
+        "{}",
+        third.load_factor
+    );
+    for r in rows(&sol) {
+        assert_eq!(r.state, "slip");
+        assert!(r.shear[0] > 0.0);
+    }
+}

@@ -27,7 +27,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use solver::scene::MeshSpec;
-use solver::{Scene, SolveOptions, Solution, solve};
+use solver::{Scene, Solution, SolveOptions, solve};
 
 use super::contact_modulus;
 
@@ -195,10 +195,7 @@ pub fn measure(
         .filter(|n| n.state == "stick")
         .map(|n| n.x - centre)
         .collect();
-    let stick = sticking
-        .first()
-        .zip(sticking.last())
-        .map(|(&l, &r)| (l, r));
+    let stick = sticking.first().zip(sticking.last()).map(|(&l, &r)| (l, r));
     let squares: f64 = contact
         .iter()
         .map(|n| ((n.shear - mindlin_shear(n.x - centre, a, c, mu, p0)) / (mu * p0)).powi(2))
@@ -258,18 +255,122 @@ pub fn solve_on(scenes_dir: &Path, h: f64, file: &'static str) -> Result<Mindlin
         .ok_or_else(|| MindlinError::Table("the scene has no [material]".to_owned()))?;
     let mu = scene.contacts.first().map_or(0.0, |c| c.friction);
     let start = Instant::now();
-    let sol = solve(&scene, &SolveOptions::from_scene(&scene)).map_err(|source| {
-        MindlinError::Solve {
+    let sol =
+        solve(&scene, &SolveOptions::from_scene(&scene)).map_err(|source| MindlinError::Solve {
             mesh: file.to_string(),
             source: Box::new(source),
-        }
-    })?;
+        })?;
     Ok(MindlinRow {
         h,
         mesh: file,
         measured: measure(&sol, mu, young, poisson)?,
         newton_iterations: sol.newton_iterations,
         seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// A cyclic tangential load on the Mindlin scene: the shift goes to `+d`,
+/// back to `-d` and again to `+d` with the press held (module docs of
+/// [`hysteresis`]).
+#[derive(Debug, Clone)]
+pub struct Hysteresis {
+    /// `(delta, Q)` at every converged step of the shift: the top edge's
+    /// tangential displacement and the reaction of `shift`.
+    pub points: Vec<(f64, f64)>,
+    /// The work of `Q` over the closed cycle (from the first `+d` back to
+    /// it, trapezoidal in the steps): the energy dissipated.
+    pub external_work: f64,
+    /// The friction's dissipation over the same cycle: per step and
+    /// sliding node `W_a |q_a| |slip increment|` (the tributary length,
+    /// the shear at the step's end, the growth of the accumulated slip).
+    pub friction_work: f64,
+    /// `|Q(end) - Q(first +d)| / Q(first +d)`: how far from closed the
+    /// loop is.
+    pub closure: f64,
+}
+
+/// The Mindlin scene on `file` with the shift cycled `+d, -d, +d` over
+/// load factors 0.5..1 (`d` the scene's shift, in `steps` equal steps):
+/// the loop, the work of `Q` over the closed cycle and the friction's
+/// dissipation, which an energy balance equates (the elastic energy
+/// returns to its value at the first `+d`).
+pub fn hysteresis(scenes_dir: &Path, file: &str, steps: usize) -> Result<Hysteresis, MindlinError> {
+    let mut scene = scene_on(scenes_dir, file)?;
+    let shift = scene
+        .prescribes
+        .iter_mut()
+        .find(|p| p.name.as_deref() == Some("shift"))
+        .ok_or_else(|| MindlinError::Table("no prescribe `shift`".to_owned()))?;
+    shift.amplitude = Some(vec![
+        [0.0, 0.0],
+        [0.5, 0.0],
+        [0.625, 1.0],
+        [0.875, -1.0],
+        [1.0, 1.0],
+    ]);
+    scene.loading.steps = vec![steps];
+    let opts = SolveOptions {
+        record_steps: true,
+        steps,
+        ..SolveOptions::from_scene(&scene)
+    };
+    let sol = solve::<2>(&scene, &opts).map_err(|source| MindlinError::Solve {
+        mesh: file.to_string(),
+        source: Box::new(source),
+    })?;
+    let k = sol
+        .support_groups
+        .iter()
+        .position(|g| g == "shift")
+        .ok_or_else(|| MindlinError::Table("no support group shift".to_owned()))?;
+    // a node of the top edge (y = R): its x displacement is the shift
+    let top = sol
+        .mesh
+        .nodes_ref
+        .iter()
+        .position(|x| (x[1] - RADIUS).abs() < 1e-9)
+        .ok_or_else(|| MindlinError::Table("no node at y = R".to_owned()))?;
+    let mut points = Vec::new();
+    let mut slips: Vec<Vec<(f64, f64, f64)>> = Vec::new();
+    for (record, state) in sol.step_records.iter().zip(&sol.snapshots[1..]) {
+        if record.load_factor <= 0.5 + 1e-12 {
+            continue;
+        }
+        points.push((state.displacements[top][0], record.reactions[k][0]));
+        let text = solver::report::contact_csv(&sol, state)
+            .map_err(|e| MindlinError::Table(e.to_string()))?;
+        // (tributary, |shear|, accumulated slip) per row
+        let rows = text
+            .lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                let v = |i: usize| f[i].parse::<f64>().unwrap_or(0.0);
+                (v(10), v(14).hypot(v(15)), v(17))
+            })
+            .collect();
+        slips.push(rows);
+    }
+    // the closed cycle: from the first return to +d (a quarter of the
+    // shift's steps in) to the end
+    let first_peak = points.len() / 4 - 1;
+    let mut external = 0.0;
+    let mut friction = 0.0;
+    for s in first_peak + 1..points.len() {
+        let ((d0, q0), (d1, q1)) = (points[s - 1], points[s]);
+        external += 0.5 * (q0 + q1) * (d1 - d0);
+        friction += slips[s]
+            .iter()
+            .zip(&slips[s - 1])
+            .map(|(now, before)| now.0 * now.1 * (now.2 - before.2))
+            .sum::<f64>();
+    }
+    let (q_peak, q_end) = (points[first_peak].1, points[points.len() - 1].1);
+    Ok(Hysteresis {
+        closure: (q_end - q_peak).abs() / q_peak.abs(),
+        points,
+        external_work: external,
+        friction_work: friction,
     })
 }
 
@@ -318,7 +419,11 @@ mod tests {
         assert!((0.4..0.6).contains(&ratio), "Q / (mu P) = {ratio}");
         assert!((m.a - 1.1).abs() < 0.05, "a = {}", m.a);
         let w = m.stick_half_width().unwrap();
-        assert!((w - m.c).abs() < 0.2, "stick half-width {w} against c = {}", m.c);
+        assert!(
+            (w - m.c).abs() < 0.2,
+            "stick half-width {w} against c = {}",
+            m.c
+        );
         assert!(m.slip_bound < 1e-9, "{}", m.slip_bound);
         // every node well inside c sticks, every node in contact well
         // outside it slips
@@ -332,6 +437,25 @@ mod tests {
             }
         }
         assert!(m.shear_rms < 0.5, "{}", m.shear_rms);
+    }
+
+    /// Shift +d, -d, +d on the coarse mesh: the loop closes and the work
+    /// of the tangential load over the cycle is the friction's
+    /// dissipation.
+    #[test]
+    fn the_hysteresis_loop_closes_and_its_area_is_the_frictions_work() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+        let h = hysteresis(&dir, "mindlin-coarse.msh", 80).unwrap();
+        assert_eq!(h.points.len(), 40);
+        assert!(h.closure < 1e-2, "closure {}", h.closure);
+        assert!(h.external_work > 0.0);
+        let balance = (h.external_work - h.friction_work).abs() / h.external_work;
+        assert!(
+            balance < 0.1,
+            "work of Q {} against friction's {}",
+            h.external_work,
+            h.friction_work
+        );
     }
 
     #[test]

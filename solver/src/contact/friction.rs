@@ -75,7 +75,7 @@ pub struct Anchor<M> {
 /// A frictional node at a converged state, for reports: its normal
 /// multiplier, its state, the slip of the last step `S_a / W_a` and the
 /// accumulated slip length (the sum of `|S_a / W_a|` over the converged
-/// steps).
+/// steps at whose end the node was in contact, stick or slip).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodalFriction {
     /// The node's normal multiplier (its tangential one is the state's

@@ -218,7 +218,7 @@ use std::time::Instant;
 use contact_kernels::ApproxType;
 
 use crate::contact::ContactSpace;
-use crate::contact::friction::NodalFriction;
+use crate::contact::friction::{FrictionState, NodalFriction};
 use crate::contact::{KernelCounts, NodeTie};
 use crate::error::SolverError;
 use crate::model::Model;
@@ -477,7 +477,12 @@ where
         let mut friction = c.friction;
         for (k, node) in friction.iter_mut().enumerate() {
             let before = self.friction.get(k).map_or(0.0, |n| n.slip);
-            node.slip = before + node.step_slip.abs();
+            // only a node in contact slips; an open one moves freely
+            let step = match node.state {
+                FrictionState::Open => 0.0,
+                FrictionState::Stick | FrictionState::Slip { .. } => node.step_slip.abs(),
+            };
+            node.slip = before + step;
         }
         self.friction = friction;
         self.treatment.committed();
