@@ -28,6 +28,12 @@
 //! PETSc solve takes (`solver::linear::Block`) instead of triplets. `cargo run --release --example scaling_table -- --3d` gives
 //! the 3D sizes up to 3e5 equations.
 //!
+//! The group `friction_cost` times what Coulomb friction adds to an
+//! iteration: the contact phase, and the contact phase with the solid
+//! assembly, on the Mindlin scene in partial slip with `mu = 0.3` and with
+//! the same model and state frictionless
+//! (`cargo bench --bench solver_scaling -- friction_cost`).
+//!
 //! Each routine's input (the system after the previous phase) is cloned in
 //! an untimed setup. Flat sampling, 10 samples, 1 s warm-up and 2 s
 //! measurement, raised for the linear solve to 12 times one solve (the
@@ -237,5 +243,75 @@ fn solver_scaling_3d(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, solver_scaling, solver_scaling_3d);
+/// The Mindlin scene (`scenes/mindlin.toml`, h = 0.1) at load factor `to`
+/// solved in `steps` steps with its friction, and the same model without
+/// friction: `(frictional model, frictionless model, options, the
+/// frictional state, the same state without the tangential multipliers)`.
+fn mindlin_states(to: f64, steps: usize) -> (Model, Model, SolveOptions, State, State) {
+    let scenes = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/mindlin.toml");
+    let scene = Scene::from_file(scenes).expect("the Mindlin scene parses");
+    let mut model = scene.build_model::<2>().expect("the Mindlin scene builds");
+    let opts = SolveOptions {
+        method: Method::Complete,
+        linear: linear(),
+        ..SolveOptions::from_scene(&scene)
+    };
+    let mut partial = model.clone();
+    partial.load_factor_end = to;
+    let solution = solve_model(
+        &partial,
+        &SolveOptions {
+            steps,
+            ..opts.clone()
+        },
+    )
+    .expect("the Mindlin scene converges");
+    let state = solution.final_state;
+    let frictionless_state = State {
+        multipliers: state.multipliers[..solution.multiplier_dofs.len()].to_vec(),
+        friction: Vec::new(),
+        ..state.clone()
+    };
+    let frictional = model.clone();
+    for pair in &mut model.contacts {
+        pair.friction = 0.0;
+    }
+    (frictional, model, opts, state, frictionless_state)
+}
+
+/// What friction costs per Newton iteration (issue 32's item 5, in 2D): on
+/// the Mindlin scene in partial slip (load factor 0.75 of the press-then-
+/// shift schedule), the contact phase (re-projection, the Type 6 gap and,
+/// with friction, slip kernels, the active set with the stick/slip
+/// states, the contact scatter) and the contact phase with the solid
+/// assembly, with `mu = 0.3` and with the same model and state
+/// frictionless (`.../mu0`). The linear solve is `solver_scaling`'s.
+fn friction_cost(c: &mut Criterion) {
+    let mut group = c.benchmark_group("friction_cost");
+    group
+        .sampling_mode(SamplingMode::Flat)
+        .sample_size(10)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(MEASUREMENT);
+    let (frictional, frictionless, opts, state, state0) = mindlin_states(0.75, 6);
+    for (name, model, state) in [
+        ("mu0", &frictionless, &state0),
+        ("mu0.3", &frictional, &state),
+    ] {
+        let probe = IterationProbe::new(model, &opts, state, 0.8).expect("probe builds");
+        group.bench_function(BenchmarkId::new("contact_evaluation", name), |b| {
+            b.iter(|| black_box(probe.contact().expect("contact evaluates")))
+        });
+        group.bench_function(BenchmarkId::new("contact_and_solid", name), |b| {
+            b.iter(|| {
+                let mut phase = probe.contact().expect("contact evaluates");
+                probe.solid(&mut phase.system);
+                black_box(phase)
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, solver_scaling, solver_scaling_3d, friction_cost);
 criterion_main!(benches);

@@ -116,6 +116,7 @@ pub(crate) fn measure_fill_3d(
         load_factor: 0.0,
         displacements: vec![[0.0; 3]; model.mesh.node_count()],
         multipliers: Vec::new(),
+        friction: Vec::new(),
     };
     let probe = IterationProbe::new(&model, &opts, &zero, model.load_factor_end)?;
     let equations = probe.equations();

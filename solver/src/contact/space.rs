@@ -126,33 +126,18 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         Ok(())
     }
     /// [`add_slip`](Self::add_slip) at every evaluated point of a pair
-    /// with friction that has an anchor, in point order; the first failure
-    /// names its point.
+    /// with friction that has an anchor, in point order (the kernel calls
+    /// counted); the first failure names its point. Default: nothing (no
+    /// friction).
     fn add_slips(
         &self,
-        mesh: &Mesh<D>,
-        u: &[f64],
-        evals: &mut [Option<Self::Eval>],
-        anchors: &[Option<Anchor<Self::Master>>],
-        ty: ApproxType,
-        counts: &mut KernelCounts,
+        _mesh: &Mesh<D>,
+        _u: &[f64],
+        _evals: &mut [Option<Self::Eval>],
+        _anchors: &[Option<Anchor<Self::Master>>],
+        _ty: ApproxType,
+        _counts: &mut KernelCounts,
     ) -> Result<(), PointFailure<Self::Master>> {
-        for (k, (e, anchor)) in evals.iter_mut().zip(anchors).enumerate() {
-            let i = ContactPointIndex::new(k);
-            let (Some(e), Some(anchor)) = (e, anchor) else {
-                continue;
-            };
-            if !self.point_has_friction(i) {
-                continue;
-            }
-            counts.evaluate += 1;
-            self.add_slip(mesh, u, i, e, *anchor, ty)
-                .map_err(|error| PointFailure {
-                    point: i,
-                    master_segment: Some(Self::master(e)),
-                    error,
-                })?;
-        }
         Ok(())
     }
     /// Each tangential multiplier's state at `(evals, lambda)` with the

@@ -10,6 +10,7 @@ use std::time::Instant;
 
 use crate::contact::ContactSpace;
 use crate::contact::KernelCounts;
+use crate::contact::friction::Anchor;
 use crate::dim::SpaceDim;
 use crate::error::SolverError;
 use crate::model::Dim;
@@ -83,6 +84,9 @@ where
     u: Vec<f64>,
     lambda: Vec<f64>,
     pairing: Vec<Option<<ContactOf<D> as ContactSpace<D>>::Master>>,
+    /// With friction, every point's anchor at the probe's state (as at a
+    /// step's start: the slips are zero there, their derivatives are not).
+    anchors: Vec<Option<Anchor<<ContactOf<D> as ContactSpace<D>>::Master>>>,
     load_factor: f64,
 }
 
@@ -112,7 +116,7 @@ where
                 options.method
             )));
         }
-        let setup = Setup::new(model, options)?;
+        let setup = Setup::<D, ContactOf<D>>::new(model, options)?;
         if setup.partition.ranks.size > 1 {
             return Err(SolverError::Options(format!(
                 "the iteration probe measures one process, and this one is rank {} of {} (mpiexec): \
@@ -136,11 +140,24 @@ where
         let (pairing, _) = setup
             .initial_pairing(&u)
             .map_err(|f| setup.kernel_error(&f, load_factor))?;
+        let anchors = if setup.layout.has_friction() {
+            let (found, _) = setup
+                .layout
+                .project_all(&model.mesh, &u, &pairing)
+                .map_err(|f| setup.kernel_error(&f, load_factor))?;
+            found
+                .iter()
+                .map(|f| f.as_ref().and_then(ContactOf::<D>::found_anchor))
+                .collect()
+        } else {
+            Vec::new()
+        };
         Ok(IterationProbe {
             regularization: options.regularization,
             u,
             lambda: state.multipliers.clone(),
             pairing,
+            anchors,
             load_factor,
             setup,
         })
@@ -180,18 +197,27 @@ where
         self.setup.linear.factor_nonzeros()
     }
 
-    /// Phase 1: re-projection and Type 6 kernel at every integration point,
-    /// active set, and the contact scatter into a fresh system.
+    /// Phase 1: re-projection and Type 6 kernel at every integration point
+    /// (with friction, the Type 6 slip too, from the anchors at the probe's
+    /// state), active set, and the contact scatter into a fresh system.
     pub fn contact(&self) -> Result<ContactPhase, SolverError> {
-        let (evals, others) = complete::evaluate(
-            &self.setup,
-            &self.u,
-            &self.pairing,
-            &[],
-            false,
-            &mut KernelCounts::default(),
-        )
-        .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
+        let mut counts = KernelCounts::default();
+        let (mut evals, others) =
+            complete::evaluate(&self.setup, &self.u, &self.pairing, &[], false, &mut counts)
+                .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
+        if !self.anchors.is_empty() {
+            self.setup
+                .layout
+                .add_slips(
+                    &self.setup.model.mesh,
+                    &self.u,
+                    &mut evals,
+                    &self.anchors,
+                    complete::DERIVATIVES,
+                    &mut counts,
+                )
+                .map_err(|f| self.setup.kernel_error(&f, self.load_factor))?;
+        }
         let (system, active) = self
             .setup
             .contact_system(&evals, &others, &self.lambda, &[], false);

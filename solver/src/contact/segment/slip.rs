@@ -16,13 +16,18 @@
 //! Invariant: a formulation without a slip is `NotCompiled` (every
 //! shipped formulation defines one).
 
-use contact_kernels::{ApproxType, Kernel, KernelError, SlipOut};
+use contact_kernels::{ApproxType, Formulation, Kernel, KernelError, Slip, SlipOut};
 use nalgebra::{SMatrix, SVector};
 
 use crate::contact::friction::{Anchor, SlipTerm};
 use crate::contact::{ContactLayout, PointEval};
 use crate::ids::{ContactPointIndex, MasterSegmentIndex, PairId};
 use crate::mesh::Mesh;
+
+/// The slip kernel of one formulation and type with its output buffers,
+/// kept across the points of a pass ([`ContactLayout::slip_with`]).
+#[derive(Debug, Default)]
+pub(super) struct SlipBuffers(Option<(Formulation, ApproxType, Slip, SlipOut)>);
 
 impl ContactLayout {
     /// See [`crate::contact::ContactSpace::add_slip`]: the slip of point
@@ -37,6 +42,24 @@ impl ContactLayout {
         anchor: Anchor<MasterSegmentIndex>,
         ty: ApproxType,
     ) -> Result<(), KernelError> {
+        let mut buffers = SlipBuffers::default();
+        self.slip_with(mesh, u, i, e, anchor, ty, &mut buffers)
+    }
+
+    /// [`slip_at`](Self::slip_at) with the slip kernel and its output
+    /// buffers of the last call kept in `buffers` (a pass over every
+    /// point reuses them while the formulation and type stay).
+    #[allow(clippy::too_many_arguments)] // slip_at's and the buffers
+    pub(super) fn slip_with(
+        &self,
+        mesh: &Mesh<2>,
+        u: &[f64],
+        i: ContactPointIndex,
+        e: &mut PointEval,
+        anchor: Anchor<MasterSegmentIndex>,
+        ty: ApproxType,
+        buffers: &mut SlipBuffers,
+    ) -> Result<(), KernelError> {
         let pt = self.point(i);
         let formulation = self.formulations[pt.pair.index()];
         let xi_m0 = if anchor.master == e.master {
@@ -44,11 +67,17 @@ impl ContactLayout {
         } else {
             self.anchor_on(mesh, pt.pair, anchor.master, anchor.xi_m, e.master)
         };
-        let Some(slip) = Kernel::new(formulation, ty)?.slip() else {
-            return Err(KernelError::NotCompiled(formulation));
+        let (slip, out) = match &mut buffers.0 {
+            Some((f, t, slip, out)) if *f == formulation && *t == ty => (*slip, out),
+            cached => {
+                let Some(slip) = Kernel::new(formulation, ty)?.slip() else {
+                    return Err(KernelError::NotCompiled(formulation));
+                };
+                let (_, _, _, out) = cached.insert((formulation, ty, slip, SlipOut::new(&slip)));
+                (slip, out)
+            }
         };
-        let mut out = SlipOut::new(&slip);
-        slip.eval(&Self::q(mesh, u, e.nodes), pt.xi_s, xi_m0, &mut out)?;
+        slip.eval(&Self::q(mesh, u, e.nodes), pt.xi_s, xi_m0, out)?;
         e.slip = Some(SlipTerm {
             slip: out.slip()[0],
             grad: SVector::<f64, 8>::from_column_slice(out.grad(0)),

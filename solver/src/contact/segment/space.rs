@@ -17,6 +17,7 @@ use crate::par;
 use crate::system::{DofMap, System};
 
 use super::SegmentTaylor;
+use super::slip::SlipBuffers;
 use super::ties::assemble_ties;
 use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
@@ -83,6 +84,37 @@ impl ContactSpace<2> for ContactLayout {
         ty: ApproxType,
     ) -> Result<(), KernelError> {
         self.slip_at(mesh, u, i, e, anchor, ty)
+    }
+
+    /// The trait's pass, with the slip kernel's buffers kept across the
+    /// points (`slip.rs`).
+    fn add_slips(
+        &self,
+        mesh: &Mesh<2>,
+        u: &[f64],
+        evals: &mut [Option<PointEval>],
+        anchors: &[Option<Anchor<MasterSegmentIndex>>],
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<(), PointFailure> {
+        let mut buffers = SlipBuffers::default();
+        for (k, (e, anchor)) in evals.iter_mut().zip(anchors).enumerate() {
+            let i = ContactPointIndex::new(k);
+            let (Some(e), Some(anchor)) = (e, anchor) else {
+                continue;
+            };
+            if !self.point_has_friction(i) {
+                continue;
+            }
+            counts.evaluate += 1;
+            self.slip_with(mesh, u, i, e, *anchor, ty, &mut buffers)
+                .map_err(|error| PointFailure {
+                    point: i,
+                    master_segment: Some(e.master),
+                    error,
+                })?;
+        }
+        Ok(())
     }
 
     fn nodal_friction(
