@@ -26,8 +26,10 @@
 use std::path::Path;
 use std::time::Instant;
 
+use solver::contact::NodalContactRow;
+use solver::report::{ContactTable, FrictionTable, RowFriction};
 use solver::scene::MeshSpec;
-use solver::{Scene, Solution, SolveOptions, solve};
+use solver::{Dim, Scene, Solution, SolveOptions, State, solve};
 
 use super::contact_modulus;
 
@@ -124,6 +126,24 @@ pub enum MindlinError {
     Table(String),
 }
 
+/// The nodal contact table of `state` with each row's friction columns
+/// (what `contact.csv` writes).
+fn table(
+    sol: &Solution,
+    state: &State,
+) -> Result<Vec<(NodalContactRow, RowFriction<2>)>, MindlinError> {
+    let rows = <Dim<2> as ContactTable<2>>::rows(sol, state)
+        .map_err(|e| MindlinError::Table(e.to_string()))?;
+    let friction = FrictionTable::new(sol, state);
+    Ok(rows
+        .into_iter()
+        .map(|r| {
+            let f = friction.columns(sol, state, &r);
+            (r, f)
+        })
+        .collect())
+}
+
 /// Measures a solve of `scenes/mindlin.toml` (or a scene of its groups)
 /// with coefficient `mu`, material `young`, `poisson` (module docs).
 pub fn measure(
@@ -132,39 +152,16 @@ pub fn measure(
     young: f64,
     poisson: f64,
 ) -> Result<MindlinMeasured, MindlinError> {
-    let text = solver::report::contact_csv(sol, &sol.final_state)
-        .map_err(|e| MindlinError::Table(e.to_string()))?;
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap_or_default().split(',').collect();
-    let col = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .ok_or_else(|| MindlinError::Table(format!("contact.csv has no column {name}")))
-    };
-    let (cx, cp, cq, cqy, ct, cs) = (
-        col("x")?,
-        col("pressure")?,
-        col("shear_x")?,
-        col("shear_y")?,
-        col("tributary_length")?,
-        col("state")?,
-    );
-    let number = |f: &[&str], k: usize| {
-        f[k].parse::<f64>()
-            .map_err(|_| MindlinError::Table(format!("not a number: {}", f[k])))
-    };
-    let mut nodes = Vec::new();
-    for line in lines {
-        let f: Vec<&str> = line.split(',').collect();
-        nodes.push(MindlinNode {
-            x: number(&f, cx)?,
-            pressure: number(&f, cp)?,
-            shear: number(&f, cq)?.hypot(number(&f, cqy)?),
-            tributary: number(&f, ct)?,
-            state: f[cs].to_owned(),
-        });
-    }
+    let mut nodes: Vec<MindlinNode> = table(sol, &sol.final_state)?
+        .into_iter()
+        .map(|(row, friction)| MindlinNode {
+            x: row.position[0],
+            pressure: row.pressure,
+            shear: friction.shear[0].hypot(friction.shear[1]),
+            tributary: row.tributary_length,
+            state: friction.state.name().to_owned(),
+        })
+        .collect();
     nodes.sort_by(|a, b| a.x.total_cmp(&b.x));
     let reaction = |name: &str| {
         let k = sol
@@ -337,16 +334,15 @@ pub fn hysteresis(scenes_dir: &Path, file: &str, steps: usize) -> Result<Hystere
             continue;
         }
         points.push((state.displacements[top][0], record.reactions[k][0]));
-        let text = solver::report::contact_csv(&sol, state)
-            .map_err(|e| MindlinError::Table(e.to_string()))?;
         // (tributary, |shear|, accumulated slip) per row
-        let rows = text
-            .lines()
-            .skip(1)
-            .map(|l| {
-                let f: Vec<&str> = l.split(',').collect();
-                let v = |i: usize| f[i].parse::<f64>().unwrap_or(0.0);
-                (v(10), v(14).hypot(v(15)), v(17))
+        let rows = table(&sol, state)?
+            .into_iter()
+            .map(|(r, f)| {
+                (
+                    r.tributary_length,
+                    f.shear[0].hypot(f.shear[1]),
+                    f.slip.unwrap_or(0.0),
+                )
             })
             .collect();
         slips.push(rows);

@@ -221,6 +221,51 @@ impl Friction {
         complementarity: &[f64],
     ) -> Vec<FrictionState> {
         let (weight, slip) = self.nodal_slips(points, evals);
+        self.states_of(&weight, &slip, lambda, active, pairs, complementarity)
+    }
+
+    /// Each frictional node's state and step slip at a converged iterate
+    /// (the accumulated `slip` left 0 for the run to add up), the nodal
+    /// sums taken once.
+    #[allow(clippy::too_many_arguments)] // `states`' inputs
+    pub fn nodal<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
+        &self,
+        points: &[P],
+        evals: &[Option<E>],
+        lambda: &[f64],
+        active: &[bool],
+        pairs: &[MultiplierDof],
+        complementarity: &[f64],
+    ) -> Vec<NodalFriction> {
+        let (weight, slip) = self.nodal_slips(points, evals);
+        let states = self.states_of(&weight, &slip, lambda, active, pairs, complementarity);
+        self.normal
+            .iter()
+            .zip(states)
+            .enumerate()
+            .map(|(k, (&multiplier, state))| NodalFriction {
+                multiplier,
+                state,
+                step_slip: if weight[k] > 0.0 {
+                    slip[k] / weight[k]
+                } else {
+                    0.0
+                },
+                slip: 0.0,
+            })
+            .collect()
+    }
+
+    /// The states from the nodal sums `weight` and `slip` (module docs).
+    fn states_of(
+        &self,
+        weight: &[f64],
+        slip: &[f64],
+        lambda: &[f64],
+        active: &[bool],
+        pairs: &[MultiplierDof],
+        complementarity: &[f64],
+    ) -> Vec<FrictionState> {
         self.normal
             .iter()
             .enumerate()

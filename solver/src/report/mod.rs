@@ -30,7 +30,7 @@ pub mod vtu;
 
 pub use atomic::{replace_with, write_atomic};
 pub use contact_csv::contact_csv;
-pub use contact_table::{ContactTable, ContactTableError};
+pub use contact_table::{ContactTable, ContactTableError, FrictionTable, RowFriction};
 pub use pvd::pvd_string;
 pub use reactions_csv::reactions_csv;
 pub use vtu::{vtu_string, write_vtu, write_vtu_state};

@@ -32,24 +32,10 @@ pub(super) struct SlipBuffers(Option<(Formulation, ApproxType, Slip, SlipOut)>);
 impl ContactLayout {
     /// See [`crate::contact::ContactSpace::add_slip`]: the slip of point
     /// `i` evaluated as `e`, with kernel type `ty` at displacements `u`,
-    /// from `anchor`, stored in `e`.
-    pub(super) fn slip_at(
-        &self,
-        mesh: &Mesh<2>,
-        u: &[f64],
-        i: ContactPointIndex,
-        e: &mut PointEval,
-        anchor: Anchor<MasterSegmentIndex>,
-        ty: ApproxType,
-    ) -> Result<(), KernelError> {
-        let mut buffers = SlipBuffers::default();
-        self.slip_with(mesh, u, i, e, anchor, ty, &mut buffers)
-    }
-
-    /// [`slip_at`](Self::slip_at) with the slip kernel and its output
-    /// buffers of the last call kept in `buffers` (a pass over every
-    /// point reuses them while the formulation and type stay).
-    #[allow(clippy::too_many_arguments)] // slip_at's and the buffers
+    /// from `anchor`, stored in `e`; the slip kernel and its output
+    /// buffers of the last call kept in `buffers` (a pass over every point
+    /// reuses them while the formulation and type stay).
+    #[allow(clippy::too_many_arguments)] // one point's inputs and the buffers
     pub(super) fn slip_with(
         &self,
         mesh: &Mesh<2>,

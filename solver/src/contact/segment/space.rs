@@ -83,7 +83,7 @@ impl ContactSpace<2> for ContactLayout {
         anchor: Anchor<MasterSegmentIndex>,
         ty: ApproxType,
     ) -> Result<(), KernelError> {
-        self.slip_at(mesh, u, i, e, anchor, ty)
+        self.slip_with(mesh, u, i, e, anchor, ty, &mut SlipBuffers::default())
     }
 
     /// The trait's pass, with the slip kernel's buffers kept across the
@@ -123,23 +123,14 @@ impl ContactSpace<2> for ContactLayout {
         lambda: &[f64],
         active: &[bool],
     ) -> Vec<NodalFriction> {
-        let states = self.friction_states(evals, lambda, active);
-        let (weight, slip) = self.friction.nodal_slips(&self.points, evals);
-        self.friction
-            .normal
-            .iter()
-            .enumerate()
-            .map(|(k, &multiplier)| NodalFriction {
-                multiplier,
-                state: states[k],
-                step_slip: if weight[k] > 0.0 {
-                    slip[k] / weight[k]
-                } else {
-                    0.0
-                },
-                slip: 0.0,
-            })
-            .collect()
+        self.friction.nodal(
+            &self.points,
+            evals,
+            lambda,
+            active,
+            &self.multipliers,
+            &self.complementarity,
+        )
     }
 
     fn friction_states(
