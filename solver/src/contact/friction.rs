@@ -55,12 +55,14 @@
 //! `mu = 0` has none, so a frictionless model's system is unchanged to the
 //! bit; sums over points are in point order.
 
+use nalgebra::SVector;
+
 use crate::ids::{EquationIndex, MultiplierIndex};
 use crate::system::{DofMap, System};
 
 use super::MultiplierDof;
 pub use super::term::SlipTerm;
-use super::term::{GapTerm, WeightedPoint};
+use super::term::{GapTerm, PointSlip, WeightedPoint};
 
 /// Where a point's slip is measured from: the master and the projection
 /// onto it at the last converged state (2D: `xi_m0` on a segment).
@@ -78,16 +80,32 @@ pub struct Anchor<M> {
 /// steps at whose end the node was in contact, stick or slip).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodalFriction {
-    /// The node's normal multiplier (its tangential one is the state's
-    /// multiplier at the normal count plus this entry's index).
+    /// The node's normal multiplier.
     pub multiplier: MultiplierIndex,
+    /// Its first tangential multiplier (2D: its only one; 3D: the one
+    /// along `frame[0]`, the next along `frame[1]`).
+    pub tangential: MultiplierIndex,
     /// Open, stick or slip.
     pub state: FrictionState,
-    /// The weighted mean slip of the last step, `S_a / W_a` (0 where no
-    /// point of the node has a slip).
-    pub step_slip: f64,
+    /// The weighted mean slip of the last step along each direction,
+    /// `S_ak / W_a` (0 where no point of the node has a slip; 2D: the
+    /// second entry 0).
+    pub step_slip: [f64; 2],
     /// The accumulated slip length since the start of the solve.
     pub slip: f64,
+    /// 3D: the node's two unit tangents (global components) its
+    /// tangential multipliers act along; `None` in 2D (one multiplier,
+    /// along the slave tangent of docs/conventions.md) and where no point
+    /// of the node has a slip.
+    pub frame: Option<[[f64; 3]; 2]>,
+}
+
+impl NodalFriction {
+    /// The length of the last step's slip, `|S_a / W_a|`.
+    pub fn step_length(&self) -> f64 {
+        let [a, b] = self.step_slip;
+        if b == 0.0 { a.abs() } else { a.hypot(b) }
+    }
 }
 
 /// A frictional node's state at an iterate (module docs).
@@ -97,11 +115,13 @@ pub enum FrictionState {
     Open,
     /// No slip in the step: `S_a = 0`.
     Stick,
-    /// Sliding: `t_a = mu p_a direction`, `direction` `+1` or `-1` (the
-    /// sign of the slip in the step).
+    /// Sliding: `t_a = mu p_a z_a / |z_a|`.
     Slip {
-        /// `sign(z_a)`.
-        direction: f64,
+        /// `z_a / |z_a|` (2D: `sign(z_a)` and 0).
+        direction: [f64; 2],
+        /// `mu p_a / |z_a|`, below 1 at a sliding node of a converged
+        /// state (the 3D linearisation's, module docs).
+        ratio: f64,
     },
 }
 
@@ -124,39 +144,47 @@ pub struct Friction {
     /// The number of normal multipliers (the first tangential multiplier's
     /// index).
     pub normal_count: usize,
-    /// Each tangential multiplier's node, as its normal multiplier.
+    /// Tangential multipliers per node: 1 in 2D, 2 in 3D.
+    pub directions: usize,
+    /// Each frictional node's normal multiplier, in frictional node order.
     pub normal: Vec<MultiplierIndex>,
-    /// Each normal multiplier's tangential one (`None`: frictionless pair).
-    pub tangential_of: Vec<Option<MultiplierIndex>>,
+    /// Each normal multiplier's frictional node (`None`: frictionless
+    /// pair).
+    pub node_of: Vec<Option<usize>>,
 }
 
+/// The most tangential directions per node.
+const MAX_DIRECTIONS: usize = 2;
+
 impl Friction {
-    /// One tangential multiplier per normal one of a pair with `mu > 0`
-    /// (`mu` per pair).
-    pub fn new(multipliers: &[MultiplierDof], mu: Vec<f64>) -> Friction {
-        let normal_count = multipliers.len();
+    /// `directions` tangential multipliers per normal one of a pair with
+    /// `mu > 0` (`mu` per pair), numbered node by node after every normal
+    /// multiplier.
+    pub fn new(multipliers: &[MultiplierDof], mu: Vec<f64>, directions: usize) -> Friction {
+        assert!((1..=MAX_DIRECTIONS).contains(&directions));
         let mut normal = Vec::new();
-        let tangential_of = multipliers
+        let node_of = multipliers
             .iter()
             .enumerate()
             .map(|(m, dof)| {
                 (mu[dof.pair.index()] > 0.0).then(|| {
                     normal.push(MultiplierIndex::new(m));
-                    MultiplierIndex::new(normal_count + normal.len() - 1)
+                    normal.len() - 1
                 })
             })
             .collect();
         Friction {
             mu,
-            normal_count,
+            normal_count: multipliers.len(),
+            directions,
             normal,
-            tangential_of,
+            node_of,
         }
     }
 
     /// The number of tangential multipliers.
     pub fn count(&self) -> usize {
-        self.normal.len()
+        self.directions * self.normal.len()
     }
 
     /// Whether any pair has friction.
@@ -169,48 +197,56 @@ impl Friction {
         self.mu.get(pair).is_some_and(|&mu| mu > 0.0)
     }
 
-    /// `t(xi_s) = sum_a N_a t_a` of a point (summed from its first
-    /// frictional node), or `None` when none of its nodes has friction.
-    fn traction<P: WeightedPoint>(&self, pt: &P, lambda: &[f64]) -> Option<f64> {
-        let mut t: Option<f64> = None;
-        for (m, n_a) in pt.multiplier_shape().iter() {
-            if let Some(k) = self.tangential_of[m.index()] {
-                let v = n_a * lambda[k.index()];
-                t = Some(t.map_or(v, |t| t + v));
-            }
-        }
-        t
+    /// The tangential multiplier of frictional node `k` along direction
+    /// `d`.
+    pub fn tangential(&self, k: usize, d: usize) -> MultiplierIndex {
+        MultiplierIndex::new(self.normal_count + self.directions * k + d)
     }
 
-    /// Per tangential multiplier: the weight `W_a = sum w J0 N_a` and the
-    /// weighted slip `S_a = sum w J0 N_a s` over the points with a slip, in
-    /// point order.
+    /// The point's frictional nodes: `(entry j of its multiplier shape,
+    /// frictional node k, N_a)`, and how many.
+    fn entries<P: WeightedPoint>(&self, pt: &P) -> ([(usize, usize, f64); 4], usize) {
+        let mut out = [(0, 0, 0.0); 4];
+        let mut count = 0;
+        for (j, (m, n_a)) in pt.multiplier_shape().iter().enumerate() {
+            if let Some(k) = self.node_of[m.index()] {
+                out[count] = (j, k, n_a);
+                count += 1;
+            }
+        }
+        (out, count)
+    }
+
+    /// Per frictional node the weight `W_a = sum w J0 N_a`, and per
+    /// tangential multiplier (node by node) the weighted slip
+    /// `S_ak = sum w J0 N_a d_ak . s`, over the points with a slip, in point
+    /// order.
     pub fn nodal_slips<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
         &self,
         points: &[P],
         evals: &[Option<E>],
     ) -> (Vec<f64>, Vec<f64>) {
-        let mut weight = vec![0.0; self.count()];
+        let mut weight = vec![0.0; self.normal.len()];
         let mut slip = vec![0.0; self.count()];
         for (pt, ev) in points.iter().zip(evals) {
             let Some(s) = ev.as_ref().and_then(|e| e.slip()) else {
                 continue;
             };
             let w = pt.weight_ref();
-            for (m, n_a) in pt.multiplier_shape().iter() {
-                if let Some(k) = self.tangential_of[m.index()] {
-                    let k = k.index() - self.normal_count;
-                    weight[k] += w * n_a;
-                    slip[k] += w * n_a * s.slip;
+            let (entries, count) = self.entries(pt);
+            for &(j, k, n_a) in &entries[..count] {
+                weight[k] += w * n_a;
+                for d in 0..self.directions {
+                    slip[self.directions * k + d] += w * n_a * along(s, j, d);
                 }
             }
         }
         (weight, slip)
     }
 
-    /// Each tangential multiplier's state at `(evals, lambda)` with the
-    /// normal active set `active` (its first `normal_count` entries) and
-    /// each pair's complementarity constant (module docs).
+    /// Each frictional node's state at `(evals, lambda)` with the normal
+    /// active set `active` (its first `normal_count` entries) and each
+    /// pair's complementarity constant (module docs).
     pub fn states<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
         &self,
         points: &[P],
@@ -224,9 +260,9 @@ impl Friction {
         self.states_of(&weight, &slip, lambda, active, pairs, complementarity)
     }
 
-    /// Each frictional node's state and step slip at a converged iterate
-    /// (the accumulated `slip` left 0 for the run to add up), the nodal
-    /// sums taken once.
+    /// Each frictional node's state, step slip and frame at a converged
+    /// iterate (the accumulated `slip` left 0 for the run to add up), the
+    /// nodal sums taken once.
     #[allow(clippy::too_many_arguments)] // `states`' inputs
     pub fn nodal<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
         &self,
@@ -239,19 +275,35 @@ impl Friction {
     ) -> Vec<NodalFriction> {
         let (weight, slip) = self.nodal_slips(points, evals);
         let states = self.states_of(&weight, &slip, lambda, active, pairs, complementarity);
+        let mut frames: Vec<Option<[[f64; 3]; 2]>> = vec![None; self.normal.len()];
+        if self.directions == 2 {
+            for (pt, ev) in points.iter().zip(evals) {
+                let Some(s) = ev.as_ref().and_then(|e| e.slip()) else {
+                    continue;
+                };
+                let (entries, count) = self.entries(pt);
+                for &(j, k, _) in &entries[..count] {
+                    frames[k].get_or_insert_with(|| [s.direction(j, 0), s.direction(j, 1)]);
+                }
+            }
+        }
         self.normal
             .iter()
             .zip(states)
             .enumerate()
             .map(|(k, (&multiplier, state))| NodalFriction {
                 multiplier,
+                tangential: self.tangential(k, 0),
                 state,
-                step_slip: if weight[k] > 0.0 {
-                    slip[k] / weight[k]
-                } else {
-                    0.0
-                },
+                step_slip: std::array::from_fn(|d| {
+                    if d < self.directions && weight[k] > 0.0 {
+                        slip[self.directions * k + d] / weight[k]
+                    } else {
+                        0.0
+                    }
+                }),
                 slip: 0.0,
+                frame: frames[k],
             })
             .collect()
     }
@@ -266,6 +318,7 @@ impl Friction {
         pairs: &[MultiplierDof],
         complementarity: &[f64],
     ) -> Vec<FrictionState> {
+        let dirs = self.directions;
         self.normal
             .iter()
             .enumerate()
@@ -274,29 +327,85 @@ impl Friction {
                     return FrictionState::Open;
                 }
                 let pair = pairs[m.index()].pair.index();
-                let t = lambda[self.normal_count + k];
-                let z = t + complementarity[pair] * slip[k] / weight[k];
+                let mut z = [0.0; MAX_DIRECTIONS];
+                for (d, z) in z.iter_mut().enumerate().take(dirs) {
+                    let t = lambda[self.tangential(k, d).index()];
+                    *z = t + complementarity[pair] * slip[dirs * k + d] / weight[k];
+                }
+                let norm = if dirs == 1 { z[0].abs() } else { z[0].hypot(z[1]) };
                 let bound = self.mu[pair] * -lambda[m.index()];
-                if z.abs() <= bound {
+                if norm <= bound {
                     FrictionState::Stick
+                } else if dirs == 1 {
+                    FrictionState::Slip {
+                        direction: [if z[0] < 0.0 { -1.0 } else { 1.0 }, 0.0],
+                        ratio: if norm > 0.0 { bound / norm } else { 0.0 },
+                    }
+                } else if norm > 0.0 {
+                    FrictionState::Slip {
+                        direction: [z[0] / norm, z[1] / norm],
+                        ratio: bound / norm,
+                    }
                 } else {
                     FrictionState::Slip {
-                        direction: if z < 0.0 { -1.0 } else { 1.0 },
+                        direction: [1.0, 0.0],
+                        ratio: 0.0,
                     }
                 }
             })
             .collect()
     }
 
+    /// Per frictional node, the `directions x directions` block by which
+    /// its rows take the weighted slip's derivatives `dS_ak/du` (module
+    /// docs): the identity where it sticks; in 3D where it slips
+    /// `-ratio c / W_a (I - z^ z^T)`; `None` elsewhere (open, or sliding in
+    /// 2D, where the row does not depend on the slip).
+    fn slip_rows<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
+        &self,
+        points: &[P],
+        evals: &[Option<E>],
+        states: &[FrictionState],
+        pairs: &[MultiplierDof],
+        complementarity: &[f64],
+    ) -> Vec<Option<[[f64; 2]; 2]>> {
+        let weight = if self.directions == 2 {
+            self.nodal_slips(points, evals).0
+        } else {
+            Vec::new()
+        };
+        self.normal
+            .iter()
+            .zip(states)
+            .enumerate()
+            .map(|(k, (&m, state))| match *state {
+                FrictionState::Stick => Some([[1.0, 0.0], [0.0, 1.0]]),
+                FrictionState::Slip { direction: z, ratio } if self.directions == 2 => {
+                    let c = complementarity[pairs[m.index()].pair.index()];
+                    let g = -ratio * c / weight[k];
+                    Some(std::array::from_fn(|a| {
+                        std::array::from_fn(|b| {
+                            g * (if a == b { 1.0 } else { 0.0 } - z[a] * z[b])
+                        })
+                    }))
+                }
+                FrictionState::Open | FrictionState::Slip { .. } => None,
+            })
+            .collect()
+    }
+
     /// Adds the friction part of the Newton system (module docs): per
-    /// point with a slip the terms `w J0 t s'`, `w J0 t s''`, the coupling
-    /// `w J0 N_a s'` both ways (zero in a row that is not sticking) and a
-    /// sticking row's residual `w J0 N_a s`; then per sliding node its row
-    /// `t_a + mu sign(z_a) l_a` (the entry on `l_a` pushed for every
-    /// tangential multiplier, so the pattern does not depend on the
-    /// states). The open rows (`t_a = 0`) and the zero diagonal of the
-    /// others are [`super::assemble_contact`]'s, whose active set marks a
-    /// tangential multiplier active unless it is open.
+    /// point with a slip the terms `w J0 T . s'`, `w J0 T . s''`
+    /// (`T = sum_a N_a sum_k t_ak d_ak`), the coupling `w J0 N_a d_ak . s'`
+    /// into the displacement rows, the rows' dependence on it (a sticking
+    /// row's `dS_ak/du` with its residual `S_ak`; a sliding 3D row's
+    /// through `z_a`; zero otherwise); then per sliding node its rows
+    /// `t_a + mu z^_a l_a` with their derivatives in `t_a` and `l_a` (the
+    /// entries on `l_a` and, in 3D, between a node's multipliers pushed for
+    /// every node, so the pattern does not depend on the states). The
+    /// open rows (`t_a = 0`) and the zero diagonal of the others are
+    /// [`super::assemble_contact`]'s, whose active set marks a tangential
+    /// multiplier active unless its node is open.
     #[allow(clippy::too_many_arguments)] // the assembly's inputs
     pub fn assemble<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
         &self,
@@ -305,70 +414,232 @@ impl Friction {
         lambda: &[f64],
         states: &[FrictionState],
         pairs: &[MultiplierDof],
+        complementarity: &[f64],
         dofs: &DofMap,
         sys: &mut System,
     ) {
         if !self.any() {
             return;
         }
+        let dirs = self.directions;
+        let rows = self.slip_rows(points, evals, states, pairs, complementarity);
         for (pt, ev) in points.iter().zip(evals) {
             let Some(ev) = ev else { continue };
             let Some(s) = ev.slip() else { continue };
-            let Some(t) = self.traction(pt, lambda) else {
+            let (entries, count) = self.entries(pt);
+            if count == 0 {
                 continue;
-            };
+            }
+            let comps = s.components();
+            // T = sum_a N_a sum_k t_ak d_ak, from the first term.
+            let mut traction = [0.0; 3];
+            let mut first = true;
+            for &(j, k, n_a) in &entries[..count] {
+                for d in 0..dirs {
+                    let v = n_a * lambda[self.tangential(k, d).index()];
+                    let dir = s.direction(j, d);
+                    for c in 0..comps {
+                        if first {
+                            traction[c] = v * dir[c];
+                        } else {
+                            traction[c] += v * dir[c];
+                        }
+                    }
+                    first = false;
+                }
+            }
             let w = pt.weight_ref();
             let eqs: [Option<EquationIndex>; N] =
                 std::array::from_fn(|k| ev.dof(k).and_then(|d| dofs.eq(d)));
             for p in 0..N {
                 if let Some(ep) = eqs[p] {
-                    sys.residual[ep.index()] += w * t * s.grad[p];
+                    let mut v = w * traction[0] * s.grad(0)[p];
+                    for c in 1..comps {
+                        v += w * traction[c] * s.grad(c)[p];
+                    }
+                    sys.residual[ep.index()] += v;
                 }
             }
-            if let Some(h) = &s.hess {
+            if s.hess(0).is_some() {
+                let hess: [_; 3] = std::array::from_fn(|c| (c < comps).then(|| s.hess(c)).flatten());
                 for p in 0..N {
                     let Some(ep) = eqs[p] else { continue };
                     for q in 0..N {
                         if let Some(eq) = eqs[q] {
-                            sys.push(ep, eq, w * t * h[(p, q)]);
+                            let mut v = w * traction[0] * hess[0].expect("checked")[(p, q)];
+                            for (c, h) in hess.iter().enumerate().take(comps).skip(1) {
+                                v += w * traction[c] * h.expect("every component's")[(p, q)];
+                            }
+                            sys.push(ep, eq, v);
                         }
                     }
                 }
             }
-            for (m, n_a) in pt.multiplier_shape().iter() {
-                let Some(k) = self.tangential_of[m.index()] else {
-                    continue;
-                };
-                let row = dofs.mult_eq(k);
-                let stick = states[k.index() - self.normal_count] == FrictionState::Stick;
-                if stick {
-                    sys.residual[row.index()] += w * n_a * s.slip;
+            for &(j, k, n_a) in &entries[..count] {
+                let row: [EquationIndex; MAX_DIRECTIONS] =
+                    std::array::from_fn(|d| dofs.mult_eq(self.tangential(k, d.min(dirs - 1))));
+                let grads: [SVector<f64, N>; MAX_DIRECTIONS] = std::array::from_fn(|d| {
+                    if d < dirs {
+                        along_grad(s, j, d)
+                    } else {
+                        SVector::zeros()
+                    }
+                });
+                if states[k] == FrictionState::Stick {
+                    for d in 0..dirs {
+                        sys.residual[row[d].index()] += w * n_a * along(s, j, d);
+                    }
                 }
                 for p in 0..N {
-                    if let Some(ep) = eqs[p] {
-                        let v = w * n_a * s.grad[p];
-                        sys.push(ep, row, v);
-                        sys.push(row, ep, if stick { v } else { 0.0 });
+                    let Some(ep) = eqs[p] else { continue };
+                    let v: [f64; MAX_DIRECTIONS] = std::array::from_fn(|d| w * n_a * grads[d][p]);
+                    for d in 0..dirs {
+                        sys.push(ep, row[d], v[d]);
+                        let dv = match (&rows[k], states[k]) {
+                            (Some(_), FrictionState::Stick) => v[d],
+                            (Some(g), _) => g[d][0] * v[0] + g[d][1] * v[1],
+                            (None, _) => 0.0,
+                        };
+                        sys.push(row[d], ep, dv);
                     }
                 }
             }
         }
         for (k, (&m, state)) in self.normal.iter().zip(states).enumerate() {
-            let tk = MultiplierIndex::new(self.normal_count + k);
-            let row = dofs.mult_eq(tk);
             let normal = dofs.mult_eq(m);
-            match *state {
-                FrictionState::Slip { direction } => {
-                    let mu = self.mu[pairs[m.index()].pair.index()];
-                    sys.residual[row.index()] =
-                        lambda[tk.index()] + mu * direction * lambda[m.index()];
-                    sys.push(row, row, 1.0);
-                    sys.push(row, normal, mu * direction);
+            for d in 0..dirs {
+                let tk = self.tangential(k, d);
+                let row = dofs.mult_eq(tk);
+                match *state {
+                    FrictionState::Slip { direction, ratio } => {
+                        let mu = self.mu[pairs[m.index()].pair.index()];
+                        sys.residual[row.index()] =
+                            lambda[tk.index()] + mu * direction[d] * lambda[m.index()];
+                        if dirs == 1 {
+                            sys.push(row, row, 1.0);
+                        } else {
+                            for e in 0..dirs {
+                                let delta = if d == e { 1.0 } else { 0.0 };
+                                let col = dofs.mult_eq(self.tangential(k, e));
+                                let v = delta - ratio * (delta - direction[d] * direction[e]);
+                                sys.push(row, col, v);
+                            }
+                        }
+                        sys.push(row, normal, mu * direction[d]);
+                    }
+                    FrictionState::Open | FrictionState::Stick => {
+                        sys.push(row, normal, 0.0);
+                        for e in (0..dirs).filter(|&e| e != d) {
+                            sys.push(row, dofs.mult_eq(self.tangential(k, e)), 0.0);
+                        }
+                    }
                 }
-                FrictionState::Open | FrictionState::Stick => sys.push(row, normal, 0.0),
             }
         }
     }
+}
+
+/// A layout's friction as its [`super::ContactSpace`] methods use it: the
+/// tangential multipliers with the layout's points, multipliers and
+/// complementarity constants.
+#[derive(Debug, Clone, Copy)]
+pub struct FrictionView<'a, P> {
+    /// The tangential multipliers.
+    pub friction: &'a Friction,
+    /// The layout's integration points.
+    pub points: &'a [P],
+    /// The layout's normal multipliers.
+    pub pairs: &'a [MultiplierDof],
+    /// Each pair's complementarity constant.
+    pub complementarity: &'a [f64],
+}
+
+impl<P: WeightedPoint> FrictionView<'_, P> {
+    /// [`Friction::states`] of the layout.
+    pub fn states<E: GapTerm<N>, const N: usize>(
+        &self,
+        evals: &[Option<E>],
+        lambda: &[f64],
+        active: &[bool],
+    ) -> Vec<FrictionState> {
+        let f = self.friction;
+        f.states(self.points, evals, lambda, active, self.pairs, self.complementarity)
+    }
+
+    /// [`Friction::nodal`] of the layout.
+    pub fn nodal<E: GapTerm<N>, const N: usize>(
+        &self,
+        evals: &[Option<E>],
+        lambda: &[f64],
+        active: &[bool],
+    ) -> Vec<NodalFriction> {
+        let f = self.friction;
+        f.nodal(self.points, evals, lambda, active, self.pairs, self.complementarity)
+    }
+
+    /// Appends to the normal active set `active` the tangential
+    /// multipliers' flags: active unless their node is open.
+    pub fn extend_active<E: GapTerm<N>, const N: usize>(
+        &self,
+        evals: &[Option<E>],
+        lambda: &[f64],
+        active: &mut Vec<bool>,
+    ) {
+        if !self.friction.any() {
+            return;
+        }
+        let states = self.states(evals, lambda, active);
+        let dirs = self.friction.directions;
+        for s in states {
+            active.extend(std::iter::repeat_n(s != FrictionState::Open, dirs));
+        }
+    }
+
+    /// [`Friction::assemble`] at the states of `(evals, lambda, active)`.
+    pub fn assemble<E: GapTerm<N>, const N: usize>(
+        &self,
+        evals: &[Option<E>],
+        lambda: &[f64],
+        active: &[bool],
+        dofs: &DofMap,
+        sys: &mut System,
+    ) {
+        if !self.friction.any() {
+            return;
+        }
+        let states = self.states(evals, lambda, active);
+        self.friction.assemble(
+            self.points,
+            evals,
+            lambda,
+            &states,
+            self.pairs,
+            self.complementarity,
+            dofs,
+            sys,
+        );
+    }
+}
+
+/// The point's slip along direction `d` of the node at entry `j`,
+/// `d_jd . s` (summed from the first component).
+fn along<S: PointSlip<N>, const N: usize>(s: &S, j: usize, d: usize) -> f64 {
+    let dir = s.direction(j, d);
+    let mut v = dir[0] * s.value(0);
+    for (c, dc) in dir.iter().enumerate().take(s.components()).skip(1) {
+        v += dc * s.value(c);
+    }
+    v
+}
+
+/// The gradient of [`along`].
+fn along_grad<S: PointSlip<N>, const N: usize>(s: &S, j: usize, d: usize) -> SVector<f64, N> {
+    let dir = s.direction(j, d);
+    let mut g = s.grad(0) * dir[0];
+    for (c, dc) in dir.iter().enumerate().take(s.components()).skip(1) {
+        g += s.grad(c) * *dc;
+    }
+    g
 }
 
 #[cfg(test)]
@@ -386,15 +657,16 @@ mod tests {
     #[test]
     fn tangential_multipliers_follow_the_normal_ones_of_frictional_pairs() {
         let dofs = [dof(0, 4), dof(0, 5), dof(1, 7), dof(1, 8), dof(1, 9)];
-        let f = Friction::new(&dofs, vec![0.0, 0.3]);
+        let f = Friction::new(&dofs, vec![0.0, 0.3], 1);
         assert_eq!(f.count(), 3);
         assert_eq!(f.normal_count, 5);
         assert_eq!(f.normal, [2, 3, 4].map(MultiplierIndex::new));
-        assert_eq!(
-            f.tangential_of,
-            [None, None, Some(5), Some(6), Some(7)].map(|o| o.map(MultiplierIndex::new))
-        );
-        let none = Friction::new(&dofs, vec![0.0, 0.0]);
+        assert_eq!(f.node_of, [None, None, Some(0), Some(1), Some(2)]);
+        assert_eq!(f.tangential(2, 0), MultiplierIndex::new(7));
+        let f3 = Friction::new(&dofs, vec![0.0, 0.3], 2);
+        assert_eq!(f3.count(), 6);
+        assert_eq!(f3.tangential(1, 1), MultiplierIndex::new(8));
+        let none = Friction::new(&dofs, vec![0.0, 0.0], 1);
         assert!(!none.any() && none.count() == 0);
     }
 }

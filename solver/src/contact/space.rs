@@ -42,7 +42,7 @@ use crate::model::{Dim, SurfaceDim};
 use crate::par;
 use crate::system::{DofMap, System};
 
-use super::friction::{Anchor, FrictionState, NodalFriction};
+use super::friction::{FrictionState, NodalFriction};
 use super::layout_error::FaceLayoutError;
 use super::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 use super::{KernelCounts, MultiplierDof, NodeTie, PAR_MIN_LEN, PointFailure, slave_side};
@@ -69,11 +69,14 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     /// A master segment or face of one pair.
     type Master: Copy + PartialEq + std::fmt::Debug + Send + Sync;
     /// One point's kernel evaluation on its master.
-    type Eval: Copy + std::fmt::Debug + Send + Sync;
+    type Eval: Clone + std::fmt::Debug + Send + Sync;
     /// One point's projection onto a master (no derivatives).
     type Found: Copy + std::fmt::Debug + Send + Sync;
     /// A point's frozen Taylor expansion (Types 1–6).
-    type Expansion: Copy + std::fmt::Debug;
+    type Expansion: Clone + std::fmt::Debug;
+    /// Where a point's slip is measured from (module docs of
+    /// [`super::friction`]).
+    type Anchor: Copy + std::fmt::Debug + Send + Sync;
     /// The master search's indexes of one pass over every point, built
     /// (or begun, lazily) at the pass's displacements.
     type Indexes: Send + Sync;
@@ -101,14 +104,25 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
     fn point_has_friction(&self, _i: ContactPointIndex) -> bool {
         false
     }
-    /// The anchor of an evaluation: its master and projection (default:
-    /// none, an element without friction).
-    fn anchor(_e: &Self::Eval) -> Option<Anchor<Self::Master>> {
-        None
+    /// Each point's anchor at the converged state `u` from its evaluation
+    /// there (module docs of [`super::friction`]; `None`: unpaired, or an
+    /// element without friction, the default).
+    fn anchors(
+        &self,
+        _mesh: &Mesh<D>,
+        _u: &[f64],
+        evals: &[Option<Self::Eval>],
+    ) -> Vec<Option<Self::Anchor>> {
+        vec![None; evals.len()]
     }
-    /// The anchor of a projection (default: none).
-    fn found_anchor(_f: &Self::Found) -> Option<Anchor<Self::Master>> {
-        None
+    /// [`anchors`](Self::anchors) from the projections at `u`.
+    fn found_anchors(
+        &self,
+        _mesh: &Mesh<D>,
+        _u: &[f64],
+        found: &[Option<Self::Found>],
+    ) -> Vec<Option<Self::Anchor>> {
+        vec![None; found.len()]
     }
     /// Adds to `e`, point `i`'s evaluation at displacements `u`, its slip
     /// (the kernel of type `ty`) measured from `anchor` (module docs of
@@ -120,7 +134,7 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         _u: &[f64],
         _i: ContactPointIndex,
         _e: &mut Self::Eval,
-        _anchor: Anchor<Self::Master>,
+        _anchor: Self::Anchor,
         _ty: ApproxType,
     ) -> Result<(), KernelError> {
         Ok(())
@@ -134,7 +148,7 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         _mesh: &Mesh<D>,
         _u: &[f64],
         _evals: &mut [Option<Self::Eval>],
-        _anchors: &[Option<Anchor<Self::Master>>],
+        _anchors: &[Option<Self::Anchor>],
         _ty: ApproxType,
         _counts: &mut KernelCounts,
     ) -> Result<(), PointFailure<Self::Master>> {

@@ -10,10 +10,9 @@
 //! gradient is the derivative of its gap and its Hessian that of its
 //! gradient, so Newton's tangent is exact within a step.
 
-use nalgebra::{SMatrix, SVector};
+use nalgebra::SVector;
 
-use super::friction::SlipTerm;
-use super::term::GapTerm;
+use super::term::{GapTerm, PointSlip, expand_value};
 
 /// Frozen Taylor coefficients of one integration point for one load step,
 /// on the `N` coordinates of its evaluation `E` (a 2D
@@ -54,38 +53,16 @@ impl<E: GapTerm<N>, const N: usize> Taylor<E, N> {
         let (gap, grad) = expand_value(s.gap(), s.grad(), s.hess(), &d);
         let e = s.with_gap(gap, grad);
         match s.slip() {
-            Some(st) => {
-                let (slip, grad) = expand_value(st.slip, &st.grad, st.hess.as_ref(), &d);
-                e.with_slip(SlipTerm {
-                    slip,
-                    grad,
-                    hess: st.hess,
-                })
-            }
+            Some(st) => e.with_slip(st.expanded(&d)),
             None => e,
         }
-    }
-}
-
-/// `f0 + f'0 . d + 1/2 d . f''0 d` and its gradient `f'0 + f''0 d`.
-fn expand_value<const N: usize>(
-    f0: f64,
-    grad: &SVector<f64, N>,
-    hess: Option<&SMatrix<f64, N, N>>,
-    d: &SVector<f64, N>,
-) -> (f64, SVector<f64, N>) {
-    match hess {
-        Some(h) => {
-            let hd = h * d;
-            (f0 + grad.dot(d) + 0.5 * d.dot(&hd), grad + hd)
-        }
-        None => (f0 + grad.dot(d), *grad),
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::SMatrix;
     use crate::contact::{PointEval, SegmentTaylor};
     use crate::ids::MasterSegmentIndex;
 

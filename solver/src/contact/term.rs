@@ -68,6 +68,78 @@ pub struct SlipTerm<const N: usize> {
     pub hess: Option<SMatrix<f64, N, N>>,
 }
 
+/// A point's slip as the friction sees it ([`super::friction`]): its
+/// components `s_c` with their derivatives, and the tangential directions
+/// of its slave nodes' multipliers in those components (the multiplier
+/// `t_ak` of node `a` acts along `d_ak`, the point's slip along it is
+/// `d_ak . s`). 2D ([`SlipTerm`]): one component, along the tangent, every
+/// direction `[1]`; 3D ([`super::FaceSlip`]): the three global components
+/// and each node's two tangents.
+pub trait PointSlip<const N: usize>: Clone + std::fmt::Debug {
+    /// The number of components (1 or 3).
+    fn components(&self) -> usize;
+    /// Component `c`'s value.
+    fn value(&self, c: usize) -> f64;
+    /// Component `c`'s gradient.
+    fn grad(&self, c: usize) -> &SVector<f64, N>;
+    /// Component `c`'s Hessian, `None` when the kernel's type has none.
+    fn hess(&self, c: usize) -> Option<&SMatrix<f64, N, N>>;
+    /// Direction `k` of the multipliers of the slave node at entry `j` of
+    /// the point's [`MultiplierShape`], in the components (the unused ones
+    /// zero).
+    fn direction(&self, j: usize, k: usize) -> [f64; 3];
+    /// The second-order expansion by the displacement increment `d` of the
+    /// coordinates (each component as the gap is, [`super::Taylor`]).
+    fn expanded(&self, d: &SVector<f64, N>) -> Self;
+}
+
+impl<const N: usize> PointSlip<N> for SlipTerm<N> {
+    fn components(&self) -> usize {
+        1
+    }
+
+    fn value(&self, _c: usize) -> f64 {
+        self.slip
+    }
+
+    fn grad(&self, _c: usize) -> &SVector<f64, N> {
+        &self.grad
+    }
+
+    fn hess(&self, _c: usize) -> Option<&SMatrix<f64, N, N>> {
+        self.hess.as_ref()
+    }
+
+    fn direction(&self, _j: usize, _k: usize) -> [f64; 3] {
+        [1.0, 0.0, 0.0]
+    }
+
+    fn expanded(&self, d: &SVector<f64, N>) -> SlipTerm<N> {
+        let (slip, grad) = expand_value(self.slip, &self.grad, self.hess.as_ref(), d);
+        SlipTerm {
+            slip,
+            grad,
+            hess: self.hess,
+        }
+    }
+}
+
+/// `f0 + f'0 . d + 1/2 d . f''0 d` and its gradient `f'0 + f''0 d`.
+pub fn expand_value<const N: usize>(
+    f0: f64,
+    grad: &SVector<f64, N>,
+    hess: Option<&SMatrix<f64, N, N>>,
+    d: &SVector<f64, N>,
+) -> (f64, SVector<f64, N>) {
+    match hess {
+        Some(h) => {
+            let hd = h * d;
+            (f0 + grad.dot(d) + 0.5 * d.dot(&hd), grad + hd)
+        }
+        None => (f0 + grad.dot(d), *grad),
+    }
+}
+
 /// An integration point as the assembly and the active set see it.
 pub trait WeightedPoint {
     /// `w J0`: the rule's weight times the slave face's reference Jacobian.
@@ -80,6 +152,8 @@ pub trait WeightedPoint {
 /// A point's evaluation on `N` coordinates as the assembly and the Taylor
 /// expansion see it.
 pub trait GapTerm<const N: usize>: Clone {
+    /// The point's slip ([`PointSlip`]).
+    type Slip: PointSlip<N>;
     /// The gap (exact or Taylor-approximated).
     fn gap(&self) -> f64;
     /// `dg/du` on the `N` coordinates.
@@ -93,12 +167,12 @@ pub trait GapTerm<const N: usize>: Clone {
     fn with_gap(&self, gap: f64, grad: SVector<f64, N>) -> Self;
     /// The point's slip, when its pair has friction and the slip was
     /// evaluated (default: none; [`super::friction`]).
-    fn slip(&self) -> Option<&SlipTerm<N>> {
+    fn slip(&self) -> Option<&Self::Slip> {
         None
     }
     /// The same evaluation with the slip `slip` (default: unchanged, an
     /// evaluation that carries no slip).
-    fn with_slip(&self, slip: SlipTerm<N>) -> Self {
+    fn with_slip(&self, slip: Self::Slip) -> Self {
         let _ = slip;
         self.clone()
     }

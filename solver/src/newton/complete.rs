@@ -17,7 +17,6 @@ use std::time::Instant;
 use contact_kernels::ApproxType;
 
 use crate::contact::ContactSpace;
-use crate::contact::friction::Anchor;
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
 use crate::error::SolverError;
 use crate::solution::{ContactPointId, CutbackReason};
@@ -38,17 +37,17 @@ pub(super) const DERIVATIVES: ApproxType = ApproxType::Type6;
 /// at the run's converged state: the slip's anchors
 /// ([`crate::contact::friction`]), taken at the first attempt from each
 /// converged state.
-pub(super) struct Complete<M> {
+pub(super) struct Complete<M, A> {
     /// The pairing changes of the current attempt.
     guard: PairingGuard<M>,
     /// Each point's anchor at the converged state (`None`: it projects
     /// nowhere); empty without friction.
-    anchors: Vec<Option<Anchor<M>>>,
+    anchors: Vec<Option<A>>,
     /// Whether `anchors` belong to the run's converged state.
     anchored: bool,
 }
 
-impl<M> Default for Complete<M> {
+impl<M, A> Default for Complete<M, A> {
     fn default() -> Self {
         Complete {
             guard: PairingGuard::default(),
@@ -58,7 +57,7 @@ impl<M> Default for Complete<M> {
     }
 }
 
-impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Complete<S::Master>
+impl<const D: usize, S: ContactSpace<D>> ContactTreatment<D, S> for Complete<S::Master, S::Anchor>
 where
     Dim<D>: SurfaceDim<D>,
 {
@@ -78,10 +77,10 @@ where
                 .project_all(&cx.setup.model.mesh, start.u, start.pairing)
                 .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
             *cx.counts += counts;
-            self.anchors = found
-                .iter()
-                .map(|f| f.as_ref().and_then(S::found_anchor))
-                .collect();
+            self.anchors = cx
+                .setup
+                .layout
+                .found_anchors(&cx.setup.model.mesh, start.u, &found);
             self.anchored = true;
             cx.timings.contact_evaluation += t.elapsed();
         }

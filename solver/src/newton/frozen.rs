@@ -21,7 +21,6 @@ use std::time::Instant;
 use contact_kernels::ApproxType;
 
 use crate::contact::ContactSpace;
-use crate::contact::friction::Anchor;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::solution::CutbackReason;
@@ -49,7 +48,7 @@ pub(super) struct Frozen<const D: usize, S: ContactSpace<D>> {
     pub(super) step_end_projections: u64,
     /// With friction, each point's anchor at the converged state (its
     /// projection there, where its slip is measured from); empty without.
-    pub(super) anchors: Vec<Option<Anchor<S::Master>>>,
+    pub(super) anchors: Vec<Option<S::Anchor>>,
 }
 
 /// The step-end check's state within one attempt (`repair.rs`).
@@ -118,10 +117,7 @@ where
             .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
         *cx.counts += counts;
         if layout.has_friction() {
-            self.anchors = evals
-                .iter()
-                .map(|e| e.as_ref().and_then(S::anchor))
-                .collect();
+            self.anchors = layout.anchors(mesh, start.u, &evals);
             layout
                 .add_slips(mesh, start.u, &mut evals, &self.anchors, self.ty, cx.counts)
                 .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;

@@ -334,7 +334,7 @@ where
         let n_points = setup.layout.point_count();
         // the one place that matches on the method
         let treatment: Box<dyn ContactTreatment<D, S>> = match opts.method {
-            Method::Complete => Box::new(Complete::<S::Master>::default()),
+            Method::Complete => Box::new(Complete::<S::Master, S::Anchor>::default()),
             Method::Approx(ty) => Box::new(Frozen::<D, S>::new(ty)),
         };
         Ok(Run {
@@ -480,7 +480,7 @@ where
             // only a node in contact slips; an open one moves freely
             let step = match node.state {
                 FrictionState::Open => 0.0,
-                FrictionState::Stick | FrictionState::Slip { .. } => node.step_slip.abs(),
+                FrictionState::Stick | FrictionState::Slip { .. } => node.step_length(),
             };
             node.slip = before + step;
         }
@@ -602,7 +602,7 @@ where
         } else if pair.mode != crate::model::ContactMode::Unilateral {
             "friction needs a unilateral pair".to_owned()
         } else if !solves_friction {
-            "friction between 3D faces is not solved yet".to_owned()
+            "its contact element does not solve friction".to_owned()
         } else if method == Method::Approx(ApproxType::Type1) {
             "Type 1 cannot carry friction: it keeps xi_m constant, so its slip is zero within a load step (every point held to the master point it faced, docs/conventions.md, \"The slip\"); use Types 2-6 or the complete formulation".to_owned()
         } else {

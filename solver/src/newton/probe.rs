@@ -10,7 +10,6 @@ use std::time::Instant;
 
 use crate::contact::ContactSpace;
 use crate::contact::KernelCounts;
-use crate::contact::friction::Anchor;
 use crate::dim::SpaceDim;
 use crate::error::SolverError;
 use crate::model::Dim;
@@ -86,7 +85,7 @@ where
     pairing: Vec<Option<<ContactOf<D> as ContactSpace<D>>::Master>>,
     /// With friction, every point's anchor at the probe's state (as at a
     /// step's start: the slips are zero there, their derivatives are not).
-    anchors: Vec<Option<Anchor<<ContactOf<D> as ContactSpace<D>>::Master>>>,
+    anchors: Vec<Option<<ContactOf<D> as ContactSpace<D>>::Anchor>>,
     load_factor: f64,
 }
 
@@ -145,10 +144,7 @@ where
                 .layout
                 .project_all(&model.mesh, &u, &pairing)
                 .map_err(|f| setup.kernel_error(&f, load_factor))?;
-            found
-                .iter()
-                .map(|f| f.as_ref().and_then(ContactOf::<D>::found_anchor))
-                .collect()
+            setup.layout.found_anchors(&model.mesh, &u, &found)
         } else {
             Vec::new()
         };

@@ -239,7 +239,7 @@ where
                 continue;
             }
             if theta > 1.0 {
-                self.points[tie.point.index()] = Some(self.ties[k]);
+                self.points[tie.point.index()] = Some(self.ties[k].clone());
                 start.pairing[tie.point.index()] = Some(tie.other);
             }
             self.check.released.push(tie.point);
@@ -247,7 +247,7 @@ where
         }
         if changed {
             *start.ties = keep.iter().map(|&k| start.ties[k]).collect();
-            self.ties = keep.iter().map(|&k| self.ties[k]).collect();
+            self.ties = keep.iter().map(|&k| self.ties[k].clone()).collect();
         }
         changed
     }
@@ -306,7 +306,7 @@ where
         let mut changed = false;
         for (k, tie) in ties.iter().enumerate() {
             let i = tie.point;
-            let Some(on_p_taylor) = self.points[i.index()] else {
+            let Some(on_p_taylor) = self.points[i.index()].clone() else {
                 continue;
             };
             let (Ok(on_p), Ok(on_o)) = (

@@ -244,7 +244,9 @@ impl ContactTable<3> for Dim<3> {
         (row.pair.index(), row.node.index())
     }
 
-    /// 3D pairs have no friction (refused by the scene and the solve).
+    /// Unused: a 3D node's shear is along its frame
+    /// ([`crate::contact::friction::NodalFriction::frame`]); zero where it
+    /// has none (no point of the node has a slip, its multipliers 0).
     fn tangent(_: &Solution<3>, _: &State<3>, _: &FaceNodalRow) -> [f64; 3] {
         [0.0; 3]
     }
@@ -373,10 +375,15 @@ impl FrictionTable {
         match self.tangential.get(&m) {
             Some(&k) => {
                 let f = &state.friction[k];
-                let t = state.multipliers[solution.multiplier_dofs.len() + k];
-                let tau = <Dim<D> as ContactTable<D>>::tangent(solution, state, row);
+                let t = |d: usize| state.multipliers[f.tangential.index() + d];
+                let shear = match f.frame {
+                    // 3D: -(t_a1 d_a1 + t_a2 d_a2)
+                    Some([d1, d2]) => std::array::from_fn(|c| -(t(0) * d1[c] + t(1) * d2[c])),
+                    None => <Dim<D> as ContactTable<D>>::tangent(solution, state, row)
+                        .map(|c| -t(0) * c),
+                };
                 RowFriction {
-                    shear: tau.map(|c| -t * c),
+                    shear,
                     state: f.state,
                     slip: Some(f.slip),
                 }
@@ -386,7 +393,10 @@ impl FrictionTable {
                 state: if state.multipliers[m] == 0.0 {
                     FrictionState::Open
                 } else {
-                    FrictionState::Slip { direction: 1.0 }
+                    FrictionState::Slip {
+                        direction: [1.0, 0.0],
+                        ratio: 0.0,
+                    }
                 },
                 slip: None,
             },

@@ -112,12 +112,6 @@ impl Build<3> for Dim<3> {
                 ),
             ));
         }
-        if c.friction > 0.0 {
-            return Err(scene.invalid(
-                format!("{f}.friction"),
-                "friction between 3D faces is not solved yet: a 3D pair takes `friction = 0` (2D pairs take a coefficient above 0)",
-            ));
-        }
         check_face_gauss_points(scene, f, c, slave)
     }
 

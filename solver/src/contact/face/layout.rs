@@ -74,6 +74,7 @@ use crate::contact::active_set::ActiveSetView;
 use crate::contact::clip::{SlaveFace, TriangleRule};
 use crate::contact::face_index::{Aabb, FaceIndex};
 use crate::contact::face_rules::{default_points, face_rule};
+use crate::contact::friction::{Friction, FrictionView};
 use crate::contact::layout_error::FaceLayoutError;
 use crate::contact::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
@@ -153,6 +154,9 @@ pub struct FaceLayout {
     pub masters: Vec<Vec<Face<NodeId>>>,
     /// Active-set constant `c` per pair (unilateral mode).
     pub complementarity: Vec<f64>,
+    /// The tangential multipliers of the pairs with friction (two per
+    /// node, `slip.rs`).
+    pub friction: Friction,
 }
 
 /// Segmented integration of one pair (module docs): the master faces in
@@ -322,13 +326,24 @@ impl FaceLayout {
         }
         Ok(FaceLayout {
             points,
-            multipliers,
             readings,
             modes: pairs.iter().map(|c| c.mode).collect(),
             slaves: pairs.iter().map(|c| c.slave.clone()).collect(),
             masters: pairs.iter().map(|c| c.master.clone()).collect(),
             complementarity,
+            friction: Friction::new(&multipliers, pairs.iter().map(|c| c.friction).collect(), 2),
+            multipliers,
         })
+    }
+
+    /// The layout as the friction reads it.
+    pub fn friction_view(&self) -> FrictionView<'_, FacePoint> {
+        FrictionView {
+            friction: &self.friction,
+            points: &self.points,
+            pairs: &self.multipliers,
+            complementarity: &self.complementarity,
+        }
     }
 
     /// The layout as the active set reads it.

@@ -11,6 +11,8 @@ mod layout;
 mod nodal;
 mod pairing;
 mod reference;
+mod slip;
+mod slip_term;
 mod space;
 #[cfg(test)]
 mod tests;
@@ -18,3 +20,5 @@ mod tests;
 pub use layout::{FaceLayout, FacePoint, face_formulation};
 pub use nodal::{FaceNodalError, FaceNodalRow};
 pub use pairing::{FACE_COORDS, FaceEval, FaceFound, MasterFaces};
+pub use slip::frame_of;
+pub use slip_term::{FaceAnchor, FaceSlip, Frame};

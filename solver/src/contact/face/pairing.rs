@@ -43,6 +43,7 @@ use crate::mesh::volume::{Face, dot};
 use crate::par;
 
 use super::layout::{FaceLayout, face_formulation};
+use super::slip_term::FaceSlip;
 use crate::contact::face_index::FaceIndex;
 use crate::contact::term::GapTerm;
 use crate::contact::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, slave_side};
@@ -52,7 +53,7 @@ use crate::contact::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, sla
 pub const FACE_COORDS: usize = 24;
 
 /// The gap and its derivatives at one paired 3D integration point.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct FaceEval {
     /// Master face index within the pair.
     pub master: MasterFaceIndex,
@@ -70,9 +71,14 @@ pub struct FaceEval {
     pub grad: SVector<f64, FACE_COORDS>,
     /// `d2g/du2`, `None` when the type has none (Type 1).
     pub hess: Option<SMatrix<f64, FACE_COORDS, FACE_COORDS>>,
+    /// The slip from the point's anchor, when its pair has friction
+    /// (`slip.rs`).
+    pub slip: Option<Box<FaceSlip>>,
 }
 
 impl GapTerm<FACE_COORDS> for FaceEval {
+    type Slip = Box<FaceSlip>;
+
     fn gap(&self) -> f64 {
         self.gap
     }
@@ -90,7 +96,22 @@ impl GapTerm<FACE_COORDS> for FaceEval {
     }
 
     fn with_gap(&self, gap: f64, grad: SVector<f64, FACE_COORDS>) -> FaceEval {
-        FaceEval { gap, grad, ..*self }
+        FaceEval {
+            gap,
+            grad,
+            ..self.clone()
+        }
+    }
+
+    fn slip(&self) -> Option<&Box<FaceSlip>> {
+        self.slip.as_ref()
+    }
+
+    fn with_slip(&self, slip: Box<FaceSlip>) -> FaceEval {
+        FaceEval {
+            slip: Some(slip),
+            ..self.clone()
+        }
     }
 }
 
@@ -157,7 +178,7 @@ impl FaceLayout {
 
     /// The current coordinates `q` of `nodes` (3 per node, at most 8
     /// nodes), in the first `3 nodes.len()` entries.
-    fn q(mesh: &Mesh<3>, u: &[f64], nodes: &[NodeId]) -> [f64; FACE_COORDS] {
+    pub(super) fn q(mesh: &Mesh<3>, u: &[f64], nodes: &[NodeId]) -> [f64; FACE_COORDS] {
         let mut q = [0.0; FACE_COORDS];
         for (k, &n) in nodes.iter().enumerate() {
             q[3 * k..3 * k + 3].copy_from_slice(&Self::current(mesh, u, n));
@@ -166,7 +187,7 @@ impl FaceLayout {
     }
 
     /// The kernel formulation of probe `pt` on master face `master`.
-    fn formulation_of(
+    pub(super) fn formulation_of(
         &self,
         pt: &Probe,
         master: MasterFaceIndex,
@@ -207,6 +228,7 @@ impl FaceLayout {
             hess: out
                 .hess()
                 .map(|h| SMatrix::from_fn(|r, c| if r < n && c < n { h[r * n + c] } else { 0.0 })),
+            slip: None,
         })
     }
 

@@ -17,6 +17,9 @@ use crate::par;
 use crate::system::{DofMap, System};
 
 use super::pairing::MasterFaces;
+use super::slip::FaceSlipBuffers;
+use super::slip_term::FaceAnchor;
+use crate::contact::friction::{FrictionState, NodalFriction};
 use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
 use crate::contact::report::ContactPointId;
@@ -35,6 +38,7 @@ impl ContactSpace<3> for FaceLayout {
     type Eval = FaceEval;
     type Found = FaceFound;
     type Expansion = FaceTaylor;
+    type Anchor = FaceAnchor;
     type Indexes = Vec<Option<MasterFaces>>;
 
     fn build(model: &Model<3>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError> {
@@ -47,6 +51,102 @@ impl ContactSpace<3> for FaceLayout {
 
     fn multipliers(&self) -> &[MultiplierDof] {
         &self.multipliers
+    }
+
+    fn multiplier_count(&self) -> usize {
+        self.multipliers.len() + self.friction.count()
+    }
+
+    fn has_friction(&self) -> bool {
+        self.friction.any()
+    }
+
+    fn point_has_friction(&self, i: ContactPointIndex) -> bool {
+        self.friction.on_pair(self.point(i).pair.index())
+    }
+
+    fn anchors(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        evals: &[Option<FaceEval>],
+    ) -> Vec<Option<FaceAnchor>> {
+        self.anchors_at(
+            mesh,
+            u,
+            evals.iter().map(|e| e.as_ref().map(|e| (e.master, e.xi_m))),
+        )
+    }
+
+    fn found_anchors(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        found: &[Option<FaceFound>],
+    ) -> Vec<Option<FaceAnchor>> {
+        self.anchors_at(
+            mesh,
+            u,
+            found.iter().map(|f| f.as_ref().map(|f| (f.master, f.xi_m))),
+        )
+    }
+
+    fn add_slip(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        i: ContactPointIndex,
+        e: &mut FaceEval,
+        anchor: FaceAnchor,
+        ty: ApproxType,
+    ) -> Result<(), KernelError> {
+        self.face_slip_with(mesh, u, i, e, &anchor, ty, &mut FaceSlipBuffers::default())
+    }
+
+    /// The trait's pass, with the slip kernels and their buffers kept
+    /// across the points (`slip.rs`).
+    fn add_slips(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        evals: &mut [Option<FaceEval>],
+        anchors: &[Option<FaceAnchor>],
+        ty: ApproxType,
+        counts: &mut KernelCounts,
+    ) -> Result<(), PointFailure<MasterFaceIndex>> {
+        let mut buffers = FaceSlipBuffers::default();
+        for (k, (e, anchor)) in evals.iter_mut().zip(anchors).enumerate() {
+            let i = ContactPointIndex::new(k);
+            let (Some(e), Some(anchor)) = (e, anchor) else {
+                continue;
+            };
+            counts.evaluate += 1;
+            self.face_slip_with(mesh, u, i, e, anchor, ty, &mut buffers)
+                .map_err(|error| PointFailure {
+                    point: i,
+                    master_segment: Some(e.master),
+                    error,
+                })?;
+        }
+        Ok(())
+    }
+
+    fn nodal_friction(
+        &self,
+        evals: &[Option<FaceEval>],
+        lambda: &[f64],
+        active: &[bool],
+    ) -> Vec<NodalFriction> {
+        self.friction_view().nodal(evals, lambda, active)
+    }
+
+    fn friction_states(
+        &self,
+        evals: &[Option<FaceEval>],
+        lambda: &[f64],
+        active: &[bool],
+    ) -> Vec<FrictionState> {
+        self.friction_view().states(evals, lambda, active)
     }
 
     fn formulations(&self) -> Vec<Formulation> {
@@ -267,6 +367,7 @@ impl ContactSpace<3> for FaceLayout {
         if first {
             view.close_touching(evals, lambda, &mut active);
         }
+        self.friction_view().extend_active(evals, lambda, &mut active);
         active
     }
 
@@ -279,6 +380,8 @@ impl ContactSpace<3> for FaceLayout {
         sys: &mut System,
     ) {
         assemble_contact(&self.points, evals, lambda, active, dofs, sys);
+        self.friction_view()
+            .assemble(evals, lambda, active, dofs, sys);
     }
 
     fn expand_at(e: FaceEval, u: &[f64]) -> FaceTaylor {

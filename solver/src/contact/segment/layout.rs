@@ -22,7 +22,7 @@ use crate::model::{ContactMode, Integration, Model};
 use super::segmented::{segmented_rule, split_coordinates};
 use crate::contact::active_set::ActiveSetView;
 use crate::contact::face_rules::default_points;
-use crate::contact::friction::Friction;
+use crate::contact::friction::{Friction, FrictionView};
 use crate::contact::{ContactPoint, MultiplierDof, gauss_legendre};
 use crate::element::FaceKind as RuleKind;
 
@@ -61,6 +61,16 @@ impl ContactLayout {
             points: &self.points,
             multipliers: &self.multipliers,
             modes: &self.modes,
+            complementarity: &self.complementarity,
+        }
+    }
+
+    /// The layout as the friction reads it.
+    pub fn friction_view(&self) -> FrictionView<'_, ContactPoint> {
+        FrictionView {
+            friction: &self.friction,
+            points: &self.points,
+            pairs: &self.multipliers,
             complementarity: &self.complementarity,
         }
     }
@@ -144,6 +154,7 @@ impl ContactLayout {
         let friction = Friction::new(
             &multipliers,
             model.contacts.iter().map(|c| c.friction).collect(),
+            1,
         );
         ContactLayout {
             points,

@@ -113,6 +113,8 @@ impl WeightedPoint for ContactPoint {
 }
 
 impl GapTerm<8> for PointEval {
+    type Slip = SlipTerm<8>;
+
     fn gap(&self) -> f64 {
         self.gap
     }

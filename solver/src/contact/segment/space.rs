@@ -34,6 +34,7 @@ impl ContactSpace<2> for ContactLayout {
     type Eval = PointEval;
     type Found = Paired;
     type Expansion = SegmentTaylor;
+    type Anchor = Anchor<MasterSegmentIndex>;
     type Indexes = PassIndexes;
 
     fn build(model: &Model<2>, formulation: Option<Formulation>) -> Result<Self, FaceLayoutError> {
@@ -60,18 +61,38 @@ impl ContactSpace<2> for ContactLayout {
         self.friction.on_pair(self.point(i).pair.index())
     }
 
-    fn anchor(e: &PointEval) -> Option<Anchor<MasterSegmentIndex>> {
-        Some(Anchor {
-            master: e.master,
-            xi_m: e.xi_m,
-        })
+    fn anchors(
+        &self,
+        _mesh: &Mesh<2>,
+        _u: &[f64],
+        evals: &[Option<PointEval>],
+    ) -> Vec<Option<Anchor<MasterSegmentIndex>>> {
+        evals
+            .iter()
+            .map(|e| {
+                e.as_ref().map(|e| Anchor {
+                    master: e.master,
+                    xi_m: e.xi_m,
+                })
+            })
+            .collect()
     }
 
-    fn found_anchor(f: &Paired) -> Option<Anchor<MasterSegmentIndex>> {
-        Some(Anchor {
-            master: f.0,
-            xi_m: f.1.xi_m,
-        })
+    fn found_anchors(
+        &self,
+        _mesh: &Mesh<2>,
+        _u: &[f64],
+        found: &[Option<Paired>],
+    ) -> Vec<Option<Anchor<MasterSegmentIndex>>> {
+        found
+            .iter()
+            .map(|f| {
+                f.as_ref().map(|f| Anchor {
+                    master: f.0,
+                    xi_m: f.1.xi_m,
+                })
+            })
+            .collect()
     }
 
     fn add_slip(
@@ -123,14 +144,7 @@ impl ContactSpace<2> for ContactLayout {
         lambda: &[f64],
         active: &[bool],
     ) -> Vec<NodalFriction> {
-        self.friction.nodal(
-            &self.points,
-            evals,
-            lambda,
-            active,
-            &self.multipliers,
-            &self.complementarity,
-        )
+        self.friction_view().nodal(evals, lambda, active)
     }
 
     fn friction_states(
@@ -139,14 +153,7 @@ impl ContactSpace<2> for ContactLayout {
         lambda: &[f64],
         active: &[bool],
     ) -> Vec<FrictionState> {
-        self.friction.states(
-            &self.points,
-            evals,
-            lambda,
-            active,
-            &self.multipliers,
-            &self.complementarity,
-        )
+        self.friction_view().states(evals, lambda, active)
     }
 
     fn formulations(&self) -> Vec<Formulation> {
@@ -387,10 +394,7 @@ impl ContactSpace<2> for ContactLayout {
         if first {
             view.close_touching(evals, lambda, &mut active);
         }
-        if self.friction.any() {
-            let states = self.friction_states(evals, lambda, &active);
-            active.extend(states.iter().map(|s| *s != FrictionState::Open));
-        }
+        self.friction_view().extend_active(evals, lambda, &mut active);
         active
     }
 
@@ -403,18 +407,8 @@ impl ContactSpace<2> for ContactLayout {
         sys: &mut System,
     ) {
         assemble_contact(&self.points, evals, lambda, active, dofs, sys);
-        if self.friction.any() {
-            let states = self.friction_states(evals, lambda, active);
-            self.friction.assemble(
-                &self.points,
-                evals,
-                lambda,
-                &states,
-                &self.multipliers,
-                dofs,
-                sys,
-            );
-        }
+        self.friction_view()
+            .assemble(evals, lambda, active, dofs, sys);
     }
 
     fn assemble_ties(
