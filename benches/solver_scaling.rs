@@ -32,7 +32,9 @@
 //! iteration: the contact phase, and the contact phase with the solid
 //! assembly, on the Mindlin scene in partial slip with `mu = 0.3` and with
 //! the same model and state frictionless
-//! (`cargo bench --bench solver_scaling -- friction_cost`).
+//! (`cargo bench --bench solver_scaling -- friction_cost`); the group
+//! `friction_cost_3d` the same on the 3D Mindlin scene's coarse half model
+//! (`cargo bench --bench solver_scaling -- friction_cost_3d`).
 //!
 //! Each routine's input (the system after the previous phase) is cloned in
 //! an untimed setup. Flat sampling, 10 samples, 1 s warm-up and 2 s
@@ -243,14 +245,29 @@ fn solver_scaling_3d(c: &mut Criterion) {
     group.finish();
 }
 
-/// The Mindlin scene (`scenes/mindlin.toml`, h = 0.1) at load factor `to`
-/// solved in `steps` steps with its friction, and the same model without
-/// friction: `(frictional model, frictionless model, options, the
-/// frictional state, the same state without the tangential multipliers)`.
-fn mindlin_states(to: f64, steps: usize) -> (Model, Model, SolveOptions, State, State) {
-    let scenes = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/mindlin.toml");
-    let scene = Scene::from_file(scenes).expect("the Mindlin scene parses");
-    let mut model = scene.build_model::<2>().expect("the Mindlin scene builds");
+/// A Mindlin scene (`scenes/mindlin.toml`, h = 0.1, or
+/// `scenes/mindlin3d.toml` on `mesh`) at load factor `to` solved in
+/// `steps` steps with its friction, and the same model without friction:
+/// `(frictional model, frictionless model, options, the frictional state,
+/// the same state without the tangential multipliers)`.
+#[allow(clippy::type_complexity)] // the two models, the options and two states
+fn mindlin_states<const D: usize>(
+    file: &str,
+    mesh: Option<&str>,
+    to: f64,
+    steps: usize,
+) -> (Model<D>, Model<D>, SolveOptions, State<D>, State<D>)
+where
+    Dim<D>: SpaceDim<D>,
+{
+    let path = format!("{}/scenes/{file}", env!("CARGO_MANIFEST_DIR"));
+    let mut scene = Scene::from_file(path).expect("the Mindlin scene parses");
+    if let Some(mesh) = mesh {
+        scene.mesh = Some(solver::scene::MeshSpec {
+            file: mesh.to_owned(),
+        });
+    }
+    let mut model = scene.build_model::<D>().expect("the Mindlin scene builds");
     let opts = SolveOptions {
         method: Method::Complete,
         linear: linear(),
@@ -279,21 +296,22 @@ fn mindlin_states(to: f64, steps: usize) -> (Model, Model, SolveOptions, State, 
     (frictional, model, opts, state, frictionless_state)
 }
 
-/// What friction costs per Newton iteration (issue 32's item 5, in 2D): on
-/// the Mindlin scene in partial slip (load factor 0.75 of the press-then-
-/// shift schedule), the contact phase (re-projection, the Type 6 gap and,
-/// with friction, slip kernels, the active set with the stick/slip
-/// states, the contact scatter) and the contact phase with the solid
-/// assembly, with `mu = 0.3` and with the same model and state
-/// frictionless (`.../mu0`). The linear solve is `solver_scaling`'s.
-fn friction_cost(c: &mut Criterion) {
-    let mut group = c.benchmark_group("friction_cost");
+/// Times the contact phase and the contact phase with the solid assembly
+/// of `states` (`mindlin_states`) with friction and without, in `group`.
+fn friction_phases<const D: usize>(
+    c: &mut Criterion,
+    group: &str,
+    states: (Model<D>, Model<D>, SolveOptions, State<D>, State<D>),
+) where
+    Dim<D>: SpaceDim<D>,
+{
+    let mut group = c.benchmark_group(group);
     group
         .sampling_mode(SamplingMode::Flat)
         .sample_size(10)
         .warm_up_time(Duration::from_secs(1))
         .measurement_time(MEASUREMENT);
-    let (frictional, frictionless, opts, state, state0) = mindlin_states(0.75, 6);
+    let (frictional, frictionless, opts, state, state0) = states;
     for (name, model, state) in [
         ("mu0", &frictionless, &state0),
         ("mu0.3", &frictional, &state),
@@ -313,5 +331,37 @@ fn friction_cost(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, solver_scaling, solver_scaling_3d, friction_cost);
+/// What friction costs per Newton iteration (issue 32's item 5, in 2D): on
+/// the Mindlin scene in partial slip (load factor 0.75 of the press-then-
+/// shift schedule), the contact phase (re-projection, the Type 6 gap and,
+/// with friction, slip kernels, the active set with the stick/slip
+/// states, the contact scatter) and the contact phase with the solid
+/// assembly, with `mu = 0.3` and with the same model and state
+/// frictionless (`.../mu0`). The linear solve is `solver_scaling`'s.
+fn friction_cost(c: &mut Criterion) {
+    friction_phases::<2>(
+        c,
+        "friction_cost",
+        mindlin_states("mindlin.toml", None, 0.75, 6),
+    );
+}
+
+/// The same on the 3D Mindlin scene's coarse half model
+/// (`scenes/mindlin3d.toml` on `mindlin3d-coarse.msh`, load factor 0.75 in
+/// 6 steps; the solve that makes the state takes about half a minute).
+fn friction_cost_3d(c: &mut Criterion) {
+    friction_phases::<3>(
+        c,
+        "friction_cost_3d",
+        mindlin_states("mindlin3d.toml", Some("mindlin3d-coarse.msh"), 0.75, 6),
+    );
+}
+
+criterion_group!(
+    benches,
+    solver_scaling,
+    solver_scaling_3d,
+    friction_cost,
+    friction_cost_3d
+);
 criterion_main!(benches);

@@ -3,6 +3,7 @@
 
     python3 scripts/make-hertz3d-mesh.py hex [h] [-o OUT] [--ascii]
     python3 scripts/make-hertz3d-mesh.py tet [h] [-o OUT] [--ascii]
+    python3 scripts/make-hertz3d-mesh.py hex-half [h] [-o OUT] [--ascii]
 
 Geometry (a quarter model, symmetric about the planes x = 0 and y = 0):
 
@@ -20,6 +21,11 @@ hexahedra) and grows from there to the outer boundary.
   y, its columns from the sphere (nodes on it) to z = T, each cut at the
   same fractions of its height. Spacing `h` up to 1.5 from the origin in x
   and y, 1.0 in z, then growing by GROWTH per element to the boundary.
+* `hex-half`: the `hex` mesh mirrored about x = 0, a half model
+  symmetric about y = 0 only (the 3D Cattaneo-Mindlin scene,
+  `scenes/mindlin3d.toml`, shifts the indenter along x): the block
+  [-W, W] x [0, W] x [-D, 0], the indenter over [-A, A] x [0, A], the
+  spacing in x the quarter model's mirrored; no `symmetry_x` group.
 * `tet`: every element a 4-node tetrahedron, Gmsh's Delaunay mesher on the
   OpenCASCADE geometry, sized TET_SIZE h within 1.5 of the origin (edges of
   about h there), growing linearly to H_FAR at distance 6.
@@ -194,29 +200,34 @@ class Writer:
             gmsh.model.addPhysicalGroup(dim, tags, name=name)
 
 
-def hex_mesh(h):
-    """The structured hexahedral mesh (module docs)."""
+def mirrored(s):
+    """The spacing `s` (from 0) mirrored about 0: -s_n, ..., 0, ..., s_n."""
+    return [-v for v in reversed(s[1:])] + s
+
+
+def hex_mesh(h, half=False):
+    """The structured hexahedral mesh (module docs); `half`: mirrored
+    about x = 0."""
     writer = Writer()
-    xs = spacing(W, h, FINE_XY)
+    ys = spacing(W, h, FINE_XY)
+    xs = mirrored(ys) if half else ys
     zs = spacing(D, h, FINE_Z)
+    symmetry = {} if half else {"symmetry_x": (0, False)}
+    symmetry["symmetry_y"] = (1, False)
     writer.body(
         "block",
-        lambda i, j, k: (xs[i], xs[j], -zs[len(zs) - 1 - k]),
+        lambda i, j, k: (xs[i], ys[j], -zs[len(zs) - 1 - k]),
         len(xs) - 1,
-        len(xs) - 1,
+        len(ys) - 1,
         len(zs) - 1,
-        {
-            "symmetry_x": (0, False),
-            "symmetry_y": (1, False),
-            "bottom": (2, False),
-            "block_top": (2, True),
-        },
+        {**symmetry, "bottom": (2, False), "block_top": (2, True)},
     )
-    xi = spacing(A, h, FINE_XY)
+    yi = spacing(A, h, FINE_XY)
+    xi = mirrored(yi) if half else yi
     ts = [t / T for t in spacing(T, h, FINE_Z)]
 
     def indenter(i, j, k):
-        x, y = xi[i], xi[j]
+        x, y = xi[i], yi[j]
         z0 = sphere_z(x, y)
         return (x, y, z0 + ts[k] * (T - z0))
 
@@ -224,14 +235,9 @@ def hex_mesh(h):
         "indenter",
         indenter,
         len(xi) - 1,
-        len(xi) - 1,
+        len(yi) - 1,
         len(ts) - 1,
-        {
-            "symmetry_x": (0, False),
-            "symmetry_y": (1, False),
-            "indenter_surface": (2, False),
-            "indenter_top": (2, True),
-        },
+        {**symmetry, "indenter_surface": (2, False), "indenter_top": (2, True)},
     )
     writer.physical_groups()
 
@@ -315,7 +321,9 @@ def tet_mesh(h):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("kind", choices=["hex", "tet"], help="hexahedra or tetrahedra")
+    parser.add_argument(
+        "kind", choices=["hex", "tet", "hex-half"], help="hexahedra, tetrahedra, or the half model's hexahedra"
+    )
     parser.add_argument(
         "h", nargs="?", type=float, default=0.1, help="element size at the contact"
     )
@@ -332,6 +340,8 @@ def main():
         gmsh.model.add("hertz3d")
         if args.kind == "hex":
             hex_mesh(args.h)
+        elif args.kind == "hex-half":
+            hex_mesh(args.h, half=True)
         else:
             tet_mesh(args.h)
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)

@@ -212,3 +212,24 @@ fn zero_friction_is_the_frictionless_solve_bit_for_bit() {
         assert!(a.final_state.friction.is_empty());
     }
 }
+
+#[test]
+fn ldlt_is_refused_with_friction_and_says_why() {
+    let scene = scene_with(|s| s);
+    let opts = SolveOptions {
+        linear: solver::linear::LinearSolverKind::Ldlt,
+        ..SolveOptions::from_scene(&scene)
+    };
+    let err = solve::<3>(&scene, &opts).unwrap_err().to_string();
+    assert!(
+        err.contains("interface") && err.contains("unsymmetric") && err.contains("lu"),
+        "{err}"
+    );
+    // frictionless, the same scene takes LDLᵀ
+    let frictionless = scene_with(|s| s.replace("friction = 0.3\n", ""));
+    let opts = SolveOptions {
+        linear: solver::linear::LinearSolverKind::Ldlt,
+        ..SolveOptions::from_scene(&frictionless)
+    };
+    solve::<3>(&frictionless, &opts).unwrap();
+}

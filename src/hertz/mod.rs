@@ -24,6 +24,7 @@
 
 pub mod cylinder;
 pub mod mindlin;
+pub mod mindlin3d;
 pub mod refinement;
 pub mod sphere;
 

@@ -1,41 +1,50 @@
 //! Coulomb friction with tangential multipliers (see [`super`], "Coulomb
 //! friction"): the slip's terms, the nodal stick/slip/open decision and
 //! the friction part of the Newton system, over any dimension's points
-//! ([`WeightedPoint`]) and evaluations ([`GapTerm::slip`]).
+//! ([`WeightedPoint`]) and evaluations ([`GapTerm::slip`], a
+//! [`PointSlip`]).
 //!
 //! # The mathematics
 //!
 //! A slave node `a` of a pair with coefficient `mu > 0` carries, beside its
-//! normal multiplier `l_a` (pressure `p_a = -l_a`), one tangential
-//! multiplier `t_a`; along the slave face `t(xi_s) = sum_a N_a t_a`. Each
-//! integration point adds `w J0 t(xi_s) s` to the contact potential, with
-//! `s` the slip of docs/conventions.md ("The slip": the slave point's
-//! tangential displacement relative to the master since the last converged
-//! state, `xi_m0`), so per point
+//! normal multiplier `l_a` (pressure `p_a = -l_a`), tangential multipliers
+//! `t_ak` along directions `d_ak` in the slip's components: in 2D one,
+//! along the slip's one component (`d_a1 = 1`); in 3D two, along the unit
+//! tangents of the node's frame at the last converged state (`face/slip.rs`)
+//! in the slip's three global components. At a point the traction is
+//! `T = sum_a N_a sum_k t_ak d_ak`, and each integration point adds
+//! `w J0 T . s` to the contact potential, with `s` the slip of
+//! docs/conventions.md ("The slip": the slave point's tangential
+//! displacement relative to the master since the last converged state,
+//! `xi_m0`), so per point
 //!
 //! ```text
-//! r_u  += w J0 t s'            K_uu += w J0 t s''
-//! K_u,ta += w J0 N_a s'
+//! r_u  += w J0 T . s'            K_uu += w J0 T . s''
+//! K_u,tak += w J0 N_a d_ak . s'
 //! ```
 //!
-//! The friction force on the slave is `-t s'`: with `t > 0` it opposes a
-//! slip in the `+s` direction. The nodal weighted slip of the step is
-//! `S_a = sum w J0 N_a s` and its weight `W_a = sum w J0 N_a`, over the
-//! points of the node's slave faces that have a slip. Coulomb's law at the
-//! node, `|t_a| <= mu p_a`, `t_a` along the slip when the node slips, is
-//! the complementarity function of a primal–dual active set (Hüeber and
+//! The friction force on the slave is `-T . s'`: with `t > 0` it opposes a
+//! slip along `+d`. The nodal weighted slip of the step is
+//! `S_ak = sum w J0 N_a d_ak . s` and its weight `W_a = sum w J0 N_a`, over
+//! the points of the node's slave faces that have a slip. Coulomb's law at
+//! the node, `|t_a| <= mu p_a`, `t_a` along the slip when the node slips,
+//! is the complementarity function of a primal–dual active set (Hüeber and
 //! Wohlmuth's, on the normal active set of [`super::active_set`]): with the
 //! trial `z_a = t_a + c S_a / W_a` (`c` the pair's complementarity
 //! constant, the normal test's),
 //!
 //! * **open** (the normal multiplier inactive, or no point of the node has
-//!   a slip): the row `t_a = 0`;
-//! * **stick** (`|z_a| <= mu p_a`): the row `S_a = 0`, with the coupling
-//!   `K_ta,u = sum w J0 N_a s'` (no slip in the step);
-//! * **slip** (`|z_a| > mu p_a`): the row `t_a - mu p_a sign(z_a) = 0`,
-//!   i.e. `t_a + mu sign(z_a) l_a = 0`, whose linearisation (`1` on `t_a`,
-//!   `mu sign(z_a)` on `l_a`) is exact in 2D, where the direction is a
-//!   sign, constant near the solution.
+//!   a slip): the rows `t_a = 0`;
+//! * **stick** (`|z_a| <= mu p_a`): the rows `S_a = 0`, with the coupling
+//!   `K_ta,u = sum w J0 N_a d_a . s'` (no slip in the step);
+//! * **slip** (`|z_a| > mu p_a`): the rows `t_a - mu p_a z_a / |z_a| = 0`,
+//!   i.e. `t_a + mu z^_a l_a = 0` (`z^_a = z_a / |z_a|`). In 2D the
+//!   direction is a sign, constant near the solution, and the row's
+//!   linearisation (`1` on `t_a`, `mu z^_a` on `l_a`) is exact. In 3D its
+//!   consistent linearisation, with `r = mu p_a / |z_a|` (below 1 while
+//!   sliding) and `P = I - z^ z^T`, is
+//!   `(I - r P) d t_a + mu z^ d l_a - r P (c / W_a) d S_a`: the rows depend
+//!   on the displacements through the slip, as a sticking row does.
 //!
 //! The states are decided afresh at every Newton iteration from the
 //! iterate's multipliers and slips, as the normal active set is; Newton
@@ -46,14 +55,17 @@
 //! slip in the step: at a reversal the node first sticks (`|z_a|` falls
 //! below the bound as `t_a` is unloaded) and then slips the other way.
 //!
-//! A sign of `z_a = 0` (no tangential load and no slip) is taken as `+1`;
-//! it is reached only with `mu p_a < 0`, a tensile normal multiplier of an
-//! iterate, never at a converged state of unilateral contact.
+//! A direction of `z_a = 0` (no tangential load and no slip: `sign(0) =
+//! +1` in 2D, `(1, 0)` in 3D, with `r = 0`) is reached only with
+//! `mu p_a < 0`, a tensile normal multiplier of an iterate, never at a
+//! converged state of unilateral contact.
 //!
 //! Invariants: the tangential multipliers are numbered after every normal
-//! one, in the order of their nodes' normal multipliers; a pair with
-//! `mu = 0` has none, so a frictionless model's system is unchanged to the
-//! bit; sums over points are in point order.
+//! one, node by node in the order of their nodes' normal multipliers (a
+//! node's `directions` consecutive); a pair with `mu = 0` has none, so a
+//! frictionless model's system is unchanged to the bit; sums over points
+//! are in point order, over components and directions from the first term
+//! (so the 2D sums are those of one component).
 
 use nalgebra::SVector;
 
@@ -332,7 +344,11 @@ impl Friction {
                     let t = lambda[self.tangential(k, d).index()];
                     *z = t + complementarity[pair] * slip[dirs * k + d] / weight[k];
                 }
-                let norm = if dirs == 1 { z[0].abs() } else { z[0].hypot(z[1]) };
+                let norm = if dirs == 1 {
+                    z[0].abs()
+                } else {
+                    z[0].hypot(z[1])
+                };
                 let bound = self.mu[pair] * -lambda[m.index()];
                 if norm <= bound {
                     FrictionState::Stick
@@ -380,13 +396,14 @@ impl Friction {
             .enumerate()
             .map(|(k, (&m, state))| match *state {
                 FrictionState::Stick => Some([[1.0, 0.0], [0.0, 1.0]]),
-                FrictionState::Slip { direction: z, ratio } if self.directions == 2 => {
+                FrictionState::Slip {
+                    direction: z,
+                    ratio,
+                } if self.directions == 2 => {
                     let c = complementarity[pairs[m.index()].pair.index()];
                     let g = -ratio * c / weight[k];
                     Some(std::array::from_fn(|a| {
-                        std::array::from_fn(|b| {
-                            g * (if a == b { 1.0 } else { 0.0 } - z[a] * z[b])
-                        })
+                        std::array::from_fn(|b| g * (if a == b { 1.0 } else { 0.0 } - z[a] * z[b]))
                     }))
                 }
                 FrictionState::Open | FrictionState::Slip { .. } => None,
@@ -461,7 +478,8 @@ impl Friction {
                 }
             }
             if s.hess(0).is_some() {
-                let hess: [_; 3] = std::array::from_fn(|c| (c < comps).then(|| s.hess(c)).flatten());
+                let hess: [_; 3] =
+                    std::array::from_fn(|c| (c < comps).then(|| s.hess(c)).flatten());
                 for p in 0..N {
                     let Some(ep) = eqs[p] else { continue };
                     for q in 0..N {
@@ -563,7 +581,14 @@ impl<P: WeightedPoint> FrictionView<'_, P> {
         active: &[bool],
     ) -> Vec<FrictionState> {
         let f = self.friction;
-        f.states(self.points, evals, lambda, active, self.pairs, self.complementarity)
+        f.states(
+            self.points,
+            evals,
+            lambda,
+            active,
+            self.pairs,
+            self.complementarity,
+        )
     }
 
     /// [`Friction::nodal`] of the layout.
@@ -574,7 +599,14 @@ impl<P: WeightedPoint> FrictionView<'_, P> {
         active: &[bool],
     ) -> Vec<NodalFriction> {
         let f = self.friction;
-        f.nodal(self.points, evals, lambda, active, self.pairs, self.complementarity)
+        f.nodal(
+            self.points,
+            evals,
+            lambda,
+            active,
+            self.pairs,
+            self.complementarity,
+        )
     }
 
     /// Appends to the normal active set `active` the tangential

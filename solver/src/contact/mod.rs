@@ -197,10 +197,12 @@
 //!
 //! # Coulomb friction
 //!
-//! A unilateral 2D pair with `friction = mu > 0` gives each slave node a
-//! tangential multiplier beside its normal one; every point adds
-//! `w J0 t s` (`s` the generated slip kernel's value, measured from the
-//! point's projection at the last converged state) and each node sticks,
+//! A unilateral pair with `friction = mu > 0` gives each slave node a
+//! tangential multiplier (2D) or two (3D, along the node's tangent frame
+//! of the last converged state, `face/slip.rs`) beside its normal one;
+//! every point adds `w J0 T . s` (`s` the generated slip kernel's value,
+//! measured from the point's projection at the last converged state) and
+//! each node sticks,
 //! slips or is open by a primal–dual active set on Coulomb's law; see
 //! [`friction`] for the mathematics and docs/conventions.md, "Coulomb
 //! friction", for the definitions and outputs.

@@ -96,7 +96,7 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         self.multipliers().len()
     }
     /// Whether a pair has friction (default: none; friction is an
-    /// optional capability, 2D's only for now).
+    /// optional capability of an element).
     fn has_friction(&self) -> bool {
         false
     }

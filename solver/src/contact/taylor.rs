@@ -62,9 +62,9 @@ impl<E: GapTerm<N>, const N: usize> Taylor<E, N> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::SMatrix;
     use crate::contact::{PointEval, SegmentTaylor};
     use crate::ids::MasterSegmentIndex;
+    use nalgebra::SMatrix;
 
     #[test]
     fn taylor_expansion_is_quadratic_with_exact_gradient() {

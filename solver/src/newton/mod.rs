@@ -330,7 +330,7 @@ where
             return Err(SolverError::Options(why));
         }
         let setup = Setup::<D, S>::new(model, opts)?;
-        check_friction(model, setup.layout.has_friction(), opts.method)?;
+        check_friction(model, setup.layout.has_friction(), opts.method, opts.linear)?;
         let n_points = setup.layout.point_count();
         // the one place that matches on the method
         let treatment: Box<dyn ContactTreatment<D, S>> = match opts.method {
@@ -584,11 +584,14 @@ where
 /// only on unilateral pairs of an element that solves friction (2D
 /// segments), with the complete formulation or Types 2–6 (Type 1 keeps
 /// `xi_m` constant, so its slip is zero within a step: it would carry no
-/// friction, and its stick rows would be empty).
+/// friction, and its stick rows would be empty), and with a linear solver
+/// that takes an unsymmetric matrix (the slip rows are: LDLᵀ would factor
+/// one triangle of it).
 fn check_friction<const D: usize>(
     model: &Model<D>,
     solves_friction: bool,
     method: Method,
+    linear: crate::linear::LinearSolverKind,
 ) -> Result<(), SolverError>
 where
     Dim<D>: SurfaceDim<D>,
@@ -605,6 +608,8 @@ where
             "its contact element does not solve friction".to_owned()
         } else if method == Method::Approx(ApproxType::Type1) {
             "Type 1 cannot carry friction: it keeps xi_m constant, so its slip is zero within a load step (every point held to the master point it faced, docs/conventions.md, \"The slip\"); use Types 2-6 or the complete formulation".to_owned()
+        } else if linear == crate::linear::LinearSolverKind::Ldlt {
+            "friction makes the Newton matrix unsymmetric (its slip rows), which LDLᵀ cannot factor: use `linear = \"lu\"` (the default) or `petsc`".to_owned()
         } else {
             continue;
         };

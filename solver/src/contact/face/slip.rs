@@ -104,7 +104,11 @@ impl FaceLayout {
     }
 
     /// Point `i`'s slave nodes' frames out of `frames` (node order).
-    fn point_frames(&self, i: ContactPointIndex, frames: &[Frame]) -> [Frame; MAX_POINT_MULTIPLIERS] {
+    fn point_frames(
+        &self,
+        i: ContactPointIndex,
+        frames: &[Frame],
+    ) -> [Frame; MAX_POINT_MULTIPLIERS] {
         let pt = self.point(i);
         std::array::from_fn(|a| {
             self.friction.node_of[pt.multipliers[a].index()].map_or([[0.0; 3]; 2], |k| frames[k])
@@ -179,9 +183,8 @@ impl FaceLayout {
             SVector::from_fn(|k, _| if k < n { g[k] } else { 0.0 })
         };
         let hess = |c: usize| {
-            out.hess(c).map(|h| {
-                SMatrix::from_fn(|r, s| if r < n && s < n { h[r * n + s] } else { 0.0 })
-            })
+            out.hess(c)
+                .map(|h| SMatrix::from_fn(|r, s| if r < n && s < n { h[r * n + s] } else { 0.0 }))
         };
         let hessians = match (hess(0), hess(1), hess(2)) {
             (Some(a), Some(b), Some(c)) => Some([a, b, c]),

@@ -19,9 +19,9 @@ use crate::system::{DofMap, System};
 use super::pairing::MasterFaces;
 use super::slip::FaceSlipBuffers;
 use super::slip_term::FaceAnchor;
-use crate::contact::friction::{FrictionState, NodalFriction};
 use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
+use crate::contact::friction::{FrictionState, NodalFriction};
 use crate::contact::report::ContactPointId;
 use crate::contact::space::ContactSpace;
 use crate::contact::term::WeightedPoint;
@@ -367,7 +367,8 @@ impl ContactSpace<3> for FaceLayout {
         if first {
             view.close_touching(evals, lambda, &mut active);
         }
-        self.friction_view().extend_active(evals, lambda, &mut active);
+        self.friction_view()
+            .extend_active(evals, lambda, &mut active);
         active
     }
 

@@ -394,7 +394,8 @@ impl ContactSpace<2> for ContactLayout {
         if first {
             view.close_touching(evals, lambda, &mut active);
         }
-        self.friction_view().extend_active(evals, lambda, &mut active);
+        self.friction_view()
+            .extend_active(evals, lambda, &mut active);
         active
     }
 
