@@ -51,11 +51,7 @@ impl<E: GapTerm<N>, const N: usize> Taylor<E, N> {
         let s = &self.at_start;
         let d = local(s, u) - self.u0;
         let (gap, grad) = expand_value(s.gap(), s.grad(), s.hess(), &d);
-        let e = s.with_gap(gap, grad);
-        match s.slip() {
-            Some(st) => e.with_slip(st.expanded(&d)),
-            None => e,
-        }
+        s.with_values(gap, grad, s.slip().map(|st| st.expanded(&d)))
     }
 }
 

@@ -162,18 +162,13 @@ pub trait GapTerm<const N: usize>: Clone {
     fn hess(&self) -> Option<&SMatrix<f64, N, N>>;
     /// The degree of freedom of coordinate `k`; `None` for a padding slot.
     fn dof(&self, k: usize) -> Option<DofId>;
-    /// The same evaluation with gap `gap` and gradient `grad` (the Hessian
-    /// kept): the Taylor expansion's value at another displacement.
-    fn with_gap(&self, gap: f64, grad: SVector<f64, N>) -> Self;
+    /// The same evaluation with gap `gap`, gradient `grad` and slip `slip`
+    /// (the Hessians kept): the Taylor expansion's value at another
+    /// displacement.
+    fn with_values(&self, gap: f64, grad: SVector<f64, N>, slip: Option<Self::Slip>) -> Self;
     /// The point's slip, when its pair has friction and the slip was
     /// evaluated (default: none; [`super::friction`]).
     fn slip(&self) -> Option<&Self::Slip> {
         None
-    }
-    /// The same evaluation with the slip `slip` (default: unchanged, an
-    /// evaluation that carries no slip).
-    fn with_slip(&self, slip: Self::Slip) -> Self {
-        let _ = slip;
-        self.clone()
     }
 }

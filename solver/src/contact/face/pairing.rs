@@ -95,23 +95,28 @@ impl GapTerm<FACE_COORDS> for FaceEval {
         (k / 3 < self.node_count).then(|| DofId::in_dim::<3>(self.nodes[k / 3], k % 3))
     }
 
-    fn with_gap(&self, gap: f64, grad: SVector<f64, FACE_COORDS>) -> FaceEval {
+    fn with_values(
+        &self,
+        gap: f64,
+        grad: SVector<f64, FACE_COORDS>,
+        slip: Option<Box<FaceSlip>>,
+    ) -> FaceEval {
+        // field by field: the old slip is not copied
         FaceEval {
+            master: self.master,
+            master_kind: self.master_kind,
+            nodes: self.nodes,
+            node_count: self.node_count,
             gap,
+            xi_m: self.xi_m,
             grad,
-            ..self.clone()
+            hess: self.hess,
+            slip,
         }
     }
 
     fn slip(&self) -> Option<&Box<FaceSlip>> {
         self.slip.as_ref()
-    }
-
-    fn with_slip(&self, slip: Box<FaceSlip>) -> FaceEval {
-        FaceEval {
-            slip: Some(slip),
-            ..self.clone()
-        }
     }
 }
 

@@ -140,19 +140,18 @@ impl FaceLayout {
     }
 
     /// The slip of point `i` evaluated as `e` at displacements `u`, kernel
-    /// type `ty`, from `anchor`, stored in `e`; the kernels and buffers of
-    /// a pass kept in `buffers`.
+    /// type `ty`, from `anchor`; the kernels and buffers kept in `buffers`.
     #[allow(clippy::too_many_arguments)] // one point's inputs and the buffers
-    pub(super) fn face_slip_with(
+    pub(super) fn face_slip(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],
         i: ContactPointIndex,
-        e: &mut FaceEval,
+        e: &FaceEval,
         anchor: &FaceAnchor,
         ty: ApproxType,
         buffers: &mut FaceSlipBuffers,
-    ) -> Result<(), KernelError> {
+    ) -> Result<Box<FaceSlip>, KernelError> {
         let probe = self.probe(i);
         let formulation = self.formulation_of(&probe, e.master)?;
         let xi_m0 = if anchor.master == e.master {
@@ -191,13 +190,12 @@ impl FaceLayout {
             _ => None,
         };
         let v = out.slip();
-        e.slip = Some(Box::new(FaceSlip {
+        Ok(Box::new(FaceSlip {
             slip: [v[0], v[1], v[2]],
             grad: [grad(0), grad(1), grad(2)],
             hess: hessians,
             frames: anchor.frames,
-        }));
-        Ok(())
+        }))
     }
 
     /// The anchor at `xi0` on master face `from` of probe `pt`'s pair, as

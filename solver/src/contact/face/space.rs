@@ -30,6 +30,9 @@ use crate::contact::{
     PointFailure, Taylor, XI_INSIDE_TOL, XI_STUCK_BAND, slave_side,
 };
 
+/// The fewest points a thread takes in the parallel slip pass.
+const SLIP_PAR_MIN_LEN: usize = 32;
+
 /// A 3D point's frozen expansion.
 type FaceTaylor = Taylor<FaceEval, FACE_COORDS>;
 
@@ -100,11 +103,14 @@ impl ContactSpace<3> for FaceLayout {
         anchor: FaceAnchor,
         ty: ApproxType,
     ) -> Result<(), KernelError> {
-        self.face_slip_with(mesh, u, i, e, &anchor, ty, &mut FaceSlipBuffers::default())
+        e.slip =
+            Some(self.face_slip(mesh, u, i, e, &anchor, ty, &mut FaceSlipBuffers::default())?);
+        Ok(())
     }
 
-    /// The trait's pass, with the slip kernels and their buffers kept
-    /// across the points (`slip.rs`).
+    /// The trait's pass, in parallel over the points (a face slip kernel
+    /// with its three Hessians is a gap kernel's work three times over);
+    /// results, counts and the first failure in point order.
     fn add_slips(
         &self,
         mesh: &Mesh<3>,
@@ -114,19 +120,27 @@ impl ContactSpace<3> for FaceLayout {
         ty: ApproxType,
         counts: &mut KernelCounts,
     ) -> Result<(), PointFailure<MasterFaceIndex>> {
-        let mut buffers = FaceSlipBuffers::default();
-        for (k, (e, anchor)) in evals.iter_mut().zip(anchors).enumerate() {
-            let i = ContactPointIndex::new(k);
-            let (Some(e), Some(anchor)) = (e, anchor) else {
-                continue;
-            };
-            counts.evaluate += 1;
-            self.face_slip_with(mesh, u, i, e, anchor, ty, &mut buffers)
-                .map_err(|error| PointFailure {
-                    point: i,
-                    master_segment: Some(e.master),
-                    error,
-                })?;
+        let shared: &[Option<FaceEval>] = evals;
+        let (slips, c) =
+            par::try_map_counted(shared.len(), SLIP_PAR_MIN_LEN, |k, c: &mut KernelCounts| {
+                let (Some(e), Some(Some(anchor))) = (&shared[k], anchors.get(k)) else {
+                    return Ok(None);
+                };
+                let i = ContactPointIndex::new(k);
+                c.evaluate += 1;
+                self.face_slip(mesh, u, i, e, anchor, ty, &mut FaceSlipBuffers::default())
+                    .map(Some)
+                    .map_err(|error| PointFailure {
+                        point: i,
+                        master_segment: Some(e.master),
+                        error,
+                    })
+            })?;
+        *counts += c;
+        for (e, slip) in evals.iter_mut().zip(slips) {
+            if let (Some(e), Some(slip)) = (e, slip) {
+                e.slip = Some(slip);
+            }
         }
         Ok(())
     }

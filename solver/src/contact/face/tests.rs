@@ -359,7 +359,7 @@ fn segmented_integration_gives_the_exact_master_forces_of_a_uniform_pressure() {
 
 #[test]
 fn segmented_integration_refuses_a_count_without_a_triangle_rule() {
-    let (mesh, mut pair) = stacked(0.0, false, Formulation::SlaveNormal);
+    let (mesh, mut pair) = stacked(0.02, false, Formulation::SlaveNormal);
     pair.integration = Integration::Segmented;
     pair.gauss_points = Some(4);
     let err = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap_err();
@@ -403,4 +403,114 @@ fn the_nodal_table_gives_each_slave_node_its_gap_pressure_and_area() {
     }
     let (rows, _) = layout.nodal_table(&mesh, &moved, &lambda).unwrap();
     assert!(rows.iter().all(|r| r.gap.is_none() && r.master.is_none()));
+}
+
+/// The contact system with friction of `layout` at `(u, lambda)`: the
+/// Type 6 gap and slip on `pairing`, the slips from `anchors`, the normal
+/// and tangential active flags `active` (held fixed), assembled by the
+/// layout (`assemble_contact` and the friction).
+fn friction_system(
+    mesh: &Mesh<3>,
+    layout: &FaceLayout,
+    pairing: &[Option<MasterFaceIndex>],
+    anchors: &[Option<crate::contact::face::FaceAnchor>],
+    u: &[f64],
+    lambda: &[f64],
+    active: &[bool],
+) -> (DVector<f64>, DMatrix<f64>) {
+    let (mut evals, mut counts) = layout
+        .evaluate_paired(mesh, u, pairing, ApproxType::Type6)
+        .unwrap();
+    layout
+        .add_slips(mesh, u, &mut evals, anchors, ApproxType::Type6, &mut counts)
+        .unwrap();
+    let n = u.len() + lambda.len();
+    let dofs = DofMap::all_free(u.len(), lambda.len());
+    let mut sys = System::new(n);
+    layout.assemble(&evals, lambda, active, &dofs, &mut sys);
+    let mut k = DMatrix::zeros(n, n);
+    for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
+        k[(r as usize, c as usize)] += v;
+    }
+    (DVector::from_vec(sys.residual.clone()), k)
+}
+
+#[test]
+fn the_friction_tangent_is_the_jacobian_of_its_residual_in_stick_and_in_slip() {
+    let (mesh, mut pair) = stacked(0.02, false, Formulation::SlaveNormal);
+    pair.friction = 0.4;
+    let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+    assert_eq!(layout.multiplier_count(), 16 * 3);
+    // the anchors at a warped state, the iterate shifted from it
+    let u0 = warp(&mesh, 1.0);
+    let (pairing0, _) = layout.initial_pairing(&mesh, &u0).unwrap();
+    let (evals0, _) = layout
+        .evaluate_paired(&mesh, &u0, &pairing0, ApproxType::Type6)
+        .unwrap();
+    let anchors = layout.anchors(&mesh, &u0, &evals0);
+    let mut u = u0.clone();
+    for n in mesh.node_ids().filter(|&n| mesh.node_ref(n)[2] > 1.0) {
+        u[3 * n.index()] += 0.01;
+        u[3 * n.index() + 1] += 0.006;
+    }
+    let (pairing, _) = layout.initial_pairing(&mesh, &u).unwrap();
+    let (mut evals, mut counts) = layout
+        .evaluate_paired(&mesh, &u, &pairing, ApproxType::Type6)
+        .unwrap();
+    layout
+        .add_slips(
+            &mesh,
+            &u,
+            &mut evals,
+            &anchors,
+            ApproxType::Type6,
+            &mut counts,
+        )
+        .unwrap();
+    // pressed nodes; every other one sticks (its tangential multipliers
+    // nearly cancel the trial slip), the rest slip (no tangential load)
+    let normal = layout.multipliers.len();
+    let mut lambda: Vec<f64> = (0..normal)
+        .map(|m| -1.0 - 0.3 * (m as f64 * 0.7).sin())
+        .collect();
+    let (weight, slip) = layout.friction.nodal_slips(&layout.points, &evals);
+    let c = layout.complementarity[0];
+    for k in 0..layout.friction.normal.len() {
+        for d in 0..2 {
+            let trial = c * slip[2 * k + d] / weight[k];
+            lambda.push(if k % 2 == 0 { -0.99 * trial } else { 0.0 });
+        }
+    }
+    // every node in contact (the normal active set is not under test)
+    let active = vec![true; lambda.len()];
+    let states = layout.friction_states(&evals, &lambda, &active);
+    let sticking = states
+        .iter()
+        .filter(|s| **s == crate::contact::friction::FrictionState::Stick)
+        .count();
+    assert_eq!(sticking, 8, "{states:?}");
+    let (_, k) = friction_system(&mesh, &layout, &pairing, &anchors, &u, &lambda, &active);
+    let nu = u.len();
+    let h = 1e-7;
+    let scale = k.amax();
+    let mut worst: f64 = 0.0;
+    for j in 0..nu + lambda.len() {
+        let shifted = |s: f64| {
+            let (mut u, mut l) = (u.clone(), lambda.clone());
+            if j < nu {
+                u[j] += s;
+            } else {
+                l[j - nu] += s;
+            }
+            friction_system(&mesh, &layout, &pairing, &anchors, &u, &l, &active).0
+        };
+        let column = (shifted(h) - shifted(-h)) / (2.0 * h);
+        for i in 0..nu + lambda.len() {
+            worst = worst.max((column[i] - k[(i, j)]).abs() / scale);
+        }
+    }
+    assert!(
+        worst < 1e-6,
+        "tangent against the residual's derivative: {worst:e}"
+    );
 }

@@ -131,18 +131,16 @@ impl GapTerm<8> for PointEval {
         Some(DofId::of(self.nodes[k / 2], k % 2))
     }
 
-    fn with_gap(&self, gap: f64, grad: SVector<f64, 8>) -> PointEval {
-        PointEval { gap, grad, ..*self }
+    fn with_values(&self, gap: f64, grad: SVector<f64, 8>, slip: Option<SlipTerm<8>>) -> PointEval {
+        PointEval {
+            gap,
+            grad,
+            slip,
+            ..*self
+        }
     }
 
     fn slip(&self) -> Option<&SlipTerm<8>> {
         self.slip.as_ref()
-    }
-
-    fn with_slip(&self, slip: SlipTerm<8>) -> PointEval {
-        PointEval {
-            slip: Some(slip),
-            ..*self
-        }
     }
 }
