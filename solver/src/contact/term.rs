@@ -27,6 +27,10 @@ use crate::ids::{DofId, MultiplierIndex};
 /// nodes).
 pub const MAX_POINT_MULTIPLIERS: usize = 4;
 
+/// The coordinates of the largest 3D face pair (a quad4 on a quad4: 8
+/// nodes of 3): the size of a [`super::FaceEval`]'s gradient and Hessian.
+pub const FACE_COORDS: usize = 24;
+
 /// A point's slave face multipliers `l_a` with their shape values
 /// `N_a(xi_s)`: `count` entries (module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -48,9 +48,7 @@ use crate::contact::face_index::FaceIndex;
 use crate::contact::term::GapTerm;
 use crate::contact::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, slave_side};
 
-/// The coordinates of the largest face pair (a quad4 on a quad4: 8 nodes
-/// of 3): the size of a [`FaceEval`]'s gradient and Hessian.
-pub const FACE_COORDS: usize = 24;
+pub use crate::contact::term::FACE_COORDS;
 
 /// The gap and its derivatives at one paired 3D integration point.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,8 +3,7 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::pairing::FACE_COORDS;
-use crate::contact::term::{MAX_POINT_MULTIPLIERS, PointSlip, expand_value};
+use crate::contact::term::{FACE_COORDS, MAX_POINT_MULTIPLIERS, PointSlip, expand_value};
 use crate::ids::MasterFaceIndex;
 
 /// A node's two unit tangents (global components).
