@@ -258,7 +258,7 @@ fn mindlin_states<const D: usize>(
     steps: usize,
 ) -> (Model<D>, Model<D>, SolveOptions, State<D>, State<D>)
 where
-    Dim<D>: SpaceDim<D>,
+    Dim<D>: SpaceDim<D> + solver::SceneDim<D>,
 {
     let path = format!("{}/scenes/{file}", env!("CARGO_MANIFEST_DIR"));
     let mut scene = Scene::from_file(path).expect("the Mindlin scene parses");

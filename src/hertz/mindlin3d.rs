@@ -267,17 +267,18 @@ mod tests {
 
     #[test]
     fn mindlins_shear_is_hertz_times_mu_in_the_slip_annulus_and_falls_inside_the_stick_zone() {
-        let (a, c, mu, p0) = (1.0, 0.6, 0.3, 7.0);
+        let (a, c, mu, p0): (f64, f64, f64, f64) = (1.0, 0.6, 0.3, 7.0);
         // the slip annulus carries mu p
-        let r = 0.8;
+        let r: f64 = 0.8;
         let hertz = p0 * (1.0 - r * r / (a * a)).sqrt();
         assert!((mindlin_shear_3d(r, a, c, mu, p0) - mu * hertz).abs() < 1e-14);
-        // continuous at c, zero outside the contact
+        // continuous at c (with a square root's slope), zero outside the
+        // contact
         let (inside, outside) = (
             mindlin_shear_3d(c - 1e-9, a, c, mu, p0),
             mindlin_shear_3d(c + 1e-9, a, c, mu, p0),
         );
-        assert!((inside - outside).abs() < 1e-6);
+        assert!((inside - outside).abs() < 1e-3, "{inside} {outside}");
         assert_eq!(mindlin_shear_3d(1.2, a, c, mu, p0), 0.0);
         // its integral over the disc is Q = mu P (1 - (c/a)^3)
         let press = 2.0 * PI * a * a * p0 / 3.0;
