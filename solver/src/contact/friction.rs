@@ -477,17 +477,22 @@ impl Friction {
                     sys.residual[ep.index()] += v;
                 }
             }
-            if s.hess(0).is_some() {
-                let hess: [_; 3] =
-                    std::array::from_fn(|c| (c < comps).then(|| s.hess(c)).flatten());
+            if let Some(h0) = s.hess(0) {
+                // sum_c w T_c s_c'' (one component: (w T) s'' entry by entry)
+                let contracted = (comps > 1).then(|| {
+                    let mut m = h0 * (w * traction[0]);
+                    for c in 1..comps {
+                        m +=
+                            s.hess(c).expect("every component has its Hessian") * (w * traction[c]);
+                    }
+                    m
+                });
+                let wt = w * traction[0];
                 for p in 0..N {
                     let Some(ep) = eqs[p] else { continue };
                     for q in 0..N {
                         if let Some(eq) = eqs[q] {
-                            let mut v = w * traction[0] * hess[0].expect("checked")[(p, q)];
-                            for (c, h) in hess.iter().enumerate().take(comps).skip(1) {
-                                v += w * traction[c] * h.expect("every component's")[(p, q)];
-                            }
+                            let v = contracted.as_ref().map_or(wt * h0[(p, q)], |m| m[(p, q)]);
                             sys.push(ep, eq, v);
                         }
                     }
