@@ -28,6 +28,11 @@ pub enum SolverError {
     /// Invalid [`crate::SolveOptions`].
     #[error("invalid solve options: {0}")]
     Options(String),
+    /// The method cannot mean what the scene asks (Type 1 on a frictional
+    /// pair: its slip is zero within a step). Not a failure of the solve:
+    /// the study and the safety map record the run as refused.
+    #[error("refused: {0}")]
+    NotApplicable(String),
     /// Newton did not converge even after the maximum number of cut-backs.
     #[error(
         "step {step}: no convergence from load factor {load_factor} towards {attempted} after {cutbacks} cut-backs; last failure: {reason}"

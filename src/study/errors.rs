@@ -116,7 +116,7 @@ pub fn reaction_summary(study: &FormulationStudy) -> String {
         for n in &steps {
             let r = study.run(Method::Approx(ty), *n);
             let text = match r {
-                Some(r) if r.failure.is_some() => "failed".to_owned(),
+                Some(r) if r.failure.is_some() => r.failure_word().to_owned(),
                 Some(r) => r
                     .reaction_error_percent
                     .map(|e| format!("{e:.3e}"))

@@ -186,8 +186,13 @@ pub struct Run {
     /// Operation count of the kernel the method evaluates per integration
     /// point (Type 6's for complete).
     pub kernel_ops: Option<u32>,
-    /// The solver's error, if it failed.
+    /// The solver's error, if it failed or refused the method.
     pub failure: Option<String>,
+    /// The solver refused the method on this scene
+    /// ([`solver::SolverError::NotApplicable`]: Type 1 on a frictional
+    /// pair): the type cannot mean what the scene asks, which is not a
+    /// failed solve. `failure` holds the reason.
+    pub refused: bool,
     /// The reaction error against the complete formulation at the same step
     /// count, in percent ([`reactions`]); `None` for the complete
     /// formulation, a failed run or a scene without support groups.
@@ -203,6 +208,12 @@ impl Run {
     /// study's ratios compare).
     pub fn iterations_spent(&self) -> usize {
         self.newton_iterations + self.repeated_iterations
+    }
+
+    /// The word the tables show for a run without a result: `refused` (the
+    /// solver refused the method on the scene) or `failed`.
+    pub fn failure_word(&self) -> &'static str {
+        if self.refused { "refused" } else { "failed" }
     }
 }
 
@@ -430,6 +441,7 @@ where
                         max_abs_gap: Dim::<D>::max_abs_gap(&sol),
                         kernel_ops: kernel_ops(formulation, method),
                         failure: None,
+                        refused: false,
                         reaction_error_percent,
                         max_reaction: reactions::max_reaction(&history),
                     }
@@ -461,6 +473,7 @@ where
                     projections: 0,
                     max_abs_gap: None,
                     kernel_ops: kernel_ops(formulation, method),
+                    refused: matches!(e, SolverError::NotApplicable(_)),
                     failure: Some(e.to_string()),
                     reaction_error_percent: None,
                     max_reaction: None,

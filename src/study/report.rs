@@ -96,6 +96,9 @@ pub enum Verdict {
     },
     /// Some solves failed.
     Failed,
+    /// The solver refused the type on the scene
+    /// ([`solver::SolverError::NotApplicable`]); the reason.
+    Refused(String),
     /// The study has one step count: no trend to estimate.
     OneStepCount,
 }
@@ -178,6 +181,10 @@ pub fn convergence(study: &FormulationStudy, ty: ApproxType) -> Convergence {
         limit,
         sign_changes,
     };
+    if let Some(r) = runs.iter().find(|r| r.refused) {
+        let why = r.failure.clone().unwrap_or_default();
+        return mk(Verdict::Refused(why), f64::NAN);
+    }
     if errors.len() < runs.len() {
         return mk(Verdict::Failed, f64::NAN);
     }
@@ -264,6 +271,7 @@ impl std::fmt::Display for Convergence {
                 )
             }
             Verdict::Failed => write!(f, "some solves failed"),
+            Verdict::Refused(why) => write!(f, "{why}"),
             Verdict::OneStepCount => write!(f, "one step count: no convergence estimate"),
         }?;
         if self.sign_changes && !matches!(self.verdict, Verdict::PreAsymptotic) {
@@ -287,6 +295,7 @@ fn short_order(c: &Convergence) -> String {
         Verdict::DoesNotVanish { limit } => format!("→ {limit:+.1e}"),
         Verdict::PreAsymptotic | Verdict::NotAsymptotic { .. } => "pre-asymptotic".into(),
         Verdict::Failed => "failed".into(),
+        Verdict::Refused(_) => "refused".into(),
         Verdict::OneStepCount => "–".into(),
     }
 }
@@ -297,9 +306,11 @@ fn fmt_err(r: Option<&Run>) -> String {
             error_percent: Some(e),
             ..
         }) => format!("{e:+.3e}"),
-        Some(Run {
-            failure: Some(_), ..
-        }) => "failed".into(),
+        Some(
+            r @ Run {
+                failure: Some(_), ..
+            },
+        ) => r.failure_word().into(),
         _ => "–".into(),
     }
 }
@@ -633,7 +644,7 @@ pub fn terminal_summary(results: &StudyResults) -> String {
             let _ = write!(out, "{:>9}", m.to_string());
             for n in &steps {
                 let cell = match s.run(m, *n) {
-                    Some(r) if r.failure.is_some() => "failed".to_owned(),
+                    Some(r) if r.failure.is_some() => r.failure_word().to_owned(),
                     Some(r) => match r.error_percent {
                         Some(e) => format!("{e:+.2e} ({:.1})", 1e3 * r.wall_seconds),
                         None => format!(
@@ -710,6 +721,7 @@ mod tests {
                     max_abs_gap: None,
                     kernel_ops: None,
                     failure: None,
+                    refused: false,
                     reaction_error_percent: None,
                     max_reaction: None,
                 }
@@ -746,6 +758,20 @@ mod tests {
     fn sign_changes_on_the_fine_steps_are_pre_asymptotic() {
         let c = convergence(&study(|n| (n * 0.9).cos() / n), ApproxType::Type3);
         assert_eq!(c.verdict, Verdict::PreAsymptotic);
+    }
+
+    #[test]
+    fn a_refused_type_reads_as_refused_with_its_reason() {
+        let mut s = study(|n| 1.0 / n);
+        for r in &mut s.runs {
+            r.error_percent = None;
+            r.failure = Some("refused: no slip".into());
+            r.refused = true;
+        }
+        let c = convergence(&s, ApproxType::Type3);
+        assert_eq!(c.verdict, Verdict::Refused("refused: no slip".into()));
+        assert_eq!(c.to_string(), "refused: no slip");
+        assert_eq!(fmt_err(s.runs.first()), "refused");
     }
 
     #[test]

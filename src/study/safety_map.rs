@@ -25,6 +25,9 @@
 //!   are too large at any step count the user would pick from this
 //!   schedule);
 //! * `fails`: the type's solve diverged at `N_max`;
+//! * `refused`: the solver refuses the type on the scene
+//!   ([`solver::SolverError::NotApplicable`]: Type 1 on a frictional pair,
+//!   whose slip is zero within a step);
 //! * `no reference`: the complete formulation failed at `N_max`.
 //!
 //! The cost columns are ratios type / complete at `N_max`: Newton
@@ -99,6 +102,9 @@ pub enum Safety {
     Unsafe,
     /// The type's solve failed at the largest step count.
     Fails,
+    /// The solver refuses the type on the scene (it cannot mean what the
+    /// scene asks).
+    Refused,
     /// The complete formulation failed at the largest step count.
     NoReference,
 }
@@ -109,13 +115,15 @@ impl Safety {
         matches!(self, Safety::Safe | Safety::SafeFrom(_))
     }
 
-    /// The CSV key: `safe`, `safe-from`, `unsafe`, `fails`, `no-reference`.
+    /// The CSV key: `safe`, `safe-from`, `unsafe`, `fails`, `refused`,
+    /// `no-reference`.
     pub fn key(self) -> &'static str {
         match self {
             Safety::Safe => "safe",
             Safety::SafeFrom(_) => "safe-from",
             Safety::Unsafe => "unsafe",
             Safety::Fails => "fails",
+            Safety::Refused => "refused",
             Safety::NoReference => "no-reference",
         }
     }
@@ -216,6 +224,8 @@ pub fn classify(
     let run = study.run(method, steps);
     let safety = if complete.and_then(ok).is_none() {
         Safety::NoReference
+    } else if run.is_some_and(|r| r.refused) {
+        Safety::Refused
     } else if run.and_then(ok).is_none() {
         Safety::Fails
     } else if !acceptable(steps) {
@@ -449,7 +459,7 @@ pub fn markdown(map: &SafetyMap, command: &str) -> String {
         }
         out.push('\n');
     }
-    let _ = writeln!(
+    let _ = write!(
         out,
         "\nLegend. e_U = 100 (U_type − U_complete) / U_complete (final strain energy, same step \
          count); e_R = 100 max over steps and support groups of |R_type − R_complete| / max \
@@ -460,9 +470,16 @@ pub fn markdown(map: &SafetyMap, command: &str) -> String {
          not acceptable at the largest step count; fails: its solve diverges there; no \
          reference: the complete formulation fails there. t: wall time type / complete \
          (median of {} solve(s), machine dependent); Newton and kernel-call ratios are in \
-         `safety-map.csv`.\n",
+         `safety-map.csv`.",
         o.energy_tolerance_percent, o.reaction_tolerance_percent, o.repeats
     );
+    if map.rows.iter().any(|r| r.safety == Safety::Refused) {
+        out.push_str(
+            " refused: the solver refuses the type on the scene (Type 1 on a frictional pair: \
+             it keeps xi_m constant, so its slip is zero within a step).",
+        );
+    }
+    out.push_str("\n\n");
     out.push_str(
         "| scene | formulation | step counts | U complete | complete wall time | failures |\n",
     );
@@ -471,10 +488,18 @@ pub fn markdown(map: &SafetyMap, command: &str) -> String {
         let steps = study.steps();
         let hi = steps.last().copied().unwrap_or(0);
         let c = study.run(Method::Complete, hi).and_then(ok);
-        let failed = study.runs.iter().filter(|r| r.failure.is_some()).count();
+        let failed = study
+            .runs
+            .iter()
+            .filter(|r| r.failure.is_some() && !r.refused)
+            .count();
+        let refused = match study.runs.iter().filter(|r| r.refused).count() {
+            0 => String::new(),
+            k => format!(", {k} refused"),
+        };
         let _ = writeln!(
             out,
-            "| {label} | {} | {} | {} | {} | {failed} of {} runs |",
+            "| {label} | {} | {} | {} | {} | {failed} of {} runs{refused} |",
             study.formulation,
             steps
                 .iter()
@@ -516,7 +541,7 @@ fn by_step_count(map: &SafetyMap) -> String {
             for n in &steps {
                 let text = match study.run(method, *n) {
                     None => "–".to_owned(),
-                    Some(r) if r.failure.is_some() => "failed".to_owned(),
+                    Some(r) if r.failure.is_some() => r.failure_word().to_owned(),
                     Some(_) if method == Method::Complete => "reference".to_owned(),
                     Some(r) => match r.reaction_error_percent {
                         Some(e) => format!(
@@ -593,6 +618,7 @@ mod tests {
             max_abs_gap: None,
             kernel_ops: None,
             failure: failed.then(|| "no convergence".to_owned()),
+            refused: false,
             reaction_error_percent: reaction,
             max_reaction: Some(1.0),
         }
@@ -676,6 +702,38 @@ mod tests {
         );
         assert!(!row.safety.is_safe());
         assert_eq!(row.safety.to_string(), "no reference");
+    }
+
+    #[test]
+    fn a_refused_type_is_marked_refused_not_failed() {
+        let mut s = study(&[], [[Some(0.0); 3]; 6]);
+        for r in s
+            .runs
+            .iter_mut()
+            .filter(|r| r.method == Method::Approx(ApproxType::Type1))
+        {
+            r.failure = Some("refused: Type 1 cannot carry friction".into());
+            r.refused = true;
+        }
+        let o = MapOptions::default();
+        let rows: Vec<MapRow> = ApproxType::ALL
+            .into_iter()
+            .map(|ty| classify("f", &s, ty, &o))
+            .collect();
+        assert_eq!(rows[0].safety, Safety::Refused);
+        assert_eq!(rows[0].safety.key(), "refused");
+        assert!(rows[1..].iter().all(|r| r.safety == Safety::Safe));
+        let map = SafetyMap {
+            options: o,
+            rows,
+            studies: vec![("f".into(), s)],
+        };
+        let md = markdown(&map, "test");
+        assert!(md.contains("| f (10–40) | refused<br>"), "{md}");
+        assert!(md.contains("0 of 21 runs, 3 refused"), "{md}");
+        assert!(md.contains("| 1 | refused | refused | refused |"), "{md}");
+        assert!(md.contains(" refused: the solver refuses the type"), "{md}");
+        assert!(reading(&map).contains("- Type 1: never safe: f (refused)."));
     }
 
     #[test]

@@ -607,7 +607,10 @@ where
         } else if !solves_friction {
             "its contact element does not solve friction".to_owned()
         } else if method == Method::Approx(ApproxType::Type1) {
-            "Type 1 cannot carry friction: it keeps xi_m constant, so its slip is zero within a load step (every point held to the master point it faced, docs/conventions.md, \"The slip\"); use Types 2-6 or the complete formulation".to_owned()
+            return Err(SolverError::NotApplicable(format!(
+                "contact pair `{}`: Type 1 cannot carry friction: it keeps xi_m constant, so its slip is zero within a load step (every point held to the master point it faced, docs/conventions.md, \"The slip\"); use Types 2-6 or the complete formulation",
+                pair.name
+            )));
         } else if linear == crate::linear::LinearSolverKind::Ldlt {
             "friction makes the Newton matrix unsymmetric (its slip rows), which LDLᵀ cannot factor: use `linear = \"lu\"` (the default) or `petsc`".to_owned()
         } else {
