@@ -43,6 +43,14 @@
 //! --bench kernels -- slip`, then `cargo run --release --example
 //! bench_table -- --slip`.
 //!
+//! The group `slip-batch64` times 64 points per iteration of the slip of
+//! Type 6 one point at a time (`Slip::eval`, the path every slip took
+//! before its lane kernels) against one `Slip::eval_batch` call (the slip's
+//! lane kernels, 4 points per call; AVX2 where the CPU has it, and the
+//! portable lane build), for slave-normal segments (the `points64`
+//! configurations, `xi_m0 = 0.6 xi_s - 0.05`) and tri3-slave-normal faces
+//! (the faces group's). `bench_table -- --slip` prints its table too.
+//!
 //! Warm-up and measurement are 1 s each so the whole run takes about a
 //! minute of measurement (44 benchmarks).
 
@@ -60,8 +68,8 @@ mod sympy_kernel;
 mod sympy_kernel_3d;
 
 use contact_kernels::{
-    ApproxType, Formulation, GapBatch, GapOut, Kernel, LaneIsa, Projector, SlipOut, evaluate,
-    pair_formulations, project,
+    ApproxType, Formulation, GapBatch, GapOut, Kernel, LaneIsa, Projector, SlipBatch, SlipOut,
+    evaluate, pair_formulations, project,
 };
 use criterion::{Criterion, criterion_group, criterion_main};
 use nalgebra::SVector;
@@ -401,11 +409,10 @@ fn gap_tri3<D: DualNum<Primitive = f64> + Copy>(q: &[D; 18], u: f64, v: f64) -> 
     dot3(n, x_ms)
 }
 
-fn faces(c: &mut Criterion) {
-    let f = Formulation::Tri3SlaveNormal;
-    if f.coords() != Some(18) {
-        return;
-    }
+/// 64 tri3-on-tri3 configurations near the worked example: every
+/// coordinate moved by up to +-0.05, `(u, v)` inside the slave triangle,
+/// from a fixed seed.
+fn tri64() -> (Vec<[f64; 18]>, Vec<[f64; 2]>) {
     let mut state: u64 = 0x3d3d_79b9_7f4a_7c15;
     let mut uniform = move || {
         state = state
@@ -413,15 +420,91 @@ fn faces(c: &mut Criterion) {
             .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
-    let qs: Vec<[f64; 18]> = (0..POINTS)
+    let qs = (0..POINTS)
         .map(|_| std::array::from_fn(|i| TRI[i] + 0.1 * (uniform() - 0.5)))
         .collect();
-    let uv: Vec<[f64; 2]> = (0..POINTS)
+    let uv = (0..POINTS)
         .map(|_| {
             let u = 0.6 * uniform() + 0.05;
             [u, (0.9 - u) * uniform() + 0.05]
         })
         .collect();
+    (qs, uv)
+}
+
+/// The slip of Type 6 at 64 points: one at a time against the batch
+/// (module docs).
+fn slip_batch(c: &mut Criterion) {
+    let mut group = c.benchmark_group("slip-batch64");
+    let (qs2, xi2) = points64();
+    let (qs3, uv3) = tri64();
+    let cases: [(Formulation, Vec<f64>, Vec<f64>, usize); 2] = [
+        (
+            Formulation::SlaveNormal,
+            qs2.iter().flatten().copied().collect(),
+            xi2,
+            1,
+        ),
+        (
+            Formulation::Tri3SlaveNormal,
+            qs3.iter().flatten().copied().collect(),
+            uv3.iter().flatten().copied().collect(),
+            2,
+        ),
+    ];
+    for (f, qs, xi_s, p) in cases {
+        let Ok(kernel) = Kernel::new(f, ApproxType::Type6) else {
+            continue;
+        };
+        let xi_m0: Vec<f64> = xi_s.iter().map(|x| 0.6 * x - 0.05).collect();
+        let n = kernel.coords();
+        let slip = kernel.slip().unwrap();
+        let mut out = SlipOut::new(&slip);
+        group.bench_function(format!("{}-points", f.name()), |b| {
+            b.iter(|| {
+                for k in 0..POINTS {
+                    slip.eval(
+                        black_box(&qs[k * n..(k + 1) * n]),
+                        black_box(&xi_s[k * p..(k + 1) * p]),
+                        black_box(&xi_m0[k * p..(k + 1) * p]),
+                        &mut out,
+                    )
+                    .unwrap();
+                    black_box(&out);
+                }
+            })
+        });
+        for (id, kernel) in [
+            ("batch", kernel),
+            ("batch-portable", kernel.with_lane_isa(LaneIsa::Portable)),
+        ] {
+            let slip = kernel.slip().unwrap();
+            let mut batch = SlipBatch::new(&slip);
+            group.bench_function(format!("{}-{id}", f.name()), |b| {
+                b.iter(|| {
+                    let ok = slip
+                        .eval_batch(
+                            black_box(&qs),
+                            black_box(&xi_s),
+                            black_box(&xi_m0),
+                            &mut batch,
+                        )
+                        .unwrap();
+                    assert_eq!(ok, POINTS);
+                    black_box(&batch);
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
+fn faces(c: &mut Criterion) {
+    let f = Formulation::Tri3SlaveNormal;
+    if f.coords() != Some(18) {
+        return;
+    }
+    let (qs, uv) = tri64();
     let flat: Vec<f64> = qs.iter().flatten().copied().collect();
     let flat_uv: Vec<f64> = uv.iter().flatten().copied().collect();
     let mut group = c.benchmark_group("faces-tri3-slave-normal");
@@ -500,6 +583,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = kernels, many_points, faces, slip
+    targets = kernels, many_points, faces, slip, slip_batch
 }
 criterion_main!(benches);

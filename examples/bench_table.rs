@@ -6,9 +6,9 @@
 //! ```
 //!
 //! With `--slip` (after `cargo bench --bench kernels -- slip`) it prints
-//! only the slip table: the slip kernels against the gap kernels of the
-//! same type, and num-dual's Hessian of the 2D slip (docs/kernels.md, "The
-//! slip kernels").
+//! only the slip tables: the slip kernels against the gap kernels of the
+//! same type, num-dual's Hessian of the 2D slip, and the slip's batch
+//! against one point at a time (docs/kernels.md, "The slip kernels").
 //!
 //! With `--faces` it prints only the 3D face table (group
 //! `faces-tri3-slave-normal`, docs/kernels.md's `bench-faces` section),
@@ -347,6 +347,23 @@ fn slip_table(dir: &Path) -> Result<String, String> {
          kernel.\n",
         dual / six
     ));
+    out.push_str(
+        "\nThe slip of Type 6 at 64 points (group `slip-batch64`, time per point): one point \
+         at a time (`Slip::eval`) against one `Slip::eval_batch` call (the slip's lane \
+         kernels, 4 points per call; AVX2 where the CPU has it, and the portable lane build).\n\n\
+         | formulation | `Slip::eval` (ns) | `eval_batch` (ns) | speed-up | portable lanes (ns) | speed-up |\n\
+         |---|---:|---:|---:|---:|---:|\n",
+    );
+    for name in ["slave-normal", "tri3-slave-normal"] {
+        let per =
+            |id: &str| median_ns(dir, "slip-batch64", &format!("{name}-{id}")).map(|t| t / 64.0);
+        let (points, batch, portable) = (per("points")?, per("batch")?, per("batch-portable")?);
+        out.push_str(&format!(
+            "| {name} | {points:.1} | {batch:.1} | {:.2}x | {portable:.1} | {:.2}x |\n",
+            points / batch,
+            points / portable
+        ));
+    }
     Ok(out)
 }
 

@@ -10,7 +10,10 @@
 //! every output is bit for bit what the scalar kernel gives point `l`.
 //!
 //! The kernels of 3D faces take `xi_s` and `xi_m` as two [`Lanes`] each
-//! (`face_lane_set`, [`FaceLaneKernel`]).
+//! (`face_lane_set`, [`FaceLaneKernel`]). The slip's lane kernels of
+//! segments (`slip_lane_set`, [`SlipLaneKernel`]) take the last converged
+//! projection `xi_m0` after `xi_s` and return the slip's component; a face
+//! slip has none (`codegen::emit::lanes`' module docs say why).
 //!
 //! Each kernel's body is generic over its value type ([`LaneValue`]) and
 //! exists twice: portable, over [`Lanes`], and on x86-64 compiled for AVX2
@@ -63,6 +66,24 @@ pub(crate) enum FaceLaneKernel {
     Hessian(FaceLaneHessianFn),
 }
 
+/// `(d, xi_s, xi_m0, xi_m, grad0) -> s` over lanes: a segment pair's slip
+/// (one component) with its gradient; safety as for [`LaneGradientFn`].
+pub(crate) type SlipLaneGradientFn =
+    unsafe fn(&[Lanes], Lanes, Lanes, &mut Lanes, &mut [Lanes]) -> Lanes;
+/// `(d, xi_s, xi_m0, xi_m, grad0, hess0) -> s` over lanes (`hess0` full);
+/// safety as for [`LaneGradientFn`].
+pub(crate) type SlipLaneHessianFn =
+    unsafe fn(&[Lanes], Lanes, Lanes, &mut Lanes, &mut [Lanes], &mut [Lanes]) -> Lanes;
+
+/// One approximation type's slip lane kernel for segments.
+#[derive(Clone, Copy)]
+pub(crate) enum SlipLaneKernel {
+    /// First-order only.
+    Gradient(SlipLaneGradientFn),
+    /// With the second-order term.
+    Hessian(SlipLaneHessianFn),
+}
+
 /// The instruction set a lane kernel was compiled for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LaneIsa {
@@ -73,7 +94,8 @@ pub enum LaneIsa {
 }
 
 /// The lane kernels of one formulation, types 1..=6 ([`LaneKernel`]s of
-/// segments, [`FaceLaneKernel`]s of faces).
+/// segments, [`FaceLaneKernel`]s of faces, [`SlipLaneKernel`]s of a
+/// segment slip).
 pub(crate) struct LaneSet<K = LaneKernel> {
     pub(crate) portable: [K; 6],
     #[cfg(target_arch = "x86_64")]

@@ -48,7 +48,8 @@
 
 use crate::generated::{self, KernelSet, face_kernel_set, kernel_set};
 use crate::generated_lanes::{
-    self, FaceLaneKernel, LaneIsa, LaneKernel, LaneSet, face_lane_set, lane_set,
+    self, FaceLaneKernel, LaneIsa, LaneKernel, LaneSet, SlipLaneKernel, face_lane_set, lane_set,
+    slip_lane_set,
 };
 use crate::param::{Xi, XiArg};
 use crate::{ApproxType, Formulation, KernelError, OpCount};
@@ -70,7 +71,8 @@ enum Imp {
     Faces(Faces),
 }
 
-/// A segment kernel: its set, the scalar kernel and the lane kernel.
+/// A segment kernel: its set, the scalar kernel and the lane kernel, and
+/// the slip's (when the formulation has one).
 #[derive(Clone, Copy)]
 pub(crate) struct Segments {
     set: &'static KernelSet,
@@ -78,10 +80,14 @@ pub(crate) struct Segments {
     slip: Option<generated::SlipKernel>,
     lane_set: &'static LaneSet,
     lanes: LaneKernel,
+    slip_lane_set: Option<&'static LaneSet<SlipLaneKernel>>,
+    slip_lanes: Option<SlipLaneKernel>,
     lane_isa: LaneIsa,
 }
 
-/// A face kernel: its set, the scalar kernel and the lane kernel.
+/// A face kernel: its set, the scalar kernel and the lane kernel, and the
+/// slip's scalar kernel (when the formulation has one; a face slip has no
+/// lane kernel).
 #[derive(Clone, Copy)]
 pub(crate) struct Faces {
     set: &'static generated::FaceKernelSet,
@@ -92,11 +98,20 @@ pub(crate) struct Faces {
     lane_isa: LaneIsa,
 }
 
+/// The slip lane kernel of type `ty` in `set`, for the instruction set
+/// [`generated_lanes::select`] chooses (the gap's lane kernel's: both
+/// follow the same rule).
+fn select_slip<K: Copy>(set: Option<&LaneSet<K>>, ty: usize, isa: LaneIsa) -> Option<K> {
+    set.map(|s| generated_lanes::select(s, ty, isa).0)
+}
+
 mod batch;
 mod param_kernel;
 mod slip;
+mod slip_batch;
 
 pub use slip::{Slip, SlipOut};
+pub use slip_batch::SlipBatch;
 
 impl std::fmt::Debug for Kernel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -326,6 +341,7 @@ impl Kernel {
         let set = kernel_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
         let lane_set = lane_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
         let (lanes, lane_isa) = generated_lanes::select(lane_set, ty.index(), LaneIsa::Avx2);
+        let slip_lane_set = slip_lane_set(formulation);
         Ok(Kernel {
             formulation,
             ty,
@@ -335,6 +351,8 @@ impl Kernel {
                 slip: set.slip.as_ref().map(|s| s.kernels[ty.index() - 1]),
                 lane_set,
                 lanes,
+                slip_lane_set,
+                slip_lanes: select_slip(slip_lane_set, ty.index(), LaneIsa::Avx2),
                 lane_isa,
             }),
         })
@@ -360,6 +378,7 @@ impl Kernel {
                 Kernel {
                     imp: Imp::Segments(Segments {
                         lanes,
+                        slip_lanes: select_slip(s.slip_lane_set, self.ty.index(), isa),
                         lane_isa,
                         ..s
                     }),

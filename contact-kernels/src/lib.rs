@@ -106,7 +106,7 @@ mod validate;
 
 pub use error::{KernelError, OutputKind, Segment};
 pub use generated_lanes::LaneIsa;
-pub use kernel::{GapBatch, GapOut, Kernel, Slip, SlipOut};
+pub use kernel::{GapBatch, GapOut, Kernel, Slip, SlipBatch, SlipOut};
 pub use param::{MAX_PARAM_DIM, XiArg};
 pub use projection::{Projector, XI_M_LIMIT};
 pub use runtime::{RuntimeKernels, eval_runtime};

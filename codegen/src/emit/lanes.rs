@@ -27,7 +27,17 @@
 //!   maps a `Formulation` to it (`None` when not compiled in, and for
 //!   faces); for a formulation of 3D faces a `LaneSet<FaceLaneKernel>`,
 //!   mapped by `face_lane_set` (emitted when the plan has faces, so a plan
-//!   of segments is emitted as before faces).
+//!   of segments is emitted as before faces);
+//! * per compiled formulation of segments with a slip, its slip under
+//!   every type the same way (`{ident}_slip_type{t}_lanes`, `_x4`,
+//!   `_x4_avx2`) in a `static` `LaneSet<SlipLaneKernel>` mapped by
+//!   `slip_lane_set`. A slip function takes the last converged projection
+//!   `xi_m0` after `xi_s`, stores its gradient and Hessian into `grad0`,
+//!   `hess0` and returns its component. The slips of faces have none: three
+//!   components with a 24 x 24 Hessian each made the lane module 17 MB
+//!   (5 MB without them), which rustc had not compiled after 26 minutes at
+//!   `opt-level = 1`; `Slip::eval_batch` evaluates a face slip point by
+//!   point.
 //!
 //! Functions take the relative coordinates as `d: &[Lanes]` (`n` values:
 //! coordinate `i` of every lane), `xi_s` and the in/out `xi_m` as `Lanes`,
@@ -45,7 +55,7 @@ use super::frame::{Frame, Param};
 use super::rust::{Spelling, body_in, float_literal, format_file, operand_in};
 use super::{EmittedFile, Emitter};
 use crate::lower::{Operand, Program};
-use crate::plan::{FunctionPlan, KernelPlan, KernelSetPlan, Layout, Output, Role};
+use crate::plan::{FunctionPlan, KernelPlan, Layout, Output, Role};
 
 /// The lane emitter (the contact-kernels crate's batched kernels).
 #[derive(Debug, Clone, Copy, Default)]
@@ -80,24 +90,45 @@ impl LanesEmitter {
 fn module(plan: &KernelPlan) -> TokenStream {
     let mut arms = Vec::new();
     let mut face_arms = Vec::new();
+    let mut slip_arms = Vec::new();
     let mut items = Vec::new();
     for f in &plan.formulations {
         let variant = Ident::new(&f.variant, Span::call_site());
-        match &f.kernels {
-            None => arms.push(quote!(Formulation::#variant => None,)),
-            // Faces (3D): a `LaneSet<FaceLaneKernel>`, looked up by
-            // `face_lane_set`.
-            Some(set) if f.dim == 3 => {
-                let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
-                arms.push(quote!(Formulation::#variant => None,));
-                face_arms.push(quote!(Formulation::#variant => Some(&#static_name),));
-                items.push(lane_set(set, &static_name, true));
-            }
-            Some(set) => {
-                let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
-                arms.push(quote!(Formulation::#variant => Some(&#static_name),));
-                items.push(lane_set(set, &static_name, false));
-            }
+        let Some(set) = &f.kernels else {
+            arms.push(quote!(Formulation::#variant => None,));
+            slip_arms.push(quote!(Formulation::#variant => None,));
+            continue;
+        };
+        // Faces (3D): a `LaneSet<FaceLaneKernel>`, looked up by
+        // `face_lane_set`; their slips have no lane kernels (module docs).
+        let faces = f.dim == 3;
+        let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
+        let slip_name = format_ident!("{}_SLIP_LANES", set.ident.to_uppercase());
+        let some = |name: &Ident| quote!(Formulation::#variant => Some(&#name),);
+        let none = quote!(Formulation::#variant => None,);
+        let slip_lanes = !faces && !set.slips.is_empty();
+        if faces {
+            arms.push(none.clone());
+            face_arms.push(some(&static_name));
+        } else {
+            arms.push(some(&static_name));
+        }
+        slip_arms.push(if slip_lanes { some(&slip_name) } else { none });
+        items.push(lane_set(
+            &set.kernels,
+            &static_name,
+            LaneKind::Gap,
+            faces,
+            &set.ident,
+        ));
+        if slip_lanes {
+            items.push(lane_set(
+                &set.slips,
+                &slip_name,
+                LaneKind::Slip,
+                false,
+                &set.ident,
+            ));
         }
     }
     // Emitted when a formulation of faces exists (compiled in or not).
@@ -118,42 +149,64 @@ fn module(plan: &KernelPlan) -> TokenStream {
             match f { #(#arms)* }
         }
 
+        /// The slip's lane kernels of a formulation of segments, if
+        /// compiled in with a slip.
+        pub(crate) fn slip_lane_set(f: Formulation) -> Option<&'static LaneSet<SlipLaneKernel>> {
+            match f { #(#slip_arms)* }
+        }
+
         #faces
 
         #(#items)*
     }
 }
 
-/// A formulation's lane kernels and its `static` `LaneSet` (of
-/// `FaceLaneKernel`s for `faces`).
-fn lane_set(set: &KernelSetPlan, static_name: &Ident, faces: bool) -> TokenStream {
+/// What a lane set holds: the gap's kernels or the slip's.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum LaneKind {
+    Gap,
+    Slip,
+}
+
+/// Lane kernels of types 1..=6 (the gap's or a segment slip's) and their
+/// `static` `LaneSet` of `LaneKernel`s, `FaceLaneKernel`s or
+/// `SlipLaneKernel`s.
+fn lane_set(
+    functions: &[FunctionPlan],
+    static_name: &Ident,
+    kind: LaneKind,
+    faces: bool,
+    ident: &str,
+) -> TokenStream {
+    let ty = match (kind, faces) {
+        (LaneKind::Gap, false) => format_ident!("LaneKernel"),
+        (LaneKind::Gap, true) => format_ident!("FaceLaneKernel"),
+        (LaneKind::Slip, false) => format_ident!("SlipLaneKernel"),
+        (LaneKind::Slip, true) => panic!("face slips have no lane kernels"),
+    };
     let mut items = Vec::new();
     let mut portable = Vec::new();
     let mut avx2 = Vec::new();
-    for k in &set.kernels {
+    for k in functions {
         items.push(kernel(k));
         let (p, a) = (
             format_ident!("{}_x4", k.name),
             format_ident!("{}_x4_avx2", k.name),
         );
         let variant = match k.role {
-            Role::Kernel { hessian: true, .. } => format_ident!("Hessian"),
+            Role::Kernel { hessian: true, .. } | Role::Slip { hessian: true, .. } => {
+                format_ident!("Hessian")
+            }
             _ => format_ident!("Gradient"),
-        };
-        let ty = if faces {
-            format_ident!("FaceLaneKernel")
-        } else {
-            format_ident!("LaneKernel")
         };
         portable.push(quote!(#ty::#variant(#p)));
         avx2.push(quote!(#ty::#variant(#a)));
     }
-    let doc = format!(" The lane kernels of `{}`.", set.ident);
-    let set_ty = if faces {
-        quote!(LaneSet<FaceLaneKernel>)
-    } else {
-        quote!(LaneSet)
+    let doc = match kind {
+        LaneKind::Gap => format!(" The lane kernels of `{ident}`."),
+        LaneKind::Slip => format!(" The slip's lane kernels of `{ident}`."),
     };
+    let set_ty = quote!(LaneSet<#ty>);
     quote! {
         #(#items)*
 
@@ -192,9 +245,10 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         &frame.scalar_params,
         &frame.implicit,
     );
+    // A kernel returns its gap, a segment's slip its one component.
     let ret = match returns.as_slice() {
         [one] => one.clone(),
-        _ => panic!("a kernel returns exactly its gap"),
+        _ => panic!("a lane kernel returns one value"),
     };
     let doc = format!(" Lanes of `{}`: {}", f.name, f.doc);
     let portable_doc = format!(" `{}` over 4 lanes (portable build).", f.name);
@@ -345,8 +399,27 @@ mod tests {
                 );
             }
         }
+        // the slip under every type too, in its own lane set
+        assert_eq!(set.slips.len(), 6);
+        for k in &set.slips {
+            for suffix in ["_lanes<L: LaneValue>(", "_x4(", "_x4_avx2("] {
+                assert!(
+                    code.contains(&format!("fn {}{suffix}", k.name)),
+                    "{}",
+                    k.name
+                );
+            }
+        }
+        assert!(code.contains("static SLAVE_NORMAL_SLIP_LANES: LaneSet<SlipLaneKernel>"));
+        assert!(code.contains("Formulation::SlaveNormal => Some(&SLAVE_NORMAL_SLIP_LANES)"));
+        assert!(code.contains("xi_m0: L,") && code.contains("-> Lanes {"));
         let lets = code.matches("let v").count();
-        let instrs: usize = set.kernels.iter().map(|k| k.program.instrs.len()).sum();
+        let instrs: usize = set
+            .kernels
+            .iter()
+            .chain(&set.slips)
+            .map(|k| k.program.instrs.len())
+            .sum();
         assert_eq!(lets, instrs);
         assert!(code.contains("#[target_feature(enable = \"avx2\")]"));
         assert!(!code.contains("mul_add"), "no fused multiply-add");
@@ -377,6 +450,10 @@ mod tests {
         assert!(code.contains("let xi_s_0 = xi_s[0];"));
         // The closed-form projection is written back, both components.
         assert!(code.contains("xi_m[0] =") && code.contains("xi_m[1] ="));
+        // a face slip has no lane kernels (module docs)
+        assert_eq!(set.slips.len(), 6);
+        assert!(!code.contains("_slip_type") && !code.contains("SLIP_LANES"));
+        assert!(code.contains("Formulation::Tri3SlaveNormal => None"));
         let lets = code.matches("let v").count();
         let instrs: usize = set.kernels.iter().map(|k| k.program.instrs.len()).sum();
         assert_eq!(lets, instrs);

@@ -263,7 +263,7 @@ fn start_lane<K: ParamKernel<P>, const P: usize>(
 /// (`sum`, the sum of its outputs, is finite) and the projection check's
 /// tests on every component of `xi_m` (written so that NaN fails them).
 #[inline(always)]
-fn accepted<const P: usize>(sum: Lanes, xi_m: &[Lanes; P], l: usize) -> bool {
+pub(super) fn accepted<const P: usize>(sum: Lanes, xi_m: &[Lanes; P], l: usize) -> bool {
     sum.0[l].is_finite() && xi_m.iter().all(|x| x.0[l].abs() <= XI_M_LIMIT)
 }
 

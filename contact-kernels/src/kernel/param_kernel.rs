@@ -8,7 +8,7 @@
 
 use super::{Faces, Segments};
 use crate::generated::{self, FaceKernel};
-use crate::generated_lanes::{FaceLaneKernel, LaneIsa, LaneKernel};
+use crate::generated_lanes::{FaceLaneKernel, LaneIsa, LaneKernel, SlipLaneKernel};
 use crate::lanes::{LANES, Lanes};
 use crate::validate::{all_finite, relative_coordinates, relative_coordinates_lanes};
 use crate::{KernelError, OutputKind, faces, projection};
@@ -89,6 +89,25 @@ pub(crate) trait ParamKernel<const P: usize> {
         grad: &mut [Lanes],
         hess: &mut [Lanes],
     ) -> (Lanes, bool);
+
+    /// The slip's lane kernel over the lane buffers: its component and
+    /// whether it has a second-order term; `None` without a slip lane
+    /// kernel (no slip, or a face slip: `codegen::emit::lanes`).
+    ///
+    /// # Safety
+    /// As [`ParamKernel::run_lanes`] (the buffers: `n` and `n n`).
+    unsafe fn run_slip_lanes(
+        &self,
+        d: &[Lanes],
+        xi_s: &[Lanes; P],
+        xi_m0: &[Lanes; P],
+        xi_m: &mut [Lanes; P],
+        grad: &mut [Lanes],
+        hess: &mut [Lanes],
+    ) -> Option<(Lanes, bool)>;
+
+    /// Whether [`ParamKernel::run_slip_lanes`] has a kernel to run.
+    fn has_slip_lanes(&self) -> bool;
 }
 
 /// The evaluation of one point on raw buffers: `d` (scratch), `grad` of `n`
@@ -141,14 +160,7 @@ pub(crate) fn slip_point<K: ParamKernel<P>, const P: usize>(
     out: SlipBuffers<'_>,
     components: usize,
 ) -> Result<([f64; P], bool), KernelError> {
-    k.relative_coordinates(q, xi_s, d)?;
-    if let Some(c) = xi_m0.iter().position(|x| !x.is_finite()) {
-        return Err(KernelError::NonFinite {
-            index: q.len() + P + c,
-            value: xi_m0[c],
-        });
-    }
-    let mut xi_m = k.start(d, xi_s)?;
+    let mut xi_m = slip_start(k, q, xi_s, xi_m0, d)?;
     let SlipBuffers { slip, grad, hess } = out;
     let hessian = k
         .run_slip(
@@ -166,12 +178,35 @@ pub(crate) fn slip_point<K: ParamKernel<P>, const P: usize>(
     k.check(d, xi_s, xi_m)?;
     let n = k.coords();
     let slip = &slip[..components];
-    let (grad, hess) = (&grad[..components * n], &hess[..components * n * n]);
-    let finite = all_finite(grad) && (!hessian || all_finite(hess));
+    let grad = &grad[..components * n];
+    let finite = all_finite(grad) && (!hessian || all_finite(&hess[..components * n * n]));
     if !(finite && all_finite(slip)) {
         return Err(non_finite(slip, OutputKind::Slip, grad, xi_m[0]));
     }
     Ok((xi_m, hessian))
+}
+
+/// The steps of a slip's evaluation before its kernel, in
+/// [`slip_point`]'s order: the validation (the relative coordinates of `q`
+/// into `d`), `xi_m0` finite (its component `k` reported as index
+/// `n + P + k`) and the projection's start, which it returns. The one
+/// place a slip point is refused before its kernel runs (the batch's too).
+#[inline]
+pub(crate) fn slip_start<K: ParamKernel<P>, const P: usize>(
+    k: &K,
+    q: &[f64],
+    xi_s: [f64; P],
+    xi_m0: [f64; P],
+    d: &mut [f64],
+) -> Result<[f64; P], KernelError> {
+    k.relative_coordinates(q, xi_s, d)?;
+    if let Some(c) = xi_m0.iter().position(|x| !x.is_finite()) {
+        return Err(KernelError::NonFinite {
+            index: q.len() + P + c,
+            value: xi_m0[c],
+        });
+    }
+    k.start(d, xi_s)
 }
 
 /// The error of a kernel output that is not finite: the first non-finite
@@ -286,6 +321,30 @@ impl ParamKernel<1> for Segments {
             }
         }
     }
+
+    #[inline(always)]
+    unsafe fn run_slip_lanes(
+        &self,
+        d: &[Lanes],
+        [xi_s]: &[Lanes; 1],
+        [xi_m0]: &[Lanes; 1],
+        [xi_m]: &mut [Lanes; 1],
+        grad: &mut [Lanes],
+        hess: &mut [Lanes],
+    ) -> Option<(Lanes, bool)> {
+        // SAFETY: the caller's (the trait's contract).
+        unsafe {
+            Some(match self.slip_lanes? {
+                SlipLaneKernel::Gradient(f) => (f(d, *xi_s, *xi_m0, xi_m, grad), false),
+                SlipLaneKernel::Hessian(f) => (f(d, *xi_s, *xi_m0, xi_m, grad, hess), true),
+            })
+        }
+    }
+
+    #[inline(always)]
+    fn has_slip_lanes(&self) -> bool {
+        self.slip_lanes.is_some()
+    }
 }
 
 impl ParamKernel<2> for Faces {
@@ -387,5 +446,22 @@ impl ParamKernel<2> for Faces {
                 FaceLaneKernel::Hessian(f) => (f(d, xi_s, xi_m, grad, hess), true),
             }
         }
+    }
+
+    /// A face slip has no lane kernel (`codegen::emit::lanes`).
+    unsafe fn run_slip_lanes(
+        &self,
+        _d: &[Lanes],
+        _xi_s: &[Lanes; 2],
+        _xi_m0: &[Lanes; 2],
+        _xi_m: &mut [Lanes; 2],
+        _grad: &mut [Lanes],
+        _hess: &mut [Lanes],
+    ) -> Option<(Lanes, bool)> {
+        None
+    }
+
+    fn has_slip_lanes(&self) -> bool {
+        false
     }
 }

@@ -37,6 +37,7 @@
 
 use super::param_kernel::{SlipBuffers, slip_point};
 use super::{Imp, Kernel, param};
+use crate::generated;
 use crate::param::{Xi, XiArg};
 use crate::{KernelError, OpCount};
 
@@ -142,6 +143,14 @@ impl Slip {
         match self.kernel.imp {
             Imp::Segments(_) => 1,
             Imp::Faces(_) => 3,
+        }
+    }
+
+    /// Whether the slip kernel computes a second-order term.
+    pub fn has_hessian(&self) -> bool {
+        match &self.kernel.imp {
+            Imp::Segments(s) => matches!(s.slip, Some(generated::SlipKernel::Hessian(_))),
+            Imp::Faces(f) => matches!(f.slip, Some(generated::FaceSlipKernel::Hessian(_))),
         }
     }
 
