@@ -97,6 +97,7 @@ STRIP_BASE = 100001                    # CalculiX tag of the strip's node 0
 GROUPS = ('punch', 'punch_surface', 'punch_top')
 STEADY = (0.3, 1.0)                    # load factors of steady sliding
 SCENE = os.path.join('scenes', 'ironing-friction.toml')
+SETTLE = 1.0                           # the length of step 1 (total time = SETTLE + load factor)
 
 
 class MeshError(Exception):
@@ -252,6 +253,9 @@ def write_deck(path, nodes, groups, penalty, stick, increment, direct, mu, conta
     for name, amp in (('PRESS', PRESS_AMP), ('SLIDE', SLIDE_AMP)):
         L += [f'*AMPLITUDE,NAME={name}', ','.join(f'{t:g},{a:g}' for t, a in amp)]
     L += ['*BOUNDARY', 'BOT,1,2']
+    # step 1: nothing moves (module docs: CalculiX forgives penetration at
+    # each increment start of step 1)
+    L += ['*STEP,NLGEOM', '*STATIC', f'{SETTLE:g},{SETTLE:g}', '*BOUNDARY', 'TOP,1,2', '*END STEP']
     L += ['*STEP,NLGEOM,INC=10000', '*STATIC,DIRECT' if direct else '*STATIC',
           f'{increment:g},1.' if direct else f'{increment:g},1.,1e-6,{increment:g}']
     L += ['*BOUNDARY,AMPLITUDE=PRESS', f'TOP,2,2,{PRESS:g}']
@@ -282,14 +286,16 @@ def read_totals(path):
     return out
 
 
-def read_sta(path):
-    """Converged increments of a .sta: [(inc, attempt, iterations, time)]."""
+def read_sta(path, step=2):
+    """The attempts of step STEP in a .sta: [(inc, attempt, iterations,
+    step time, converged)] (an attempt marked U did not converge)."""
     rows = []
     with open(path) as f:
         for ln in f:
             v = ln.split()
-            if len(v) >= 7 and v[0].isdigit():
-                rows.append((int(v[1]), int(v[2].rstrip('U')), int(v[3]), float(v[5])))
+            if len(v) >= 7 and v[0].isdigit() and int(v[0]) == step:
+                rows.append((int(v[1]), int(v[2].rstrip('U')), int(v[3]), float(v[5]),
+                             not v[2].endswith('U')))
     return rows
 
 
@@ -512,9 +518,9 @@ def main():
                    increment=args.increment, direct=args.direct, threads=args.threads,
                    friction=args.friction, node_to_surface=args.node_to_surface,
                    wall=wall, cpu=cpu, loadavg=[load_before, os.getloadavg()[0]],
-                   increments=len(sta), iterations=sum(r[2] for r in sta),
-                   cutbacks=sum(r[1] - 1 for r in sta), finished=ok,
-                   end_time=sta[-1][3] if sta else 0.0)
+                   increments=sum(r[4] for r in sta), iterations=sum(r[2] for r in sta),
+                   cutbacks=sum(not r[4] for r in sta), finished=ok,
+                   end_time=max((r[3] for r in sta if r[4]), default=0.0))
         with open(runfile, 'w') as f:
             json.dump(run, f, indent=1)
         print(f'calculix-ironing: ccx {wall:.2f} s (cpu {cpu:.2f} s), {run["increments"]} increments, '
@@ -527,7 +533,7 @@ def main():
     top, bot = totals.get('TOP', []), totals.get('BOT', [])
     if not top or len(top) != len(bot):
         sys.exit(f'calculix-ironing: {args.workdir}/ironing.dat: no or unmatched reaction totals')
-    rows = [{'load_factor': t, 'slide': slide_of(t), 'press': f[1], 'drag': f[0],
+    rows = [{'load_factor': round(t - SETTLE, 12), 'slide': slide_of(t - SETTLE), 'press': f[1], 'drag': f[0],
              'bottom_x': b[0], 'bottom_y': b[1]} for (t, f), (_, b) in zip(top, bot)]
     if not args.reuse:
         os.makedirs(os.path.dirname(os.path.abspath(args.csv)), exist_ok=True)
