@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Frictional ironing in CalculiX: the peer of scenes/ironing-friction.toml.
 
-    scripts/calculix-ironing.py [--penalty 1e6] [--stick-slope K/100]
-                                [--increment 0.025] [--direct]
+    scripts/calculix-ironing.py [--increments 0.025,0.005,0.0025,0.00125]
+                                [--penalty 1e5] [--stick-slope PENALTY/100]
+                                [--friction 0.3] [--direct] [--frd]
                                 [--workdir target/calculix-ironing]
                                 [--ccx ccx] [--threads 1]
                                 [--csv docs/ironing/calculix-friction.csv]
@@ -10,76 +11,116 @@
                                 [--report docs/ironing/calculix-friction.md]
                                 [--reuse]
 
-Builds the mesh of scenes/ironing-friction.toml node for node and writes a
-CalculiX 2.20 deck `ironing.inp` with the same problem:
+Needs `apt-get install calculix-ccx` (ccx 2.20) and nothing else (no gmsh,
+no numpy); never part of the tests. The checked-in
+docs/ironing/calculix-friction.{csv,md} come from
 
-- the punch from scenes/ironing-punch.msh (MSH 4.1 ASCII, parsed here: no
-  gmsh package needed; groups punch, punch_surface, punch_top), node tags
-  as in the file;
+    scripts/calculix-ironing.py --gapsim path/to/gapsim
+
+(about 10 minutes on one core: four CalculiX runs, 40 s to 4.5 min, and
+one gapsim run of 20 s).
+
+The model
+---------
+The deck `ironing.inp` has the problem of scenes/ironing-friction.toml:
+
+- the punch from scenes/ironing-punch.msh (MSH 4.1 ASCII, parsed here;
+  groups punch, punch_surface, punch_top), node tags as in the file;
 - the strip as gapsim builds a `[[body]]` block (solver/src/mesh/block.rs):
   origin (0, 0), size 10 x 1, 100 x 10 cells, node (i, j) at
-  (10 i / 100, 1 j / 10), CalculiX tag STRIP_BASE + j (nx + 1) + i (so tag
-  - STRIP_BASE is gapsim's node index in the body), cells counter-clockwise
-  (i, j), (i+1, j), (i+1, j+1), (i, j+1);
+  (10 i / 100, j / 10) with CalculiX tag STRIP_BASE + j (nx + 1) + i (tag
+  minus STRIP_BASE is gapsim's node index in the body), each cell
+  (i, j), (i+1, j), (i+1, j+1), (i, j+1), counter-clockwise;
 - CPE4 (plane strain, thickness 1), *ELASTIC E = 1000, nu = 0.3 with
-  *STEP, NLGEOM (St Venant-Kirchhoff, as gapsim's large-displacement
-  solids);
-- strip bottom (y = 0): x and y fixed; punch_top: u_y = -0.1 with the
+  NLGEOM (St Venant-Kirchhoff: gapsim's large-displacement solid);
+- the strip bottom (y = 0) fixed in x and y; punch_top: u_y = -0.1 with the
   amplitude PRESS (0 -> 1 over step time 0..0.2, then held) and u_x = 5
-  with SLIDE (0 until 0.2, then 0 -> 1 at 1.0): the scene's two
-  [[prescribe]] items on the same nodes, step time = gapsim's load factor;
-- surface-to-surface penalty contact, slave the punch arc
-  (punch_surface), master the strip top, both as element faces; linear
-  pressure-overclosure of slope PENALTY (default 1e6: the penetration,
-  about p / PENALTY = 6e-5 at the peak pressure, is 6e-4 of the 0.1
-  indentation); *FRICTION mu = 0.3 with the stick slope STICK_SLOPE
-  (default PENALTY / 100, the CalculiX manual's advice: the elastic slip
-  before sliding is mu p / STICK_SLOPE, about 2e-3 of the 5 slide);
-- one *STATIC step, increment INCREMENT (default 0.025: gapsim's 40
-  steps), at most INCREMENT per increment, cut-backs allowed (down to
-  1e-6); with --direct, fixed increments (no cut-back);
-- per increment: the total reaction (RF) of punch_top and of the bottom
-  (*NODE PRINT, TOTALS=ONLY, to the .dat); at the end U and contact
-  stresses (CSTR) to the .frd.
+  with SLIDE (0 until 0.2, then 0 -> 1 at 1.0), the scene's two
+  [[prescribe]] items on the same nodes; step time = gapsim's load factor;
+- penalty surface-to-surface contact (TYPE=SURFACE TO SURFACE), slave the
+  punch arc (punch_surface), master the strip top, both as element faces;
+  linear pressure-overclosure of slope PENALTY; *FRICTION mu = FRICTION
+  (0.3; 0 leaves *FRICTION out) with stick slope STICK_SLOPE;
+- two steps: step 1 (time 1) holds punch_top fixed and nothing moves; step
+  2 is the ironing (the load factor is its step time, the .dat's total time
+  minus 1). Why: in the first step of a static analysis CalculiX 2.20
+  treats the penetration found at the start of *every* increment as an
+  initial overlap and ramps it in over the rest of the step
+  (gencontelem_f2f.f: `springarea(2,*)`, `clear - springarea(2)*(1 -
+  reltime)`), so in one step the penetration accumulates increment by
+  increment and the press depends on the increment size: frictionless, at
+  load factor 0.2, 41.5 with increments of 0.025 and 38.3 with 0.005
+  (geometric penetration 0.004 and 0.016) against 42.1 for both with the
+  settling step;
+- step 2: *STATIC with initial and largest increment INCREMENT, cut-backs
+  allowed (down to 1e-6; --direct: fixed increments, none); per increment
+  the total reaction RF of punch_top and of the bottom (*NODE PRINT,
+  TOTALS=ONLY, to the .dat); with --frd also U and the contact stresses
+  (CSTR) of every increment to the .frd.
 
-Runs `ccx -i ironing` once with OMP_NUM_THREADS=THREADS (default 1), timed
-as a whole process (wall clock; CPU: user plus system of all threads), and
-writes CSV (default docs/ironing/calculix-friction.csv) with one row per
-converged increment: load_factor (CalculiX's step time), slide (the
+The defaults and why
+--------------------
+- INCREMENTS 0.025, 0.005, 0.0025, 0.00125: one CalculiX run each; the
+  first is gapsim's 40 steps, the others resolve the slide. CalculiX's face-to-face
+  penalty contact matches slave integration points to master faces, and
+  fixes the master normals, once per increment (the CalculiX manual,
+  "Face-to-Face Penalty Contact": "large deformations of the structure may
+  require small increments"). An increment of 0.025 slides the punch
+  0.156, 1.6 master segments: frictionless the drag should vanish, and
+  CalculiX gives about 11 % of the press with 0.025 and 2 % with 0.005;
+  with friction its drag over press is then about 0.41 with 0.025 (and the
+  press drops by a quarter half way along the slide) and 0.317 with 0.005
+  (gapsim: 0.2965). The report shows how CalculiX approaches gapsim as the
+  increment shrinks; the finest run is CalculiX's answer.
+- PENALTY 1e5 = 10 E / h with h = 0.1 (the manual's 5 to 50 times E for
+  the slope, per element length): the penetration p / PENALTY, at most
+  about 8e-4 at the peak pressure (about 80), is 0.8 % of the 0.1
+  indentation, and the press at load factor 0.2 is 0.7 % below gapsim's.
+  1e6 converged badly with increments of 0.005 (18 cut-backs, 3840
+  iterations, 413 s) and lost a quarter of the press half way along.
+- STICK_SLOPE PENALTY / 100 (the CalculiX manual's advice): the elastic
+  slip before sliding is mu p / STICK_SLOPE, at most about 0.024, a
+  quarter of a master segment and 0.5 % of the slide; in steady sliding
+  every node in contact slips, so the stick slope shows only at the start
+  of the slide and at the contact's leading edge.
+
+Output
+------
+Each run happens in WORKDIR/inc-INCREMENT with OMP_NUM_THREADS=THREADS
+(default 1), timed as a whole `ccx -i ironing` process (wall clock; CPU:
+user plus system of all threads), facts in its run.json. The CSV (default
+docs/ironing/calculix-friction.csv) has one row per converged increment of
+every run: increment (the run's), load_factor (step 2's time), slide (the
 punch's prescribed slide, 5 (lf - 0.2) / 0.8 after 0.2), press (RF_y of
-punch_top) and drag (RF_x of punch_top), bottom_x, bottom_y. RF is the
-force the support exerts on the body, as gapsim's reactions
-(solver/src/newton/reactions.rs): press is negative (the support pushes
-the punch down), drag positive, as gapsim's `press_y` and `slide_x` in
-reactions.csv. Also writes WORKDIR/run.json (times, increments,
-iterations, cut-backs).
+punch_top), drag (RF_x of punch_top), bottom_x, bottom_y (RF of the
+bottom). RF is the force the support exerts on the body, as gapsim's
+reactions (solver/src/newton/reactions.rs): press is negative (the
+support pushes the punch down) and drag positive, as gapsim's `press_y`
+and `slide_x` in reactions.csv.
 
 Comparison (optional):
 
 - --gapsim BIN runs `BIN run scenes/ironing-friction.toml --out DIR`
-  (DIR: --compare, default WORKDIR/gapsim), timed (wall, CPU), with
-  RAYON_NUM_THREADS=THREADS, and keeps its summary in DIR/gapsim.txt;
+  (DIR: --compare, default WORKDIR/gapsim) with RAYON_NUM_THREADS=THREADS,
+  timed the same way, its facts (wall, CPU, iterations, cut-backs) in
+  DIR/gapsim.json;
 - --compare DIR reads gapsim's DIR/reactions.csv (the scheduled steps'
-  ends: the last row of each step) and, when present, DIR/gapsim.txt
-  (written by --gapsim: wall time, iterations);
-- then prints, and writes to REPORT (default
-  docs/ironing/calculix-friction.md), a table over steady sliding (load
-  factors 0.3 to 1.0): mean press, mean drag, mean drag/press with their
-  ranges, for both solvers, and their relative differences; CalculiX
-  interpolated (linearly in the load factor) at gapsim's step ends, the
-  largest difference per step; the wall times.
+  ends: the last row of each step) and DIR/gapsim.json if there is one;
+- the report (printed, and written to REPORT, default
+  docs/ironing/calculix-friction.md, with the plot REPORT.svg of -press and
+  drag against the load factor, drawn here without a plotting package)
+  gives, over steady sliding (load
+  factors 0.3 to 1.0), the mean press, drag and drag / press with their
+  ranges for gapsim and each CalculiX run, the relative differences of the
+  means, and the largest difference at one of gapsim's step ends
+  (CalculiX interpolated linearly in the load factor there); then the wall
+  and CPU times, iterations, increments and cut-backs.
 
---reuse skips the CalculiX run and reads WORKDIR's last results
-(WORKDIR/ironing.dat, WORKDIR/run.json), e.g. to redo the comparison.
-
-Needs `apt-get install calculix-ccx` (ccx 2.20); never part of the tests.
-Example (the checked-in docs/ironing/calculix-friction.*):
-
-    scripts/calculix-ironing.py --gapsim path/to/gapsim
+--reuse skips the CalculiX runs and reads WORKDIR's last ones (e.g. to redo
+the comparison); the CSV is then not rewritten.
 """
 import argparse
 import json
-import math
 import os
 import re
 import shutil
@@ -92,12 +133,15 @@ YOUNG, POISSON = 1000.0, 0.3
 MU = 0.3
 PRESS, SLIDE = -0.1, 5.0               # u_y and u_x of punch_top at amplitude 1
 T_PRESS = 0.2                          # the press ramps over 0..0.2, the slide over 0.2..1
+PRESS_AMP = [(0.0, 0.0), (T_PRESS, 1.0), (1.0, 1.0)]
+SLIDE_AMP = [(0.0, 0.0), (T_PRESS, 0.0), (1.0, 1.0)]
 STRIP_ORIGIN, STRIP_SIZE, STRIP_CELLS = (0.0, 0.0), (10.0, 1.0), (100, 10)
 STRIP_BASE = 100001                    # CalculiX tag of the strip's node 0
 GROUPS = ('punch', 'punch_surface', 'punch_top')
 STEADY = (0.3, 1.0)                    # load factors of steady sliding
-SCENE = os.path.join('scenes', 'ironing-friction.toml')
 SETTLE = 1.0                           # the length of step 1 (total time = SETTLE + load factor)
+SCENE = os.path.join('scenes', 'ironing-friction.toml')
+CSV_KEYS = ('increment', 'load_factor', 'slide', 'press', 'drag', 'bottom_x', 'bottom_y')
 
 
 class MeshError(Exception):
@@ -197,12 +241,14 @@ def amplitude_at(points, t):
     return points[-1][1]
 
 
-PRESS_AMP = [(0.0, 0.0), (T_PRESS, 1.0), (1.0, 1.0)]
-SLIDE_AMP = [(0.0, 0.0), (T_PRESS, 0.0), (1.0, 1.0)]
+def slide_of(lf):
+    return SLIDE * amplitude_at(SLIDE_AMP, lf)
 
 
-def write_deck(path, nodes, groups, penalty, stick, increment, direct, mu, contact_type):
-    """Writes the CalculiX deck (module docs); returns a summary dict."""
+def write_deck(path, nodes, groups, opts):
+    """Writes the CalculiX deck (module docs) with the options opts
+    (penalty, stick_slope, friction, increment, direct, frd); returns the
+    model's size."""
     s_nodes, s_quads, bottom, top = strip_mesh()
     allnodes = dict(nodes)
     allnodes.update(s_nodes)
@@ -231,6 +277,7 @@ def write_deck(path, nodes, groups, penalty, stick, increment, direct, mu, conta
             out.append(faces[0])
         return out
 
+    inc = opts['increment']
     top_nodes = sorted({n for edge in groups['punch_top'] for n in edge})
     L = ['** Frictional ironing (scenes/ironing-friction.toml), written by scripts/calculix-ironing.py',
          '*NODE']
@@ -243,33 +290,35 @@ def write_deck(path, nodes, groups, penalty, stick, increment, direct, mu, conta
     L += ['*SURFACE,NAME=SLAVE,TYPE=ELEMENT']
     L += [f'{e},S{k}' for e, k in surface('punch_surface', groups['punch_surface'])]
     L += ['*SURFACE,NAME=MASTER,TYPE=ELEMENT'] + [f'{e},S{k}' for e, k in surface('strip top', top)]
-    L += ['*MATERIAL,NAME=MAT', '*ELASTIC', f'{YOUNG},{POISSON}']
+    L += ['*MATERIAL,NAME=MAT', '*ELASTIC', f'{YOUNG:g},{POISSON:g}']
     L += ['*SOLID SECTION,ELSET=PUNCH,MATERIAL=MAT', '1.', '*SOLID SECTION,ELSET=STRIP,MATERIAL=MAT', '1.']
     L += ['*SURFACE INTERACTION,NAME=SI', '*SURFACE BEHAVIOR,PRESSURE-OVERCLOSURE=LINEAR',
-          f'{penalty:g},0.,0.']
-    if mu > 0.0:
-        L += ['*FRICTION', f'{mu:g},{stick:g}']
-    L += [f'*CONTACT PAIR,INTERACTION=SI,TYPE={contact_type}', 'SLAVE,MASTER']
+          f'{opts["penalty"]:g}']
+    if opts['friction'] > 0.0:
+        L += ['*FRICTION', f'{opts["friction"]:g},{opts["stick_slope"]:g}']
+    L += ['*CONTACT PAIR,INTERACTION=SI,TYPE=SURFACE TO SURFACE', 'SLAVE,MASTER']
     for name, amp in (('PRESS', PRESS_AMP), ('SLIDE', SLIDE_AMP)):
         L += [f'*AMPLITUDE,NAME={name}', ','.join(f'{t:g},{a:g}' for t, a in amp)]
     L += ['*BOUNDARY', 'BOT,1,2']
-    # step 1: nothing moves (module docs: CalculiX forgives penetration at
-    # each increment start of step 1)
-    L += ['*STEP,NLGEOM', '*STATIC', f'{SETTLE:g},{SETTLE:g}', '*BOUNDARY', 'TOP,1,2', '*END STEP']
-    L += ['*STEP,NLGEOM,INC=10000', '*STATIC,DIRECT' if direct else '*STATIC',
-          f'{increment:g},1.' if direct else f'{increment:g},1.,1e-6,{increment:g}']
+    # step 1: nothing moves (module docs: CalculiX ramps in the penetration
+    # found at each increment start of the first step)
+    L += ['** step 1: settling, nothing moves', '*STEP,NLGEOM', '*STATIC',
+          f'{SETTLE:g},{SETTLE:g}', '*BOUNDARY', 'TOP,1,2', '*END STEP']
+    L += ['** step 2: the ironing, step time = load factor', '*STEP,NLGEOM,INC=100000']
+    L += ['*STATIC,DIRECT', f'{inc:g},1.'] if opts['direct'] else ['*STATIC', f'{inc:g},1.,1e-6,{inc:g}']
     L += ['*BOUNDARY,AMPLITUDE=PRESS', f'TOP,2,2,{PRESS:g}']
     L += ['*BOUNDARY,AMPLITUDE=SLIDE', f'TOP,1,1,{SLIDE:g}']
     L += ['*NODE PRINT,NSET=TOP,TOTALS=ONLY', 'RF', '*NODE PRINT,NSET=BOT,TOTALS=ONLY', 'RF']
-    L += ['*NODE FILE', 'U', '*CONTACT FILE', 'CSTR', '*END STEP']
+    if opts['frd']:
+        L += ['*NODE FILE', 'U', '*CONTACT FILE', 'CSTR']
+    L += ['*END STEP']
     with open(path, 'w') as f:
         f.write('\n'.join(L) + '\n')
-    return {'nodes': len(allnodes), 'elements': len(elements),
-            'punch_nodes': len(nodes), 'strip_nodes': len(s_nodes)}
+    return {'nodes': len(allnodes), 'elements': len(elements)}
 
 
 def read_totals(path):
-    """{set: [(time, [fx, fy, fz])]} of the `total force` blocks of a .dat."""
+    """{set: [(total time, [fx, fy, fz])]} of the `total force` blocks of a .dat."""
     out = {}
     pat = re.compile(r'total force \(fx,fy,fz\) for set (\S+) and time\s+(\S+)')
     with open(path) as f:
@@ -320,18 +369,79 @@ def timed(cmd, cwd, env, log):
     return r.returncode, r.stdout, wall, cpu
 
 
-def slide_of(lf):
-    return SLIDE * amplitude_at(SLIDE_AMP, lf)
+def run_ccx(workdir, nodes, groups, opts, args):
+    """Writes the deck into workdir, runs ccx timed; returns the run's facts
+    (also in workdir/run.json)."""
+    os.makedirs(workdir, exist_ok=True)
+    size = write_deck(os.path.join(workdir, 'ironing.inp'), nodes, groups, opts)
+    for ext in ('frd', 'dat', 'sta', 'cvg'):
+        try:
+            os.remove(os.path.join(workdir, 'ironing.' + ext))
+        except FileNotFoundError:
+            pass
+    env = dict(os.environ, OMP_NUM_THREADS=str(args.threads))
+    load_before = os.getloadavg()[0]
+    code, stdout, wall, cpu = timed([args.ccx, '-i', 'ironing'], workdir, env,
+                                    os.path.join(workdir, 'ccx.log'))
+    sta = read_sta(os.path.join(workdir, 'ironing.sta'))
+    run = dict(opts, **size, version=ccx_version(args.ccx), threads=args.threads,
+               wall=wall, cpu=cpu, loadavg=[load_before, os.getloadavg()[0]],
+               increments=sum(r[4] for r in sta), iterations=sum(r[2] for r in sta),
+               cutbacks=sum(not r[4] for r in sta),
+               finished=code == 0 and 'Job finished' in stdout,
+               end_time=max((r[3] for r in sta if r[4]), default=0.0))
+    with open(os.path.join(workdir, 'run.json'), 'w') as f:
+        json.dump(run, f, indent=1)
+    print(f'calculix-ironing: increment {opts["increment"]:g}: ccx {wall:.2f} s (cpu {cpu:.2f} s), '
+          f'{run["increments"]} increments, {run["iterations"]} iterations, {run["cutbacks"]} cut-backs, '
+          f'reached {run["end_time"]:g}', file=sys.stderr)
+    if not run['finished']:
+        sys.exit(f'calculix-ironing: ccx failed (exit {code}); see {workdir}/ccx.log')
+    return run
+
+
+def read_reactions(workdir, increment):
+    """The CSV rows (CSV_KEYS) of the run in workdir."""
+    path = os.path.join(workdir, 'ironing.dat')
+    totals = read_totals(path)
+    top, bot = totals.get('TOP', []), totals.get('BOT', [])
+    if not top or len(top) != len(bot):
+        sys.exit(f'calculix-ironing: {path}: no or unmatched reaction totals')
+    rows = []
+    for (t, f), (_, b) in zip(top, bot):
+        lf = round(t - SETTLE, 9)
+        rows.append(dict(zip(CSV_KEYS, (increment, lf, slide_of(lf), f[1], f[0], b[0], b[1]))))
+    return rows
+
+
+def run_gapsim(binary, outdir, threads, root):
+    """Runs gapsim on the scene into outdir, timed; writes outdir/gapsim.json."""
+    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+    os.makedirs(outdir, exist_ok=True)
+    log = os.path.join(outdir, 'gapsim.log')
+    code, stdout, wall, cpu = timed([binary, 'run', SCENE, '--out', outdir], root, env, log)
+    if code != 0:
+        sys.exit(f'calculix-ironing: gapsim failed (exit {code}); see {log}')
+    facts = {'wall': wall, 'cpu': cpu, 'threads': threads}
+    for key, pat in (('iterations', r'^Newton\s+(\d+) iterations'), ('cutbacks', r'^cut-backs\s+(\d+)'),
+                     ('method', r'^method\s+(.*)$'), ('equations', r'^equations\s+(\d+)')):
+        m = re.search(pat, stdout, re.M)
+        if m:
+            facts[key] = m.group(1).strip()
+    with open(os.path.join(outdir, 'gapsim.json'), 'w') as f:
+        json.dump(facts, f, indent=1)
+    print(f'calculix-ironing: gapsim {wall:.2f} s (cpu {cpu:.2f} s)', file=sys.stderr)
 
 
 def read_gapsim(dirname):
     """gapsim's scheduled step ends [(lf, press, drag)] from reactions.csv
-    (the last row of each step) and its run facts (gapsim.txt) if any."""
+    (the last row of each step), its number of rows, and its run facts
+    (gapsim.json, written by run_gapsim) if any."""
     path = os.path.join(dirname, 'reactions.csv')
     with open(path) as f:
         header = f.readline().strip().split(',')
         rows = [dict(zip(header, ln.strip().split(','))) for ln in f if ln.strip()]
-    for key in ('press_y', 'slide_x'):
+    for key in ('step', 'load_factor', 'press_y', 'slide_x'):
         if key not in header:
             raise RuntimeError(f'{path}: no column {key}')
     ends = {}
@@ -339,7 +449,7 @@ def read_gapsim(dirname):
         ends[int(r['step'])] = (float(r['load_factor']), float(r['press_y']), float(r['slide_x']))
     facts = {}
     try:
-        with open(os.path.join(dirname, 'gapsim.txt')) as f:
+        with open(os.path.join(dirname, 'gapsim.json')) as f:
             facts = json.load(f)
     except FileNotFoundError:
         pass
@@ -349,88 +459,91 @@ def read_gapsim(dirname):
 def interpolate(series, lf):
     """Linear interpolation of [(lf, value)] (sorted) at lf."""
     for (a, va), (b, vb) in zip(series, series[1:]):
-        if a - 1e-12 <= lf <= b + 1e-12:
+        if a - 1e-9 <= lf <= b + 1e-9:
             return va if b == a else va + (vb - va) * (lf - a) / (b - a)
     raise ValueError(f'load factor {lf} outside {series[0][0]}..{series[-1][0]}')
 
 
-def stats(values):
-    return statistics.fmean(values), min(values), max(values)
+QUANTITIES = (('press', lambda p, d: p), ('drag', lambda p, d: d), ('drag / press', lambda p, d: -d / p))
 
 
-def compare(ccx_rows, run, gap_ends, gap_rows, gap_facts, report, root):
-    """The comparison table (module docs) as Markdown; also printed."""
+def steady(points):
+    """{quantity: (mean, min, max)} over [(lf, press, drag)] in STEADY."""
     lo, hi = STEADY
-    in_window = lambda lf: lo - 1e-9 <= lf <= hi + 1e-9
-    g = [(lf, p, d) for lf, p, d in gap_ends if in_window(lf)]
-    c = [(r['load_factor'], r['press'], r['drag']) for r in ccx_rows if in_window(r['load_factor'])]
-    # CalculiX at gapsim's step ends (exact where the increments coincide)
-    press_s = [(r['load_factor'], r['press']) for r in ccx_rows]
-    drag_s = [(r['load_factor'], r['drag']) for r in ccx_rows]
-    ci = [(lf, interpolate(press_s, lf), interpolate(drag_s, lf)) for lf, _, _ in g]
-    rows = []
-    for label, fn in (('press', lambda p, d: p), ('drag', lambda p, d: d),
-                      ('drag / press', lambda p, d: -d / p)):
-        gs = stats([fn(p, d) for _, p, d in g])
-        cs = stats([fn(p, d) for _, p, d in c])
-        diffs = [fn(pc, dc) - fn(pg, dg) for (_, pc, dc), (_, pg, dg) in zip(ci, g)]
-        worst = max(diffs, key=abs)
-        rows.append((label, gs, cs, (cs[0] - gs[0]) / abs(gs[0]), worst, worst / abs(gs[0])))
-    out = []
-    out.append('# Frictional ironing: gapsim against CalculiX')
-    out.append('')
-    out.append('Generated by `scripts/calculix-ironing.py` (do not edit by hand). The scene '
-               '`scenes/ironing-friction.toml`: a half-disc punch (R = 1, `scenes/ironing-punch.msh`) '
-               'pressed 0.1 into a 10 x 1 strip (100 x 10 quads) over load factor 0..0.2, then slid '
-               '5 along it over 0.2..1; plane strain, E = 1000, nu = 0.3, large displacement, '
-               f'Coulomb friction mu = {MU:g}, slave the punch arc, master the strip top.')
-    out.append('')
-    out.append(f'- CalculiX {run["version"]}: CPE4, *STEP NLGEOM, penalty surface-to-surface contact '
-               f'(linear pressure-overclosure, slope {run["penalty"]:g}), *FRICTION mu = {MU:g}, '
-               f'stick slope {run["stick_slope"]:g}; increments of {run["increment"]:g}'
-               f'{" (DIRECT)" if run["direct"] else " (cut-backs allowed)"}: '
-               f'{run["increments"]} converged increments, {run["iterations"]} iterations, '
-               f'{run["cutbacks"]} cut-backs; OMP_NUM_THREADS={run["threads"]}; '
-               f'{run["nodes"]} nodes, {run["elements"]} elements. '
-               'Reactions: `*NODE PRINT, TOTALS=ONLY` of RF over punch_top per increment '
-               '([calculix-friction.csv](calculix-friction.csv)).')
+    w = [(p, d) for lf, p, d in points if lo - 1e-9 <= lf <= hi + 1e-9]
+    out = {}
+    for label, fn in QUANTITIES:
+        v = [fn(p, d) for p, d in w]
+        out[label] = (statistics.fmean(v), min(v), max(v))
+    return out, len(w)
+
+
+def compare(runs, gap_ends, gap_rows, gap_facts, report, root):
+    """The comparison (module docs) as Markdown; printed and written to report."""
+    lo, hi = STEADY
+    g_stats, g_n = steady(gap_ends)
+    g_window = [(lf, p, d) for lf, p, d in gap_ends if lo - 1e-9 <= lf <= hi + 1e-9]
+    first = runs[0][0]
+    out = ['# Frictional ironing: gapsim against CalculiX', '',
+           'Generated by `scripts/calculix-ironing.py` (see its header; do not edit by hand). The scene '
+           f'`{SCENE}`: a half-disc punch (R = 1, `scenes/ironing-punch.msh`) pressed 0.1 into a '
+           '10 x 1 strip (100 x 10 quads) over load factor 0..0.2, then slid 5 along it over 0.2..1; '
+           'plane strain, E = 1000, nu = 0.3, large displacement, Coulomb friction mu = '
+           f'{first["friction"]:g}, slave the punch arc, master the strip top.', '',
+           f'- CalculiX {first["version"]}: CPE4, NLGEOM, penalty surface-to-surface contact '
+           f'(linear pressure-overclosure, slope {first["penalty"]:g}), *FRICTION mu = '
+           f'{first["friction"]:g} with stick slope {first["stick_slope"]:g}; a settling step, then '
+           'the ironing step with the increments below '
+           f'({"fixed (DIRECT)" if first["direct"] else "cut-backs allowed"}); '
+           f'OMP_NUM_THREADS={first["threads"]}; {first["nodes"]} nodes, {first["elements"]} elements. '
+           'Reactions: `*NODE PRINT, TOTALS=ONLY` of RF over punch_top at every converged increment '
+           '([calculix-friction.csv](calculix-friction.csv)).']
     if gap_facts:
-        out.append(f'- gapsim: `gapsim run {SCENE}` ({gap_facts.get("summary", "")}); '
-                   f'RAYON_NUM_THREADS={gap_facts.get("threads")}; '
-                   f'reactions.csv: {gap_rows} converged (sub)steps.')
+        out.append(f'- gapsim: `gapsim run {SCENE}` ({gap_facts.get("method", "")}, '
+                   f'{gap_facts.get("equations", "?")} equations), RAYON_NUM_THREADS='
+                   f'{gap_facts.get("threads")}; its reactions.csv: {gap_rows} converged (sub)steps.')
     else:
-        out.append(f'- gapsim: `reactions.csv` of a `gapsim run {SCENE} --out DIR` '
-                   f'({gap_rows} converged (sub)steps; its run time not recorded).')
+        out.append(f'- gapsim: reactions.csv of `gapsim run {SCENE} --out DIR` ({gap_rows} converged '
+                   '(sub)steps; run time not recorded).')
     out.append(f'- Steady sliding: load factors {lo:g} to {hi:g} (slide {slide_of(lo):g} to '
-               f'{slide_of(hi):g}): gapsim\'s {len(g)} scheduled step ends, CalculiX\'s {len(c)} '
-               'converged increments. press: the vertical reaction of punch_top (negative: the '
-               'support pushes the punch down), drag: the horizontal one (gapsim\'s `press_y` and '
-               '`slide_x`). Per step: CalculiX interpolated linearly in the load factor at '
-               'gapsim\'s step ends (the same load factors when no increment was cut back), the '
-               'difference of largest magnitude, CalculiX minus gapsim.')
-    out.append('')
-    out.append('| quantity | gapsim mean | gapsim range | CalculiX mean | CalculiX range | '
-               'mean difference | largest step difference | (of gapsim\'s mean) |')
-    out.append('|---|---:|---|---:|---|---:|---:|---:|')
-    for label, gs, cs, rel, worst, wrel in rows:
-        out.append(f'| {label} | {gs[0]:.4f} | {gs[1]:.4f} .. {gs[2]:.4f} | {cs[0]:.4f} | '
-                   f'{cs[1]:.4f} .. {cs[2]:.4f} | {100 * rel:+.2f} % | {worst:+.4f} | {100 * wrel:+.2f} % |')
-    out.append('')
-    out.append('| solver | wall (s) | CPU (s) | iterations | increments / steps | cut-backs |')
-    out.append('|---|---:|---:|---:|---:|---:|')
-    out.append(f'| CalculiX {run["version"]} | {run["wall"]:.2f} | {run["cpu"]:.2f} | '
-               f'{run["iterations"]} | {run["increments"]} | {run["cutbacks"]} |')
+               f'{slide_of(hi):g}): gapsim\'s {g_n} scheduled step ends, each CalculiX run\'s converged '
+               'increments in that range. press: the vertical reaction of punch_top (negative: the '
+               'support pushes the punch down); drag: the horizontal one (gapsim\'s `press_y` and '
+               '`slide_x`). Difference: CalculiX minus gapsim, of the means relative to gapsim\'s '
+               'mean (press is negative: + is a smaller press); per step: CalculiX interpolated linearly in the load factor at each of gapsim\'s '
+               f'{len(g_window)} step ends in the range, the difference of largest magnitude.')
+    out += ['', '| solver | increment | quantity | mean | range | mean difference | '
+            'largest step difference |', '|---|---:|---|---:|---|---:|---:|']
+    for label, _ in QUANTITIES:
+        m, a, b = g_stats[label]
+        out.append(f'| gapsim | 0.025 | {label} | {m:.4f} | {a:.4f} .. {b:.4f} | | |')
+    for run, rows in runs:
+        pts = [(r['load_factor'], r['press'], r['drag']) for r in rows]
+        c_stats, _ = steady(pts)
+        ps = [(lf, p) for lf, p, _ in pts]
+        ds = [(lf, d) for lf, _, d in pts]
+        for label, fn in QUANTITIES:
+            m, a, b = c_stats[label]
+            gm = g_stats[label][0]
+            diffs = [fn(interpolate(ps, lf), interpolate(ds, lf)) - fn(p, d) for lf, p, d in g_window]
+            worst = max(diffs, key=abs)
+            out.append(f'| CalculiX | {run["increment"]:g} | {label} | {m:.4f} | {a:.4f} .. {b:.4f} | '
+                       f'{100 * (m - gm) / abs(gm):+.2f} % | {worst:+.4f} ({100 * worst / abs(gm):+.1f} %) |')
+    out += ['', '| solver | increment | wall (s) | CPU (s) | iterations | converged increments '
+            '(gapsim: (sub)steps) | cut-backs |', '|---|---:|---:|---:|---:|---:|---:|']
     if gap_facts:
-        out.append(f'| gapsim | {gap_facts["wall"]:.2f} | {gap_facts["cpu"]:.2f} | '
-                   f'{gap_facts.get("iterations", "-")} | {len(gap_ends)} | '
-                   f'{gap_facts.get("cutbacks", "-")} |')
-    else:
-        out.append(f'| gapsim | - | - | - | {len(gap_ends)} | - |')
-    out.append('')
-    load = run.get('loadavg')
-    if load:
-        out.append(f'Machine: {os.cpu_count()} cores, load average {load[0]:.2f} before the CalculiX '
-                   f'run and {load[1]:.2f} after; one run each.')
+        out.append(f'| gapsim | 0.025 | {gap_facts["wall"]:.2f} | {gap_facts["cpu"]:.2f} | '
+                   f'{gap_facts.get("iterations", "-")} | {gap_rows} | {gap_facts.get("cutbacks", "-")} |')
+    for run, _ in runs:
+        out.append(f'| CalculiX {run["version"]} | {run["increment"]:g} | {run["wall"]:.2f} | '
+                   f'{run["cpu"]:.2f} | {run["iterations"]} | {run["increments"]} | {run["cutbacks"]} |')
+    out += ['', 'Iterations: gapsim\'s Newton iterations, failed attempts included; CalculiX\'s '
+            'iterations of the ironing step (its .sta), failed attempts included. Times: each a whole '
+            f'process, one run each, on this machine ({os.cpu_count()} cores, shared; load average '
+            + ', '.join(f'{r["loadavg"][0]:.2f}' for r, _ in runs) + ' before the CalculiX runs).']
+    if report:
+        svg = os.path.splitext(os.path.basename(report))[0] + '.svg'
+        out += ['', f'![-press and drag against the load factor, gapsim and CalculiX]({svg})']
     text = '\n'.join(out) + '\n'
     print(text)
     if report:
@@ -440,27 +553,58 @@ def compare(ccx_rows, run, gap_ends, gap_rows, gap_facts, report, root):
         print(f'calculix-ironing: wrote {os.path.relpath(report, root)}', file=sys.stderr)
 
 
-def run_gapsim(binary, outdir, threads, root):
-    """Runs gapsim on the scene into outdir, timed; writes outdir/gapsim.txt."""
-    env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
-    os.makedirs(outdir, exist_ok=True)
-    log = os.path.join(outdir, 'gapsim.log')
-    code, stdout, wall, cpu = timed([binary, 'run', SCENE, '--out', outdir], root, env, log)
-    if code != 0:
-        sys.exit(f'calculix-ironing: gapsim failed (exit {code}); see {log}')
-    facts = {'wall': wall, 'cpu': cpu, 'threads': threads}
-    m = re.search(r'^Newton\s+(\d+) iterations', stdout, re.M)
-    if m:
-        facts['iterations'] = int(m.group(1))
-    m = re.search(r'^cut-backs\s+(\d+)', stdout, re.M)
-    if m:
-        facts['cutbacks'] = int(m.group(1))
-    m = re.search(r'^method\s+(.*)$', stdout, re.M)
-    if m:
-        facts['summary'] = m.group(1).strip()
-    with open(os.path.join(outdir, 'gapsim.txt'), 'w') as f:
-        json.dump(facts, f, indent=1)
-    print(f'calculix-ironing: gapsim {wall:.2f} s (cpu {cpu:.2f} s)', file=sys.stderr)
+def plot_svg(runs, gap_ends, path):
+    """An SVG (no plotting package needed) of -press and drag against the load
+    factor: gapsim's step ends and every CalculiX run."""
+    w, h, left, right, top, bottom = 720, 420, 60, 200, 20, 50
+    ymax = 50.0
+    sx = lambda lf: left + (w - left - right) * lf
+    sy = lambda f: top + (h - top - bottom) * (1 - f / ymax)
+    colours = ['#e6a23c', '#67c23a', '#409eff', '#d03050', '#8e44ad']
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" '
+           'font-family="sans-serif" font-size="12">',
+           f'<rect width="{w}" height="{h}" fill="white"/>']
+    for k in range(6):
+        f = 10 * k
+        out.append(f'<line x1="{left}" y1="{sy(f):.1f}" x2="{w - right}" y2="{sy(f):.1f}" stroke="#ddd"/>')
+        out.append(f'<text x="{left - 6}" y="{sy(f) + 4:.1f}" text-anchor="end">{f}</text>')
+    for k in range(6):
+        lf = k / 5
+        out.append(f'<line x1="{sx(lf):.1f}" y1="{top}" x2="{sx(lf):.1f}" y2="{h - bottom}" stroke="#ddd"/>')
+        out.append(f'<text x="{sx(lf):.1f}" y="{h - bottom + 16}" text-anchor="middle">{lf:g}</text>')
+    out.append(f'<text x="{sx(0.5):.1f}" y="{h - 12}" text-anchor="middle">load factor '
+               '(press 0..0.2, slide 0..5 over 0.2..1)</text>')
+    out.append(f'<text x="16" y="{sy(25):.1f}" transform="rotate(-90 16 {sy(25):.1f})" '
+               'text-anchor="middle">reaction of punch_top</text>')
+
+    def line(points, colour, dash, width):
+        d = ' '.join(f'{sx(lf):.1f},{sy(v):.1f}' for lf, v in points)
+        extra = f' stroke-dasharray="{dash}"' if dash else ''
+        out.append(f'<polyline points="{d}" fill="none" stroke="{colour}" stroke-width="{width}"{extra}/>')
+
+    legend = []
+    for i, (run, rows) in enumerate(runs):
+        c = colours[i % len(colours)]
+        line([(r['load_factor'], -r['press']) for r in rows], c, None, 1.2)
+        line([(r['load_factor'], r['drag']) for r in rows], c, '5,3', 1.2)
+        legend.append((c, f'CalculiX, increment {run["increment"]:g}'))
+    line([(lf, -p) for lf, p, _ in gap_ends], 'black', None, 2)
+    line([(lf, d) for lf, _, d in gap_ends], 'black', '5,3', 2)
+    for lf, p, d in gap_ends:
+        out.append(f'<circle cx="{sx(lf):.1f}" cy="{sy(-p):.1f}" r="2.5" fill="black"/>')
+        out.append(f'<circle cx="{sx(lf):.1f}" cy="{sy(d):.1f}" r="2.5" fill="black"/>')
+    legend.insert(0, ('black', 'gapsim, 40 steps'))
+    y = top + 10
+    for c, text in legend:
+        out.append(f'<line x1="{w - right + 10}" y1="{y}" x2="{w - right + 35}" y2="{y}" stroke="{c}" '
+                   'stroke-width="2"/>')
+        out.append(f'<text x="{w - right + 40}" y="{y + 4}">{text}</text>')
+        y += 18
+    out.append(f'<text x="{w - right + 10}" y="{y + 10}">solid: -press</text>')
+    out.append(f'<text x="{w - right + 10}" y="{y + 28}">dashed: drag</text>')
+    out.append('</svg>')
+    with open(path, 'w') as f:
+        f.write('\n'.join(out) + '\n')
 
 
 def main():
@@ -468,89 +612,66 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--mesh', default=os.path.join(root, 'scenes', 'ironing-punch.msh'))
     ap.add_argument('--workdir', default=os.path.join(root, 'target', 'calculix-ironing'))
-    ap.add_argument('--penalty', type=float, default=1e6)
-    ap.add_argument('--stick-slope', type=float, default=None,
-                    help='*FRICTION stick slope (default: penalty / 100)')
-    ap.add_argument('--increment', type=float, default=0.025)
+    ap.add_argument('--increments', default='0.025,0.005,0.0025,0.00125',
+                    help='comma-separated increments of the ironing step, one run each')
+    ap.add_argument('--penalty', type=float, default=1e5)
+    ap.add_argument('--stick-slope', type=float, default=None, help='default: penalty / 100')
     ap.add_argument('--friction', type=float, default=MU, help='mu (0: frictionless, no *FRICTION)')
-    ap.add_argument('--node-to-surface', action='store_true',
-                    help='node-to-surface contact instead of surface-to-surface')
     ap.add_argument('--direct', action='store_true', help='fixed increments, no cut-backs')
+    ap.add_argument('--frd', action='store_true', help='U and CSTR of every increment to the .frd')
     ap.add_argument('--threads', type=int, default=1)
     ap.add_argument('--ccx', default='ccx')
     ap.add_argument('--csv', default=os.path.join(root, 'docs', 'ironing', 'calculix-friction.csv'))
     ap.add_argument('--gapsim', metavar='BIN', help='run this gapsim binary on the scene, timed')
     ap.add_argument('--compare', metavar='DIR', help="gapsim's --out directory (reactions.csv)")
     ap.add_argument('--report', default=os.path.join(root, 'docs', 'ironing', 'calculix-friction.md'))
-    ap.add_argument('--reuse', action='store_true', help="read WORKDIR's last CalculiX run")
+    ap.add_argument('--reuse', action='store_true', help="read WORKDIR's last CalculiX runs")
     args = ap.parse_args()
-    stick = args.stick_slope if args.stick_slope is not None else args.penalty / 100
-    if not 0.0 < args.increment <= 1.0:
-        sys.exit('calculix-ironing: --increment must be in (0, 1]')
-    os.makedirs(args.workdir, exist_ok=True)
-    runfile = os.path.join(args.workdir, 'run.json')
+    try:
+        increments = [float(v) for v in args.increments.split(',')]
+    except ValueError:
+        sys.exit(f'calculix-ironing: --increments {args.increments}: not numbers')
+    if not all(0.0 < v <= 1.0 for v in increments):
+        sys.exit('calculix-ironing: increments must be in (0, 1]')
+    opts = {'penalty': args.penalty, 'friction': args.friction, 'direct': args.direct, 'frd': args.frd,
+            'stick_slope': args.stick_slope if args.stick_slope is not None else args.penalty / 100}
 
+    runs = []
     if args.reuse:
-        with open(runfile) as f:
-            run = json.load(f)
+        for inc in increments:
+            workdir = os.path.join(args.workdir, f'inc-{inc:g}')
+            with open(os.path.join(workdir, 'run.json')) as f:
+                runs.append((json.load(f), read_reactions(workdir, inc)))
     else:
         if shutil.which(args.ccx) is None:
             sys.exit(f'calculix-ironing: {args.ccx} not found (apt-get install calculix-ccx)')
         try:
             nodes, groups = read_msh(args.mesh)
-            facts = write_deck(os.path.join(args.workdir, 'ironing.inp'), nodes, groups,
-                               args.penalty, stick, args.increment, args.direct, args.friction,
-                               'NODE TO SURFACE' if args.node_to_surface else 'SURFACE TO SURFACE')
         except (OSError, MeshError) as e:
             sys.exit(f'calculix-ironing: {e}')
-        for ext in ('frd', 'dat', 'sta', 'cvg'):
-            try:
-                os.remove(os.path.join(args.workdir, 'ironing.' + ext))
-            except FileNotFoundError:
-                pass
-        env = dict(os.environ, OMP_NUM_THREADS=str(args.threads))
-        load_before = os.getloadavg()[0]
-        code, stdout, wall, cpu = timed([args.ccx, '-i', 'ironing'], args.workdir, env,
-                                        os.path.join(args.workdir, 'ccx.log'))
-        ok = code == 0 and 'Job finished' in stdout
-        sta = read_sta(os.path.join(args.workdir, 'ironing.sta'))
-        run = dict(facts, version=ccx_version(args.ccx), penalty=args.penalty, stick_slope=stick,
-                   increment=args.increment, direct=args.direct, threads=args.threads,
-                   friction=args.friction, node_to_surface=args.node_to_surface,
-                   wall=wall, cpu=cpu, loadavg=[load_before, os.getloadavg()[0]],
-                   increments=sum(r[4] for r in sta), iterations=sum(r[2] for r in sta),
-                   cutbacks=sum(not r[4] for r in sta), finished=ok,
-                   end_time=max((r[3] for r in sta if r[4]), default=0.0))
-        with open(runfile, 'w') as f:
-            json.dump(run, f, indent=1)
-        print(f'calculix-ironing: ccx {wall:.2f} s (cpu {cpu:.2f} s), {run["increments"]} increments, '
-              f'{run["iterations"]} iterations, {run["cutbacks"]} cut-backs, reached {run["end_time"]:g}',
-              file=sys.stderr)
-        if not ok:
-            sys.exit(f'calculix-ironing: ccx failed (exit {code}); see {args.workdir}/ccx.log')
-
-    totals = read_totals(os.path.join(args.workdir, 'ironing.dat'))
-    top, bot = totals.get('TOP', []), totals.get('BOT', [])
-    if not top or len(top) != len(bot):
-        sys.exit(f'calculix-ironing: {args.workdir}/ironing.dat: no or unmatched reaction totals')
-    rows = [{'load_factor': round(t - SETTLE, 12), 'slide': slide_of(t - SETTLE), 'press': f[1], 'drag': f[0],
-             'bottom_x': b[0], 'bottom_y': b[1]} for (t, f), (_, b) in zip(top, bot)]
-    if not args.reuse:
+        for inc in increments:
+            workdir = os.path.join(args.workdir, f'inc-{inc:g}')
+            run = run_ccx(workdir, nodes, groups, dict(opts, increment=inc), args)
+            runs.append((run, read_reactions(workdir, inc)))
         os.makedirs(os.path.dirname(os.path.abspath(args.csv)), exist_ok=True)
         with open(args.csv, 'w') as f:
-            keys = list(rows[0])
-            f.write(','.join(keys) + '\n')
-            for r in rows:
-                f.write(','.join(repr(r[k]) for k in keys) + '\n')
-        print(f'calculix-ironing: wrote {os.path.relpath(args.csv, root)} ({len(rows)} increments)',
-              file=sys.stderr)
+            f.write(','.join(CSV_KEYS) + '\n')
+            for _, rows in runs:
+                for r in rows:
+                    f.write(','.join(repr(r[k]) for k in CSV_KEYS) + '\n')
+        print(f'calculix-ironing: wrote {os.path.relpath(args.csv, root)} '
+              f'({sum(len(r) for _, r in runs)} increments)', file=sys.stderr)
 
     gapdir = args.compare or (os.path.join(args.workdir, 'gapsim') if args.gapsim else None)
     if args.gapsim:
         run_gapsim(args.gapsim, gapdir, args.threads, root)
     if gapdir:
         ends, nrows, gfacts = read_gapsim(gapdir)
-        compare(rows, run, ends, nrows, gfacts, args.report, root)
+        compare(runs, ends, nrows, gfacts, args.report, root)
+        if args.report:
+            svg = os.path.splitext(args.report)[0] + '.svg'
+            plot_svg(runs, ends, svg)
+            print(f'calculix-ironing: wrote {os.path.relpath(svg, root)}', file=sys.stderr)
 
 
 if __name__ == '__main__':
