@@ -556,7 +556,7 @@ def compare(runs, gap_ends, gap_rows, gap_facts, report, root):
 def plot_svg(runs, gap_ends, path):
     """An SVG (no plotting package needed) of -press and drag against the load
     factor: gapsim's step ends and every CalculiX run."""
-    w, h, left, right, top, bottom = 720, 420, 60, 200, 20, 50
+    w, h, left, right, top, bottom = 760, 420, 60, 240, 20, 50
     ymax = 50.0
     sx = lambda lf: left + (w - left - right) * lf
     sy = lambda f: top + (h - top - bottom) * (1 - f / ymax)
