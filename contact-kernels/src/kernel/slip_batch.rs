@@ -6,11 +6,15 @@
 //!
 //! Per group of [`LANES`] points of a segment slip:
 //!
-//! 1. every point goes through the scalar path's steps before the kernel
-//!    ([`slip_start`]: validation, `xi_m0` finite, the projection's start),
-//!    so a point refused there carries exactly [`Slip::eval`]'s error. Its
-//!    lane, like the lanes past the end of a short last group, computes on
-//!    zeros whose results are discarded;
+//! 1. the points' coordinates are gathered into lanes and validated there
+//!    (the gap batch's lane checks, `ParamKernel::validate_lanes`); a lane
+//!    that passes, whose `xi_m0` is finite and whose projection is in
+//!    closed form is ready. Any other point goes through the scalar path's
+//!    steps before the kernel ([`slip_start`]: validation, `xi_m0` finite,
+//!    the projection's start), so a point refused there carries exactly
+//!    [`Slip::eval`]'s error. A refused point's lane, like the lanes past
+//!    the end of a short last group, computes on zeros whose results are
+//!    discarded;
 //! 2. the slip's lane kernel evaluates the group (AVX2 where the CPU has
 //!    it, [`Kernel::lane_isa`](super::Kernel::lane_isa)): lane `l` of every
 //!    output holds the bits the scalar slip kernel gives point `l`;
@@ -21,8 +25,8 @@
 //!    reports exactly the error [`Slip::eval`] reports, never a second
 //!    opinion. A failed point's entries are zero.
 //!
-//! Unlike the gap's batch, nothing is validated in lanes: the kernel is
-//! where the time goes.
+//! The results are scattered lane by lane (no transposes, unlike the
+//! gap's batch).
 
 use super::batch::accepted;
 use super::param_kernel::{ParamKernel, SlipBuffers, slip_point, slip_start};
@@ -338,15 +342,30 @@ fn eval_group<K: ParamKernel<P>, const P: usize>(
     let mut xi_s_l = [Lanes::ZERO; P];
     let mut xi_m0_l = [Lanes::ZERO; P];
     let mut xi_m_l = [Lanes::ZERO; P];
-    let mut valid = [false; LANES];
+    for l in 0..count {
+        for c in 0..P {
+            xi_s_l[c].0[l] = args.xi_s[P * (first + l) + c];
+            xi_m0_l[c].0[l] = args.xi_m0[P * (first + l) + c];
+        }
+    }
+    let (mut valid, start_all) = k.validate_lanes::<false>(
+        &args.qs[first * n..(first + count) * n],
+        &mut out.lanes.d,
+        &xi_s_l,
+    );
+    valid[count..].fill(false);
     for (l, valid) in valid.iter_mut().enumerate().take(count) {
         let p = first + l;
         let (q, xi_s, xi_m0) = args.point::<P>(p, n);
+        // validated in lanes, `xi_m0` finite, the projection in closed
+        // form (it starts at zero): ready
+        if *valid && !start_all && xi_m0.iter().all(|x| x.is_finite()) {
+            continue;
+        }
+        *valid = false;
         match slip_start(k, q, xi_s, xi_m0, &mut out.scratch) {
             Ok(xi_m) => {
                 for c in 0..P {
-                    xi_s_l[c].0[l] = xi_s[c];
-                    xi_m0_l[c].0[l] = xi_m0[c];
                     xi_m_l[c].0[l] = xi_m[c];
                 }
                 for (dl, &v) in out.lanes.d.iter_mut().zip(&out.scratch) {
