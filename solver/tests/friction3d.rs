@@ -17,7 +17,11 @@
 //! * a small drag (with mu = 1.5, which holds the press's radial slip)
 //!   sticks every pressed node but at most two singular corners, the
 //!   shear resultant balancing the drag;
-//! * `friction = 0` gives the frictionless solve bit for bit.
+//! * `friction = 0` gives the frictionless solve bit for bit;
+//! * hard cases: Type 1 and a negative, NaN or infinite coefficient are
+//!   refused with the reason; a pair that never touches stays open
+//!   without shear or multipliers; lifted while sliding, every node opens
+//!   and drops its shear, keeping the slip it accumulated.
 
 use contact_kernels::ApproxType;
 use solver::{Method, Scene, Solution, SolveOptions, solve};
@@ -232,4 +236,81 @@ fn ldlt_is_refused_with_friction_and_says_why() {
         ..SolveOptions::from_scene(&frictionless)
     };
     solve::<3>(&frictionless, &opts).unwrap();
+}
+
+#[test]
+fn type_1_and_bad_coefficients_are_refused_in_3d_too() {
+    let scene = scene_with(|s| s);
+    let opts = SolveOptions {
+        method: Method::Approx(ApproxType::Type1),
+        ..SolveOptions::from_scene(&scene)
+    };
+    let err = solve::<3>(&scene, &opts).unwrap_err();
+    assert!(
+        matches!(err, solver::SolverError::NotApplicable(_))
+            && err.to_string().contains("Type 1 cannot carry friction"),
+        "{err}"
+    );
+    for bad in ["-0.1", "nan", "inf"] {
+        let text = DRAGGED.replace("friction = 0.3", &format!("friction = {bad}"));
+        let err = Scene::from_toml_str(&text, "bad.toml")
+            .map(|s| solve::<3>(&s, &SolveOptions::from_scene(&s)).map(|_| ()))
+            .map_or_else(|e| e.to_string(), |r| r.unwrap_err().to_string());
+        assert!(err.contains("contact[0].friction"), "{bad}: {err}");
+    }
+}
+
+#[test]
+fn a_pair_that_never_touches_stays_open_without_shear() {
+    // the block 0.1 above the base, pressed only 0.01: it never touches
+    let scene = scene_with(|s| {
+        s.replace("origin = [1.0, 1.0, 0.5]", "origin = [1.0, 1.0, 0.6]")
+            .replace("z = 1.0", "z = 1.1")
+    });
+    let sol = solve_with(&scene, Method::Complete);
+    let rows = rows(&sol);
+    assert!(!rows.is_empty());
+    for r in rows {
+        assert_eq!(r.state, "open");
+        assert_eq!(r.shear, [0.0; 3]);
+        assert_eq!(r.pressure, 0.0);
+        assert_eq!(r.slip, Some(0.0));
+    }
+    assert!(sol.final_state.multipliers.iter().all(|&l| l == 0.0));
+}
+
+#[test]
+fn a_node_leaving_contact_while_sliding_drops_its_shear() {
+    // pressed, dragged, then lifted 0.02 while the drag goes on
+    let scene = scene_with(|s| {
+        s.replace(
+            "uz = -0.01\namplitude = [[0.0, 0.0], [0.2, 1.0], [1.0, 1.0]]",
+            "uz = -0.01\namplitude = [[0.0, 0.0], [0.2, 1.0], [0.6, 1.0], [1.0, -2.0]]",
+        )
+    });
+    let sol = solve_with(&scene, Method::Complete);
+    let middle = sol
+        .step_records
+        .iter()
+        .position(|r| (r.load_factor - 0.6).abs() < 1e-12)
+        .unwrap();
+    // sliding before the lift (the drag's reaction), all open after it
+    let k = sol
+        .support_groups
+        .iter()
+        .position(|g| g == "slide")
+        .unwrap();
+    assert!(norm(sol.step_records[middle].reactions[k]) > 0.05);
+    let rows = rows(&sol);
+    assert!(!rows.is_empty());
+    for r in &rows {
+        assert_eq!(
+            (r.state.as_str(), r.shear, r.pressure),
+            ("open", [0.0; 3], 0.0)
+        );
+    }
+    // every node slid before the lift but the trailing corner, which the
+    // drag's tilting moment lifts off (its slip stays below 1e-3)
+    let slid = rows.iter().filter(|r| r.slip.unwrap() > 0.2).count();
+    assert_eq!(slid + 1, rows.len());
 }
