@@ -21,7 +21,8 @@
 //! * hard cases: Type 1 and a negative, NaN or infinite coefficient are
 //!   refused with the reason; a pair that never touches stays open
 //!   without shear or multipliers; lifted while sliding, every node opens
-//!   and drops its shear, keeping the slip it accumulated.
+//!   and drops its shear, keeping the slip it accumulated; a drag reversed
+//!   within one step ends with every pressed node slipping backwards.
 
 use contact_kernels::ApproxType;
 use solver::{Method, Scene, Solution, SolveOptions, solve};
@@ -313,4 +314,30 @@ fn a_node_leaving_contact_while_sliding_drops_its_shear() {
     // drag's tilting moment lifts off (its slip stays below 1e-3)
     let slid = rows.iter().filter(|r| r.slip.unwrap() > 0.2).count();
     assert_eq!(slid + 1, rows.len());
+}
+
+#[test]
+fn a_reversal_within_one_step_converges_to_the_reversed_slip() {
+    // four steps of 0.25: the third (0.5 to 0.75) drags forward to 0.6 and
+    // back; at its end every pressed node slips backwards: its shear on the
+    // slave points along the drag (+x, +y), against the block's motion
+    let scene = scene_with(|s| {
+        s.replace(
+            "amplitude = [[0.0, 0.0], [0.2, 0.0], [1.0, 1.0]]",
+            "amplitude = [[0.0, 0.0], [0.2, 0.0], [0.6, 1.0], [1.0, 0.0]]",
+        )
+        .replace("steps = [10]", "steps = [4]")
+    });
+    let sol = solve_with(&scene, Method::Complete);
+    assert!((sol.step_records[2].load_factor - 0.75).abs() < 1e-12);
+    let pressed: Vec<Row> = rows(&sol)
+        .into_iter()
+        .filter(|r| r.pressure > 0.0)
+        .collect();
+    assert!(pressed.len() > 20, "{}", pressed.len());
+    for r in &pressed {
+        assert_eq!(r.state, "slip", "{:?}", r.x);
+        let along = (0.3 * r.shear[0] + 0.2 * r.shear[1]) / (0.13f64.sqrt() * norm(r.shear));
+        assert!(along > 0.99, "{:?}: {along}", r.x);
+    }
 }
