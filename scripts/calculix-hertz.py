@@ -49,84 +49,12 @@ import subprocess
 import sys
 import time
 
+from msh41 import MeshError, ccx_version, read_msh
+
 YOUNG, POISSON = 200.0, 0.3
 TRACTION_Y = -0.4315          # force per unit length on load_edge
 RADIUS, LOAD = 10.0, 8.63      # Hertz: cylinder radius, load on the full cylinder
 GROUPS = ('cylinder', 'block', 'cylinder_surface', 'block_top', 'load_edge', 'symmetry', 'bottom')
-
-
-class MeshError(Exception):
-    """A mesh file this script cannot use."""
-
-
-def read_msh(path):
-    """Nodes {tag: (x, y)} and {physical name: [element node lists]} of an
-    MSH 4.1 ASCII file (lines: 2-node edges; surfaces: 4-node quads)."""
-    with open(path) as f:
-        lines = [ln.strip() for ln in f]
-    sections = {}
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith('$') and not lines[i].startswith('$End'):
-            name = lines[i][1:]
-            end = lines.index('$End' + name, i)
-            sections[name] = lines[i + 1:end]
-            i = end
-        i += 1
-    for required in ('MeshFormat', 'PhysicalNames', 'Entities', 'Nodes', 'Elements'):
-        if required not in sections:
-            raise MeshError(f'{path}: no ${required} section')
-    version, binary = sections['MeshFormat'][0].split()[:2]
-    if not version.startswith('4.') or binary != '0':
-        raise MeshError(f'{path}: MSH format {version} (binary {binary}); need 4.1 ASCII')
-    names = {}
-    for ln in sections['PhysicalNames'][1:]:
-        dim, tag, name = ln.split(maxsplit=2)
-        names[(int(dim), int(tag))] = name.strip('"')
-    # entities: (dim, tag) -> physical tags
-    ent = sections['Entities']
-    counts = list(map(int, ent[0].split()))
-    physical = {}
-    row = 1
-    for dim in range(4):
-        for _ in range(counts[dim]):
-            v = ent[row].split()
-            row += 1
-            tag = int(v[0])
-            k = 4 if dim == 0 else 7          # points: tag x y z; others: tag + bounding box
-            physical[(dim, tag)] = [int(t) for t in v[k + 1:k + 1 + int(v[k])]]
-    nodes = {}
-    nod = sections['Nodes']
-    blocks = int(nod[0].split()[0])
-    row = 1
-    for _ in range(blocks):
-        _, _, _, n = map(int, nod[row].split())
-        tags = [int(t) for t in nod[row + 1:row + 1 + n]]
-        for t, xyz in zip(tags, nod[row + 1 + n:row + 1 + 2 * n]):
-            x, y, _ = map(float, xyz.split())
-            nodes[t] = (x, y)
-        row += 1 + 2 * n
-    groups = {}
-    els = sections['Elements']
-    blocks = int(els[0].split()[0])
-    row = 1
-    for _ in range(blocks):
-        dim, tag, etype, n = map(int, els[row].split())
-        want = {1: 2, 3: 4}.get(etype)
-        for ln in els[row + 1:row + 1 + n]:
-            conn = [int(t) for t in ln.split()[1:]]
-            for p in physical.get((dim, tag), []):
-                name = names.get((dim, p))
-                if name is None:
-                    continue
-                if want is None:
-                    raise MeshError(f'{path}: group {name}: element type {etype} (need 2-node lines, 4-node quads)')
-                groups.setdefault(name, []).append(conn[:want])
-        row += 1 + n
-    missing = [g for g in GROUPS if g not in groups]
-    if missing:
-        raise MeshError(f'{path}: no physical group(s) {", ".join(missing)}')
-    return nodes, groups
 
 
 def write_deck(path, nodes, groups, penalty):
@@ -204,12 +132,6 @@ def read_frd_block(path, name):
     return block
 
 
-def ccx_version(ccx):
-    r = subprocess.run([ccx, '-v'], capture_output=True, text=True)
-    out = (r.stdout + r.stderr).strip().splitlines()
-    return out[-1].replace('This is Version', '').strip() if out else 'unknown'
-
-
 def main():
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
@@ -226,7 +148,7 @@ def main():
     if args.repeat < 1:
         sys.exit('calculix-hertz: --repeat must be at least 1')
     try:
-        nodes, groups = read_msh(args.mesh)
+        nodes, groups = read_msh(args.mesh, GROUPS)
         os.makedirs(args.workdir, exist_ok=True)
         elements, slaves = write_deck(os.path.join(args.workdir, 'hertz.inp'), nodes, groups, args.penalty)
     except (OSError, MeshError) as e:

@@ -129,6 +129,8 @@ import subprocess
 import sys
 import time
 
+from msh41 import MeshError, ccx_version, read_msh
+
 YOUNG, POISSON = 1000.0, 0.3
 MU = 0.3
 PRESS, SLIDE = -0.1, 5.0               # u_y and u_x of punch_top at amplitude 1
@@ -144,74 +146,10 @@ SCENE = os.path.join('scenes', 'ironing-friction.toml')
 CSV_KEYS = ('increment', 'load_factor', 'slide', 'press', 'drag', 'bottom_x', 'bottom_y')
 
 
-class MeshError(Exception):
-    """A mesh file this script cannot use."""
-
-
-def read_msh(path):
-    """Nodes {tag: (x, y)} and {physical name: [element node lists]} of an
-    MSH 4.1 ASCII file (lines: 2-node edges; surfaces: 4-node quads)."""
-    with open(path) as f:
-        lines = [ln.strip() for ln in f]
-    sections = {}
-    i = 0
-    while i < len(lines):
-        if lines[i].startswith('$') and not lines[i].startswith('$End'):
-            name = lines[i][1:]
-            end = lines.index('$End' + name, i)
-            sections[name] = lines[i + 1:end]
-            i = end
-        i += 1
-    for required in ('MeshFormat', 'PhysicalNames', 'Entities', 'Nodes', 'Elements'):
-        if required not in sections:
-            raise MeshError(f'{path}: no ${required} section')
-    version, binary = sections['MeshFormat'][0].split()[:2]
-    if not version.startswith('4.') or binary != '0':
-        raise MeshError(f'{path}: MSH format {version} (binary {binary}); need 4.1 ASCII')
-    names = {}
-    for ln in sections['PhysicalNames'][1:]:
-        dim, tag, name = ln.split(maxsplit=2)
-        names[(int(dim), int(tag))] = name.strip('"')
-    ent = sections['Entities']
-    counts = list(map(int, ent[0].split()))
-    physical = {}
-    row = 1
-    for dim in range(4):
-        for _ in range(counts[dim]):
-            v = ent[row].split()
-            row += 1
-            k = 4 if dim == 0 else 7          # points: tag x y z; others: tag + bounding box
-            physical[(dim, int(v[0]))] = [int(t) for t in v[k + 1:k + 1 + int(v[k])]]
-    nodes = {}
-    nod = sections['Nodes']
-    row = 1
-    for _ in range(int(nod[0].split()[0])):
-        n = int(nod[row].split()[3])
-        tags = [int(t) for t in nod[row + 1:row + 1 + n]]
-        for t, xyz in zip(tags, nod[row + 1 + n:row + 1 + 2 * n]):
-            x, y, _ = map(float, xyz.split())
-            nodes[t] = (x, y)
-        row += 1 + 2 * n
-    groups = {}
-    els = sections['Elements']
-    row = 1
-    for _ in range(int(els[0].split()[0])):
-        dim, tag, etype, n = map(int, els[row].split())
-        want = {1: 2, 3: 4}.get(etype)
-        for ln in els[row + 1:row + 1 + n]:
-            conn = [int(t) for t in ln.split()[1:]]
-            for p in physical.get((dim, tag), []):
-                name = names.get((dim, p))
-                if name is None:
-                    continue
-                if want is None:
-                    raise MeshError(f'{path}: group {name}: element type {etype} '
-                                    '(need 2-node lines, 4-node quads)')
-                groups.setdefault(name, []).append(conn[:want])
-        row += 1 + n
-    missing = [g for g in GROUPS if g not in groups]
-    if missing:
-        raise MeshError(f'{path}: no physical group(s) {", ".join(missing)}')
+def read_punch(path):
+    """The punch mesh ([`msh41.read_msh`]), its node tags below the
+    strip's."""
+    nodes, groups = read_msh(path, GROUPS)
     if max(nodes) >= STRIP_BASE:
         raise MeshError(f'{path}: node tags reach {max(nodes)}, the strip starts at {STRIP_BASE}')
     return nodes, groups
@@ -346,12 +284,6 @@ def read_sta(path, step=2):
                 rows.append((int(v[1]), int(v[2].rstrip('U')), int(v[3]), float(v[5]),
                              not v[2].endswith('U')))
     return rows
-
-
-def ccx_version(ccx):
-    r = subprocess.run([ccx, '-v'], capture_output=True, text=True)
-    out = (r.stdout + r.stderr).strip().splitlines()
-    return out[-1].replace('This is Version', '').strip() if out else 'unknown'
 
 
 def timed(cmd, cwd, env, log):
@@ -646,7 +578,7 @@ def main():
         if shutil.which(args.ccx) is None:
             sys.exit(f'calculix-ironing: {args.ccx} not found (apt-get install calculix-ccx)')
         try:
-            nodes, groups = read_msh(args.mesh)
+            nodes, groups = read_punch(args.mesh)
         except (OSError, MeshError) as e:
             sys.exit(f'calculix-ironing: {e}')
         for inc in increments:
