@@ -8,6 +8,15 @@ pub(crate) fn lane_set(f: Formulation) -> Option<&'static LaneSet> {
         Formulation::SlaveNormal => Some(&SLAVE_NORMAL_LANES),
     }
 }
+/// The slip's lane kernels of a formulation of segments, if
+/// compiled in with a slip.
+pub(crate) fn slip_lane_set(f: Formulation) -> Option<&'static LaneSet<SlipLaneKernel>> {
+    match f {
+        Formulation::ClosestPoint => Some(&CLOSEST_POINT_SLIP_LANES),
+        Formulation::QuadraticSlaveNormal => Some(&QUADRATIC_SLAVE_NORMAL_SLIP_LANES),
+        Formulation::SlaveNormal => Some(&SLAVE_NORMAL_SLIP_LANES),
+    }
+}
 /// Lanes of `closest_point_type1`: `closest-point`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1 sqrt, 5 neg).
 #[inline(always)]
 fn closest_point_type1_lanes<L: LaneValue>(
@@ -2064,7 +2073,7 @@ unsafe fn closest_point_type6_x4_avx2(
         .to_lanes()
 }
 /// The lane kernels of `closest_point`.
-static CLOSEST_POINT_LANES: LaneSet = LaneSet {
+static CLOSEST_POINT_LANES: LaneSet<LaneKernel> = LaneSet {
     portable: [
         LaneKernel::Gradient(closest_point_type1_x4),
         LaneKernel::Hessian(closest_point_type2_x4),
@@ -2081,6 +2090,2079 @@ static CLOSEST_POINT_LANES: LaneSet = LaneSet {
         LaneKernel::Hessian(closest_point_type4_x4_avx2),
         LaneKernel::Hessian(closest_point_type5_x4_avx2),
         LaneKernel::Hessian(closest_point_type6_x4_avx2),
+    ],
+};
+/// Lanes of `closest_point_slip_type1`: `closest-point`, type 1 (xi_m, x_ms and s_m, n: constant, linear, constant): the slip (1 component), gradient (no second-order term). `xi_m0` is the last converged projection. Cost: 68 ops (23 add, 36 mul, 2 div, 1 sqrt, 6 neg).
+#[inline(always)]
+fn closest_point_slip_type1_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) + v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = v0 * v8;
+    let v10 = v1 * v8;
+    let v11 = v2 - v4;
+    let v12 = v3 - v5;
+    let v13 = v11 * v11;
+    let v14 = v12 * v12;
+    let v15 = v13 + v14;
+    let v16 = v15.sqrt();
+    let v17 = v16.recip();
+    let v18 = v12 * v17;
+    let v19 = v11 * v17;
+    let v20 = xi_m0;
+    let v21 = L::splat(1.0) - v20;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = L::splat(1.0) + v20;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = v2 * v22;
+    let v26 = v4 * v24;
+    let v27 = v25 + v26;
+    let v28 = v3 * v22;
+    let v29 = v5 * v24;
+    let v30 = v28 + v29;
+    let v31 = L::splat(0.5) * v11;
+    let v32 = v11 * v31;
+    let v33 = L::splat(0.5) * v12;
+    let v34 = v12 * v33;
+    let v35 = v32 + v34;
+    let v36 = v35.recip();
+    let v37 = v2 + v4;
+    let v38 = L::splat(0.5) * v37;
+    let v39 = v3 + v5;
+    let v40 = L::splat(0.5) * v39;
+    let v41 = v9 - v38;
+    let v42 = v10 - v40;
+    let v43 = v11 * v41;
+    let v44 = v12 * v42;
+    let v45 = v43 + v44;
+    let v46 = v36 * v45;
+    let v47 = -v46;
+    let v48 = L::splat(1.0) + v46;
+    let v49 = L::splat(0.5) * v48;
+    let v50 = L::splat(1.0) - v46;
+    let v51 = L::splat(0.5) * v50;
+    let v52 = v2 * v49;
+    let v53 = v4 * v51;
+    let v54 = v52 + v53;
+    let v55 = v3 * v49;
+    let v56 = v5 * v51;
+    let v57 = v55 + v56;
+    let v58 = v27 - v54;
+    let v59 = v30 - v57;
+    let v60 = v21 - v48;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v23 - v50;
+    let v63 = L::splat(0.5) * v62;
+    let v64 = v19 * v61;
+    let v65 = -v64;
+    let v66 = v19 * v63;
+    let v67 = -v66;
+    let v68 = v19 * v58;
+    let v69 = v18 * v61;
+    let v70 = -v69;
+    let v71 = v18 * v63;
+    let v72 = -v71;
+    let v73 = v18 * v59;
+    let v74 = v68 + v73;
+    let v75 = -v74;
+    grad0[0] = L::ZERO;
+    grad0[1] = L::ZERO;
+    grad0[2] = L::ZERO;
+    grad0[3] = L::ZERO;
+    grad0[4] = v65;
+    grad0[5] = v70;
+    grad0[6] = v67;
+    grad0[7] = v72;
+    *xi_m = v47;
+    v75
+}
+/// `closest_point_slip_type1` over 4 lanes (portable build).
+fn closest_point_slip_type1_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type1_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0)
+}
+/** `closest_point_slip_type1` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_point_slip_type1_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type1_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+        )
+        .to_lanes()
+}
+/// Lanes of `closest_point_slip_type2`: `closest-point`, type 2 (xi_m, x_ms and s_m, n: linear, linear, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 194 ops (69 add, 111 mul, 2 div, 1 sqrt, 11 neg).
+#[inline(always)]
+fn closest_point_slip_type2_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v2 - v4;
+    let v14 = v3 - v5;
+    let v15 = v13 * v13;
+    let v16 = v14 * v14;
+    let v17 = v15 + v16;
+    let v18 = v17.sqrt();
+    let v19 = v18.recip();
+    let v20 = v14 * v19;
+    let v21 = v13 * v19;
+    let v22 = xi_m0;
+    let v23 = L::splat(1.0) - v22;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = L::splat(1.0) + v22;
+    let v26 = L::splat(0.5) * v25;
+    let v27 = v2 * v24;
+    let v28 = v4 * v26;
+    let v29 = v27 + v28;
+    let v30 = v3 * v24;
+    let v31 = v5 * v26;
+    let v32 = v30 + v31;
+    let v33 = L::splat(0.5) * v13;
+    let v34 = v13 * v33;
+    let v35 = L::splat(0.5) * v14;
+    let v36 = v14 * v35;
+    let v37 = v34 + v36;
+    let v38 = v37.recip();
+    let v39 = v8 * v13;
+    let v40 = v38 * v39;
+    let v41 = v8 * v14;
+    let v42 = v38 * v41;
+    let v43 = v10 * v13;
+    let v44 = v38 * v43;
+    let v45 = v10 * v14;
+    let v46 = v38 * v45;
+    let v47 = L::splat(2.0) * v13;
+    let v48 = L::splat(2.0) * v14;
+    let v49 = L::splat(0.5) * v19;
+    let v50 = v19 * v19;
+    let v51 = v47 * v49;
+    let v52 = v50 * v51;
+    let v53 = v14 * v52;
+    let v54 = v48 * v49;
+    let v55 = v50 * v54;
+    let v56 = v14 * v55;
+    let v57 = v19 - v56;
+    let v58 = v13 * v52;
+    let v59 = v19 - v58;
+    let v60 = v13 * v55;
+    let v61 = v21 * v33;
+    let v62 = v33 * v59;
+    let v63 = v33 * v60;
+    let v64 = v20 * v35;
+    let v65 = v35 * v53;
+    let v66 = v35 * v57;
+    let v67 = v61 + v64;
+    let v68 = v62 - v65;
+    let v69 = v63 - v66;
+    let v70 = v40 * v67;
+    let v71 = v42 * v67;
+    let v72 = v44 * v67;
+    let v73 = v46 * v67;
+    let v74 = v40 * v68;
+    let v75 = v40 * v69;
+    let v76 = -v75;
+    let v77 = -v74;
+    let v78 = v42 * v68;
+    let v79 = v42 * v69;
+    let v80 = -v79;
+    let v81 = -v78;
+    let v82 = v44 * v68;
+    let v83 = v44 * v69;
+    let v84 = -v83;
+    let v85 = -v82;
+    let v86 = v46 * v68;
+    let v87 = v46 * v69;
+    let v88 = -v87;
+    let v89 = -v86;
+    let v90 = v2 + v4;
+    let v91 = L::splat(0.5) * v90;
+    let v92 = v3 + v5;
+    let v93 = L::splat(0.5) * v92;
+    let v94 = v11 - v91;
+    let v95 = v12 - v93;
+    let v96 = v13 * v94;
+    let v97 = v14 * v95;
+    let v98 = v96 + v97;
+    let v99 = v38 * v98;
+    let v100 = -v99;
+    let v101 = L::splat(1.0) + v99;
+    let v102 = L::splat(0.5) * v101;
+    let v103 = L::splat(1.0) - v99;
+    let v104 = L::splat(0.5) * v103;
+    let v105 = v2 * v102;
+    let v106 = v4 * v104;
+    let v107 = v105 + v106;
+    let v108 = v3 * v102;
+    let v109 = v5 * v104;
+    let v110 = v108 + v109;
+    let v111 = v11 - v107;
+    let v112 = v12 - v110;
+    let v113 = v29 - v107;
+    let v114 = v32 - v110;
+    let v115 = v13 * v102;
+    let v116 = v111 - v115;
+    let v117 = v38 * v116;
+    let v118 = v14 * v102;
+    let v119 = v112 - v118;
+    let v120 = v38 * v119;
+    let v121 = v13 * v104;
+    let v122 = v111 + v121;
+    let v123 = v38 * v122;
+    let v124 = v14 * v104;
+    let v125 = v112 + v124;
+    let v126 = v38 * v125;
+    let v127 = v23 - v101;
+    let v128 = L::splat(0.5) * v127;
+    let v129 = v25 - v103;
+    let v130 = L::splat(0.5) * v129;
+    let v131 = v59 * v113;
+    let v132 = v60 * v113;
+    let v133 = v21 * v128;
+    let v134 = v21 * v130;
+    let v135 = v59 * v128;
+    let v136 = v60 * v128;
+    let v137 = v59 * v130;
+    let v138 = v135 - v137;
+    let v139 = v60 * v130;
+    let v140 = v131 + v133;
+    let v141 = v131 - v134;
+    let v142 = v21 * v113;
+    let v143 = v53 * v114;
+    let v144 = v57 * v114;
+    let v145 = v20 * v128;
+    let v146 = v20 * v130;
+    let v147 = v53 * v128;
+    let v148 = v53 * v130;
+    let v149 = v57 * v128;
+    let v150 = v57 * v130;
+    let v151 = v149 - v150;
+    let v152 = v144 + v145;
+    let v153 = v144 - v146;
+    let v154 = v20 * v114;
+    let v155 = v140 - v143;
+    let v156 = v132 - v152;
+    let v157 = v141 - v143;
+    let v158 = v132 - v153;
+    let v159 = v136 + v147;
+    let v160 = v136 - v148;
+    let v161 = v139 - v147;
+    let v162 = v139 + v148;
+    let v163 = v142 + v154;
+    let v164 = -v163;
+    let v165 = v67 * v117;
+    let v166 = v67 * v120;
+    let v167 = v156 + v166;
+    let v168 = v67 * v123;
+    let v169 = v157 - v168;
+    let v170 = v67 * v126;
+    let v171 = v158 + v170;
+    let v172 = -v171;
+    let v173 = v68 * v117;
+    let v174 = v135 - v173;
+    let v175 = v68 * v120;
+    let v176 = v69 * v117;
+    let v177 = v175 - v176;
+    let v178 = v159 + v177;
+    let v179 = v68 * v123;
+    let v180 = v173 + v179;
+    let v181 = v138 - v180;
+    let v182 = v68 * v126;
+    let v183 = v176 - v182;
+    let v184 = v69 * v120;
+    let v185 = v149 + v184;
+    let v186 = v69 * v123;
+    let v187 = v175 - v186;
+    let v188 = v161 - v187;
+    let v189 = v69 * v126;
+    let v190 = v184 + v189;
+    let v191 = v151 + v190;
+    let v192 = v137 + v179;
+    let v193 = L::splat(2.0) * v192;
+    let v194 = v182 - v186;
+    let v195 = v150 - v189;
+    let v196 = L::splat(2.0) * v195;
+    let v197 = v165 - v155;
+    let v198 = L::splat((-2.0)) * v174;
+    let v199 = v183 - v160;
+    let v200 = L::splat((-2.0)) * v185;
+    let v201 = v194 - v162;
+    grad0[0] = v70;
+    grad0[1] = v71;
+    grad0[2] = v72;
+    grad0[3] = v73;
+    grad0[4] = v197;
+    grad0[5] = v167;
+    grad0[6] = v169;
+    grad0[7] = v172;
+    hess0[0] = L::ZERO;
+    hess0[1] = L::ZERO;
+    hess0[8] = L::ZERO;
+    hess0[2] = L::ZERO;
+    hess0[16] = L::ZERO;
+    hess0[3] = L::ZERO;
+    hess0[24] = L::ZERO;
+    hess0[4] = v74;
+    hess0[32] = v74;
+    hess0[5] = v76;
+    hess0[40] = v76;
+    hess0[6] = v77;
+    hess0[48] = v77;
+    hess0[7] = v75;
+    hess0[56] = v75;
+    hess0[9] = L::ZERO;
+    hess0[10] = L::ZERO;
+    hess0[17] = L::ZERO;
+    hess0[11] = L::ZERO;
+    hess0[25] = L::ZERO;
+    hess0[12] = v78;
+    hess0[33] = v78;
+    hess0[13] = v80;
+    hess0[41] = v80;
+    hess0[14] = v81;
+    hess0[49] = v81;
+    hess0[15] = v79;
+    hess0[57] = v79;
+    hess0[18] = L::ZERO;
+    hess0[19] = L::ZERO;
+    hess0[26] = L::ZERO;
+    hess0[20] = v82;
+    hess0[34] = v82;
+    hess0[21] = v84;
+    hess0[42] = v84;
+    hess0[22] = v85;
+    hess0[50] = v85;
+    hess0[23] = v83;
+    hess0[58] = v83;
+    hess0[27] = L::ZERO;
+    hess0[28] = v86;
+    hess0[35] = v86;
+    hess0[29] = v88;
+    hess0[43] = v88;
+    hess0[30] = v89;
+    hess0[51] = v89;
+    hess0[31] = v87;
+    hess0[59] = v87;
+    hess0[36] = v198;
+    hess0[37] = v178;
+    hess0[44] = v178;
+    hess0[38] = v181;
+    hess0[52] = v181;
+    hess0[39] = v199;
+    hess0[60] = v199;
+    hess0[45] = v200;
+    hess0[46] = v188;
+    hess0[53] = v188;
+    hess0[47] = v191;
+    hess0[61] = v191;
+    hess0[54] = v193;
+    hess0[55] = v201;
+    hess0[62] = v201;
+    hess0[63] = v196;
+    *xi_m = v100;
+    v164
+}
+/// `closest_point_slip_type2` over 4 lanes (portable build).
+fn closest_point_slip_type2_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type2_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `closest_point_slip_type2` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_point_slip_type2_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type2_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `closest_point_slip_type3`: `closest-point`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 198 ops (71 add, 113 mul, 2 div, 1 sqrt, 11 neg).
+#[inline(always)]
+fn closest_point_slip_type3_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v2 - v4;
+    let v14 = v3 - v5;
+    let v15 = v13 * v13;
+    let v16 = v14 * v14;
+    let v17 = v15 + v16;
+    let v18 = v17.sqrt();
+    let v19 = v18.recip();
+    let v20 = v14 * v19;
+    let v21 = v13 * v19;
+    let v22 = xi_m0;
+    let v23 = L::splat(1.0) - v22;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = L::splat(1.0) + v22;
+    let v26 = L::splat(0.5) * v25;
+    let v27 = v2 * v24;
+    let v28 = v4 * v26;
+    let v29 = v27 + v28;
+    let v30 = v3 * v24;
+    let v31 = v5 * v26;
+    let v32 = v30 + v31;
+    let v33 = L::splat(0.5) * v13;
+    let v34 = v13 * v33;
+    let v35 = L::splat(0.5) * v14;
+    let v36 = v14 * v35;
+    let v37 = v34 + v36;
+    let v38 = v37.recip();
+    let v39 = v8 * v13;
+    let v40 = v38 * v39;
+    let v41 = v8 * v14;
+    let v42 = v38 * v41;
+    let v43 = v10 * v13;
+    let v44 = v38 * v43;
+    let v45 = v10 * v14;
+    let v46 = v38 * v45;
+    let v47 = L::splat(2.0) * v13;
+    let v48 = L::splat(2.0) * v14;
+    let v49 = L::splat(0.5) * v19;
+    let v50 = v19 * v19;
+    let v51 = v47 * v49;
+    let v52 = v50 * v51;
+    let v53 = v14 * v52;
+    let v54 = v48 * v49;
+    let v55 = v50 * v54;
+    let v56 = v14 * v55;
+    let v57 = v19 - v56;
+    let v58 = v13 * v52;
+    let v59 = v19 - v58;
+    let v60 = v13 * v55;
+    let v61 = v21 * v33;
+    let v62 = L::splat(0.5) * v21;
+    let v63 = v33 * v59;
+    let v64 = v33 * v60;
+    let v65 = v62 + v63;
+    let v66 = v20 * v35;
+    let v67 = L::splat(0.5) * v20;
+    let v68 = v35 * v53;
+    let v69 = v35 * v57;
+    let v70 = v67 + v69;
+    let v71 = v61 + v66;
+    let v72 = v65 - v68;
+    let v73 = v64 - v70;
+    let v74 = v40 * v71;
+    let v75 = v42 * v71;
+    let v76 = v44 * v71;
+    let v77 = v46 * v71;
+    let v78 = v40 * v72;
+    let v79 = v40 * v73;
+    let v80 = -v79;
+    let v81 = -v78;
+    let v82 = v42 * v72;
+    let v83 = v42 * v73;
+    let v84 = -v83;
+    let v85 = -v82;
+    let v86 = v44 * v72;
+    let v87 = v44 * v73;
+    let v88 = -v87;
+    let v89 = -v86;
+    let v90 = v46 * v72;
+    let v91 = v46 * v73;
+    let v92 = -v91;
+    let v93 = -v90;
+    let v94 = v2 + v4;
+    let v95 = L::splat(0.5) * v94;
+    let v96 = v3 + v5;
+    let v97 = L::splat(0.5) * v96;
+    let v98 = v11 - v95;
+    let v99 = v12 - v97;
+    let v100 = v13 * v98;
+    let v101 = v14 * v99;
+    let v102 = v100 + v101;
+    let v103 = v38 * v102;
+    let v104 = -v103;
+    let v105 = L::splat(1.0) + v103;
+    let v106 = L::splat(0.5) * v105;
+    let v107 = L::splat(1.0) - v103;
+    let v108 = L::splat(0.5) * v107;
+    let v109 = v2 * v106;
+    let v110 = v4 * v108;
+    let v111 = v109 + v110;
+    let v112 = v3 * v106;
+    let v113 = v5 * v108;
+    let v114 = v112 + v113;
+    let v115 = v11 - v111;
+    let v116 = v12 - v114;
+    let v117 = v29 - v111;
+    let v118 = v32 - v114;
+    let v119 = v13 * v106;
+    let v120 = v115 - v119;
+    let v121 = v38 * v120;
+    let v122 = v14 * v106;
+    let v123 = v116 - v122;
+    let v124 = v38 * v123;
+    let v125 = v13 * v108;
+    let v126 = v115 + v125;
+    let v127 = v38 * v126;
+    let v128 = v14 * v108;
+    let v129 = v116 + v128;
+    let v130 = v38 * v129;
+    let v131 = v23 - v105;
+    let v132 = L::splat(0.5) * v131;
+    let v133 = v25 - v107;
+    let v134 = L::splat(0.5) * v133;
+    let v135 = v59 * v117;
+    let v136 = v60 * v117;
+    let v137 = v21 * v132;
+    let v138 = v21 * v134;
+    let v139 = v59 * v132;
+    let v140 = v60 * v132;
+    let v141 = v59 * v134;
+    let v142 = v139 - v141;
+    let v143 = v60 * v134;
+    let v144 = v135 + v137;
+    let v145 = v135 - v138;
+    let v146 = v21 * v117;
+    let v147 = v53 * v118;
+    let v148 = v57 * v118;
+    let v149 = v20 * v132;
+    let v150 = v20 * v134;
+    let v151 = v53 * v132;
+    let v152 = v53 * v134;
+    let v153 = v57 * v132;
+    let v154 = v57 * v134;
+    let v155 = v153 - v154;
+    let v156 = v148 + v149;
+    let v157 = v148 - v150;
+    let v158 = v20 * v118;
+    let v159 = v144 - v147;
+    let v160 = v136 - v156;
+    let v161 = v145 - v147;
+    let v162 = v136 - v157;
+    let v163 = v140 + v151;
+    let v164 = v140 - v152;
+    let v165 = v143 - v151;
+    let v166 = v143 + v152;
+    let v167 = v146 + v158;
+    let v168 = -v167;
+    let v169 = v71 * v121;
+    let v170 = v71 * v124;
+    let v171 = v160 + v170;
+    let v172 = v71 * v127;
+    let v173 = v161 - v172;
+    let v174 = v71 * v130;
+    let v175 = v162 + v174;
+    let v176 = -v175;
+    let v177 = v72 * v121;
+    let v178 = v139 - v177;
+    let v179 = v72 * v124;
+    let v180 = v73 * v121;
+    let v181 = v179 - v180;
+    let v182 = v163 + v181;
+    let v183 = v72 * v127;
+    let v184 = v177 + v183;
+    let v185 = v142 - v184;
+    let v186 = v72 * v130;
+    let v187 = v180 - v186;
+    let v188 = v73 * v124;
+    let v189 = v153 + v188;
+    let v190 = v73 * v127;
+    let v191 = v179 - v190;
+    let v192 = v165 - v191;
+    let v193 = v73 * v130;
+    let v194 = v188 + v193;
+    let v195 = v155 + v194;
+    let v196 = v141 + v183;
+    let v197 = L::splat(2.0) * v196;
+    let v198 = v186 - v190;
+    let v199 = v154 - v193;
+    let v200 = L::splat(2.0) * v199;
+    let v201 = v169 - v159;
+    let v202 = L::splat((-2.0)) * v178;
+    let v203 = v187 - v164;
+    let v204 = L::splat((-2.0)) * v189;
+    let v205 = v198 - v166;
+    grad0[0] = v74;
+    grad0[1] = v75;
+    grad0[2] = v76;
+    grad0[3] = v77;
+    grad0[4] = v201;
+    grad0[5] = v171;
+    grad0[6] = v173;
+    grad0[7] = v176;
+    hess0[0] = L::ZERO;
+    hess0[1] = L::ZERO;
+    hess0[8] = L::ZERO;
+    hess0[2] = L::ZERO;
+    hess0[16] = L::ZERO;
+    hess0[3] = L::ZERO;
+    hess0[24] = L::ZERO;
+    hess0[4] = v78;
+    hess0[32] = v78;
+    hess0[5] = v80;
+    hess0[40] = v80;
+    hess0[6] = v81;
+    hess0[48] = v81;
+    hess0[7] = v79;
+    hess0[56] = v79;
+    hess0[9] = L::ZERO;
+    hess0[10] = L::ZERO;
+    hess0[17] = L::ZERO;
+    hess0[11] = L::ZERO;
+    hess0[25] = L::ZERO;
+    hess0[12] = v82;
+    hess0[33] = v82;
+    hess0[13] = v84;
+    hess0[41] = v84;
+    hess0[14] = v85;
+    hess0[49] = v85;
+    hess0[15] = v83;
+    hess0[57] = v83;
+    hess0[18] = L::ZERO;
+    hess0[19] = L::ZERO;
+    hess0[26] = L::ZERO;
+    hess0[20] = v86;
+    hess0[34] = v86;
+    hess0[21] = v88;
+    hess0[42] = v88;
+    hess0[22] = v89;
+    hess0[50] = v89;
+    hess0[23] = v87;
+    hess0[58] = v87;
+    hess0[27] = L::ZERO;
+    hess0[28] = v90;
+    hess0[35] = v90;
+    hess0[29] = v92;
+    hess0[43] = v92;
+    hess0[30] = v93;
+    hess0[51] = v93;
+    hess0[31] = v91;
+    hess0[59] = v91;
+    hess0[36] = v202;
+    hess0[37] = v182;
+    hess0[44] = v182;
+    hess0[38] = v185;
+    hess0[52] = v185;
+    hess0[39] = v203;
+    hess0[60] = v203;
+    hess0[45] = v204;
+    hess0[46] = v192;
+    hess0[53] = v192;
+    hess0[47] = v195;
+    hess0[61] = v195;
+    hess0[54] = v197;
+    hess0[55] = v205;
+    hess0[62] = v205;
+    hess0[63] = v200;
+    *xi_m = v104;
+    v168
+}
+/// `closest_point_slip_type3` over 4 lanes (portable build).
+fn closest_point_slip_type3_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type3_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `closest_point_slip_type3` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_point_slip_type3_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type3_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `closest_point_slip_type4`: `closest-point`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 264 ops (97 add, 151 mul, 2 div, 1 sqrt, 13 neg).
+#[inline(always)]
+fn closest_point_slip_type4_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v2 - v4;
+    let v14 = v3 - v5;
+    let v15 = v13 * v13;
+    let v16 = v14 * v14;
+    let v17 = v15 + v16;
+    let v18 = v17.sqrt();
+    let v19 = v18.recip();
+    let v20 = v14 * v19;
+    let v21 = v13 * v19;
+    let v22 = xi_m0;
+    let v23 = L::splat(1.0) - v22;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = L::splat(1.0) + v22;
+    let v26 = L::splat(0.5) * v25;
+    let v27 = v2 * v24;
+    let v28 = v4 * v26;
+    let v29 = v27 + v28;
+    let v30 = v3 * v24;
+    let v31 = v5 * v26;
+    let v32 = v30 + v31;
+    let v33 = L::splat(0.5) * v13;
+    let v34 = v13 * v33;
+    let v35 = L::splat(0.5) * v14;
+    let v36 = v14 * v35;
+    let v37 = v34 + v36;
+    let v38 = v37.recip();
+    let v39 = v8 * v13;
+    let v40 = v38 * v39;
+    let v41 = v8 * v14;
+    let v42 = v38 * v41;
+    let v43 = v10 * v13;
+    let v44 = v38 * v43;
+    let v45 = v10 * v14;
+    let v46 = v38 * v45;
+    let v47 = v33 * v38;
+    let v48 = v13 * v47;
+    let v49 = v14 * v47;
+    let v50 = L::splat((-0.5)) + v48;
+    let v51 = L::splat(0.5) - v48;
+    let v52 = v35 * v38;
+    let v53 = v13 * v52;
+    let v54 = v14 * v52;
+    let v55 = L::splat((-0.5)) + v54;
+    let v56 = L::splat(0.5) - v54;
+    let v57 = L::splat(2.0) * v13;
+    let v58 = L::splat(2.0) * v14;
+    let v59 = L::splat(0.5) * v19;
+    let v60 = v19 * v19;
+    let v61 = v57 * v59;
+    let v62 = v60 * v61;
+    let v63 = v14 * v62;
+    let v64 = v58 * v59;
+    let v65 = v60 * v64;
+    let v66 = v14 * v65;
+    let v67 = v19 - v66;
+    let v68 = v13 * v62;
+    let v69 = v19 - v68;
+    let v70 = v13 * v65;
+    let v71 = v21 * v33;
+    let v72 = v21 * v47;
+    let v73 = v21 * v50;
+    let v74 = v21 * v49;
+    let v75 = v21 * v51;
+    let v76 = v33 * v69;
+    let v77 = v33 * v70;
+    let v78 = v73 - v76;
+    let v79 = v74 + v77;
+    let v80 = v75 + v76;
+    let v81 = v20 * v35;
+    let v82 = v20 * v52;
+    let v83 = v20 * v53;
+    let v84 = v20 * v55;
+    let v85 = v20 * v56;
+    let v86 = v35 * v63;
+    let v87 = v35 * v67;
+    let v88 = v83 + v86;
+    let v89 = v84 - v87;
+    let v90 = v85 + v87;
+    let v91 = v71 + v81;
+    let v92 = v72 + v82;
+    let v93 = v78 + v88;
+    let v94 = v79 + v89;
+    let v95 = v80 - v88;
+    let v96 = v79 - v90;
+    let v97 = v40 * v91;
+    let v98 = v42 * v91;
+    let v99 = v44 * v91;
+    let v100 = v46 * v91;
+    let v101 = v8 * v92;
+    let v102 = v10 * v92;
+    let v103 = v40 * v93;
+    let v104 = v101 - v103;
+    let v105 = v40 * v94;
+    let v106 = -v105;
+    let v107 = v40 * v95;
+    let v108 = v101 + v107;
+    let v109 = -v108;
+    let v110 = v40 * v96;
+    let v111 = v42 * v93;
+    let v112 = -v111;
+    let v113 = v42 * v94;
+    let v114 = v101 - v113;
+    let v115 = v42 * v95;
+    let v116 = -v115;
+    let v117 = v42 * v96;
+    let v118 = v44 * v93;
+    let v119 = v102 - v118;
+    let v120 = v44 * v94;
+    let v121 = -v120;
+    let v122 = v44 * v95;
+    let v123 = v102 + v122;
+    let v124 = -v123;
+    let v125 = v44 * v96;
+    let v126 = v46 * v93;
+    let v127 = -v126;
+    let v128 = v46 * v94;
+    let v129 = v102 - v128;
+    let v130 = v46 * v95;
+    let v131 = -v130;
+    let v132 = v46 * v96;
+    let v133 = v2 + v4;
+    let v134 = L::splat(0.5) * v133;
+    let v135 = v3 + v5;
+    let v136 = L::splat(0.5) * v135;
+    let v137 = v11 - v134;
+    let v138 = v12 - v136;
+    let v139 = v13 * v137;
+    let v140 = v14 * v138;
+    let v141 = v139 + v140;
+    let v142 = v38 * v141;
+    let v143 = -v142;
+    let v144 = L::splat(1.0) + v142;
+    let v145 = L::splat(0.5) * v144;
+    let v146 = L::splat(1.0) - v142;
+    let v147 = L::splat(0.5) * v146;
+    let v148 = v2 * v145;
+    let v149 = v4 * v147;
+    let v150 = v148 + v149;
+    let v151 = v3 * v145;
+    let v152 = v5 * v147;
+    let v153 = v151 + v152;
+    let v154 = v11 - v150;
+    let v155 = v12 - v153;
+    let v156 = v29 - v150;
+    let v157 = v32 - v153;
+    let v158 = v13 * v145;
+    let v159 = v154 - v158;
+    let v160 = v38 * v159;
+    let v161 = v14 * v145;
+    let v162 = v155 - v161;
+    let v163 = v38 * v162;
+    let v164 = v13 * v147;
+    let v165 = v154 + v164;
+    let v166 = v38 * v165;
+    let v167 = v14 * v147;
+    let v168 = v155 + v167;
+    let v169 = v38 * v168;
+    let v170 = v144 - v146;
+    let v171 = L::splat(0.5) * v170;
+    let v172 = v23 - v144;
+    let v173 = L::splat(0.5) * v172;
+    let v174 = v25 - v146;
+    let v175 = L::splat(0.5) * v174;
+    let v176 = v69 * v156;
+    let v177 = v70 * v156;
+    let v178 = v21 * v173;
+    let v179 = v21 * v175;
+    let v180 = v69 * v173;
+    let v181 = L::splat(2.0) * v180;
+    let v182 = v70 * v173;
+    let v183 = v69 * v175;
+    let v184 = v180 - v183;
+    let v185 = v70 * v175;
+    let v186 = L::splat(2.0) * v183;
+    let v187 = v176 + v178;
+    let v188 = v176 - v179;
+    let v189 = v21 * v156;
+    let v190 = v63 * v157;
+    let v191 = v67 * v157;
+    let v192 = v20 * v173;
+    let v193 = v20 * v175;
+    let v194 = v63 * v173;
+    let v195 = v63 * v175;
+    let v196 = v67 * v173;
+    let v197 = L::splat(2.0) * v196;
+    let v198 = v67 * v175;
+    let v199 = v196 - v198;
+    let v200 = L::splat(2.0) * v198;
+    let v201 = v191 + v192;
+    let v202 = v191 - v193;
+    let v203 = v20 * v157;
+    let v204 = v187 - v190;
+    let v205 = v177 - v201;
+    let v206 = v188 - v190;
+    let v207 = v177 - v202;
+    let v208 = v182 + v194;
+    let v209 = v182 - v195;
+    let v210 = v185 - v194;
+    let v211 = v185 + v195;
+    let v212 = v189 + v203;
+    let v213 = -v212;
+    let v214 = v91 * v160;
+    let v215 = v91 * v163;
+    let v216 = v205 + v215;
+    let v217 = v91 * v166;
+    let v218 = v206 - v217;
+    let v219 = v91 * v169;
+    let v220 = v207 + v219;
+    let v221 = -v220;
+    let v222 = v92 * v144;
+    let v223 = v181 + v222;
+    let v224 = v92 * v171;
+    let v225 = v184 + v224;
+    let v226 = v197 + v222;
+    let v227 = v199 + v224;
+    let v228 = v92 * v146;
+    let v229 = v186 + v228;
+    let v230 = v200 + v228;
+    let v231 = v93 * v160;
+    let v232 = L::splat(2.0) * v231;
+    let v233 = v223 + v232;
+    let v234 = -v233;
+    let v235 = v93 * v163;
+    let v236 = v94 * v160;
+    let v237 = v235 + v236;
+    let v238 = v208 - v237;
+    let v239 = v93 * v166;
+    let v240 = v95 * v160;
+    let v241 = v239 - v240;
+    let v242 = v225 + v241;
+    let v243 = v93 * v169;
+    let v244 = v96 * v160;
+    let v245 = v243 + v244;
+    let v246 = v94 * v163;
+    let v247 = L::splat(2.0) * v246;
+    let v248 = v226 + v247;
+    let v249 = -v248;
+    let v250 = v94 * v166;
+    let v251 = v95 * v163;
+    let v252 = v250 - v251;
+    let v253 = v210 + v252;
+    let v254 = v94 * v169;
+    let v255 = v96 * v163;
+    let v256 = v254 + v255;
+    let v257 = v227 + v256;
+    let v258 = v95 * v166;
+    let v259 = L::splat(2.0) * v258;
+    let v260 = v229 + v259;
+    let v261 = v95 * v169;
+    let v262 = v96 * v166;
+    let v263 = v261 - v262;
+    let v264 = v96 * v169;
+    let v265 = L::splat(2.0) * v264;
+    let v266 = v230 - v265;
+    let v267 = v214 - v204;
+    let v268 = v117 - v101;
+    let v269 = v132 - v102;
+    let v270 = v245 - v209;
+    let v271 = v263 - v211;
+    grad0[0] = v97;
+    grad0[1] = v98;
+    grad0[2] = v99;
+    grad0[3] = v100;
+    grad0[4] = v267;
+    grad0[5] = v216;
+    grad0[6] = v218;
+    grad0[7] = v221;
+    hess0[0] = L::ZERO;
+    hess0[1] = L::ZERO;
+    hess0[8] = L::ZERO;
+    hess0[2] = L::ZERO;
+    hess0[16] = L::ZERO;
+    hess0[3] = L::ZERO;
+    hess0[24] = L::ZERO;
+    hess0[4] = v104;
+    hess0[32] = v104;
+    hess0[5] = v106;
+    hess0[40] = v106;
+    hess0[6] = v109;
+    hess0[48] = v109;
+    hess0[7] = v110;
+    hess0[56] = v110;
+    hess0[9] = L::ZERO;
+    hess0[10] = L::ZERO;
+    hess0[17] = L::ZERO;
+    hess0[11] = L::ZERO;
+    hess0[25] = L::ZERO;
+    hess0[12] = v112;
+    hess0[33] = v112;
+    hess0[13] = v114;
+    hess0[41] = v114;
+    hess0[14] = v116;
+    hess0[49] = v116;
+    hess0[15] = v268;
+    hess0[57] = v268;
+    hess0[18] = L::ZERO;
+    hess0[19] = L::ZERO;
+    hess0[26] = L::ZERO;
+    hess0[20] = v119;
+    hess0[34] = v119;
+    hess0[21] = v121;
+    hess0[42] = v121;
+    hess0[22] = v124;
+    hess0[50] = v124;
+    hess0[23] = v125;
+    hess0[58] = v125;
+    hess0[27] = L::ZERO;
+    hess0[28] = v127;
+    hess0[35] = v127;
+    hess0[29] = v129;
+    hess0[43] = v129;
+    hess0[30] = v131;
+    hess0[51] = v131;
+    hess0[31] = v269;
+    hess0[59] = v269;
+    hess0[36] = v234;
+    hess0[37] = v238;
+    hess0[44] = v238;
+    hess0[38] = v242;
+    hess0[52] = v242;
+    hess0[39] = v270;
+    hess0[60] = v270;
+    hess0[45] = v249;
+    hess0[46] = v253;
+    hess0[53] = v253;
+    hess0[47] = v257;
+    hess0[61] = v257;
+    hess0[54] = v260;
+    hess0[55] = v271;
+    hess0[62] = v271;
+    hess0[63] = v266;
+    *xi_m = v143;
+    v213
+}
+/// `closest_point_slip_type4` over 4 lanes (portable build).
+fn closest_point_slip_type4_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type4_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `closest_point_slip_type4` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_point_slip_type4_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type4_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `closest_point_slip_type5`: `closest-point`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic, quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 271 ops (103 add, 150 mul, 2 div, 1 sqrt, 15 neg).
+#[inline(always)]
+fn closest_point_slip_type5_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v2 - v4;
+    let v14 = v3 - v5;
+    let v15 = v13 * v13;
+    let v16 = v14 * v14;
+    let v17 = v15 + v16;
+    let v18 = v17.sqrt();
+    let v19 = v18.recip();
+    let v20 = v14 * v19;
+    let v21 = v13 * v19;
+    let v22 = xi_m0;
+    let v23 = L::splat(1.0) - v22;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = L::splat(1.0) + v22;
+    let v26 = L::splat(0.5) * v25;
+    let v27 = v2 * v24;
+    let v28 = v4 * v26;
+    let v29 = v27 + v28;
+    let v30 = v3 * v24;
+    let v31 = v5 * v26;
+    let v32 = v30 + v31;
+    let v33 = L::splat(0.5) * v13;
+    let v34 = v13 * v33;
+    let v35 = L::splat(0.5) * v14;
+    let v36 = v14 * v35;
+    let v37 = v34 + v36;
+    let v38 = v37.recip();
+    let v39 = v8 * v13;
+    let v40 = v38 * v39;
+    let v41 = v8 * v14;
+    let v42 = v38 * v41;
+    let v43 = v10 * v13;
+    let v44 = v38 * v43;
+    let v45 = v10 * v14;
+    let v46 = v38 * v45;
+    let v47 = L::splat(2.0) * v13;
+    let v48 = L::splat(2.0) * v14;
+    let v49 = L::splat(0.5) * v19;
+    let v50 = v19 * v19;
+    let v51 = v47 * v49;
+    let v52 = v50 * v51;
+    let v53 = v14 * v52;
+    let v54 = v48 * v49;
+    let v55 = v50 * v54;
+    let v56 = v14 * v55;
+    let v57 = v19 - v56;
+    let v58 = L::splat(2.0) * v19;
+    let v59 = v52 * v58;
+    let v60 = L::splat(0.5) * v52;
+    let v61 = v47 * v60;
+    let v62 = v19 - v61;
+    let v63 = v51 * v59;
+    let v64 = v50 * v62;
+    let v65 = v63 - v64;
+    let v66 = v14 * v65;
+    let v67 = v55 * v58;
+    let v68 = L::splat(0.5) * v55;
+    let v69 = v47 * v68;
+    let v70 = v51 * v67;
+    let v71 = v50 * v69;
+    let v72 = v70 + v71;
+    let v73 = v14 * v72;
+    let v74 = v52 - v73;
+    let v75 = v48 * v68;
+    let v76 = v19 - v75;
+    let v77 = v54 * v67;
+    let v78 = v50 * v76;
+    let v79 = v77 - v78;
+    let v80 = v14 * v79;
+    let v81 = v55 - v80;
+    let v82 = v55 + v81;
+    let v83 = v48 * v60;
+    let v84 = v54 * v59;
+    let v85 = v50 * v83;
+    let v86 = v84 + v85;
+    let v87 = v14 * v86;
+    let v88 = v52 - v87;
+    let v89 = v13 * v52;
+    let v90 = v19 - v89;
+    let v91 = v13 * v55;
+    let v92 = v13 * v65;
+    let v93 = v52 - v92;
+    let v94 = v52 + v93;
+    let v95 = v13 * v72;
+    let v96 = v55 - v95;
+    let v97 = v13 * v79;
+    let v98 = v13 * v86;
+    let v99 = v55 - v98;
+    let v100 = v21 * v33;
+    let v101 = L::splat(0.5) * v21;
+    let v102 = v33 * v90;
+    let v103 = v33 * v91;
+    let v104 = v101 + v102;
+    let v105 = v20 * v35;
+    let v106 = L::splat(0.5) * v20;
+    let v107 = v35 * v53;
+    let v108 = v35 * v57;
+    let v109 = v106 + v108;
+    let v110 = v100 + v105;
+    let v111 = v104 - v107;
+    let v112 = v103 - v109;
+    let v113 = v40 * v110;
+    let v114 = v42 * v110;
+    let v115 = v44 * v110;
+    let v116 = v46 * v110;
+    let v117 = v40 * v111;
+    let v118 = v40 * v112;
+    let v119 = -v118;
+    let v120 = -v117;
+    let v121 = v42 * v111;
+    let v122 = v42 * v112;
+    let v123 = -v122;
+    let v124 = -v121;
+    let v125 = v44 * v111;
+    let v126 = v44 * v112;
+    let v127 = -v126;
+    let v128 = -v125;
+    let v129 = v46 * v111;
+    let v130 = v46 * v112;
+    let v131 = -v130;
+    let v132 = -v129;
+    let v133 = v2 + v4;
+    let v134 = L::splat(0.5) * v133;
+    let v135 = v3 + v5;
+    let v136 = L::splat(0.5) * v135;
+    let v137 = v11 - v134;
+    let v138 = v12 - v136;
+    let v139 = v13 * v137;
+    let v140 = v14 * v138;
+    let v141 = v139 + v140;
+    let v142 = v38 * v141;
+    let v143 = -v142;
+    let v144 = L::splat(1.0) + v142;
+    let v145 = L::splat(0.5) * v144;
+    let v146 = L::splat(1.0) - v142;
+    let v147 = L::splat(0.5) * v146;
+    let v148 = v2 * v145;
+    let v149 = v4 * v147;
+    let v150 = v148 + v149;
+    let v151 = v3 * v145;
+    let v152 = v5 * v147;
+    let v153 = v151 + v152;
+    let v154 = v11 - v150;
+    let v155 = v12 - v153;
+    let v156 = v29 - v150;
+    let v157 = v32 - v153;
+    let v158 = v13 * v145;
+    let v159 = v154 - v158;
+    let v160 = v38 * v159;
+    let v161 = v14 * v145;
+    let v162 = v155 - v161;
+    let v163 = v38 * v162;
+    let v164 = v13 * v147;
+    let v165 = v154 + v164;
+    let v166 = v38 * v165;
+    let v167 = v14 * v147;
+    let v168 = v155 + v167;
+    let v169 = v38 * v168;
+    let v170 = v23 - v144;
+    let v171 = L::splat(0.5) * v170;
+    let v172 = v25 - v146;
+    let v173 = L::splat(0.5) * v172;
+    let v174 = v90 * v156;
+    let v175 = v91 * v156;
+    let v176 = v21 * v171;
+    let v177 = v21 * v173;
+    let v178 = v94 * v156;
+    let v179 = v96 * v156;
+    let v180 = v97 * v156;
+    let v181 = v99 * v156;
+    let v182 = v90 * v171;
+    let v183 = L::splat(2.0) * v182;
+    let v184 = v91 * v171;
+    let v185 = v90 * v173;
+    let v186 = v182 - v185;
+    let v187 = v91 * v173;
+    let v188 = L::splat(2.0) * v185;
+    let v189 = v174 + v176;
+    let v190 = v174 - v177;
+    let v191 = v178 - v183;
+    let v192 = v179 + v184;
+    let v193 = v178 - v186;
+    let v194 = v181 - v187;
+    let v195 = v178 + v188;
+    let v196 = v179 - v187;
+    let v197 = v21 * v156;
+    let v198 = v53 * v157;
+    let v199 = v57 * v157;
+    let v200 = v20 * v171;
+    let v201 = v20 * v173;
+    let v202 = v66 * v157;
+    let v203 = v74 * v157;
+    let v204 = v82 * v157;
+    let v205 = v88 * v157;
+    let v206 = v53 * v171;
+    let v207 = v53 * v173;
+    let v208 = v57 * v171;
+    let v209 = L::splat(2.0) * v208;
+    let v210 = v57 * v173;
+    let v211 = v208 - v210;
+    let v212 = L::splat(2.0) * v210;
+    let v213 = v199 + v200;
+    let v214 = v199 - v201;
+    let v215 = v203 + v206;
+    let v216 = v203 - v207;
+    let v217 = v204 - v209;
+    let v218 = v205 + v206;
+    let v219 = v204 - v211;
+    let v220 = v204 + v212;
+    let v221 = v20 * v157;
+    let v222 = v189 - v198;
+    let v223 = v175 - v213;
+    let v224 = v190 - v198;
+    let v225 = v175 - v214;
+    let v226 = v191 - v202;
+    let v227 = v192 + v215;
+    let v228 = v193 - v202;
+    let v229 = v192 + v216;
+    let v230 = v180 - v217;
+    let v231 = v194 + v218;
+    let v232 = v180 - v219;
+    let v233 = v195 - v202;
+    let v234 = v196 + v216;
+    let v235 = v180 - v220;
+    let v236 = v197 + v221;
+    let v237 = -v236;
+    let v238 = v110 * v160;
+    let v239 = v110 * v163;
+    let v240 = v223 + v239;
+    let v241 = v110 * v166;
+    let v242 = v224 - v241;
+    let v243 = v110 * v169;
+    let v244 = v225 + v243;
+    let v245 = -v244;
+    let v246 = v111 * v160;
+    let v247 = L::splat(2.0) * v246;
+    let v248 = v226 + v247;
+    let v249 = v111 * v163;
+    let v250 = v112 * v160;
+    let v251 = v249 - v250;
+    let v252 = v227 + v251;
+    let v253 = v111 * v166;
+    let v254 = v246 + v253;
+    let v255 = v228 + v254;
+    let v256 = -v255;
+    let v257 = v111 * v169;
+    let v258 = v250 - v257;
+    let v259 = v112 * v163;
+    let v260 = L::splat(2.0) * v259;
+    let v261 = v230 + v260;
+    let v262 = -v261;
+    let v263 = v112 * v166;
+    let v264 = v249 - v263;
+    let v265 = v231 + v264;
+    let v266 = -v265;
+    let v267 = v112 * v169;
+    let v268 = v259 + v267;
+    let v269 = v232 + v268;
+    let v270 = L::splat(2.0) * v253;
+    let v271 = v233 + v270;
+    let v272 = v257 - v263;
+    let v273 = v234 + v272;
+    let v274 = L::splat(2.0) * v267;
+    let v275 = v235 + v274;
+    let v276 = -v275;
+    let v277 = v238 - v222;
+    let v278 = v258 - v229;
+    grad0[0] = v113;
+    grad0[1] = v114;
+    grad0[2] = v115;
+    grad0[3] = v116;
+    grad0[4] = v277;
+    grad0[5] = v240;
+    grad0[6] = v242;
+    grad0[7] = v245;
+    hess0[0] = L::ZERO;
+    hess0[1] = L::ZERO;
+    hess0[8] = L::ZERO;
+    hess0[2] = L::ZERO;
+    hess0[16] = L::ZERO;
+    hess0[3] = L::ZERO;
+    hess0[24] = L::ZERO;
+    hess0[4] = v117;
+    hess0[32] = v117;
+    hess0[5] = v119;
+    hess0[40] = v119;
+    hess0[6] = v120;
+    hess0[48] = v120;
+    hess0[7] = v118;
+    hess0[56] = v118;
+    hess0[9] = L::ZERO;
+    hess0[10] = L::ZERO;
+    hess0[17] = L::ZERO;
+    hess0[11] = L::ZERO;
+    hess0[25] = L::ZERO;
+    hess0[12] = v121;
+    hess0[33] = v121;
+    hess0[13] = v123;
+    hess0[41] = v123;
+    hess0[14] = v124;
+    hess0[49] = v124;
+    hess0[15] = v122;
+    hess0[57] = v122;
+    hess0[18] = L::ZERO;
+    hess0[19] = L::ZERO;
+    hess0[26] = L::ZERO;
+    hess0[20] = v125;
+    hess0[34] = v125;
+    hess0[21] = v127;
+    hess0[42] = v127;
+    hess0[22] = v128;
+    hess0[50] = v128;
+    hess0[23] = v126;
+    hess0[58] = v126;
+    hess0[27] = L::ZERO;
+    hess0[28] = v129;
+    hess0[35] = v129;
+    hess0[29] = v131;
+    hess0[43] = v131;
+    hess0[30] = v132;
+    hess0[51] = v132;
+    hess0[31] = v130;
+    hess0[59] = v130;
+    hess0[36] = v248;
+    hess0[37] = v252;
+    hess0[44] = v252;
+    hess0[38] = v256;
+    hess0[52] = v256;
+    hess0[39] = v278;
+    hess0[60] = v278;
+    hess0[45] = v262;
+    hess0[46] = v266;
+    hess0[53] = v266;
+    hess0[47] = v269;
+    hess0[61] = v269;
+    hess0[54] = v271;
+    hess0[55] = v273;
+    hess0[62] = v273;
+    hess0[63] = v276;
+    *xi_m = v143;
+    v237
+}
+/// `closest_point_slip_type5` over 4 lanes (portable build).
+fn closest_point_slip_type5_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type5_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `closest_point_slip_type5` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_point_slip_type5_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type5_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `closest_point_slip_type6`: `closest-point`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic, quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 329 ops (129 add, 184 mul, 2 div, 1 sqrt, 13 neg).
+#[inline(always)]
+fn closest_point_slip_type6_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v2 - v4;
+    let v14 = v3 - v5;
+    let v15 = v13 * v13;
+    let v16 = v14 * v14;
+    let v17 = v15 + v16;
+    let v18 = v17.sqrt();
+    let v19 = v18.recip();
+    let v20 = v14 * v19;
+    let v21 = v13 * v19;
+    let v22 = xi_m0;
+    let v23 = L::splat(1.0) - v22;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = L::splat(1.0) + v22;
+    let v26 = L::splat(0.5) * v25;
+    let v27 = v2 * v24;
+    let v28 = v4 * v26;
+    let v29 = v27 + v28;
+    let v30 = v3 * v24;
+    let v31 = v5 * v26;
+    let v32 = v30 + v31;
+    let v33 = L::splat(0.5) * v13;
+    let v34 = v13 * v33;
+    let v35 = L::splat(0.5) * v14;
+    let v36 = v14 * v35;
+    let v37 = v34 + v36;
+    let v38 = v37.recip();
+    let v39 = v8 * v13;
+    let v40 = v38 * v39;
+    let v41 = v8 * v14;
+    let v42 = v38 * v41;
+    let v43 = v10 * v13;
+    let v44 = v38 * v43;
+    let v45 = v10 * v14;
+    let v46 = v38 * v45;
+    let v47 = v33 * v38;
+    let v48 = v13 * v47;
+    let v49 = v14 * v47;
+    let v50 = L::splat((-0.5)) + v48;
+    let v51 = L::splat(0.5) - v48;
+    let v52 = v35 * v38;
+    let v53 = v13 * v52;
+    let v54 = v14 * v52;
+    let v55 = L::splat((-0.5)) + v54;
+    let v56 = L::splat(0.5) - v54;
+    let v57 = L::splat(2.0) * v13;
+    let v58 = L::splat(2.0) * v14;
+    let v59 = L::splat(0.5) * v19;
+    let v60 = v19 * v19;
+    let v61 = v57 * v59;
+    let v62 = v60 * v61;
+    let v63 = v14 * v62;
+    let v64 = v58 * v59;
+    let v65 = v60 * v64;
+    let v66 = v14 * v65;
+    let v67 = v19 - v66;
+    let v68 = L::splat(2.0) * v19;
+    let v69 = v62 * v68;
+    let v70 = L::splat(0.5) * v62;
+    let v71 = v57 * v70;
+    let v72 = v19 - v71;
+    let v73 = v61 * v69;
+    let v74 = v60 * v72;
+    let v75 = v73 - v74;
+    let v76 = v14 * v75;
+    let v77 = v65 * v68;
+    let v78 = L::splat(0.5) * v65;
+    let v79 = v57 * v78;
+    let v80 = v61 * v77;
+    let v81 = v60 * v79;
+    let v82 = v80 + v81;
+    let v83 = v14 * v82;
+    let v84 = v62 - v83;
+    let v85 = v58 * v78;
+    let v86 = v19 - v85;
+    let v87 = v64 * v77;
+    let v88 = v60 * v86;
+    let v89 = v87 - v88;
+    let v90 = v14 * v89;
+    let v91 = v65 - v90;
+    let v92 = v65 + v91;
+    let v93 = v58 * v70;
+    let v94 = v64 * v69;
+    let v95 = v60 * v93;
+    let v96 = v94 + v95;
+    let v97 = v14 * v96;
+    let v98 = v62 - v97;
+    let v99 = v13 * v62;
+    let v100 = v19 - v99;
+    let v101 = v13 * v65;
+    let v102 = v13 * v75;
+    let v103 = v62 - v102;
+    let v104 = v62 + v103;
+    let v105 = v13 * v82;
+    let v106 = v65 - v105;
+    let v107 = v13 * v89;
+    let v108 = v13 * v96;
+    let v109 = v65 - v108;
+    let v110 = v21 * v33;
+    let v111 = v21 * v47;
+    let v112 = v21 * v50;
+    let v113 = v21 * v49;
+    let v114 = v21 * v51;
+    let v115 = v33 * v100;
+    let v116 = v33 * v101;
+    let v117 = v112 - v115;
+    let v118 = v113 + v116;
+    let v119 = v114 + v115;
+    let v120 = v20 * v35;
+    let v121 = v20 * v52;
+    let v122 = v20 * v53;
+    let v123 = v20 * v55;
+    let v124 = v20 * v56;
+    let v125 = v35 * v63;
+    let v126 = v35 * v67;
+    let v127 = v122 + v125;
+    let v128 = v123 - v126;
+    let v129 = v124 + v126;
+    let v130 = v110 + v120;
+    let v131 = v111 + v121;
+    let v132 = v117 + v127;
+    let v133 = v118 + v128;
+    let v134 = v119 - v127;
+    let v135 = v118 - v129;
+    let v136 = v40 * v130;
+    let v137 = v42 * v130;
+    let v138 = v44 * v130;
+    let v139 = v46 * v130;
+    let v140 = v8 * v131;
+    let v141 = v10 * v131;
+    let v142 = v40 * v132;
+    let v143 = v140 - v142;
+    let v144 = v40 * v133;
+    let v145 = -v144;
+    let v146 = v40 * v134;
+    let v147 = v140 + v146;
+    let v148 = -v147;
+    let v149 = v40 * v135;
+    let v150 = v42 * v132;
+    let v151 = -v150;
+    let v152 = v42 * v133;
+    let v153 = v140 - v152;
+    let v154 = v42 * v134;
+    let v155 = -v154;
+    let v156 = v42 * v135;
+    let v157 = v44 * v132;
+    let v158 = v141 - v157;
+    let v159 = v44 * v133;
+    let v160 = -v159;
+    let v161 = v44 * v134;
+    let v162 = v141 + v161;
+    let v163 = -v162;
+    let v164 = v44 * v135;
+    let v165 = v46 * v132;
+    let v166 = -v165;
+    let v167 = v46 * v133;
+    let v168 = v141 - v167;
+    let v169 = v46 * v134;
+    let v170 = -v169;
+    let v171 = v46 * v135;
+    let v172 = v2 + v4;
+    let v173 = L::splat(0.5) * v172;
+    let v174 = v3 + v5;
+    let v175 = L::splat(0.5) * v174;
+    let v176 = v11 - v173;
+    let v177 = v12 - v175;
+    let v178 = v13 * v176;
+    let v179 = v14 * v177;
+    let v180 = v178 + v179;
+    let v181 = v38 * v180;
+    let v182 = -v181;
+    let v183 = L::splat(1.0) + v181;
+    let v184 = L::splat(0.5) * v183;
+    let v185 = L::splat(1.0) - v181;
+    let v186 = L::splat(0.5) * v185;
+    let v187 = v2 * v184;
+    let v188 = v4 * v186;
+    let v189 = v187 + v188;
+    let v190 = v3 * v184;
+    let v191 = v5 * v186;
+    let v192 = v190 + v191;
+    let v193 = v11 - v189;
+    let v194 = v12 - v192;
+    let v195 = v29 - v189;
+    let v196 = v32 - v192;
+    let v197 = v13 * v184;
+    let v198 = v193 - v197;
+    let v199 = v38 * v198;
+    let v200 = v14 * v184;
+    let v201 = v194 - v200;
+    let v202 = v38 * v201;
+    let v203 = v13 * v186;
+    let v204 = v193 + v203;
+    let v205 = v38 * v204;
+    let v206 = v14 * v186;
+    let v207 = v194 + v206;
+    let v208 = v38 * v207;
+    let v209 = v183 - v185;
+    let v210 = L::splat(0.5) * v209;
+    let v211 = v23 - v183;
+    let v212 = L::splat(0.5) * v211;
+    let v213 = v25 - v185;
+    let v214 = L::splat(0.5) * v213;
+    let v215 = v100 * v195;
+    let v216 = v101 * v195;
+    let v217 = v21 * v212;
+    let v218 = v21 * v214;
+    let v219 = v104 * v195;
+    let v220 = v106 * v195;
+    let v221 = v107 * v195;
+    let v222 = v109 * v195;
+    let v223 = v100 * v212;
+    let v224 = L::splat(2.0) * v223;
+    let v225 = v101 * v212;
+    let v226 = v100 * v214;
+    let v227 = v223 - v226;
+    let v228 = v101 * v214;
+    let v229 = L::splat(2.0) * v226;
+    let v230 = v215 + v217;
+    let v231 = v215 - v218;
+    let v232 = v219 - v224;
+    let v233 = v220 + v225;
+    let v234 = v219 - v227;
+    let v235 = v222 - v228;
+    let v236 = v219 + v229;
+    let v237 = v220 - v228;
+    let v238 = v21 * v195;
+    let v239 = v63 * v196;
+    let v240 = v67 * v196;
+    let v241 = v20 * v212;
+    let v242 = v20 * v214;
+    let v243 = v76 * v196;
+    let v244 = v84 * v196;
+    let v245 = v92 * v196;
+    let v246 = v98 * v196;
+    let v247 = v63 * v212;
+    let v248 = v63 * v214;
+    let v249 = v67 * v212;
+    let v250 = L::splat(2.0) * v249;
+    let v251 = v67 * v214;
+    let v252 = v249 - v251;
+    let v253 = L::splat(2.0) * v251;
+    let v254 = v240 + v241;
+    let v255 = v240 - v242;
+    let v256 = v244 + v247;
+    let v257 = v244 - v248;
+    let v258 = v245 - v250;
+    let v259 = v246 + v247;
+    let v260 = v245 - v252;
+    let v261 = v245 + v253;
+    let v262 = v20 * v196;
+    let v263 = v230 - v239;
+    let v264 = v216 - v254;
+    let v265 = v231 - v239;
+    let v266 = v216 - v255;
+    let v267 = v232 - v243;
+    let v268 = v233 + v256;
+    let v269 = v234 - v243;
+    let v270 = v233 + v257;
+    let v271 = v221 - v258;
+    let v272 = v235 + v259;
+    let v273 = v221 - v260;
+    let v274 = v236 - v243;
+    let v275 = v237 + v257;
+    let v276 = v221 - v261;
+    let v277 = v238 + v262;
+    let v278 = -v277;
+    let v279 = v130 * v199;
+    let v280 = v130 * v202;
+    let v281 = v264 + v280;
+    let v282 = v130 * v205;
+    let v283 = v265 - v282;
+    let v284 = v130 * v208;
+    let v285 = v266 + v284;
+    let v286 = -v285;
+    let v287 = v131 * v183;
+    let v288 = v267 - v287;
+    let v289 = v131 * v210;
+    let v290 = v269 - v289;
+    let v291 = v271 + v287;
+    let v292 = v273 + v289;
+    let v293 = v131 * v185;
+    let v294 = v274 + v293;
+    let v295 = v276 - v293;
+    let v296 = v132 * v199;
+    let v297 = L::splat(2.0) * v296;
+    let v298 = v288 - v297;
+    let v299 = v132 * v202;
+    let v300 = v133 * v199;
+    let v301 = v299 + v300;
+    let v302 = v268 - v301;
+    let v303 = v132 * v205;
+    let v304 = v134 * v199;
+    let v305 = v303 - v304;
+    let v306 = v132 * v208;
+    let v307 = v135 * v199;
+    let v308 = v306 + v307;
+    let v309 = v133 * v202;
+    let v310 = L::splat(2.0) * v309;
+    let v311 = v291 + v310;
+    let v312 = -v311;
+    let v313 = v133 * v205;
+    let v314 = v134 * v202;
+    let v315 = v313 - v314;
+    let v316 = v133 * v208;
+    let v317 = v135 * v202;
+    let v318 = v316 + v317;
+    let v319 = v292 + v318;
+    let v320 = v134 * v205;
+    let v321 = L::splat(2.0) * v320;
+    let v322 = v294 + v321;
+    let v323 = v134 * v208;
+    let v324 = v135 * v205;
+    let v325 = v323 - v324;
+    let v326 = v275 + v325;
+    let v327 = v135 * v208;
+    let v328 = L::splat(2.0) * v327;
+    let v329 = v295 + v328;
+    let v330 = -v329;
+    let v331 = v279 - v263;
+    let v332 = v156 - v140;
+    let v333 = v171 - v141;
+    let v334 = v305 - v290;
+    let v335 = v308 - v270;
+    let v336 = v315 - v272;
+    grad0[0] = v136;
+    grad0[1] = v137;
+    grad0[2] = v138;
+    grad0[3] = v139;
+    grad0[4] = v331;
+    grad0[5] = v281;
+    grad0[6] = v283;
+    grad0[7] = v286;
+    hess0[0] = L::ZERO;
+    hess0[1] = L::ZERO;
+    hess0[8] = L::ZERO;
+    hess0[2] = L::ZERO;
+    hess0[16] = L::ZERO;
+    hess0[3] = L::ZERO;
+    hess0[24] = L::ZERO;
+    hess0[4] = v143;
+    hess0[32] = v143;
+    hess0[5] = v145;
+    hess0[40] = v145;
+    hess0[6] = v148;
+    hess0[48] = v148;
+    hess0[7] = v149;
+    hess0[56] = v149;
+    hess0[9] = L::ZERO;
+    hess0[10] = L::ZERO;
+    hess0[17] = L::ZERO;
+    hess0[11] = L::ZERO;
+    hess0[25] = L::ZERO;
+    hess0[12] = v151;
+    hess0[33] = v151;
+    hess0[13] = v153;
+    hess0[41] = v153;
+    hess0[14] = v155;
+    hess0[49] = v155;
+    hess0[15] = v332;
+    hess0[57] = v332;
+    hess0[18] = L::ZERO;
+    hess0[19] = L::ZERO;
+    hess0[26] = L::ZERO;
+    hess0[20] = v158;
+    hess0[34] = v158;
+    hess0[21] = v160;
+    hess0[42] = v160;
+    hess0[22] = v163;
+    hess0[50] = v163;
+    hess0[23] = v164;
+    hess0[58] = v164;
+    hess0[27] = L::ZERO;
+    hess0[28] = v166;
+    hess0[35] = v166;
+    hess0[29] = v168;
+    hess0[43] = v168;
+    hess0[30] = v170;
+    hess0[51] = v170;
+    hess0[31] = v333;
+    hess0[59] = v333;
+    hess0[36] = v298;
+    hess0[37] = v302;
+    hess0[44] = v302;
+    hess0[38] = v334;
+    hess0[52] = v334;
+    hess0[39] = v335;
+    hess0[60] = v335;
+    hess0[45] = v312;
+    hess0[46] = v336;
+    hess0[53] = v336;
+    hess0[47] = v319;
+    hess0[61] = v319;
+    hess0[54] = v322;
+    hess0[55] = v326;
+    hess0[62] = v326;
+    hess0[63] = v330;
+    *xi_m = v182;
+    v278
+}
+/// `closest_point_slip_type6` over 4 lanes (portable build).
+fn closest_point_slip_type6_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type6_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `closest_point_slip_type6` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn closest_point_slip_type6_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    closest_point_slip_type6_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// The slip's lane kernels of `closest_point`.
+static CLOSEST_POINT_SLIP_LANES: LaneSet<SlipLaneKernel> = LaneSet {
+    portable: [
+        SlipLaneKernel::Gradient(closest_point_slip_type1_x4),
+        SlipLaneKernel::Hessian(closest_point_slip_type2_x4),
+        SlipLaneKernel::Hessian(closest_point_slip_type3_x4),
+        SlipLaneKernel::Hessian(closest_point_slip_type4_x4),
+        SlipLaneKernel::Hessian(closest_point_slip_type5_x4),
+        SlipLaneKernel::Hessian(closest_point_slip_type6_x4),
+    ],
+    #[cfg(target_arch = "x86_64")]
+    avx2: [
+        SlipLaneKernel::Gradient(closest_point_slip_type1_x4_avx2),
+        SlipLaneKernel::Hessian(closest_point_slip_type2_x4_avx2),
+        SlipLaneKernel::Hessian(closest_point_slip_type3_x4_avx2),
+        SlipLaneKernel::Hessian(closest_point_slip_type4_x4_avx2),
+        SlipLaneKernel::Hessian(closest_point_slip_type5_x4_avx2),
+        SlipLaneKernel::Hessian(closest_point_slip_type6_x4_avx2),
     ],
 };
 /// Lanes of `quadratic_slave_normal_type1`: `quadratic-slave-normal`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 68 ops (19 add, 41 mul, 1 div, 1 sqrt, 6 neg).
@@ -7351,7 +9433,7 @@ unsafe fn quadratic_slave_normal_type6_x4_avx2(
         .to_lanes()
 }
 /// The lane kernels of `quadratic_slave_normal`.
-static QUADRATIC_SLAVE_NORMAL_LANES: LaneSet = LaneSet {
+static QUADRATIC_SLAVE_NORMAL_LANES: LaneSet<LaneKernel> = LaneSet {
     portable: [
         LaneKernel::Gradient(quadratic_slave_normal_type1_x4),
         LaneKernel::Hessian(quadratic_slave_normal_type2_x4),
@@ -7368,6 +9450,5002 @@ static QUADRATIC_SLAVE_NORMAL_LANES: LaneSet = LaneSet {
         LaneKernel::Hessian(quadratic_slave_normal_type4_x4_avx2),
         LaneKernel::Hessian(quadratic_slave_normal_type5_x4_avx2),
         LaneKernel::Hessian(quadratic_slave_normal_type6_x4_avx2),
+    ],
+};
+/// Lanes of `quadratic_slave_normal_slip_type1`: `quadratic-slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear, constant): the slip (1 component), gradient (no second-order term). `xi_m0` is the last converged projection. Cost: 63 ops (24 add, 37 mul, 1 div, 1 sqrt, 0 neg).
+#[inline(always)]
+fn quadratic_slave_normal_slip_type1_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+) -> L {
+    let d = &d[..12];
+    let grad0 = &mut grad0[..12];
+    let xi_in = *xi_m;
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = d[8];
+    let v7 = d[9];
+    let v8 = d[10];
+    let v9 = d[11];
+    let v10 = xi_s;
+    let v11 = L::splat(0.5) + v10;
+    let v12 = v0 * v11;
+    let v13 = v1 * v11;
+    let v14 = L::splat(2.0) * v10;
+    let v15 = v2 * v14;
+    let v16 = v3 * v14;
+    let v17 = v12 - v15;
+    let v18 = v13 - v16;
+    let v19 = xi_in;
+    let v20 = L::splat(0.5) * v19;
+    let v21 = v19 - L::splat(1.0);
+    let v22 = v20 * v21;
+    let v23 = v4 * v22;
+    let v24 = v5 * v22;
+    let v25 = L::splat(1.0) + v19;
+    let v26 = v20 * v25;
+    let v27 = v6 * v26;
+    let v28 = v7 * v26;
+    let v29 = v23 + v27;
+    let v30 = v24 + v28;
+    let v31 = v19 * v19;
+    let v32 = L::splat(1.0) - v31;
+    let v33 = v8 * v32;
+    let v34 = v9 * v32;
+    let v35 = v29 + v33;
+    let v36 = v30 + v34;
+    let v37 = v17 * v17;
+    let v38 = v18 * v18;
+    let v39 = v37 + v38;
+    let v40 = v39.sqrt();
+    let v41 = v40.recip();
+    let v42 = v18 * v41;
+    let v43 = v17 * v41;
+    let v44 = xi_m0;
+    let v45 = L::splat(0.5) * v44;
+    let v46 = v44 - L::splat(1.0);
+    let v47 = v45 * v46;
+    let v48 = v4 * v47;
+    let v49 = v5 * v47;
+    let v50 = L::splat(1.0) + v44;
+    let v51 = v45 * v50;
+    let v52 = v6 * v51;
+    let v53 = v7 * v51;
+    let v54 = v48 + v52;
+    let v55 = v49 + v53;
+    let v56 = v44 * v44;
+    let v57 = L::splat(1.0) - v56;
+    let v58 = v8 * v57;
+    let v59 = v9 * v57;
+    let v60 = v54 + v58;
+    let v61 = v55 + v59;
+    let v62 = v35 - v60;
+    let v63 = v36 - v61;
+    let v64 = v22 - v47;
+    let v65 = v26 - v51;
+    let v66 = v32 - v57;
+    let v67 = v43 * v64;
+    let v68 = v43 * v65;
+    let v69 = v43 * v66;
+    let v70 = v43 * v62;
+    let v71 = v42 * v64;
+    let v72 = v42 * v65;
+    let v73 = v42 * v66;
+    let v74 = v42 * v63;
+    let v75 = v70 + v74;
+    grad0[0] = L::ZERO;
+    grad0[1] = L::ZERO;
+    grad0[2] = L::ZERO;
+    grad0[3] = L::ZERO;
+    grad0[4] = L::ZERO;
+    grad0[5] = L::ZERO;
+    grad0[6] = v67;
+    grad0[7] = v71;
+    grad0[8] = v68;
+    grad0[9] = v72;
+    grad0[10] = v69;
+    grad0[11] = v73;
+    v75
+}
+/// `quadratic_slave_normal_slip_type1` over 4 lanes (portable build).
+fn quadratic_slave_normal_slip_type1_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type1_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0)
+}
+/** `quadratic_slave_normal_slip_type1` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn quadratic_slave_normal_slip_type1_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type1_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+        )
+        .to_lanes()
+}
+/// Lanes of `quadratic_slave_normal_slip_type2`: `quadratic-slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 418 ops (127 add, 275 mul, 2 div, 1 sqrt, 13 neg).
+#[inline(always)]
+fn quadratic_slave_normal_slip_type2_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..12];
+    let grad0 = &mut grad0[..12];
+    let hess0 = &mut hess0[..144];
+    let xi_in = *xi_m;
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = d[8];
+    let v7 = d[9];
+    let v8 = d[10];
+    let v9 = d[11];
+    let v10 = xi_s;
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
+    let v13 = v11 * v12;
+    let v14 = L::splat(1.0) + v10;
+    let v15 = v11 * v14;
+    let v16 = v0 * v15;
+    let v17 = v1 * v15;
+    let v18 = v10 * v10;
+    let v19 = L::splat(1.0) - v18;
+    let v20 = v2 * v19;
+    let v21 = v3 * v19;
+    let v22 = v16 + v20;
+    let v23 = v17 + v21;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
+    let v26 = v0 * v25;
+    let v27 = v1 * v25;
+    let v28 = L::splat(2.0) * v10;
+    let v29 = v2 * v28;
+    let v30 = v3 * v28;
+    let v31 = v26 - v29;
+    let v32 = v27 - v30;
+    let v33 = xi_in;
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
+    let v36 = v34 * v35;
+    let v37 = v4 * v36;
+    let v38 = v5 * v36;
+    let v39 = L::splat(1.0) + v33;
+    let v40 = v34 * v39;
+    let v41 = v6 * v40;
+    let v42 = v7 * v40;
+    let v43 = v37 + v41;
+    let v44 = v38 + v42;
+    let v45 = v33 * v33;
+    let v46 = L::splat(1.0) - v45;
+    let v47 = v8 * v46;
+    let v48 = v9 * v46;
+    let v49 = v43 + v47;
+    let v50 = v44 + v48;
+    let v51 = v22 - v49;
+    let v52 = v23 - v50;
+    let v53 = v31 * v31;
+    let v54 = v32 * v32;
+    let v55 = v53 + v54;
+    let v56 = v55.sqrt();
+    let v57 = v56.recip();
+    let v58 = v32 * v57;
+    let v59 = v31 * v57;
+    let v60 = xi_m0;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v60 - L::splat(1.0);
+    let v63 = v61 * v62;
+    let v64 = v4 * v63;
+    let v65 = v5 * v63;
+    let v66 = L::splat(1.0) + v60;
+    let v67 = v61 * v66;
+    let v68 = v6 * v67;
+    let v69 = v7 * v67;
+    let v70 = v64 + v68;
+    let v71 = v65 + v69;
+    let v72 = v60 * v60;
+    let v73 = L::splat(1.0) - v72;
+    let v74 = v8 * v73;
+    let v75 = v9 * v73;
+    let v76 = v70 + v74;
+    let v77 = v71 + v75;
+    let v78 = v49 - v76;
+    let v79 = v50 - v77;
+    let v80 = v33 + v35;
+    let v81 = L::splat(0.5) * v80;
+    let v82 = v4 * v81;
+    let v83 = v33 + v39;
+    let v84 = L::splat(0.5) * v83;
+    let v85 = v6 * v84;
+    let v86 = v82 + v85;
+    let v87 = L::splat(2.0) * v33;
+    let v88 = v8 * v87;
+    let v89 = v86 - v88;
+    let v90 = v31 * v89;
+    let v91 = v5 * v81;
+    let v92 = v7 * v84;
+    let v93 = v91 + v92;
+    let v94 = v9 * v87;
+    let v95 = v93 - v94;
+    let v96 = v32 * v95;
+    let v97 = v90 + v96;
+    let v98 = v97.recip();
+    let v99 = v24 * v51;
+    let v100 = v13 * v31;
+    let v101 = v99 + v100;
+    let v102 = v98 * v101;
+    let v103 = v24 * v52;
+    let v104 = v13 * v32;
+    let v105 = v103 + v104;
+    let v106 = v98 * v105;
+    let v107 = v25 * v51;
+    let v108 = v15 * v31;
+    let v109 = v107 + v108;
+    let v110 = v98 * v109;
+    let v111 = v25 * v52;
+    let v112 = v15 * v32;
+    let v113 = v111 + v112;
+    let v114 = v98 * v113;
+    let v115 = v28 * v51;
+    let v116 = v19 * v31;
+    let v117 = v115 - v116;
+    let v118 = v98 * v117;
+    let v119 = v28 * v52;
+    let v120 = v19 * v32;
+    let v121 = v119 - v120;
+    let v122 = v98 * v121;
+    let v123 = v31 * v36;
+    let v124 = v98 * v123;
+    let v125 = v32 * v36;
+    let v126 = v98 * v125;
+    let v127 = v31 * v40;
+    let v128 = v98 * v127;
+    let v129 = v32 * v40;
+    let v130 = v98 * v129;
+    let v131 = v31 * v46;
+    let v132 = v98 * v131;
+    let v133 = v32 * v46;
+    let v134 = v98 * v133;
+    let v135 = L::splat(2.0) * v31;
+    let v136 = L::splat(2.0) * v32;
+    let v137 = L::splat(0.5) * v57;
+    let v138 = v57 * v57;
+    let v139 = v24 * v135;
+    let v140 = v137 * v139;
+    let v141 = v138 * v140;
+    let v142 = v32 * v141;
+    let v143 = v24 * v136;
+    let v144 = v137 * v143;
+    let v145 = v138 * v144;
+    let v146 = v24 * v57;
+    let v147 = v32 * v145;
+    let v148 = v146 - v147;
+    let v149 = v25 * v135;
+    let v150 = v137 * v149;
+    let v151 = v138 * v150;
+    let v152 = v32 * v151;
+    let v153 = v25 * v136;
+    let v154 = v137 * v153;
+    let v155 = v138 * v154;
+    let v156 = v25 * v57;
+    let v157 = v32 * v155;
+    let v158 = v156 - v157;
+    let v159 = v28 * v135;
+    let v160 = v137 * v159;
+    let v161 = v138 * v160;
+    let v162 = v32 * v161;
+    let v163 = v28 * v136;
+    let v164 = v137 * v163;
+    let v165 = v138 * v164;
+    let v166 = v28 * v57;
+    let v167 = v32 * v165;
+    let v168 = v166 - v167;
+    let v169 = v31 * v141;
+    let v170 = v146 - v169;
+    let v171 = v31 * v145;
+    let v172 = v31 * v151;
+    let v173 = v156 - v172;
+    let v174 = v31 * v155;
+    let v175 = v31 * v161;
+    let v176 = v166 - v175;
+    let v177 = v31 * v165;
+    let v178 = v36 - v63;
+    let v179 = v40 - v67;
+    let v180 = v46 - v73;
+    let v181 = v78 * v170;
+    let v182 = v78 * v171;
+    let v183 = v78 * v173;
+    let v184 = v78 * v174;
+    let v185 = v78 * v176;
+    let v186 = v78 * v177;
+    let v187 = v59 * v178;
+    let v188 = v59 * v179;
+    let v189 = v59 * v180;
+    let v190 = v59 * v89;
+    let v191 = v170 * v178;
+    let v192 = v170 * v179;
+    let v193 = v170 * v180;
+    let v194 = v171 * v178;
+    let v195 = v171 * v179;
+    let v196 = v171 * v180;
+    let v197 = v173 * v178;
+    let v198 = v173 * v179;
+    let v199 = v173 * v180;
+    let v200 = v174 * v178;
+    let v201 = v174 * v179;
+    let v202 = v174 * v180;
+    let v203 = v176 * v178;
+    let v204 = v176 * v179;
+    let v205 = v176 * v180;
+    let v206 = v177 * v178;
+    let v207 = v177 * v179;
+    let v208 = v177 * v180;
+    let v209 = v89 * v170;
+    let v210 = v89 * v171;
+    let v211 = v89 * v173;
+    let v212 = v89 * v174;
+    let v213 = v89 * v176;
+    let v214 = v89 * v177;
+    let v215 = v59 * v78;
+    let v216 = v79 * v142;
+    let v217 = v79 * v148;
+    let v218 = v79 * v152;
+    let v219 = v79 * v158;
+    let v220 = v79 * v162;
+    let v221 = v79 * v168;
+    let v222 = v58 * v178;
+    let v223 = v58 * v179;
+    let v224 = v58 * v180;
+    let v225 = v58 * v95;
+    let v226 = v142 * v178;
+    let v227 = v142 * v179;
+    let v228 = v142 * v180;
+    let v229 = v148 * v178;
+    let v230 = v148 * v179;
+    let v231 = v148 * v180;
+    let v232 = v152 * v178;
+    let v233 = v152 * v179;
+    let v234 = v152 * v180;
+    let v235 = v158 * v178;
+    let v236 = v158 * v179;
+    let v237 = v158 * v180;
+    let v238 = v162 * v178;
+    let v239 = v162 * v179;
+    let v240 = v162 * v180;
+    let v241 = v168 * v178;
+    let v242 = v168 * v179;
+    let v243 = v168 * v180;
+    let v244 = v95 * v142;
+    let v245 = v95 * v148;
+    let v246 = v95 * v152;
+    let v247 = v95 * v158;
+    let v248 = v95 * v162;
+    let v249 = v95 * v168;
+    let v250 = v58 * v79;
+    let v251 = v181 - v216;
+    let v252 = v182 - v217;
+    let v253 = v183 - v218;
+    let v254 = v184 - v219;
+    let v255 = v185 - v220;
+    let v256 = v186 - v221;
+    let v257 = v190 + v225;
+    let v258 = v209 - v244;
+    let v259 = v210 - v245;
+    let v260 = v211 - v246;
+    let v261 = v212 - v247;
+    let v262 = v213 - v248;
+    let v263 = v214 - v249;
+    let v264 = v215 + v250;
+    let v265 = v102 * v257;
+    let v266 = v251 + v265;
+    let v267 = v106 * v257;
+    let v268 = v110 * v257;
+    let v269 = v253 + v268;
+    let v270 = v114 * v257;
+    let v271 = v118 * v257;
+    let v272 = v255 + v271;
+    let v273 = -v272;
+    let v274 = v122 * v257;
+    let v275 = v256 - v274;
+    let v276 = v124 * v257;
+    let v277 = v187 - v276;
+    let v278 = v126 * v257;
+    let v279 = v222 - v278;
+    let v280 = v128 * v257;
+    let v281 = v188 - v280;
+    let v282 = v130 * v257;
+    let v283 = v223 - v282;
+    let v284 = v132 * v257;
+    let v285 = v189 - v284;
+    let v286 = v134 * v257;
+    let v287 = v224 - v286;
+    let v288 = v102 * v258;
+    let v289 = L::splat(2.0) * v288;
+    let v290 = v106 * v258;
+    let v291 = v102 * v259;
+    let v292 = v290 - v291;
+    let v293 = v110 * v258;
+    let v294 = v102 * v260;
+    let v295 = v293 + v294;
+    let v296 = v114 * v258;
+    let v297 = v102 * v261;
+    let v298 = v296 - v297;
+    let v299 = v118 * v258;
+    let v300 = v102 * v262;
+    let v301 = v299 + v300;
+    let v302 = -v301;
+    let v303 = v122 * v258;
+    let v304 = v102 * v263;
+    let v305 = v124 * v258;
+    let v306 = v191 - v305;
+    let v307 = v126 * v258;
+    let v308 = v226 + v307;
+    let v309 = -v308;
+    let v310 = v128 * v258;
+    let v311 = v192 - v310;
+    let v312 = v130 * v258;
+    let v313 = v227 + v312;
+    let v314 = -v313;
+    let v315 = v132 * v258;
+    let v316 = v193 - v315;
+    let v317 = v134 * v258;
+    let v318 = v228 + v317;
+    let v319 = -v318;
+    let v320 = v106 * v259;
+    let v321 = v110 * v259;
+    let v322 = v106 * v260;
+    let v323 = v114 * v259;
+    let v324 = v106 * v261;
+    let v325 = v323 + v324;
+    let v326 = -v325;
+    let v327 = v118 * v259;
+    let v328 = v106 * v262;
+    let v329 = v327 - v328;
+    let v330 = v122 * v259;
+    let v331 = v106 * v263;
+    let v332 = v330 + v331;
+    let v333 = v124 * v259;
+    let v334 = v126 * v259;
+    let v335 = v229 + v334;
+    let v336 = v128 * v259;
+    let v337 = v130 * v259;
+    let v338 = v230 + v337;
+    let v339 = v132 * v259;
+    let v340 = v134 * v259;
+    let v341 = v231 + v340;
+    let v342 = v110 * v260;
+    let v343 = L::splat(2.0) * v342;
+    let v344 = v114 * v260;
+    let v345 = v110 * v261;
+    let v346 = v344 - v345;
+    let v347 = v118 * v260;
+    let v348 = v110 * v262;
+    let v349 = v347 + v348;
+    let v350 = -v349;
+    let v351 = v122 * v260;
+    let v352 = v110 * v263;
+    let v353 = v124 * v260;
+    let v354 = v197 - v353;
+    let v355 = v126 * v260;
+    let v356 = v232 + v355;
+    let v357 = -v356;
+    let v358 = v128 * v260;
+    let v359 = v198 - v358;
+    let v360 = v130 * v260;
+    let v361 = v233 + v360;
+    let v362 = -v361;
+    let v363 = v132 * v260;
+    let v364 = v199 - v363;
+    let v365 = v134 * v260;
+    let v366 = v234 + v365;
+    let v367 = -v366;
+    let v368 = v114 * v261;
+    let v369 = v118 * v261;
+    let v370 = v114 * v262;
+    let v371 = v369 - v370;
+    let v372 = v122 * v261;
+    let v373 = v114 * v263;
+    let v374 = v372 + v373;
+    let v375 = v124 * v261;
+    let v376 = v126 * v261;
+    let v377 = v235 + v376;
+    let v378 = v128 * v261;
+    let v379 = v130 * v261;
+    let v380 = v236 + v379;
+    let v381 = v132 * v261;
+    let v382 = v134 * v261;
+    let v383 = v237 + v382;
+    let v384 = v118 * v262;
+    let v385 = L::splat(2.0) * v384;
+    let v386 = v122 * v262;
+    let v387 = v118 * v263;
+    let v388 = v386 - v387;
+    let v389 = v124 * v262;
+    let v390 = v126 * v262;
+    let v391 = v238 + v390;
+    let v392 = v128 * v262;
+    let v393 = v130 * v262;
+    let v394 = v239 + v393;
+    let v395 = v132 * v262;
+    let v396 = v134 * v262;
+    let v397 = v240 + v396;
+    let v398 = v122 * v263;
+    let v399 = v124 * v263;
+    let v400 = v206 - v399;
+    let v401 = v126 * v263;
+    let v402 = v241 + v401;
+    let v403 = -v402;
+    let v404 = v128 * v263;
+    let v405 = v207 - v404;
+    let v406 = v130 * v263;
+    let v407 = v242 + v406;
+    let v408 = -v407;
+    let v409 = v132 * v263;
+    let v410 = v208 - v409;
+    let v411 = v134 * v263;
+    let v412 = v243 + v411;
+    let v413 = -v412;
+    let v414 = v267 - v252;
+    let v415 = v270 - v254;
+    let v416 = v304 - v303;
+    let v417 = L::splat((-2.0)) * v320;
+    let v418 = v322 - v321;
+    let v419 = v333 - v194;
+    let v420 = v336 - v195;
+    let v421 = v339 - v196;
+    let v422 = v352 - v351;
+    let v423 = L::splat((-2.0)) * v368;
+    let v424 = v375 - v200;
+    let v425 = v378 - v201;
+    let v426 = v381 - v202;
+    let v427 = v389 - v203;
+    let v428 = v392 - v204;
+    let v429 = v395 - v205;
+    let v430 = L::splat((-2.0)) * v398;
+    grad0[0] = v266;
+    grad0[1] = v414;
+    grad0[2] = v269;
+    grad0[3] = v415;
+    grad0[4] = v273;
+    grad0[5] = v275;
+    grad0[6] = v277;
+    grad0[7] = v279;
+    grad0[8] = v281;
+    grad0[9] = v283;
+    grad0[10] = v285;
+    grad0[11] = v287;
+    hess0[0] = v289;
+    hess0[1] = v292;
+    hess0[12] = v292;
+    hess0[2] = v295;
+    hess0[24] = v295;
+    hess0[3] = v298;
+    hess0[36] = v298;
+    hess0[4] = v302;
+    hess0[48] = v302;
+    hess0[5] = v416;
+    hess0[60] = v416;
+    hess0[6] = v306;
+    hess0[72] = v306;
+    hess0[7] = v309;
+    hess0[84] = v309;
+    hess0[8] = v311;
+    hess0[96] = v311;
+    hess0[9] = v314;
+    hess0[108] = v314;
+    hess0[10] = v316;
+    hess0[120] = v316;
+    hess0[11] = v319;
+    hess0[132] = v319;
+    hess0[13] = v417;
+    hess0[14] = v418;
+    hess0[25] = v418;
+    hess0[15] = v326;
+    hess0[37] = v326;
+    hess0[16] = v329;
+    hess0[49] = v329;
+    hess0[17] = v332;
+    hess0[61] = v332;
+    hess0[18] = v419;
+    hess0[73] = v419;
+    hess0[19] = v335;
+    hess0[85] = v335;
+    hess0[20] = v420;
+    hess0[97] = v420;
+    hess0[21] = v338;
+    hess0[109] = v338;
+    hess0[22] = v421;
+    hess0[121] = v421;
+    hess0[23] = v341;
+    hess0[133] = v341;
+    hess0[26] = v343;
+    hess0[27] = v346;
+    hess0[38] = v346;
+    hess0[28] = v350;
+    hess0[50] = v350;
+    hess0[29] = v422;
+    hess0[62] = v422;
+    hess0[30] = v354;
+    hess0[74] = v354;
+    hess0[31] = v357;
+    hess0[86] = v357;
+    hess0[32] = v359;
+    hess0[98] = v359;
+    hess0[33] = v362;
+    hess0[110] = v362;
+    hess0[34] = v364;
+    hess0[122] = v364;
+    hess0[35] = v367;
+    hess0[134] = v367;
+    hess0[39] = v423;
+    hess0[40] = v371;
+    hess0[51] = v371;
+    hess0[41] = v374;
+    hess0[63] = v374;
+    hess0[42] = v424;
+    hess0[75] = v424;
+    hess0[43] = v377;
+    hess0[87] = v377;
+    hess0[44] = v425;
+    hess0[99] = v425;
+    hess0[45] = v380;
+    hess0[111] = v380;
+    hess0[46] = v426;
+    hess0[123] = v426;
+    hess0[47] = v383;
+    hess0[135] = v383;
+    hess0[52] = v385;
+    hess0[53] = v388;
+    hess0[64] = v388;
+    hess0[54] = v427;
+    hess0[76] = v427;
+    hess0[55] = v391;
+    hess0[88] = v391;
+    hess0[56] = v428;
+    hess0[100] = v428;
+    hess0[57] = v394;
+    hess0[112] = v394;
+    hess0[58] = v429;
+    hess0[124] = v429;
+    hess0[59] = v397;
+    hess0[136] = v397;
+    hess0[65] = v430;
+    hess0[66] = v400;
+    hess0[77] = v400;
+    hess0[67] = v403;
+    hess0[89] = v403;
+    hess0[68] = v405;
+    hess0[101] = v405;
+    hess0[69] = v408;
+    hess0[113] = v408;
+    hess0[70] = v410;
+    hess0[125] = v410;
+    hess0[71] = v413;
+    hess0[137] = v413;
+    hess0[78] = L::ZERO;
+    hess0[79] = L::ZERO;
+    hess0[90] = L::ZERO;
+    hess0[80] = L::ZERO;
+    hess0[102] = L::ZERO;
+    hess0[81] = L::ZERO;
+    hess0[114] = L::ZERO;
+    hess0[82] = L::ZERO;
+    hess0[126] = L::ZERO;
+    hess0[83] = L::ZERO;
+    hess0[138] = L::ZERO;
+    hess0[91] = L::ZERO;
+    hess0[92] = L::ZERO;
+    hess0[103] = L::ZERO;
+    hess0[93] = L::ZERO;
+    hess0[115] = L::ZERO;
+    hess0[94] = L::ZERO;
+    hess0[127] = L::ZERO;
+    hess0[95] = L::ZERO;
+    hess0[139] = L::ZERO;
+    hess0[104] = L::ZERO;
+    hess0[105] = L::ZERO;
+    hess0[116] = L::ZERO;
+    hess0[106] = L::ZERO;
+    hess0[128] = L::ZERO;
+    hess0[107] = L::ZERO;
+    hess0[140] = L::ZERO;
+    hess0[117] = L::ZERO;
+    hess0[118] = L::ZERO;
+    hess0[129] = L::ZERO;
+    hess0[119] = L::ZERO;
+    hess0[141] = L::ZERO;
+    hess0[130] = L::ZERO;
+    hess0[131] = L::ZERO;
+    hess0[142] = L::ZERO;
+    hess0[143] = L::ZERO;
+    v264
+}
+/// `quadratic_slave_normal_slip_type2` over 4 lanes (portable build).
+fn quadratic_slave_normal_slip_type2_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type2_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `quadratic_slave_normal_slip_type2` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn quadratic_slave_normal_slip_type2_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type2_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `quadratic_slave_normal_slip_type3`: `quadratic-slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 594 ops (195 add, 377 mul, 2 div, 1 sqrt, 19 neg).
+#[inline(always)]
+fn quadratic_slave_normal_slip_type3_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..12];
+    let grad0 = &mut grad0[..12];
+    let hess0 = &mut hess0[..144];
+    let xi_in = *xi_m;
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = d[8];
+    let v7 = d[9];
+    let v8 = d[10];
+    let v9 = d[11];
+    let v10 = xi_s;
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
+    let v13 = v11 * v12;
+    let v14 = L::splat(1.0) + v10;
+    let v15 = v11 * v14;
+    let v16 = v0 * v15;
+    let v17 = v1 * v15;
+    let v18 = v10 * v10;
+    let v19 = L::splat(1.0) - v18;
+    let v20 = v2 * v19;
+    let v21 = v3 * v19;
+    let v22 = v16 + v20;
+    let v23 = v17 + v21;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
+    let v26 = v0 * v25;
+    let v27 = v1 * v25;
+    let v28 = L::splat(2.0) * v10;
+    let v29 = v2 * v28;
+    let v30 = v3 * v28;
+    let v31 = v26 - v29;
+    let v32 = v27 - v30;
+    let v33 = xi_in;
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
+    let v36 = v34 * v35;
+    let v37 = v4 * v36;
+    let v38 = v5 * v36;
+    let v39 = L::splat(1.0) + v33;
+    let v40 = v34 * v39;
+    let v41 = v6 * v40;
+    let v42 = v7 * v40;
+    let v43 = v37 + v41;
+    let v44 = v38 + v42;
+    let v45 = v33 * v33;
+    let v46 = L::splat(1.0) - v45;
+    let v47 = v8 * v46;
+    let v48 = v9 * v46;
+    let v49 = v43 + v47;
+    let v50 = v44 + v48;
+    let v51 = v22 - v49;
+    let v52 = v23 - v50;
+    let v53 = v31 * v31;
+    let v54 = v32 * v32;
+    let v55 = v53 + v54;
+    let v56 = v55.sqrt();
+    let v57 = v56.recip();
+    let v58 = v32 * v57;
+    let v59 = v31 * v57;
+    let v60 = xi_m0;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v60 - L::splat(1.0);
+    let v63 = v61 * v62;
+    let v64 = v4 * v63;
+    let v65 = v5 * v63;
+    let v66 = L::splat(1.0) + v60;
+    let v67 = v61 * v66;
+    let v68 = v6 * v67;
+    let v69 = v7 * v67;
+    let v70 = v64 + v68;
+    let v71 = v65 + v69;
+    let v72 = v60 * v60;
+    let v73 = L::splat(1.0) - v72;
+    let v74 = v8 * v73;
+    let v75 = v9 * v73;
+    let v76 = v70 + v74;
+    let v77 = v71 + v75;
+    let v78 = v49 - v76;
+    let v79 = v50 - v77;
+    let v80 = v33 + v35;
+    let v81 = L::splat(0.5) * v80;
+    let v82 = v4 * v81;
+    let v83 = v33 + v39;
+    let v84 = L::splat(0.5) * v83;
+    let v85 = v6 * v84;
+    let v86 = v82 + v85;
+    let v87 = L::splat(2.0) * v33;
+    let v88 = v8 * v87;
+    let v89 = v86 - v88;
+    let v90 = v31 * v89;
+    let v91 = v5 * v81;
+    let v92 = v7 * v84;
+    let v93 = v91 + v92;
+    let v94 = v9 * v87;
+    let v95 = v93 - v94;
+    let v96 = v32 * v95;
+    let v97 = v90 + v96;
+    let v98 = v97.recip();
+    let v99 = v24 * v51;
+    let v100 = v13 * v31;
+    let v101 = v99 + v100;
+    let v102 = v98 * v101;
+    let v103 = v24 * v52;
+    let v104 = v13 * v32;
+    let v105 = v103 + v104;
+    let v106 = v98 * v105;
+    let v107 = v25 * v51;
+    let v108 = v15 * v31;
+    let v109 = v107 + v108;
+    let v110 = v98 * v109;
+    let v111 = v25 * v52;
+    let v112 = v15 * v32;
+    let v113 = v111 + v112;
+    let v114 = v98 * v113;
+    let v115 = v28 * v51;
+    let v116 = v19 * v31;
+    let v117 = v115 - v116;
+    let v118 = v98 * v117;
+    let v119 = v28 * v52;
+    let v120 = v19 * v32;
+    let v121 = v119 - v120;
+    let v122 = v98 * v121;
+    let v123 = v31 * v36;
+    let v124 = v98 * v123;
+    let v125 = v32 * v36;
+    let v126 = v98 * v125;
+    let v127 = v31 * v40;
+    let v128 = v98 * v127;
+    let v129 = v32 * v40;
+    let v130 = v98 * v129;
+    let v131 = v31 * v46;
+    let v132 = v98 * v131;
+    let v133 = v32 * v46;
+    let v134 = v98 * v133;
+    let v135 = v4 + v6;
+    let v136 = L::splat(2.0) * v8;
+    let v137 = v135 - v136;
+    let v138 = L::splat(0.5) * v137;
+    let v139 = v5 + v7;
+    let v140 = L::splat(2.0) * v9;
+    let v141 = v139 - v140;
+    let v142 = L::splat(0.5) * v141;
+    let v143 = L::splat(2.0) * v31;
+    let v144 = L::splat(2.0) * v32;
+    let v145 = L::splat(0.5) * v57;
+    let v146 = v57 * v57;
+    let v147 = v24 * v143;
+    let v148 = v145 * v147;
+    let v149 = v146 * v148;
+    let v150 = v32 * v149;
+    let v151 = v24 * v144;
+    let v152 = v145 * v151;
+    let v153 = v146 * v152;
+    let v154 = v24 * v57;
+    let v155 = v32 * v153;
+    let v156 = v154 - v155;
+    let v157 = v25 * v143;
+    let v158 = v145 * v157;
+    let v159 = v146 * v158;
+    let v160 = v32 * v159;
+    let v161 = v25 * v144;
+    let v162 = v145 * v161;
+    let v163 = v146 * v162;
+    let v164 = v25 * v57;
+    let v165 = v32 * v163;
+    let v166 = v164 - v165;
+    let v167 = v28 * v143;
+    let v168 = v145 * v167;
+    let v169 = v146 * v168;
+    let v170 = v32 * v169;
+    let v171 = v28 * v144;
+    let v172 = v145 * v171;
+    let v173 = v146 * v172;
+    let v174 = v28 * v57;
+    let v175 = v32 * v173;
+    let v176 = v174 - v175;
+    let v177 = v31 * v149;
+    let v178 = v154 - v177;
+    let v179 = v31 * v153;
+    let v180 = v31 * v159;
+    let v181 = v164 - v180;
+    let v182 = v31 * v163;
+    let v183 = v31 * v169;
+    let v184 = v174 - v183;
+    let v185 = v31 * v173;
+    let v186 = v36 - v63;
+    let v187 = v40 - v67;
+    let v188 = v46 - v73;
+    let v189 = v78 * v178;
+    let v190 = v78 * v179;
+    let v191 = v78 * v181;
+    let v192 = v78 * v182;
+    let v193 = v78 * v184;
+    let v194 = v78 * v185;
+    let v195 = v59 * v186;
+    let v196 = v59 * v187;
+    let v197 = v59 * v188;
+    let v198 = v59 * v89;
+    let v199 = v59 * v81;
+    let v200 = v59 * v84;
+    let v201 = v59 * v87;
+    let v202 = v59 * v138;
+    let v203 = v178 * v186;
+    let v204 = v178 * v187;
+    let v205 = v178 * v188;
+    let v206 = v179 * v186;
+    let v207 = v179 * v187;
+    let v208 = v179 * v188;
+    let v209 = v181 * v186;
+    let v210 = v181 * v187;
+    let v211 = v181 * v188;
+    let v212 = v182 * v186;
+    let v213 = v182 * v187;
+    let v214 = v182 * v188;
+    let v215 = v184 * v186;
+    let v216 = v184 * v187;
+    let v217 = v184 * v188;
+    let v218 = v185 * v186;
+    let v219 = v185 * v187;
+    let v220 = v185 * v188;
+    let v221 = v89 * v178;
+    let v222 = v89 * v179;
+    let v223 = v89 * v181;
+    let v224 = v89 * v182;
+    let v225 = v89 * v184;
+    let v226 = v89 * v185;
+    let v227 = v59 * v78;
+    let v228 = v79 * v150;
+    let v229 = v79 * v156;
+    let v230 = v79 * v160;
+    let v231 = v79 * v166;
+    let v232 = v79 * v170;
+    let v233 = v79 * v176;
+    let v234 = v58 * v186;
+    let v235 = v58 * v187;
+    let v236 = v58 * v188;
+    let v237 = v58 * v95;
+    let v238 = v58 * v81;
+    let v239 = v58 * v84;
+    let v240 = v58 * v87;
+    let v241 = v58 * v142;
+    let v242 = v150 * v186;
+    let v243 = v150 * v187;
+    let v244 = v150 * v188;
+    let v245 = v156 * v186;
+    let v246 = v156 * v187;
+    let v247 = v156 * v188;
+    let v248 = v160 * v186;
+    let v249 = v160 * v187;
+    let v250 = v160 * v188;
+    let v251 = v166 * v186;
+    let v252 = v166 * v187;
+    let v253 = v166 * v188;
+    let v254 = v170 * v186;
+    let v255 = v170 * v187;
+    let v256 = v170 * v188;
+    let v257 = v176 * v186;
+    let v258 = v176 * v187;
+    let v259 = v176 * v188;
+    let v260 = v95 * v150;
+    let v261 = v95 * v156;
+    let v262 = v95 * v160;
+    let v263 = v95 * v166;
+    let v264 = v95 * v170;
+    let v265 = v95 * v176;
+    let v266 = v58 * v79;
+    let v267 = v189 - v228;
+    let v268 = v190 - v229;
+    let v269 = v191 - v230;
+    let v270 = v192 - v231;
+    let v271 = v193 - v232;
+    let v272 = v194 - v233;
+    let v273 = v198 + v237;
+    let v274 = v221 - v260;
+    let v275 = v222 - v261;
+    let v276 = v223 - v262;
+    let v277 = v224 - v263;
+    let v278 = v225 - v264;
+    let v279 = v226 - v265;
+    let v280 = v202 + v241;
+    let v281 = v227 + v266;
+    let v282 = v102 * v273;
+    let v283 = v267 + v282;
+    let v284 = v106 * v273;
+    let v285 = v110 * v273;
+    let v286 = v269 + v285;
+    let v287 = v114 * v273;
+    let v288 = v118 * v273;
+    let v289 = v271 + v288;
+    let v290 = -v289;
+    let v291 = v122 * v273;
+    let v292 = v272 - v291;
+    let v293 = v124 * v273;
+    let v294 = v195 - v293;
+    let v295 = v126 * v273;
+    let v296 = v234 - v295;
+    let v297 = v128 * v273;
+    let v298 = v196 - v297;
+    let v299 = v130 * v273;
+    let v300 = v235 - v299;
+    let v301 = v132 * v273;
+    let v302 = v197 - v301;
+    let v303 = v134 * v273;
+    let v304 = v236 - v303;
+    let v305 = v102 * v280;
+    let v306 = v106 * v280;
+    let v307 = v110 * v280;
+    let v308 = v114 * v280;
+    let v309 = v118 * v280;
+    let v310 = v122 * v280;
+    let v311 = v124 * v280;
+    let v312 = v126 * v280;
+    let v313 = v128 * v280;
+    let v314 = v130 * v280;
+    let v315 = v132 * v280;
+    let v316 = v134 * v280;
+    let v317 = v274 + v305;
+    let v318 = v275 - v306;
+    let v319 = v276 + v307;
+    let v320 = v277 - v308;
+    let v321 = v278 + v309;
+    let v322 = v279 - v310;
+    let v323 = v199 - v311;
+    let v324 = v238 - v312;
+    let v325 = v200 - v313;
+    let v326 = v239 - v314;
+    let v327 = v201 + v315;
+    let v328 = v240 + v316;
+    let v329 = v102 * v317;
+    let v330 = L::splat(2.0) * v329;
+    let v331 = v106 * v317;
+    let v332 = v102 * v318;
+    let v333 = v331 - v332;
+    let v334 = v110 * v317;
+    let v335 = v102 * v319;
+    let v336 = v334 + v335;
+    let v337 = v114 * v317;
+    let v338 = v102 * v320;
+    let v339 = v337 - v338;
+    let v340 = v118 * v317;
+    let v341 = v102 * v321;
+    let v342 = v340 + v341;
+    let v343 = -v342;
+    let v344 = v122 * v317;
+    let v345 = v102 * v322;
+    let v346 = v124 * v317;
+    let v347 = v102 * v323;
+    let v348 = v346 - v347;
+    let v349 = v203 - v348;
+    let v350 = v126 * v317;
+    let v351 = v102 * v324;
+    let v352 = v350 - v351;
+    let v353 = v242 + v352;
+    let v354 = -v353;
+    let v355 = v128 * v317;
+    let v356 = v102 * v325;
+    let v357 = v355 - v356;
+    let v358 = v204 - v357;
+    let v359 = v130 * v317;
+    let v360 = v102 * v326;
+    let v361 = v359 - v360;
+    let v362 = v243 + v361;
+    let v363 = -v362;
+    let v364 = v132 * v317;
+    let v365 = v102 * v327;
+    let v366 = v364 + v365;
+    let v367 = v205 - v366;
+    let v368 = v134 * v317;
+    let v369 = v102 * v328;
+    let v370 = v368 + v369;
+    let v371 = v244 + v370;
+    let v372 = -v371;
+    let v373 = v106 * v318;
+    let v374 = v110 * v318;
+    let v375 = v106 * v319;
+    let v376 = v114 * v318;
+    let v377 = v106 * v320;
+    let v378 = v376 + v377;
+    let v379 = -v378;
+    let v380 = v118 * v318;
+    let v381 = v106 * v321;
+    let v382 = v380 - v381;
+    let v383 = v122 * v318;
+    let v384 = v106 * v322;
+    let v385 = v383 + v384;
+    let v386 = v124 * v318;
+    let v387 = v106 * v323;
+    let v388 = v386 + v387;
+    let v389 = v126 * v318;
+    let v390 = v106 * v324;
+    let v391 = v389 + v390;
+    let v392 = v245 + v391;
+    let v393 = v128 * v318;
+    let v394 = v106 * v325;
+    let v395 = v393 + v394;
+    let v396 = v130 * v318;
+    let v397 = v106 * v326;
+    let v398 = v396 + v397;
+    let v399 = v246 + v398;
+    let v400 = v132 * v318;
+    let v401 = v106 * v327;
+    let v402 = v400 - v401;
+    let v403 = v134 * v318;
+    let v404 = v106 * v328;
+    let v405 = v403 - v404;
+    let v406 = v247 + v405;
+    let v407 = v110 * v319;
+    let v408 = L::splat(2.0) * v407;
+    let v409 = v114 * v319;
+    let v410 = v110 * v320;
+    let v411 = v409 - v410;
+    let v412 = v118 * v319;
+    let v413 = v110 * v321;
+    let v414 = v412 + v413;
+    let v415 = -v414;
+    let v416 = v122 * v319;
+    let v417 = v110 * v322;
+    let v418 = v124 * v319;
+    let v419 = v110 * v323;
+    let v420 = v418 - v419;
+    let v421 = v209 - v420;
+    let v422 = v126 * v319;
+    let v423 = v110 * v324;
+    let v424 = v422 - v423;
+    let v425 = v248 + v424;
+    let v426 = -v425;
+    let v427 = v128 * v319;
+    let v428 = v110 * v325;
+    let v429 = v427 - v428;
+    let v430 = v210 - v429;
+    let v431 = v130 * v319;
+    let v432 = v110 * v326;
+    let v433 = v431 - v432;
+    let v434 = v249 + v433;
+    let v435 = -v434;
+    let v436 = v132 * v319;
+    let v437 = v110 * v327;
+    let v438 = v436 + v437;
+    let v439 = v211 - v438;
+    let v440 = v134 * v319;
+    let v441 = v110 * v328;
+    let v442 = v440 + v441;
+    let v443 = v250 + v442;
+    let v444 = -v443;
+    let v445 = v114 * v320;
+    let v446 = v118 * v320;
+    let v447 = v114 * v321;
+    let v448 = v446 - v447;
+    let v449 = v122 * v320;
+    let v450 = v114 * v322;
+    let v451 = v449 + v450;
+    let v452 = v124 * v320;
+    let v453 = v114 * v323;
+    let v454 = v452 + v453;
+    let v455 = v126 * v320;
+    let v456 = v114 * v324;
+    let v457 = v455 + v456;
+    let v458 = v251 + v457;
+    let v459 = v128 * v320;
+    let v460 = v114 * v325;
+    let v461 = v459 + v460;
+    let v462 = v130 * v320;
+    let v463 = v114 * v326;
+    let v464 = v462 + v463;
+    let v465 = v252 + v464;
+    let v466 = v132 * v320;
+    let v467 = v114 * v327;
+    let v468 = v466 - v467;
+    let v469 = v134 * v320;
+    let v470 = v114 * v328;
+    let v471 = v469 - v470;
+    let v472 = v253 + v471;
+    let v473 = v118 * v321;
+    let v474 = L::splat(2.0) * v473;
+    let v475 = v122 * v321;
+    let v476 = v118 * v322;
+    let v477 = v475 - v476;
+    let v478 = v124 * v321;
+    let v479 = v118 * v323;
+    let v480 = v478 - v479;
+    let v481 = v126 * v321;
+    let v482 = v118 * v324;
+    let v483 = v481 - v482;
+    let v484 = v254 + v483;
+    let v485 = v128 * v321;
+    let v486 = v118 * v325;
+    let v487 = v485 - v486;
+    let v488 = v130 * v321;
+    let v489 = v118 * v326;
+    let v490 = v488 - v489;
+    let v491 = v255 + v490;
+    let v492 = v132 * v321;
+    let v493 = v118 * v327;
+    let v494 = v492 + v493;
+    let v495 = v134 * v321;
+    let v496 = v118 * v328;
+    let v497 = v495 + v496;
+    let v498 = v256 + v497;
+    let v499 = v122 * v322;
+    let v500 = v124 * v322;
+    let v501 = v122 * v323;
+    let v502 = v500 + v501;
+    let v503 = v218 - v502;
+    let v504 = v126 * v322;
+    let v505 = v122 * v324;
+    let v506 = v504 + v505;
+    let v507 = v257 + v506;
+    let v508 = -v507;
+    let v509 = v128 * v322;
+    let v510 = v122 * v325;
+    let v511 = v509 + v510;
+    let v512 = v219 - v511;
+    let v513 = v130 * v322;
+    let v514 = v122 * v326;
+    let v515 = v513 + v514;
+    let v516 = v258 + v515;
+    let v517 = -v516;
+    let v518 = v132 * v322;
+    let v519 = v122 * v327;
+    let v520 = v518 - v519;
+    let v521 = v220 - v520;
+    let v522 = v134 * v322;
+    let v523 = v122 * v328;
+    let v524 = v522 - v523;
+    let v525 = v259 + v524;
+    let v526 = -v525;
+    let v527 = v124 * v323;
+    let v528 = v126 * v323;
+    let v529 = v124 * v324;
+    let v530 = v528 + v529;
+    let v531 = -v530;
+    let v532 = v128 * v323;
+    let v533 = v124 * v325;
+    let v534 = v532 + v533;
+    let v535 = -v534;
+    let v536 = v130 * v323;
+    let v537 = v124 * v326;
+    let v538 = v536 + v537;
+    let v539 = -v538;
+    let v540 = v132 * v323;
+    let v541 = v124 * v327;
+    let v542 = v134 * v323;
+    let v543 = v124 * v328;
+    let v544 = v126 * v324;
+    let v545 = v128 * v324;
+    let v546 = v126 * v325;
+    let v547 = v545 + v546;
+    let v548 = -v547;
+    let v549 = v130 * v324;
+    let v550 = v126 * v326;
+    let v551 = v549 + v550;
+    let v552 = -v551;
+    let v553 = v132 * v324;
+    let v554 = v126 * v327;
+    let v555 = v134 * v324;
+    let v556 = v126 * v328;
+    let v557 = v128 * v325;
+    let v558 = v130 * v325;
+    let v559 = v128 * v326;
+    let v560 = v558 + v559;
+    let v561 = -v560;
+    let v562 = v132 * v325;
+    let v563 = v128 * v327;
+    let v564 = v134 * v325;
+    let v565 = v128 * v328;
+    let v566 = v130 * v326;
+    let v567 = v132 * v326;
+    let v568 = v130 * v327;
+    let v569 = v134 * v326;
+    let v570 = v130 * v328;
+    let v571 = v132 * v327;
+    let v572 = L::splat(2.0) * v571;
+    let v573 = v134 * v327;
+    let v574 = v132 * v328;
+    let v575 = v573 + v574;
+    let v576 = v134 * v328;
+    let v577 = L::splat(2.0) * v576;
+    let v578 = v284 - v268;
+    let v579 = v287 - v270;
+    let v580 = v345 - v344;
+    let v581 = L::splat((-2.0)) * v373;
+    let v582 = v375 - v374;
+    let v583 = v388 - v206;
+    let v584 = v395 - v207;
+    let v585 = v402 - v208;
+    let v586 = v417 - v416;
+    let v587 = L::splat((-2.0)) * v445;
+    let v588 = v454 - v212;
+    let v589 = v461 - v213;
+    let v590 = v468 - v214;
+    let v591 = v480 - v215;
+    let v592 = v487 - v216;
+    let v593 = v494 - v217;
+    let v594 = L::splat((-2.0)) * v499;
+    let v595 = L::splat((-2.0)) * v527;
+    let v596 = v541 - v540;
+    let v597 = v543 - v542;
+    let v598 = L::splat((-2.0)) * v544;
+    let v599 = v554 - v553;
+    let v600 = v556 - v555;
+    let v601 = L::splat((-2.0)) * v557;
+    let v602 = v563 - v562;
+    let v603 = v565 - v564;
+    let v604 = L::splat((-2.0)) * v566;
+    let v605 = v568 - v567;
+    let v606 = v570 - v569;
+    grad0[0] = v283;
+    grad0[1] = v578;
+    grad0[2] = v286;
+    grad0[3] = v579;
+    grad0[4] = v290;
+    grad0[5] = v292;
+    grad0[6] = v294;
+    grad0[7] = v296;
+    grad0[8] = v298;
+    grad0[9] = v300;
+    grad0[10] = v302;
+    grad0[11] = v304;
+    hess0[0] = v330;
+    hess0[1] = v333;
+    hess0[12] = v333;
+    hess0[2] = v336;
+    hess0[24] = v336;
+    hess0[3] = v339;
+    hess0[36] = v339;
+    hess0[4] = v343;
+    hess0[48] = v343;
+    hess0[5] = v580;
+    hess0[60] = v580;
+    hess0[6] = v349;
+    hess0[72] = v349;
+    hess0[7] = v354;
+    hess0[84] = v354;
+    hess0[8] = v358;
+    hess0[96] = v358;
+    hess0[9] = v363;
+    hess0[108] = v363;
+    hess0[10] = v367;
+    hess0[120] = v367;
+    hess0[11] = v372;
+    hess0[132] = v372;
+    hess0[13] = v581;
+    hess0[14] = v582;
+    hess0[25] = v582;
+    hess0[15] = v379;
+    hess0[37] = v379;
+    hess0[16] = v382;
+    hess0[49] = v382;
+    hess0[17] = v385;
+    hess0[61] = v385;
+    hess0[18] = v583;
+    hess0[73] = v583;
+    hess0[19] = v392;
+    hess0[85] = v392;
+    hess0[20] = v584;
+    hess0[97] = v584;
+    hess0[21] = v399;
+    hess0[109] = v399;
+    hess0[22] = v585;
+    hess0[121] = v585;
+    hess0[23] = v406;
+    hess0[133] = v406;
+    hess0[26] = v408;
+    hess0[27] = v411;
+    hess0[38] = v411;
+    hess0[28] = v415;
+    hess0[50] = v415;
+    hess0[29] = v586;
+    hess0[62] = v586;
+    hess0[30] = v421;
+    hess0[74] = v421;
+    hess0[31] = v426;
+    hess0[86] = v426;
+    hess0[32] = v430;
+    hess0[98] = v430;
+    hess0[33] = v435;
+    hess0[110] = v435;
+    hess0[34] = v439;
+    hess0[122] = v439;
+    hess0[35] = v444;
+    hess0[134] = v444;
+    hess0[39] = v587;
+    hess0[40] = v448;
+    hess0[51] = v448;
+    hess0[41] = v451;
+    hess0[63] = v451;
+    hess0[42] = v588;
+    hess0[75] = v588;
+    hess0[43] = v458;
+    hess0[87] = v458;
+    hess0[44] = v589;
+    hess0[99] = v589;
+    hess0[45] = v465;
+    hess0[111] = v465;
+    hess0[46] = v590;
+    hess0[123] = v590;
+    hess0[47] = v472;
+    hess0[135] = v472;
+    hess0[52] = v474;
+    hess0[53] = v477;
+    hess0[64] = v477;
+    hess0[54] = v591;
+    hess0[76] = v591;
+    hess0[55] = v484;
+    hess0[88] = v484;
+    hess0[56] = v592;
+    hess0[100] = v592;
+    hess0[57] = v491;
+    hess0[112] = v491;
+    hess0[58] = v593;
+    hess0[124] = v593;
+    hess0[59] = v498;
+    hess0[136] = v498;
+    hess0[65] = v594;
+    hess0[66] = v503;
+    hess0[77] = v503;
+    hess0[67] = v508;
+    hess0[89] = v508;
+    hess0[68] = v512;
+    hess0[101] = v512;
+    hess0[69] = v517;
+    hess0[113] = v517;
+    hess0[70] = v521;
+    hess0[125] = v521;
+    hess0[71] = v526;
+    hess0[137] = v526;
+    hess0[78] = v595;
+    hess0[79] = v531;
+    hess0[90] = v531;
+    hess0[80] = v535;
+    hess0[102] = v535;
+    hess0[81] = v539;
+    hess0[114] = v539;
+    hess0[82] = v596;
+    hess0[126] = v596;
+    hess0[83] = v597;
+    hess0[138] = v597;
+    hess0[91] = v598;
+    hess0[92] = v548;
+    hess0[103] = v548;
+    hess0[93] = v552;
+    hess0[115] = v552;
+    hess0[94] = v599;
+    hess0[127] = v599;
+    hess0[95] = v600;
+    hess0[139] = v600;
+    hess0[104] = v601;
+    hess0[105] = v561;
+    hess0[116] = v561;
+    hess0[106] = v602;
+    hess0[128] = v602;
+    hess0[107] = v603;
+    hess0[140] = v603;
+    hess0[117] = v604;
+    hess0[118] = v605;
+    hess0[129] = v605;
+    hess0[119] = v606;
+    hess0[141] = v606;
+    hess0[130] = v572;
+    hess0[131] = v575;
+    hess0[142] = v575;
+    hess0[143] = v577;
+    v281
+}
+/// `quadratic_slave_normal_slip_type3` over 4 lanes (portable build).
+fn quadratic_slave_normal_slip_type3_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type3_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `quadratic_slave_normal_slip_type3` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn quadratic_slave_normal_slip_type3_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type3_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `quadratic_slave_normal_slip_type4`: `quadratic-slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 752 ops (256 add, 476 mul, 2 div, 1 sqrt, 17 neg).
+#[inline(always)]
+fn quadratic_slave_normal_slip_type4_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..12];
+    let grad0 = &mut grad0[..12];
+    let hess0 = &mut hess0[..144];
+    let xi_in = *xi_m;
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = d[8];
+    let v7 = d[9];
+    let v8 = d[10];
+    let v9 = d[11];
+    let v10 = xi_s;
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
+    let v13 = v11 * v12;
+    let v14 = L::splat(1.0) + v10;
+    let v15 = v11 * v14;
+    let v16 = v0 * v15;
+    let v17 = v1 * v15;
+    let v18 = v10 * v10;
+    let v19 = L::splat(1.0) - v18;
+    let v20 = v2 * v19;
+    let v21 = v3 * v19;
+    let v22 = v16 + v20;
+    let v23 = v17 + v21;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
+    let v26 = v0 * v25;
+    let v27 = v1 * v25;
+    let v28 = L::splat(2.0) * v10;
+    let v29 = v2 * v28;
+    let v30 = v3 * v28;
+    let v31 = v26 - v29;
+    let v32 = v27 - v30;
+    let v33 = xi_in;
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
+    let v36 = v34 * v35;
+    let v37 = v4 * v36;
+    let v38 = v5 * v36;
+    let v39 = L::splat(1.0) + v33;
+    let v40 = v34 * v39;
+    let v41 = v6 * v40;
+    let v42 = v7 * v40;
+    let v43 = v37 + v41;
+    let v44 = v38 + v42;
+    let v45 = v33 * v33;
+    let v46 = L::splat(1.0) - v45;
+    let v47 = v8 * v46;
+    let v48 = v9 * v46;
+    let v49 = v43 + v47;
+    let v50 = v44 + v48;
+    let v51 = v22 - v49;
+    let v52 = v23 - v50;
+    let v53 = v31 * v31;
+    let v54 = v32 * v32;
+    let v55 = v53 + v54;
+    let v56 = v55.sqrt();
+    let v57 = v56.recip();
+    let v58 = v32 * v57;
+    let v59 = v31 * v57;
+    let v60 = xi_m0;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v60 - L::splat(1.0);
+    let v63 = v61 * v62;
+    let v64 = v4 * v63;
+    let v65 = v5 * v63;
+    let v66 = L::splat(1.0) + v60;
+    let v67 = v61 * v66;
+    let v68 = v6 * v67;
+    let v69 = v7 * v67;
+    let v70 = v64 + v68;
+    let v71 = v65 + v69;
+    let v72 = v60 * v60;
+    let v73 = L::splat(1.0) - v72;
+    let v74 = v8 * v73;
+    let v75 = v9 * v73;
+    let v76 = v70 + v74;
+    let v77 = v71 + v75;
+    let v78 = v49 - v76;
+    let v79 = v50 - v77;
+    let v80 = v33 + v35;
+    let v81 = L::splat(0.5) * v80;
+    let v82 = v4 * v81;
+    let v83 = v33 + v39;
+    let v84 = L::splat(0.5) * v83;
+    let v85 = v6 * v84;
+    let v86 = v82 + v85;
+    let v87 = L::splat(2.0) * v33;
+    let v88 = v8 * v87;
+    let v89 = v86 - v88;
+    let v90 = v31 * v89;
+    let v91 = v5 * v81;
+    let v92 = v7 * v84;
+    let v93 = v91 + v92;
+    let v94 = v9 * v87;
+    let v95 = v93 - v94;
+    let v96 = v32 * v95;
+    let v97 = v90 + v96;
+    let v98 = v97.recip();
+    let v99 = v24 * v51;
+    let v100 = v13 * v31;
+    let v101 = v99 + v100;
+    let v102 = v98 * v101;
+    let v103 = v24 * v52;
+    let v104 = v13 * v32;
+    let v105 = v103 + v104;
+    let v106 = v98 * v105;
+    let v107 = v25 * v51;
+    let v108 = v15 * v31;
+    let v109 = v107 + v108;
+    let v110 = v98 * v109;
+    let v111 = v25 * v52;
+    let v112 = v15 * v32;
+    let v113 = v111 + v112;
+    let v114 = v98 * v113;
+    let v115 = v28 * v51;
+    let v116 = v19 * v31;
+    let v117 = v115 - v116;
+    let v118 = v98 * v117;
+    let v119 = v28 * v52;
+    let v120 = v19 * v32;
+    let v121 = v119 - v120;
+    let v122 = v98 * v121;
+    let v123 = v31 * v36;
+    let v124 = v98 * v123;
+    let v125 = v32 * v36;
+    let v126 = v98 * v125;
+    let v127 = v31 * v40;
+    let v128 = v98 * v127;
+    let v129 = v32 * v40;
+    let v130 = v98 * v129;
+    let v131 = v31 * v46;
+    let v132 = v98 * v131;
+    let v133 = v32 * v46;
+    let v134 = v98 * v133;
+    let v135 = v13 * v24;
+    let v136 = L::splat(2.0) * v135;
+    let v137 = v15 * v24;
+    let v138 = v13 * v25;
+    let v139 = v137 + v138;
+    let v140 = v19 * v24;
+    let v141 = v13 * v28;
+    let v142 = v140 - v141;
+    let v143 = v24 * v36;
+    let v144 = v24 * v40;
+    let v145 = v24 * v46;
+    let v146 = v24 * v89;
+    let v147 = v24 * v95;
+    let v148 = v15 * v25;
+    let v149 = L::splat(2.0) * v148;
+    let v150 = v19 * v25;
+    let v151 = v15 * v28;
+    let v152 = v150 - v151;
+    let v153 = v25 * v36;
+    let v154 = v25 * v40;
+    let v155 = v25 * v46;
+    let v156 = v25 * v89;
+    let v157 = v25 * v95;
+    let v158 = v19 * v28;
+    let v159 = L::splat(2.0) * v158;
+    let v160 = v28 * v36;
+    let v161 = v28 * v40;
+    let v162 = v28 * v46;
+    let v163 = v28 * v89;
+    let v164 = v28 * v95;
+    let v165 = v31 * v81;
+    let v166 = v32 * v81;
+    let v167 = v31 * v84;
+    let v168 = v32 * v84;
+    let v169 = v31 * v87;
+    let v170 = v32 * v87;
+    let v171 = v4 + v6;
+    let v172 = L::splat(2.0) * v8;
+    let v173 = v171 - v172;
+    let v174 = v31 * v173;
+    let v175 = v5 + v7;
+    let v176 = L::splat(2.0) * v9;
+    let v177 = v175 - v176;
+    let v178 = v32 * v177;
+    let v179 = v174 + v178;
+    let v180 = L::splat(0.5) * v179;
+    let v181 = L::splat(0.5) * v173;
+    let v182 = v89 * v98;
+    let v183 = v146 * v182;
+    let v184 = v147 * v182;
+    let v185 = v156 * v182;
+    let v186 = v157 * v182;
+    let v187 = v163 * v182;
+    let v188 = v164 * v182;
+    let v189 = v165 * v182;
+    let v190 = v166 * v182;
+    let v191 = v167 * v182;
+    let v192 = v168 * v182;
+    let v193 = v169 * v182;
+    let v194 = v170 * v182;
+    let v195 = v81 - v189;
+    let v196 = v84 - v191;
+    let v197 = v87 - v193;
+    let v198 = v180 * v182;
+    let v199 = v181 - v198;
+    let v200 = L::splat(0.5) * v177;
+    let v201 = v95 * v98;
+    let v202 = v146 * v201;
+    let v203 = v147 * v201;
+    let v204 = v156 * v201;
+    let v205 = v157 * v201;
+    let v206 = v163 * v201;
+    let v207 = v164 * v201;
+    let v208 = v165 * v201;
+    let v209 = v166 * v201;
+    let v210 = v167 * v201;
+    let v211 = v168 * v201;
+    let v212 = v169 * v201;
+    let v213 = v170 * v201;
+    let v214 = v81 - v209;
+    let v215 = v84 - v211;
+    let v216 = v87 - v213;
+    let v217 = v180 * v201;
+    let v218 = v200 - v217;
+    let v219 = L::splat(2.0) * v31;
+    let v220 = L::splat(2.0) * v32;
+    let v221 = L::splat(0.5) * v57;
+    let v222 = v57 * v57;
+    let v223 = v24 * v219;
+    let v224 = v221 * v223;
+    let v225 = v222 * v224;
+    let v226 = v32 * v225;
+    let v227 = v24 * v220;
+    let v228 = v221 * v227;
+    let v229 = v222 * v228;
+    let v230 = v24 * v57;
+    let v231 = v32 * v229;
+    let v232 = v230 - v231;
+    let v233 = v25 * v219;
+    let v234 = v221 * v233;
+    let v235 = v222 * v234;
+    let v236 = v32 * v235;
+    let v237 = v25 * v220;
+    let v238 = v221 * v237;
+    let v239 = v222 * v238;
+    let v240 = v25 * v57;
+    let v241 = v32 * v239;
+    let v242 = v240 - v241;
+    let v243 = v28 * v219;
+    let v244 = v221 * v243;
+    let v245 = v222 * v244;
+    let v246 = v32 * v245;
+    let v247 = v28 * v220;
+    let v248 = v221 * v247;
+    let v249 = v222 * v248;
+    let v250 = v28 * v57;
+    let v251 = v32 * v249;
+    let v252 = v250 - v251;
+    let v253 = v31 * v225;
+    let v254 = v230 - v253;
+    let v255 = v31 * v229;
+    let v256 = v31 * v235;
+    let v257 = v240 - v256;
+    let v258 = v31 * v239;
+    let v259 = v31 * v245;
+    let v260 = v250 - v259;
+    let v261 = v31 * v249;
+    let v262 = v36 - v63;
+    let v263 = v40 - v67;
+    let v264 = v46 - v73;
+    let v265 = v78 * v254;
+    let v266 = v78 * v255;
+    let v267 = v78 * v257;
+    let v268 = v78 * v258;
+    let v269 = v78 * v260;
+    let v270 = v78 * v261;
+    let v271 = v59 * v262;
+    let v272 = v59 * v263;
+    let v273 = v59 * v264;
+    let v274 = v59 * v89;
+    let v275 = v59 * v182;
+    let v276 = v59 * v183;
+    let v277 = v59 * v184;
+    let v278 = v59 * v185;
+    let v279 = v59 * v186;
+    let v280 = v59 * v187;
+    let v281 = v59 * v188;
+    let v282 = v59 * v195;
+    let v283 = v59 * v190;
+    let v284 = v59 * v196;
+    let v285 = v59 * v192;
+    let v286 = v59 * v197;
+    let v287 = v59 * v194;
+    let v288 = v59 * v199;
+    let v289 = v254 * v262;
+    let v290 = v254 * v263;
+    let v291 = v254 * v264;
+    let v292 = v255 * v262;
+    let v293 = v255 * v263;
+    let v294 = v255 * v264;
+    let v295 = v257 * v262;
+    let v296 = v257 * v263;
+    let v297 = v257 * v264;
+    let v298 = v258 * v262;
+    let v299 = v258 * v263;
+    let v300 = v258 * v264;
+    let v301 = v260 * v262;
+    let v302 = v260 * v263;
+    let v303 = v260 * v264;
+    let v304 = v261 * v262;
+    let v305 = v261 * v263;
+    let v306 = v261 * v264;
+    let v307 = v89 * v254;
+    let v308 = v89 * v255;
+    let v309 = v89 * v257;
+    let v310 = v89 * v258;
+    let v311 = v89 * v260;
+    let v312 = v89 * v261;
+    let v313 = v276 - v307;
+    let v314 = v277 + v308;
+    let v315 = v278 - v309;
+    let v316 = v279 + v310;
+    let v317 = v280 - v311;
+    let v318 = v281 + v312;
+    let v319 = v59 * v78;
+    let v320 = v79 * v226;
+    let v321 = v79 * v232;
+    let v322 = v79 * v236;
+    let v323 = v79 * v242;
+    let v324 = v79 * v246;
+    let v325 = v79 * v252;
+    let v326 = v58 * v262;
+    let v327 = v58 * v263;
+    let v328 = v58 * v264;
+    let v329 = v58 * v95;
+    let v330 = v58 * v201;
+    let v331 = v58 * v202;
+    let v332 = v58 * v203;
+    let v333 = v58 * v204;
+    let v334 = v58 * v205;
+    let v335 = v58 * v206;
+    let v336 = v58 * v207;
+    let v337 = v58 * v208;
+    let v338 = v58 * v214;
+    let v339 = v58 * v210;
+    let v340 = v58 * v215;
+    let v341 = v58 * v212;
+    let v342 = v58 * v216;
+    let v343 = v58 * v218;
+    let v344 = v226 * v262;
+    let v345 = v226 * v263;
+    let v346 = v226 * v264;
+    let v347 = v232 * v262;
+    let v348 = v232 * v263;
+    let v349 = v232 * v264;
+    let v350 = v236 * v262;
+    let v351 = v236 * v263;
+    let v352 = v236 * v264;
+    let v353 = v242 * v262;
+    let v354 = v242 * v263;
+    let v355 = v242 * v264;
+    let v356 = v246 * v262;
+    let v357 = v246 * v263;
+    let v358 = v246 * v264;
+    let v359 = v252 * v262;
+    let v360 = v252 * v263;
+    let v361 = v252 * v264;
+    let v362 = v95 * v226;
+    let v363 = v95 * v232;
+    let v364 = v95 * v236;
+    let v365 = v95 * v242;
+    let v366 = v95 * v246;
+    let v367 = v95 * v252;
+    let v368 = v331 + v362;
+    let v369 = v332 - v363;
+    let v370 = v333 + v364;
+    let v371 = v334 - v365;
+    let v372 = v335 + v366;
+    let v373 = v336 - v367;
+    let v374 = v58 * v79;
+    let v375 = v265 - v320;
+    let v376 = v266 - v321;
+    let v377 = v267 - v322;
+    let v378 = v268 - v323;
+    let v379 = v269 - v324;
+    let v380 = v270 - v325;
+    let v381 = v274 + v329;
+    let v382 = v275 + v330;
+    let v383 = v313 + v368;
+    let v384 = v314 + v369;
+    let v385 = v315 + v370;
+    let v386 = v316 + v371;
+    let v387 = v317 + v372;
+    let v388 = v318 + v373;
+    let v389 = v282 - v337;
+    let v390 = v283 - v338;
+    let v391 = v284 - v339;
+    let v392 = v285 - v340;
+    let v393 = v286 - v341;
+    let v394 = v287 - v342;
+    let v395 = v288 + v343;
+    let v396 = v319 + v374;
+    let v397 = v102 * v381;
+    let v398 = v375 + v397;
+    let v399 = v106 * v381;
+    let v400 = v110 * v381;
+    let v401 = v377 + v400;
+    let v402 = v114 * v381;
+    let v403 = v118 * v381;
+    let v404 = v379 + v403;
+    let v405 = -v404;
+    let v406 = v122 * v381;
+    let v407 = v380 - v406;
+    let v408 = v124 * v381;
+    let v409 = v271 - v408;
+    let v410 = v126 * v381;
+    let v411 = v326 - v410;
+    let v412 = v128 * v381;
+    let v413 = v272 - v412;
+    let v414 = v130 * v381;
+    let v415 = v327 - v414;
+    let v416 = v132 * v381;
+    let v417 = v273 - v416;
+    let v418 = v134 * v381;
+    let v419 = v328 - v418;
+    let v420 = v136 * v382;
+    let v421 = v139 * v382;
+    let v422 = v142 * v382;
+    let v423 = v143 * v382;
+    let v424 = v289 - v423;
+    let v425 = v144 * v382;
+    let v426 = v290 - v425;
+    let v427 = v145 * v382;
+    let v428 = v291 - v427;
+    let v429 = v347 - v423;
+    let v430 = v348 - v425;
+    let v431 = v349 - v427;
+    let v432 = v149 * v382;
+    let v433 = v152 * v382;
+    let v434 = v153 * v382;
+    let v435 = v295 - v434;
+    let v436 = v154 * v382;
+    let v437 = v296 - v436;
+    let v438 = v155 * v382;
+    let v439 = v297 - v438;
+    let v440 = v353 - v434;
+    let v441 = v354 - v436;
+    let v442 = v355 - v438;
+    let v443 = v159 * v382;
+    let v444 = v160 * v382;
+    let v445 = v301 - v444;
+    let v446 = v161 * v382;
+    let v447 = v302 - v446;
+    let v448 = v162 * v382;
+    let v449 = v303 - v448;
+    let v450 = v359 - v444;
+    let v451 = v360 - v446;
+    let v452 = v361 - v448;
+    let v453 = v102 * v395;
+    let v454 = v106 * v395;
+    let v455 = v110 * v395;
+    let v456 = v114 * v395;
+    let v457 = v118 * v395;
+    let v458 = v122 * v395;
+    let v459 = v124 * v395;
+    let v460 = v126 * v395;
+    let v461 = v128 * v395;
+    let v462 = v130 * v395;
+    let v463 = v132 * v395;
+    let v464 = v134 * v395;
+    let v465 = v383 - v453;
+    let v466 = v384 - v454;
+    let v467 = v385 - v455;
+    let v468 = v386 - v456;
+    let v469 = v387 - v457;
+    let v470 = v388 - v458;
+    let v471 = v389 - v459;
+    let v472 = v390 + v460;
+    let v473 = v391 - v461;
+    let v474 = v392 + v462;
+    let v475 = v393 + v463;
+    let v476 = v394 - v464;
+    let v477 = v102 * v465;
+    let v478 = L::splat(2.0) * v477;
+    let v479 = v420 - v478;
+    let v480 = v106 * v465;
+    let v481 = v102 * v466;
+    let v482 = v480 + v481;
+    let v483 = -v482;
+    let v484 = v110 * v465;
+    let v485 = v102 * v467;
+    let v486 = v484 + v485;
+    let v487 = v421 - v486;
+    let v488 = v114 * v465;
+    let v489 = v102 * v468;
+    let v490 = v488 + v489;
+    let v491 = -v490;
+    let v492 = v118 * v465;
+    let v493 = v102 * v469;
+    let v494 = v492 + v493;
+    let v495 = v422 + v494;
+    let v496 = v122 * v465;
+    let v497 = v102 * v470;
+    let v498 = v496 + v497;
+    let v499 = v124 * v465;
+    let v500 = v102 * v471;
+    let v501 = v499 + v500;
+    let v502 = v424 + v501;
+    let v503 = v126 * v465;
+    let v504 = v102 * v472;
+    let v505 = v503 - v504;
+    let v506 = v128 * v465;
+    let v507 = v102 * v473;
+    let v508 = v506 + v507;
+    let v509 = v426 + v508;
+    let v510 = v130 * v465;
+    let v511 = v102 * v474;
+    let v512 = v510 - v511;
+    let v513 = v132 * v465;
+    let v514 = v102 * v475;
+    let v515 = v513 - v514;
+    let v516 = v428 + v515;
+    let v517 = v134 * v465;
+    let v518 = v102 * v476;
+    let v519 = v517 + v518;
+    let v520 = v106 * v466;
+    let v521 = L::splat(2.0) * v520;
+    let v522 = v420 - v521;
+    let v523 = v110 * v466;
+    let v524 = v106 * v467;
+    let v525 = v523 + v524;
+    let v526 = -v525;
+    let v527 = v114 * v466;
+    let v528 = v106 * v468;
+    let v529 = v527 + v528;
+    let v530 = v421 - v529;
+    let v531 = v118 * v466;
+    let v532 = v106 * v469;
+    let v533 = v531 + v532;
+    let v534 = v122 * v466;
+    let v535 = v106 * v470;
+    let v536 = v534 + v535;
+    let v537 = v422 + v536;
+    let v538 = v124 * v466;
+    let v539 = v106 * v471;
+    let v540 = v538 + v539;
+    let v541 = v126 * v466;
+    let v542 = v106 * v472;
+    let v543 = v541 - v542;
+    let v544 = v429 + v543;
+    let v545 = v128 * v466;
+    let v546 = v106 * v473;
+    let v547 = v545 + v546;
+    let v548 = v130 * v466;
+    let v549 = v106 * v474;
+    let v550 = v548 - v549;
+    let v551 = v430 + v550;
+    let v552 = v132 * v466;
+    let v553 = v106 * v475;
+    let v554 = v552 - v553;
+    let v555 = v134 * v466;
+    let v556 = v106 * v476;
+    let v557 = v555 + v556;
+    let v558 = v431 + v557;
+    let v559 = v110 * v467;
+    let v560 = L::splat(2.0) * v559;
+    let v561 = v432 - v560;
+    let v562 = v114 * v467;
+    let v563 = v110 * v468;
+    let v564 = v562 + v563;
+    let v565 = -v564;
+    let v566 = v118 * v467;
+    let v567 = v110 * v469;
+    let v568 = v566 + v567;
+    let v569 = v433 + v568;
+    let v570 = v122 * v467;
+    let v571 = v110 * v470;
+    let v572 = v570 + v571;
+    let v573 = v124 * v467;
+    let v574 = v110 * v471;
+    let v575 = v573 + v574;
+    let v576 = v435 + v575;
+    let v577 = v126 * v467;
+    let v578 = v110 * v472;
+    let v579 = v577 - v578;
+    let v580 = v128 * v467;
+    let v581 = v110 * v473;
+    let v582 = v580 + v581;
+    let v583 = v437 + v582;
+    let v584 = v130 * v467;
+    let v585 = v110 * v474;
+    let v586 = v584 - v585;
+    let v587 = v132 * v467;
+    let v588 = v110 * v475;
+    let v589 = v587 - v588;
+    let v590 = v439 + v589;
+    let v591 = v134 * v467;
+    let v592 = v110 * v476;
+    let v593 = v591 + v592;
+    let v594 = v114 * v468;
+    let v595 = L::splat(2.0) * v594;
+    let v596 = v432 - v595;
+    let v597 = v118 * v468;
+    let v598 = v114 * v469;
+    let v599 = v597 + v598;
+    let v600 = v122 * v468;
+    let v601 = v114 * v470;
+    let v602 = v600 + v601;
+    let v603 = v433 + v602;
+    let v604 = v124 * v468;
+    let v605 = v114 * v471;
+    let v606 = v604 + v605;
+    let v607 = v126 * v468;
+    let v608 = v114 * v472;
+    let v609 = v607 - v608;
+    let v610 = v440 + v609;
+    let v611 = v128 * v468;
+    let v612 = v114 * v473;
+    let v613 = v611 + v612;
+    let v614 = v130 * v468;
+    let v615 = v114 * v474;
+    let v616 = v614 - v615;
+    let v617 = v441 + v616;
+    let v618 = v132 * v468;
+    let v619 = v114 * v475;
+    let v620 = v618 - v619;
+    let v621 = v134 * v468;
+    let v622 = v114 * v476;
+    let v623 = v621 + v622;
+    let v624 = v442 + v623;
+    let v625 = v118 * v469;
+    let v626 = L::splat(2.0) * v625;
+    let v627 = v443 + v626;
+    let v628 = -v627;
+    let v629 = v122 * v469;
+    let v630 = v118 * v470;
+    let v631 = v629 + v630;
+    let v632 = -v631;
+    let v633 = v124 * v469;
+    let v634 = v118 * v471;
+    let v635 = v633 + v634;
+    let v636 = v445 + v635;
+    let v637 = -v636;
+    let v638 = v126 * v469;
+    let v639 = v118 * v472;
+    let v640 = v638 - v639;
+    let v641 = v356 - v640;
+    let v642 = v128 * v469;
+    let v643 = v118 * v473;
+    let v644 = v642 + v643;
+    let v645 = v447 + v644;
+    let v646 = -v645;
+    let v647 = v130 * v469;
+    let v648 = v118 * v474;
+    let v649 = v647 - v648;
+    let v650 = v357 - v649;
+    let v651 = v132 * v469;
+    let v652 = v118 * v475;
+    let v653 = v651 - v652;
+    let v654 = v449 + v653;
+    let v655 = -v654;
+    let v656 = v134 * v469;
+    let v657 = v118 * v476;
+    let v658 = v656 + v657;
+    let v659 = v358 - v658;
+    let v660 = v122 * v470;
+    let v661 = L::splat(2.0) * v660;
+    let v662 = v443 + v661;
+    let v663 = -v662;
+    let v664 = v124 * v470;
+    let v665 = v122 * v471;
+    let v666 = v664 + v665;
+    let v667 = v304 - v666;
+    let v668 = v126 * v470;
+    let v669 = v122 * v472;
+    let v670 = v668 - v669;
+    let v671 = v450 + v670;
+    let v672 = -v671;
+    let v673 = v128 * v470;
+    let v674 = v122 * v473;
+    let v675 = v673 + v674;
+    let v676 = v305 - v675;
+    let v677 = v130 * v470;
+    let v678 = v122 * v474;
+    let v679 = v677 - v678;
+    let v680 = v451 + v679;
+    let v681 = -v680;
+    let v682 = v132 * v470;
+    let v683 = v122 * v475;
+    let v684 = v682 - v683;
+    let v685 = v306 - v684;
+    let v686 = v134 * v470;
+    let v687 = v122 * v476;
+    let v688 = v686 + v687;
+    let v689 = v452 + v688;
+    let v690 = -v689;
+    let v691 = v124 * v471;
+    let v692 = v126 * v471;
+    let v693 = v124 * v472;
+    let v694 = v128 * v471;
+    let v695 = v124 * v473;
+    let v696 = v694 + v695;
+    let v697 = -v696;
+    let v698 = v130 * v471;
+    let v699 = v124 * v474;
+    let v700 = v132 * v471;
+    let v701 = v124 * v475;
+    let v702 = v134 * v471;
+    let v703 = v124 * v476;
+    let v704 = v702 + v703;
+    let v705 = -v704;
+    let v706 = v126 * v472;
+    let v707 = L::splat(2.0) * v706;
+    let v708 = v128 * v472;
+    let v709 = v126 * v473;
+    let v710 = v708 - v709;
+    let v711 = v130 * v472;
+    let v712 = v126 * v474;
+    let v713 = v711 + v712;
+    let v714 = v132 * v472;
+    let v715 = v126 * v475;
+    let v716 = v714 + v715;
+    let v717 = v134 * v472;
+    let v718 = v126 * v476;
+    let v719 = v717 - v718;
+    let v720 = v128 * v473;
+    let v721 = v130 * v473;
+    let v722 = v128 * v474;
+    let v723 = v132 * v473;
+    let v724 = v128 * v475;
+    let v725 = v134 * v473;
+    let v726 = v128 * v476;
+    let v727 = v725 + v726;
+    let v728 = -v727;
+    let v729 = v130 * v474;
+    let v730 = L::splat(2.0) * v729;
+    let v731 = v132 * v474;
+    let v732 = v130 * v475;
+    let v733 = v731 + v732;
+    let v734 = v134 * v474;
+    let v735 = v130 * v476;
+    let v736 = v734 - v735;
+    let v737 = v132 * v475;
+    let v738 = L::splat(2.0) * v737;
+    let v739 = v134 * v475;
+    let v740 = v132 * v476;
+    let v741 = v739 - v740;
+    let v742 = v134 * v476;
+    let v743 = v399 - v376;
+    let v744 = v402 - v378;
+    let v745 = v505 - v344;
+    let v746 = v512 - v345;
+    let v747 = v519 - v346;
+    let v748 = v540 - v292;
+    let v749 = v547 - v293;
+    let v750 = v554 - v294;
+    let v751 = v579 - v350;
+    let v752 = v586 - v351;
+    let v753 = v593 - v352;
+    let v754 = v606 - v298;
+    let v755 = v613 - v299;
+    let v756 = v620 - v300;
+    let v757 = L::splat((-2.0)) * v691;
+    let v758 = v693 - v692;
+    let v759 = v699 - v698;
+    let v760 = v701 - v700;
+    let v761 = L::splat((-2.0)) * v720;
+    let v762 = v722 - v721;
+    let v763 = v724 - v723;
+    let v764 = L::splat((-2.0)) * v742;
+    grad0[0] = v398;
+    grad0[1] = v743;
+    grad0[2] = v401;
+    grad0[3] = v744;
+    grad0[4] = v405;
+    grad0[5] = v407;
+    grad0[6] = v409;
+    grad0[7] = v411;
+    grad0[8] = v413;
+    grad0[9] = v415;
+    grad0[10] = v417;
+    grad0[11] = v419;
+    hess0[0] = v479;
+    hess0[1] = v483;
+    hess0[12] = v483;
+    hess0[2] = v487;
+    hess0[24] = v487;
+    hess0[3] = v491;
+    hess0[36] = v491;
+    hess0[4] = v495;
+    hess0[48] = v495;
+    hess0[5] = v498;
+    hess0[60] = v498;
+    hess0[6] = v502;
+    hess0[72] = v502;
+    hess0[7] = v745;
+    hess0[84] = v745;
+    hess0[8] = v509;
+    hess0[96] = v509;
+    hess0[9] = v746;
+    hess0[108] = v746;
+    hess0[10] = v516;
+    hess0[120] = v516;
+    hess0[11] = v747;
+    hess0[132] = v747;
+    hess0[13] = v522;
+    hess0[14] = v526;
+    hess0[25] = v526;
+    hess0[15] = v530;
+    hess0[37] = v530;
+    hess0[16] = v533;
+    hess0[49] = v533;
+    hess0[17] = v537;
+    hess0[61] = v537;
+    hess0[18] = v748;
+    hess0[73] = v748;
+    hess0[19] = v544;
+    hess0[85] = v544;
+    hess0[20] = v749;
+    hess0[97] = v749;
+    hess0[21] = v551;
+    hess0[109] = v551;
+    hess0[22] = v750;
+    hess0[121] = v750;
+    hess0[23] = v558;
+    hess0[133] = v558;
+    hess0[26] = v561;
+    hess0[27] = v565;
+    hess0[38] = v565;
+    hess0[28] = v569;
+    hess0[50] = v569;
+    hess0[29] = v572;
+    hess0[62] = v572;
+    hess0[30] = v576;
+    hess0[74] = v576;
+    hess0[31] = v751;
+    hess0[86] = v751;
+    hess0[32] = v583;
+    hess0[98] = v583;
+    hess0[33] = v752;
+    hess0[110] = v752;
+    hess0[34] = v590;
+    hess0[122] = v590;
+    hess0[35] = v753;
+    hess0[134] = v753;
+    hess0[39] = v596;
+    hess0[40] = v599;
+    hess0[51] = v599;
+    hess0[41] = v603;
+    hess0[63] = v603;
+    hess0[42] = v754;
+    hess0[75] = v754;
+    hess0[43] = v610;
+    hess0[87] = v610;
+    hess0[44] = v755;
+    hess0[99] = v755;
+    hess0[45] = v617;
+    hess0[111] = v617;
+    hess0[46] = v756;
+    hess0[123] = v756;
+    hess0[47] = v624;
+    hess0[135] = v624;
+    hess0[52] = v628;
+    hess0[53] = v632;
+    hess0[64] = v632;
+    hess0[54] = v637;
+    hess0[76] = v637;
+    hess0[55] = v641;
+    hess0[88] = v641;
+    hess0[56] = v646;
+    hess0[100] = v646;
+    hess0[57] = v650;
+    hess0[112] = v650;
+    hess0[58] = v655;
+    hess0[124] = v655;
+    hess0[59] = v659;
+    hess0[136] = v659;
+    hess0[65] = v663;
+    hess0[66] = v667;
+    hess0[77] = v667;
+    hess0[67] = v672;
+    hess0[89] = v672;
+    hess0[68] = v676;
+    hess0[101] = v676;
+    hess0[69] = v681;
+    hess0[113] = v681;
+    hess0[70] = v685;
+    hess0[125] = v685;
+    hess0[71] = v690;
+    hess0[137] = v690;
+    hess0[78] = v757;
+    hess0[79] = v758;
+    hess0[90] = v758;
+    hess0[80] = v697;
+    hess0[102] = v697;
+    hess0[81] = v759;
+    hess0[114] = v759;
+    hess0[82] = v760;
+    hess0[126] = v760;
+    hess0[83] = v705;
+    hess0[138] = v705;
+    hess0[91] = v707;
+    hess0[92] = v710;
+    hess0[103] = v710;
+    hess0[93] = v713;
+    hess0[115] = v713;
+    hess0[94] = v716;
+    hess0[127] = v716;
+    hess0[95] = v719;
+    hess0[139] = v719;
+    hess0[104] = v761;
+    hess0[105] = v762;
+    hess0[116] = v762;
+    hess0[106] = v763;
+    hess0[128] = v763;
+    hess0[107] = v728;
+    hess0[140] = v728;
+    hess0[117] = v730;
+    hess0[118] = v733;
+    hess0[129] = v733;
+    hess0[119] = v736;
+    hess0[141] = v736;
+    hess0[130] = v738;
+    hess0[131] = v741;
+    hess0[142] = v741;
+    hess0[143] = v764;
+    v396
+}
+/// `quadratic_slave_normal_slip_type4` over 4 lanes (portable build).
+fn quadratic_slave_normal_slip_type4_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type4_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `quadratic_slave_normal_slip_type4` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn quadratic_slave_normal_slip_type4_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type4_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `quadratic_slave_normal_slip_type5`: `quadratic-slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic, quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 902 ops (312 add, 570 mul, 2 div, 1 sqrt, 17 neg).
+#[inline(always)]
+fn quadratic_slave_normal_slip_type5_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..12];
+    let grad0 = &mut grad0[..12];
+    let hess0 = &mut hess0[..144];
+    let xi_in = *xi_m;
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = d[8];
+    let v7 = d[9];
+    let v8 = d[10];
+    let v9 = d[11];
+    let v10 = xi_s;
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
+    let v13 = v11 * v12;
+    let v14 = L::splat(1.0) + v10;
+    let v15 = v11 * v14;
+    let v16 = v0 * v15;
+    let v17 = v1 * v15;
+    let v18 = v10 * v10;
+    let v19 = L::splat(1.0) - v18;
+    let v20 = v2 * v19;
+    let v21 = v3 * v19;
+    let v22 = v16 + v20;
+    let v23 = v17 + v21;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
+    let v26 = v0 * v25;
+    let v27 = v1 * v25;
+    let v28 = L::splat(2.0) * v10;
+    let v29 = v2 * v28;
+    let v30 = v3 * v28;
+    let v31 = v26 - v29;
+    let v32 = v27 - v30;
+    let v33 = xi_in;
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
+    let v36 = v34 * v35;
+    let v37 = v4 * v36;
+    let v38 = v5 * v36;
+    let v39 = L::splat(1.0) + v33;
+    let v40 = v34 * v39;
+    let v41 = v6 * v40;
+    let v42 = v7 * v40;
+    let v43 = v37 + v41;
+    let v44 = v38 + v42;
+    let v45 = v33 * v33;
+    let v46 = L::splat(1.0) - v45;
+    let v47 = v8 * v46;
+    let v48 = v9 * v46;
+    let v49 = v43 + v47;
+    let v50 = v44 + v48;
+    let v51 = v22 - v49;
+    let v52 = v23 - v50;
+    let v53 = v31 * v31;
+    let v54 = v32 * v32;
+    let v55 = v53 + v54;
+    let v56 = v55.sqrt();
+    let v57 = v56.recip();
+    let v58 = v32 * v57;
+    let v59 = v31 * v57;
+    let v60 = xi_m0;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v60 - L::splat(1.0);
+    let v63 = v61 * v62;
+    let v64 = v4 * v63;
+    let v65 = v5 * v63;
+    let v66 = L::splat(1.0) + v60;
+    let v67 = v61 * v66;
+    let v68 = v6 * v67;
+    let v69 = v7 * v67;
+    let v70 = v64 + v68;
+    let v71 = v65 + v69;
+    let v72 = v60 * v60;
+    let v73 = L::splat(1.0) - v72;
+    let v74 = v8 * v73;
+    let v75 = v9 * v73;
+    let v76 = v70 + v74;
+    let v77 = v71 + v75;
+    let v78 = v49 - v76;
+    let v79 = v50 - v77;
+    let v80 = v33 + v35;
+    let v81 = L::splat(0.5) * v80;
+    let v82 = v4 * v81;
+    let v83 = v33 + v39;
+    let v84 = L::splat(0.5) * v83;
+    let v85 = v6 * v84;
+    let v86 = v82 + v85;
+    let v87 = L::splat(2.0) * v33;
+    let v88 = v8 * v87;
+    let v89 = v86 - v88;
+    let v90 = v31 * v89;
+    let v91 = v5 * v81;
+    let v92 = v7 * v84;
+    let v93 = v91 + v92;
+    let v94 = v9 * v87;
+    let v95 = v93 - v94;
+    let v96 = v32 * v95;
+    let v97 = v90 + v96;
+    let v98 = v97.recip();
+    let v99 = v24 * v51;
+    let v100 = v13 * v31;
+    let v101 = v99 + v100;
+    let v102 = v98 * v101;
+    let v103 = v24 * v52;
+    let v104 = v13 * v32;
+    let v105 = v103 + v104;
+    let v106 = v98 * v105;
+    let v107 = v25 * v51;
+    let v108 = v15 * v31;
+    let v109 = v107 + v108;
+    let v110 = v98 * v109;
+    let v111 = v25 * v52;
+    let v112 = v15 * v32;
+    let v113 = v111 + v112;
+    let v114 = v98 * v113;
+    let v115 = v28 * v51;
+    let v116 = v19 * v31;
+    let v117 = v115 - v116;
+    let v118 = v98 * v117;
+    let v119 = v28 * v52;
+    let v120 = v19 * v32;
+    let v121 = v119 - v120;
+    let v122 = v98 * v121;
+    let v123 = v31 * v36;
+    let v124 = v98 * v123;
+    let v125 = v32 * v36;
+    let v126 = v98 * v125;
+    let v127 = v31 * v40;
+    let v128 = v98 * v127;
+    let v129 = v32 * v40;
+    let v130 = v98 * v129;
+    let v131 = v31 * v46;
+    let v132 = v98 * v131;
+    let v133 = v32 * v46;
+    let v134 = v98 * v133;
+    let v135 = v4 + v6;
+    let v136 = L::splat(2.0) * v8;
+    let v137 = v135 - v136;
+    let v138 = L::splat(0.5) * v137;
+    let v139 = v5 + v7;
+    let v140 = L::splat(2.0) * v9;
+    let v141 = v139 - v140;
+    let v142 = L::splat(0.5) * v141;
+    let v143 = L::splat(2.0) * v31;
+    let v144 = L::splat(2.0) * v32;
+    let v145 = L::splat(0.5) * v57;
+    let v146 = v57 * v57;
+    let v147 = v24 * v143;
+    let v148 = v145 * v147;
+    let v149 = v146 * v148;
+    let v150 = v32 * v149;
+    let v151 = v24 * v144;
+    let v152 = v145 * v151;
+    let v153 = v146 * v152;
+    let v154 = v24 * v57;
+    let v155 = v32 * v153;
+    let v156 = v154 - v155;
+    let v157 = v25 * v143;
+    let v158 = v145 * v157;
+    let v159 = v146 * v158;
+    let v160 = v32 * v159;
+    let v161 = v25 * v144;
+    let v162 = v145 * v161;
+    let v163 = v146 * v162;
+    let v164 = v25 * v57;
+    let v165 = v32 * v163;
+    let v166 = v164 - v165;
+    let v167 = v28 * v143;
+    let v168 = v145 * v167;
+    let v169 = v146 * v168;
+    let v170 = v32 * v169;
+    let v171 = v28 * v144;
+    let v172 = v145 * v171;
+    let v173 = v146 * v172;
+    let v174 = v28 * v57;
+    let v175 = v32 * v173;
+    let v176 = v174 - v175;
+    let v177 = L::splat(2.0) * v57;
+    let v178 = v149 * v177;
+    let v179 = L::splat(0.5) * v149;
+    let v180 = L::splat(2.0) * v24;
+    let v181 = v24 * v180;
+    let v182 = v147 * v179;
+    let v183 = v145 * v181;
+    let v184 = v182 - v183;
+    let v185 = v148 * v178;
+    let v186 = v146 * v184;
+    let v187 = v185 + v186;
+    let v188 = v32 * v187;
+    let v189 = v153 * v177;
+    let v190 = L::splat(0.5) * v153;
+    let v191 = v147 * v190;
+    let v192 = v148 * v189;
+    let v193 = v146 * v191;
+    let v194 = v192 + v193;
+    let v195 = v24 * v149;
+    let v196 = v32 * v194;
+    let v197 = v195 - v196;
+    let v198 = v159 * v177;
+    let v199 = L::splat(0.5) * v159;
+    let v200 = L::splat(2.0) * v25;
+    let v201 = v24 * v200;
+    let v202 = v147 * v199;
+    let v203 = v145 * v201;
+    let v204 = v202 - v203;
+    let v205 = v148 * v198;
+    let v206 = v146 * v204;
+    let v207 = v205 + v206;
+    let v208 = v32 * v207;
+    let v209 = v163 * v177;
+    let v210 = L::splat(0.5) * v163;
+    let v211 = v147 * v210;
+    let v212 = v148 * v209;
+    let v213 = v146 * v211;
+    let v214 = v212 + v213;
+    let v215 = v25 * v149;
+    let v216 = v32 * v214;
+    let v217 = v215 - v216;
+    let v218 = v169 * v177;
+    let v219 = L::splat(0.5) * v169;
+    let v220 = L::splat(4.0) * v10;
+    let v221 = v24 * v220;
+    let v222 = v147 * v219;
+    let v223 = v145 * v221;
+    let v224 = v222 - v223;
+    let v225 = v148 * v218;
+    let v226 = v146 * v224;
+    let v227 = v225 + v226;
+    let v228 = v32 * v227;
+    let v229 = v173 * v177;
+    let v230 = L::splat(0.5) * v173;
+    let v231 = v147 * v230;
+    let v232 = v148 * v229;
+    let v233 = v146 * v231;
+    let v234 = v232 + v233;
+    let v235 = v28 * v149;
+    let v236 = v32 * v234;
+    let v237 = v235 - v236;
+    let v238 = v24 * v153;
+    let v239 = v151 * v190;
+    let v240 = v183 - v239;
+    let v241 = v152 * v189;
+    let v242 = v146 * v240;
+    let v243 = v241 - v242;
+    let v244 = v32 * v243;
+    let v245 = v238 - v244;
+    let v246 = v238 + v245;
+    let v247 = v24 * v159;
+    let v248 = v151 * v199;
+    let v249 = v152 * v198;
+    let v250 = v146 * v248;
+    let v251 = v249 + v250;
+    let v252 = v32 * v251;
+    let v253 = v247 - v252;
+    let v254 = v24 * v163;
+    let v255 = v151 * v210;
+    let v256 = v203 - v255;
+    let v257 = v152 * v209;
+    let v258 = v146 * v256;
+    let v259 = v257 - v258;
+    let v260 = v25 * v153;
+    let v261 = v32 * v259;
+    let v262 = v260 - v261;
+    let v263 = v254 + v262;
+    let v264 = v24 * v169;
+    let v265 = v151 * v219;
+    let v266 = v152 * v218;
+    let v267 = v146 * v265;
+    let v268 = v266 + v267;
+    let v269 = v32 * v268;
+    let v270 = v264 - v269;
+    let v271 = v24 * v173;
+    let v272 = v151 * v230;
+    let v273 = v223 - v272;
+    let v274 = v152 * v229;
+    let v275 = v146 * v273;
+    let v276 = v274 - v275;
+    let v277 = v28 * v153;
+    let v278 = v32 * v276;
+    let v279 = v277 - v278;
+    let v280 = v271 + v279;
+    let v281 = v25 * v200;
+    let v282 = v157 * v199;
+    let v283 = v145 * v281;
+    let v284 = v282 - v283;
+    let v285 = v158 * v198;
+    let v286 = v146 * v284;
+    let v287 = v285 + v286;
+    let v288 = v32 * v287;
+    let v289 = v157 * v210;
+    let v290 = v158 * v209;
+    let v291 = v146 * v289;
+    let v292 = v290 + v291;
+    let v293 = v25 * v159;
+    let v294 = v32 * v292;
+    let v295 = v293 - v294;
+    let v296 = v25 * v220;
+    let v297 = v157 * v219;
+    let v298 = v145 * v296;
+    let v299 = v297 - v298;
+    let v300 = v158 * v218;
+    let v301 = v146 * v299;
+    let v302 = v300 + v301;
+    let v303 = v32 * v302;
+    let v304 = v157 * v230;
+    let v305 = v158 * v229;
+    let v306 = v146 * v304;
+    let v307 = v305 + v306;
+    let v308 = v28 * v159;
+    let v309 = v32 * v307;
+    let v310 = v308 - v309;
+    let v311 = v25 * v163;
+    let v312 = v161 * v210;
+    let v313 = v283 - v312;
+    let v314 = v162 * v209;
+    let v315 = v146 * v313;
+    let v316 = v314 - v315;
+    let v317 = v32 * v316;
+    let v318 = v311 - v317;
+    let v319 = v311 + v318;
+    let v320 = v25 * v169;
+    let v321 = v161 * v219;
+    let v322 = v162 * v218;
+    let v323 = v146 * v321;
+    let v324 = v322 + v323;
+    let v325 = v32 * v324;
+    let v326 = v320 - v325;
+    let v327 = v25 * v173;
+    let v328 = v161 * v230;
+    let v329 = v298 - v328;
+    let v330 = v162 * v229;
+    let v331 = v146 * v329;
+    let v332 = v330 - v331;
+    let v333 = v28 * v163;
+    let v334 = v32 * v332;
+    let v335 = v333 - v334;
+    let v336 = v327 + v335;
+    let v337 = v28 * v220;
+    let v338 = v167 * v219;
+    let v339 = v145 * v337;
+    let v340 = v338 - v339;
+    let v341 = v168 * v218;
+    let v342 = v146 * v340;
+    let v343 = v341 + v342;
+    let v344 = v32 * v343;
+    let v345 = v167 * v230;
+    let v346 = v168 * v229;
+    let v347 = v146 * v345;
+    let v348 = v346 + v347;
+    let v349 = v28 * v169;
+    let v350 = v32 * v348;
+    let v351 = v349 - v350;
+    let v352 = v28 * v173;
+    let v353 = v171 * v230;
+    let v354 = v339 - v353;
+    let v355 = v172 * v229;
+    let v356 = v146 * v354;
+    let v357 = v355 - v356;
+    let v358 = v32 * v357;
+    let v359 = v352 - v358;
+    let v360 = v352 + v359;
+    let v361 = v31 * v149;
+    let v362 = v154 - v361;
+    let v363 = v31 * v153;
+    let v364 = v31 * v159;
+    let v365 = v164 - v364;
+    let v366 = v31 * v163;
+    let v367 = v31 * v169;
+    let v368 = v174 - v367;
+    let v369 = v31 * v173;
+    let v370 = v31 * v187;
+    let v371 = v195 - v370;
+    let v372 = v195 + v371;
+    let v373 = v31 * v194;
+    let v374 = v238 - v373;
+    let v375 = v31 * v207;
+    let v376 = v215 - v375;
+    let v377 = v247 + v376;
+    let v378 = v31 * v214;
+    let v379 = v254 - v378;
+    let v380 = v31 * v227;
+    let v381 = v235 - v380;
+    let v382 = v264 + v381;
+    let v383 = v31 * v234;
+    let v384 = v271 - v383;
+    let v385 = v31 * v243;
+    let v386 = v31 * v251;
+    let v387 = v260 - v386;
+    let v388 = v31 * v259;
+    let v389 = v31 * v268;
+    let v390 = v277 - v389;
+    let v391 = v31 * v276;
+    let v392 = v31 * v287;
+    let v393 = v293 - v392;
+    let v394 = v293 + v393;
+    let v395 = v31 * v292;
+    let v396 = v311 - v395;
+    let v397 = v31 * v302;
+    let v398 = v308 - v397;
+    let v399 = v320 + v398;
+    let v400 = v31 * v307;
+    let v401 = v327 - v400;
+    let v402 = v31 * v316;
+    let v403 = v31 * v324;
+    let v404 = v333 - v403;
+    let v405 = v31 * v332;
+    let v406 = v31 * v343;
+    let v407 = v349 - v406;
+    let v408 = v349 + v407;
+    let v409 = v31 * v348;
+    let v410 = v352 - v409;
+    let v411 = v31 * v357;
+    let v412 = v36 - v63;
+    let v413 = v40 - v67;
+    let v414 = v46 - v73;
+    let v415 = v78 * v362;
+    let v416 = v78 * v363;
+    let v417 = v78 * v365;
+    let v418 = v78 * v366;
+    let v419 = v78 * v368;
+    let v420 = v78 * v369;
+    let v421 = v59 * v412;
+    let v422 = v59 * v413;
+    let v423 = v59 * v414;
+    let v424 = v59 * v89;
+    let v425 = v78 * v372;
+    let v426 = v78 * v374;
+    let v427 = v78 * v377;
+    let v428 = v78 * v379;
+    let v429 = v78 * v382;
+    let v430 = v78 * v384;
+    let v431 = v78 * v385;
+    let v432 = v78 * v387;
+    let v433 = v78 * v388;
+    let v434 = v78 * v390;
+    let v435 = v78 * v391;
+    let v436 = v78 * v394;
+    let v437 = v78 * v396;
+    let v438 = v78 * v399;
+    let v439 = v78 * v401;
+    let v440 = v78 * v402;
+    let v441 = v78 * v404;
+    let v442 = v78 * v405;
+    let v443 = v78 * v408;
+    let v444 = v78 * v410;
+    let v445 = v78 * v411;
+    let v446 = v59 * v81;
+    let v447 = v59 * v84;
+    let v448 = v59 * v87;
+    let v449 = v59 * v138;
+    let v450 = v362 * v412;
+    let v451 = v362 * v413;
+    let v452 = v362 * v414;
+    let v453 = v363 * v412;
+    let v454 = v363 * v413;
+    let v455 = v363 * v414;
+    let v456 = v365 * v412;
+    let v457 = v365 * v413;
+    let v458 = v365 * v414;
+    let v459 = v366 * v412;
+    let v460 = v366 * v413;
+    let v461 = v366 * v414;
+    let v462 = v368 * v412;
+    let v463 = v368 * v413;
+    let v464 = v368 * v414;
+    let v465 = v369 * v412;
+    let v466 = v369 * v413;
+    let v467 = v369 * v414;
+    let v468 = v89 * v362;
+    let v469 = v89 * v363;
+    let v470 = v89 * v365;
+    let v471 = v89 * v366;
+    let v472 = v89 * v368;
+    let v473 = v89 * v369;
+    let v474 = v59 * v78;
+    let v475 = v79 * v150;
+    let v476 = v79 * v156;
+    let v477 = v79 * v160;
+    let v478 = v79 * v166;
+    let v479 = v79 * v170;
+    let v480 = v79 * v176;
+    let v481 = v58 * v412;
+    let v482 = v58 * v413;
+    let v483 = v58 * v414;
+    let v484 = v58 * v95;
+    let v485 = v79 * v188;
+    let v486 = v79 * v197;
+    let v487 = v79 * v208;
+    let v488 = v79 * v217;
+    let v489 = v79 * v228;
+    let v490 = v79 * v237;
+    let v491 = v79 * v246;
+    let v492 = v79 * v253;
+    let v493 = v79 * v263;
+    let v494 = v79 * v270;
+    let v495 = v79 * v280;
+    let v496 = v79 * v288;
+    let v497 = v79 * v295;
+    let v498 = v79 * v303;
+    let v499 = v79 * v310;
+    let v500 = v79 * v319;
+    let v501 = v79 * v326;
+    let v502 = v79 * v336;
+    let v503 = v79 * v344;
+    let v504 = v79 * v351;
+    let v505 = v79 * v360;
+    let v506 = v58 * v81;
+    let v507 = v58 * v84;
+    let v508 = v58 * v87;
+    let v509 = v58 * v142;
+    let v510 = v150 * v412;
+    let v511 = v150 * v413;
+    let v512 = v150 * v414;
+    let v513 = v156 * v412;
+    let v514 = v156 * v413;
+    let v515 = v156 * v414;
+    let v516 = v160 * v412;
+    let v517 = v160 * v413;
+    let v518 = v160 * v414;
+    let v519 = v166 * v412;
+    let v520 = v166 * v413;
+    let v521 = v166 * v414;
+    let v522 = v170 * v412;
+    let v523 = v170 * v413;
+    let v524 = v170 * v414;
+    let v525 = v176 * v412;
+    let v526 = v176 * v413;
+    let v527 = v176 * v414;
+    let v528 = v95 * v150;
+    let v529 = v95 * v156;
+    let v530 = v95 * v160;
+    let v531 = v95 * v166;
+    let v532 = v95 * v170;
+    let v533 = v95 * v176;
+    let v534 = v58 * v79;
+    let v535 = v415 - v475;
+    let v536 = v416 - v476;
+    let v537 = v417 - v477;
+    let v538 = v418 - v478;
+    let v539 = v419 - v479;
+    let v540 = v420 - v480;
+    let v541 = v424 + v484;
+    let v542 = v425 - v485;
+    let v543 = v426 + v486;
+    let v544 = v427 - v487;
+    let v545 = v428 + v488;
+    let v546 = v429 - v489;
+    let v547 = v430 + v490;
+    let v548 = v431 - v491;
+    let v549 = v432 + v492;
+    let v550 = v433 - v493;
+    let v551 = v434 + v494;
+    let v552 = v435 - v495;
+    let v553 = v436 - v496;
+    let v554 = v437 + v497;
+    let v555 = v438 - v498;
+    let v556 = v439 + v499;
+    let v557 = v440 - v500;
+    let v558 = v441 + v501;
+    let v559 = v442 - v502;
+    let v560 = v443 - v503;
+    let v561 = v444 + v504;
+    let v562 = v445 - v505;
+    let v563 = v468 - v528;
+    let v564 = v469 - v529;
+    let v565 = v470 - v530;
+    let v566 = v471 - v531;
+    let v567 = v472 - v532;
+    let v568 = v473 - v533;
+    let v569 = v449 + v509;
+    let v570 = v474 + v534;
+    let v571 = v102 * v541;
+    let v572 = v535 + v571;
+    let v573 = v106 * v541;
+    let v574 = v110 * v541;
+    let v575 = v537 + v574;
+    let v576 = v114 * v541;
+    let v577 = v118 * v541;
+    let v578 = v539 + v577;
+    let v579 = -v578;
+    let v580 = v122 * v541;
+    let v581 = v540 - v580;
+    let v582 = v124 * v541;
+    let v583 = v421 - v582;
+    let v584 = v126 * v541;
+    let v585 = v481 - v584;
+    let v586 = v128 * v541;
+    let v587 = v422 - v586;
+    let v588 = v130 * v541;
+    let v589 = v482 - v588;
+    let v590 = v132 * v541;
+    let v591 = v423 - v590;
+    let v592 = v134 * v541;
+    let v593 = v483 - v592;
+    let v594 = v102 * v569;
+    let v595 = v106 * v569;
+    let v596 = v110 * v569;
+    let v597 = v114 * v569;
+    let v598 = v118 * v569;
+    let v599 = v122 * v569;
+    let v600 = v124 * v569;
+    let v601 = v126 * v569;
+    let v602 = v128 * v569;
+    let v603 = v130 * v569;
+    let v604 = v132 * v569;
+    let v605 = v134 * v569;
+    let v606 = v563 + v594;
+    let v607 = v564 - v595;
+    let v608 = v565 + v596;
+    let v609 = v566 - v597;
+    let v610 = v567 + v598;
+    let v611 = v568 - v599;
+    let v612 = v446 - v600;
+    let v613 = v506 - v601;
+    let v614 = v447 - v602;
+    let v615 = v507 - v603;
+    let v616 = v448 + v604;
+    let v617 = v508 + v605;
+    let v618 = v102 * v606;
+    let v619 = L::splat(2.0) * v618;
+    let v620 = v106 * v606;
+    let v621 = v102 * v607;
+    let v622 = v620 - v621;
+    let v623 = v110 * v606;
+    let v624 = v102 * v608;
+    let v625 = v623 + v624;
+    let v626 = v114 * v606;
+    let v627 = v102 * v609;
+    let v628 = v626 - v627;
+    let v629 = v118 * v606;
+    let v630 = v102 * v610;
+    let v631 = v629 + v630;
+    let v632 = v546 - v631;
+    let v633 = v122 * v606;
+    let v634 = v102 * v611;
+    let v635 = v633 - v634;
+    let v636 = v547 - v635;
+    let v637 = v124 * v606;
+    let v638 = v102 * v612;
+    let v639 = v637 - v638;
+    let v640 = v450 - v639;
+    let v641 = v126 * v606;
+    let v642 = v102 * v613;
+    let v643 = v641 - v642;
+    let v644 = v510 + v643;
+    let v645 = -v644;
+    let v646 = v128 * v606;
+    let v647 = v102 * v614;
+    let v648 = v646 - v647;
+    let v649 = v451 - v648;
+    let v650 = v130 * v606;
+    let v651 = v102 * v615;
+    let v652 = v650 - v651;
+    let v653 = v511 + v652;
+    let v654 = -v653;
+    let v655 = v132 * v606;
+    let v656 = v102 * v616;
+    let v657 = v655 + v656;
+    let v658 = v452 - v657;
+    let v659 = v134 * v606;
+    let v660 = v102 * v617;
+    let v661 = v659 + v660;
+    let v662 = v512 + v661;
+    let v663 = -v662;
+    let v664 = v106 * v607;
+    let v665 = L::splat(2.0) * v664;
+    let v666 = v548 - v665;
+    let v667 = v110 * v607;
+    let v668 = v106 * v608;
+    let v669 = v667 - v668;
+    let v670 = v549 + v669;
+    let v671 = -v670;
+    let v672 = v114 * v607;
+    let v673 = v106 * v609;
+    let v674 = v672 + v673;
+    let v675 = v550 - v674;
+    let v676 = v118 * v607;
+    let v677 = v106 * v610;
+    let v678 = v676 - v677;
+    let v679 = v551 + v678;
+    let v680 = v122 * v607;
+    let v681 = v106 * v611;
+    let v682 = v680 + v681;
+    let v683 = v124 * v607;
+    let v684 = v106 * v612;
+    let v685 = v683 + v684;
+    let v686 = v126 * v607;
+    let v687 = v106 * v613;
+    let v688 = v686 + v687;
+    let v689 = v513 + v688;
+    let v690 = v128 * v607;
+    let v691 = v106 * v614;
+    let v692 = v690 + v691;
+    let v693 = v130 * v607;
+    let v694 = v106 * v615;
+    let v695 = v693 + v694;
+    let v696 = v514 + v695;
+    let v697 = v132 * v607;
+    let v698 = v106 * v616;
+    let v699 = v697 - v698;
+    let v700 = v134 * v607;
+    let v701 = v106 * v617;
+    let v702 = v700 - v701;
+    let v703 = v515 + v702;
+    let v704 = v110 * v608;
+    let v705 = L::splat(2.0) * v704;
+    let v706 = v114 * v608;
+    let v707 = v110 * v609;
+    let v708 = v706 - v707;
+    let v709 = v118 * v608;
+    let v710 = v110 * v610;
+    let v711 = v709 + v710;
+    let v712 = v555 - v711;
+    let v713 = v122 * v608;
+    let v714 = v110 * v611;
+    let v715 = v713 - v714;
+    let v716 = v556 - v715;
+    let v717 = v124 * v608;
+    let v718 = v110 * v612;
+    let v719 = v717 - v718;
+    let v720 = v456 - v719;
+    let v721 = v126 * v608;
+    let v722 = v110 * v613;
+    let v723 = v721 - v722;
+    let v724 = v516 + v723;
+    let v725 = -v724;
+    let v726 = v128 * v608;
+    let v727 = v110 * v614;
+    let v728 = v726 - v727;
+    let v729 = v457 - v728;
+    let v730 = v130 * v608;
+    let v731 = v110 * v615;
+    let v732 = v730 - v731;
+    let v733 = v517 + v732;
+    let v734 = -v733;
+    let v735 = v132 * v608;
+    let v736 = v110 * v616;
+    let v737 = v735 + v736;
+    let v738 = v458 - v737;
+    let v739 = v134 * v608;
+    let v740 = v110 * v617;
+    let v741 = v739 + v740;
+    let v742 = v518 + v741;
+    let v743 = -v742;
+    let v744 = v114 * v609;
+    let v745 = L::splat(2.0) * v744;
+    let v746 = v557 - v745;
+    let v747 = v118 * v609;
+    let v748 = v114 * v610;
+    let v749 = v747 - v748;
+    let v750 = v558 + v749;
+    let v751 = v122 * v609;
+    let v752 = v114 * v611;
+    let v753 = v751 + v752;
+    let v754 = v124 * v609;
+    let v755 = v114 * v612;
+    let v756 = v754 + v755;
+    let v757 = v126 * v609;
+    let v758 = v114 * v613;
+    let v759 = v757 + v758;
+    let v760 = v519 + v759;
+    let v761 = v128 * v609;
+    let v762 = v114 * v614;
+    let v763 = v761 + v762;
+    let v764 = v130 * v609;
+    let v765 = v114 * v615;
+    let v766 = v764 + v765;
+    let v767 = v520 + v766;
+    let v768 = v132 * v609;
+    let v769 = v114 * v616;
+    let v770 = v768 - v769;
+    let v771 = v134 * v609;
+    let v772 = v114 * v617;
+    let v773 = v771 - v772;
+    let v774 = v521 + v773;
+    let v775 = v118 * v610;
+    let v776 = L::splat(2.0) * v775;
+    let v777 = v122 * v610;
+    let v778 = v118 * v611;
+    let v779 = v777 - v778;
+    let v780 = v124 * v610;
+    let v781 = v118 * v612;
+    let v782 = v780 - v781;
+    let v783 = v126 * v610;
+    let v784 = v118 * v613;
+    let v785 = v783 - v784;
+    let v786 = v522 + v785;
+    let v787 = v128 * v610;
+    let v788 = v118 * v614;
+    let v789 = v787 - v788;
+    let v790 = v130 * v610;
+    let v791 = v118 * v615;
+    let v792 = v790 - v791;
+    let v793 = v523 + v792;
+    let v794 = v132 * v610;
+    let v795 = v118 * v616;
+    let v796 = v794 + v795;
+    let v797 = v134 * v610;
+    let v798 = v118 * v617;
+    let v799 = v797 + v798;
+    let v800 = v524 + v799;
+    let v801 = v122 * v611;
+    let v802 = L::splat(2.0) * v801;
+    let v803 = v562 - v802;
+    let v804 = v124 * v611;
+    let v805 = v122 * v612;
+    let v806 = v804 + v805;
+    let v807 = v465 - v806;
+    let v808 = v126 * v611;
+    let v809 = v122 * v613;
+    let v810 = v808 + v809;
+    let v811 = v525 + v810;
+    let v812 = -v811;
+    let v813 = v128 * v611;
+    let v814 = v122 * v614;
+    let v815 = v813 + v814;
+    let v816 = v466 - v815;
+    let v817 = v130 * v611;
+    let v818 = v122 * v615;
+    let v819 = v817 + v818;
+    let v820 = v526 + v819;
+    let v821 = -v820;
+    let v822 = v132 * v611;
+    let v823 = v122 * v616;
+    let v824 = v822 - v823;
+    let v825 = v467 - v824;
+    let v826 = v134 * v611;
+    let v827 = v122 * v617;
+    let v828 = v826 - v827;
+    let v829 = v527 + v828;
+    let v830 = -v829;
+    let v831 = v124 * v612;
+    let v832 = v126 * v612;
+    let v833 = v124 * v613;
+    let v834 = v832 + v833;
+    let v835 = -v834;
+    let v836 = v128 * v612;
+    let v837 = v124 * v614;
+    let v838 = v836 + v837;
+    let v839 = -v838;
+    let v840 = v130 * v612;
+    let v841 = v124 * v615;
+    let v842 = v840 + v841;
+    let v843 = -v842;
+    let v844 = v132 * v612;
+    let v845 = v124 * v616;
+    let v846 = v134 * v612;
+    let v847 = v124 * v617;
+    let v848 = v126 * v613;
+    let v849 = v128 * v613;
+    let v850 = v126 * v614;
+    let v851 = v849 + v850;
+    let v852 = -v851;
+    let v853 = v130 * v613;
+    let v854 = v126 * v615;
+    let v855 = v853 + v854;
+    let v856 = -v855;
+    let v857 = v132 * v613;
+    let v858 = v126 * v616;
+    let v859 = v134 * v613;
+    let v860 = v126 * v617;
+    let v861 = v128 * v614;
+    let v862 = v130 * v614;
+    let v863 = v128 * v615;
+    let v864 = v862 + v863;
+    let v865 = -v864;
+    let v866 = v132 * v614;
+    let v867 = v128 * v616;
+    let v868 = v134 * v614;
+    let v869 = v128 * v617;
+    let v870 = v130 * v615;
+    let v871 = v132 * v615;
+    let v872 = v130 * v616;
+    let v873 = v134 * v615;
+    let v874 = v130 * v617;
+    let v875 = v132 * v616;
+    let v876 = L::splat(2.0) * v875;
+    let v877 = v134 * v616;
+    let v878 = v132 * v617;
+    let v879 = v877 + v878;
+    let v880 = v134 * v617;
+    let v881 = L::splat(2.0) * v880;
+    let v882 = v573 - v536;
+    let v883 = v576 - v538;
+    let v884 = v619 - v542;
+    let v885 = v622 - v543;
+    let v886 = v625 - v544;
+    let v887 = v628 - v545;
+    let v888 = v682 - v552;
+    let v889 = v685 - v453;
+    let v890 = v692 - v454;
+    let v891 = v699 - v455;
+    let v892 = v705 - v553;
+    let v893 = v708 - v554;
+    let v894 = v753 - v559;
+    let v895 = v756 - v459;
+    let v896 = v763 - v460;
+    let v897 = v770 - v461;
+    let v898 = v776 - v560;
+    let v899 = v779 - v561;
+    let v900 = v782 - v462;
+    let v901 = v789 - v463;
+    let v902 = v796 - v464;
+    let v903 = L::splat((-2.0)) * v831;
+    let v904 = v845 - v844;
+    let v905 = v847 - v846;
+    let v906 = L::splat((-2.0)) * v848;
+    let v907 = v858 - v857;
+    let v908 = v860 - v859;
+    let v909 = L::splat((-2.0)) * v861;
+    let v910 = v867 - v866;
+    let v911 = v869 - v868;
+    let v912 = L::splat((-2.0)) * v870;
+    let v913 = v872 - v871;
+    let v914 = v874 - v873;
+    grad0[0] = v572;
+    grad0[1] = v882;
+    grad0[2] = v575;
+    grad0[3] = v883;
+    grad0[4] = v579;
+    grad0[5] = v581;
+    grad0[6] = v583;
+    grad0[7] = v585;
+    grad0[8] = v587;
+    grad0[9] = v589;
+    grad0[10] = v591;
+    grad0[11] = v593;
+    hess0[0] = v884;
+    hess0[1] = v885;
+    hess0[12] = v885;
+    hess0[2] = v886;
+    hess0[24] = v886;
+    hess0[3] = v887;
+    hess0[36] = v887;
+    hess0[4] = v632;
+    hess0[48] = v632;
+    hess0[5] = v636;
+    hess0[60] = v636;
+    hess0[6] = v640;
+    hess0[72] = v640;
+    hess0[7] = v645;
+    hess0[84] = v645;
+    hess0[8] = v649;
+    hess0[96] = v649;
+    hess0[9] = v654;
+    hess0[108] = v654;
+    hess0[10] = v658;
+    hess0[120] = v658;
+    hess0[11] = v663;
+    hess0[132] = v663;
+    hess0[13] = v666;
+    hess0[14] = v671;
+    hess0[25] = v671;
+    hess0[15] = v675;
+    hess0[37] = v675;
+    hess0[16] = v679;
+    hess0[49] = v679;
+    hess0[17] = v888;
+    hess0[61] = v888;
+    hess0[18] = v889;
+    hess0[73] = v889;
+    hess0[19] = v689;
+    hess0[85] = v689;
+    hess0[20] = v890;
+    hess0[97] = v890;
+    hess0[21] = v696;
+    hess0[109] = v696;
+    hess0[22] = v891;
+    hess0[121] = v891;
+    hess0[23] = v703;
+    hess0[133] = v703;
+    hess0[26] = v892;
+    hess0[27] = v893;
+    hess0[38] = v893;
+    hess0[28] = v712;
+    hess0[50] = v712;
+    hess0[29] = v716;
+    hess0[62] = v716;
+    hess0[30] = v720;
+    hess0[74] = v720;
+    hess0[31] = v725;
+    hess0[86] = v725;
+    hess0[32] = v729;
+    hess0[98] = v729;
+    hess0[33] = v734;
+    hess0[110] = v734;
+    hess0[34] = v738;
+    hess0[122] = v738;
+    hess0[35] = v743;
+    hess0[134] = v743;
+    hess0[39] = v746;
+    hess0[40] = v750;
+    hess0[51] = v750;
+    hess0[41] = v894;
+    hess0[63] = v894;
+    hess0[42] = v895;
+    hess0[75] = v895;
+    hess0[43] = v760;
+    hess0[87] = v760;
+    hess0[44] = v896;
+    hess0[99] = v896;
+    hess0[45] = v767;
+    hess0[111] = v767;
+    hess0[46] = v897;
+    hess0[123] = v897;
+    hess0[47] = v774;
+    hess0[135] = v774;
+    hess0[52] = v898;
+    hess0[53] = v899;
+    hess0[64] = v899;
+    hess0[54] = v900;
+    hess0[76] = v900;
+    hess0[55] = v786;
+    hess0[88] = v786;
+    hess0[56] = v901;
+    hess0[100] = v901;
+    hess0[57] = v793;
+    hess0[112] = v793;
+    hess0[58] = v902;
+    hess0[124] = v902;
+    hess0[59] = v800;
+    hess0[136] = v800;
+    hess0[65] = v803;
+    hess0[66] = v807;
+    hess0[77] = v807;
+    hess0[67] = v812;
+    hess0[89] = v812;
+    hess0[68] = v816;
+    hess0[101] = v816;
+    hess0[69] = v821;
+    hess0[113] = v821;
+    hess0[70] = v825;
+    hess0[125] = v825;
+    hess0[71] = v830;
+    hess0[137] = v830;
+    hess0[78] = v903;
+    hess0[79] = v835;
+    hess0[90] = v835;
+    hess0[80] = v839;
+    hess0[102] = v839;
+    hess0[81] = v843;
+    hess0[114] = v843;
+    hess0[82] = v904;
+    hess0[126] = v904;
+    hess0[83] = v905;
+    hess0[138] = v905;
+    hess0[91] = v906;
+    hess0[92] = v852;
+    hess0[103] = v852;
+    hess0[93] = v856;
+    hess0[115] = v856;
+    hess0[94] = v907;
+    hess0[127] = v907;
+    hess0[95] = v908;
+    hess0[139] = v908;
+    hess0[104] = v909;
+    hess0[105] = v865;
+    hess0[116] = v865;
+    hess0[106] = v910;
+    hess0[128] = v910;
+    hess0[107] = v911;
+    hess0[140] = v911;
+    hess0[117] = v912;
+    hess0[118] = v913;
+    hess0[129] = v913;
+    hess0[119] = v914;
+    hess0[141] = v914;
+    hess0[130] = v876;
+    hess0[131] = v879;
+    hess0[142] = v879;
+    hess0[143] = v881;
+    v570
+}
+/// `quadratic_slave_normal_slip_type5` over 4 lanes (portable build).
+fn quadratic_slave_normal_slip_type5_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type5_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `quadratic_slave_normal_slip_type5` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn quadratic_slave_normal_slip_type5_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type5_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `quadratic_slave_normal_slip_type6`: `quadratic-slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic, quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 1064 ops (373 add, 669 mul, 2 div, 1 sqrt, 19 neg).
+#[inline(always)]
+fn quadratic_slave_normal_slip_type6_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..12];
+    let grad0 = &mut grad0[..12];
+    let hess0 = &mut hess0[..144];
+    let xi_in = *xi_m;
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = d[8];
+    let v7 = d[9];
+    let v8 = d[10];
+    let v9 = d[11];
+    let v10 = xi_s;
+    let v11 = L::splat(0.5) * v10;
+    let v12 = v10 - L::splat(1.0);
+    let v13 = v11 * v12;
+    let v14 = L::splat(1.0) + v10;
+    let v15 = v11 * v14;
+    let v16 = v0 * v15;
+    let v17 = v1 * v15;
+    let v18 = v10 * v10;
+    let v19 = L::splat(1.0) - v18;
+    let v20 = v2 * v19;
+    let v21 = v3 * v19;
+    let v22 = v16 + v20;
+    let v23 = v17 + v21;
+    let v24 = v10 - L::splat(0.5);
+    let v25 = L::splat(0.5) + v10;
+    let v26 = v0 * v25;
+    let v27 = v1 * v25;
+    let v28 = L::splat(2.0) * v10;
+    let v29 = v2 * v28;
+    let v30 = v3 * v28;
+    let v31 = v26 - v29;
+    let v32 = v27 - v30;
+    let v33 = xi_in;
+    let v34 = L::splat(0.5) * v33;
+    let v35 = v33 - L::splat(1.0);
+    let v36 = v34 * v35;
+    let v37 = v4 * v36;
+    let v38 = v5 * v36;
+    let v39 = L::splat(1.0) + v33;
+    let v40 = v34 * v39;
+    let v41 = v6 * v40;
+    let v42 = v7 * v40;
+    let v43 = v37 + v41;
+    let v44 = v38 + v42;
+    let v45 = v33 * v33;
+    let v46 = L::splat(1.0) - v45;
+    let v47 = v8 * v46;
+    let v48 = v9 * v46;
+    let v49 = v43 + v47;
+    let v50 = v44 + v48;
+    let v51 = v22 - v49;
+    let v52 = v23 - v50;
+    let v53 = v31 * v31;
+    let v54 = v32 * v32;
+    let v55 = v53 + v54;
+    let v56 = v55.sqrt();
+    let v57 = v56.recip();
+    let v58 = v32 * v57;
+    let v59 = v31 * v57;
+    let v60 = xi_m0;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v60 - L::splat(1.0);
+    let v63 = v61 * v62;
+    let v64 = v4 * v63;
+    let v65 = v5 * v63;
+    let v66 = L::splat(1.0) + v60;
+    let v67 = v61 * v66;
+    let v68 = v6 * v67;
+    let v69 = v7 * v67;
+    let v70 = v64 + v68;
+    let v71 = v65 + v69;
+    let v72 = v60 * v60;
+    let v73 = L::splat(1.0) - v72;
+    let v74 = v8 * v73;
+    let v75 = v9 * v73;
+    let v76 = v70 + v74;
+    let v77 = v71 + v75;
+    let v78 = v49 - v76;
+    let v79 = v50 - v77;
+    let v80 = v33 + v35;
+    let v81 = L::splat(0.5) * v80;
+    let v82 = v4 * v81;
+    let v83 = v33 + v39;
+    let v84 = L::splat(0.5) * v83;
+    let v85 = v6 * v84;
+    let v86 = v82 + v85;
+    let v87 = L::splat(2.0) * v33;
+    let v88 = v8 * v87;
+    let v89 = v86 - v88;
+    let v90 = v31 * v89;
+    let v91 = v5 * v81;
+    let v92 = v7 * v84;
+    let v93 = v91 + v92;
+    let v94 = v9 * v87;
+    let v95 = v93 - v94;
+    let v96 = v32 * v95;
+    let v97 = v90 + v96;
+    let v98 = v97.recip();
+    let v99 = v24 * v51;
+    let v100 = v13 * v31;
+    let v101 = v99 + v100;
+    let v102 = v98 * v101;
+    let v103 = v24 * v52;
+    let v104 = v13 * v32;
+    let v105 = v103 + v104;
+    let v106 = v98 * v105;
+    let v107 = v25 * v51;
+    let v108 = v15 * v31;
+    let v109 = v107 + v108;
+    let v110 = v98 * v109;
+    let v111 = v25 * v52;
+    let v112 = v15 * v32;
+    let v113 = v111 + v112;
+    let v114 = v98 * v113;
+    let v115 = v28 * v51;
+    let v116 = v19 * v31;
+    let v117 = v115 - v116;
+    let v118 = v98 * v117;
+    let v119 = v28 * v52;
+    let v120 = v19 * v32;
+    let v121 = v119 - v120;
+    let v122 = v98 * v121;
+    let v123 = v31 * v36;
+    let v124 = v98 * v123;
+    let v125 = v32 * v36;
+    let v126 = v98 * v125;
+    let v127 = v31 * v40;
+    let v128 = v98 * v127;
+    let v129 = v32 * v40;
+    let v130 = v98 * v129;
+    let v131 = v31 * v46;
+    let v132 = v98 * v131;
+    let v133 = v32 * v46;
+    let v134 = v98 * v133;
+    let v135 = v13 * v24;
+    let v136 = L::splat(2.0) * v135;
+    let v137 = v15 * v24;
+    let v138 = v13 * v25;
+    let v139 = v137 + v138;
+    let v140 = v19 * v24;
+    let v141 = v13 * v28;
+    let v142 = v140 - v141;
+    let v143 = v24 * v36;
+    let v144 = v24 * v40;
+    let v145 = v24 * v46;
+    let v146 = v24 * v89;
+    let v147 = v24 * v95;
+    let v148 = v15 * v25;
+    let v149 = L::splat(2.0) * v148;
+    let v150 = v19 * v25;
+    let v151 = v15 * v28;
+    let v152 = v150 - v151;
+    let v153 = v25 * v36;
+    let v154 = v25 * v40;
+    let v155 = v25 * v46;
+    let v156 = v25 * v89;
+    let v157 = v25 * v95;
+    let v158 = v19 * v28;
+    let v159 = L::splat(2.0) * v158;
+    let v160 = v28 * v36;
+    let v161 = v28 * v40;
+    let v162 = v28 * v46;
+    let v163 = v28 * v89;
+    let v164 = v28 * v95;
+    let v165 = v31 * v81;
+    let v166 = v32 * v81;
+    let v167 = v31 * v84;
+    let v168 = v32 * v84;
+    let v169 = v31 * v87;
+    let v170 = v32 * v87;
+    let v171 = v4 + v6;
+    let v172 = L::splat(2.0) * v8;
+    let v173 = v171 - v172;
+    let v174 = v31 * v173;
+    let v175 = v5 + v7;
+    let v176 = L::splat(2.0) * v9;
+    let v177 = v175 - v176;
+    let v178 = v32 * v177;
+    let v179 = v174 + v178;
+    let v180 = L::splat(0.5) * v179;
+    let v181 = L::splat(0.5) * v173;
+    let v182 = v89 * v98;
+    let v183 = v146 * v182;
+    let v184 = v147 * v182;
+    let v185 = v156 * v182;
+    let v186 = v157 * v182;
+    let v187 = v163 * v182;
+    let v188 = v164 * v182;
+    let v189 = v165 * v182;
+    let v190 = v166 * v182;
+    let v191 = v167 * v182;
+    let v192 = v168 * v182;
+    let v193 = v169 * v182;
+    let v194 = v170 * v182;
+    let v195 = v81 - v189;
+    let v196 = v84 - v191;
+    let v197 = v87 - v193;
+    let v198 = v180 * v182;
+    let v199 = v181 - v198;
+    let v200 = L::splat(0.5) * v177;
+    let v201 = v95 * v98;
+    let v202 = v146 * v201;
+    let v203 = v147 * v201;
+    let v204 = v156 * v201;
+    let v205 = v157 * v201;
+    let v206 = v163 * v201;
+    let v207 = v164 * v201;
+    let v208 = v165 * v201;
+    let v209 = v166 * v201;
+    let v210 = v167 * v201;
+    let v211 = v168 * v201;
+    let v212 = v169 * v201;
+    let v213 = v170 * v201;
+    let v214 = v81 - v209;
+    let v215 = v84 - v211;
+    let v216 = v87 - v213;
+    let v217 = v180 * v201;
+    let v218 = v200 - v217;
+    let v219 = L::splat(2.0) * v31;
+    let v220 = L::splat(2.0) * v32;
+    let v221 = L::splat(0.5) * v57;
+    let v222 = v57 * v57;
+    let v223 = v24 * v219;
+    let v224 = v221 * v223;
+    let v225 = v222 * v224;
+    let v226 = v32 * v225;
+    let v227 = v24 * v220;
+    let v228 = v221 * v227;
+    let v229 = v222 * v228;
+    let v230 = v24 * v57;
+    let v231 = v32 * v229;
+    let v232 = v230 - v231;
+    let v233 = v25 * v219;
+    let v234 = v221 * v233;
+    let v235 = v222 * v234;
+    let v236 = v32 * v235;
+    let v237 = v25 * v220;
+    let v238 = v221 * v237;
+    let v239 = v222 * v238;
+    let v240 = v25 * v57;
+    let v241 = v32 * v239;
+    let v242 = v240 - v241;
+    let v243 = v28 * v219;
+    let v244 = v221 * v243;
+    let v245 = v222 * v244;
+    let v246 = v32 * v245;
+    let v247 = v28 * v220;
+    let v248 = v221 * v247;
+    let v249 = v222 * v248;
+    let v250 = v28 * v57;
+    let v251 = v32 * v249;
+    let v252 = v250 - v251;
+    let v253 = L::splat(2.0) * v57;
+    let v254 = v225 * v253;
+    let v255 = L::splat(0.5) * v225;
+    let v256 = L::splat(2.0) * v24;
+    let v257 = v24 * v256;
+    let v258 = v223 * v255;
+    let v259 = v221 * v257;
+    let v260 = v258 - v259;
+    let v261 = v224 * v254;
+    let v262 = v222 * v260;
+    let v263 = v261 + v262;
+    let v264 = v32 * v263;
+    let v265 = v229 * v253;
+    let v266 = L::splat(0.5) * v229;
+    let v267 = v223 * v266;
+    let v268 = v224 * v265;
+    let v269 = v222 * v267;
+    let v270 = v268 + v269;
+    let v271 = v24 * v225;
+    let v272 = v32 * v270;
+    let v273 = v271 - v272;
+    let v274 = v235 * v253;
+    let v275 = L::splat(0.5) * v235;
+    let v276 = L::splat(2.0) * v25;
+    let v277 = v24 * v276;
+    let v278 = v223 * v275;
+    let v279 = v221 * v277;
+    let v280 = v278 - v279;
+    let v281 = v224 * v274;
+    let v282 = v222 * v280;
+    let v283 = v281 + v282;
+    let v284 = v32 * v283;
+    let v285 = v239 * v253;
+    let v286 = L::splat(0.5) * v239;
+    let v287 = v223 * v286;
+    let v288 = v224 * v285;
+    let v289 = v222 * v287;
+    let v290 = v288 + v289;
+    let v291 = v25 * v225;
+    let v292 = v32 * v290;
+    let v293 = v291 - v292;
+    let v294 = v245 * v253;
+    let v295 = L::splat(0.5) * v245;
+    let v296 = L::splat(4.0) * v10;
+    let v297 = v24 * v296;
+    let v298 = v223 * v295;
+    let v299 = v221 * v297;
+    let v300 = v298 - v299;
+    let v301 = v224 * v294;
+    let v302 = v222 * v300;
+    let v303 = v301 + v302;
+    let v304 = v32 * v303;
+    let v305 = v249 * v253;
+    let v306 = L::splat(0.5) * v249;
+    let v307 = v223 * v306;
+    let v308 = v224 * v305;
+    let v309 = v222 * v307;
+    let v310 = v308 + v309;
+    let v311 = v28 * v225;
+    let v312 = v32 * v310;
+    let v313 = v311 - v312;
+    let v314 = v24 * v229;
+    let v315 = v227 * v266;
+    let v316 = v259 - v315;
+    let v317 = v228 * v265;
+    let v318 = v222 * v316;
+    let v319 = v317 - v318;
+    let v320 = v32 * v319;
+    let v321 = v314 - v320;
+    let v322 = v314 + v321;
+    let v323 = v24 * v235;
+    let v324 = v227 * v275;
+    let v325 = v228 * v274;
+    let v326 = v222 * v324;
+    let v327 = v325 + v326;
+    let v328 = v32 * v327;
+    let v329 = v323 - v328;
+    let v330 = v24 * v239;
+    let v331 = v227 * v286;
+    let v332 = v279 - v331;
+    let v333 = v228 * v285;
+    let v334 = v222 * v332;
+    let v335 = v333 - v334;
+    let v336 = v25 * v229;
+    let v337 = v32 * v335;
+    let v338 = v336 - v337;
+    let v339 = v330 + v338;
+    let v340 = v24 * v245;
+    let v341 = v227 * v295;
+    let v342 = v228 * v294;
+    let v343 = v222 * v341;
+    let v344 = v342 + v343;
+    let v345 = v32 * v344;
+    let v346 = v340 - v345;
+    let v347 = v24 * v249;
+    let v348 = v227 * v306;
+    let v349 = v299 - v348;
+    let v350 = v228 * v305;
+    let v351 = v222 * v349;
+    let v352 = v350 - v351;
+    let v353 = v28 * v229;
+    let v354 = v32 * v352;
+    let v355 = v353 - v354;
+    let v356 = v347 + v355;
+    let v357 = v25 * v276;
+    let v358 = v233 * v275;
+    let v359 = v221 * v357;
+    let v360 = v358 - v359;
+    let v361 = v234 * v274;
+    let v362 = v222 * v360;
+    let v363 = v361 + v362;
+    let v364 = v32 * v363;
+    let v365 = v233 * v286;
+    let v366 = v234 * v285;
+    let v367 = v222 * v365;
+    let v368 = v366 + v367;
+    let v369 = v25 * v235;
+    let v370 = v32 * v368;
+    let v371 = v369 - v370;
+    let v372 = v25 * v296;
+    let v373 = v233 * v295;
+    let v374 = v221 * v372;
+    let v375 = v373 - v374;
+    let v376 = v234 * v294;
+    let v377 = v222 * v375;
+    let v378 = v376 + v377;
+    let v379 = v32 * v378;
+    let v380 = v233 * v306;
+    let v381 = v234 * v305;
+    let v382 = v222 * v380;
+    let v383 = v381 + v382;
+    let v384 = v28 * v235;
+    let v385 = v32 * v383;
+    let v386 = v384 - v385;
+    let v387 = v25 * v239;
+    let v388 = v237 * v286;
+    let v389 = v359 - v388;
+    let v390 = v238 * v285;
+    let v391 = v222 * v389;
+    let v392 = v390 - v391;
+    let v393 = v32 * v392;
+    let v394 = v387 - v393;
+    let v395 = v387 + v394;
+    let v396 = v25 * v245;
+    let v397 = v237 * v295;
+    let v398 = v238 * v294;
+    let v399 = v222 * v397;
+    let v400 = v398 + v399;
+    let v401 = v32 * v400;
+    let v402 = v396 - v401;
+    let v403 = v25 * v249;
+    let v404 = v237 * v306;
+    let v405 = v374 - v404;
+    let v406 = v238 * v305;
+    let v407 = v222 * v405;
+    let v408 = v406 - v407;
+    let v409 = v28 * v239;
+    let v410 = v32 * v408;
+    let v411 = v409 - v410;
+    let v412 = v403 + v411;
+    let v413 = v28 * v296;
+    let v414 = v243 * v295;
+    let v415 = v221 * v413;
+    let v416 = v414 - v415;
+    let v417 = v244 * v294;
+    let v418 = v222 * v416;
+    let v419 = v417 + v418;
+    let v420 = v32 * v419;
+    let v421 = v243 * v306;
+    let v422 = v244 * v305;
+    let v423 = v222 * v421;
+    let v424 = v422 + v423;
+    let v425 = v28 * v245;
+    let v426 = v32 * v424;
+    let v427 = v425 - v426;
+    let v428 = v28 * v249;
+    let v429 = v247 * v306;
+    let v430 = v415 - v429;
+    let v431 = v248 * v305;
+    let v432 = v222 * v430;
+    let v433 = v431 - v432;
+    let v434 = v32 * v433;
+    let v435 = v428 - v434;
+    let v436 = v428 + v435;
+    let v437 = v31 * v225;
+    let v438 = v230 - v437;
+    let v439 = v31 * v229;
+    let v440 = v31 * v235;
+    let v441 = v240 - v440;
+    let v442 = v31 * v239;
+    let v443 = v31 * v245;
+    let v444 = v250 - v443;
+    let v445 = v31 * v249;
+    let v446 = v31 * v263;
+    let v447 = v271 - v446;
+    let v448 = v271 + v447;
+    let v449 = v31 * v270;
+    let v450 = v314 - v449;
+    let v451 = v31 * v283;
+    let v452 = v291 - v451;
+    let v453 = v323 + v452;
+    let v454 = v31 * v290;
+    let v455 = v330 - v454;
+    let v456 = v31 * v303;
+    let v457 = v311 - v456;
+    let v458 = v340 + v457;
+    let v459 = v31 * v310;
+    let v460 = v347 - v459;
+    let v461 = v31 * v319;
+    let v462 = v31 * v327;
+    let v463 = v336 - v462;
+    let v464 = v31 * v335;
+    let v465 = v31 * v344;
+    let v466 = v353 - v465;
+    let v467 = v31 * v352;
+    let v468 = v31 * v363;
+    let v469 = v369 - v468;
+    let v470 = v369 + v469;
+    let v471 = v31 * v368;
+    let v472 = v387 - v471;
+    let v473 = v31 * v378;
+    let v474 = v384 - v473;
+    let v475 = v396 + v474;
+    let v476 = v31 * v383;
+    let v477 = v403 - v476;
+    let v478 = v31 * v392;
+    let v479 = v31 * v400;
+    let v480 = v409 - v479;
+    let v481 = v31 * v408;
+    let v482 = v31 * v419;
+    let v483 = v425 - v482;
+    let v484 = v425 + v483;
+    let v485 = v31 * v424;
+    let v486 = v428 - v485;
+    let v487 = v31 * v433;
+    let v488 = v36 - v63;
+    let v489 = v40 - v67;
+    let v490 = v46 - v73;
+    let v491 = v78 * v438;
+    let v492 = v78 * v439;
+    let v493 = v78 * v441;
+    let v494 = v78 * v442;
+    let v495 = v78 * v444;
+    let v496 = v78 * v445;
+    let v497 = v59 * v488;
+    let v498 = v59 * v489;
+    let v499 = v59 * v490;
+    let v500 = v59 * v89;
+    let v501 = v78 * v448;
+    let v502 = v78 * v450;
+    let v503 = v78 * v453;
+    let v504 = v78 * v455;
+    let v505 = v78 * v458;
+    let v506 = v78 * v460;
+    let v507 = v78 * v461;
+    let v508 = v78 * v463;
+    let v509 = v78 * v464;
+    let v510 = v78 * v466;
+    let v511 = v78 * v467;
+    let v512 = v78 * v470;
+    let v513 = v78 * v472;
+    let v514 = v78 * v475;
+    let v515 = v78 * v477;
+    let v516 = v78 * v478;
+    let v517 = v78 * v480;
+    let v518 = v78 * v481;
+    let v519 = v78 * v484;
+    let v520 = v78 * v486;
+    let v521 = v78 * v487;
+    let v522 = v59 * v182;
+    let v523 = v59 * v183;
+    let v524 = v59 * v184;
+    let v525 = v59 * v185;
+    let v526 = v59 * v186;
+    let v527 = v59 * v187;
+    let v528 = v59 * v188;
+    let v529 = v59 * v195;
+    let v530 = v59 * v190;
+    let v531 = v59 * v196;
+    let v532 = v59 * v192;
+    let v533 = v59 * v197;
+    let v534 = v59 * v194;
+    let v535 = v59 * v199;
+    let v536 = v438 * v488;
+    let v537 = v438 * v489;
+    let v538 = v438 * v490;
+    let v539 = v439 * v488;
+    let v540 = v439 * v489;
+    let v541 = v439 * v490;
+    let v542 = v441 * v488;
+    let v543 = v441 * v489;
+    let v544 = v441 * v490;
+    let v545 = v442 * v488;
+    let v546 = v442 * v489;
+    let v547 = v442 * v490;
+    let v548 = v444 * v488;
+    let v549 = v444 * v489;
+    let v550 = v444 * v490;
+    let v551 = v445 * v488;
+    let v552 = v445 * v489;
+    let v553 = v445 * v490;
+    let v554 = v89 * v438;
+    let v555 = v89 * v439;
+    let v556 = v89 * v441;
+    let v557 = v89 * v442;
+    let v558 = v89 * v444;
+    let v559 = v89 * v445;
+    let v560 = v523 - v554;
+    let v561 = v524 + v555;
+    let v562 = v525 - v556;
+    let v563 = v526 + v557;
+    let v564 = v527 - v558;
+    let v565 = v528 + v559;
+    let v566 = v59 * v78;
+    let v567 = v79 * v226;
+    let v568 = v79 * v232;
+    let v569 = v79 * v236;
+    let v570 = v79 * v242;
+    let v571 = v79 * v246;
+    let v572 = v79 * v252;
+    let v573 = v58 * v488;
+    let v574 = v58 * v489;
+    let v575 = v58 * v490;
+    let v576 = v58 * v95;
+    let v577 = v79 * v264;
+    let v578 = v79 * v273;
+    let v579 = v79 * v284;
+    let v580 = v79 * v293;
+    let v581 = v79 * v304;
+    let v582 = v79 * v313;
+    let v583 = v79 * v322;
+    let v584 = v79 * v329;
+    let v585 = v79 * v339;
+    let v586 = v79 * v346;
+    let v587 = v79 * v356;
+    let v588 = v79 * v364;
+    let v589 = v79 * v371;
+    let v590 = v79 * v379;
+    let v591 = v79 * v386;
+    let v592 = v79 * v395;
+    let v593 = v79 * v402;
+    let v594 = v79 * v412;
+    let v595 = v79 * v420;
+    let v596 = v79 * v427;
+    let v597 = v79 * v436;
+    let v598 = v58 * v201;
+    let v599 = v58 * v202;
+    let v600 = v58 * v203;
+    let v601 = v58 * v204;
+    let v602 = v58 * v205;
+    let v603 = v58 * v206;
+    let v604 = v58 * v207;
+    let v605 = v58 * v208;
+    let v606 = v58 * v214;
+    let v607 = v58 * v210;
+    let v608 = v58 * v215;
+    let v609 = v58 * v212;
+    let v610 = v58 * v216;
+    let v611 = v58 * v218;
+    let v612 = v226 * v488;
+    let v613 = v226 * v489;
+    let v614 = v226 * v490;
+    let v615 = v232 * v488;
+    let v616 = v232 * v489;
+    let v617 = v232 * v490;
+    let v618 = v236 * v488;
+    let v619 = v236 * v489;
+    let v620 = v236 * v490;
+    let v621 = v242 * v488;
+    let v622 = v242 * v489;
+    let v623 = v242 * v490;
+    let v624 = v246 * v488;
+    let v625 = v246 * v489;
+    let v626 = v246 * v490;
+    let v627 = v252 * v488;
+    let v628 = v252 * v489;
+    let v629 = v252 * v490;
+    let v630 = v95 * v226;
+    let v631 = v95 * v232;
+    let v632 = v95 * v236;
+    let v633 = v95 * v242;
+    let v634 = v95 * v246;
+    let v635 = v95 * v252;
+    let v636 = v599 + v630;
+    let v637 = v600 - v631;
+    let v638 = v601 + v632;
+    let v639 = v602 - v633;
+    let v640 = v603 + v634;
+    let v641 = v604 - v635;
+    let v642 = v58 * v79;
+    let v643 = v491 - v567;
+    let v644 = v492 - v568;
+    let v645 = v493 - v569;
+    let v646 = v494 - v570;
+    let v647 = v495 - v571;
+    let v648 = v496 - v572;
+    let v649 = v500 + v576;
+    let v650 = v501 - v577;
+    let v651 = v502 + v578;
+    let v652 = v503 - v579;
+    let v653 = v504 + v580;
+    let v654 = v505 - v581;
+    let v655 = v506 + v582;
+    let v656 = v507 - v583;
+    let v657 = v508 + v584;
+    let v658 = v509 - v585;
+    let v659 = v510 + v586;
+    let v660 = v511 - v587;
+    let v661 = v512 - v588;
+    let v662 = v513 + v589;
+    let v663 = v514 - v590;
+    let v664 = v515 + v591;
+    let v665 = v516 - v592;
+    let v666 = v517 + v593;
+    let v667 = v518 - v594;
+    let v668 = v519 - v595;
+    let v669 = v520 + v596;
+    let v670 = v521 - v597;
+    let v671 = v522 + v598;
+    let v672 = v560 + v636;
+    let v673 = v561 + v637;
+    let v674 = v562 + v638;
+    let v675 = v563 + v639;
+    let v676 = v564 + v640;
+    let v677 = v565 + v641;
+    let v678 = v529 - v605;
+    let v679 = v530 - v606;
+    let v680 = v531 - v607;
+    let v681 = v532 - v608;
+    let v682 = v533 - v609;
+    let v683 = v534 - v610;
+    let v684 = v535 + v611;
+    let v685 = v566 + v642;
+    let v686 = v102 * v649;
+    let v687 = v643 + v686;
+    let v688 = v106 * v649;
+    let v689 = v110 * v649;
+    let v690 = v645 + v689;
+    let v691 = v114 * v649;
+    let v692 = v118 * v649;
+    let v693 = v647 + v692;
+    let v694 = -v693;
+    let v695 = v122 * v649;
+    let v696 = v648 - v695;
+    let v697 = v124 * v649;
+    let v698 = v497 - v697;
+    let v699 = v126 * v649;
+    let v700 = v573 - v699;
+    let v701 = v128 * v649;
+    let v702 = v498 - v701;
+    let v703 = v130 * v649;
+    let v704 = v574 - v703;
+    let v705 = v132 * v649;
+    let v706 = v499 - v705;
+    let v707 = v134 * v649;
+    let v708 = v575 - v707;
+    let v709 = v136 * v671;
+    let v710 = v650 - v709;
+    let v711 = v139 * v671;
+    let v712 = v652 - v711;
+    let v713 = v142 * v671;
+    let v714 = v654 + v713;
+    let v715 = v143 * v671;
+    let v716 = v536 - v715;
+    let v717 = v144 * v671;
+    let v718 = v537 - v717;
+    let v719 = v145 * v671;
+    let v720 = v538 - v719;
+    let v721 = v656 + v709;
+    let v722 = v658 + v711;
+    let v723 = v660 - v713;
+    let v724 = v615 - v715;
+    let v725 = v616 - v717;
+    let v726 = v617 - v719;
+    let v727 = v149 * v671;
+    let v728 = v661 - v727;
+    let v729 = v152 * v671;
+    let v730 = v663 + v729;
+    let v731 = v153 * v671;
+    let v732 = v542 - v731;
+    let v733 = v154 * v671;
+    let v734 = v543 - v733;
+    let v735 = v155 * v671;
+    let v736 = v544 - v735;
+    let v737 = v665 + v727;
+    let v738 = v667 - v729;
+    let v739 = v621 - v731;
+    let v740 = v622 - v733;
+    let v741 = v623 - v735;
+    let v742 = v159 * v671;
+    let v743 = v668 + v742;
+    let v744 = v160 * v671;
+    let v745 = v548 - v744;
+    let v746 = v161 * v671;
+    let v747 = v549 - v746;
+    let v748 = v162 * v671;
+    let v749 = v550 - v748;
+    let v750 = v670 - v742;
+    let v751 = v627 - v744;
+    let v752 = v628 - v746;
+    let v753 = v629 - v748;
+    let v754 = v102 * v684;
+    let v755 = v106 * v684;
+    let v756 = v110 * v684;
+    let v757 = v114 * v684;
+    let v758 = v118 * v684;
+    let v759 = v122 * v684;
+    let v760 = v124 * v684;
+    let v761 = v126 * v684;
+    let v762 = v128 * v684;
+    let v763 = v130 * v684;
+    let v764 = v132 * v684;
+    let v765 = v134 * v684;
+    let v766 = v672 - v754;
+    let v767 = v673 - v755;
+    let v768 = v674 - v756;
+    let v769 = v675 - v757;
+    let v770 = v676 - v758;
+    let v771 = v677 - v759;
+    let v772 = v678 - v760;
+    let v773 = v679 + v761;
+    let v774 = v680 - v762;
+    let v775 = v681 + v763;
+    let v776 = v682 + v764;
+    let v777 = v683 - v765;
+    let v778 = v102 * v766;
+    let v779 = L::splat(2.0) * v778;
+    let v780 = v710 + v779;
+    let v781 = -v780;
+    let v782 = v106 * v766;
+    let v783 = v102 * v767;
+    let v784 = v782 + v783;
+    let v785 = v651 + v784;
+    let v786 = -v785;
+    let v787 = v110 * v766;
+    let v788 = v102 * v768;
+    let v789 = v787 + v788;
+    let v790 = v712 + v789;
+    let v791 = -v790;
+    let v792 = v114 * v766;
+    let v793 = v102 * v769;
+    let v794 = v792 + v793;
+    let v795 = v653 + v794;
+    let v796 = -v795;
+    let v797 = v118 * v766;
+    let v798 = v102 * v770;
+    let v799 = v797 + v798;
+    let v800 = v714 + v799;
+    let v801 = v122 * v766;
+    let v802 = v102 * v771;
+    let v803 = v801 + v802;
+    let v804 = v655 + v803;
+    let v805 = v124 * v766;
+    let v806 = v102 * v772;
+    let v807 = v805 + v806;
+    let v808 = v716 + v807;
+    let v809 = v126 * v766;
+    let v810 = v102 * v773;
+    let v811 = v809 - v810;
+    let v812 = v128 * v766;
+    let v813 = v102 * v774;
+    let v814 = v812 + v813;
+    let v815 = v718 + v814;
+    let v816 = v130 * v766;
+    let v817 = v102 * v775;
+    let v818 = v816 - v817;
+    let v819 = v132 * v766;
+    let v820 = v102 * v776;
+    let v821 = v819 - v820;
+    let v822 = v720 + v821;
+    let v823 = v134 * v766;
+    let v824 = v102 * v777;
+    let v825 = v823 + v824;
+    let v826 = v106 * v767;
+    let v827 = L::splat(2.0) * v826;
+    let v828 = v721 - v827;
+    let v829 = v110 * v767;
+    let v830 = v106 * v768;
+    let v831 = v829 + v830;
+    let v832 = v657 + v831;
+    let v833 = -v832;
+    let v834 = v114 * v767;
+    let v835 = v106 * v769;
+    let v836 = v834 + v835;
+    let v837 = v722 - v836;
+    let v838 = v118 * v767;
+    let v839 = v106 * v770;
+    let v840 = v838 + v839;
+    let v841 = v659 + v840;
+    let v842 = v122 * v767;
+    let v843 = v106 * v771;
+    let v844 = v842 + v843;
+    let v845 = v124 * v767;
+    let v846 = v106 * v772;
+    let v847 = v845 + v846;
+    let v848 = v126 * v767;
+    let v849 = v106 * v773;
+    let v850 = v848 - v849;
+    let v851 = v724 + v850;
+    let v852 = v128 * v767;
+    let v853 = v106 * v774;
+    let v854 = v852 + v853;
+    let v855 = v130 * v767;
+    let v856 = v106 * v775;
+    let v857 = v855 - v856;
+    let v858 = v725 + v857;
+    let v859 = v132 * v767;
+    let v860 = v106 * v776;
+    let v861 = v859 - v860;
+    let v862 = v134 * v767;
+    let v863 = v106 * v777;
+    let v864 = v862 + v863;
+    let v865 = v726 + v864;
+    let v866 = v110 * v768;
+    let v867 = L::splat(2.0) * v866;
+    let v868 = v728 + v867;
+    let v869 = -v868;
+    let v870 = v114 * v768;
+    let v871 = v110 * v769;
+    let v872 = v870 + v871;
+    let v873 = v662 + v872;
+    let v874 = -v873;
+    let v875 = v118 * v768;
+    let v876 = v110 * v770;
+    let v877 = v875 + v876;
+    let v878 = v730 + v877;
+    let v879 = v122 * v768;
+    let v880 = v110 * v771;
+    let v881 = v879 + v880;
+    let v882 = v664 + v881;
+    let v883 = v124 * v768;
+    let v884 = v110 * v772;
+    let v885 = v883 + v884;
+    let v886 = v732 + v885;
+    let v887 = v126 * v768;
+    let v888 = v110 * v773;
+    let v889 = v887 - v888;
+    let v890 = v128 * v768;
+    let v891 = v110 * v774;
+    let v892 = v890 + v891;
+    let v893 = v734 + v892;
+    let v894 = v130 * v768;
+    let v895 = v110 * v775;
+    let v896 = v894 - v895;
+    let v897 = v132 * v768;
+    let v898 = v110 * v776;
+    let v899 = v897 - v898;
+    let v900 = v736 + v899;
+    let v901 = v134 * v768;
+    let v902 = v110 * v777;
+    let v903 = v901 + v902;
+    let v904 = v114 * v769;
+    let v905 = L::splat(2.0) * v904;
+    let v906 = v737 - v905;
+    let v907 = v118 * v769;
+    let v908 = v114 * v770;
+    let v909 = v907 + v908;
+    let v910 = v666 + v909;
+    let v911 = v122 * v769;
+    let v912 = v114 * v771;
+    let v913 = v911 + v912;
+    let v914 = v124 * v769;
+    let v915 = v114 * v772;
+    let v916 = v914 + v915;
+    let v917 = v126 * v769;
+    let v918 = v114 * v773;
+    let v919 = v917 - v918;
+    let v920 = v739 + v919;
+    let v921 = v128 * v769;
+    let v922 = v114 * v774;
+    let v923 = v921 + v922;
+    let v924 = v130 * v769;
+    let v925 = v114 * v775;
+    let v926 = v924 - v925;
+    let v927 = v740 + v926;
+    let v928 = v132 * v769;
+    let v929 = v114 * v776;
+    let v930 = v928 - v929;
+    let v931 = v134 * v769;
+    let v932 = v114 * v777;
+    let v933 = v931 + v932;
+    let v934 = v741 + v933;
+    let v935 = v118 * v770;
+    let v936 = L::splat(2.0) * v935;
+    let v937 = v743 + v936;
+    let v938 = -v937;
+    let v939 = v122 * v770;
+    let v940 = v118 * v771;
+    let v941 = v939 + v940;
+    let v942 = v669 + v941;
+    let v943 = -v942;
+    let v944 = v124 * v770;
+    let v945 = v118 * v772;
+    let v946 = v944 + v945;
+    let v947 = v745 + v946;
+    let v948 = -v947;
+    let v949 = v126 * v770;
+    let v950 = v118 * v773;
+    let v951 = v949 - v950;
+    let v952 = v624 - v951;
+    let v953 = v128 * v770;
+    let v954 = v118 * v774;
+    let v955 = v953 + v954;
+    let v956 = v747 + v955;
+    let v957 = -v956;
+    let v958 = v130 * v770;
+    let v959 = v118 * v775;
+    let v960 = v958 - v959;
+    let v961 = v625 - v960;
+    let v962 = v132 * v770;
+    let v963 = v118 * v776;
+    let v964 = v962 - v963;
+    let v965 = v749 + v964;
+    let v966 = -v965;
+    let v967 = v134 * v770;
+    let v968 = v118 * v777;
+    let v969 = v967 + v968;
+    let v970 = v626 - v969;
+    let v971 = v122 * v771;
+    let v972 = L::splat(2.0) * v971;
+    let v973 = v750 - v972;
+    let v974 = v124 * v771;
+    let v975 = v122 * v772;
+    let v976 = v974 + v975;
+    let v977 = v551 - v976;
+    let v978 = v126 * v771;
+    let v979 = v122 * v773;
+    let v980 = v978 - v979;
+    let v981 = v751 + v980;
+    let v982 = -v981;
+    let v983 = v128 * v771;
+    let v984 = v122 * v774;
+    let v985 = v983 + v984;
+    let v986 = v552 - v985;
+    let v987 = v130 * v771;
+    let v988 = v122 * v775;
+    let v989 = v987 - v988;
+    let v990 = v752 + v989;
+    let v991 = -v990;
+    let v992 = v132 * v771;
+    let v993 = v122 * v776;
+    let v994 = v992 - v993;
+    let v995 = v553 - v994;
+    let v996 = v134 * v771;
+    let v997 = v122 * v777;
+    let v998 = v996 + v997;
+    let v999 = v753 + v998;
+    let v1000 = -v999;
+    let v1001 = v124 * v772;
+    let v1002 = v126 * v772;
+    let v1003 = v124 * v773;
+    let v1004 = v128 * v772;
+    let v1005 = v124 * v774;
+    let v1006 = v1004 + v1005;
+    let v1007 = -v1006;
+    let v1008 = v130 * v772;
+    let v1009 = v124 * v775;
+    let v1010 = v132 * v772;
+    let v1011 = v124 * v776;
+    let v1012 = v134 * v772;
+    let v1013 = v124 * v777;
+    let v1014 = v1012 + v1013;
+    let v1015 = -v1014;
+    let v1016 = v126 * v773;
+    let v1017 = L::splat(2.0) * v1016;
+    let v1018 = v128 * v773;
+    let v1019 = v126 * v774;
+    let v1020 = v1018 - v1019;
+    let v1021 = v130 * v773;
+    let v1022 = v126 * v775;
+    let v1023 = v1021 + v1022;
+    let v1024 = v132 * v773;
+    let v1025 = v126 * v776;
+    let v1026 = v1024 + v1025;
+    let v1027 = v134 * v773;
+    let v1028 = v126 * v777;
+    let v1029 = v1027 - v1028;
+    let v1030 = v128 * v774;
+    let v1031 = v130 * v774;
+    let v1032 = v128 * v775;
+    let v1033 = v132 * v774;
+    let v1034 = v128 * v776;
+    let v1035 = v134 * v774;
+    let v1036 = v128 * v777;
+    let v1037 = v1035 + v1036;
+    let v1038 = -v1037;
+    let v1039 = v130 * v775;
+    let v1040 = L::splat(2.0) * v1039;
+    let v1041 = v132 * v775;
+    let v1042 = v130 * v776;
+    let v1043 = v1041 + v1042;
+    let v1044 = v134 * v775;
+    let v1045 = v130 * v777;
+    let v1046 = v1044 - v1045;
+    let v1047 = v132 * v776;
+    let v1048 = L::splat(2.0) * v1047;
+    let v1049 = v134 * v776;
+    let v1050 = v132 * v777;
+    let v1051 = v1049 - v1050;
+    let v1052 = v134 * v777;
+    let v1053 = v688 - v644;
+    let v1054 = v691 - v646;
+    let v1055 = v811 - v612;
+    let v1056 = v818 - v613;
+    let v1057 = v825 - v614;
+    let v1058 = v844 - v723;
+    let v1059 = v847 - v539;
+    let v1060 = v854 - v540;
+    let v1061 = v861 - v541;
+    let v1062 = v889 - v618;
+    let v1063 = v896 - v619;
+    let v1064 = v903 - v620;
+    let v1065 = v913 - v738;
+    let v1066 = v916 - v545;
+    let v1067 = v923 - v546;
+    let v1068 = v930 - v547;
+    let v1069 = L::splat((-2.0)) * v1001;
+    let v1070 = v1003 - v1002;
+    let v1071 = v1009 - v1008;
+    let v1072 = v1011 - v1010;
+    let v1073 = L::splat((-2.0)) * v1030;
+    let v1074 = v1032 - v1031;
+    let v1075 = v1034 - v1033;
+    let v1076 = L::splat((-2.0)) * v1052;
+    grad0[0] = v687;
+    grad0[1] = v1053;
+    grad0[2] = v690;
+    grad0[3] = v1054;
+    grad0[4] = v694;
+    grad0[5] = v696;
+    grad0[6] = v698;
+    grad0[7] = v700;
+    grad0[8] = v702;
+    grad0[9] = v704;
+    grad0[10] = v706;
+    grad0[11] = v708;
+    hess0[0] = v781;
+    hess0[1] = v786;
+    hess0[12] = v786;
+    hess0[2] = v791;
+    hess0[24] = v791;
+    hess0[3] = v796;
+    hess0[36] = v796;
+    hess0[4] = v800;
+    hess0[48] = v800;
+    hess0[5] = v804;
+    hess0[60] = v804;
+    hess0[6] = v808;
+    hess0[72] = v808;
+    hess0[7] = v1055;
+    hess0[84] = v1055;
+    hess0[8] = v815;
+    hess0[96] = v815;
+    hess0[9] = v1056;
+    hess0[108] = v1056;
+    hess0[10] = v822;
+    hess0[120] = v822;
+    hess0[11] = v1057;
+    hess0[132] = v1057;
+    hess0[13] = v828;
+    hess0[14] = v833;
+    hess0[25] = v833;
+    hess0[15] = v837;
+    hess0[37] = v837;
+    hess0[16] = v841;
+    hess0[49] = v841;
+    hess0[17] = v1058;
+    hess0[61] = v1058;
+    hess0[18] = v1059;
+    hess0[73] = v1059;
+    hess0[19] = v851;
+    hess0[85] = v851;
+    hess0[20] = v1060;
+    hess0[97] = v1060;
+    hess0[21] = v858;
+    hess0[109] = v858;
+    hess0[22] = v1061;
+    hess0[121] = v1061;
+    hess0[23] = v865;
+    hess0[133] = v865;
+    hess0[26] = v869;
+    hess0[27] = v874;
+    hess0[38] = v874;
+    hess0[28] = v878;
+    hess0[50] = v878;
+    hess0[29] = v882;
+    hess0[62] = v882;
+    hess0[30] = v886;
+    hess0[74] = v886;
+    hess0[31] = v1062;
+    hess0[86] = v1062;
+    hess0[32] = v893;
+    hess0[98] = v893;
+    hess0[33] = v1063;
+    hess0[110] = v1063;
+    hess0[34] = v900;
+    hess0[122] = v900;
+    hess0[35] = v1064;
+    hess0[134] = v1064;
+    hess0[39] = v906;
+    hess0[40] = v910;
+    hess0[51] = v910;
+    hess0[41] = v1065;
+    hess0[63] = v1065;
+    hess0[42] = v1066;
+    hess0[75] = v1066;
+    hess0[43] = v920;
+    hess0[87] = v920;
+    hess0[44] = v1067;
+    hess0[99] = v1067;
+    hess0[45] = v927;
+    hess0[111] = v927;
+    hess0[46] = v1068;
+    hess0[123] = v1068;
+    hess0[47] = v934;
+    hess0[135] = v934;
+    hess0[52] = v938;
+    hess0[53] = v943;
+    hess0[64] = v943;
+    hess0[54] = v948;
+    hess0[76] = v948;
+    hess0[55] = v952;
+    hess0[88] = v952;
+    hess0[56] = v957;
+    hess0[100] = v957;
+    hess0[57] = v961;
+    hess0[112] = v961;
+    hess0[58] = v966;
+    hess0[124] = v966;
+    hess0[59] = v970;
+    hess0[136] = v970;
+    hess0[65] = v973;
+    hess0[66] = v977;
+    hess0[77] = v977;
+    hess0[67] = v982;
+    hess0[89] = v982;
+    hess0[68] = v986;
+    hess0[101] = v986;
+    hess0[69] = v991;
+    hess0[113] = v991;
+    hess0[70] = v995;
+    hess0[125] = v995;
+    hess0[71] = v1000;
+    hess0[137] = v1000;
+    hess0[78] = v1069;
+    hess0[79] = v1070;
+    hess0[90] = v1070;
+    hess0[80] = v1007;
+    hess0[102] = v1007;
+    hess0[81] = v1071;
+    hess0[114] = v1071;
+    hess0[82] = v1072;
+    hess0[126] = v1072;
+    hess0[83] = v1015;
+    hess0[138] = v1015;
+    hess0[91] = v1017;
+    hess0[92] = v1020;
+    hess0[103] = v1020;
+    hess0[93] = v1023;
+    hess0[115] = v1023;
+    hess0[94] = v1026;
+    hess0[127] = v1026;
+    hess0[95] = v1029;
+    hess0[139] = v1029;
+    hess0[104] = v1073;
+    hess0[105] = v1074;
+    hess0[116] = v1074;
+    hess0[106] = v1075;
+    hess0[128] = v1075;
+    hess0[107] = v1038;
+    hess0[140] = v1038;
+    hess0[117] = v1040;
+    hess0[118] = v1043;
+    hess0[129] = v1043;
+    hess0[119] = v1046;
+    hess0[141] = v1046;
+    hess0[130] = v1048;
+    hess0[131] = v1051;
+    hess0[142] = v1051;
+    hess0[143] = v1076;
+    v685
+}
+/// `quadratic_slave_normal_slip_type6` over 4 lanes (portable build).
+fn quadratic_slave_normal_slip_type6_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type6_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `quadratic_slave_normal_slip_type6` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn quadratic_slave_normal_slip_type6_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    quadratic_slave_normal_slip_type6_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// The slip's lane kernels of `quadratic_slave_normal`.
+static QUADRATIC_SLAVE_NORMAL_SLIP_LANES: LaneSet<SlipLaneKernel> = LaneSet {
+    portable: [
+        SlipLaneKernel::Gradient(quadratic_slave_normal_slip_type1_x4),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type2_x4),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type3_x4),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type4_x4),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type5_x4),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type6_x4),
+    ],
+    #[cfg(target_arch = "x86_64")]
+    avx2: [
+        SlipLaneKernel::Gradient(quadratic_slave_normal_slip_type1_x4_avx2),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type2_x4_avx2),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type3_x4_avx2),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type4_x4_avx2),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type5_x4_avx2),
+        SlipLaneKernel::Hessian(quadratic_slave_normal_slip_type6_x4_avx2),
     ],
 };
 /// Lanes of `slave_normal_type1`: `slave-normal`, type 1 (xi_m, x_ms, n: constant, linear, constant): gap, gradient (no second-order term). Cost: 59 ops (18 add, 33 mul, 2 div, 1 sqrt, 5 neg).
@@ -9599,7 +16677,7 @@ unsafe fn slave_normal_type6_x4_avx2(
         .to_lanes()
 }
 /// The lane kernels of `slave_normal`.
-static SLAVE_NORMAL_LANES: LaneSet = LaneSet {
+static SLAVE_NORMAL_LANES: LaneSet<LaneKernel> = LaneSet {
     portable: [
         LaneKernel::Gradient(slave_normal_type1_x4),
         LaneKernel::Hessian(slave_normal_type2_x4),
@@ -9616,5 +16694,2208 @@ static SLAVE_NORMAL_LANES: LaneSet = LaneSet {
         LaneKernel::Hessian(slave_normal_type4_x4_avx2),
         LaneKernel::Hessian(slave_normal_type5_x4_avx2),
         LaneKernel::Hessian(slave_normal_type6_x4_avx2),
+    ],
+};
+/// Lanes of `slave_normal_slip_type1`: `slave-normal`, type 1 (xi_m, x_ms and s_m, n: constant, linear, constant): the slip (1 component), gradient (no second-order term). `xi_m0` is the last converged projection. Cost: 68 ops (23 add, 36 mul, 2 div, 1 sqrt, 6 neg).
+#[inline(always)]
+fn slave_normal_slip_type1_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) + v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = v0 * v8;
+    let v10 = v1 * v8;
+    let v11 = v0 * v0;
+    let v12 = v1 * v1;
+    let v13 = v11 + v12;
+    let v14 = v13.sqrt();
+    let v15 = v14.recip();
+    let v16 = v1 * v15;
+    let v17 = v0 * v15;
+    let v18 = xi_m0;
+    let v19 = L::splat(1.0) - v18;
+    let v20 = L::splat(0.5) * v19;
+    let v21 = L::splat(1.0) + v18;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = v2 * v20;
+    let v24 = v4 * v22;
+    let v25 = v23 + v24;
+    let v26 = v3 * v20;
+    let v27 = v5 * v22;
+    let v28 = v26 + v27;
+    let v29 = v2 - v4;
+    let v30 = L::splat(0.5) * v29;
+    let v31 = v0 * v30;
+    let v32 = v3 - v5;
+    let v33 = L::splat(0.5) * v32;
+    let v34 = v1 * v33;
+    let v35 = v31 + v34;
+    let v36 = v35.recip();
+    let v37 = v2 + v4;
+    let v38 = L::splat(0.5) * v37;
+    let v39 = v3 + v5;
+    let v40 = L::splat(0.5) * v39;
+    let v41 = v9 - v38;
+    let v42 = v10 - v40;
+    let v43 = v0 * v41;
+    let v44 = v1 * v42;
+    let v45 = v43 + v44;
+    let v46 = v36 * v45;
+    let v47 = -v46;
+    let v48 = L::splat(1.0) + v46;
+    let v49 = L::splat(0.5) * v48;
+    let v50 = L::splat(1.0) - v46;
+    let v51 = L::splat(0.5) * v50;
+    let v52 = v2 * v49;
+    let v53 = v4 * v51;
+    let v54 = v52 + v53;
+    let v55 = v3 * v49;
+    let v56 = v5 * v51;
+    let v57 = v55 + v56;
+    let v58 = v25 - v54;
+    let v59 = v28 - v57;
+    let v60 = v19 - v48;
+    let v61 = L::splat(0.5) * v60;
+    let v62 = v21 - v50;
+    let v63 = L::splat(0.5) * v62;
+    let v64 = v17 * v61;
+    let v65 = -v64;
+    let v66 = v17 * v63;
+    let v67 = -v66;
+    let v68 = v17 * v58;
+    let v69 = v16 * v61;
+    let v70 = -v69;
+    let v71 = v16 * v63;
+    let v72 = -v71;
+    let v73 = v16 * v59;
+    let v74 = v68 + v73;
+    let v75 = -v74;
+    grad0[0] = L::ZERO;
+    grad0[1] = L::ZERO;
+    grad0[2] = L::ZERO;
+    grad0[3] = L::ZERO;
+    grad0[4] = v65;
+    grad0[5] = v70;
+    grad0[6] = v67;
+    grad0[7] = v72;
+    *xi_m = v47;
+    v75
+}
+/// `slave_normal_slip_type1` over 4 lanes (portable build).
+fn slave_normal_slip_type1_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type1_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0)
+}
+/** `slave_normal_slip_type1` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn slave_normal_slip_type1_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type1_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+        )
+        .to_lanes()
+}
+/// Lanes of `slave_normal_slip_type2`: `slave-normal`, type 2 (xi_m, x_ms and s_m, n: linear, linear, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 186 ops (63 add, 109 mul, 2 div, 1 sqrt, 11 neg).
+#[inline(always)]
+fn slave_normal_slip_type2_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v0 * v0;
+    let v14 = v1 * v1;
+    let v15 = v13 + v14;
+    let v16 = v15.sqrt();
+    let v17 = v16.recip();
+    let v18 = v1 * v17;
+    let v19 = v0 * v17;
+    let v20 = xi_m0;
+    let v21 = L::splat(1.0) - v20;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = L::splat(1.0) + v20;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = v2 * v22;
+    let v26 = v4 * v24;
+    let v27 = v25 + v26;
+    let v28 = v3 * v22;
+    let v29 = v5 * v24;
+    let v30 = v28 + v29;
+    let v31 = v2 - v4;
+    let v32 = L::splat(0.5) * v31;
+    let v33 = v0 * v32;
+    let v34 = v3 - v5;
+    let v35 = L::splat(0.5) * v34;
+    let v36 = v1 * v35;
+    let v37 = v33 + v36;
+    let v38 = v37.recip();
+    let v39 = v0 * v8;
+    let v40 = v1 * v8;
+    let v41 = L::splat(2.0) * v0;
+    let v42 = L::splat(2.0) * v1;
+    let v43 = L::splat(0.5) * v17;
+    let v44 = v17 * v17;
+    let v45 = v41 * v43;
+    let v46 = v44 * v45;
+    let v47 = v1 * v46;
+    let v48 = v42 * v43;
+    let v49 = v44 * v48;
+    let v50 = v1 * v49;
+    let v51 = v17 - v50;
+    let v52 = v0 * v46;
+    let v53 = v17 - v52;
+    let v54 = v0 * v49;
+    let v55 = v19 * v32;
+    let v56 = v32 * v53;
+    let v57 = v32 * v54;
+    let v58 = v18 * v35;
+    let v59 = v35 * v47;
+    let v60 = v35 * v51;
+    let v61 = v55 + v58;
+    let v62 = v56 - v59;
+    let v63 = v57 - v60;
+    let v64 = v2 + v4;
+    let v65 = L::splat(0.5) * v64;
+    let v66 = v3 + v5;
+    let v67 = L::splat(0.5) * v66;
+    let v68 = v11 - v65;
+    let v69 = v12 - v67;
+    let v70 = v0 * v68;
+    let v71 = v1 * v69;
+    let v72 = v70 + v71;
+    let v73 = v38 * v72;
+    let v74 = -v73;
+    let v75 = L::splat(1.0) + v73;
+    let v76 = L::splat(0.5) * v75;
+    let v77 = L::splat(1.0) - v73;
+    let v78 = L::splat(0.5) * v77;
+    let v79 = v2 * v76;
+    let v80 = v4 * v78;
+    let v81 = v79 + v80;
+    let v82 = v3 * v76;
+    let v83 = v5 * v78;
+    let v84 = v82 + v83;
+    let v85 = v11 - v81;
+    let v86 = v12 - v84;
+    let v87 = v27 - v81;
+    let v88 = v30 - v84;
+    let v89 = v39 - v85;
+    let v90 = v38 * v89;
+    let v91 = v40 - v86;
+    let v92 = v38 * v91;
+    let v93 = v11 + v85;
+    let v94 = v38 * v93;
+    let v95 = v12 + v86;
+    let v96 = v38 * v95;
+    let v97 = v0 * v76;
+    let v98 = v38 * v97;
+    let v99 = v1 * v76;
+    let v100 = v38 * v99;
+    let v101 = v0 * v78;
+    let v102 = v38 * v101;
+    let v103 = v1 * v78;
+    let v104 = v38 * v103;
+    let v105 = v21 - v75;
+    let v106 = L::splat(0.5) * v105;
+    let v107 = v23 - v77;
+    let v108 = L::splat(0.5) * v107;
+    let v109 = v53 * v87;
+    let v110 = v54 * v87;
+    let v111 = v19 * v106;
+    let v112 = v19 * v108;
+    let v113 = v53 * v106;
+    let v114 = v53 * v108;
+    let v115 = v54 * v106;
+    let v116 = v54 * v108;
+    let v117 = v19 * v87;
+    let v118 = v47 * v88;
+    let v119 = v51 * v88;
+    let v120 = v18 * v106;
+    let v121 = v18 * v108;
+    let v122 = v47 * v106;
+    let v123 = v47 * v108;
+    let v124 = v51 * v106;
+    let v125 = v51 * v108;
+    let v126 = v18 * v88;
+    let v127 = v109 - v118;
+    let v128 = v110 - v119;
+    let v129 = v117 + v126;
+    let v130 = -v129;
+    let v131 = v61 * v90;
+    let v132 = v127 + v131;
+    let v133 = v61 * v92;
+    let v134 = v61 * v94;
+    let v135 = v61 * v96;
+    let v136 = v128 + v135;
+    let v137 = v61 * v98;
+    let v138 = v111 + v137;
+    let v139 = -v138;
+    let v140 = v61 * v100;
+    let v141 = v120 + v140;
+    let v142 = -v141;
+    let v143 = v61 * v102;
+    let v144 = v112 + v143;
+    let v145 = -v144;
+    let v146 = v61 * v104;
+    let v147 = v121 + v146;
+    let v148 = -v147;
+    let v149 = v62 * v90;
+    let v150 = v62 * v92;
+    let v151 = v63 * v90;
+    let v152 = v62 * v94;
+    let v153 = v149 - v152;
+    let v154 = v62 * v96;
+    let v155 = v151 + v154;
+    let v156 = -v155;
+    let v157 = v62 * v98;
+    let v158 = v113 + v157;
+    let v159 = -v158;
+    let v160 = v62 * v100;
+    let v161 = v122 - v160;
+    let v162 = v62 * v102;
+    let v163 = v114 + v162;
+    let v164 = -v163;
+    let v165 = v62 * v104;
+    let v166 = v123 - v165;
+    let v167 = v63 * v92;
+    let v168 = L::splat(2.0) * v167;
+    let v169 = v63 * v94;
+    let v170 = v150 + v169;
+    let v171 = v63 * v96;
+    let v172 = v63 * v98;
+    let v173 = v115 + v172;
+    let v174 = -v173;
+    let v175 = v63 * v100;
+    let v176 = v124 - v175;
+    let v177 = v63 * v102;
+    let v178 = v116 + v177;
+    let v179 = -v178;
+    let v180 = v63 * v104;
+    let v181 = v125 - v180;
+    let v182 = L::splat(2.0) * v152;
+    let v183 = v154 - v169;
+    let v184 = v133 - v128;
+    let v185 = v134 - v127;
+    let v186 = L::splat((-2.0)) * v149;
+    let v187 = v151 - v150;
+    let v188 = v160 - v122;
+    let v189 = v165 - v123;
+    let v190 = v171 - v167;
+    let v191 = L::splat((-2.0)) * v171;
+    let v192 = v175 - v124;
+    let v193 = v180 - v125;
+    grad0[0] = v132;
+    grad0[1] = v184;
+    grad0[2] = v185;
+    grad0[3] = v136;
+    grad0[4] = v139;
+    grad0[5] = v142;
+    grad0[6] = v145;
+    grad0[7] = v148;
+    hess0[0] = v186;
+    hess0[1] = v187;
+    hess0[8] = v187;
+    hess0[2] = v153;
+    hess0[16] = v153;
+    hess0[3] = v156;
+    hess0[24] = v156;
+    hess0[4] = v158;
+    hess0[32] = v158;
+    hess0[5] = v188;
+    hess0[40] = v188;
+    hess0[6] = v163;
+    hess0[48] = v163;
+    hess0[7] = v189;
+    hess0[56] = v189;
+    hess0[9] = v168;
+    hess0[10] = v170;
+    hess0[17] = v170;
+    hess0[11] = v190;
+    hess0[25] = v190;
+    hess0[12] = v174;
+    hess0[33] = v174;
+    hess0[13] = v176;
+    hess0[41] = v176;
+    hess0[14] = v179;
+    hess0[49] = v179;
+    hess0[15] = v181;
+    hess0[57] = v181;
+    hess0[18] = v182;
+    hess0[19] = v183;
+    hess0[26] = v183;
+    hess0[20] = v159;
+    hess0[34] = v159;
+    hess0[21] = v161;
+    hess0[42] = v161;
+    hess0[22] = v164;
+    hess0[50] = v164;
+    hess0[23] = v166;
+    hess0[58] = v166;
+    hess0[27] = v191;
+    hess0[28] = v173;
+    hess0[35] = v173;
+    hess0[29] = v192;
+    hess0[43] = v192;
+    hess0[30] = v178;
+    hess0[51] = v178;
+    hess0[31] = v193;
+    hess0[59] = v193;
+    hess0[36] = L::ZERO;
+    hess0[37] = L::ZERO;
+    hess0[44] = L::ZERO;
+    hess0[38] = L::ZERO;
+    hess0[52] = L::ZERO;
+    hess0[39] = L::ZERO;
+    hess0[60] = L::ZERO;
+    hess0[45] = L::ZERO;
+    hess0[46] = L::ZERO;
+    hess0[53] = L::ZERO;
+    hess0[47] = L::ZERO;
+    hess0[61] = L::ZERO;
+    hess0[54] = L::ZERO;
+    hess0[55] = L::ZERO;
+    hess0[62] = L::ZERO;
+    hess0[63] = L::ZERO;
+    *xi_m = v74;
+    v130
+}
+/// `slave_normal_slip_type2` over 4 lanes (portable build).
+fn slave_normal_slip_type2_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type2_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `slave_normal_slip_type2` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn slave_normal_slip_type2_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type2_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `slave_normal_slip_type3`: `slave-normal`, type 3 (xi_m, x_ms and s_m, n: linear, quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 236 ops (89 add, 131 mul, 2 div, 1 sqrt, 13 neg).
+#[inline(always)]
+fn slave_normal_slip_type3_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v0 * v0;
+    let v14 = v1 * v1;
+    let v15 = v13 + v14;
+    let v16 = v15.sqrt();
+    let v17 = v16.recip();
+    let v18 = v1 * v17;
+    let v19 = v0 * v17;
+    let v20 = xi_m0;
+    let v21 = L::splat(1.0) - v20;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = L::splat(1.0) + v20;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = v2 * v22;
+    let v26 = v4 * v24;
+    let v27 = v25 + v26;
+    let v28 = v3 * v22;
+    let v29 = v5 * v24;
+    let v30 = v28 + v29;
+    let v31 = v2 - v4;
+    let v32 = L::splat(0.5) * v31;
+    let v33 = v0 * v32;
+    let v34 = v3 - v5;
+    let v35 = L::splat(0.5) * v34;
+    let v36 = v1 * v35;
+    let v37 = v33 + v36;
+    let v38 = v37.recip();
+    let v39 = v0 * v8;
+    let v40 = v1 * v8;
+    let v41 = L::splat(2.0) * v0;
+    let v42 = L::splat(2.0) * v1;
+    let v43 = L::splat(0.5) * v17;
+    let v44 = v17 * v17;
+    let v45 = v41 * v43;
+    let v46 = v44 * v45;
+    let v47 = v1 * v46;
+    let v48 = v42 * v43;
+    let v49 = v44 * v48;
+    let v50 = v1 * v49;
+    let v51 = v17 - v50;
+    let v52 = v0 * v46;
+    let v53 = v17 - v52;
+    let v54 = v0 * v49;
+    let v55 = v19 * v32;
+    let v56 = L::splat(0.5) * v19;
+    let v57 = v32 * v53;
+    let v58 = v32 * v54;
+    let v59 = v18 * v35;
+    let v60 = L::splat(0.5) * v18;
+    let v61 = v35 * v47;
+    let v62 = v35 * v51;
+    let v63 = v55 + v59;
+    let v64 = v57 - v61;
+    let v65 = v58 - v62;
+    let v66 = v2 + v4;
+    let v67 = L::splat(0.5) * v66;
+    let v68 = v3 + v5;
+    let v69 = L::splat(0.5) * v68;
+    let v70 = v11 - v67;
+    let v71 = v12 - v69;
+    let v72 = v0 * v70;
+    let v73 = v1 * v71;
+    let v74 = v72 + v73;
+    let v75 = v38 * v74;
+    let v76 = -v75;
+    let v77 = L::splat(1.0) + v75;
+    let v78 = L::splat(0.5) * v77;
+    let v79 = L::splat(1.0) - v75;
+    let v80 = L::splat(0.5) * v79;
+    let v81 = v2 * v78;
+    let v82 = v4 * v80;
+    let v83 = v81 + v82;
+    let v84 = v3 * v78;
+    let v85 = v5 * v80;
+    let v86 = v84 + v85;
+    let v87 = v11 - v83;
+    let v88 = v12 - v86;
+    let v89 = v27 - v83;
+    let v90 = v30 - v86;
+    let v91 = v39 - v87;
+    let v92 = v38 * v91;
+    let v93 = v40 - v88;
+    let v94 = v38 * v93;
+    let v95 = v11 + v87;
+    let v96 = v38 * v95;
+    let v97 = v12 + v88;
+    let v98 = v38 * v97;
+    let v99 = v0 * v78;
+    let v100 = v38 * v99;
+    let v101 = v1 * v78;
+    let v102 = v38 * v101;
+    let v103 = v0 * v80;
+    let v104 = v38 * v103;
+    let v105 = v1 * v80;
+    let v106 = v38 * v105;
+    let v107 = v21 - v77;
+    let v108 = L::splat(0.5) * v107;
+    let v109 = v23 - v79;
+    let v110 = L::splat(0.5) * v109;
+    let v111 = v53 * v89;
+    let v112 = v54 * v89;
+    let v113 = v19 * v108;
+    let v114 = v19 * v110;
+    let v115 = v53 * v108;
+    let v116 = v53 * v110;
+    let v117 = v54 * v108;
+    let v118 = v54 * v110;
+    let v119 = v19 * v89;
+    let v120 = v47 * v90;
+    let v121 = v51 * v90;
+    let v122 = v18 * v108;
+    let v123 = v18 * v110;
+    let v124 = v47 * v108;
+    let v125 = v47 * v110;
+    let v126 = v51 * v108;
+    let v127 = v51 * v110;
+    let v128 = v18 * v90;
+    let v129 = v111 - v120;
+    let v130 = v112 - v121;
+    let v131 = v119 + v128;
+    let v132 = -v131;
+    let v133 = v63 * v92;
+    let v134 = v129 + v133;
+    let v135 = v63 * v94;
+    let v136 = v63 * v96;
+    let v137 = v63 * v98;
+    let v138 = v130 + v137;
+    let v139 = v63 * v100;
+    let v140 = v113 + v139;
+    let v141 = -v140;
+    let v142 = v63 * v102;
+    let v143 = v122 + v142;
+    let v144 = -v143;
+    let v145 = v63 * v104;
+    let v146 = v114 + v145;
+    let v147 = -v146;
+    let v148 = v63 * v106;
+    let v149 = v123 + v148;
+    let v150 = -v149;
+    let v151 = v64 * v92;
+    let v152 = v64 * v94;
+    let v153 = v65 * v92;
+    let v154 = v64 * v96;
+    let v155 = v151 - v154;
+    let v156 = v64 * v98;
+    let v157 = v153 + v156;
+    let v158 = -v157;
+    let v159 = v64 * v100;
+    let v160 = v56 * v92;
+    let v161 = v159 + v160;
+    let v162 = v115 + v161;
+    let v163 = v64 * v102;
+    let v164 = v60 * v92;
+    let v165 = v163 + v164;
+    let v166 = v64 * v104;
+    let v167 = v160 - v166;
+    let v168 = v116 - v167;
+    let v169 = v64 * v106;
+    let v170 = v164 - v169;
+    let v171 = v125 + v170;
+    let v172 = -v171;
+    let v173 = v65 * v94;
+    let v174 = L::splat(2.0) * v173;
+    let v175 = v65 * v96;
+    let v176 = v152 + v175;
+    let v177 = v65 * v98;
+    let v178 = v65 * v100;
+    let v179 = v56 * v94;
+    let v180 = v178 - v179;
+    let v181 = v117 + v180;
+    let v182 = -v181;
+    let v183 = v65 * v102;
+    let v184 = v60 * v94;
+    let v185 = v183 - v184;
+    let v186 = v126 - v185;
+    let v187 = v65 * v104;
+    let v188 = v179 + v187;
+    let v189 = v118 + v188;
+    let v190 = -v189;
+    let v191 = v65 * v106;
+    let v192 = v184 + v191;
+    let v193 = v127 - v192;
+    let v194 = L::splat(2.0) * v154;
+    let v195 = v156 - v175;
+    let v196 = v56 * v96;
+    let v197 = v159 - v196;
+    let v198 = v115 + v197;
+    let v199 = -v198;
+    let v200 = v60 * v96;
+    let v201 = v163 - v200;
+    let v202 = v124 - v201;
+    let v203 = v166 + v196;
+    let v204 = v116 + v203;
+    let v205 = -v204;
+    let v206 = v169 + v200;
+    let v207 = v125 - v206;
+    let v208 = v56 * v98;
+    let v209 = v178 + v208;
+    let v210 = v117 + v209;
+    let v211 = v60 * v98;
+    let v212 = v183 + v211;
+    let v213 = v187 - v208;
+    let v214 = v118 + v213;
+    let v215 = v191 - v211;
+    let v216 = v56 * v100;
+    let v217 = v56 * v102;
+    let v218 = v60 * v100;
+    let v219 = v217 + v218;
+    let v220 = -v219;
+    let v221 = v56 * v104;
+    let v222 = v216 - v221;
+    let v223 = v56 * v106;
+    let v224 = v218 - v223;
+    let v225 = v60 * v102;
+    let v226 = v60 * v104;
+    let v227 = v217 - v226;
+    let v228 = v60 * v106;
+    let v229 = v225 - v228;
+    let v230 = L::splat(2.0) * v221;
+    let v231 = v223 + v226;
+    let v232 = L::splat(2.0) * v228;
+    let v233 = v135 - v130;
+    let v234 = v136 - v129;
+    let v235 = L::splat((-2.0)) * v151;
+    let v236 = v153 - v152;
+    let v237 = v165 - v124;
+    let v238 = v177 - v173;
+    let v239 = L::splat((-2.0)) * v177;
+    let v240 = v212 - v126;
+    let v241 = v215 - v127;
+    let v242 = L::splat((-2.0)) * v216;
+    let v243 = L::splat((-2.0)) * v225;
+    grad0[0] = v134;
+    grad0[1] = v233;
+    grad0[2] = v234;
+    grad0[3] = v138;
+    grad0[4] = v141;
+    grad0[5] = v144;
+    grad0[6] = v147;
+    grad0[7] = v150;
+    hess0[0] = v235;
+    hess0[1] = v236;
+    hess0[8] = v236;
+    hess0[2] = v155;
+    hess0[16] = v155;
+    hess0[3] = v158;
+    hess0[24] = v158;
+    hess0[4] = v162;
+    hess0[32] = v162;
+    hess0[5] = v237;
+    hess0[40] = v237;
+    hess0[6] = v168;
+    hess0[48] = v168;
+    hess0[7] = v172;
+    hess0[56] = v172;
+    hess0[9] = v174;
+    hess0[10] = v176;
+    hess0[17] = v176;
+    hess0[11] = v238;
+    hess0[25] = v238;
+    hess0[12] = v182;
+    hess0[33] = v182;
+    hess0[13] = v186;
+    hess0[41] = v186;
+    hess0[14] = v190;
+    hess0[49] = v190;
+    hess0[15] = v193;
+    hess0[57] = v193;
+    hess0[18] = v194;
+    hess0[19] = v195;
+    hess0[26] = v195;
+    hess0[20] = v199;
+    hess0[34] = v199;
+    hess0[21] = v202;
+    hess0[42] = v202;
+    hess0[22] = v205;
+    hess0[50] = v205;
+    hess0[23] = v207;
+    hess0[58] = v207;
+    hess0[27] = v239;
+    hess0[28] = v210;
+    hess0[35] = v210;
+    hess0[29] = v240;
+    hess0[43] = v240;
+    hess0[30] = v214;
+    hess0[51] = v214;
+    hess0[31] = v241;
+    hess0[59] = v241;
+    hess0[36] = v242;
+    hess0[37] = v220;
+    hess0[44] = v220;
+    hess0[38] = v222;
+    hess0[52] = v222;
+    hess0[39] = v224;
+    hess0[60] = v224;
+    hess0[45] = v243;
+    hess0[46] = v227;
+    hess0[53] = v227;
+    hess0[47] = v229;
+    hess0[61] = v229;
+    hess0[54] = v230;
+    hess0[55] = v231;
+    hess0[62] = v231;
+    hess0[63] = v232;
+    *xi_m = v76;
+    v132
+}
+/// `slave_normal_slip_type3` over 4 lanes (portable build).
+fn slave_normal_slip_type3_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type3_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `slave_normal_slip_type3` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn slave_normal_slip_type3_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type3_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `slave_normal_slip_type4`: `slave-normal`, type 4 (xi_m, x_ms and s_m, n: quadratic, quadratic, linear): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 302 ops (113 add, 175 mul, 2 div, 1 sqrt, 11 neg).
+#[inline(always)]
+fn slave_normal_slip_type4_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v0 * v0;
+    let v14 = v1 * v1;
+    let v15 = v13 + v14;
+    let v16 = v15.sqrt();
+    let v17 = v16.recip();
+    let v18 = v1 * v17;
+    let v19 = v0 * v17;
+    let v20 = xi_m0;
+    let v21 = L::splat(1.0) - v20;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = L::splat(1.0) + v20;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = v2 * v22;
+    let v26 = v4 * v24;
+    let v27 = v25 + v26;
+    let v28 = v3 * v22;
+    let v29 = v5 * v24;
+    let v30 = v28 + v29;
+    let v31 = v2 - v4;
+    let v32 = L::splat(0.5) * v31;
+    let v33 = v0 * v32;
+    let v34 = v3 - v5;
+    let v35 = L::splat(0.5) * v34;
+    let v36 = v1 * v35;
+    let v37 = v33 + v36;
+    let v38 = v37.recip();
+    let v39 = v0 * v8;
+    let v40 = v1 * v8;
+    let v41 = v7 - v9;
+    let v42 = L::splat(0.5) * v41;
+    let v43 = L::splat(0.5) * v0;
+    let v44 = L::splat(0.5) * v1;
+    let v45 = v32 * v38;
+    let v46 = v35 * v38;
+    let v47 = v32 * v45;
+    let v48 = v35 * v45;
+    let v49 = v43 * v45;
+    let v50 = v44 * v45;
+    let v51 = L::splat((-0.5)) + v49;
+    let v52 = L::splat(0.5) - v49;
+    let v53 = v32 * v46;
+    let v54 = v35 * v46;
+    let v55 = v43 * v46;
+    let v56 = v44 * v46;
+    let v57 = L::splat((-0.5)) + v56;
+    let v58 = L::splat(0.5) - v56;
+    let v59 = L::splat(2.0) * v0;
+    let v60 = L::splat(2.0) * v1;
+    let v61 = L::splat(0.5) * v17;
+    let v62 = v17 * v17;
+    let v63 = v59 * v61;
+    let v64 = v62 * v63;
+    let v65 = v1 * v64;
+    let v66 = v60 * v61;
+    let v67 = v62 * v66;
+    let v68 = v1 * v67;
+    let v69 = v17 - v68;
+    let v70 = v0 * v64;
+    let v71 = v17 - v70;
+    let v72 = v0 * v67;
+    let v73 = v19 * v32;
+    let v74 = v19 * v45;
+    let v75 = v19 * v47;
+    let v76 = v19 * v48;
+    let v77 = v19 * v51;
+    let v78 = v19 * v50;
+    let v79 = v19 * v52;
+    let v80 = v32 * v71;
+    let v81 = v32 * v72;
+    let v82 = v75 - v80;
+    let v83 = v76 + v81;
+    let v84 = v18 * v35;
+    let v85 = v18 * v46;
+    let v86 = v18 * v53;
+    let v87 = v18 * v54;
+    let v88 = v18 * v55;
+    let v89 = v18 * v57;
+    let v90 = v18 * v58;
+    let v91 = v35 * v65;
+    let v92 = v35 * v69;
+    let v93 = v86 + v91;
+    let v94 = v87 - v92;
+    let v95 = v73 + v84;
+    let v96 = v74 + v85;
+    let v97 = v82 + v93;
+    let v98 = v83 + v94;
+    let v99 = v77 + v88;
+    let v100 = v78 + v89;
+    let v101 = v79 - v88;
+    let v102 = v78 - v90;
+    let v103 = v7 * v96;
+    let v104 = v42 * v96;
+    let v105 = v9 * v96;
+    let v106 = v2 + v4;
+    let v107 = L::splat(0.5) * v106;
+    let v108 = v3 + v5;
+    let v109 = L::splat(0.5) * v108;
+    let v110 = v11 - v107;
+    let v111 = v12 - v109;
+    let v112 = v0 * v110;
+    let v113 = v1 * v111;
+    let v114 = v112 + v113;
+    let v115 = v38 * v114;
+    let v116 = -v115;
+    let v117 = L::splat(1.0) + v115;
+    let v118 = L::splat(0.5) * v117;
+    let v119 = L::splat(1.0) - v115;
+    let v120 = L::splat(0.5) * v119;
+    let v121 = v2 * v118;
+    let v122 = v4 * v120;
+    let v123 = v121 + v122;
+    let v124 = v3 * v118;
+    let v125 = v5 * v120;
+    let v126 = v124 + v125;
+    let v127 = v11 - v123;
+    let v128 = v12 - v126;
+    let v129 = v27 - v123;
+    let v130 = v30 - v126;
+    let v131 = v39 - v127;
+    let v132 = v38 * v131;
+    let v133 = v40 - v128;
+    let v134 = v38 * v133;
+    let v135 = v11 + v127;
+    let v136 = v38 * v135;
+    let v137 = v12 + v128;
+    let v138 = v38 * v137;
+    let v139 = v0 * v118;
+    let v140 = v38 * v139;
+    let v141 = v1 * v118;
+    let v142 = v38 * v141;
+    let v143 = v0 * v120;
+    let v144 = v38 * v143;
+    let v145 = v1 * v120;
+    let v146 = v38 * v145;
+    let v147 = v21 - v117;
+    let v148 = L::splat(0.5) * v147;
+    let v149 = v23 - v119;
+    let v150 = L::splat(0.5) * v149;
+    let v151 = v71 * v129;
+    let v152 = v72 * v129;
+    let v153 = v19 * v148;
+    let v154 = v19 * v150;
+    let v155 = v71 * v148;
+    let v156 = v71 * v150;
+    let v157 = v72 * v148;
+    let v158 = v72 * v150;
+    let v159 = v19 * v129;
+    let v160 = v65 * v130;
+    let v161 = v69 * v130;
+    let v162 = v18 * v148;
+    let v163 = v18 * v150;
+    let v164 = v65 * v148;
+    let v165 = v65 * v150;
+    let v166 = v69 * v148;
+    let v167 = v69 * v150;
+    let v168 = v18 * v130;
+    let v169 = v151 - v160;
+    let v170 = v152 - v161;
+    let v171 = v159 + v168;
+    let v172 = -v171;
+    let v173 = v95 * v132;
+    let v174 = v169 + v173;
+    let v175 = v95 * v134;
+    let v176 = v95 * v136;
+    let v177 = v95 * v138;
+    let v178 = v170 + v177;
+    let v179 = v95 * v140;
+    let v180 = v153 + v179;
+    let v181 = -v180;
+    let v182 = v95 * v142;
+    let v183 = v162 + v182;
+    let v184 = -v183;
+    let v185 = v95 * v144;
+    let v186 = v154 + v185;
+    let v187 = -v186;
+    let v188 = v95 * v146;
+    let v189 = v163 + v188;
+    let v190 = -v189;
+    let v191 = v96 * v118;
+    let v192 = v155 + v191;
+    let v193 = v96 * v120;
+    let v194 = v156 + v193;
+    let v195 = v166 + v191;
+    let v196 = v167 + v193;
+    let v197 = v97 * v132;
+    let v198 = L::splat(2.0) * v197;
+    let v199 = v97 * v134;
+    let v200 = v98 * v132;
+    let v201 = v199 + v200;
+    let v202 = v97 * v136;
+    let v203 = v197 - v202;
+    let v204 = v104 - v203;
+    let v205 = v97 * v138;
+    let v206 = v97 * v140;
+    let v207 = v99 * v132;
+    let v208 = v206 + v207;
+    let v209 = v192 - v208;
+    let v210 = v97 * v142;
+    let v211 = v100 * v132;
+    let v212 = v210 + v211;
+    let v213 = v164 + v212;
+    let v214 = -v213;
+    let v215 = v97 * v144;
+    let v216 = v101 * v132;
+    let v217 = v215 + v216;
+    let v218 = v194 - v217;
+    let v219 = v97 * v146;
+    let v220 = v102 * v132;
+    let v221 = v219 - v220;
+    let v222 = v165 + v221;
+    let v223 = -v222;
+    let v224 = v98 * v134;
+    let v225 = L::splat(2.0) * v224;
+    let v226 = v98 * v136;
+    let v227 = v98 * v138;
+    let v228 = v224 - v227;
+    let v229 = v104 - v228;
+    let v230 = v98 * v140;
+    let v231 = v99 * v134;
+    let v232 = v230 + v231;
+    let v233 = v157 + v232;
+    let v234 = -v233;
+    let v235 = v98 * v142;
+    let v236 = v100 * v134;
+    let v237 = v235 + v236;
+    let v238 = v195 - v237;
+    let v239 = v98 * v144;
+    let v240 = v101 * v134;
+    let v241 = v239 + v240;
+    let v242 = v158 + v241;
+    let v243 = -v242;
+    let v244 = v98 * v146;
+    let v245 = v102 * v134;
+    let v246 = v244 - v245;
+    let v247 = v196 - v246;
+    let v248 = L::splat(2.0) * v202;
+    let v249 = v105 - v248;
+    let v250 = v205 + v226;
+    let v251 = -v250;
+    let v252 = v99 * v136;
+    let v253 = v206 - v252;
+    let v254 = v100 * v136;
+    let v255 = v210 - v254;
+    let v256 = v164 + v255;
+    let v257 = v101 * v136;
+    let v258 = v215 - v257;
+    let v259 = v102 * v136;
+    let v260 = v219 + v259;
+    let v261 = v165 + v260;
+    let v262 = L::splat(2.0) * v227;
+    let v263 = v105 - v262;
+    let v264 = v99 * v138;
+    let v265 = v230 - v264;
+    let v266 = v157 + v265;
+    let v267 = v100 * v138;
+    let v268 = v235 - v267;
+    let v269 = v101 * v138;
+    let v270 = v239 - v269;
+    let v271 = v158 + v270;
+    let v272 = v102 * v138;
+    let v273 = v244 + v272;
+    let v274 = v99 * v140;
+    let v275 = L::splat(2.0) * v274;
+    let v276 = v99 * v142;
+    let v277 = v100 * v140;
+    let v278 = v276 + v277;
+    let v279 = v99 * v144;
+    let v280 = v101 * v140;
+    let v281 = v279 + v280;
+    let v282 = v99 * v146;
+    let v283 = v102 * v140;
+    let v284 = v282 - v283;
+    let v285 = v100 * v142;
+    let v286 = L::splat(2.0) * v285;
+    let v287 = v100 * v144;
+    let v288 = v101 * v142;
+    let v289 = v287 + v288;
+    let v290 = v100 * v146;
+    let v291 = v102 * v142;
+    let v292 = v290 - v291;
+    let v293 = v101 * v144;
+    let v294 = L::splat(2.0) * v293;
+    let v295 = v101 * v146;
+    let v296 = v102 * v144;
+    let v297 = v295 - v296;
+    let v298 = v102 * v146;
+    let v299 = v175 - v170;
+    let v300 = v176 - v169;
+    let v301 = v198 - v103;
+    let v302 = v205 - v200;
+    let v303 = v225 - v103;
+    let v304 = v226 - v199;
+    let v305 = v253 - v192;
+    let v306 = v258 - v194;
+    let v307 = v268 - v195;
+    let v308 = v273 - v196;
+    let v309 = L::splat((-2.0)) * v298;
+    grad0[0] = v174;
+    grad0[1] = v299;
+    grad0[2] = v300;
+    grad0[3] = v178;
+    grad0[4] = v181;
+    grad0[5] = v184;
+    grad0[6] = v187;
+    grad0[7] = v190;
+    hess0[0] = v301;
+    hess0[1] = v201;
+    hess0[8] = v201;
+    hess0[2] = v204;
+    hess0[16] = v204;
+    hess0[3] = v302;
+    hess0[24] = v302;
+    hess0[4] = v209;
+    hess0[32] = v209;
+    hess0[5] = v214;
+    hess0[40] = v214;
+    hess0[6] = v218;
+    hess0[48] = v218;
+    hess0[7] = v223;
+    hess0[56] = v223;
+    hess0[9] = v303;
+    hess0[10] = v304;
+    hess0[17] = v304;
+    hess0[11] = v229;
+    hess0[25] = v229;
+    hess0[12] = v234;
+    hess0[33] = v234;
+    hess0[13] = v238;
+    hess0[41] = v238;
+    hess0[14] = v243;
+    hess0[49] = v243;
+    hess0[15] = v247;
+    hess0[57] = v247;
+    hess0[18] = v249;
+    hess0[19] = v251;
+    hess0[26] = v251;
+    hess0[20] = v305;
+    hess0[34] = v305;
+    hess0[21] = v256;
+    hess0[42] = v256;
+    hess0[22] = v306;
+    hess0[50] = v306;
+    hess0[23] = v261;
+    hess0[58] = v261;
+    hess0[27] = v263;
+    hess0[28] = v266;
+    hess0[35] = v266;
+    hess0[29] = v307;
+    hess0[43] = v307;
+    hess0[30] = v271;
+    hess0[51] = v271;
+    hess0[31] = v308;
+    hess0[59] = v308;
+    hess0[36] = v275;
+    hess0[37] = v278;
+    hess0[44] = v278;
+    hess0[38] = v281;
+    hess0[52] = v281;
+    hess0[39] = v284;
+    hess0[60] = v284;
+    hess0[45] = v286;
+    hess0[46] = v289;
+    hess0[53] = v289;
+    hess0[47] = v292;
+    hess0[61] = v292;
+    hess0[54] = v294;
+    hess0[55] = v297;
+    hess0[62] = v297;
+    hess0[63] = v309;
+    *xi_m = v116;
+    v172
+}
+/// `slave_normal_slip_type4` over 4 lanes (portable build).
+fn slave_normal_slip_type4_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type4_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `slave_normal_slip_type4` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn slave_normal_slip_type4_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type4_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `slave_normal_slip_type5`: `slave-normal`, type 5 (xi_m, x_ms and s_m, n: linear, quadratic, quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 298 ops (117 add, 164 mul, 2 div, 1 sqrt, 14 neg).
+#[inline(always)]
+fn slave_normal_slip_type5_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v0 * v0;
+    let v14 = v1 * v1;
+    let v15 = v13 + v14;
+    let v16 = v15.sqrt();
+    let v17 = v16.recip();
+    let v18 = v1 * v17;
+    let v19 = v0 * v17;
+    let v20 = xi_m0;
+    let v21 = L::splat(1.0) - v20;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = L::splat(1.0) + v20;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = v2 * v22;
+    let v26 = v4 * v24;
+    let v27 = v25 + v26;
+    let v28 = v3 * v22;
+    let v29 = v5 * v24;
+    let v30 = v28 + v29;
+    let v31 = v2 - v4;
+    let v32 = L::splat(0.5) * v31;
+    let v33 = v0 * v32;
+    let v34 = v3 - v5;
+    let v35 = L::splat(0.5) * v34;
+    let v36 = v1 * v35;
+    let v37 = v33 + v36;
+    let v38 = v37.recip();
+    let v39 = v0 * v8;
+    let v40 = v1 * v8;
+    let v41 = L::splat(2.0) * v0;
+    let v42 = L::splat(2.0) * v1;
+    let v43 = L::splat(0.5) * v17;
+    let v44 = v17 * v17;
+    let v45 = v41 * v43;
+    let v46 = v44 * v45;
+    let v47 = v1 * v46;
+    let v48 = v42 * v43;
+    let v49 = v44 * v48;
+    let v50 = v1 * v49;
+    let v51 = v17 - v50;
+    let v52 = L::splat(2.0) * v17;
+    let v53 = v46 * v52;
+    let v54 = L::splat(0.5) * v46;
+    let v55 = v41 * v54;
+    let v56 = v17 - v55;
+    let v57 = v45 * v53;
+    let v58 = v44 * v56;
+    let v59 = v57 - v58;
+    let v60 = v1 * v59;
+    let v61 = v49 * v52;
+    let v62 = L::splat(0.5) * v49;
+    let v63 = v41 * v62;
+    let v64 = v45 * v61;
+    let v65 = v44 * v63;
+    let v66 = v64 + v65;
+    let v67 = v1 * v66;
+    let v68 = v46 - v67;
+    let v69 = v42 * v62;
+    let v70 = v17 - v69;
+    let v71 = v48 * v61;
+    let v72 = v44 * v70;
+    let v73 = v71 - v72;
+    let v74 = v1 * v73;
+    let v75 = v49 - v74;
+    let v76 = v49 + v75;
+    let v77 = v42 * v54;
+    let v78 = v48 * v53;
+    let v79 = v44 * v77;
+    let v80 = v78 + v79;
+    let v81 = v1 * v80;
+    let v82 = v46 - v81;
+    let v83 = v0 * v46;
+    let v84 = v17 - v83;
+    let v85 = v0 * v49;
+    let v86 = v0 * v59;
+    let v87 = v46 - v86;
+    let v88 = v46 + v87;
+    let v89 = v0 * v66;
+    let v90 = v49 - v89;
+    let v91 = v0 * v73;
+    let v92 = v0 * v80;
+    let v93 = v49 - v92;
+    let v94 = v19 * v32;
+    let v95 = L::splat(0.5) * v19;
+    let v96 = v32 * v84;
+    let v97 = v32 * v85;
+    let v98 = v18 * v35;
+    let v99 = L::splat(0.5) * v18;
+    let v100 = v35 * v47;
+    let v101 = v35 * v51;
+    let v102 = v94 + v98;
+    let v103 = v96 - v100;
+    let v104 = v97 - v101;
+    let v105 = v2 + v4;
+    let v106 = L::splat(0.5) * v105;
+    let v107 = v3 + v5;
+    let v108 = L::splat(0.5) * v107;
+    let v109 = v11 - v106;
+    let v110 = v12 - v108;
+    let v111 = v0 * v109;
+    let v112 = v1 * v110;
+    let v113 = v111 + v112;
+    let v114 = v38 * v113;
+    let v115 = -v114;
+    let v116 = L::splat(1.0) + v114;
+    let v117 = L::splat(0.5) * v116;
+    let v118 = L::splat(1.0) - v114;
+    let v119 = L::splat(0.5) * v118;
+    let v120 = v2 * v117;
+    let v121 = v4 * v119;
+    let v122 = v120 + v121;
+    let v123 = v3 * v117;
+    let v124 = v5 * v119;
+    let v125 = v123 + v124;
+    let v126 = v11 - v122;
+    let v127 = v12 - v125;
+    let v128 = v27 - v122;
+    let v129 = v30 - v125;
+    let v130 = v39 - v126;
+    let v131 = v38 * v130;
+    let v132 = v40 - v127;
+    let v133 = v38 * v132;
+    let v134 = v11 + v126;
+    let v135 = v38 * v134;
+    let v136 = v12 + v127;
+    let v137 = v38 * v136;
+    let v138 = v0 * v117;
+    let v139 = v38 * v138;
+    let v140 = v1 * v117;
+    let v141 = v38 * v140;
+    let v142 = v0 * v119;
+    let v143 = v38 * v142;
+    let v144 = v1 * v119;
+    let v145 = v38 * v144;
+    let v146 = v21 - v116;
+    let v147 = L::splat(0.5) * v146;
+    let v148 = v23 - v118;
+    let v149 = L::splat(0.5) * v148;
+    let v150 = v84 * v128;
+    let v151 = v85 * v128;
+    let v152 = v19 * v147;
+    let v153 = v19 * v149;
+    let v154 = v88 * v128;
+    let v155 = v90 * v128;
+    let v156 = v91 * v128;
+    let v157 = v93 * v128;
+    let v158 = v84 * v147;
+    let v159 = v84 * v149;
+    let v160 = v85 * v147;
+    let v161 = v85 * v149;
+    let v162 = v19 * v128;
+    let v163 = v47 * v129;
+    let v164 = v51 * v129;
+    let v165 = v18 * v147;
+    let v166 = v18 * v149;
+    let v167 = v60 * v129;
+    let v168 = v68 * v129;
+    let v169 = v76 * v129;
+    let v170 = v82 * v129;
+    let v171 = v47 * v147;
+    let v172 = v47 * v149;
+    let v173 = v51 * v147;
+    let v174 = v51 * v149;
+    let v175 = v18 * v129;
+    let v176 = v150 - v163;
+    let v177 = v151 - v164;
+    let v178 = v154 - v167;
+    let v179 = v155 + v168;
+    let v180 = v156 - v169;
+    let v181 = v157 + v170;
+    let v182 = v162 + v175;
+    let v183 = -v182;
+    let v184 = v102 * v131;
+    let v185 = v176 + v184;
+    let v186 = v102 * v133;
+    let v187 = v102 * v135;
+    let v188 = v102 * v137;
+    let v189 = v177 + v188;
+    let v190 = v102 * v139;
+    let v191 = v152 + v190;
+    let v192 = -v191;
+    let v193 = v102 * v141;
+    let v194 = v165 + v193;
+    let v195 = -v194;
+    let v196 = v102 * v143;
+    let v197 = v153 + v196;
+    let v198 = -v197;
+    let v199 = v102 * v145;
+    let v200 = v166 + v199;
+    let v201 = -v200;
+    let v202 = v103 * v131;
+    let v203 = L::splat(2.0) * v202;
+    let v204 = v178 - v203;
+    let v205 = v103 * v133;
+    let v206 = v104 * v131;
+    let v207 = v205 - v206;
+    let v208 = v179 - v207;
+    let v209 = v103 * v135;
+    let v210 = v202 - v209;
+    let v211 = v103 * v137;
+    let v212 = v206 + v211;
+    let v213 = v179 + v212;
+    let v214 = -v213;
+    let v215 = v103 * v139;
+    let v216 = v95 * v131;
+    let v217 = v215 + v216;
+    let v218 = v158 + v217;
+    let v219 = v103 * v141;
+    let v220 = v99 * v131;
+    let v221 = v219 + v220;
+    let v222 = v103 * v143;
+    let v223 = v216 - v222;
+    let v224 = v159 - v223;
+    let v225 = v103 * v145;
+    let v226 = v220 - v225;
+    let v227 = v172 + v226;
+    let v228 = -v227;
+    let v229 = v104 * v133;
+    let v230 = L::splat(2.0) * v229;
+    let v231 = v104 * v135;
+    let v232 = v205 + v231;
+    let v233 = v104 * v137;
+    let v234 = v229 - v233;
+    let v235 = v180 - v234;
+    let v236 = v104 * v139;
+    let v237 = v95 * v133;
+    let v238 = v236 - v237;
+    let v239 = v160 + v238;
+    let v240 = -v239;
+    let v241 = v104 * v141;
+    let v242 = v99 * v133;
+    let v243 = v241 - v242;
+    let v244 = v173 - v243;
+    let v245 = v104 * v143;
+    let v246 = v237 + v245;
+    let v247 = v161 + v246;
+    let v248 = -v247;
+    let v249 = v104 * v145;
+    let v250 = v242 + v249;
+    let v251 = v174 - v250;
+    let v252 = L::splat(2.0) * v209;
+    let v253 = v178 + v252;
+    let v254 = v211 - v231;
+    let v255 = v179 + v254;
+    let v256 = v95 * v135;
+    let v257 = v215 - v256;
+    let v258 = v158 + v257;
+    let v259 = -v258;
+    let v260 = v99 * v135;
+    let v261 = v219 - v260;
+    let v262 = v171 - v261;
+    let v263 = v222 + v256;
+    let v264 = v159 + v263;
+    let v265 = -v264;
+    let v266 = v225 + v260;
+    let v267 = v172 - v266;
+    let v268 = L::splat(2.0) * v233;
+    let v269 = v180 + v268;
+    let v270 = -v269;
+    let v271 = v95 * v137;
+    let v272 = v236 + v271;
+    let v273 = v160 + v272;
+    let v274 = v99 * v137;
+    let v275 = v241 + v274;
+    let v276 = v245 - v271;
+    let v277 = v161 + v276;
+    let v278 = v249 - v274;
+    let v279 = v95 * v139;
+    let v280 = v95 * v141;
+    let v281 = v99 * v139;
+    let v282 = v280 + v281;
+    let v283 = -v282;
+    let v284 = v95 * v143;
+    let v285 = v279 - v284;
+    let v286 = v95 * v145;
+    let v287 = v281 - v286;
+    let v288 = v99 * v141;
+    let v289 = v99 * v143;
+    let v290 = v280 - v289;
+    let v291 = v99 * v145;
+    let v292 = v288 - v291;
+    let v293 = L::splat(2.0) * v284;
+    let v294 = v286 + v289;
+    let v295 = L::splat(2.0) * v291;
+    let v296 = v186 - v177;
+    let v297 = v187 - v176;
+    let v298 = v210 - v178;
+    let v299 = v221 - v171;
+    let v300 = v230 - v180;
+    let v301 = v232 - v181;
+    let v302 = v275 - v173;
+    let v303 = v278 - v174;
+    let v304 = L::splat((-2.0)) * v279;
+    let v305 = L::splat((-2.0)) * v288;
+    grad0[0] = v185;
+    grad0[1] = v296;
+    grad0[2] = v297;
+    grad0[3] = v189;
+    grad0[4] = v192;
+    grad0[5] = v195;
+    grad0[6] = v198;
+    grad0[7] = v201;
+    hess0[0] = v204;
+    hess0[1] = v208;
+    hess0[8] = v208;
+    hess0[2] = v298;
+    hess0[16] = v298;
+    hess0[3] = v214;
+    hess0[24] = v214;
+    hess0[4] = v218;
+    hess0[32] = v218;
+    hess0[5] = v299;
+    hess0[40] = v299;
+    hess0[6] = v224;
+    hess0[48] = v224;
+    hess0[7] = v228;
+    hess0[56] = v228;
+    hess0[9] = v300;
+    hess0[10] = v301;
+    hess0[17] = v301;
+    hess0[11] = v235;
+    hess0[25] = v235;
+    hess0[12] = v240;
+    hess0[33] = v240;
+    hess0[13] = v244;
+    hess0[41] = v244;
+    hess0[14] = v248;
+    hess0[49] = v248;
+    hess0[15] = v251;
+    hess0[57] = v251;
+    hess0[18] = v253;
+    hess0[19] = v255;
+    hess0[26] = v255;
+    hess0[20] = v259;
+    hess0[34] = v259;
+    hess0[21] = v262;
+    hess0[42] = v262;
+    hess0[22] = v265;
+    hess0[50] = v265;
+    hess0[23] = v267;
+    hess0[58] = v267;
+    hess0[27] = v270;
+    hess0[28] = v273;
+    hess0[35] = v273;
+    hess0[29] = v302;
+    hess0[43] = v302;
+    hess0[30] = v277;
+    hess0[51] = v277;
+    hess0[31] = v303;
+    hess0[59] = v303;
+    hess0[36] = v304;
+    hess0[37] = v283;
+    hess0[44] = v283;
+    hess0[38] = v285;
+    hess0[52] = v285;
+    hess0[39] = v287;
+    hess0[60] = v287;
+    hess0[45] = v305;
+    hess0[46] = v290;
+    hess0[53] = v290;
+    hess0[47] = v292;
+    hess0[61] = v292;
+    hess0[54] = v293;
+    hess0[55] = v294;
+    hess0[62] = v294;
+    hess0[63] = v295;
+    *xi_m = v115;
+    v183
+}
+/// `slave_normal_slip_type5` over 4 lanes (portable build).
+fn slave_normal_slip_type5_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type5_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `slave_normal_slip_type5` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn slave_normal_slip_type5_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type5_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// Lanes of `slave_normal_slip_type6`: `slave-normal`, type 6 (xi_m, x_ms and s_m, n: quadratic, quadratic, quadratic): the slip (1 component), gradient and Hessian. `xi_m0` is the last converged projection. Cost: 364 ops (141 add, 208 mul, 2 div, 1 sqrt, 12 neg).
+#[inline(always)]
+fn slave_normal_slip_type6_lanes<L: LaneValue>(
+    d: &[L],
+    xi_s: L,
+    xi_m0: L,
+    xi_m: &mut L,
+    grad0: &mut [L],
+    hess0: &mut [L],
+) -> L {
+    let d = &d[..8];
+    let grad0 = &mut grad0[..8];
+    let hess0 = &mut hess0[..64];
+    let v0 = d[2];
+    let v1 = d[3];
+    let v2 = d[4];
+    let v3 = d[5];
+    let v4 = d[6];
+    let v5 = d[7];
+    let v6 = xi_s;
+    let v7 = L::splat(1.0) - v6;
+    let v8 = L::splat(0.5) * v7;
+    let v9 = L::splat(1.0) + v6;
+    let v10 = L::splat(0.5) * v9;
+    let v11 = v0 * v10;
+    let v12 = v1 * v10;
+    let v13 = v0 * v0;
+    let v14 = v1 * v1;
+    let v15 = v13 + v14;
+    let v16 = v15.sqrt();
+    let v17 = v16.recip();
+    let v18 = v1 * v17;
+    let v19 = v0 * v17;
+    let v20 = xi_m0;
+    let v21 = L::splat(1.0) - v20;
+    let v22 = L::splat(0.5) * v21;
+    let v23 = L::splat(1.0) + v20;
+    let v24 = L::splat(0.5) * v23;
+    let v25 = v2 * v22;
+    let v26 = v4 * v24;
+    let v27 = v25 + v26;
+    let v28 = v3 * v22;
+    let v29 = v5 * v24;
+    let v30 = v28 + v29;
+    let v31 = v2 - v4;
+    let v32 = L::splat(0.5) * v31;
+    let v33 = v0 * v32;
+    let v34 = v3 - v5;
+    let v35 = L::splat(0.5) * v34;
+    let v36 = v1 * v35;
+    let v37 = v33 + v36;
+    let v38 = v37.recip();
+    let v39 = v0 * v8;
+    let v40 = v1 * v8;
+    let v41 = v7 - v9;
+    let v42 = L::splat(0.5) * v41;
+    let v43 = L::splat(0.5) * v0;
+    let v44 = L::splat(0.5) * v1;
+    let v45 = v32 * v38;
+    let v46 = v35 * v38;
+    let v47 = v32 * v45;
+    let v48 = v35 * v45;
+    let v49 = v43 * v45;
+    let v50 = v44 * v45;
+    let v51 = L::splat((-0.5)) + v49;
+    let v52 = L::splat(0.5) - v49;
+    let v53 = v32 * v46;
+    let v54 = v35 * v46;
+    let v55 = v43 * v46;
+    let v56 = v44 * v46;
+    let v57 = L::splat((-0.5)) + v56;
+    let v58 = L::splat(0.5) - v56;
+    let v59 = L::splat(2.0) * v0;
+    let v60 = L::splat(2.0) * v1;
+    let v61 = L::splat(0.5) * v17;
+    let v62 = v17 * v17;
+    let v63 = v59 * v61;
+    let v64 = v62 * v63;
+    let v65 = v1 * v64;
+    let v66 = v60 * v61;
+    let v67 = v62 * v66;
+    let v68 = v1 * v67;
+    let v69 = v17 - v68;
+    let v70 = L::splat(2.0) * v17;
+    let v71 = v64 * v70;
+    let v72 = L::splat(0.5) * v64;
+    let v73 = v59 * v72;
+    let v74 = v17 - v73;
+    let v75 = v63 * v71;
+    let v76 = v62 * v74;
+    let v77 = v75 - v76;
+    let v78 = v1 * v77;
+    let v79 = v67 * v70;
+    let v80 = L::splat(0.5) * v67;
+    let v81 = v59 * v80;
+    let v82 = v63 * v79;
+    let v83 = v62 * v81;
+    let v84 = v82 + v83;
+    let v85 = v1 * v84;
+    let v86 = v64 - v85;
+    let v87 = v60 * v80;
+    let v88 = v17 - v87;
+    let v89 = v66 * v79;
+    let v90 = v62 * v88;
+    let v91 = v89 - v90;
+    let v92 = v1 * v91;
+    let v93 = v67 - v92;
+    let v94 = v67 + v93;
+    let v95 = v60 * v72;
+    let v96 = v66 * v71;
+    let v97 = v62 * v95;
+    let v98 = v96 + v97;
+    let v99 = v1 * v98;
+    let v100 = v64 - v99;
+    let v101 = v0 * v64;
+    let v102 = v17 - v101;
+    let v103 = v0 * v67;
+    let v104 = v0 * v77;
+    let v105 = v64 - v104;
+    let v106 = v64 + v105;
+    let v107 = v0 * v84;
+    let v108 = v67 - v107;
+    let v109 = v0 * v91;
+    let v110 = v0 * v98;
+    let v111 = v67 - v110;
+    let v112 = v19 * v32;
+    let v113 = v19 * v45;
+    let v114 = v19 * v47;
+    let v115 = v19 * v48;
+    let v116 = v19 * v51;
+    let v117 = v19 * v50;
+    let v118 = v19 * v52;
+    let v119 = v32 * v102;
+    let v120 = v32 * v103;
+    let v121 = v114 - v119;
+    let v122 = v115 + v120;
+    let v123 = v18 * v35;
+    let v124 = v18 * v46;
+    let v125 = v18 * v53;
+    let v126 = v18 * v54;
+    let v127 = v18 * v55;
+    let v128 = v18 * v57;
+    let v129 = v18 * v58;
+    let v130 = v35 * v65;
+    let v131 = v35 * v69;
+    let v132 = v125 + v130;
+    let v133 = v126 - v131;
+    let v134 = v112 + v123;
+    let v135 = v113 + v124;
+    let v136 = v121 + v132;
+    let v137 = v122 + v133;
+    let v138 = v116 + v127;
+    let v139 = v117 + v128;
+    let v140 = v118 - v127;
+    let v141 = v117 - v129;
+    let v142 = v7 * v135;
+    let v143 = v42 * v135;
+    let v144 = v9 * v135;
+    let v145 = v2 + v4;
+    let v146 = L::splat(0.5) * v145;
+    let v147 = v3 + v5;
+    let v148 = L::splat(0.5) * v147;
+    let v149 = v11 - v146;
+    let v150 = v12 - v148;
+    let v151 = v0 * v149;
+    let v152 = v1 * v150;
+    let v153 = v151 + v152;
+    let v154 = v38 * v153;
+    let v155 = -v154;
+    let v156 = L::splat(1.0) + v154;
+    let v157 = L::splat(0.5) * v156;
+    let v158 = L::splat(1.0) - v154;
+    let v159 = L::splat(0.5) * v158;
+    let v160 = v2 * v157;
+    let v161 = v4 * v159;
+    let v162 = v160 + v161;
+    let v163 = v3 * v157;
+    let v164 = v5 * v159;
+    let v165 = v163 + v164;
+    let v166 = v11 - v162;
+    let v167 = v12 - v165;
+    let v168 = v27 - v162;
+    let v169 = v30 - v165;
+    let v170 = v39 - v166;
+    let v171 = v38 * v170;
+    let v172 = v40 - v167;
+    let v173 = v38 * v172;
+    let v174 = v11 + v166;
+    let v175 = v38 * v174;
+    let v176 = v12 + v167;
+    let v177 = v38 * v176;
+    let v178 = v0 * v157;
+    let v179 = v38 * v178;
+    let v180 = v1 * v157;
+    let v181 = v38 * v180;
+    let v182 = v0 * v159;
+    let v183 = v38 * v182;
+    let v184 = v1 * v159;
+    let v185 = v38 * v184;
+    let v186 = v21 - v156;
+    let v187 = L::splat(0.5) * v186;
+    let v188 = v23 - v158;
+    let v189 = L::splat(0.5) * v188;
+    let v190 = v102 * v168;
+    let v191 = v103 * v168;
+    let v192 = v19 * v187;
+    let v193 = v19 * v189;
+    let v194 = v106 * v168;
+    let v195 = v108 * v168;
+    let v196 = v109 * v168;
+    let v197 = v111 * v168;
+    let v198 = v102 * v187;
+    let v199 = v102 * v189;
+    let v200 = v103 * v187;
+    let v201 = v103 * v189;
+    let v202 = v19 * v168;
+    let v203 = v65 * v169;
+    let v204 = v69 * v169;
+    let v205 = v18 * v187;
+    let v206 = v18 * v189;
+    let v207 = v78 * v169;
+    let v208 = v86 * v169;
+    let v209 = v94 * v169;
+    let v210 = v100 * v169;
+    let v211 = v65 * v187;
+    let v212 = v65 * v189;
+    let v213 = v69 * v187;
+    let v214 = v69 * v189;
+    let v215 = v18 * v169;
+    let v216 = v190 - v203;
+    let v217 = v191 - v204;
+    let v218 = v194 - v207;
+    let v219 = v195 + v208;
+    let v220 = v196 - v209;
+    let v221 = v197 + v210;
+    let v222 = v202 + v215;
+    let v223 = -v222;
+    let v224 = v134 * v171;
+    let v225 = v216 + v224;
+    let v226 = v134 * v173;
+    let v227 = v134 * v175;
+    let v228 = v134 * v177;
+    let v229 = v217 + v228;
+    let v230 = v134 * v179;
+    let v231 = v192 + v230;
+    let v232 = -v231;
+    let v233 = v134 * v181;
+    let v234 = v205 + v233;
+    let v235 = -v234;
+    let v236 = v134 * v183;
+    let v237 = v193 + v236;
+    let v238 = -v237;
+    let v239 = v134 * v185;
+    let v240 = v206 + v239;
+    let v241 = -v240;
+    let v242 = v142 - v218;
+    let v243 = v143 - v218;
+    let v244 = v135 * v157;
+    let v245 = v198 + v244;
+    let v246 = v135 * v159;
+    let v247 = v199 + v246;
+    let v248 = v142 + v220;
+    let v249 = v143 + v220;
+    let v250 = v213 + v244;
+    let v251 = v214 + v246;
+    let v252 = v144 + v218;
+    let v253 = v144 - v220;
+    let v254 = v136 * v171;
+    let v255 = L::splat(2.0) * v254;
+    let v256 = v136 * v173;
+    let v257 = v137 * v171;
+    let v258 = v256 + v257;
+    let v259 = v219 + v258;
+    let v260 = v136 * v175;
+    let v261 = v254 - v260;
+    let v262 = v243 - v261;
+    let v263 = v136 * v177;
+    let v264 = v257 - v263;
+    let v265 = v219 + v264;
+    let v266 = -v265;
+    let v267 = v136 * v179;
+    let v268 = v138 * v171;
+    let v269 = v267 + v268;
+    let v270 = v245 - v269;
+    let v271 = v136 * v181;
+    let v272 = v139 * v171;
+    let v273 = v271 + v272;
+    let v274 = v211 + v273;
+    let v275 = -v274;
+    let v276 = v136 * v183;
+    let v277 = v140 * v171;
+    let v278 = v276 + v277;
+    let v279 = v247 - v278;
+    let v280 = v136 * v185;
+    let v281 = v141 * v171;
+    let v282 = v280 - v281;
+    let v283 = v212 + v282;
+    let v284 = -v283;
+    let v285 = v137 * v173;
+    let v286 = L::splat(2.0) * v285;
+    let v287 = v137 * v175;
+    let v288 = v256 - v287;
+    let v289 = v221 + v288;
+    let v290 = -v289;
+    let v291 = v137 * v177;
+    let v292 = v285 - v291;
+    let v293 = v249 - v292;
+    let v294 = v137 * v179;
+    let v295 = v138 * v173;
+    let v296 = v294 + v295;
+    let v297 = v200 + v296;
+    let v298 = -v297;
+    let v299 = v137 * v181;
+    let v300 = v139 * v173;
+    let v301 = v299 + v300;
+    let v302 = v250 - v301;
+    let v303 = v137 * v183;
+    let v304 = v140 * v173;
+    let v305 = v303 + v304;
+    let v306 = v201 + v305;
+    let v307 = -v306;
+    let v308 = v137 * v185;
+    let v309 = v141 * v173;
+    let v310 = v308 - v309;
+    let v311 = v251 - v310;
+    let v312 = L::splat(2.0) * v260;
+    let v313 = v252 - v312;
+    let v314 = v263 + v287;
+    let v315 = v219 - v314;
+    let v316 = v138 * v175;
+    let v317 = v267 - v316;
+    let v318 = v139 * v175;
+    let v319 = v271 - v318;
+    let v320 = v211 + v319;
+    let v321 = v140 * v175;
+    let v322 = v276 - v321;
+    let v323 = v141 * v175;
+    let v324 = v280 + v323;
+    let v325 = v212 + v324;
+    let v326 = L::splat(2.0) * v291;
+    let v327 = v253 - v326;
+    let v328 = v138 * v177;
+    let v329 = v294 - v328;
+    let v330 = v200 + v329;
+    let v331 = v139 * v177;
+    let v332 = v299 - v331;
+    let v333 = v140 * v177;
+    let v334 = v303 - v333;
+    let v335 = v201 + v334;
+    let v336 = v141 * v177;
+    let v337 = v308 + v336;
+    let v338 = v138 * v179;
+    let v339 = L::splat(2.0) * v338;
+    let v340 = v138 * v181;
+    let v341 = v139 * v179;
+    let v342 = v340 + v341;
+    let v343 = v138 * v183;
+    let v344 = v140 * v179;
+    let v345 = v343 + v344;
+    let v346 = v138 * v185;
+    let v347 = v141 * v179;
+    let v348 = v346 - v347;
+    let v349 = v139 * v181;
+    let v350 = L::splat(2.0) * v349;
+    let v351 = v139 * v183;
+    let v352 = v140 * v181;
+    let v353 = v351 + v352;
+    let v354 = v139 * v185;
+    let v355 = v141 * v181;
+    let v356 = v354 - v355;
+    let v357 = v140 * v183;
+    let v358 = L::splat(2.0) * v357;
+    let v359 = v140 * v185;
+    let v360 = v141 * v183;
+    let v361 = v359 - v360;
+    let v362 = v141 * v185;
+    let v363 = v226 - v217;
+    let v364 = v227 - v216;
+    let v365 = v255 - v242;
+    let v366 = v286 - v248;
+    let v367 = v317 - v245;
+    let v368 = v322 - v247;
+    let v369 = v332 - v250;
+    let v370 = v337 - v251;
+    let v371 = L::splat((-2.0)) * v362;
+    grad0[0] = v225;
+    grad0[1] = v363;
+    grad0[2] = v364;
+    grad0[3] = v229;
+    grad0[4] = v232;
+    grad0[5] = v235;
+    grad0[6] = v238;
+    grad0[7] = v241;
+    hess0[0] = v365;
+    hess0[1] = v259;
+    hess0[8] = v259;
+    hess0[2] = v262;
+    hess0[16] = v262;
+    hess0[3] = v266;
+    hess0[24] = v266;
+    hess0[4] = v270;
+    hess0[32] = v270;
+    hess0[5] = v275;
+    hess0[40] = v275;
+    hess0[6] = v279;
+    hess0[48] = v279;
+    hess0[7] = v284;
+    hess0[56] = v284;
+    hess0[9] = v366;
+    hess0[10] = v290;
+    hess0[17] = v290;
+    hess0[11] = v293;
+    hess0[25] = v293;
+    hess0[12] = v298;
+    hess0[33] = v298;
+    hess0[13] = v302;
+    hess0[41] = v302;
+    hess0[14] = v307;
+    hess0[49] = v307;
+    hess0[15] = v311;
+    hess0[57] = v311;
+    hess0[18] = v313;
+    hess0[19] = v315;
+    hess0[26] = v315;
+    hess0[20] = v367;
+    hess0[34] = v367;
+    hess0[21] = v320;
+    hess0[42] = v320;
+    hess0[22] = v368;
+    hess0[50] = v368;
+    hess0[23] = v325;
+    hess0[58] = v325;
+    hess0[27] = v327;
+    hess0[28] = v330;
+    hess0[35] = v330;
+    hess0[29] = v369;
+    hess0[43] = v369;
+    hess0[30] = v335;
+    hess0[51] = v335;
+    hess0[31] = v370;
+    hess0[59] = v370;
+    hess0[36] = v339;
+    hess0[37] = v342;
+    hess0[44] = v342;
+    hess0[38] = v345;
+    hess0[52] = v345;
+    hess0[39] = v348;
+    hess0[60] = v348;
+    hess0[45] = v350;
+    hess0[46] = v353;
+    hess0[53] = v353;
+    hess0[47] = v356;
+    hess0[61] = v356;
+    hess0[54] = v358;
+    hess0[55] = v361;
+    hess0[62] = v361;
+    hess0[63] = v371;
+    *xi_m = v155;
+    v223
+}
+/// `slave_normal_slip_type6` over 4 lanes (portable build).
+fn slave_normal_slip_type6_x4(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type6_lanes::<Lanes>(d, xi_s, xi_m0, xi_m, grad0, hess0)
+}
+/** `slave_normal_slip_type6` over 4 lanes, compiled for AVX2 (no FMA).
+
+ # Safety
+ The CPU must support AVX2.*/
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn slave_normal_slip_type6_x4_avx2(
+    d: &[Lanes],
+    xi_s: Lanes,
+    xi_m0: Lanes,
+    xi_m: &mut Lanes,
+    grad0: &mut [Lanes],
+    hess0: &mut [Lanes],
+) -> Lanes {
+    slave_normal_slip_type6_lanes::<
+        Avx4,
+    >(
+            Avx4::slice(d),
+            Avx4::from_lanes(xi_s),
+            Avx4::from_lanes(xi_m0),
+            Avx4::one_mut(xi_m),
+            Avx4::slice_mut(grad0),
+            Avx4::slice_mut(hess0),
+        )
+        .to_lanes()
+}
+/// The slip's lane kernels of `slave_normal`.
+static SLAVE_NORMAL_SLIP_LANES: LaneSet<SlipLaneKernel> = LaneSet {
+    portable: [
+        SlipLaneKernel::Gradient(slave_normal_slip_type1_x4),
+        SlipLaneKernel::Hessian(slave_normal_slip_type2_x4),
+        SlipLaneKernel::Hessian(slave_normal_slip_type3_x4),
+        SlipLaneKernel::Hessian(slave_normal_slip_type4_x4),
+        SlipLaneKernel::Hessian(slave_normal_slip_type5_x4),
+        SlipLaneKernel::Hessian(slave_normal_slip_type6_x4),
+    ],
+    #[cfg(target_arch = "x86_64")]
+    avx2: [
+        SlipLaneKernel::Gradient(slave_normal_slip_type1_x4_avx2),
+        SlipLaneKernel::Hessian(slave_normal_slip_type2_x4_avx2),
+        SlipLaneKernel::Hessian(slave_normal_slip_type3_x4_avx2),
+        SlipLaneKernel::Hessian(slave_normal_slip_type4_x4_avx2),
+        SlipLaneKernel::Hessian(slave_normal_slip_type5_x4_avx2),
+        SlipLaneKernel::Hessian(slave_normal_slip_type6_x4_avx2),
     ],
 };
