@@ -349,9 +349,9 @@ fn slip_table(dir: &Path) -> Result<String, String> {
     ));
     out.push_str(
         "\nThe slip of Type 6 at 64 points (group `slip-batch64`, time per point): one point \
-         at a time (`Slip::eval`) against one `Slip::eval_batch` call (for segments the \
-         slip's lane kernels, 4 points per call, AVX2 where the CPU has it, and the portable \
-         lane build; a face slip has no lane kernels and goes point by point).\n\n\
+         at a time (`Slip::eval`) against one `Slip::eval_batch` call (the slip's lane \
+         kernels, 4 points per call, AVX2 where the CPU has it, and the portable lane build; \
+         a face slip's three components are three lane functions).\n\n\
          | formulation | `Slip::eval` (ns) | `eval_batch` (ns) | speed-up | portable lanes (ns) | speed-up |\n\
          |---|---:|---:|---:|---:|---:|\n",
     );

@@ -84,6 +84,21 @@ pub enum Instr {
     Sqrt(Operand),
 }
 
+impl Instr {
+    /// Its operands (`None` past the last).
+    pub fn operands(&self) -> [Option<Operand>; 2] {
+        match *self {
+            Instr::Load(_) => [None, None],
+            Instr::Add(a, b) | Instr::Sub(a, b) | Instr::Mul(a, b) => [Some(a), Some(b)],
+            Instr::Square(a)
+            | Instr::Powi(a, _)
+            | Instr::Recip(a)
+            | Instr::Neg(a)
+            | Instr::Sqrt(a) => [Some(a), None],
+        }
+    }
+}
+
 /// Floating-point operation counts of a program.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct OpCount {
@@ -226,6 +241,62 @@ impl Program {
         Program { instrs, outputs }
     }
 
+    /// The program cut to the outputs `keep` (in that order): the
+    /// instructions those outputs reach, in their original order and
+    /// renumbered, so each kept output is computed by the same operations
+    /// on the same operands as in `self` (the same bits). The slip of a
+    /// face is emitted over lanes one component at a time this way
+    /// ([`crate::plan::FunctionPlan::slip_component`]).
+    pub fn cut(&self, keep: &[usize]) -> Program {
+        let mut live = vec![false; self.instrs.len()];
+        for o in keep.iter().filter_map(|&k| self.outputs[k]) {
+            if let Operand::Reg(r) = o {
+                live[r as usize] = true;
+            }
+        }
+        // Operands precede their instruction: one backward sweep marks
+        // everything a live instruction reads.
+        for i in (0..self.instrs.len()).rev() {
+            if live[i] {
+                for o in self.instrs[i].operands().into_iter().flatten() {
+                    if let Operand::Reg(r) = o {
+                        live[r as usize] = true;
+                    }
+                }
+            }
+        }
+        let mut renumber = vec![u32::MAX; self.instrs.len()];
+        let map = |renumber: &[u32], o: Operand| match o {
+            Operand::Reg(r) => Operand::Reg(renumber[r as usize]),
+            c => c,
+        };
+        let mut instrs = Vec::new();
+        for (i, instr) in self.instrs.iter().enumerate() {
+            if !live[i] {
+                continue;
+            }
+            let m = |o| map(&renumber, o);
+            let cut = match *instr {
+                Instr::Load(s) => Instr::Load(s),
+                Instr::Add(a, b) => Instr::Add(m(a), m(b)),
+                Instr::Sub(a, b) => Instr::Sub(m(a), m(b)),
+                Instr::Mul(a, b) => Instr::Mul(m(a), m(b)),
+                Instr::Square(a) => Instr::Square(m(a)),
+                Instr::Powi(a, n) => Instr::Powi(m(a), n),
+                Instr::Recip(a) => Instr::Recip(m(a)),
+                Instr::Neg(a) => Instr::Neg(m(a)),
+                Instr::Sqrt(a) => Instr::Sqrt(m(a)),
+            };
+            renumber[i] = instrs.len() as u32;
+            instrs.push(cut);
+        }
+        let outputs = keep
+            .iter()
+            .map(|&k| self.outputs[k].map(|o| map(&renumber, o)))
+            .collect();
+        Program { instrs, outputs }
+    }
+
     /// The operation count.
     pub fn op_count(&self) -> OpCount {
         let mut c = OpCount::default();
@@ -279,5 +350,66 @@ impl Program {
             .iter()
             .map(|o| o.map_or(0.0, |o| val(&regs, o)))
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `a = d0 * d1`, `b = a + 2`, `c = sqrt(d2)`, `e = b * c`; outputs
+    /// `[b, c, e, zero]`.
+    fn program() -> Program {
+        use Instr::*;
+        use Operand::*;
+        Program {
+            instrs: vec![
+                Load(Source::Coord(0)),
+                Load(Source::Coord(1)),
+                Load(Source::Coord(2)),
+                Mul(Reg(0), Reg(1)),
+                Add(Reg(3), Const(2.0)),
+                Sqrt(Reg(2)),
+                Mul(Reg(4), Reg(5)),
+            ],
+            outputs: vec![Some(Reg(4)), Some(Reg(5)), Some(Reg(6)), None],
+        }
+    }
+
+    #[test]
+    fn a_cut_program_computes_the_kept_outputs_bit_for_bit_with_fewer_instructions() {
+        let p = program();
+        let d = [1.3, -0.7, 2.9];
+        let all = p.run(&d, &[], 0.0);
+        for keep in [
+            vec![0],
+            vec![1],
+            vec![2],
+            vec![3],
+            vec![2, 0],
+            vec![0, 1, 2, 3],
+        ] {
+            let c = p.cut(&keep);
+            let got = c.run(&d, &[], 0.0);
+            let want: Vec<f64> = keep.iter().map(|&k| all[k]).collect();
+            assert_eq!(
+                got.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                want.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                "{keep:?}"
+            );
+            // every operand refers to an earlier instruction
+            for (i, instr) in c.instrs.iter().enumerate() {
+                for o in instr.operands().into_iter().flatten() {
+                    if let Operand::Reg(r) = o {
+                        assert!((r as usize) < i, "{keep:?}: {instr:?}");
+                    }
+                }
+            }
+        }
+        // only what an output reaches survives
+        assert_eq!(p.cut(&[0]).instrs.len(), 4); // two loads, mul, add
+        assert_eq!(p.cut(&[1]).instrs.len(), 2); // load, sqrt
+        assert_eq!(p.cut(&[3]).instrs.len(), 0); // a structural zero
+        assert_eq!(p.cut(&[0, 1, 2, 3]).instrs, p.instrs);
     }
 }

@@ -531,6 +531,63 @@ impl FunctionPlan {
     pub fn output(&self, name: &str) -> Option<&Output> {
         self.outputs.iter().find(|o| o.name == name)
     }
+
+    /// Component `j` of a slip of several components alone: the function
+    /// `{name}_s{j}` returning `s{j}`, storing `grad{j}` and `hess{j}` as
+    /// `grad` and `hess`, and writing the projection back as this function
+    /// does, its program [cut](Program::cut) to those outputs (the same
+    /// operations, so the same bits). `None` unless this is a slip with a
+    /// component `j` (`s{j}`).
+    ///
+    /// The lane emitter writes a face slip this way: one function of three
+    /// components with a 24 x 24 Hessian each is beyond what rustc
+    /// compiles in reasonable time, one per component is not.
+    pub fn slip_component(&self, j: usize) -> Option<FunctionPlan> {
+        let Role::Slip { ty, hessian } = self.role else {
+            return None;
+        };
+        let s = self.output(&format!("s{j}"))?;
+        let mut keep = vec![s.first];
+        let mut outputs = vec![Output {
+            name: "s".into(),
+            first: 0,
+            ..s.clone()
+        }];
+        let mut take = |name: &str, o: &Output, keep: &mut Vec<usize>| {
+            outputs.push(Output {
+                name: name.into(),
+                first: keep.len(),
+                ..o.clone()
+            });
+            keep.extend(o.first..o.first + o.len);
+        };
+        take("grad", self.output(&format!("grad{j}"))?, &mut keep);
+        if hessian {
+            take("hess", self.output(&format!("hess{j}"))?, &mut keep);
+        }
+        for o in self
+            .outputs
+            .iter()
+            .filter(|o| o.delivery == Delivery::Implicit)
+        {
+            take(&o.name, o, &mut keep);
+        }
+        let program = self.program.cut(&keep);
+        let ops = program.op_count();
+        Some(FunctionPlan {
+            name: format!("{}_s{j}", self.name),
+            doc: format!(
+                "Component {j} of `{}` alone (its program cut to that component's outputs).{}",
+                self.name,
+                ops_doc(&ops)
+            ),
+            role: Role::Slip { ty, hessian },
+            inputs: self.inputs.clone(),
+            outputs,
+            program,
+            ops,
+        })
+    }
 }
 
 /// How a kernel's documentation names its second-order term.

@@ -84,6 +84,29 @@ pub(crate) enum SlipLaneKernel {
     Hessian(SlipLaneHessianFn),
 }
 
+/// `(d, xi_s, xi_m0, xi_m, grad) -> s_j` over lanes: one component of a
+/// face pair's slip with its gradient (`xi_s`, `xi_m0` and the in/out
+/// `xi_m` two [`Lanes`] each); safety as for [`LaneGradientFn`].
+pub(crate) type FaceSlipLaneGradientFn =
+    unsafe fn(&[Lanes], &[Lanes], &[Lanes], &mut [Lanes], &mut [Lanes]) -> Lanes;
+/// `(d, xi_s, xi_m0, xi_m, grad, hess) -> s_j` over lanes (`hess` full);
+/// safety as for [`LaneGradientFn`].
+pub(crate) type FaceSlipLaneHessianFn =
+    unsafe fn(&[Lanes], &[Lanes], &[Lanes], &mut [Lanes], &mut [Lanes], &mut [Lanes]) -> Lanes;
+
+/// One approximation type's slip lane kernels for faces: one function per
+/// component (`codegen::emit::lanes` says why), in component order,
+/// compiled for AVX2 only (a `LaneSet<Option<FaceSlipLaneKernel>>` whose
+/// portable entries are `None`).
+#[derive(Clone, Copy)]
+#[cfg_attr(not(feature = "faces"), allow(dead_code))]
+pub(crate) enum FaceSlipLaneKernel {
+    /// First-order only.
+    Gradient([FaceSlipLaneGradientFn; 3]),
+    /// With the second-order term.
+    Hessian([FaceSlipLaneHessianFn; 3]),
+}
+
 /// The instruction set a lane kernel was compiled for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum LaneIsa {
@@ -95,7 +118,7 @@ pub enum LaneIsa {
 
 /// The lane kernels of one formulation, types 1..=6 ([`LaneKernel`]s of
 /// segments, [`FaceLaneKernel`]s of faces, [`SlipLaneKernel`]s of a
-/// segment slip).
+/// segment slip, [`FaceSlipLaneKernel`]s of a face slip).
 pub(crate) struct LaneSet<K = LaneKernel> {
     pub(crate) portable: [K; 6],
     #[cfg(target_arch = "x86_64")]

@@ -48,8 +48,8 @@
 
 use crate::generated::{self, KernelSet, face_kernel_set, kernel_set};
 use crate::generated_lanes::{
-    self, FaceLaneKernel, LaneIsa, LaneKernel, LaneSet, SlipLaneKernel, face_lane_set, lane_set,
-    slip_lane_set,
+    self, FaceLaneKernel, FaceSlipLaneKernel, LaneIsa, LaneKernel, LaneSet, SlipLaneKernel,
+    face_lane_set, face_slip_lane_set, lane_set, slip_lane_set,
 };
 use crate::param::{Xi, XiArg};
 use crate::{ApproxType, Formulation, KernelError, OpCount};
@@ -86,8 +86,8 @@ pub(crate) struct Segments {
 }
 
 /// A face kernel: its set, the scalar kernel and the lane kernel, and the
-/// slip's scalar kernel (when the formulation has one; a face slip has no
-/// lane kernel).
+/// slip's (when the formulation has one; one lane function per component,
+/// compiled for AVX2 only: `None` on the portable build).
 #[derive(Clone, Copy)]
 pub(crate) struct Faces {
     set: &'static generated::FaceKernelSet,
@@ -95,6 +95,8 @@ pub(crate) struct Faces {
     slip: Option<generated::FaceSlipKernel>,
     lane_set: &'static LaneSet<FaceLaneKernel>,
     lanes: FaceLaneKernel,
+    slip_lane_set: Option<&'static LaneSet<Option<FaceSlipLaneKernel>>>,
+    slip_lanes: Option<FaceSlipLaneKernel>,
     lane_isa: LaneIsa,
 }
 
@@ -325,6 +327,7 @@ impl Kernel {
             let lane_set =
                 face_lane_set(formulation).ok_or(KernelError::NotCompiled(formulation))?;
             let (lanes, lane_isa) = generated_lanes::select(lane_set, ty.index(), LaneIsa::Avx2);
+            let slip_lane_set = face_slip_lane_set(formulation);
             return Ok(Kernel {
                 formulation,
                 ty,
@@ -334,6 +337,8 @@ impl Kernel {
                     slip: set.slip.as_ref().map(|s| s.kernels[ty.index() - 1]),
                     lane_set,
                     lanes,
+                    slip_lane_set,
+                    slip_lanes: select_slip(slip_lane_set, ty.index(), LaneIsa::Avx2).flatten(),
                     lane_isa,
                 }),
             });
@@ -390,12 +395,22 @@ impl Kernel {
                 Kernel {
                     imp: Imp::Faces(Faces {
                         lanes,
+                        slip_lanes: select_slip(f.slip_lane_set, self.ty.index(), isa).flatten(),
                         lane_isa,
                         ..f
                     }),
                     ..self
                 }
             }
+        }
+    }
+
+    /// Whether the slip's lane kernels are compiled in for this kernel.
+    #[cfg(test)]
+    pub(crate) fn has_slip_lanes(&self) -> bool {
+        match &self.imp {
+            Imp::Segments(s) => s.slip_lanes.is_some(),
+            Imp::Faces(f) => f.slip_lanes.is_some(),
         }
     }
 

@@ -176,3 +176,38 @@ fn formulations_not_compiled_in_are_reported() {
         assert_eq!(Projector::new(f).is_ok(), compiled);
     }
 }
+
+/// Every compiled formulation with a slip has its slip's lane kernels, so
+/// `Slip::eval_batch` runs them: segments always, faces where the CPU has
+/// AVX2 (their only build), and never on a portable face kernel.
+#[test]
+fn every_compiled_slip_has_lane_kernels() {
+    let mut faces = 0;
+    for f in compiled_formulations() {
+        let scalar = crate::generated::kernel_set(f)
+            .map(|s| s.slip.is_some())
+            .or_else(|| crate::generated::face_kernel_set(f).map(|s| s.slip.is_some()))
+            .unwrap();
+        let lanes = crate::generated_lanes::slip_lane_set(f).is_some()
+            || crate::generated_lanes::face_slip_lane_set(f).is_some();
+        assert_eq!(scalar, lanes, "{f:?}");
+        for ty in ApproxType::ALL {
+            let k = Kernel::new(f, ty).unwrap();
+            let face = k.param_dim() == 2;
+            faces += usize::from(face);
+            let avx2 = k.lane_isa() == LaneIsa::Avx2;
+            assert_eq!(
+                k.has_slip_lanes(),
+                scalar && (!face || avx2),
+                "{f:?} {ty:?}"
+            );
+            let portable = k.with_lane_isa(LaneIsa::Portable);
+            assert_eq!(portable.has_slip_lanes(), scalar && !face, "{f:?} {ty:?}");
+        }
+    }
+    assert_eq!(
+        faces,
+        8 * 6,
+        "the eight face pairs are compiled in for tests"
+    );
+}

@@ -28,16 +28,20 @@
 //!   faces); for a formulation of 3D faces a `LaneSet<FaceLaneKernel>`,
 //!   mapped by `face_lane_set` (emitted when the plan has faces, so a plan
 //!   of segments is emitted as before faces);
-//! * per compiled formulation of segments with a slip, its slip under
-//!   every type the same way (`{ident}_slip_type{t}_lanes`, `_x4`,
-//!   `_x4_avx2`) in a `static` `LaneSet<SlipLaneKernel>` mapped by
-//!   `slip_lane_set`. A slip function takes the last converged projection
-//!   `xi_m0` after `xi_s`, stores its gradient and Hessian into `grad0`,
-//!   `hess0` and returns its component. The slips of faces have none: three
-//!   components with a 24 x 24 Hessian each made the lane module 17 MB
-//!   (5 MB without them), which rustc had not compiled after 26 minutes at
-//!   `opt-level = 1`; `Slip::eval_batch` evaluates a face slip point by
-//!   point.
+//! * per compiled formulation with a slip, its slip under every type the
+//!   same way (`{ident}_slip_type{t}_lanes`, `_x4`, `_x4_avx2`) in a
+//!   `static` `LaneSet<SlipLaneKernel>` mapped by `slip_lane_set`
+//!   (segments) or a `LaneSet<FaceSlipLaneKernel>` mapped by
+//!   `face_slip_lane_set` (faces). A slip function takes the last
+//!   converged projection `xi_m0` after `xi_s`, stores its gradient and
+//!   Hessian and returns its component. A face slip's three components are
+//!   three functions (`{ident}_slip_type{t}_s{j}`,
+//!   [`FunctionPlan::slip_component`]: the program cut to component `j`'s
+//!   outputs, the same operations, so the same bits): as one function of
+//!   three components with a 24 x 24 Hessian each, the lane module grew
+//!   from 5 MB to 17 MB and rustc had not compiled it after 26 minutes at
+//!   `opt-level = 1`, while a function a third of that size compiles like
+//!   the gap's.
 //!
 //! Functions take the relative coordinates as `d: &[Lanes]` (`n` values:
 //! coordinate `i` of every lane), `xi_s` and the in/out `xi_m` as `Lanes`,
@@ -91,6 +95,7 @@ fn module(plan: &KernelPlan) -> TokenStream {
     let mut arms = Vec::new();
     let mut face_arms = Vec::new();
     let mut slip_arms = Vec::new();
+    let mut face_slip_arms = Vec::new();
     let mut items = Vec::new();
     for f in &plan.formulations {
         let variant = Ident::new(&f.variant, Span::call_site());
@@ -100,20 +105,24 @@ fn module(plan: &KernelPlan) -> TokenStream {
             continue;
         };
         // Faces (3D): a `LaneSet<FaceLaneKernel>`, looked up by
-        // `face_lane_set`; their slips have no lane kernels (module docs).
+        // `face_lane_set`, their slips' by `face_slip_lane_set`.
         let faces = f.dim == 3;
         let static_name = format_ident!("{}_LANES", set.ident.to_uppercase());
         let slip_name = format_ident!("{}_SLIP_LANES", set.ident.to_uppercase());
         let some = |name: &Ident| quote!(Formulation::#variant => Some(&#name),);
         let none = quote!(Formulation::#variant => None,);
-        let slip_lanes = !faces && !set.slips.is_empty();
+        let slip_lanes = !set.slips.is_empty();
         if faces {
             arms.push(none.clone());
             face_arms.push(some(&static_name));
+            if slip_lanes {
+                face_slip_arms.push(some(&slip_name));
+            }
+            slip_arms.push(none);
         } else {
             arms.push(some(&static_name));
+            slip_arms.push(if slip_lanes { some(&slip_name) } else { none });
         }
-        slip_arms.push(if slip_lanes { some(&slip_name) } else { none });
         items.push(lane_set(
             &set.kernels,
             &static_name,
@@ -126,7 +135,7 @@ fn module(plan: &KernelPlan) -> TokenStream {
                 &set.slips,
                 &slip_name,
                 LaneKind::Slip,
-                false,
+                faces,
                 &set.ident,
             ));
         }
@@ -138,6 +147,15 @@ fn module(plan: &KernelPlan) -> TokenStream {
             pub(crate) fn face_lane_set(f: Formulation) -> Option<&'static LaneSet<FaceLaneKernel>> {
                 match f {
                     #(#face_arms)*
+                    _ => None,
+                }
+            }
+
+            /// The slip's lane kernels of a formulation of 3D faces, if
+            /// compiled in with a slip.
+            pub(crate) fn face_slip_lane_set(f: Formulation) -> Option<&'static LaneSet<Option<FaceSlipLaneKernel>>> {
+                match f {
+                    #(#face_slip_arms)*
                     _ => None,
                 }
             }
@@ -182,31 +200,48 @@ fn lane_set(
         (LaneKind::Gap, false) => format_ident!("LaneKernel"),
         (LaneKind::Gap, true) => format_ident!("FaceLaneKernel"),
         (LaneKind::Slip, false) => format_ident!("SlipLaneKernel"),
-        (LaneKind::Slip, true) => panic!("face slips have no lane kernels"),
+        (LaneKind::Slip, true) => format_ident!("FaceSlipLaneKernel"),
     };
     let mut items = Vec::new();
     let mut portable = Vec::new();
     let mut avx2 = Vec::new();
     for k in functions {
-        items.push(kernel(k));
-        let (p, a) = (
-            format_ident!("{}_x4", k.name),
-            format_ident!("{}_x4_avx2", k.name),
-        );
         let variant = match k.role {
             Role::Kernel { hessian: true, .. } | Role::Slip { hessian: true, .. } => {
                 format_ident!("Hessian")
             }
             _ => format_ident!("Gradient"),
         };
-        portable.push(quote!(#ty::#variant(#p)));
-        avx2.push(quote!(#ty::#variant(#a)));
+        let entry = |f: &FunctionPlan| {
+            (
+                format_ident!("{}_x4", f.name),
+                format_ident!("{}_x4_avx2", f.name),
+            )
+        };
+        if kind == LaneKind::Slip && faces {
+            // one function per component (`FunctionPlan::slip_component`),
+            // compiled for AVX2 only (module docs)
+            let parts: Vec<FunctionPlan> = (0..).map_while(|j| k.slip_component(j)).collect();
+            let a = parts.iter().map(|f| entry(f).1);
+            items.extend(parts.iter().map(|f| kernel(f, false)));
+            portable.push(quote!(None));
+            avx2.push(quote!(Some(#ty::#variant([#(#a),*]))));
+        } else {
+            let (p, a) = entry(k);
+            items.push(kernel(k, true));
+            portable.push(quote!(#ty::#variant(#p)));
+            avx2.push(quote!(#ty::#variant(#a)));
+        }
     }
     let doc = match kind {
         LaneKind::Gap => format!(" The lane kernels of `{ident}`."),
         LaneKind::Slip => format!(" The slip's lane kernels of `{ident}`."),
     };
-    let set_ty = quote!(LaneSet<#ty>);
+    let set_ty = if kind == LaneKind::Slip && faces {
+        quote!(LaneSet<Option<#ty>>)
+    } else {
+        quote!(LaneSet<#ty>)
+    };
     quote! {
         #(#items)*
 
@@ -219,8 +254,9 @@ fn lane_set(
     }
 }
 
-/// One kernel: the inlined body over lanes and its two entry points.
-fn kernel(f: &FunctionPlan) -> TokenStream {
+/// One kernel: the inlined body over lanes and its two entry points (the
+/// AVX2 one alone unless `portable`).
+fn kernel(f: &FunctionPlan, portable_entry: bool) -> TokenStream {
     let body_name = format_ident!("{}_lanes", f.name);
     let portable = format_ident!("{}_x4", f.name);
     let avx2 = format_ident!("{}_x4_avx2", f.name);
@@ -245,7 +281,7 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         &frame.scalar_params,
         &frame.implicit,
     );
-    // A kernel returns its gap, a segment's slip its one component.
+    // A kernel returns its gap, a slip function its one component.
     let ret = match returns.as_slice() {
         [one] => one.clone(),
         _ => panic!("a lane kernel returns one value"),
@@ -270,6 +306,14 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
         Param::Value => quote!(Avx4::from_lanes(#x)),
         Param::ValueMut => quote!(Avx4::one_mut(#x)),
     });
+    let portable_fn = portable_entry.then(|| {
+        quote! {
+            #[doc = #portable_doc]
+            fn #portable(#entry_params) -> Lanes {
+                #body_name::<Lanes>(#(#args),*)
+            }
+        }
+    });
     quote! {
         #[doc = #doc]
         #[inline(always)]
@@ -282,10 +326,7 @@ fn kernel(f: &FunctionPlan) -> TokenStream {
             #ret
         }
 
-        #[doc = #portable_doc]
-        fn #portable(#entry_params) -> Lanes {
-            #body_name::<Lanes>(#(#args),*)
-        }
+        #portable_fn
 
         #[doc = #avx2_doc]
         #[cfg(target_arch = "x86_64")]
@@ -450,13 +491,94 @@ mod tests {
         assert!(code.contains("let xi_s_0 = xi_s[0];"));
         // The closed-form projection is written back, both components.
         assert!(code.contains("xi_m[0] =") && code.contains("xi_m[1] ="));
-        // a face slip has no lane kernels (module docs)
+        // a face slip: one lane function per component and type, each its
+        // program cut to that component, in a
+        // `LaneSet<Option<FaceSlipLaneKernel>>` (AVX2 only)
         assert_eq!(set.slips.len(), 6);
-        assert!(!code.contains("_slip_type") && !code.contains("SLIP_LANES"));
-        assert!(code.contains("Formulation::Tri3SlaveNormal => None"));
+        assert!(code.contains("fn face_slip_lane_set("));
+        assert!(
+            code.contains(
+                "static TRI3_SLAVE_NORMAL_SLIP_LANES: LaneSet<Option<FaceSlipLaneKernel>>"
+            )
+        );
+        assert!(code.contains("portable: [None, None, None, None, None, None]"));
+        assert!(
+            code.contains("Formulation::Tri3SlaveNormal => Some(&TRI3_SLAVE_NORMAL_SLIP_LANES)")
+        );
+        let mut parts = Vec::new();
+        for k in &set.slips {
+            assert!(k.slip_component(3).is_none(), "three components");
+            for j in 0..3 {
+                let part = k.slip_component(j).unwrap();
+                assert_eq!(part.name, format!("{}_s{j}", k.name));
+                for suffix in ["_lanes<L: LaneValue>(", "_x4_avx2("] {
+                    assert!(
+                        code.contains(&format!("fn {}{suffix}", part.name)),
+                        "{}",
+                        part.name
+                    );
+                }
+                // compiled for AVX2 only (module docs)
+                assert!(!code.contains(&format!("fn {}_x4(", part.name)));
+                // a third of the whole or more (the projection's terms are
+                // shared), never all of it
+                assert!(part.program.instrs.len() < k.program.instrs.len());
+                parts.push(part);
+            }
+        }
+        assert!(code.contains("xi_m0: &[L],"));
         let lets = code.matches("let v").count();
-        let instrs: usize = set.kernels.iter().map(|k| k.program.instrs.len()).sum();
+        let instrs: usize = set
+            .kernels
+            .iter()
+            .chain(&parts)
+            .map(|k| k.program.instrs.len())
+            .sum();
         assert_eq!(lets, instrs);
+    }
+
+    /// A slip component's function gives that component's outputs of the
+    /// whole slip function bit for bit (the cut program's contract, on a
+    /// real face slip).
+    #[test]
+    fn a_slip_component_computes_what_the_whole_slip_does() {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../contact-kernels/formulations/quad4-slave-normal.rs"
+        ))
+        .unwrap();
+        let plan = KernelPlan::build(&[FormulationSource {
+            name: "quad4-slave-normal".into(),
+            text,
+            compiled: true,
+        }])
+        .unwrap();
+        let set = plan.formulations[0].kernels.as_ref().unwrap();
+        let n = set.signature.coords();
+        // a flat-ish pair of unit squares, the master 0.1 above, shifted
+        let d: Vec<f64> = (0..n)
+            .map(|i| 0.1 * ((i * 7 % 5) as f64 - 2.0) / 3.0)
+            .collect();
+        let params = [0.2, -0.3, 0.1, 0.05];
+        let xi = [0.15, -0.25];
+        for whole in &set.slips {
+            let all = whole.program.run_vector(&d, &params, &xi);
+            for j in 0..3 {
+                let part = whole.slip_component(j).unwrap();
+                let got = part.program.run_vector(&d, &params, &xi);
+                let mut want = vec![all[whole.output(&format!("s{j}")).unwrap().first]];
+                for name in ["grad", "hess"] {
+                    if let Some(o) = whole.output(&format!("{name}{j}")) {
+                        want.extend_from_slice(&all[o.first..o.first + o.len]);
+                        assert_eq!(part.output(name).unwrap().len, o.len);
+                    }
+                }
+                assert_eq!(got.len(), want.len(), "{}", part.name);
+                for (g, w) in got.iter().zip(&want) {
+                    assert_eq!(g.to_bits(), w.to_bits(), "{}", part.name);
+                }
+            }
+        }
     }
 
     #[test]

@@ -8,7 +8,9 @@
 
 use super::{Faces, Segments};
 use crate::generated::{self, FaceKernel};
-use crate::generated_lanes::{FaceLaneKernel, LaneIsa, LaneKernel, SlipLaneKernel};
+use crate::generated_lanes::{
+    FaceLaneKernel, FaceSlipLaneKernel, LaneIsa, LaneKernel, SlipLaneKernel,
+};
 use crate::lanes::{LANES, Lanes};
 use crate::validate::{all_finite, relative_coordinates, relative_coordinates_lanes};
 use crate::{KernelError, OutputKind, faces, projection};
@@ -90,21 +92,21 @@ pub(crate) trait ParamKernel<const P: usize> {
         hess: &mut [Lanes],
     ) -> (Lanes, bool);
 
-    /// The slip's lane kernel over the lane buffers: its component and
-    /// whether it has a second-order term; `None` without a slip lane
-    /// kernel (no slip, or a face slip: `codegen::emit::lanes`).
+    /// The slip's lane kernels over the lane buffers: its components into
+    /// `slip` (`c` values), their gradients into `grad` (`c n`) and Hessians
+    /// into `hess` (`c n n`), component after component; returns whether it
+    /// has a second-order term, `None` without a slip lane kernel.
     ///
     /// # Safety
-    /// As [`ParamKernel::run_lanes`] (the buffers: `n` and `n n`).
+    /// As [`ParamKernel::run_lanes`] (the buffers: `c`, `c n` and `c n n`).
     unsafe fn run_slip_lanes(
         &self,
         d: &[Lanes],
         xi_s: &[Lanes; P],
         xi_m0: &[Lanes; P],
         xi_m: &mut [Lanes; P],
-        grad: &mut [Lanes],
-        hess: &mut [Lanes],
-    ) -> Option<(Lanes, bool)>;
+        out: SlipLaneBuffers<'_>,
+    ) -> Option<bool>;
 
     /// Whether [`ParamKernel::run_slip_lanes`] has a kernel to run.
     fn has_slip_lanes(&self) -> bool;
@@ -143,6 +145,13 @@ pub(crate) struct SlipBuffers<'a> {
     pub(crate) slip: &'a mut [f64; 3],
     pub(crate) grad: &'a mut [f64],
     pub(crate) hess: &'a mut [f64],
+}
+
+/// Where the slip's lane kernels write: [`SlipBuffers`] over lanes.
+pub(crate) struct SlipLaneBuffers<'a> {
+    pub(crate) slip: &'a mut [Lanes],
+    pub(crate) grad: &'a mut [Lanes],
+    pub(crate) hess: &'a mut [Lanes],
 }
 
 /// The slip of one point: the steps of [`eval_point`] (validation,
@@ -329,14 +338,20 @@ impl ParamKernel<1> for Segments {
         [xi_s]: &[Lanes; 1],
         [xi_m0]: &[Lanes; 1],
         [xi_m]: &mut [Lanes; 1],
-        grad: &mut [Lanes],
-        hess: &mut [Lanes],
-    ) -> Option<(Lanes, bool)> {
+        out: SlipLaneBuffers<'_>,
+    ) -> Option<bool> {
+        let SlipLaneBuffers { slip, grad, hess } = out;
         // SAFETY: the caller's (the trait's contract).
         unsafe {
             Some(match self.slip_lanes? {
-                SlipLaneKernel::Gradient(f) => (f(d, *xi_s, *xi_m0, xi_m, grad), false),
-                SlipLaneKernel::Hessian(f) => (f(d, *xi_s, *xi_m0, xi_m, grad, hess), true),
+                SlipLaneKernel::Gradient(f) => {
+                    slip[0] = f(d, *xi_s, *xi_m0, xi_m, grad);
+                    false
+                }
+                SlipLaneKernel::Hessian(f) => {
+                    slip[0] = f(d, *xi_s, *xi_m0, xi_m, grad, hess);
+                    true
+                }
             })
         }
     }
@@ -448,20 +463,49 @@ impl ParamKernel<2> for Faces {
         }
     }
 
-    /// A face slip has no lane kernel (`codegen::emit::lanes`).
+    /// One lane function per component, each into its runs of the
+    /// buffers. A component whose projection is in closed form writes the
+    /// same `xi_m` every time; otherwise each reads the converged one.
+    #[inline(always)]
     unsafe fn run_slip_lanes(
         &self,
-        _d: &[Lanes],
-        _xi_s: &[Lanes; 2],
-        _xi_m0: &[Lanes; 2],
-        _xi_m: &mut [Lanes; 2],
-        _grad: &mut [Lanes],
-        _hess: &mut [Lanes],
-    ) -> Option<(Lanes, bool)> {
-        None
+        d: &[Lanes],
+        xi_s: &[Lanes; 2],
+        xi_m0: &[Lanes; 2],
+        xi_m: &mut [Lanes; 2],
+        out: SlipLaneBuffers<'_>,
+    ) -> Option<bool> {
+        let n = self.set.coords;
+        let SlipLaneBuffers { slip, grad, hess } = out;
+        // SAFETY: the caller's (the trait's contract).
+        unsafe {
+            Some(match self.slip_lanes? {
+                FaceSlipLaneKernel::Gradient(fs) => {
+                    for (j, f) in fs.iter().enumerate() {
+                        slip[j] = f(d, xi_s, xi_m0, xi_m, &mut grad[j * n..(j + 1) * n]);
+                    }
+                    false
+                }
+                FaceSlipLaneKernel::Hessian(fs) => {
+                    let nn = n * n;
+                    for (j, f) in fs.iter().enumerate() {
+                        slip[j] = f(
+                            d,
+                            xi_s,
+                            xi_m0,
+                            xi_m,
+                            &mut grad[j * n..(j + 1) * n],
+                            &mut hess[j * nn..(j + 1) * nn],
+                        );
+                    }
+                    true
+                }
+            })
+        }
     }
 
+    #[inline(always)]
     fn has_slip_lanes(&self) -> bool {
-        false
+        self.slip_lanes.is_some()
     }
 }

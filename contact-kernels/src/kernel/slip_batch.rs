@@ -1,21 +1,21 @@
 //! [`Slip::eval_batch`]: the slip of many points into a [`SlipBatch`]
-//! (structure of arrays), four points per call of the slip's lane kernel
-//! for segments, with the results and errors of [`Slip::eval`] point by
-//! point. A face slip has no lane kernel (`codegen::emit::lanes`' module
-//! docs say why): its points go one by one through the scalar path.
+//! (structure of arrays), four points per call of the slip's lane kernels
+//! (a segment's one component; a face's three, one lane function each),
+//! with the results and errors of [`Slip::eval`] point by point.
 //!
-//! Per group of [`LANES`] points of a segment slip:
+//! Per group of [`LANES`] points:
 //!
-//! 1. the points' coordinates are gathered into lanes and validated there
-//!    (the gap batch's lane checks, `ParamKernel::validate_lanes`); a lane
-//!    that passes, whose `xi_m0` is finite and whose projection is in
-//!    closed form is ready. Any other point goes through the scalar path's
+//! 1. segments: the points' coordinates are gathered into lanes and
+//!    validated there (the gap batch's lane checks,
+//!    `ParamKernel::validate_lanes`); a lane that passes, whose `xi_m0` is
+//!    finite and whose projection is in closed form is ready. Faces have no
+//!    lane validation (as the gap's batch). Any other point goes through the scalar path's
 //!    steps before the kernel ([`slip_start`]: validation, `xi_m0` finite,
 //!    the projection's start), so a point refused there carries exactly
 //!    [`Slip::eval`]'s error. A refused point's lane, like the lanes past
 //!    the end of a short last group, computes on zeros whose results are
 //!    discarded;
-//! 2. the slip's lane kernel evaluates the group (AVX2 where the CPU has
+//! 2. the slip's lane kernels evaluate the group (AVX2 where the CPU has
 //!    it, [`Kernel::lane_isa`](super::Kernel::lane_isa)): lane `l` of every
 //!    output holds the bits the scalar slip kernel gives point `l`;
 //! 3. a lane is accepted when every component of its `xi_m` passes the
@@ -29,7 +29,7 @@
 //! gap's batch).
 
 use super::batch::accepted;
-use super::param_kernel::{ParamKernel, SlipBuffers, slip_point, slip_start};
+use super::param_kernel::{ParamKernel, SlipBuffers, SlipLaneBuffers, slip_point, slip_start};
 use super::{Imp, slip::Slip};
 use crate::KernelError;
 use crate::lanes::{LANES, Lanes};
@@ -53,15 +53,16 @@ pub struct SlipBatch {
     hess: Vec<f64>,
     status: Vec<Option<KernelError>>,
     scratch: Vec<f64>,
-    lanes: SlipLaneBuffers,
+    lanes: LaneBuffers,
 }
 
-/// The slip lane kernel's buffers, `LANES` points each: the relative
-/// coordinates (`n`), the gradient (`n`) and the Hessian (`n n`) of a
-/// segment slip's one component (empty for a face slip).
+/// The slip lane kernels' buffers, `LANES` points each: the relative
+/// coordinates (`n`), the components (`c`), their gradients (`c n`) and
+/// Hessians (`c n n`), component after component.
 #[derive(Debug, Clone, PartialEq)]
-struct SlipLaneBuffers {
+struct LaneBuffers {
     d: Vec<Lanes>,
+    slip: Vec<Lanes>,
     grad: Vec<Lanes>,
     hess: Vec<Lanes>,
 }
@@ -82,18 +83,11 @@ impl SlipBatch {
             hess: Vec::new(),
             status: Vec::new(),
             scratch: vec![0.0; n],
-            lanes: if c == 1 {
-                SlipLaneBuffers {
-                    d: vec![Lanes::ZERO; n],
-                    grad: vec![Lanes::ZERO; n],
-                    hess: vec![Lanes::ZERO; n * n],
-                }
-            } else {
-                SlipLaneBuffers {
-                    d: Vec::new(),
-                    grad: Vec::new(),
-                    hess: Vec::new(),
-                }
+            lanes: LaneBuffers {
+                d: vec![Lanes::ZERO; n],
+                slip: vec![Lanes::ZERO; c],
+                grad: vec![Lanes::ZERO; c * n],
+                hess: vec![Lanes::ZERO; c * n * n],
             },
         }
     }
@@ -215,15 +209,20 @@ impl SlipBatch {
         self.status[p] = Some(e);
     }
 
-    /// Point `p` takes lane `l` of the lane buffers (one component).
-    fn accept<const P: usize>(&mut self, p: usize, l: usize, slip: Lanes, xi_m: &[Lanes; P]) {
+    /// Point `p` takes lane `l` of the lane buffers.
+    fn accept<const P: usize>(&mut self, p: usize, l: usize, xi_m: &[Lanes; P]) {
         let (c, n) = (self.components, self.coords);
         let nn = if self.has_hessian { n * n } else { 0 };
         for (c, x) in xi_m.iter().enumerate() {
             self.xi_m[P * p + c] = x.0[l];
         }
         self.status[p] = None;
-        self.slip[p] = slip.0[l];
+        for (s, v) in self.slip[p * c..(p + 1) * c]
+            .iter_mut()
+            .zip(&self.lanes.slip)
+        {
+            *s = v.0[l];
+        }
         for (g, v) in self.grad[p * c * n..(p + 1) * c * n]
             .iter_mut()
             .zip(&self.lanes.grad)
@@ -314,8 +313,9 @@ impl Points<'_> {
     }
 }
 
-/// Every group (every point alone without a slip lane kernel); returns how
-/// many points succeeded.
+/// Every group (every point alone without a slip lane kernel: a
+/// formulation compiled without its slip's lanes); returns how many points
+/// succeeded.
 fn eval_all<K: ParamKernel<P>, const P: usize>(k: &K, args: &Points, out: &mut SlipBatch) -> usize {
     let points = args.xi_s.len() / P;
     if !k.has_slip_lanes() {
@@ -388,22 +388,29 @@ fn eval_group<K: ParamKernel<P>, const P: usize>(
     let buf = &mut out.lanes;
     // SAFETY: `generated_lanes::select` returns an AVX2 kernel only when
     // the CPU supports AVX2; the buffers have the lengths the kernels
-    // reslice to (`n`, `n`, `n n`).
-    let (slip_l, hessian) = unsafe {
+    // reslice to (`n`, then `c`, `c n`, `c n n`).
+    let hessian = unsafe {
         k.run_slip_lanes(
             &buf.d,
             &xi_s_l,
             &xi_m0_l,
             &mut xi_m_l,
-            &mut buf.grad,
-            &mut buf.hess,
+            SlipLaneBuffers {
+                slip: &mut buf.slip,
+                grad: &mut buf.grad,
+                hess: &mut buf.hess,
+            },
         )
     }
     .expect("eval_all checked that the slip has lane kernels");
     // The lane's outputs are all finite when their sum is (a NaN or an
     // infinity makes it non-finite; an overflowing sum of finite values
     // only sends the point through the scalar path, which decides).
-    let mut sum = buf.grad.iter().fold(slip_l, |s, v| s + *v);
+    let mut sum = buf
+        .slip
+        .iter()
+        .chain(&buf.grad)
+        .fold(Lanes::ZERO, |s, v| s + *v);
     if hessian {
         sum = buf.hess.iter().fold(sum, |s, v| s + *v);
     }
@@ -411,7 +418,7 @@ fn eval_group<K: ParamKernel<P>, const P: usize>(
     for l in (0..count).filter(|&l| valid[l]) {
         let p = first + l;
         if accepted(sum, &xi_m_l, l) {
-            out.accept(p, l, slip_l, &xi_m_l);
+            out.accept(p, l, &xi_m_l);
             ok += 1;
         } else {
             ok += usize::from(eval_point_scalar(k, p, args, out));

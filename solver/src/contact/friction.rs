@@ -377,19 +377,14 @@ impl Friction {
     /// docs): the identity where it sticks; in 3D where it slips
     /// `-ratio c / W_a (I - z^ z^T)`; `None` elsewhere (open, or sliding in
     /// 2D, where the row does not depend on the slip).
-    fn slip_rows<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
+    /// `weight`: [`Friction::nodal_slips`]' nodal weights.
+    fn slip_rows(
         &self,
-        points: &[P],
-        evals: &[Option<E>],
+        weight: &[f64],
         states: &[FrictionState],
         pairs: &[MultiplierDof],
         complementarity: &[f64],
     ) -> Vec<Option<[[f64; 2]; 2]>> {
-        let weight = if self.directions == 2 {
-            self.nodal_slips(points, evals).0
-        } else {
-            Vec::new()
-        };
         self.normal
             .iter()
             .zip(states)
@@ -423,13 +418,15 @@ impl Friction {
     /// open rows (`t_a = 0`) and the zero diagonal of the others are
     /// [`super::assemble_contact`]'s, whose active set marks a tangential
     /// multiplier active unless its node is open.
+    /// The states are those of `(evals, lambda, active)`, decided here
+    /// from the nodal sums the rows take too (one pass over the points).
     #[allow(clippy::too_many_arguments)] // the assembly's inputs
     pub fn assemble<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
         &self,
         points: &[P],
         evals: &[Option<E>],
         lambda: &[f64],
-        states: &[FrictionState],
+        active: &[bool],
         pairs: &[MultiplierDof],
         complementarity: &[f64],
         dofs: &DofMap,
@@ -439,7 +436,9 @@ impl Friction {
             return;
         }
         let dirs = self.directions;
-        let rows = self.slip_rows(points, evals, states, pairs, complementarity);
+        let (weight, slip) = self.nodal_slips(points, evals);
+        let states = &self.states_of(&weight, &slip, lambda, active, pairs, complementarity)[..];
+        let rows = self.slip_rows(&weight, states, pairs, complementarity);
         for (pt, ev) in points.iter().zip(evals) {
             let Some(ev) = ev else { continue };
             let Some(s) = ev.slip() else { continue };
@@ -644,12 +643,11 @@ impl<P: WeightedPoint> FrictionView<'_, P> {
         if !self.friction.any() {
             return;
         }
-        let states = self.states(evals, lambda, active);
         self.friction.assemble(
             self.points,
             evals,
             lambda,
-            &states,
+            active,
             self.pairs,
             self.complementarity,
             dofs,
