@@ -13,7 +13,9 @@
 //! (`face_lane_set`, [`FaceLaneKernel`]). The slip's lane kernels of
 //! segments (`slip_lane_set`, [`SlipLaneKernel`]) take the last converged
 //! projection `xi_m0` after `xi_s` and return the slip's component; a face
-//! slip has none (`codegen::emit::lanes`' module docs say why).
+//! slip's (`face_slip_lane_set`, [`FaceSlipLaneKernel`]) are one function
+//! per component, compiled for AVX2 only (`codegen::emit::lanes`' module
+//! docs say why).
 //!
 //! Each kernel's body is generic over its value type ([`LaneValue`]) and
 //! exists twice: portable, over [`Lanes`], and on x86-64 compiled for AVX2

@@ -36,21 +36,70 @@
 //! Invariant: a formulation without a slip is `NotCompiled` (every
 //! shipped face formulation defines one).
 
-use contact_kernels::{ApproxType, Formulation, Kernel, KernelError, Slip, SlipOut};
+use contact_kernels::{ApproxType, Formulation, Kernel, KernelError, Slip, SlipBatch};
 use nalgebra::{SMatrix, SVector};
 
 use super::slip_term::{FaceAnchor, FaceSlip, Frame};
-use crate::contact::term::MAX_POINT_MULTIPLIERS;
+use crate::contact::term::{FACE_COORDS, MAX_POINT_MULTIPLIERS};
 use crate::contact::{FaceEval, FaceLayout};
 use crate::ids::{ContactPointIndex, MasterFaceIndex};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::FaceShape;
 use crate::mesh::volume::{Face, cross};
 
-/// The face slip kernel of one formulation and type with its output
-/// buffers, kept across the points of a pass.
+/// The face slip kernels of a pass, one per (formulation, type), each
+/// with its batch and the inputs gathered for it, kept across the points
+/// of a pass.
 #[derive(Debug, Default)]
-pub(super) struct FaceSlipBuffers(Vec<(Formulation, ApproxType, Slip, SlipOut)>);
+pub(super) struct FaceSlipBuffers(Vec<SlipGroup>);
+
+/// The points of one (formulation, type) in a batch: their inputs, which
+/// points they are, and the kernel with its outputs.
+#[derive(Debug)]
+struct SlipGroup {
+    formulation: Formulation,
+    ty: ApproxType,
+    slip: Slip,
+    batch: SlipBatch,
+    qs: Vec<f64>,
+    xi_s: Vec<f64>,
+    xi_m0: Vec<f64>,
+    members: Vec<usize>,
+}
+
+impl FaceSlipBuffers {
+    /// The group of `(formulation, ty)`, made on first use.
+    fn group(
+        &mut self,
+        formulation: Formulation,
+        ty: ApproxType,
+    ) -> Result<&mut SlipGroup, KernelError> {
+        let k = match self
+            .0
+            .iter()
+            .position(|g| g.formulation == formulation && g.ty == ty)
+        {
+            Some(k) => k,
+            None => {
+                let Some(slip) = Kernel::new(formulation, ty)?.slip() else {
+                    return Err(KernelError::NotCompiled(formulation));
+                };
+                self.0.push(SlipGroup {
+                    formulation,
+                    ty,
+                    slip,
+                    batch: SlipBatch::new(&slip),
+                    qs: Vec::new(),
+                    xi_s: Vec::new(),
+                    xi_m0: Vec::new(),
+                    members: Vec::new(),
+                });
+                self.0.len() - 1
+            }
+        };
+        Ok(&mut self.0[k])
+    }
+}
 
 /// `v / |v|`, or `None` for a zero or non-finite `v`.
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
@@ -139,63 +188,62 @@ impl FaceLayout {
             .collect()
     }
 
-    /// The slip of point `i` evaluated as `e` at displacements `u`, kernel
-    /// type `ty`, from `anchor`; the kernels and buffers kept in `buffers`.
-    #[allow(clippy::too_many_arguments)] // one point's inputs and the buffers
-    pub(super) fn face_slip(
+    /// The slips of `points` (each point `i` evaluated as `e`, from its
+    /// anchor) at displacements `u`, kernel type `ty`: one result per point,
+    /// in order. The points of one formulation go through one
+    /// `Slip::eval_batch` call (its lane kernels where the CPU has them),
+    /// which gives each point the bits and the error of `Slip::eval`.
+    pub(super) fn face_slips(
         &self,
         mesh: &Mesh<3>,
         u: &[f64],
-        i: ContactPointIndex,
-        e: &FaceEval,
-        anchor: &FaceAnchor,
+        points: &[(ContactPointIndex, &FaceEval, &FaceAnchor)],
         ty: ApproxType,
         buffers: &mut FaceSlipBuffers,
-    ) -> Result<Box<FaceSlip>, KernelError> {
-        let probe = self.probe(i);
-        let formulation = self.formulation_of(&probe, e.master)?;
-        let xi_m0 = if anchor.master == e.master {
-            anchor.xi_m
-        } else {
-            self.face_anchor_on(mesh, &probe, anchor.master, anchor.xi_m, e.master)
-        };
-        let k = match buffers
-            .0
-            .iter()
-            .position(|(f, t, _, _)| *f == formulation && *t == ty)
-        {
-            Some(k) => k,
-            None => {
-                let Some(slip) = Kernel::new(formulation, ty)?.slip() else {
-                    return Err(KernelError::NotCompiled(formulation));
-                };
-                buffers.0.push((formulation, ty, slip, SlipOut::new(&slip)));
-                buffers.0.len() - 1
+    ) -> Vec<Result<Box<FaceSlip>, KernelError>> {
+        let mut results: Vec<Option<Result<Box<FaceSlip>, KernelError>>> =
+            (0..points.len()).map(|_| None).collect();
+        for (k, &(i, e, anchor)) in points.iter().enumerate() {
+            let probe = self.probe(i);
+            let group = self
+                .formulation_of(&probe, e.master)
+                .and_then(|f| buffers.group(f, ty));
+            let group = match group {
+                Ok(g) => g,
+                Err(error) => {
+                    results[k] = Some(Err(error));
+                    continue;
+                }
+            };
+            let xi_m0 = if anchor.master == e.master {
+                anchor.xi_m
+            } else {
+                self.face_anchor_on(mesh, &probe, anchor.master, anchor.xi_m, e.master)
+            };
+            let q = Self::q(mesh, u, &e.nodes[..e.node_count]);
+            group.qs.extend_from_slice(&q[..3 * e.node_count]);
+            group.xi_s.extend_from_slice(&probe.xi_s);
+            group.xi_m0.extend_from_slice(&xi_m0);
+            group.members.push(k);
+        }
+        for g in buffers.0.iter_mut().filter(|g| !g.members.is_empty()) {
+            let shapes = g.slip.eval_batch(&g.qs, &g.xi_s, &g.xi_m0, &mut g.batch);
+            for (p, &k) in g.members.iter().enumerate() {
+                results[k] = Some(match shapes {
+                    Ok(_) => slip_of(&g.batch, p, g.slip.kernel().coords())
+                        .map(|v| Box::new(FaceSlip { frames: points[k].2.frames, ..v })),
+                    Err(e) => Err(e),
+                });
             }
-        };
-        let (_, _, slip, out) = &mut buffers.0[k];
-        let n = 3 * e.node_count;
-        let q = Self::q(mesh, u, &e.nodes[..e.node_count]);
-        slip.eval(&q[..n], probe.xi_s, xi_m0, out)?;
-        let grad = |c: usize| {
-            let g = out.grad(c);
-            SVector::from_fn(|k, _| if k < n { g[k] } else { 0.0 })
-        };
-        let hess = |c: usize| {
-            out.hess(c)
-                .map(|h| SMatrix::from_fn(|r, s| if r < n && s < n { h[r * n + s] } else { 0.0 }))
-        };
-        let hessians = match (hess(0), hess(1), hess(2)) {
-            (Some(a), Some(b), Some(c)) => Some([a, b, c]),
-            _ => None,
-        };
-        let v = out.slip();
-        Ok(Box::new(FaceSlip {
-            slip: [v[0], v[1], v[2]],
-            grad: [grad(0), grad(1), grad(2)],
-            hess: hessians,
-            frames: anchor.frames,
-        }))
+            g.qs.clear();
+            g.xi_s.clear();
+            g.xi_m0.clear();
+            g.members.clear();
+        }
+        results
+            .into_iter()
+            .map(|r| r.expect("every point is evaluated or refused"))
+            .collect()
     }
 
     /// The anchor at `xi0` on master face `from` of probe `pt`'s pair, as
@@ -234,4 +282,30 @@ impl FaceLayout {
         }
         xi
     }
+}
+
+/// Point `p` of `batch` (`n` coordinates) as a [`FaceSlip`] on
+/// [`FACE_COORDS`] coordinates (zero on padding), without its frames; its
+/// error where it failed.
+fn slip_of(batch: &SlipBatch, p: usize, n: usize) -> Result<FaceSlip, KernelError> {
+    let v = batch.slip(p).map_err(|e| *e)?;
+    let grad = |c: usize| -> Result<SVector<f64, FACE_COORDS>, KernelError> {
+        let g = batch.grad(p, c).map_err(|e| *e)?;
+        Ok(SVector::from_fn(|k, _| if k < n { g[k] } else { 0.0 }))
+    };
+    let hess = |c: usize| -> Result<Option<SMatrix<f64, FACE_COORDS, FACE_COORDS>>, KernelError> {
+        Ok(batch.hess(p, c).map_err(|e| *e)?.map(|h| {
+            SMatrix::from_fn(|r, s| if r < n && s < n { h[r * n + s] } else { 0.0 })
+        }))
+    };
+    let hessians = match (hess(0)?, hess(1)?, hess(2)?) {
+        (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+        _ => None,
+    };
+    Ok(FaceSlip {
+        slip: [v[0], v[1], v[2]],
+        grad: [grad(0)?, grad(1)?, grad(2)?],
+        hess: hessians,
+        frames: [[[0.0; 3]; 2]; MAX_POINT_MULTIPLIERS],
+    })
 }

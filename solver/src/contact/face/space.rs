@@ -30,8 +30,9 @@ use crate::contact::{
     PointFailure, Taylor, XI_INSIDE_TOL, XI_STUCK_BAND, slave_side,
 };
 
-/// The fewest points a thread takes in the parallel slip pass.
-const SLIP_PAR_MIN_LEN: usize = 32;
+/// The points a thread takes at a time in the parallel slip pass (their
+/// slips evaluated in batches of one formulation each).
+const SLIP_CHUNK: usize = 32;
 
 /// A 3D point's frozen expansion.
 type FaceTaylor = Taylor<FaceEval, FACE_COORDS>;
@@ -103,14 +104,17 @@ impl ContactSpace<3> for FaceLayout {
         anchor: FaceAnchor,
         ty: ApproxType,
     ) -> Result<(), KernelError> {
-        e.slip =
-            Some(self.face_slip(mesh, u, i, e, &anchor, ty, &mut FaceSlipBuffers::default())?);
+        let one = [(i, &*e, &anchor)];
+        let mut slips = self.face_slips(mesh, u, &one, ty, &mut FaceSlipBuffers::default());
+        e.slip = Some(slips.pop().expect("one result per point")?);
         Ok(())
     }
 
-    /// The trait's pass, in parallel over the points (a face slip kernel
-    /// with its three Hessians is a gap kernel's work three times over);
-    /// results, counts and the first failure in point order.
+    /// The trait's pass, in parallel over chunks of [`SLIP_CHUNK`] points
+    /// (a face slip kernel with its three Hessians is a gap kernel's work
+    /// three times over), each chunk's points of one formulation in one
+    /// batch (`face_slips`); results, counts and the first failure in point
+    /// order.
     fn add_slips(
         &self,
         mesh: &Mesh<3>,
@@ -121,24 +125,32 @@ impl ContactSpace<3> for FaceLayout {
         counts: &mut KernelCounts,
     ) -> Result<(), PointFailure<MasterFaceIndex>> {
         let shared: &[Option<FaceEval>] = evals;
-        let (slips, c) =
-            par::try_map_counted(shared.len(), SLIP_PAR_MIN_LEN, |k, c: &mut KernelCounts| {
-                let (Some(e), Some(Some(anchor))) = (&shared[k], anchors.get(k)) else {
-                    return Ok(None);
-                };
-                let i = ContactPointIndex::new(k);
-                c.evaluate += 1;
-                self.face_slip(mesh, u, i, e, anchor, ty, &mut FaceSlipBuffers::default())
-                    .map(Some)
-                    .map_err(|error| PointFailure {
+        let chunks = shared.len().div_ceil(SLIP_CHUNK);
+        let (slips, c) = par::try_map_counted(chunks, 1, |chunk, c: &mut KernelCounts| {
+            let first = chunk * SLIP_CHUNK;
+            let points: Vec<_> = (first..shared.len().min(first + SLIP_CHUNK))
+                .filter_map(|k| match (&shared[k], anchors.get(k)) {
+                    (Some(e), Some(Some(anchor))) => Some((ContactPointIndex::new(k), e, anchor)),
+                    _ => None,
+                })
+                .collect();
+            c.evaluate += points.len() as u64;
+            let results = self.face_slips(mesh, u, &points, ty, &mut FaceSlipBuffers::default());
+            points
+                .iter()
+                .zip(results)
+                .map(|(&(i, e, _), r)| {
+                    r.map(|slip| (i, slip)).map_err(|error| PointFailure {
                         point: i,
                         master_segment: Some(e.master),
                         error,
                     })
-            })?;
+                })
+                .collect::<Result<Vec<_>, _>>()
+        })?;
         *counts += c;
-        for (e, slip) in evals.iter_mut().zip(slips) {
-            if let (Some(e), Some(slip)) = (e, slip) {
+        for (i, slip) in slips.into_iter().flatten() {
+            if let Some(e) = &mut evals[i.index()] {
                 e.slip = Some(slip);
             }
         }
