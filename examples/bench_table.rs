@@ -351,7 +351,8 @@ fn slip_table(dir: &Path) -> Result<String, String> {
         "\nThe slip of Type 6 at 64 points (group `slip-batch64`, time per point): one point \
          at a time (`Slip::eval`) against one `Slip::eval_batch` call (the slip's lane \
          kernels, 4 points per call, AVX2 where the CPU has it, and the portable lane build; \
-         a face slip's three components are three lane functions).\n\n\
+         a face slip's three components are three lane functions, built for AVX2 only: \
+         its portable build goes point by point).\n\n\
          | formulation | `Slip::eval` (ns) | `eval_batch` (ns) | speed-up | portable lanes (ns) | speed-up |\n\
          |---|---:|---:|---:|---:|---:|\n",
     );

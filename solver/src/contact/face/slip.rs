@@ -230,8 +230,12 @@ impl FaceLayout {
             let shapes = g.slip.eval_batch(&g.qs, &g.xi_s, &g.xi_m0, &mut g.batch);
             for (p, &k) in g.members.iter().enumerate() {
                 results[k] = Some(match shapes {
-                    Ok(_) => slip_of(&g.batch, p, g.slip.kernel().coords())
-                        .map(|v| Box::new(FaceSlip { frames: points[k].2.frames, ..v })),
+                    Ok(_) => slip_of(&g.batch, p, g.slip.kernel().coords()).map(|v| {
+                        Box::new(FaceSlip {
+                            frames: points[k].2.frames,
+                            ..v
+                        })
+                    }),
                     Err(e) => Err(e),
                 });
             }
@@ -248,7 +252,7 @@ impl FaceLayout {
 
     /// The anchor at `xi0` on master face `from` of probe `pt`'s pair, as
     /// parameters of master face `to` (module docs).
-    fn face_anchor_on(
+    pub(super) fn face_anchor_on(
         &self,
         mesh: &Mesh<3>,
         pt: &super::pairing::Probe,
@@ -294,9 +298,10 @@ fn slip_of(batch: &SlipBatch, p: usize, n: usize) -> Result<FaceSlip, KernelErro
         Ok(SVector::from_fn(|k, _| if k < n { g[k] } else { 0.0 }))
     };
     let hess = |c: usize| -> Result<Option<SMatrix<f64, FACE_COORDS, FACE_COORDS>>, KernelError> {
-        Ok(batch.hess(p, c).map_err(|e| *e)?.map(|h| {
-            SMatrix::from_fn(|r, s| if r < n && s < n { h[r * n + s] } else { 0.0 })
-        }))
+        Ok(batch
+            .hess(p, c)
+            .map_err(|e| *e)?
+            .map(|h| SMatrix::from_fn(|r, s| if r < n && s < n { h[r * n + s] } else { 0.0 })))
     };
     let hessians = match (hess(0)?, hess(1)?, hess(2)?) {
         (Some(a), Some(b), Some(c)) => Some([a, b, c]),

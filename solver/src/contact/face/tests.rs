@@ -514,3 +514,70 @@ fn the_friction_tangent_is_the_jacobian_of_its_residual_in_stick_and_in_slip() {
         "tangent against the residual's derivative: {worst:e}"
     );
 }
+
+/// The slip pass (each chunk's points of one formulation in one
+/// `Slip::eval_batch`) gives every point the bits `Slip::eval` gives it
+/// alone, on quad4 and on tri3 slave faces.
+#[test]
+fn the_batched_slip_pass_gives_each_point_the_bits_of_its_own_evaluation() {
+    use contact_kernels::{Kernel, SlipOut};
+    for tri_slave in [false, true] {
+        let (mesh, mut pair) = stacked(0.02, tri_slave, Formulation::SlaveNormal);
+        pair.friction = 0.4;
+        let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+        let u0 = warp(&mesh, 1.0);
+        let (pairing0, _) = layout.initial_pairing(&mesh, &u0).unwrap();
+        let (evals0, _) = layout
+            .evaluate_paired(&mesh, &u0, &pairing0, ApproxType::Type6)
+            .unwrap();
+        let anchors = layout.anchors(&mesh, &u0, &evals0);
+        let mut u = u0.clone();
+        for n in mesh.node_ids().filter(|&n| mesh.node_ref(n)[2] > 1.0) {
+            u[3 * n.index()] += 0.3;
+            u[3 * n.index() + 1] -= 0.2;
+        }
+        for ty in [ApproxType::Type3, ApproxType::Type6] {
+            let (pairing, _) = layout.initial_pairing(&mesh, &u).unwrap();
+            let (mut evals, mut counts) = layout.evaluate_paired(&mesh, &u, &pairing, ty).unwrap();
+            layout
+                .add_slips(&mesh, &u, &mut evals, &anchors, ty, &mut counts)
+                .unwrap();
+            let (mut checked, mut moved) = (0, 0);
+            for (k, (e, anchor)) in evals.iter().zip(&anchors).enumerate() {
+                let (Some(e), Some(anchor)) = (e, anchor) else {
+                    continue;
+                };
+                let probe = layout.probe(ContactPointIndex::new(k));
+                let f = layout.formulation_of(&probe, e.master).unwrap();
+                let slip = Kernel::new(f, ty).unwrap().slip().unwrap();
+                let mut out = SlipOut::new(&slip);
+                let xi_m0 = if anchor.master == e.master {
+                    anchor.xi_m
+                } else {
+                    moved += 1;
+                    layout.face_anchor_on(&mesh, &probe, anchor.master, anchor.xi_m, e.master)
+                };
+                let n = 3 * e.node_count;
+                let q = FaceLayout::q(&mesh, &u, &e.nodes[..e.node_count]);
+                slip.eval(&q[..n], probe.xi_s, xi_m0, &mut out).unwrap();
+                let got = e.slip.as_ref().expect("a slip at every anchored point");
+                let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+                assert_eq!(bits(&got.slip), bits(out.slip()), "point {k}");
+                for c in 0..3 {
+                    assert_eq!(bits(&got.grad[c].as_slice()[..n]), bits(out.grad(c)));
+                    let h = out.hess(c).unwrap();
+                    let mine = &got.hess.as_ref().unwrap()[c];
+                    for r in 0..n {
+                        for s in 0..n {
+                            assert_eq!(mine[(r, s)].to_bits(), h[r * n + s].to_bits());
+                        }
+                    }
+                }
+                assert_eq!(got.frames, anchor.frames);
+                checked += 1;
+            }
+            assert!(checked >= 16, "{checked} points checked");
+            assert!(moved > 0, "some points crossed a master edge");
+        }
+    }
+}
