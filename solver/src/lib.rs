@@ -88,7 +88,10 @@ pub use material::{Kinematics, Material, PlaneModel};
 pub use mesh::{Mesh, Side};
 pub use model::{ContactMode, Model};
 pub use model::{Dim, SurfaceDim};
-pub use options::{DEFAULT_REGULARIZATION, Method, ParseMethodError, SolveOptions};
+pub use options::{
+    DEFAULT_REGULARIZATION, ExpansionPoint, Method, ParseExpansionPointError, ParseMethodError,
+    SolveOptions,
+};
 pub use scene::{Scene, SceneDim, SceneError};
 pub use solution::{
     AccuracyHalving, ContactPointId, ContactPointReport, Cutback, CutbackReason, KernelCounts,

@@ -33,6 +33,49 @@ pub const DEFAULT_MAX_CUTBACKS: usize = 8;
 /// Default of [`SolveOptions::repair`] and `[newton] repair`.
 pub const DEFAULT_REPAIR: bool = true;
 
+/// Default of [`SolveOptions::expand_at`] and `[newton] expand_at`.
+pub const DEFAULT_EXPAND_AT: ExpansionPoint = ExpansionPoint::Predictor;
+
+/// Where Types 1–6 take a load step's Taylor expansions (see
+/// [`crate::newton`], "Where the expansions are taken").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum ExpansionPoint {
+    /// At the converged state the step starts from (the paper's scheme).
+    Start,
+    /// At the step's secant predictor, where its first Newton solve starts
+    /// (the converged state extrapolated along the last increment, when
+    /// prescribed displacements move on as they did in the last step);
+    /// at the converged state when the step has no predictor.
+    #[default]
+    Predictor,
+}
+
+impl std::fmt::Display for ExpansionPoint {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            ExpansionPoint::Start => "start",
+            ExpansionPoint::Predictor => "predictor",
+        })
+    }
+}
+
+/// Error parsing an [`ExpansionPoint`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown expansion point `{0}` (expected `start` or `predictor`)")]
+pub struct ParseExpansionPointError(pub String);
+
+impl std::str::FromStr for ExpansionPoint {
+    type Err = ParseExpansionPointError;
+    /// `"start"` or `"predictor"`.
+    fn from_str(s: &str) -> Result<ExpansionPoint, ParseExpansionPointError> {
+        match s.trim() {
+            "start" => Ok(ExpansionPoint::Start),
+            "predictor" => Ok(ExpansionPoint::Predictor),
+            other => Err(ParseExpansionPointError(other.to_string())),
+        }
+    }
+}
+
 /// How the contact gap is treated within a load step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Method {
@@ -126,6 +169,9 @@ pub struct SolveOptions {
     /// remainder exceeds this (adaptive stepping, `[newton]
     /// taylor_tolerance`; default `None`).
     pub taylor_tolerance: Option<f64>,
+    /// Types 1–6: where a step's expansions are taken (`[newton]
+    /// expand_at`, default [`DEFAULT_EXPAND_AT`], the step's predictor).
+    pub expand_at: ExpansionPoint,
 }
 
 impl Default for SolveOptions {
@@ -145,6 +191,7 @@ impl Default for SolveOptions {
             petsc_options: String::new(),
             repair: DEFAULT_REPAIR,
             taylor_tolerance: None,
+            expand_at: DEFAULT_EXPAND_AT,
         }
     }
 }

@@ -175,6 +175,12 @@ pub struct RunArgs {
     #[arg(long, value_name = "TOL", value_parser = parse_tolerance)]
     pub taylor_tolerance: Option<f64>,
 
+    /// Types 1-6: where a step's Taylor expansions are taken, the step's
+    /// predictor or its start (the paper's scheme; default: the scene's
+    /// `[newton] expand_at`, the predictor unless set).
+    #[arg(long, value_name = "predictor|start")]
+    pub expand_at: Option<solver::ExpansionPoint>,
+
     /// Write `.vtu` files of the result into this directory.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
@@ -222,6 +228,9 @@ pub fn run(args: &RunArgs) -> CommandResult {
     }
     if let Some(t) = args.taylor_tolerance {
         options.taylor_tolerance = Some(t);
+    }
+    if let Some(e) = args.expand_at {
+        options.expand_at = e;
     }
     options.formulation = args.formulation;
     options.record_steps = args.every_step;

@@ -46,12 +46,13 @@ where
     /// The contact treatment with what it works on: the solve's context and
     /// the run's converged state.
     #[allow(clippy::type_complexity)] // the three borrows of the run
-    fn split_treatment(
-        &mut self,
+    fn split_treatment<'s>(
+        &'s mut self,
+        predictor: Option<&'s [f64]>,
     ) -> (
-        &mut dyn ContactTreatment<D, S>,
-        Context<'_, 'a, D, S>,
-        StepStart<'_, S::Master>,
+        &'s mut dyn ContactTreatment<D, S>,
+        Context<'s, 'a, D, S>,
+        StepStart<'s, S::Master>,
     ) {
         (
             &mut *self.treatment,
@@ -66,6 +67,7 @@ where
                 pairing: &mut self.pairing,
                 ties: &mut self.ties,
                 load_factor: self.load_factor,
+                predictor,
             },
         )
     }
@@ -73,15 +75,16 @@ where
     /// One attempt from the converged state to load factor `to` (module
     /// docs): Newton solves until the treatment accepts one.
     pub(super) fn attempt(&mut self, to: f64) -> Result<AttemptOutcome<D, S::Master>, SolverError> {
-        let (treatment, mut cx, start) = self.split_treatment();
+        let predictor = self.predictor(to);
+        let (treatment, mut cx, start) = self.split_treatment(predictor.as_deref());
         treatment.begin_attempt(&mut cx, start)?;
         let mut warm = None;
         loop {
-            let outcome = self.newton_from(to, warm.take())?;
+            let outcome = self.newton_from(to, warm.take(), predictor.as_deref())?;
             let AttemptOutcome::Converged(c) = outcome else {
                 return Ok(outcome);
             };
-            let (treatment, mut cx, start) = self.split_treatment();
+            let (treatment, mut cx, start) = self.split_treatment(predictor.as_deref());
             match treatment.end_solve(&mut cx, start, c)? {
                 SolveEnd::Done(outcome) => return Ok(*outcome),
                 SolveEnd::Again { warm: w, spent } => {
@@ -92,15 +95,39 @@ where
         }
     }
 
-    /// Newton's method from the converged state, or from the displacements
-    /// and multipliers `warm` (an earlier solve's converged end at the same
-    /// `to`), to load factor `to`; the pairing and ties are the run's.
+    /// The secant predictor of an attempt towards `to` (module docs of
+    /// `super`, "Prescribed increments"): the converged displacements
+    /// extrapolated along the last step's increment, where the prescribed
+    /// dofs move and the last step moved them the same way; `None`
+    /// otherwise (Newton starts from the converged state).
+    fn predictor(&self, to: f64) -> Option<Vec<f64>> {
+        let lift = self.setup.lift(&self.u, to)?;
+        let previous = self.previous_u.as_ref()?;
+        let s = self.setup.extrapolation(&lift, &self.u, previous)?;
+        Some(
+            self.u
+                .iter()
+                .zip(previous)
+                .map(|(u, p)| u + s * (u - p))
+                .collect(),
+        )
+    }
+
+    /// Newton's method to load factor `to` from the displacements and
+    /// multipliers `warm` (an earlier solve's converged end at the same
+    /// `to`), or else from the `predictor` ([`Run::predictor`]) or the
+    /// converged state; the pairing and ties are the run's.
     fn newton_from(
         &mut self,
         to: f64,
         warm: Option<(Vec<f64>, Vec<f64>)>,
+        predictor: Option<&[f64]>,
     ) -> Result<AttemptOutcome<D, S::Master>, SolverError> {
-        let (u, lambda) = warm.unwrap_or_else(|| (self.u.clone(), self.lambda.clone()));
+        let extrapolated = warm.is_none() && predictor.is_some();
+        let (u, lambda) = warm.unwrap_or_else(|| {
+            let u = predictor.map_or_else(|| self.u.clone(), <[f64]>::to_vec);
+            (u, self.lambda.clone())
+        });
         let mut x = Iterate {
             u,
             lambda,
@@ -111,16 +138,6 @@ where
         // (module docs of `super`, "Prescribed increments"); the prescribed
         // dofs take their values at `to` with the first correction
         let mut lift = self.setup.lift(&x.u, to);
-        let mut extrapolated = false;
-        if let (Some(l), Some(previous)) = (&lift, &self.previous_u)
-            && let Some(s) = self.setup.extrapolation(l, &x.u, previous)
-        {
-            for (u, p) in x.u.iter_mut().zip(previous) {
-                *u += s * (*u - p);
-            }
-            lift = self.setup.lift(&x.u, to);
-            extrapolated = true;
-        }
         let mut residuals = Vec::new();
         // index into `residuals` of the first iterate with the current pairing
         let mut phase_start = 0;
@@ -146,7 +163,7 @@ where
             let at_once = ((1..=REPAIR_AT_ONCE_ITERATIONS).contains(&it)
                 || (it == 0 && extrapolated))
                 && phase_start == 0;
-            let (treatment, mut cx, _) = self.split_treatment();
+            let (treatment, mut cx, _) = self.split_treatment(None);
             let (evals, others) = match treatment.evaluate(&mut cx, &mut x, at_once) {
                 Ok(e) => e,
                 Err(reason) => {
@@ -185,7 +202,7 @@ where
                 && norm <= STAGNATION_FACTOR * tol_abs
                 && norm >= 0.5 * residuals[last - 1];
             if lift.is_none() && (norm <= tol_abs || at_floor) {
-                let (treatment, mut cx, _) = self.split_treatment();
+                let (treatment, mut cx, _) = self.split_treatment(None);
                 let kept = match treatment.settle(&mut cx, &mut x, &evals) {
                     Ok(Settling::Changed) => {
                         // the same iterate again, with the new pairing

@@ -23,6 +23,7 @@ use contact_kernels::ApproxType;
 use crate::contact::ContactSpace;
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
+use crate::options::ExpansionPoint;
 use crate::solution::CutbackReason;
 
 use super::iterate::Iterate;
@@ -49,6 +50,9 @@ pub(super) struct Frozen<const D: usize, S: ContactSpace<D>> {
     /// With friction, each point's anchor at the converged state (its
     /// projection there, where its slip is measured from); empty without.
     pub(super) anchors: Vec<Option<S::Anchor>>,
+    /// The displacements the expansions were built at (the converged
+    /// state or the predictor of the attempt that built them).
+    pub(super) built_at: Vec<f64>,
 }
 
 /// The step-end check's state within one attempt (`repair.rs`).
@@ -96,6 +100,7 @@ where
             check: Check::default(),
             step_end_projections: 0,
             anchors: Vec::new(),
+            built_at: Vec::new(),
         }
     }
 
@@ -112,21 +117,49 @@ where
         let t = Instant::now();
         let layout = &cx.setup.layout;
         let mesh = &cx.setup.model.mesh;
-        let (mut evals, counts) = layout
-            .evaluate_all(mesh, start.u, start.pairing, self.ty)
-            .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
+        // where the expansions are taken (`super`, "Where the expansions
+        // are taken"): the attempt's predictor, or the converged state when
+        // there is none or a point cannot be evaluated there
+        let predicted = match (cx.opts.expand_at, start.predictor) {
+            (ExpansionPoint::Predictor, Some(p)) => layout
+                .evaluate_all(mesh, p, start.pairing, self.ty)
+                .ok()
+                .map(|e| (p, e)),
+            _ => None,
+        };
+        let (at, (mut evals, counts)) = match predicted {
+            Some(p) => p,
+            None => (
+                start.u,
+                layout
+                    .evaluate_all(mesh, start.u, start.pairing, self.ty)
+                    .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?,
+            ),
+        };
         *cx.counts += counts;
         if layout.has_friction() {
-            self.anchors = layout.anchors(mesh, start.u, &evals);
+            // the slip is measured from the converged state's projections
+            // (docs/conventions.md, "Coulomb friction"), wherever the
+            // expansions are taken
+            self.anchors = if std::ptr::eq(at, start.u) {
+                layout.anchors(mesh, start.u, &evals)
+            } else {
+                let (at_start, counts) = layout
+                    .evaluate_all(mesh, start.u, start.pairing, self.ty)
+                    .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
+                *cx.counts += counts;
+                layout.anchors(mesh, start.u, &at_start)
+            };
             layout
-                .add_slips(mesh, start.u, &mut evals, &self.anchors, self.ty, cx.counts)
+                .add_slips(mesh, at, &mut evals, &self.anchors, self.ty, cx.counts)
                 .map_err(|f| cx.setup.kernel_error(&f, start.load_factor))?;
         }
         *start.pairing = evals.iter().map(|e| e.as_ref().map(S::master)).collect();
         self.points = evals
             .into_iter()
-            .map(|e| e.map(|at_start| S::expand_at(at_start, start.u)))
+            .map(|e| e.map(|at_start| S::expand_at(at_start, at)))
             .collect();
+        self.built_at = at.to_vec();
         self.current = true;
         cx.timings.contact_evaluation += t.elapsed();
         Ok(())

@@ -9,9 +9,11 @@
 //!    external force likewise), the free dofs start from the converged
 //!    state; when prescribed dofs move, through the predictor of the next
 //!    section;
-//! 2. Types 1–6: at the step start (converged state `u0`) every contact
-//!    integration point is re-paired and the type's Taylor coefficients are
-//!    evaluated; they stay frozen during the step. Complete: every iteration
+//! 2. Types 1–6: at the step start every contact integration point is
+//!    re-paired and the type's Taylor coefficients are evaluated, at the
+//!    step's predictor (next section) or, without one, at the converged
+//!    state `u0` ("Where the expansions are taken"); they stay frozen
+//!    during the step. Complete: every iteration
 //!    re-projects and evaluates the exact kernel on the paired master
 //!    segments;
 //! 3. iterate `K du = -r` until `|r| <= tol max(1, |lambda_L f_ref|)`
@@ -29,9 +31,10 @@
 //! 5. Types 1–6: at a converged iterate, every point is re-paired by
 //!    projection; if one ended on another master segment than its
 //!    expansion's, the step is solved again with the expansion of the new
-//!    pairing (next section). Then the step's Taylor
-//!    remainder is measured and, with a `taylor_tolerance`, a step above it
-//!    is halved.
+//!    pairing ("Re-pairing at the step end"). Then the step's Taylor
+//!    remainder is measured and, with a `taylor_tolerance`, the points
+//!    above it get their expansions re-taken there and the step is solved
+//!    again; a step still above it is halved.
 //!
 //! # Prescribed increments
 //!
@@ -65,6 +68,36 @@
 //! On the ironing scene at 20 steps the complete formulation then needs no
 //! cut-back (236 iterations, 5 per press step); the sliding scenes' results
 //! are unchanged to the solver tolerance, with fewer iterations.
+//!
+//! # Where the expansions are taken (Types 1–6)
+//!
+//! The paper expands each point's gap at the step start `u0`
+//! (`[newton] expand_at = "start"`). When the step has a secant predictor
+//! `u_p` (above: prescribed dofs moving on as in the last step) the
+//! default, `expand_at = "predictor"`, takes the expansions there instead:
+//! every point re-paired and the type's kernel evaluated at `u_p`, the
+//! iterate Newton starts from. The approximation is the same second-order
+//! expansion frozen for the step, about a point nearer the step's end, so
+//! its Taylor remainder at the end is that of `u - u_p` instead of
+//! `u - u0`, and a point that slides across a master node during a steady
+//! step is already on its end segment at `u_p`. A step without a predictor
+//! (the first step, a load that is not prescribed displacements, a change
+//! of direction: the paper scene, a press) is expanded at `u0` as before,
+//! and so is one where a point cannot be evaluated at `u_p`. With friction
+//! the slip is still measured from the projections at `u0`
+//! (docs/conventions.md, "Coulomb friction"): the anchors are taken there.
+//!
+//! Measured on `scenes/sliding3d.toml` (a block dragged diagonally across
+//! 12 x 12 master faces) at 20 steps: expanded at the step start, Types 3
+//! and 6 were 0.18 % and 0.19 % off the complete formulation's energy,
+//! with 35 and 33 step repeats for re-pairing and 174 and 171 linear
+//! solves against the complete formulation's 77; expanded at the
+//! predictor, 4.8e-3 % and 3.5e-3 % with 3 repeats and 84 and 83 solves
+//! (`solver/tests/contact3d.rs`, docs/benchmarks.md). On the 2D sliding
+//! scenes at 20 steps, where every point crosses a node in every step and
+//! the re-pairing made each end exact, the predictor gives up that
+//! exactness (Type 6 on `scenes/sliding.toml`: 3.0e-2 %, within the 5e-2 %
+//! the safety map accepts) for 104 linear solves instead of 238.
 //!
 //! # Re-pairing at the step end (Types 1–6)
 //!
@@ -102,10 +135,20 @@
 //! active points, the largest `|g - g~| / L_s`: the re-projected gap minus
 //! the frozen expansion's gap, over the slave segment's reference length
 //! ([`crate::StepRecord::taylor_remainder`]). With `[newton]
-//! taylor_tolerance` a converged step above it is discarded and its
-//! increment halved by the same bisection as a divergence cut-back, but
-//! recorded apart ([`crate::Solution::accuracy_halvings`]); a step that
-//! cannot be halved further (`max_cutbacks`) is accepted as it is.
+//! taylor_tolerance` (and `repair`, the default), at a converged end
+//! whose pairing stands, each active point whose remainder exceeds the tolerance gets its expansion
+//! re-taken there (then followed by the anchor iteration like a point
+//! that changed segment) and the step is solved again, the re-takings of
+//! one attempt sharing `repair.rs`'s limit of anchor updates; only a step still above the tolerance after them is
+//! discarded and its increment halved by the same bisection as a
+//! divergence cut-back, recorded apart
+//! ([`crate::Solution::accuracy_halvings`]); a step that cannot be halved
+//! further (`max_cutbacks`) is accepted as it is. Halving whole steps
+//! was the first cure: on `scenes/sliding3d.toml` at 20 steps with the
+//! expansions at the step start and `taylor_tolerance = 1e-3` it halved 32
+//! steps and took 8x the complete formulation's time; re-taking the
+//! points instead halves none (Type 3 then ends within 2e-9 of the
+//! complete formulation's energy with 248 linear solves).
 //!
 //! A step's residual history ([`crate::StepRecord::residuals`]) then holds
 //! one more entry per pairing change (the same iterate, evaluated again);

@@ -75,7 +75,10 @@
 //! multipliers carrying a constraint row), the re-projected gap minus the
 //! expansion's gap at the end state, over the slave segment's reference
 //! length; the step reports its largest magnitude. With a `taylor_tolerance`
-//! a step above it is halved ([`AttemptOutcome::TooCoarse`]).
+//! the points above it (at an end whose pairing stands) get their
+//! expansions re-taken there like a moved point's, within the same
+//! [`MAX_ANCHOR_UPDATES`], and the step is solved again; a step still above
+//! it is halved ([`AttemptOutcome::TooCoarse`]).
 //!
 //! Invariant: the check changes nothing when every point ends on the
 //! segment its expansion was built on (the paper scene): the Newton
@@ -160,8 +163,16 @@ where
         if !switch.is_empty() || !tie.is_empty() {
             self.check.switches += 1;
         } else if cx.opts.repair && !changed && self.check.updates < MAX_ANCHOR_UPDATES {
-            // the moved points whose expansion misses their end gap
-            switch = self.unconverged_anchors(cx.setup, start.ties, &c, &found);
+            // the moved points whose expansion misses their end gap and,
+            // with a `taylor_tolerance`, the others whose remainder exceeds
+            // it: re-taken at this end
+            switch = self.unconverged_anchors(
+                cx.setup,
+                start.ties,
+                &c,
+                &found,
+                cx.opts.taylor_tolerance,
+            );
             let retied = self.reanchor_ties(cx, start.ties, &c)?;
             if !switch.is_empty() || retied {
                 self.check.updates += 1;
@@ -210,7 +221,7 @@ where
         let mut moved: Vec<bool> = self
             .points
             .iter()
-            .map(|t| t.as_ref().is_some_and(|t| S::moved(t, start.u)))
+            .map(|t| t.as_ref().is_some_and(|t| S::moved(t, &self.built_at)))
             .collect();
         for tie in start.ties.iter() {
             moved[tie.point.index()] = true;
@@ -360,28 +371,37 @@ where
         }
     }
 
-    /// The points moved at an earlier attempt's end (the check's `moved`)
-    /// that end active on the segment of their expansion with a relative
-    /// remainder above [`ANCHOR_TOLERANCE`], each with that segment: their
-    /// expansion is to be re-taken at this end (module docs).
+    /// The points that end active on the segment of their expansion with
+    /// a relative remainder above their bound, each with that segment:
+    /// their expansion is to be re-taken at this end (module docs). The
+    /// bound is [`ANCHOR_TOLERANCE`] for a point moved at an earlier
+    /// attempt's end (the check's `moved`) and `taylor_tolerance` for the
+    /// others (none without it).
     fn unconverged_anchors(
         &self,
         setup: &Setup<'_, D, S>,
         ties: &[NodeTie<S::Master>],
         c: &Converged<D, S::Master>,
         found: &[Option<S::Found>],
+        taylor_tolerance: Option<f64>,
     ) -> Vec<(ContactPointIndex, Option<S::Master>)> {
         let mut again = Vec::new();
         for (i, (t, f)) in self.points.iter().zip(found).enumerate() {
-            let (true, Some(t), Some(f)) = (self.check.moved[i], t, f) else {
+            let (Some(t), Some(f)) = (t, f) else {
+                continue;
+            };
+            let Some(bound) = (if self.check.moved[i] {
+                Some(ANCHOR_TOLERANCE)
+            } else {
+                taylor_tolerance
+            }) else {
                 continue;
             };
             let i = ContactPointIndex::new(i);
             let m = S::found_master(f);
             if m == S::master(S::expanded(t))
                 && ties.iter().all(|t| t.point != i)
-                && point_remainder(setup, c, i, t, S::found_gap(f))
-                    .is_some_and(|r| r > ANCHOR_TOLERANCE)
+                && point_remainder(setup, c, i, t, S::found_gap(f)).is_some_and(|r| r > bound)
             {
                 again.push((i, Some(m)));
             }

@@ -94,6 +94,9 @@ pub(super) struct StepStart<'r, M> {
     pub(super) ties: &'r mut Vec<NodeTie<M>>,
     /// The converged load factor (named by a step-start kernel failure).
     pub(super) load_factor: f64,
+    /// The attempt's secant predictor, where its first Newton solve starts
+    /// (`None`: it starts from `u`).
+    pub(super) predictor: Option<&'r [f64]>,
 }
 
 /// The treatment's decision at a converged iterate.

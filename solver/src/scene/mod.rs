@@ -88,9 +88,12 @@
 //! repair = true               # Types 1-6: repeat a step whose points end on
 //!                             # other master segments (default true; the
 //!                             # paper scene sets false, the paper's scheme)
-//! taylor_tolerance = 1e-4     # Types 1-6: halve a step whose Taylor
-//!                             # remainder / element size exceeds this
+//! taylor_tolerance = 1e-4     # Types 1-6: re-take the expansion of a point
+//!                             # whose Taylor remainder / element size
+//!                             # exceeds this at a step end, then halve
 //!                             # (default none)
+//! expand_at = "predictor"     # Types 1-6: expansions at the step's
+//!                             # predictor (default) or "start" (the paper's)
 //! ```
 //!
 //! Bodies from a mesh file (`scenes/hertz.toml`, the Hertz quarter model):
@@ -279,6 +282,7 @@ impl SolveOptions {
             petsc_options: scene.newton.petsc_options.clone(),
             repair: scene.newton.repair,
             taylor_tolerance: scene.newton.taylor_tolerance,
+            expand_at: scene.newton.expand_at,
         }
     }
 }

@@ -28,7 +28,8 @@ use serde::{Deserialize, Serialize};
 use crate::linear::LinearSolverKind;
 use crate::material::{Kinematics, Material, PlaneModel};
 use crate::options::{
-    DEFAULT_MAX_CUTBACKS, DEFAULT_MAX_ITERATIONS, DEFAULT_REPAIR, DEFAULT_TOLERANCE, Method,
+    DEFAULT_EXPAND_AT, DEFAULT_MAX_CUTBACKS, DEFAULT_MAX_ITERATIONS, DEFAULT_REPAIR,
+    DEFAULT_TOLERANCE, ExpansionPoint, Method,
 };
 
 mod items;
@@ -36,7 +37,7 @@ mod values;
 
 pub use items::{ContactSpec, FaceSpec, FixSpec, LoadSpec, PrescribeSpec, TractionSpec};
 pub use values::{Coords, Dofs};
-use values::{de_linear, de_method, is_default_linear, ser_linear, ser_method};
+use values::{de_from_str, de_method, is_default_linear, ser_display, ser_method};
 
 /// A scene (see the module docs for the file format).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -268,8 +269,8 @@ pub struct NewtonSpec {
     /// default).
     #[serde(
         default,
-        deserialize_with = "de_linear",
-        serialize_with = "ser_linear",
+        deserialize_with = "de_from_str",
+        serialize_with = "ser_display",
         skip_serializing_if = "is_default_linear"
     )]
     pub linear: LinearSolverKind,
@@ -303,6 +304,19 @@ pub struct NewtonSpec {
     /// (no adaptive stepping; not written).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub taylor_tolerance: Option<f64>,
+    /// `expand_at`: Types 1–6 only, where a load step's Taylor expansions
+    /// are taken: `"predictor"` (default; not written), the step's secant
+    /// predictor where prescribed displacements move on as in the last
+    /// step and the step start otherwise, or `"start"`, the converged state
+    /// (the paper's scheme). See [`crate::newton`], "Where the expansions
+    /// are taken".
+    #[serde(
+        default,
+        deserialize_with = "de_from_str",
+        serialize_with = "ser_display",
+        skip_serializing_if = "is_default_expand_at"
+    )]
+    pub expand_at: ExpansionPoint,
 }
 
 impl Default for NewtonSpec {
@@ -315,6 +329,7 @@ impl Default for NewtonSpec {
             petsc_options: String::new(),
             repair: default_repair(),
             taylor_tolerance: None,
+            expand_at: DEFAULT_EXPAND_AT,
         }
     }
 }
@@ -329,6 +344,9 @@ fn default_repair() -> bool {
 }
 fn is_default_repair(b: &bool) -> bool {
     *b == default_repair()
+}
+fn is_default_expand_at(e: &ExpansionPoint) -> bool {
+    *e == DEFAULT_EXPAND_AT
 }
 fn default_tolerance() -> f64 {
     DEFAULT_TOLERANCE

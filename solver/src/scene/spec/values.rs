@@ -223,12 +223,22 @@ pub(super) fn ser_formulation<S: Serializer>(f: &Formulation, s: S) -> Result<S:
     s.serialize_str(f.name())
 }
 
-pub(super) fn de_linear<'de, D: Deserializer<'de>>(d: D) -> Result<LinearSolverKind, D::Error> {
+/// A value written as a string its `FromStr` reads (the linear solver,
+/// the expansion point).
+pub(super) fn de_from_str<'de, D, T>(d: D) -> Result<T, D::Error>
+where
+    D: Deserializer<'de>,
+    T: std::str::FromStr<Err: std::fmt::Display>,
+{
     let s = String::deserialize(d)?;
     s.parse().map_err(serde::de::Error::custom)
 }
 
-pub(super) fn ser_linear<S: Serializer>(k: &LinearSolverKind, s: S) -> Result<S::Ok, S::Error> {
+/// A value written as its `Display` string (read back by [`de_from_str`]).
+pub(super) fn ser_display<S: Serializer, T: std::fmt::Display>(
+    k: &T,
+    s: S,
+) -> Result<S::Ok, S::Error> {
     s.serialize_str(&k.to_string())
 }
 
