@@ -402,7 +402,10 @@ fn re_taking_the_points_above_the_taylor_tolerance_meets_it_without_halving() {
             assert!(t <= tolerance, "type {ty} at {}: {t:e}", rec.load_factor);
         }
         assert!(e.abs() < 5e-4, "type {ty}: {e:e}");
-        assert!(e.abs() < 0.2 * energy_error(&plain, &complete).abs(), "type {ty}: {e:e}");
+        assert!(
+            e.abs() < 0.2 * energy_error(&plain, &complete).abs(),
+            "type {ty}: {e:e}"
+        );
         assert!(r < 1e-2, "type {ty}: {r:e}");
         assert!(
             cost(&sol).0 as f64 <= 2.5 * cost(&complete).0 as f64,

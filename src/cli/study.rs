@@ -5,7 +5,8 @@
 //! cost against complete: [`gapsim::study::errors`]).
 //!
 //! ```text
-//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt|petsc] [--readme PAGE.md]
+//! gapsim study [SCENE.toml] [--out DIR] [--repeats R] [--linear lu|ldlt|petsc]
+//!     [--expand-at predictor|start] [--readme PAGE.md]
 //! ```
 //!
 //! `--readme` splices the results section into any Markdown page that has
@@ -65,6 +66,12 @@ pub struct StudyArgs {
     #[arg(long, value_name = "lu|ldlt|petsc")]
     pub linear: Option<solver::LinearSolverKind>,
 
+    /// Types 1-6: where a step's Taylor expansions are taken, the step's
+    /// predictor or its start (the paper's scheme; default: the scene's
+    /// `[newton] expand_at`, the predictor unless set).
+    #[arg(long, value_name = "predictor|start")]
+    pub expand_at: Option<solver::ExpansionPoint>,
+
     /// Replace the section between `<!-- study:begin -->` and
     /// `<!-- study:end -->` of this Markdown file with the results.
     #[arg(long, value_name = "FILE")]
@@ -76,6 +83,9 @@ pub fn run(args: &StudyArgs) -> CommandResult {
     let mut scene = load_scene(args.scene.as_ref())?;
     if let Some(kind) = args.linear {
         scene.newton.linear = kind;
+    }
+    if let Some(e) = args.expand_at {
+        scene.newton.expand_at = e;
     }
     if args.steps.contains(&0) {
         return Err("--steps: step counts must be at least 1".into());

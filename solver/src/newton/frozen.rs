@@ -3,10 +3,14 @@
 //! coefficients frozen per load step").
 //!
 //! At the first attempt from a converged state every point is re-paired
-//! and the type's kernel there gives its [`Taylor`] expansion; the Newton
-//! iterations expand it and never re-project. The expansions stay across
-//! the attempts from that state (a cut-back keeps them, with the
-//! re-anchored ones of a longer attempt) and are rebuilt after a commit.
+//! and the type's kernel gives its [`Taylor`] expansion, at the attempt's
+//! predictor or at the converged state ([`super`], "Where the expansions
+//! are taken"); the Newton iterations expand it and never re-project. The
+//! expansions stay across the attempts from that state when they were
+//! taken at the converged state (a cut-back keeps them, with the
+//! re-anchored ones of a longer attempt), are rebuilt at a shorter
+//! attempt's own predictor when they were taken at a longer one's, and are
+//! rebuilt after a commit.
 //! At a converged solve the step-end check (`repair.rs`) re-pairs the
 //! points, replaces the expansions of those that changed segment, ties
 //! those cycling at a master node, and asks for the step to be solved
@@ -104,9 +108,10 @@ where
         }
     }
 
-    /// Builds the expansions at the converged state, re-pairing every
-    /// point; the converged state's ties are dropped (a tie of Types 1–6
-    /// lasts one step, `repair.rs`).
+    /// Builds the expansions at the attempt's predictor or at the
+    /// converged state ([`super`], "Where the expansions are taken"),
+    /// re-pairing every point; the converged state's ties are dropped (a
+    /// tie of Types 1–6 lasts one step, `repair.rs`).
     fn build(
         &mut self,
         cx: &mut Context<'_, '_, D, S>,
@@ -120,13 +125,12 @@ where
         // where the expansions are taken (`super`, "Where the expansions
         // are taken"): the attempt's predictor, or the converged state when
         // there is none or a point cannot be evaluated there
-        let predicted = match (cx.opts.expand_at, start.predictor) {
-            (ExpansionPoint::Predictor, Some(p)) => layout
+        let predicted = predictor_to_expand_at(cx, start).and_then(|p| {
+            layout
                 .evaluate_all(mesh, p, start.pairing, self.ty)
                 .ok()
-                .map(|e| (p, e)),
-            _ => None,
-        };
+                .map(|e| (p, e))
+        });
         let (at, (mut evals, counts)) = match predicted {
             Some(p) => p,
             None => (
@@ -202,7 +206,10 @@ where
         cx: &mut Context<'_, '_, D, S>,
         mut start: StepStart<'_, S::Master>,
     ) -> Result<(), SolverError> {
-        if !self.current {
+        // expansions built at a longer attempt's predictor are rebuilt at
+        // this one's (a cut-back's shorter step has another predictor)
+        let at = predictor_to_expand_at(cx, &start).unwrap_or(start.u);
+        if !self.current || self.built_at != at {
             self.build(cx, &mut start)?;
         }
         self.check = Check {
@@ -258,5 +265,21 @@ where
 
     fn step_end_projections(&self) -> u64 {
         self.step_end_projections
+    }
+}
+
+/// The predictor an attempt's expansions are to be taken at (`[newton]
+/// expand_at`, [`super`], "Where the expansions are taken"), `None` for
+/// the converged state.
+fn predictor_to_expand_at<'s, const D: usize, S: ContactSpace<D>>(
+    cx: &Context<'_, '_, D, S>,
+    start: &StepStart<'s, S::Master>,
+) -> Option<&'s [f64]>
+where
+    Dim<D>: SurfaceDim<D>,
+{
+    match cx.opts.expand_at {
+        ExpansionPoint::Predictor => start.predictor,
+        ExpansionPoint::Start => None,
     }
 }
