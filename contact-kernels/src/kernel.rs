@@ -405,9 +405,11 @@ impl Kernel {
         }
     }
 
-    /// Whether the slip's lane kernels are compiled in for this kernel.
-    #[cfg(test)]
-    pub(crate) fn has_slip_lanes(&self) -> bool {
+    /// Whether [`Slip::eval_batch`] of this kernel's slip runs lane
+    /// kernels, four points at a time, at this kernel's [`LaneIsa`]
+    /// (`false`: it evaluates point by point, or the formulation has no
+    /// slip). Faces have slip lane kernels only for AVX2.
+    pub fn has_slip_lanes(&self) -> bool {
         match &self.imp {
             Imp::Segments(s) => s.slip_lanes.is_some(),
             Imp::Faces(f) => f.slip_lanes.is_some(),

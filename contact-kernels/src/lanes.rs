@@ -286,6 +286,8 @@ mod avx {
     }
 }
 
+/// (Run by tests/lanes.rs, which compiles this file on its own: the
+/// library has no unit-test target, see Cargo.toml.)
 #[cfg(test)]
 mod tests {
     use super::*;

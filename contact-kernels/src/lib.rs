@@ -230,6 +230,3 @@ pub fn pair_formulations() -> Vec<Formulation> {
         .filter(|f| f.coords() == Some(PAIR_COORDS))
         .collect()
 }
-
-#[cfg(test)]
-mod tests;

@@ -103,21 +103,3 @@ impl Xi {
         self.v[0]
     }
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_argument_form_gives_its_values() {
-        assert_eq!(0.3.as_xi(), [0.3]);
-        assert_eq!([0.2, -0.1].as_xi(), [0.2, -0.1]);
-        assert_eq!(<&[f64; 2] as XiArg>::as_xi(&&[0.2, -0.1]), [0.2, -0.1]);
-        let v = vec![0.5, 0.25];
-        assert_eq!((&v[..]).as_xi(), [0.5, 0.25]);
-        assert_eq!(<&Vec<f64> as XiArg>::as_xi(&&v), [0.5, 0.25]);
-        assert_eq!(v.as_xi(), [0.5, 0.25]);
-        let x = Xi::scalar(-0.7);
-        assert_eq!((x.as_slice(), x.first()), (&[-0.7][..], -0.7));
-    }
-}

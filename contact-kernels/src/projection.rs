@@ -236,39 +236,3 @@ fn project_face(
         xi: Xi::pair(xi_m),
     })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A residual that is not affine in `xi` (`r = xi^3 + xi - d[2]`), as a
-    /// curved-segment formulation would have: the Newton path must converge.
-    fn cubic(d: &[f64], _xi_s: f64, xi: f64) -> [f64; 2] {
-        [xi * xi * xi + xi - d[2], 3.0 * xi * xi + 1.0]
-    }
-
-    /// `r = xi^2 + 1`: no real root.
-    fn no_root(_d: &[f64], _xi_s: f64, xi: f64) -> [f64; 2] {
-        [xi * xi + 1.0, 2.0 * xi]
-    }
-
-    #[test]
-    fn newton_projection_converges_for_a_nonlinear_residual() {
-        let d = [0.0, 0.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0];
-        let xi = solve(cubic, &d, 0.0).unwrap();
-        // xi = 1 solves xi^3 + xi = 2; Newton's tolerance is 1e-12.
-        assert!((xi - 1.0).abs() < 1e-12, "{xi}");
-    }
-
-    #[test]
-    fn newton_projection_reports_failure() {
-        match solve(no_root, &[0.0; 8], 0.0) {
-            Err(
-                KernelError::NoProjection { .. }
-                | KernelError::ProjectionDiverged { .. }
-                | KernelError::ProjectionOutOfReach { .. },
-            ) => {}
-            other => panic!("expected a projection failure, got {other:?}"),
-        }
-    }
-}

@@ -205,35 +205,3 @@ pub(crate) fn all_finite(v: &[f64]) -> bool {
     }) >> 63
         == 0
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A 3-node segment from (0, 0) to (2, 0) with its mid node at
-    /// `(1 + 2 s, bow)`: offset `s` chord lengths along the chord.
-    fn segment(s: f64, bow: f64) -> [f64; 6] {
-        [0.0, 0.0, 2.0, 0.0, 1.0 + 2.0 * s, bow]
-    }
-
-    #[test]
-    fn the_fold_limit_is_the_quarter_point() {
-        for s in [0.0, 0.1, -0.2, 0.25 * (1.0 - 1e-8), -0.25 * (1.0 - 1e-8)] {
-            for bow in [0.0, 0.7, -3.0] {
-                assert_eq!(check_fold(Segment::Slave, &segment(s, bow)), Ok(()), "{s}");
-            }
-        }
-        for s in [0.25, -0.25, 0.25 * (1.0 - 1e-11), 0.3, -2.0] {
-            match check_fold(Segment::Master, &segment(s, 0.4)) {
-                Err(KernelError::FoldedSegment {
-                    segment: Segment::Master,
-                    mid_offset,
-                }) => assert!((mid_offset - s).abs() < 1e-15, "{mid_offset} vs {s}"),
-                other => panic!("offset {s}: {other:?}"),
-            }
-        }
-        let mut nan = segment(0.0, 0.0);
-        nan[4] = f64::NAN;
-        assert!(check_fold(Segment::Slave, &nan).is_err());
-    }
-}

@@ -273,7 +273,17 @@ fn zero_length_chords_are_degenerate() {
 #[test]
 fn a_mid_node_that_folds_the_segment_is_refused() {
     // Slave chord (0,0)-(2,0): midpoint (1,0), quarter point offset 0.5.
-    for (mid_x, mid_y) in [(1.5, 0.0), (0.5, 0.0), (1.9, 0.3), (3.0, -0.2), (-4.0, 0.0)] {
+    // Within the margin (`DEGENERATE_LENGTH` of the half chord squared)
+    // of the quarter point is folded too.
+    let margin = 1.0 + 0.5 * (1.0 - 1e-11);
+    for (mid_x, mid_y) in [
+        (1.5, 0.0),
+        (0.5, 0.0),
+        (margin, 0.0),
+        (1.9, 0.3),
+        (3.0, -0.2),
+        (-4.0, 0.0),
+    ] {
         let mut q = CURVED;
         q[4] = mid_x;
         q[5] = mid_y;

@@ -1,7 +1,7 @@
 //! The handles against the value API: same bits, reused buffers, typed
-//! size errors.
+//! size errors; every `xi_s` argument form; what is compiled in.
 
-use super::*;
+use contact_kernels::*;
 
 /// the worked example of docs/conventions.md.
 const Q: [f64; 8] = [0.0, 1.0, 2.0, 1.1, 2.1, 0.9, -0.1, 1.0];
@@ -184,15 +184,9 @@ fn formulations_not_compiled_in_are_reported() {
 fn every_compiled_slip_has_lane_kernels() {
     let mut faces = 0;
     for f in compiled_formulations() {
-        let scalar = crate::generated::kernel_set(f)
-            .map(|s| s.slip.is_some())
-            .or_else(|| crate::generated::face_kernel_set(f).map(|s| s.slip.is_some()))
-            .unwrap();
-        let lanes = crate::generated_lanes::slip_lane_set(f).is_some()
-            || crate::generated_lanes::face_slip_lane_set(f).is_some();
-        assert_eq!(scalar, lanes, "{f:?}");
         for ty in ApproxType::ALL {
             let k = Kernel::new(f, ty).unwrap();
+            let scalar = k.slip().is_some();
             let face = k.param_dim() == 2;
             faces += usize::from(face);
             let avx2 = k.lane_isa() == LaneIsa::Avx2;
@@ -210,4 +204,16 @@ fn every_compiled_slip_has_lane_kernels() {
         8 * 6,
         "the eight face pairs are compiled in for tests"
     );
+}
+
+/// `XiArg`: every argument form gives its values.
+#[test]
+fn every_argument_form_gives_its_values() {
+    assert_eq!(0.3.as_xi(), [0.3]);
+    assert_eq!([0.2, -0.1].as_xi(), [0.2, -0.1]);
+    assert_eq!(<&[f64; 2] as XiArg>::as_xi(&&[0.2, -0.1]), [0.2, -0.1]);
+    let v = vec![0.5, 0.25];
+    assert_eq!((&v[..]).as_xi(), [0.5, 0.25]);
+    assert_eq!(<&Vec<f64> as XiArg>::as_xi(&&v), [0.5, 0.25]);
+    assert_eq!(v.as_xi(), [0.5, 0.25]);
 }
