@@ -131,10 +131,14 @@ pub struct StepRecord<const D: usize = 2> {
     /// with; see [`crate::contact`], "Points stuck at a master node").
     /// Empty for Types 1–6.
     pub node_ties: Vec<ContactPointId>,
-    /// Complete formulation: stuck integration points that could not be
-    /// tied (at the end of a master chain), kept on a pairing
+    /// Stuck integration points that could not be tied (at the end of a
+    /// master chain; in 3D every stuck point), kept on a pairing
     /// (`master_segment`, `None` = inactive) their projection misses by less
-    /// than [`crate::contact::XI_STUCK_BAND`]. Empty for Types 1–6.
+    /// than [`crate::contact::XI_STUCK_BAND`]: the complete formulation's
+    /// at its converged state, Types 1–6's at the step end (a point cycling
+    /// between two masters whose projection onto its expansion's master
+    /// lies within the band; see [`crate::newton`], "Re-pairing at the step
+    /// end").
     pub kept_outside: Vec<ContactPointId>,
     /// Multipliers carrying a constraint row at the converged state.
     pub active_multipliers: usize,

@@ -1,6 +1,6 @@
 //! The contact element's part of the Newton system ([`crate::system`]):
 //! the terms of every evaluated integration point and its multipliers, in
-//! both dimensions (the 2D node ties are `segment/ties.rs`).
+//! both dimensions (the node ties are `ties.rs`).
 
 use crate::ids::{EquationIndex, MultiplierIndex};
 use crate::system::{DofMap, System};

@@ -176,6 +176,21 @@
 //! passes through the node; with the gap near zero (contact) that is the
 //! node.
 //!
+//! **3D faces are not tied.** The same tie between two master faces that
+//! share an edge or a vertex (the dimension-generic `ties.rs` serves both)
+//! was built and measured on `scenes/sliding3d.toml`, whose base is flat
+//! but for the dent the block presses into it: the faces a point cycles
+//! between meet at a kink of a few thousandths of a radian, where
+//! `g_o = g_p` hardly constrains the point (its row is nearly singular).
+//! At 40 steps the complete formulation then needed 148 Newton iterations
+//! and a cut-back (a diverging attempt folded a slave face) instead of 122
+//! and none, and the types' cycling points stayed cycling. So a 3D point
+//! that keeps cycling takes the fallback below: it is kept on its master
+//! face when its projection misses the face by less than
+//! [`XI_STUCK_BAND`] (in *reach*, [`crate::contact::ContactSpace`]'s
+//! module docs). Types 1–6 apply the same rule at their step ends
+//! (`newton/repair.rs`).
+//!
 //! # Multipliers and modes
 //!
 //! * Persistent (equality) contact: a multiplier with at least one active
@@ -258,6 +273,7 @@ pub mod segment;
 mod space;
 mod taylor;
 pub mod term;
+mod ties;
 
 use contact_kernels::{KernelError, Segment};
 
@@ -275,12 +291,13 @@ pub use report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 pub use segment::{
     ContactLayout, ContactPoint, INDEX_MIN_SEGMENTS, MasterIndex, NodalContactError,
     NodalContactRow, NodalProjection, NodalState, Paired, PairingUpdate, PassIndexes, PointEval,
-    SPLIT_TOL, SegmentTaylor, Tried, assemble_ties, gap_is_distance, is_new_split, nodal_contact,
-    segmented_rule, shape2, slave_coordinate_of_master_end, split_coordinates,
+    SPLIT_TOL, SegmentTaylor, Tried, gap_is_distance, is_new_split, nodal_contact, segmented_rule,
+    shape2, slave_coordinate_of_master_end, split_coordinates,
 };
 pub use space::{ContactSpace, EvalsResult, FoundResult, Update};
 pub use taylor::Taylor;
 pub use term::{GapTerm, MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
+pub use ties::assemble_ties;
 
 /// A projection with `|xi_m| <= 1 + XI_INSIDE_TOL` lies inside the master
 /// segment.
@@ -369,7 +386,8 @@ pub struct PointFailure<M = MasterSegmentIndex> {
 /// `lambda w J0 g_p + mu (g_o - g_p)`, with `g_p` its gap on the `paired`
 /// segment and `g_o` on the `other` one. Generic over the master's index
 /// so that the Newton loop names one type in 2D and 3D; only 2D segments
-/// are ever tied ([`crate::contact::ContactSpace::can_tie`]).
+/// are ever tied ([`crate::contact::ContactSpace::can_tie`]; why not 3D
+/// faces: module docs, "Points stuck at a master node").
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NodeTie<M = MasterSegmentIndex> {
     /// Index into [`ContactLayout::points`].

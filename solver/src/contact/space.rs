@@ -25,7 +25,8 @@
 //! capability: the trait's defaults are an element without ties
 //! ([`ContactSpace::can_tie`] false, so no tie is ever made and the other
 //! tie hooks are never reached), which the 3D faces keep; the 2D segments
-//! override them.
+//! override them with the dimension-generic tie
+//! ([`crate::contact::assemble_ties`]).
 //!
 //! Invariant: the 2D implementation calls exactly the functions the
 //! Newton loop called before this seam, in the same order, so 2D results
@@ -340,9 +341,9 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         dofs: &DofMap,
         sys: &mut System,
     );
-    // Node ties: an optional capability (module docs), 2D's only. The
-    // defaults are an element without ties: none is ever made, so the
-    // other hooks are never reached.
+    // Node ties: an optional capability (module docs). The defaults are an
+    // element without ties: none is ever made, so the other hooks are
+    // never reached.
 
     /// Adds the node ties (with `others`, their evaluations on the other
     /// master) to `sys` (default: there are none).

@@ -538,7 +538,7 @@ where
             strain_energy: c.energy,
             unpaired: c.points.unpaired,
             node_ties: c.points.node_ties,
-            kept_outside: c.points.kept_outside,
+            kept_outside: [c.points.kept_outside, step_end.kept_outside].concat(),
             active_multipliers: c.points.active_multipliers,
             roundoff_floor: c.roundoff_floor,
             reactions: c.reactions,

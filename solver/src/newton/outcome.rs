@@ -99,4 +99,10 @@ pub(super) struct StepEnd {
     /// Points whose pairing at the end differs from their expansion's
     /// (`master_segment`: the expansion's).
     pub(super) unsettled: Vec<ContactPointId>,
+    /// Points cycling between two masters at the end, kept on their
+    /// expansion's master because their projection misses it by less
+    /// than [`crate::contact::XI_STUCK_BAND`] (`master_segment`: that
+    /// master), as the complete formulation keeps a stuck point it cannot
+    /// tie.
+    pub(super) kept_outside: Vec<ContactPointId>,
 }

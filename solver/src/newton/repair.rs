@@ -61,11 +61,16 @@
 //! segment's line past a concave node); with them, 0.010–0.021 %.
 //!
 //! Termination: a point cycling where no tie is possible (between a
-//! segment and none) keeps its current expansion and is listed as
-//! unsettled, as is every point still changing after
-//! [`MAX_REPAIR_REPEATS`] pairing repeats or when re-pairing is off
-//! (`[newton] repair = false`; then no point is moved or tied and nothing
-//! above runs). A repeat that fails to converge is cut back like any
+//! segment and none; in 3D between any two faces, see [`crate::contact`],
+//! "Points stuck at a master node"), or still changing after
+//! [`MAX_REPAIR_REPEATS`] pairing repeats, keeps its current expansion.
+//! It is listed as kept outside ([`crate::StepRecord::kept_outside`]) when
+//! its projection onto its expansion's master at the end misses that
+//! master by less than [`crate::contact::XI_STUCK_BAND`] (the complete
+//! formulation's rule for a stuck point it cannot tie), as unsettled
+//! otherwise. With re-pairing off (`[newton] repair = false`) no point is
+//! moved or tied, nothing above runs, and every point that ends on
+//! another master is listed as unsettled. A repeat that fails to converge is cut back like any
 //! attempt, keeping the new expansions (the shorter step re-pairs again at
 //! its end; an expansion taken elsewhere than at the step start counts as
 //! moved there).
@@ -138,6 +143,8 @@ where
         let mut switch = Vec::new();
         let mut tie = Vec::new();
         let mut unsettled = Vec::new();
+        let mut kept = Vec::new();
+        let mesh = &cx.setup.model.mesh;
         for (i, (t, f)) in self.points.iter().zip(&found).enumerate() {
             let built = t.as_ref().map(|t| S::master(S::expanded(t)));
             let now = f.as_ref().map(S::found_master);
@@ -145,17 +152,29 @@ where
             if now == built || start.ties.iter().any(|t| t.point == i) {
                 continue;
             }
-            if !cx.opts.repair || self.check.switches >= MAX_REPAIR_REPEATS {
+            let repeats_left = self.check.switches < MAX_REPAIR_REPEATS;
+            if !cx.opts.repair {
                 // listed below
-            } else if !self.check.tried[i.index()].contains(&now) {
+            } else if repeats_left && !self.check.tried[i.index()].contains(&now) {
                 switch.push((i, now));
                 continue;
             } else if let (Some(p), Some(o)) = (built, now)
+                && repeats_left
                 && !self.check.released.contains(&i)
                 && layout.can_tie(i, p, o)
             {
                 // cycling at the node between two segments: tie it
                 tie.push((i, p, o));
+                continue;
+            } else if let Some(p) = built
+                && layout
+                    .evaluate_on(mesh, &c.state.u, i, p, self.ty, cx.counts)
+                    .is_ok_and(|e| layout.within_band(&e))
+            {
+                // stuck where no tie is made: kept on its expansion's
+                // master, which its projection misses by less than the
+                // band, as the complete formulation keeps it
+                kept.push(layout.point_id(i, built));
                 continue;
             }
             unsettled.push(layout.point_id(i, built));
@@ -201,6 +220,7 @@ where
         }
         let mut end = std::mem::take(&mut self.check.end);
         end.unsettled = unsettled;
+        end.kept_outside = kept;
         end.remainder = self.remainder(cx.setup, &c, &found);
         let too_coarse = matches!(
             (end.remainder, cx.opts.taylor_tolerance),

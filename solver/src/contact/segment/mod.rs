@@ -15,7 +15,6 @@ mod search;
 mod segmented;
 mod slip;
 mod space;
-mod ties;
 
 use contact_kernels::Projection;
 use nalgebra::{SMatrix, SVector};
@@ -33,7 +32,6 @@ pub use search::PassIndexes;
 pub use segmented::{
     SPLIT_TOL, is_new_split, segmented_rule, slave_coordinate_of_master_end, split_coordinates,
 };
-pub use ties::assemble_ties;
 
 /// A 2D point's frozen Taylor expansion (Types 1–6) on its 8 coordinates.
 pub type SegmentTaylor = Taylor<PointEval, 8>;

@@ -18,12 +18,12 @@ use crate::system::{DofMap, System};
 
 use super::SegmentTaylor;
 use super::slip::SlipBuffers;
-use super::ties::assemble_ties;
 use crate::contact::MultiplierDof;
 use crate::contact::assemble::assemble_contact;
 use crate::contact::friction::{Anchor, FrictionState, NodalFriction};
 use crate::contact::report::{ContactPointId, ContactPointReport};
 use crate::contact::space::{ContactSpace, Update};
+use crate::contact::ties::assemble_ties;
 use crate::contact::{
     ContactLayout, FaceLayoutError, KernelCounts, NodeTie, PAR_MIN_LEN, Paired, PassIndexes,
     PointEval, PointFailure, Taylor, XI_INSIDE_TOL, XI_STUCK_BAND, slave_side,
@@ -457,7 +457,7 @@ impl ContactSpace<2> for ContactLayout {
     }
 
     fn tie_theta(&self, tie: &NodeTie, lambda: &[f64]) -> Option<f64> {
-        tie.theta(self, lambda)
+        tie.theta(self.point(tie.point), lambda)
     }
 
     fn at_node(e: &PointEval) -> bool {
