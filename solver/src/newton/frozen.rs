@@ -108,14 +108,16 @@ where
         }
     }
 
-    /// Builds the expansions at the attempt's predictor or at the
-    /// converged state ([`super`], "Where the expansions are taken"),
+    /// Builds the expansions at the attempt's `predictor` (the one
+    /// `[newton] expand_at` asks for) or at the converged state
+    /// ([`super`], "Where the expansions are taken"),
     /// re-pairing every point; the converged state's ties are dropped (a
     /// tie of Types 1–6 lasts one step, `repair.rs`).
     fn build(
         &mut self,
         cx: &mut Context<'_, '_, D, S>,
         start: &mut StepStart<'_, S::Master>,
+        predictor: Option<&[f64]>,
     ) -> Result<(), SolverError> {
         start.ties.clear();
         self.ties.clear();
@@ -125,7 +127,7 @@ where
         // where the expansions are taken (`super`, "Where the expansions
         // are taken"): the attempt's predictor, or the converged state when
         // there is none or a point cannot be evaluated there
-        let predicted = predictor_to_expand_at(cx, start).and_then(|p| {
+        let predicted = predictor.and_then(|p| {
             layout
                 .evaluate_all(mesh, p, start.pairing, self.ty)
                 .ok()
@@ -208,9 +210,9 @@ where
     ) -> Result<(), SolverError> {
         // expansions built at a longer attempt's predictor are rebuilt at
         // this one's (a cut-back's shorter step has another predictor)
-        let at = predictor_to_expand_at(cx, &start).unwrap_or(start.u);
-        if !self.current || self.built_at != at {
-            self.build(cx, &mut start)?;
+        let predictor = predictor_to_expand_at(cx, &start);
+        if !self.current || self.built_at != predictor.unwrap_or(start.u) {
+            self.build(cx, &mut start, predictor)?;
         }
         self.check = Check {
             tried: start.pairing.iter().map(|p| vec![*p]).collect(),

@@ -117,8 +117,10 @@
 //! the expansions were built on (at most [`MAX_REPAIR_REPEATS`] repeats; a
 //! point that returns to a pairing it has had in the attempt cycles at a
 //! concave master node and is tied to it as in the complete formulation,
-//! where no tie is possible it keeps its expansion and is listed in
-//! [`crate::StepRecord::unsettled`]). The alternative of switching a
+//! where no tie is possible (in 3D, always) it keeps its expansion and is
+//! listed in [`crate::StepRecord::kept_outside`] when its projection lies
+//! within [`crate::contact::XI_STUCK_BAND`] of its expansion's master, in
+//! [`crate::StepRecord::unsettled`] otherwise). The alternative of switching a
 //! point's pair during the iterations when its predicted `xi_m` leaves
 //! `[-1, 1]` was not taken: it makes the frozen problem change within the
 //! step (a residual discontinuous in `u`, the cycling the complete
@@ -298,7 +300,8 @@ pub const REPAIR_AT_ONCE_ITERATIONS: usize = 2;
 /// Types 1–6: a step is solved again with new expansions at most this many
 /// times for pairing changes at its end (see `repair.rs`); points still
 /// changing then are accepted and listed in
-/// [`crate::StepRecord::unsettled`].
+/// [`crate::StepRecord::kept_outside`] or [`crate::StepRecord::unsettled`]
+/// (`repair.rs`, "Termination").
 pub const MAX_REPAIR_REPEATS: usize = 4;
 
 /// The solve in progress.
