@@ -768,3 +768,65 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
         }
     }
 }
+
+/// Segmented integration clips each slave face against the master faces
+/// within its size plus its reach (its Gauss points' largest `|g|` paired
+/// in the reference configuration; `solver::contact::face`'s layout
+/// docs), so a curved slave face that starts apart from the master is
+/// still integrated: on the tetrahedral 3D Hertz mesh every indenter face
+/// out to r = 1.5 (the sphere up to 0.11 above the block, more than the
+/// faces' size) is covered by its clipped triangles, their weights adding
+/// up to its area. With the size alone some got no points (a face at
+/// r = 1.03; at h = 0.07 the faces from r = 0.9 on, inside the contact
+/// radius).
+#[test]
+fn segmented_integration_reaches_a_curved_slave_face_apart_from_the_master() {
+    use solver::Scene;
+    let scenes = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes");
+    let text = std::fs::read_to_string(scenes.join("hertz3d.toml"))
+        .unwrap()
+        .replace("file = \"hertz3d-hex.msh\"", "file = \"hertz3d-tet.msh\"")
+        .replace(
+            "mode = \"unilateral\"",
+            "mode = \"unilateral\"\nintegration = \"segmented\"",
+        );
+    let origin = scenes.join("hertz3d.toml");
+    let scene = Scene::from_toml_str(&text, &origin.display().to_string()).unwrap();
+    let model = scene.build_model::<3>().unwrap();
+    let pair = &model.contacts[0];
+    assert_eq!(pair.integration, Integration::Segmented);
+    let layout = FaceLayout::new(&model.mesh, &model.contacts, None).unwrap();
+    let mut weight = vec![0.0; pair.slave.len()];
+    for p in &layout.points {
+        weight[p.slave_face] += p.weight_ref;
+    }
+    let mut checked = 0;
+    for (f, face) in pair.slave.iter().enumerate() {
+        let x = face.map_nodes(|n| model.mesh.node_ref(n));
+        let c = x.nodes().iter().fold([0.0; 3], |c, p| {
+            [c[0] + p[0] / 3.0, c[1] + p[1] / 3.0, c[2] + p[2] / 3.0]
+        });
+        if c[0].hypot(c[1]) > 1.5 {
+            continue;
+        }
+        let [a, b, d] = [x.nodes()[0], x.nodes()[1], x.nodes()[2]];
+        let (e1, e2) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [d[0] - a[0], d[1] - a[1], d[2] - a[2]],
+        );
+        let n = [
+            e1[1] * e2[2] - e1[2] * e2[1],
+            e1[2] * e2[0] - e1[0] * e2[2],
+            e1[0] * e2[1] - e1[1] * e2[0],
+        ];
+        let area = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!(
+            (weight[f] - area).abs() <= 1e-9 * area,
+            "slave face {f} at r = {:.3}: weights {} against its area {area}",
+            c[0].hypot(c[1]),
+            weight[f]
+        );
+        checked += 1;
+    }
+    assert!(checked > 100, "{checked} faces checked");
+}

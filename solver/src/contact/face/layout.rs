@@ -37,7 +37,7 @@
 //! reference configuration, against every master face that faces it
 //! (outward normals `t_1 x t_2` at the faces' centres against each other)
 //! and whose box meets the slave face's box inflated by the slave face's
-//! size, each projected onto the slave face's plane ([`SlaveFace`],
+//! size plus its *reach*, each projected onto the slave face's plane ([`SlaveFace`],
 //! `clip.rs`: Sutherland–Hodgman, triangulated); every triangle gets the
 //! triangle rule of `gauss_points` (1, 3 or 7 points; default 7, degree
 //! 5), mapped to the slave's `(u, v)`, with its weight in plane area as
@@ -48,6 +48,18 @@
 //! the Gauss rule on the slave face is not. As in 2D the split is taken
 //! once, so it is exact while the faces do not slide; a slave face that no
 //! master face overlaps gets no points.
+//!
+//! The reach of a slave face is the largest `|g|` of its Gauss points
+//! (the default rule) paired by the pairing's rule in the reference
+//! configuration (0 where none pairs): a face apart from the master surface
+//! at the start, such as the rim of a curved indenter, is clipped against
+//! the faces its points will touch. Without it (the face's size alone) the
+//! tetrahedral Hertz mesh at h = 0.07, whose slave faces are 0.046 in size,
+//! gave no points to the faces from about r = 0.9 on, where the sphere
+//! starts more than 0.04 above the block: their nodes had no tributary
+//! area, 53 of the 99 slave nodes between r = 0.8 and 1.0 (inside the
+//! contact radius 1.05) carried no pressure and their neighbours up to
+//! 5.7 times p0 (docs/benchmarks.md, the 3D Hertz refinement).
 //!
 //! The active-set constant of a unilateral pair is `c = E / h`, the slave
 //! body's Young's modulus over the mean slave face size `h = sqrt(area)`
@@ -76,6 +88,7 @@ use crate::contact::face_index::{Aabb, FaceIndex};
 use crate::contact::face_rules::{default_points, face_rule};
 use crate::contact::friction::{Friction, FrictionView};
 use crate::contact::layout_error::FaceLayoutError;
+use crate::contact::space::ContactSpace;
 use crate::contact::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
 /// Static data of one slave integration point of a 3D pair.
@@ -159,6 +172,48 @@ pub struct FaceLayout {
     pub friction: Friction,
 }
 
+/// Per pair and slave face, the reach of segmented integration (module
+/// docs): the largest `|g|` of the face's Gauss points paired in the
+/// reference configuration, 0 where none pairs. Empty for a pair without
+/// segmented integration, and all 0 when the pairing fails (a kernel
+/// error the solve itself reports).
+fn reference_reach(
+    mesh: &Mesh<3>,
+    pairs: &[ContactPair<3>],
+    reading: Option<Formulation>,
+) -> Vec<Vec<f64>> {
+    let segmented = |p: &ContactPair<3>| p.integration == Integration::Segmented;
+    let mut reach: Vec<Vec<f64>> = pairs
+        .iter()
+        .map(|p| vec![0.0; if segmented(p) { p.slave.len() } else { 0 }])
+        .collect();
+    if !pairs.iter().any(segmented) {
+        return reach;
+    }
+    let gauss: Vec<ContactPair<3>> = pairs
+        .iter()
+        .map(|p| ContactPair {
+            integration: Integration::Gauss,
+            gauss_points: None,
+            ..p.clone()
+        })
+        .collect();
+    let Ok(probe) = FaceLayout::new(mesh, &gauss, reading) else {
+        return reach;
+    };
+    let u = vec![0.0; 3 * mesh.node_count()];
+    let unpaired = vec![None; probe.points.len()];
+    let Ok((found, _)) = probe.project_all(mesh, &u, &unpaired) else {
+        return reach;
+    };
+    for (pt, f) in probe.points.iter().zip(&found) {
+        if let (Some(f), Some(r)) = (f, reach[pt.pair.index()].get_mut(pt.slave_face)) {
+            *r = r.max(f.gap.abs());
+        }
+    }
+    reach
+}
+
 /// Segmented integration of one pair (module docs): the master faces in
 /// the reference configuration with their index, and the triangle rule.
 struct Segmenter {
@@ -194,12 +249,14 @@ impl Segmenter {
     }
 
     /// The points `(xi_s, w J0)` of slave face `f` (reference coordinates
-    /// `x_ref`): every facing master face near it clipped and triangulated.
+    /// `x_ref`): every facing master face within its size plus `reach`
+    /// (module docs) clipped and triangulated.
     fn points(
         &self,
         pair: &ContactPair<3>,
         f: usize,
         x_ref: &Face<[f64; 3]>,
+        reach: f64,
     ) -> Result<Vec<([f64; 2], f64)>, FaceLayoutError> {
         let clip_err = |master, source| FaceLayoutError::Clip {
             pair: pair.name.clone(),
@@ -208,7 +265,7 @@ impl Segmenter {
             source,
         };
         let slave = SlaveFace::new(x_ref.nodes()).map_err(|e| clip_err(0, e))?;
-        let candidates: Vec<usize> = match Aabb::around(f, x_ref.nodes(), x_ref.size())
+        let candidates: Vec<usize> = match Aabb::around(f, x_ref.nodes(), x_ref.size() + reach)
             .ok()
             .zip(self.index.as_ref())
             .and_then(|(b, index)| index.query_box(&b).ok())
@@ -242,6 +299,7 @@ impl FaceLayout {
         pairs: &[ContactPair<3>],
         reading: Option<Formulation>,
     ) -> Result<FaceLayout, FaceLayoutError> {
+        let reach = reference_reach(mesh, pairs, reading);
         let mut points = Vec::new();
         let mut multipliers = Vec::new();
         let mut complementarity = Vec::new();
@@ -276,7 +334,7 @@ impl FaceLayout {
                 let nodes = face.nodes();
                 let mults = std::array::from_fn(|a| mult_of_node[&nodes[a.min(nodes.len() - 1)]]);
                 let face_points = match &segmented {
-                    Some(seg) => seg.points(pair, f, &x_ref)?,
+                    Some(seg) => seg.points(pair, f, &x_ref, reach[p][f])?,
                     None => {
                         let kind = face.kind();
                         if let std::collections::hash_map::Entry::Vacant(e) = rules.entry(kind) {
