@@ -5,7 +5,7 @@
 //!
 //! ```text
 //! cargo run --release --example hertz3d_refinement -- MESH_DIR [--out docs/hertz3d] [--max-equations N]
-//!     [--kind hex|tet] [--segmented] [--gauss-points N]
+//!     [--kind hex|tet] [--segmented] [--gauss-points N] [--dual]
 //! ```
 //!
 //! `MESH_DIR` holds `hex-{h}.msh` and `tet-{h}.msh` as
@@ -16,8 +16,10 @@
 //! `hertz3d-refinement.{md,csv}` to the output folder and prints the table.
 //! `--kind` keeps one mesh kind; `--segmented` and `--gauss-points N`
 //! change the scene's contact rule (`integration = "segmented"`,
-//! `gauss_points`), and the files are then named after the variant
-//! (`hertz3d-refinement-segmented.md`, `hertz3d-refinement-gauss7.md`).
+//! `gauss_points`), `--dual` its multiplier basis (`multipliers =
+//! "dual"`), and the files are then named after the variant
+//! (`hertz3d-refinement-segmented.md`, `hertz3d-refinement-gauss7.md`,
+//! `hertz3d-refinement-segmented-dual.md`).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -25,7 +27,7 @@ use std::process::ExitCode;
 
 use gapsim::hertz::sphere::{Solved3d, solve_3d};
 use solver::Scene;
-use solver::model::Integration;
+use solver::model::{Integration, Multipliers};
 
 /// The indenter's radius.
 const RADIUS: f64 = 10.0;
@@ -44,9 +46,10 @@ struct Args {
     kind: Option<String>,
     segmented: bool,
     gauss_points: Option<usize>,
+    dual: bool,
 }
 
-const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet] [--segmented] [--gauss-points N]";
+const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet] [--segmented] [--gauss-points N] [--dual]";
 
 fn parse(args: &[String]) -> Result<Args, String> {
     let mut meshes = None;
@@ -57,6 +60,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
         kind: None,
         segmented: false,
         gauss_points: None,
+        dual: false,
     };
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -77,6 +81,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
                 parsed.kind = Some(v.clone());
             }
             "--segmented" => parsed.segmented = true,
+            "--dual" => parsed.dual = true,
             "--gauss-points" => {
                 let v = value()?;
                 parsed.gauss_points = Some(
@@ -127,12 +132,18 @@ fn run(args: &Args) -> Result<(), String> {
             contact.integration = Integration::Segmented;
         }
         contact.gauss_points = args.gauss_points.or(contact.gauss_points);
+        if args.dual {
+            contact.multipliers = Multipliers::Dual;
+        }
     }
     if args.segmented {
         variant.push_str("-segmented");
     }
     if let Some(n) = args.gauss_points {
         variant.push_str(&format!("-gauss{n}"));
+    }
+    if args.dual {
+        variant.push_str("-dual");
     }
     let mut rows = Vec::new();
     for (prefix, kind, sizes) in MESHES {

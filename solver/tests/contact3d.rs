@@ -120,6 +120,7 @@ fn pressed(press: f64, tri_slave: bool, reading: Formulation) -> Model<3> {
             friction: 0.0,
             gauss_points: None,
             integration: Integration::Gauss,
+            multipliers: solver::model::Multipliers::Standard,
         }],
         load_factor_end: 1.0,
         amplitudes: Vec::new(),
@@ -480,12 +481,18 @@ fn the_3d_patch_test_is_exact_with_segmented_integration() {
     let p = 10.0;
     let mut methods = vec![Method::Complete];
     methods.extend(ApproxType::ALL.map(Method::Approx));
+    use solver::model::Multipliers;
     for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
-        for integration in [Integration::Segmented, Integration::Gauss] {
+        for (integration, basis) in [
+            (Integration::Segmented, Multipliers::Standard),
+            (Integration::Gauss, Multipliers::Standard),
+            (Integration::Segmented, Multipliers::Dual),
+        ] {
             let mut model = base.clone();
             let pair = &mut model.contacts[0];
             pair.formulation = reading;
             pair.integration = integration;
+            pair.multipliers = basis;
             for &method in &methods {
                 let options = SolveOptions {
                     method,
@@ -503,7 +510,7 @@ fn the_3d_patch_test_is_exact_with_segmented_integration() {
                     .fold(0.0, f64::max);
                 if integration == Integration::Segmented {
                     eprintln!(
-                        "segmented, {reading}, {method}: largest nodal pressure error {error:.3e}"
+                        "segmented, {basis:?} multipliers, {reading}, {method}: largest nodal pressure error {error:.3e}"
                     );
                     assert!(
                         error <= 1e-8,
@@ -722,6 +729,7 @@ fn the_3d_patch_test_with_a_tetrahedral_cap_is_exact_with_segmented_integration(
             friction: 0.0,
             gauss_points: None,
             integration: Integration::Segmented,
+            multipliers: solver::model::Multipliers::Standard,
         }],
         load_factor_end: 1.0,
         amplitudes: Vec::new(),

@@ -428,6 +428,7 @@ steps = [3, 5]
         ),
         ("`[[contact]]`", "mode", quoted(&contact.mode)),
         ("`[[contact]]`", "integration", quoted(&contact.integration)),
+        ("`[[contact]]`", "multipliers", quoted(&contact.multipliers)),
         ("`[[contact]]`", "gauss_points", gauss_points_default),
         (
             "`[loading]`",

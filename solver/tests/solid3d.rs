@@ -482,6 +482,7 @@ fn a_3d_model_refuses_a_pair_sharing_nodes_and_nu_one_half_and_2d_elements() {
         friction: 0.0,
         gauss_points: None,
         integration: Integration::Gauss,
+        multipliers: solver::model::Multipliers::Standard,
     });
     let err = solver::solve_model(&with_contact, &SolveOptions::default()).unwrap_err();
     assert!(

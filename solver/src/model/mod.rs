@@ -42,7 +42,9 @@ use crate::amplitude::Amplitude;
 use crate::ids::{AmplitudeId, DofId, NodeId};
 use crate::mesh::Mesh;
 
-pub use pair::{ContactMode, ContactPair, Dim, Facet, FacetOf, Integration, SurfaceDim};
+pub use pair::{
+    ContactMode, ContactPair, Dim, Facet, FacetOf, Integration, Multipliers, SurfaceDim,
+};
 
 /// A prescribed displacement degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -116,6 +116,34 @@ impl Integration {
     }
 }
 
+/// The multiplier basis of a contact pair's slave facets
+/// (`[[contact]] multipliers`; docs/conventions.md, "3D faces").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Multipliers {
+    /// `lambda(xi_s) = sum_a N_a(xi_s) l_a`, the slave facet's shape
+    /// functions (the default; the paper's discretisation).
+    #[default]
+    Standard,
+    /// 3D faces only: the dual (biorthogonal) basis
+    /// `psi_a = sum_b A_ab N_b` of each slave face, `A = D M^-1` with
+    /// `D = diag(int N_a)` and `M = int N_a N_b` over the face in the
+    /// reference configuration, so that `int psi_a N_b = delta_ab int N_b`:
+    /// each node's weighted gap couples to its own multiplier only, and
+    /// `l_a` is the node's pressure in the mortar sense.
+    Dual,
+}
+
+impl Multipliers {
+    /// The name used in scene files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Multipliers::Standard => "standard",
+            Multipliers::Dual => "dual",
+        }
+    }
+}
+
 /// How a contact pair's constraint is enforced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -171,4 +199,6 @@ where
     pub gauss_points: Option<usize>,
     /// The rule on the slave facets (see [`Integration`]).
     pub integration: Integration,
+    /// The multiplier basis on the slave facets (see [`Multipliers`]).
+    pub multipliers: Multipliers,
 }

@@ -343,6 +343,7 @@ impl Scene {
             friction: c.friction,
             gauss_points: c.gauss_points,
             integration: c.integration,
+            multipliers: c.multipliers,
         };
         <Dim<D> as Build<D>>::check_pair(self, mesh, f, c, &pair)?;
         Ok(pair)

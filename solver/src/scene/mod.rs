@@ -54,6 +54,7 @@
 //!                                # in 3D per face kind, see docs/scenes.md)
 //! integration = "gauss"          # or "segmented": split at the master nodes'
 //!                                # projections, gauss_points per piece
+//! multipliers = "standard"       # or, in 3D, "dual" (biorthogonal basis)
 //!
 //! [loading]
 //! load_factor_end = 10.0
@@ -647,6 +648,29 @@ steps = [2]
         }
         // exactly two still parse
         Scene::from_toml_str(GOOD, "good.toml").unwrap();
+    }
+
+    /// The dual multiplier basis is built for 3D faces: a 2D pair asking
+    /// for it is refused, naming the key.
+    #[test]
+    fn dual_multipliers_in_2d_are_refused() {
+        let text = include_str!("../../../scenes/patch-test.toml");
+        let dual = text.replace(
+            "integration = \"segmented\"",
+            "integration = \"segmented\"\nmultipliers = \"dual\"",
+        );
+        assert_ne!(dual, text);
+        let e = err(&dual);
+        assert!(
+            matches!(&e, SceneError::Invalid { field, message, .. }
+                if field == "contact[0].multipliers" && message.contains("3D faces only")),
+            "{e:?}"
+        );
+        let standard = text.replace(
+            "integration = \"segmented\"",
+            "integration = \"segmented\"\nmultipliers = \"standard\"",
+        );
+        Scene::from_toml_str(&standard, "standard.toml").unwrap();
     }
 
     #[test]

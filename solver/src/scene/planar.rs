@@ -17,7 +17,7 @@ use crate::ids::NodeId;
 use crate::mesh::Mesh;
 use crate::mesh::gmsh::{AnyMsh, MshError, MshMesh};
 use crate::mesh::volume::Face;
-use crate::model::{ContactPair, Dim, Model};
+use crate::model::{ContactPair, Dim, Model, Multipliers};
 
 impl SourceDim<2> for Dim<2> {
     const NUMBERS: &'static str = "two";
@@ -89,6 +89,12 @@ impl Build<2> for Dim<2> {
         c: &ContactSpec,
         _slave: &[[NodeId; 2]],
     ) -> Result<(), SceneError> {
+        if c.multipliers == Multipliers::Dual {
+            return Err(scene.invalid(
+                format!("{f}.multipliers"),
+                "`multipliers = \"dual\"` is built for 3D faces only; a 2D pair takes `\"standard\"` (the default)",
+            ));
+        }
         scene.check_contact(f, c)
     }
 

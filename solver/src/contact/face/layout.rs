@@ -79,7 +79,7 @@ use crate::ids::{ContactPointIndex, DofId, MultiplierIndex, NodeId, PairId};
 use crate::mesh::Mesh;
 use crate::mesh::face_shape::FaceShape;
 use crate::mesh::volume::Face;
-use crate::model::{ContactMode, ContactPair, Integration};
+use crate::model::{ContactMode, ContactPair, Integration, Multipliers};
 
 use crate::contact::MultiplierDof;
 use crate::contact::active_set::ActiveSetView;
@@ -109,6 +109,10 @@ pub struct FacePoint {
     /// Global multiplier indices of the slave face's nodes (node order;
     /// a tri3 repeats its last one in the unused slot).
     pub multipliers: [MultiplierIndex; MAX_POINT_MULTIPLIERS],
+    /// The multiplier basis at `xi_s`, in node order: the slave face's
+    /// shape functions `N_a`, or with `multipliers = "dual"` its dual
+    /// basis `psi_a` ([`dual_coefficients`]).
+    pub basis: [f64; MAX_POINT_MULTIPLIERS],
 }
 
 impl WeightedPoint for FacePoint {
@@ -117,13 +121,49 @@ impl WeightedPoint for FacePoint {
     }
 
     fn multiplier_shape(&self) -> MultiplierShape {
-        let s = FaceShape::at(self.slave.kind(), self.xi_s);
         MultiplierShape {
             multipliers: self.multipliers,
-            shape: s.n,
-            count: s.count,
+            shape: self.basis,
+            count: self.slave.nodes().len(),
         }
     }
+}
+
+/// The dual basis of a slave face with reference coordinates `x_ref`:
+/// `A = D M^-1`, with `M_ab = int N_a N_b` and `D = diag(int N_a)` over
+/// the face (a tri3's 7-point rule, a quad4's 4 x 4: exact for the
+/// products of its shape functions and area element), so that
+/// `psi_a = sum_b A_ab N_b` satisfies `int psi_a N_b = delta_ab int N_b`.
+/// On a flat tri3, `A = 4 I - 1` (`psi_a = 4 N_a - 1`). `Err((rule point,
+/// area element))` where the area element is not finite and positive, or
+/// `M` is not invertible.
+pub fn dual_coefficients(x_ref: &Face<[f64; 3]>) -> Result<[[f64; 4]; 4], (usize, f64)> {
+    let kind = x_ref.kind();
+    let n = x_ref.nodes().len();
+    let rule = face_rule(kind, if n == 3 { 7 } else { 4 }).map_err(|_| (0, f64::NAN))?;
+    let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
+    let mut d = vec![0.0; n];
+    for (g, &(xi, w)) in rule.points.iter().enumerate() {
+        let j0 = x_ref.area_element(xi);
+        if !(j0.is_finite() && j0 > 0.0) {
+            return Err((g, j0));
+        }
+        let s = FaceShape::at(kind, xi);
+        for a in 0..n {
+            d[a] += w * j0 * s.n[a];
+            for b in 0..n {
+                m[(a, b)] += w * j0 * s.n[a] * s.n[b];
+            }
+        }
+    }
+    let inv = m.try_inverse().ok_or((0, f64::NAN))?;
+    let mut a = [[0.0; 4]; 4];
+    for (r, row) in a.iter_mut().enumerate().take(n) {
+        for (c, v) in row.iter_mut().enumerate().take(n) {
+            *v = d[r] * inv[(r, c)];
+        }
+    }
+    Ok(a)
 }
 
 /// The kernel of `reading` (`slave-normal` or `closest-point`) for a slave
@@ -361,7 +401,27 @@ impl FaceLayout {
                         out
                     }
                 };
+                let dual = match pair.multipliers {
+                    Multipliers::Standard => None,
+                    Multipliers::Dual => {
+                        Some(dual_coefficients(&x_ref).map_err(|(gauss, area_element)| {
+                            FaceLayoutError::DegenerateSlaveFace {
+                                pair: pair.name.clone(),
+                                face: f,
+                                gauss,
+                                area_element,
+                            }
+                        })?)
+                    }
+                };
                 for (g, (xi, weight_ref)) in face_points.into_iter().enumerate() {
+                    let shape = FaceShape::at(face.kind(), xi);
+                    let basis = match &dual {
+                        None => shape.n,
+                        Some(a) => std::array::from_fn(|r| {
+                            (0..shape.count).map(|c| a[r][c] * shape.n[c]).sum()
+                        }),
+                    };
                     points.push(FacePoint {
                         pair: pid,
                         slave_face: f,
@@ -370,6 +430,7 @@ impl FaceLayout {
                         weight_ref,
                         slave: *face,
                         multipliers: mults,
+                        basis,
                     });
                 }
                 total_size += x_ref.size();

@@ -22,7 +22,7 @@ use thiserror::Error;
 
 use crate::ids::{MasterFaceIndex, NodeId, PairId};
 use crate::mesh::Mesh;
-use crate::mesh::face_shape::QUAD4_CORNERS;
+use crate::mesh::face_shape::{FaceShape, QUAD4_CORNERS};
 use crate::mesh::volume::Face;
 
 use super::pairing::Probe;
@@ -97,8 +97,11 @@ impl FaceLayout {
         let mut tributary = vec![0.0; self.multipliers.len()];
         for pt in &self.points {
             let w = pt.weight_ref();
-            for (m, n_a) in pt.multiplier_shape().iter() {
-                tributary[m.index()] += w * n_a;
+            // the slave face's shape functions, whatever the multiplier
+            // basis (docs/conventions.md: `sum w J0 N_a`)
+            let s = FaceShape::at(pt.slave.kind(), pt.xi_s);
+            for a in 0..s.count {
+                tributary[pt.multipliers[a].index()] += w * s.n[a];
             }
         }
         let indexes = self.master_indexes(mesh, u);

@@ -77,6 +77,7 @@ fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, Contact
         friction: 0.0,
         gauss_points: None,
         integration: Integration::Gauss,
+        multipliers: crate::model::Multipliers::Standard,
     };
     (mesh, pair)
 }
@@ -188,12 +189,16 @@ fn potential(
 
 #[test]
 fn residual_and_tangent_are_the_derivatives_of_the_potential() {
-    for (tri, reading) in [
-        (false, Formulation::SlaveNormal),
-        (true, Formulation::ClosestPoint),
-        (true, Formulation::SlaveNormal),
+    use crate::model::Multipliers::{Dual, Standard};
+    for (tri, reading, basis) in [
+        (false, Formulation::SlaveNormal, Standard),
+        (true, Formulation::ClosestPoint, Standard),
+        (true, Formulation::SlaveNormal, Standard),
+        (false, Formulation::SlaveNormal, Dual),
+        (true, Formulation::ClosestPoint, Dual),
     ] {
-        let (mesh, pair) = stacked(0.02, tri, reading);
+        let (mesh, mut pair) = stacked(0.02, tri, reading);
+        pair.multipliers = basis;
         let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
         let u0 = warp(&mesh, 1.0);
         let (pairing, _) = layout.initial_pairing(&mesh, &u0).unwrap();
@@ -227,8 +232,75 @@ fn residual_and_tangent_are_the_derivatives_of_the_potential() {
                 worst_k = worst_k.max((column[i] - k[(i, j)]).abs() / scale_k);
             }
         }
-        assert!(worst_r < 1e-7, "tri {tri} {reading}: residual {worst_r:e}");
-        assert!(worst_k < 1e-6, "tri {tri} {reading}: tangent {worst_k:e}");
+        assert!(
+            worst_r < 1e-7,
+            "tri {tri} {reading} {basis:?}: residual {worst_r:e}"
+        );
+        assert!(
+            worst_k < 1e-6,
+            "tri {tri} {reading} {basis:?}: tangent {worst_k:e}"
+        );
+    }
+}
+
+/// The dual basis of a slave face is biorthogonal to its shape functions,
+/// `int psi_a N_b = delta_ab int N_b` (checked with another exact rule
+/// than the one that built it: a tri3's 6 points, a planar quad4's 6 x 6),
+/// adds up to 1 (constants are in the multiplier space, so a uniform
+/// pressure is one), and is `4 N_a - 1` on a tri3.
+#[test]
+fn the_dual_basis_is_biorthogonal_to_the_slave_shape_functions() {
+    use super::layout::dual_coefficients;
+    use crate::contact::face_rules::face_rule;
+    use crate::mesh::face_shape::FaceShape;
+    let faces = [
+        Face::Tri3([[0.0, 0.0, 0.0], [1.3, 0.2, 0.1], [0.2, 0.9, -0.2]]),
+        // planar (z = 0.1 x - 0.2 y), not a parallelogram
+        Face::Quad4([
+            [0.0, 0.0, 0.0],
+            [1.2, 0.1, 0.1],
+            [1.0, 0.9, -0.08],
+            [-0.1, 1.1, -0.23],
+        ]),
+    ];
+    for x in faces {
+        let n = x.nodes().len();
+        let a = dual_coefficients(&x).unwrap();
+        if n == 3 {
+            for (r, row) in a.iter().enumerate().take(3) {
+                for (c, v) in row.iter().enumerate().take(3) {
+                    let want = if r == c { 3.0 } else { -1.0 };
+                    assert!((v - want).abs() < 1e-12, "A[{r}][{c}] = {v}");
+                }
+            }
+        }
+        let rule = face_rule(x.kind(), 6).unwrap();
+        let mut product = [[0.0; 4]; 4];
+        let mut integral = [0.0; 4];
+        for &(xi, w) in &rule.points {
+            let j0 = x.area_element(xi);
+            let s = FaceShape::at(x.kind(), xi);
+            let psi: Vec<f64> = (0..n)
+                .map(|r| (0..n).map(|c| a[r][c] * s.n[c]).sum())
+                .collect();
+            assert!((psi.iter().sum::<f64>() - 1.0).abs() < 1e-12);
+            for r in 0..n {
+                integral[r] += w * j0 * s.n[r];
+                for b in 0..n {
+                    product[r][b] += w * j0 * psi[r] * s.n[b];
+                }
+            }
+        }
+        for r in 0..n {
+            for b in 0..n {
+                let want = if r == b { integral[b] } else { 0.0 };
+                assert!(
+                    (product[r][b] - want).abs() < 1e-12,
+                    "{n} nodes: int psi_{r} N_{b} = {} (want {want})",
+                    product[r][b]
+                );
+            }
+        }
     }
 }
 

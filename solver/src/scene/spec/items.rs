@@ -8,7 +8,7 @@ use contact_kernels::Formulation;
 use serde::{Deserialize, Serialize};
 
 use crate::mesh::Side;
-use crate::model::{ContactMode, Integration};
+use crate::model::{ContactMode, Integration, Multipliers};
 
 use super::values::{
     Coords, Dofs, de_amplitude, de_formulation, de_opt_pair, de_opt_triple, ser_formulation,
@@ -283,6 +283,14 @@ pub struct ContactSpec {
     /// "Integration rule"). Not written when it is the default.
     #[serde(default, skip_serializing_if = "is_default_integration")]
     pub integration: Integration,
+    /// `multipliers`: the multiplier basis on the slave faces,
+    /// `"standard"` (default: the slave face's shape functions) or, in 3D,
+    /// `"dual"`: each slave face's biorthogonal basis (see
+    /// [`Multipliers`]), whose nodal multipliers are the nodes' pressures
+    /// in the mortar sense. A 2D scene with `"dual"` is refused. Not
+    /// written when it is the default.
+    #[serde(default, skip_serializing_if = "is_default_multipliers")]
+    pub multipliers: Multipliers,
     /// `allow_not_facing`: accept slave and master faces that do not face
     /// each other (default `false`). Every slave node is projected onto
     /// the master face in the reference configuration with the pair's
@@ -331,6 +339,10 @@ impl ContactSpec {
 
 fn is_default_integration(i: &Integration) -> bool {
     *i == Integration::default()
+}
+
+fn is_default_multipliers(m: &Multipliers) -> bool {
+    *m == Multipliers::default()
 }
 
 fn is_false(b: &bool) -> bool {
