@@ -1,7 +1,7 @@
 //! Why a contact pair cannot be laid out ([`FaceLayoutError`]; the
 //! element's `ContactSpace::build`): today only a 3D pair can be refused,
-//! for its rule, a degenerate slave face, the clipping of segmented
-//! integration or its reading.
+//! for its rule, a degenerate slave face, a slave face without a dual
+//! basis, the clipping of segmented integration or its reading.
 
 use contact_kernels::Formulation;
 use thiserror::Error;
@@ -34,6 +34,17 @@ pub enum FaceLayoutError {
         gauss: usize,
         /// `|dX/du x dX/dv|` there.
         area_element: f64,
+    },
+    /// A slave face whose dual multiplier basis cannot be built
+    /// (`multipliers = "dual"`).
+    #[error("contact pair `{pair}`: slave face {face} has no dual multiplier basis: {source}")]
+    DualBasis {
+        /// The pair's name.
+        pair: String,
+        /// The slave face's index in the pair.
+        face: usize,
+        /// Why.
+        source: DualBasisError,
     },
     /// `gauss_points` is not a triangle rule's count (segmented
     /// integration: 1, 3 or 7).
@@ -68,4 +79,24 @@ pub enum FaceLayoutError {
         /// The reading given.
         reading: Formulation,
     },
+}
+
+/// Why a slave face has no dual basis (`contact::face::dual_coefficients`).
+#[derive(Debug, Clone, PartialEq, Error)]
+pub enum DualBasisError {
+    /// The face's reference area element is not positive and finite at a
+    /// point of the rule integrating its mass matrix.
+    #[error("area element {area_element:e} at its mass matrix's rule point {gauss}")]
+    AreaElement {
+        /// The rule point.
+        gauss: usize,
+        /// `|dX/du x dX/dv|` there.
+        area_element: f64,
+    },
+    /// The face's mass matrix `int N_a N_b` has no inverse in floating point.
+    #[error("its mass matrix is singular")]
+    SingularMass,
+    /// The rule integrating the mass matrix is missing.
+    #[error(transparent)]
+    Rule(#[from] RuleError),
 }

@@ -285,7 +285,7 @@ pub use face::{
     FACE_COORDS, FaceEval, FaceFound, FaceLayout, FaceNodalError, FaceNodalRow, FacePoint,
     MasterFaces, face_formulation,
 };
-pub use layout_error::FaceLayoutError;
+pub use layout_error::{DualBasisError, FaceLayoutError};
 pub use reference::ReferencePairing;
 pub use report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
 pub use segment::{

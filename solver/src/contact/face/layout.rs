@@ -87,7 +87,7 @@ use crate::contact::clip::{SlaveFace, TriangleRule};
 use crate::contact::face_index::{Aabb, FaceIndex};
 use crate::contact::face_rules::{default_points, face_rule};
 use crate::contact::friction::{Friction, FrictionView};
-use crate::contact::layout_error::FaceLayoutError;
+use crate::contact::layout_error::{DualBasisError, FaceLayoutError};
 use crate::contact::space::ContactSpace;
 use crate::contact::term::{MAX_POINT_MULTIPLIERS, MultiplierShape, WeightedPoint};
 
@@ -135,18 +135,21 @@ impl WeightedPoint for FacePoint {
 /// products of its shape functions and area element), so that
 /// `psi_a = sum_b A_ab N_b` satisfies `int psi_a N_b = delta_ab int N_b`.
 /// On a flat tri3, `A = 4 I - 1` (`psi_a = 4 N_a - 1`). `Err((rule point,
-/// area element))` where the area element is not finite and positive, or
-/// `M` is not invertible.
-pub fn dual_coefficients(x_ref: &Face<[f64; 3]>) -> Result<[[f64; 4]; 4], (usize, f64)> {
+/// `Err` where the area element is not finite and positive at a rule
+/// point, or `M` is not invertible.
+pub fn dual_coefficients(x_ref: &Face<[f64; 3]>) -> Result<[[f64; 4]; 4], DualBasisError> {
     let kind = x_ref.kind();
     let n = x_ref.nodes().len();
-    let rule = face_rule(kind, if n == 3 { 7 } else { 4 }).map_err(|_| (0, f64::NAN))?;
+    let rule = face_rule(kind, if n == 3 { 7 } else { 4 })?;
     let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
     let mut d = vec![0.0; n];
     for (g, &(xi, w)) in rule.points.iter().enumerate() {
         let j0 = x_ref.area_element(xi);
         if !(j0.is_finite() && j0 > 0.0) {
-            return Err((g, j0));
+            return Err(DualBasisError::AreaElement {
+                gauss: g,
+                area_element: j0,
+            });
         }
         let s = FaceShape::at(kind, xi);
         for a in 0..n {
@@ -156,7 +159,7 @@ pub fn dual_coefficients(x_ref: &Face<[f64; 3]>) -> Result<[[f64; 4]; 4], (usize
             }
         }
     }
-    let inv = m.try_inverse().ok_or((0, f64::NAN))?;
+    let inv = m.try_inverse().ok_or(DualBasisError::SingularMass)?;
     let mut a = [[0.0; 4]; 4];
     for (r, row) in a.iter_mut().enumerate().take(n) {
         for (c, v) in row.iter_mut().enumerate().take(n) {
@@ -403,16 +406,13 @@ impl FaceLayout {
                 };
                 let dual = match pair.multipliers {
                     Multipliers::Standard => None,
-                    Multipliers::Dual => {
-                        Some(dual_coefficients(&x_ref).map_err(|(gauss, area_element)| {
-                            FaceLayoutError::DegenerateSlaveFace {
-                                pair: pair.name.clone(),
-                                face: f,
-                                gauss,
-                                area_element,
-                            }
-                        })?)
-                    }
+                    Multipliers::Dual => Some(dual_coefficients(&x_ref).map_err(|source| {
+                        FaceLayoutError::DualBasis {
+                            pair: pair.name.clone(),
+                            face: f,
+                            source,
+                        }
+                    })?),
                 };
                 for (g, (xi, weight_ref)) in face_points.into_iter().enumerate() {
                     let shape = FaceShape::at(face.kind(), xi);

@@ -248,6 +248,30 @@ fn residual_and_tangent_are_the_derivatives_of_the_potential() {
 /// than the one that built it: a tri3's 6 points, a planar quad4's 6 x 6),
 /// adds up to 1 (constants are in the multiplier space, so a uniform
 /// pressure is one), and is `4 N_a - 1` on a tri3.
+/// A slave face without area has no dual basis: the error names the rule
+/// point, never a NaN coefficient.
+#[test]
+fn a_degenerate_slave_face_has_no_dual_basis() {
+    use super::layout::dual_coefficients;
+    use crate::contact::DualBasisError;
+    // collinear corners: zero area element everywhere
+    let x = Face::Tri3([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]]);
+    match dual_coefficients(&x) {
+        Err(DualBasisError::AreaElement {
+            gauss: 0,
+            area_element,
+        }) => {
+            assert_eq!(area_element, 0.0)
+        }
+        other => panic!("expected the area element's error, got {other:?}"),
+    }
+    let x = Face::Tri3([[0.0, 0.0, 0.0], [1.0, 0.0, f64::NAN], [0.0, 1.0, 0.0]]);
+    assert!(matches!(
+        dual_coefficients(&x),
+        Err(DualBasisError::AreaElement { gauss: 0, .. })
+    ));
+}
+
 #[test]
 fn the_dual_basis_is_biorthogonal_to_the_slave_shape_functions() {
     use super::layout::dual_coefficients;
