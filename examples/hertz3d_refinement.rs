@@ -5,21 +5,26 @@
 //!
 //! ```text
 //! cargo run --release --example hertz3d_refinement -- MESH_DIR [--out docs/hertz3d] [--max-equations N]
-//!     [--kind hex|tet] [--segmented] [--gauss-points N] [--dual]
+//!     [--kind hex|tet|hexnm|hexnm073] [--segmented] [--gauss-points N] [--dual]
 //! ```
 //!
-//! `MESH_DIR` holds `hex-{h}.msh` and `tet-{h}.msh` as
-//! `scripts/make-hertz3d-mesh.py` writes them (`scripts/hertz3d-refinement.sh`
+//! `MESH_DIR` holds `hex-{h}.msh`, `tet-{h}.msh`, `hexnm-{h}.msh` and
+//! `hexnm073-{h}.msh` (the script's `hex-nonmatching`: the block's spacing
+//! 1.37 times the indenter's h, or with `--master-ratio 0.73` 0.73 times
+//! it) as `scripts/make-hertz3d-mesh.py` writes them (`scripts/hertz3d-refinement.sh`
 //! makes them and runs this); a mesh that is missing is skipped, and so is
 //! one whose next-coarser mesh of its kind had more than `--max-equations`
 //! / 4 equations (default 300000: the LDLᵀ of the next, about 4 times larger, would need over 10 GiB). Writes
 //! `hertz3d-refinement.{md,csv}` to the output folder and prints the table.
-//! `--kind` keeps one mesh kind; `--segmented` and `--gauss-points N`
+//! `--kind` keeps one mesh kind (without it: hexahedra and tetrahedra)
+//! and puts it in the files' names; `--segmented` and `--gauss-points N`
 //! change the scene's contact rule (`integration = "segmented"`,
 //! `gauss_points`), `--dual` its multiplier basis (`multipliers =
-//! "dual"`), and the files are then named after the variant
-//! (`hertz3d-refinement-segmented.md`, `hertz3d-refinement-gauss7.md`,
-//! `hertz3d-refinement-segmented-dual.md`).
+//! "dual"`), and the files are then named after the variant:
+//! `--kind tet --segmented --dual` writes
+//! `hertz3d-refinement-tet-segmented-dual.{md,csv}`, `--kind hexnm`
+//! `hertz3d-refinement-hexnm.{md,csv}`, no option
+//! `hertz3d-refinement.{md,csv}`.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -33,9 +38,19 @@ use solver::model::{Integration, Multipliers};
 const RADIUS: f64 = 10.0;
 
 /// The meshes, coarse to fine: kind, its name in the table, sizes h.
-const MESHES: [(&str, &str, &[&str]); 2] = [
+const MESHES: [(&str, &str, &[&str]); 4] = [
     ("hex", "hexahedra", &["0.4", "0.2", "0.1", "0.05"]),
     ("tet", "tetrahedra", &["0.4", "0.2", "0.1", "0.07", "0.05"]),
+    (
+        "hexnm",
+        "non-matching hexahedra",
+        &["0.4", "0.2", "0.1", "0.07", "0.05"],
+    ),
+    (
+        "hexnm073",
+        "non-matching hexahedra, finer block",
+        &["0.4", "0.2", "0.1", "0.07"],
+    ),
 ];
 
 /// What the command line asks for.
@@ -49,7 +64,7 @@ struct Args {
     dual: bool,
 }
 
-const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet] [--segmented] [--gauss-points N] [--dual]";
+const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet|hexnm|hexnm073] [--segmented] [--gauss-points N] [--dual]";
 
 fn parse(args: &[String]) -> Result<Args, String> {
     let mut meshes = None;
@@ -76,7 +91,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "--kind" => {
                 let v = value()?;
                 if !MESHES.iter().any(|m| m.0 == v) {
-                    return Err(format!("--kind {v}: hex or tet"));
+                    return Err(format!("--kind {v}: hex, tet, hexnm or hexnm073"));
                 }
                 parsed.kind = Some(v.clone());
             }
@@ -126,7 +141,10 @@ fn run(args: &Args) -> Result<(), String> {
     let (meshes, out, max_equations) = (&args.meshes, &args.out, args.max_equations);
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut base = Scene::from_file(root.join("scenes/hertz3d.toml")).map_err(|e| e.to_string())?;
-    let mut variant = String::new();
+    let mut variant = args
+        .kind
+        .as_ref()
+        .map_or_else(String::new, |k| format!("-{k}"));
     for contact in &mut base.contacts {
         if args.segmented {
             contact.integration = Integration::Segmented;
@@ -147,7 +165,12 @@ fn run(args: &Args) -> Result<(), String> {
     }
     let mut rows = Vec::new();
     for (prefix, kind, sizes) in MESHES {
-        if args.kind.as_deref().is_some_and(|k| k != prefix) {
+        // the non-matching hexahedra only on request: their tables are apart
+        if args
+            .kind
+            .as_deref()
+            .map_or(prefix.starts_with("hexnm"), |k| k != prefix)
+        {
             continue;
         }
         let mut coarser: Option<usize> = None;

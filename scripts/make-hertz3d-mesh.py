@@ -4,6 +4,7 @@
     python3 scripts/make-hertz3d-mesh.py hex [h] [-o OUT] [--ascii]
     python3 scripts/make-hertz3d-mesh.py tet [h] [-o OUT] [--ascii]
     python3 scripts/make-hertz3d-mesh.py hex-half [h] [-o OUT] [--ascii]
+    python3 scripts/make-hertz3d-mesh.py hex-nonmatching [h] [--master-ratio R] [-o OUT] [--ascii]
 
 Geometry (a quarter model, symmetric about the planes x = 0 and y = 0):
 
@@ -26,6 +27,11 @@ hexahedra) and grows from there to the outer boundary.
   `scenes/mindlin3d.toml`, shifts the indenter along x): the block
   [-W, W] x [0, W] x [-D, 0], the indenter over [-A, A] x [0, A], the
   spacing in x the quarter model's mirrored; no `symmetry_x` group.
+* `hex-nonmatching`: the `hex` quarter model with the block's spacing in x
+  and y MASTER_RATIO (or `--master-ratio`) times the indenter's (h at the contact on the
+  indenter, MASTER_RATIO h on the block), so that no indenter node but the
+  origin's column lies above a block node line: the contact faces do not
+  match, as on meshes made body by body.
 * `tet`: every element a 4-node tetrahedron, Gmsh's Delaunay mesher on the
   OpenCASCADE geometry, sized TET_SIZE h within 1.5 of the origin (edges of
   about h there), growing linearly to H_FAR at distance 6.
@@ -73,6 +79,7 @@ GROWTH = 1.3  # the hexahedral spacing's growth beyond
 H_FAR = 1.5  # the tetrahedral size far from the contact
 REFINED_WITHIN = 1.5  # tetrahedral size h up to this distance from the origin
 GRADED_UNTIL = 6.0  # size H_FAR from this distance on
+MASTER_RATIO = 1.37  # hex-nonmatching: the block's spacing per the indenter's
 TET_SIZE = 0.85  # Gmsh's size per h: its edges come out about 1.2 times the size
 
 
@@ -205,11 +212,12 @@ def mirrored(s):
     return [-v for v in reversed(s[1:])] + s
 
 
-def hex_mesh(h, half=False):
+def hex_mesh(h, half=False, master_ratio=1.0):
     """The structured hexahedral mesh (module docs); `half`: mirrored
-    about x = 0."""
+    about x = 0; `master_ratio`: the block's spacing in x and y per the
+    indenter's."""
     writer = Writer()
-    ys = spacing(W, h, FINE_XY)
+    ys = spacing(W, master_ratio * h, FINE_XY)
     xs = mirrored(ys) if half else ys
     zs = spacing(D, h, FINE_Z)
     symmetry = {} if half else {"symmetry_x": (0, False)}
@@ -322,10 +330,17 @@ def tet_mesh(h):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument(
-        "kind", choices=["hex", "tet", "hex-half"], help="hexahedra, tetrahedra, or the half model's hexahedra"
+        "kind", choices=["hex", "tet", "hex-half", "hex-nonmatching"],
+        help="hexahedra, tetrahedra, the half model's hexahedra, or hexahedra whose contact faces do not match"
     )
     parser.add_argument(
         "h", nargs="?", type=float, default=0.1, help="element size at the contact"
+    )
+    parser.add_argument(
+        "--master-ratio",
+        type=float,
+        default=MASTER_RATIO,
+        help=f"hex-nonmatching: the block's spacing per the indenter's (default {MASTER_RATIO})",
     )
     parser.add_argument("-o", "--output", help="the .msh to write (default hertz3d-KIND.msh)")
     parser.add_argument("--ascii", action="store_true", help="ASCII MSH 4.1 (default binary)")
@@ -342,6 +357,8 @@ def main():
             hex_mesh(args.h)
         elif args.kind == "hex-half":
             hex_mesh(args.h, half=True)
+        elif args.kind == "hex-nonmatching":
+            hex_mesh(args.h, master_ratio=args.master_ratio)
         else:
             tet_mesh(args.h)
         gmsh.option.setNumber("Mesh.MshFileVersion", 4.1)
