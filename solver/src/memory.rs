@@ -60,6 +60,19 @@
 //! factorisation is prepared. Each compares the estimate with
 //! `MemAvailable` of `/proc/meminfo`; where that cannot be read (not
 //! Linux, or no such line), the check is skipped.
+//!
+//! # What it does not count
+//!
+//! The LDLᵀ's fallback: a solve whose LDLᵀ fails its checks is factorised
+//! again by the LU ([`crate::linear`]'s `ldlt.rs`), which in 3D needs
+//! several times the LDLᵀ's memory on top of it. Measured on the 3D Hertz
+//! scene on non-matching hexahedra at h = 0.07 (147228 equations,
+//! segmented integration, dual multipliers): the LDLᵀ alone held about
+//! 8 GiB, the first iterate's fallback took the process to 17.9 GiB under
+//! `ulimit -v 22000000` (its allocation failed there and the attempt was
+//! cut back), and past 22 GiB without a limit, where the system killed it.
+//! No estimate made before the solve can know whether a fallback will
+//! happen.
 
 use crate::element::ElementKind;
 use crate::linear::LinearSolverKind;
