@@ -91,7 +91,8 @@ fn parse(args: &[String]) -> Result<Args, String> {
             "--kind" => {
                 let v = value()?;
                 if !MESHES.iter().any(|m| m.0 == v) {
-                    return Err(format!("--kind {v}: hex, tet, hexnm or hexnm073"));
+                    let kinds: Vec<&str> = MESHES.iter().map(|m| m.0).collect();
+                    return Err(format!("--kind {v}: one of {}", kinds.join(", ")));
                 }
                 parsed.kind = Some(v.clone());
             }

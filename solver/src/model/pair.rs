@@ -134,16 +134,6 @@ pub enum Multipliers {
     Dual,
 }
 
-impl Multipliers {
-    /// The name used in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Multipliers::Standard => "standard",
-            Multipliers::Dual => "dual",
-        }
-    }
-}
-
 /// How a contact pair's constraint is enforced.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]

@@ -134,9 +134,9 @@ impl WeightedPoint for FacePoint {
 /// the face (a tri3's 7-point rule, a quad4's 4 x 4: exact for the
 /// products of its shape functions and area element), so that
 /// `psi_a = sum_b A_ab N_b` satisfies `int psi_a N_b = delta_ab int N_b`.
-/// On a flat tri3, `A = 4 I - 1` (`psi_a = 4 N_a - 1`). `Err((rule point,
-/// `Err` where the area element is not finite and positive at a rule
-/// point, or `M` is not invertible.
+/// On a flat tri3, `A = 4 I - 1` (`psi_a = 4 N_a - 1`). `Err` where the
+/// area element is not finite and positive at a rule point, or `M` is not
+/// invertible.
 pub fn dual_coefficients(x_ref: &Face<[f64; 3]>) -> Result<[[f64; 4]; 4], DualBasisError> {
     let kind = x_ref.kind();
     let n = x_ref.nodes().len();

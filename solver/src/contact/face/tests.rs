@@ -243,11 +243,6 @@ fn residual_and_tangent_are_the_derivatives_of_the_potential() {
     }
 }
 
-/// The dual basis of a slave face is biorthogonal to its shape functions,
-/// `int psi_a N_b = delta_ab int N_b` (checked with another exact rule
-/// than the one that built it: a tri3's 6 points, a planar quad4's 6 x 6),
-/// adds up to 1 (constants are in the multiplier space, so a uniform
-/// pressure is one), and is `4 N_a - 1` on a tri3.
 /// A slave face without area has no dual basis: the error names the rule
 /// point, never a NaN coefficient.
 #[test]
@@ -272,6 +267,11 @@ fn a_degenerate_slave_face_has_no_dual_basis() {
     ));
 }
 
+/// The dual basis of a slave face is biorthogonal to its shape functions,
+/// `int psi_a N_b = delta_ab int N_b` (checked with another exact rule
+/// than the one that built it: a tri3's 6 points, a planar quad4's 6 x 6),
+/// adds up to 1 (constants are in the multiplier space, so a uniform
+/// pressure is one), and is `4 N_a - 1` on a tri3.
 #[test]
 fn the_dual_basis_is_biorthogonal_to_the_slave_shape_functions() {
     use super::layout::dual_coefficients;
