@@ -49,10 +49,12 @@ pub enum SolverError {
         /// The last attempt's failure.
         reason: CutbackReason,
     },
-    /// The linear system stayed singular after the maximum number of
-    /// cut-backs (e.g. a body without enough supports).
+    /// The linear solve still failed after the maximum number of
+    /// cut-backs: the system is singular (e.g. a body without enough
+    /// supports), or a fallback factorisation did not fit in memory
+    /// ([`crate::linear::LinearError`] says which).
     #[error(
-        "singular system at load factor {load_factor} (towards {attempted}, after {cutbacks} cut-backs): {message}"
+        "the linear solve failed at load factor {load_factor} (towards {attempted}, after {cutbacks} cut-backs): {message}"
     )]
     Singular {
         /// The last converged load factor.

@@ -29,8 +29,9 @@
 //!
 //! The modules, bottom up (the layers of `docs/architecture.md`, which
 //! `solver/tests/layers.rs` checks: a module imports nothing from a layer
-//! above its own): [`ids`] (typed indices), [`amplitude`], [`linear`] (the
-//! sparse solvers) and [`options`] (what a solve is asked to do; modules
+//! above its own): [`ids`] (typed indices), [`amplitude`], [`meminfo`] (the
+//! memory the system has free), [`linear`] (the sparse solvers) and
+//! [`options`] (what a solve is asked to do; modules
 //! import it from there, not from the crate root); [`element`] (the solid
 //! elements, kinematics and [`material`]), [`mesh`], [`model`] (the discrete
 //! problem); [`contact`] (the contact element), [`dim`] (the seam over the
@@ -62,6 +63,7 @@ mod error;
 pub mod ids;
 pub mod linear;
 pub use element::material;
+pub mod meminfo;
 pub mod memory;
 pub mod mesh;
 pub mod model;

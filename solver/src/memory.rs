@@ -65,14 +65,15 @@
 //!
 //! The LDLᵀ's fallback: a solve whose LDLᵀ fails its checks is factorised
 //! again by the LU ([`crate::linear`]'s `ldlt.rs`), which in 3D needs
-//! several times the LDLᵀ's memory on top of it. Measured on the 3D Hertz
-//! scene on non-matching hexahedra at h = 0.07 (147228 equations,
+//! several times the LDLᵀ's memory. No estimate made before the solve can
+//! know whether a fallback will happen, so the fallback guards itself: the
+//! LU allocates under an address-space limit of what the system has
+//! available, and one that does not fit fails the solve, which Newton cuts
+//! back ([`crate::linear::fallback`], "The LU's memory"). Measured on the
+//! 3D Hertz scene on non-matching hexahedra at h = 0.07 (147228 equations,
 //! segmented integration, dual multipliers): the LDLᵀ alone held about
-//! 8 GiB, the first iterate's fallback took the process to 17.9 GiB under
-//! `ulimit -v 22000000` (its allocation failed there and the attempt was
-//! cut back), and past 22 GiB without a limit, where the system killed it.
-//! No estimate made before the solve can know whether a fallback will
-//! happen.
+//! 8 GiB; before the limit, the first iterate's fallback took the process
+//! past 22 GiB, where the system killed it.
 
 use crate::element::ElementKind;
 use crate::linear::LinearSolverKind;
@@ -168,27 +169,7 @@ pub fn estimate(equations: u64, family: MeshFamily, linear: LinearSolverKind) ->
     equations.saturating_mul(bytes_per_equation(equations, family, linear))
 }
 
-/// `MemAvailable` of `/proc/meminfo` in bytes, `None` where it cannot be
-/// read.
-pub fn available() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    mem_available(&text)
-}
-
-/// `MemAvailable` (in bytes) of the text of `/proc/meminfo`.
-fn mem_available(meminfo: &str) -> Option<u64> {
-    let line = meminfo
-        .lines()
-        .find_map(|l| l.strip_prefix("MemAvailable:"))?;
-    let mut words = line.split_whitespace();
-    let value: u64 = words.next()?.parse().ok()?;
-    let scale = match words.next() {
-        Some("kB") => 1024,
-        None => 1,
-        Some(_) => return None,
-    };
-    value.checked_mul(scale)
-}
+pub use crate::meminfo::available;
 
 /// A model whose estimate exceeds the available memory.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -251,15 +232,6 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn mem_available_is_read_in_bytes() {
-        let text = "MemTotal:       24000000 kB\nMemFree:  100 kB\nMemAvailable:   22000000 kB\n";
-        assert_eq!(mem_available(text), Some(22_000_000 * 1024));
-        assert_eq!(mem_available("MemTotal: 5 kB\n"), None);
-        assert_eq!(mem_available("MemAvailable: x kB\n"), None);
-        assert_eq!(mem_available("MemAvailable: 5 MB\n"), None);
-    }
 
     #[test]
     fn the_estimate_is_below_every_measured_peak() {

@@ -40,7 +40,8 @@ pub enum CutbackReason {
         /// The bound it exceeded.
         bound: f64,
     },
-    /// The linear system was singular (or its solution not finite).
+    /// The linear solve failed: the system was singular (or its solution
+    /// not finite), or a fallback factorisation did not fit in memory.
     Singular {
         /// faer's message or the non-finite component.
         message: String,
@@ -273,6 +274,10 @@ where
     /// not safe for them (see [`crate::linear::LinearSolver::fallbacks`]);
     /// always 0 with LU.
     pub linear_fallbacks: usize,
+    /// Every linear solve that did not pass the LDLᵀ's checks, with the
+    /// check it failed and what the LU did (see
+    /// [`crate::linear::LinearSolver::fallback_log`]); empty with LU.
+    pub linear_fallback_log: Vec<crate::linear::Fallback>,
     /// Nonzeros of the factor of the last sparsity pattern (the fill; see
     /// [`crate::linear::LinearSolver::factor_nonzeros`]): the lower triangle
     /// of `L`, diagonal included, with LDL^T; `None` with LU, whose factors

@@ -735,6 +735,24 @@ where
     }
 }
 
+/// The most fallbacks the summary lists one by one.
+const FALLBACKS_LISTED: usize = 5;
+
+/// The summary's lines under the linear solver's: each solve the LDLᵀ gave
+/// up, why, and what the LU did (the first [`FALLBACKS_LISTED`], then how
+/// many more).
+fn print_fallbacks(log: &[solver::linear::Fallback]) {
+    for fallback in log.iter().take(FALLBACKS_LISTED) {
+        println!("                {fallback}");
+    }
+    if log.len() > FALLBACKS_LISTED {
+        println!(
+            "                ... and {} more",
+            log.len() - FALLBACKS_LISTED
+        );
+    }
+}
+
 /// The summary's cost lines: time, factorisation, fill, the linear
 /// solver's fallbacks, kernel calls.
 fn print_costs<const D: usize>(sol: &solver::Solution<D>, options: &SolveOptions)
@@ -791,6 +809,7 @@ where
             "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
             options.linear, sol.symbolic_factorisations, sol.linear_fallbacks
         );
+        print_fallbacks(&sol.linear_fallback_log);
     }
     println!(
         "kernel calls    {} evaluations, {} projections",

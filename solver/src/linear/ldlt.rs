@@ -28,7 +28,8 @@
 //! with LU.
 //!
 //! Safety checks, each of which makes this solve fall back to LU (counted in
-//! [`LinearSolver::fallbacks`]):
+//! [`LinearSolver::fallbacks`], each with its reason in
+//! [`LinearSolver::fallback_log`], [`super::fallback`]):
 //!
 //! - the numeric factorisation reports a zero or non-finite pivot;
 //! - the pivots have the wrong inertia. By Sylvester's law the pivots have
@@ -49,6 +50,9 @@
 //! - the solution is not finite, or its normwise backward error
 //!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
 //!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.
+//!
+//! The LU allocates within `MemAvailable`: one that does not fit is
+//! [`LinearError::OutOfMemory`] ([`super::fallback`], "The LU's memory").
 //!
 //! Invariants (as [`SparseLu`]): the symbolic analysis (ordering, elimination
 //! tree, supernodes) is kept while [`LinearSolver::analyse`] sees the same
@@ -79,7 +83,9 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Side};
 
+use super::fallback::{Fallback, FallbackReason, LuOutcome};
 use super::{LinearError, LinearSolver, SparseLu, check_solution};
+use crate::meminfo::AddressSpaceLimit;
 
 /// A solve is accepted when its normwise backward error
 /// `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` is at most this.
@@ -124,7 +130,6 @@ enum Factor {
 
 /// faer's sparse LDL^T with symbolic reuse, refinement and LU fallback
 /// (module docs).
-#[derive(Default)]
 pub struct SparseLdlt {
     pattern: Option<Pattern>,
     numeric: Option<Factor>,
@@ -140,6 +145,32 @@ pub struct SparseLdlt {
     /// factorisation (its values are never read: the numeric factorisation
     /// overwrites every entry); released when a solve falls back to LU.
     spare: Vec<f64>,
+    /// Numeric factorisations so far (the solves, counted from 1 in
+    /// [`Fallback::solve`]).
+    solves: usize,
+    /// Every solve that fell back, with its reason.
+    log: Vec<Fallback>,
+    /// The memory an LU fallback may take (`MemAvailable`; a test's own).
+    available: fn() -> Option<u64>,
+}
+
+impl Default for SparseLdlt {
+    fn default() -> SparseLdlt {
+        SparseLdlt {
+            pattern: None,
+            numeric: None,
+            lu: SparseLu::default(),
+            symbolic_factorisations: 0,
+            symbolic_time: Duration::ZERO,
+            fallbacks: 0,
+            refinements: 0,
+            constraints_from: None,
+            spare: Vec::new(),
+            solves: 0,
+            log: Vec::new(),
+            available: crate::meminfo::available,
+        }
+    }
 }
 
 impl SparseLdlt {
@@ -153,25 +184,68 @@ impl SparseLdlt {
         self.refinements
     }
 
+    /// A solver whose LU fallback may allocate `available()` bytes (`None`:
+    /// no limit); the default's is `MemAvailable`
+    /// ([`crate::meminfo::available`]).
+    pub fn with_available_memory(available: fn() -> Option<u64>) -> SparseLdlt {
+        SparseLdlt {
+            available,
+            ..SparseLdlt::default()
+        }
+    }
+
     /// Factorises with the fallback LU (analysing the pattern if needed),
-    /// releasing the spare LDL^T values first.
-    fn factor_lu(&mut self, vals: &[f64]) -> Result<(), LinearError> {
+    /// releasing the spare LDL^T values first, within the memory available
+    /// ([`super::fallback`], "The LU's memory"); logs the fallback with its
+    /// `reason`.
+    fn factor_lu(&mut self, vals: &[f64], reason: FallbackReason) -> Result<(), LinearError> {
         self.spare = Vec::new();
+        self.fallbacks += 1;
+        let available = (self.available)();
+        let factored = {
+            let _limit = available.map(AddressSpaceLimit::new);
+            self.lu_factor(vals)
+        };
+        let lu = match &factored {
+            Ok(()) => LuOutcome::Solved,
+            Err(LinearError::OutOfMemory(message)) => LuOutcome::OutOfMemory {
+                available,
+                message: message.clone(),
+            },
+            Err(e) => LuOutcome::Failed(e.to_string()),
+        };
+        let fallback = Fallback {
+            solve: self.solves,
+            reason,
+            lu,
+        };
+        let message = fallback.to_string();
+        self.log.push(fallback);
+        match factored {
+            Ok(()) => {
+                self.numeric = Some(Factor::Lu);
+                Ok(())
+            }
+            Err(LinearError::OutOfMemory(_)) => Err(LinearError::OutOfMemory(message)),
+            Err(e) => Err(e),
+        }
+    }
+
+    /// The LU's analysis (if needed) and factorisation of `vals`.
+    fn lu_factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
         let p = self
             .pattern
             .as_ref()
             .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        self.fallbacks += 1;
         self.lu.analyse(p.n, &p.rows, &p.cols)?;
-        self.lu.factor(vals)?;
-        self.numeric = Some(Factor::Lu);
-        Ok(())
+        self.lu.factor(vals)
     }
 
     /// [`LinearSolver::factor`] without keeping a copy of `vals`: the LDL^T
     /// of the lower triangle when it is safe (module docs), else the LU.
     fn factor_values(&mut self, vals: &[f64]) -> Result<(), LinearError> {
         self.numeric = None;
+        self.solves += 1;
         let p = self
             .pattern
             .as_mut()
@@ -202,7 +276,7 @@ impl SparseLdlt {
             // the supernodal factorisation clears its values itself
             l_values.fill(0.0);
         }
-        let safe = p
+        let factored = p
             .cholesky
             .factorize_numeric_ldlt(
                 &mut l_values,
@@ -213,17 +287,23 @@ impl SparseLdlt {
                 MemStack::new(&mut p.buffer),
                 Default::default(),
             )
-            .is_ok()
-            && pivots_have_expected_inertia(&p.cholesky, &l_values, expected_positive);
-        if safe {
-            self.numeric = Some(Factor::Ldlt {
-                l_values,
-                vals: None,
-            });
-            Ok(())
-        } else {
-            drop(l_values);
-            self.factor_lu(vals)
+            .map(|_| ())
+            .map_err(|_| FallbackReason::Pivot);
+        let safe = factored
+            .and_then(|()| pivots_have_expected_inertia(&p.cholesky, &l_values, expected_positive));
+        match safe {
+            Ok(()) => {
+                self.numeric = Some(Factor::Ldlt {
+                    l_values,
+                    vals: None,
+                });
+                Ok(())
+            }
+            Err(reason) => {
+                drop(l_values);
+                drop(lower_vals);
+                self.factor_lu(vals, reason)
+            }
         }
     }
 
@@ -263,7 +343,7 @@ impl SparseLdlt {
         let mut row_sums = vec![0.0_f64; n];
         let mut a_norm = None;
         let mut refinements = 0;
-        let accepted = loop {
+        let accepted: Result<(), FallbackReason> = loop {
             // r = b - A x with the assembled (possibly unsymmetric) matrix
             r.copy_from_slice(rhs);
             let a_inf = match a_norm {
@@ -286,13 +366,17 @@ impl SparseLdlt {
             let finite = x.iter().all(|v| v.is_finite());
             let (r_max, x_max) = (max_abs(&r), max_abs(&x));
             if !finite || !r_max.is_finite() {
-                break false;
+                break Err(FallbackReason::NonFinite);
             }
-            if r_max <= ACCEPT_BACKWARD_ERROR * (a_inf * x_max + b_norm) {
-                break true;
+            let scale = a_inf * x_max + b_norm;
+            if r_max <= ACCEPT_BACKWARD_ERROR * scale {
+                break Ok(());
             }
             if refinements == MAX_REFINEMENTS {
-                break false;
+                break Err(FallbackReason::BackwardError {
+                    backward_error: r_max / scale,
+                    refinements,
+                });
             }
             refinements += 1;
             ldlt.solve_in_place_with_conj(
@@ -306,12 +390,15 @@ impl SparseLdlt {
             }
         };
         self.refinements += refinements;
-        if accepted {
-            self.spare = l_values;
-            return Ok(x);
-        }
-        drop(l_values);
-        self.factor_lu(vals)?;
+        let reason = match accepted {
+            Ok(()) => {
+                self.spare = l_values;
+                return Ok(x);
+            }
+            Err(reason) => reason,
+        };
+        drop((l_values, x, r, row_sums));
+        self.factor_lu(vals, reason)?;
         self.numeric = None;
         self.lu.solve(rhs)
     }
@@ -425,12 +512,12 @@ fn max_abs(v: &[f64]) -> f64 {
 
 /// Whether every pivot of the factorisation `l_values` is non-zero and
 /// finite, and `expected` of them are positive (the inertia of the module
-/// docs).
+/// docs); otherwise which of the two failed.
 fn pivots_have_expected_inertia(
     cholesky: &SymbolicCholesky<usize>,
     l_values: &[f64],
     expected: usize,
-) -> bool {
+) -> Result<(), FallbackReason> {
     let mut positive = 0;
     let mut ok = |d: f64| {
         positive += usize::from(d > 0.0);
@@ -451,7 +538,13 @@ fn pivots_have_expected_inertia(
             })
         }
     };
-    each && positive == expected
+    if !each {
+        Err(FallbackReason::Pivot)
+    } else if positive != expected {
+        Err(FallbackReason::Inertia { positive, expected })
+    } else {
+        Ok(())
+    }
 }
 
 impl LinearSolver for SparseLdlt {
@@ -584,6 +677,10 @@ impl LinearSolver for SparseLdlt {
 
     fn fallbacks(&self) -> usize {
         self.fallbacks
+    }
+
+    fn fallback_log(&self) -> &[Fallback] {
+        &self.log
     }
 
     /// Computed on each call (`O(nnz(L))`, no numeric work; see

@@ -1,7 +1,7 @@
 //! Tests of `ldlt.rs` (its child module, private items included): the
 //! LDL^T against LU on quasi-definite systems without a fallback, the
 //! refinement of an inactive multiplier to the assembled system, the LU
-//! fallback of an indefinite stiffness, the inertia check of a mode held
+//! fallback of an indefinite stiffness (its reason logged), the inertia check of a mode held
 //! only by a constraint, the factor's nonzeros, and a singular matrix or
 //! mismatched sizes (errors, never a panic).
 
@@ -82,10 +82,38 @@ fn indefinite_stiffness_falls_back_to_lu() {
     let (x, y, s) = both(2, &t, &[1.0, 0.0]);
     assert_close(&x, &y);
     assert_eq!(s.fallbacks(), 1);
+    // the pivots 1 and -3: one positive where both diagonals are
+    assert_eq!(
+        s.fallback_log(),
+        [Fallback {
+            solve: 1,
+            reason: FallbackReason::Inertia {
+                positive: 1,
+                expected: 2
+            },
+            lu: LuOutcome::Solved,
+        }]
+    );
     // a zero pivot (the multiplier eliminated before its dofs) too
     let t = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 0.0)];
     let (x, y, _) = both(2, &t, &[1.0, 1.0]);
     assert_close(&x, &y);
+}
+
+/// With the available memory unknown, the LU fallback runs without a
+/// limit (a limit's refusal is `tests/lu_fallback_memory.rs`, its own
+/// process: the limit holds for every thread).
+#[test]
+fn an_lu_fallback_without_a_known_memory_runs() {
+    let t = [(0u32, 0u32, 1.0), (1, 1, 1.0), (0, 1, 2.0), (1, 0, 2.0)];
+    let rows: Vec<u32> = t.iter().map(|e| e.0).collect();
+    let cols: Vec<u32> = t.iter().map(|e| e.1).collect();
+    let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
+    let mut s = SparseLdlt::with_available_memory(|| None);
+    let x = s.solve_system(2, &rows, &cols, &vals, &[1.0, 0.0]).unwrap();
+    assert_eq!(s.fallbacks(), 1);
+    assert_eq!(s.fallback_log()[0].lu, LuOutcome::Solved);
+    assert_close(&x, &[-1.0 / 3.0, 2.0 / 3.0]);
 }
 
 /// `K` slightly indefinite along a mode that only the constraint holds

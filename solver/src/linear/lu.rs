@@ -17,8 +17,9 @@
 use std::time::{Duration, Instant};
 
 use faer::prelude::*;
+use faer::sparse::linalg::LuError;
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
-use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
+use faer::sparse::{Argsort, FaerError, Pair, SparseColMat, SymbolicSparseColMat};
 
 use super::{LinearError, LinearSolver};
 
@@ -91,8 +92,12 @@ impl LinearSolver for SparseLu {
             .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
         let a = SparseColMat::new_from_argsort(p.symbolic.clone(), &p.argsort, vals)
             .map_err(|e| LinearError::Singular(format!("values: {e:?}")))?;
-        let lu = Lu::try_new_with_symbolic(p.lu.clone(), a.as_ref())
-            .map_err(|e| LinearError::Singular(format!("numeric LU: {e:?}")))?;
+        let lu = Lu::try_new_with_symbolic(p.lu.clone(), a.as_ref()).map_err(|e| match e {
+            LuError::Generic(FaerError::OutOfMemory) => {
+                LinearError::OutOfMemory(format!("numeric LU: {e:?}"))
+            }
+            e => LinearError::Singular(format!("numeric LU: {e:?}")),
+        })?;
         self.numeric = Some(lu);
         Ok(())
     }

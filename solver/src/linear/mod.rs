@@ -34,6 +34,7 @@
 //! ([`LinearSolver::set_forcing`]); a direct solver ignores both.
 
 mod block;
+pub mod fallback;
 pub mod ldlt;
 pub mod lu;
 #[cfg(feature = "petsc")]
@@ -44,6 +45,7 @@ mod scene_tests;
 use std::time::Duration;
 
 pub use block::{Block, BlockPattern};
+pub use fallback::{Fallback, FallbackReason, LuOutcome};
 pub use ldlt::SparseLdlt;
 pub use lu::SparseLu;
 
@@ -66,6 +68,10 @@ pub enum LinearError {
     /// A call into PETSc failed (PETSc's message).
     #[error("{0}")]
     Petsc(String),
+    /// A fallback factorisation was not tried: its memory estimate exceeds
+    /// the available memory (the fallback and the figures, [`fallback`]).
+    #[error("not enough memory for the fallback factorisation: {0}")]
+    OutOfMemory(String),
 }
 
 /// What Newton's equations are, for a solver that needs more than the
@@ -162,6 +168,13 @@ pub trait LinearSolver: Send {
     /// this one was not safe for them (0 for a solver without a fallback).
     fn fallbacks(&self) -> usize {
         0
+    }
+
+    /// Every solve so far that did not pass this solver's checks, with the
+    /// check it failed and what the fallback did (empty for a solver
+    /// without a fallback).
+    fn fallback_log(&self) -> &[Fallback] {
+        &[]
     }
 
     /// Nonzeros of the factor of the last analysed pattern (the fill): the
