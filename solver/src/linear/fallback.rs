@@ -38,7 +38,9 @@ pub enum FallbackReason {
     /// finite.
     Pivot,
     /// The pivots' inertia: `positive` positive pivots where the matrix has
-    /// `expected` rows with a positive assembled diagonal.
+    /// `expected` rows with a positive assembled diagonal (fewer: the
+    /// stiffness indefinite where the constraints do not hold it; more:
+    /// round-off, `ldlt.rs`'s module docs).
     Inertia {
         /// Positive pivots.
         positive: usize,

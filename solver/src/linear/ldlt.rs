@@ -46,7 +46,20 @@
 //!   right inertia that refinement solves to a backward error of about
 //!   1e-18. `K` indefinite on that null space (buckling) shows up as a
 //!   wrong count; a numerically singular matrix as a zero pivot, a wrong
-//!   count, or in the next check (and [`check_solution`]);
+//!   count, or in the next check (and [`check_solution`]). *More* positive
+//!   pivots than those rows cannot be exact: where every `K` diagonal is
+//!   positive, the rows with a non-positive diagonal are constraint rows,
+//!   coupled to one another only through that diagonal, so the matrix is
+//!   negative semi-definite on the span of their unit vectors and, by
+//!   Courant–Fischer, has at most as many positive eigenvalues as the
+//!   other rows. They are round-off, an active multiplier's pivot
+//!   `-eps - g^T S^-1 g` cancelled to a positive value where its
+//!   constraint row is nearly a combination of the others' (seen with dual
+//!   multipliers at the edge of contact, [`super::fallback`]). They still
+//!   fall back: accepting them on the backward error alone was tried, and
+//!   on the 3D Hertz scene on non-matching hexahedra at h = 0.07
+//!   (segmented, dual) the accepted step inverted an element and the
+//!   attempt was cut back;
 //! - the solution is not finite, or its normwise backward error
 //!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
 //!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.

@@ -68,9 +68,9 @@ pub enum LinearError {
     /// A call into PETSc failed (PETSc's message).
     #[error("{0}")]
     Petsc(String),
-    /// A fallback factorisation was not tried: its memory estimate exceeds
-    /// the available memory (the fallback and the figures, [`fallback`]).
-    #[error("not enough memory for the fallback factorisation: {0}")]
+    /// A factorisation could not allocate its factor (for the LDLᵀ's LU
+    /// fallback, within the memory available: [`fallback`]).
+    #[error("out of memory: {0}")]
     OutOfMemory(String),
 }
 
