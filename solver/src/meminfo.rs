@@ -65,7 +65,7 @@ static LIMITED: Mutex<()> = Mutex::new(());
 /// (not Linux), it limits nothing.
 pub struct AddressSpaceLimit {
     /// The soft limit to restore, `None` when nothing was set.
-    previous: Option<libc::rlim_t>,
+    previous: Option<u64>,
     _held: MutexGuard<'static, ()>,
 }
 
@@ -96,41 +96,55 @@ impl Drop for AddressSpaceLimit {
 }
 
 /// Lowers the soft `RLIMIT_AS` to `bytes` (never raising it); the soft
-/// limit before, `None` when it was not changed.
-fn set_soft_limit(bytes: u64) -> Option<libc::rlim_t> {
+/// limit before, `None` when it was not changed. (`rlim_t` is `u64` on
+/// 64-bit Linux, narrower on some other targets: hence the conversions.)
+#[cfg(unix)]
+#[allow(clippy::useless_conversion)]
+fn set_soft_limit(bytes: u64) -> Option<u64> {
+    let current = get_limit()?;
+    let wanted = libc::rlim_t::try_from(bytes).ok()?;
+    if current.rlim_cur != libc::RLIM_INFINITY && current.rlim_cur <= wanted {
+        return None;
+    }
+    set_soft(u64::try_from(wanted).ok()?).ok()?;
+    u64::try_from(current.rlim_cur).ok()
+}
+
+/// No limit where there is no `setrlimit`.
+#[cfg(not(unix))]
+fn set_soft_limit(_bytes: u64) -> Option<u64> {
+    None
+}
+
+/// The present `RLIMIT_AS`.
+#[cfg(unix)]
+fn get_limit() -> Option<libc::rlimit> {
     let mut current = libc::rlimit {
         rlim_cur: 0,
         rlim_max: 0,
     };
     // SAFETY: getrlimit writes the struct it is given, which lives here.
-    if unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut current) } != 0 {
-        return None;
-    }
-    let wanted = libc::rlim_t::try_from(bytes).ok()?;
-    if current.rlim_cur != libc::RLIM_INFINITY && current.rlim_cur <= wanted {
-        return None;
-    }
-    set_soft(wanted.min(current.rlim_max)).ok()?;
-    Some(current.rlim_cur)
+    (unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut current) } == 0).then_some(current)
 }
 
-/// Sets the soft `RLIMIT_AS`, keeping the hard one.
-fn set_soft(soft: libc::rlim_t) -> Result<(), ()> {
-    let mut current = libc::rlimit {
-        rlim_cur: 0,
-        rlim_max: 0,
-    };
-    // SAFETY: getrlimit writes, and setrlimit reads, a struct that lives
-    // here.
-    unsafe {
-        if libc::getrlimit(libc::RLIMIT_AS, &mut current) != 0 {
-            return Err(());
-        }
-        current.rlim_cur = soft.min(current.rlim_max);
-        if libc::setrlimit(libc::RLIMIT_AS, &current) != 0 {
-            return Err(());
-        }
+/// Sets the soft `RLIMIT_AS` (at most the hard one), keeping the hard one.
+#[cfg(unix)]
+#[allow(clippy::useless_conversion)]
+fn set_soft(soft: u64) -> Result<(), ()> {
+    let mut limit = get_limit().ok_or(())?;
+    limit.rlim_cur = libc::rlim_t::try_from(soft)
+        .map_err(|_| ())?
+        .min(limit.rlim_max);
+    // SAFETY: setrlimit reads a struct that lives here.
+    if unsafe { libc::setrlimit(libc::RLIMIT_AS, &limit) } != 0 {
+        return Err(());
     }
+    Ok(())
+}
+
+/// Nothing to restore where there is no `setrlimit`.
+#[cfg(not(unix))]
+fn set_soft(_soft: u64) -> Result<(), ()> {
     Ok(())
 }
 
