@@ -52,10 +52,10 @@
 //!   coupled to one another only through that diagonal, so the matrix is
 //!   negative semi-definite on the span of their unit vectors and, by
 //!   Courant–Fischer, has at most as many positive eigenvalues as the
-//!   other rows. They are round-off, an active multiplier's pivot
-//!   `-eps - g^T S^-1 g` cancelled to a positive value where its
-//!   constraint row is nearly a combination of the others' (seen with dual
-//!   multipliers at the edge of contact, [`super::fallback`]). They still
+//!   other rows. They are round-off: an active multiplier's pivot
+//!   `-eps - g^T S^-1 g` cancelled to a positive value (seen with dual
+//!   multipliers on the 3D Hertz scene on tetrahedra: the multiplier of
+//!   the indenter's tip on the symmetry axis, docs/benchmarks.md). They still
 //!   fall back: accepting them on the backward error alone was tried, and
 //!   on the 3D Hertz scene on non-matching hexahedra at h = 0.07
 //!   (segmented, dual) the accepted step inverted an element and the
