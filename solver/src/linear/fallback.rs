@@ -39,8 +39,9 @@ pub enum FallbackReason {
     Pivot,
     /// The pivots' inertia: `positive` positive pivots where the matrix has
     /// `expected` rows with a positive assembled diagonal (fewer: the
-    /// stiffness indefinite where the constraints do not hold it; more:
-    /// round-off, `ldlt.rs`'s module docs).
+    /// stiffness indefinite where the constraints do not hold it; more: a
+    /// displacement row whose diagonal is not positive, `ldlt.rs`'s module
+    /// docs).
     Inertia {
         /// Positive pivots.
         positive: usize,

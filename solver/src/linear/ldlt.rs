@@ -47,19 +47,20 @@
 //!   1e-18. `K` indefinite on that null space (buckling) shows up as a
 //!   wrong count; a numerically singular matrix as a zero pivot, a wrong
 //!   count, or in the next check (and [`check_solution`]). *More* positive
-//!   pivots than those rows cannot be exact: where every `K` diagonal is
-//!   positive, the rows with a non-positive diagonal are constraint rows,
-//!   coupled to one another only through that diagonal, so the matrix is
-//!   negative semi-definite on the span of their unit vectors and, by
-//!   Courant–Fischer, has at most as many positive eigenvalues as the
-//!   other rows. They are round-off: an active multiplier's pivot
-//!   `-eps - g^T S^-1 g` cancelled to a positive value (seen with dual
-//!   multipliers on the 3D Hertz scene on tetrahedra: the multiplier of
-//!   the indenter's tip on the symmetry axis, docs/benchmarks.md). They still
-//!   fall back: accepting them on the backward error alone was tried, and
-//!   on the 3D Hertz scene on non-matching hexahedra at h = 0.07
-//!   (segmented, dual) the accepted step inverted an element and the
-//!   attempt was cut back;
+//!   pivots than those rows happen when a displacement row's assembled
+//!   diagonal is not positive: it is then counted with the constraint rows
+//!   although, where the constraints hold the stiffness, it has a positive
+//!   eigenvalue of its own. The contact's geometric stiffness
+//!   `lambda g''` of a large multiplier can make a diagonal negative: on
+//!   the 3D Hertz scene on tetrahedra with dual multipliers, after a first
+//!   solve in which only the indenter's tip was in contact, free equation
+//!   11 had diagonal -0.41 and sat in the tip's constraint row, whose
+//!   pivot came out +9.4e-7 (docs/benchmarks.md). Such solves still fall
+//!   back. Counting rows by kind (every displacement row positive) would
+//!   accept them; that is not done yet. Accepting every such solve on the
+//!   backward error alone was tried: on the 3D Hertz scene on non-matching
+//!   hexahedra at h = 0.07 (segmented, dual), the accepted step inverted an
+//!   element and the attempt was cut back;
 //! - the solution is not finite, or its normwise backward error
 //!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
 //!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.
