@@ -50,8 +50,8 @@
 //!   pivots than those rows happen when a displacement row's assembled
 //!   diagonal is not positive: it is then counted with the constraint rows
 //!   although, where the constraints hold the stiffness, it has a positive
-//!   eigenvalue of its own. The contact's geometric stiffness
-//!   `lambda g''` of a large multiplier can make a diagonal negative: on
+//!   eigenvalue of its own (the contact's geometric stiffness
+//!   `lambda g''` of a large multiplier can make a diagonal negative). On
 //!   the 3D Hertz scene on tetrahedra with dual multipliers, after a first
 //!   solve in which only the indenter's tip was in contact, free equation
 //!   11 had diagonal -0.41 and sat in the tip's constraint row, whose
