@@ -16,19 +16,22 @@ pub fn available() -> Option<u64> {
     mem_available(&text)
 }
 
-/// `MemAvailable` (in bytes) of the text of `/proc/meminfo`.
+/// `MemAvailable` (in bytes) of the text of `/proc/meminfo`: a value in
+/// `kB` or, without a unit, in bytes.
 fn mem_available(meminfo: &str) -> Option<u64> {
-    let line = meminfo
-        .lines()
-        .find_map(|l| l.strip_prefix("MemAvailable:"))?;
+    match proc_field(meminfo, "MemAvailable:")? {
+        (value, Some("kB")) => value.checked_mul(1024),
+        (value, None) => Some(value),
+        _ => None,
+    }
+}
+
+/// The value and unit of the line `name value [unit]` of `/proc` text.
+fn proc_field<'t>(text: &'t str, name: &str) -> Option<(u64, Option<&'t str>)> {
+    let line = text.lines().find_map(|l| l.strip_prefix(name))?;
     let mut words = line.split_whitespace();
     let value: u64 = words.next()?.parse().ok()?;
-    let scale = match words.next() {
-        Some("kB") => 1024,
-        None => 1,
-        Some(_) => return None,
-    };
-    value.checked_mul(scale)
+    Some((value, words.next()))
 }
 
 /// The size of this process's address space (`VmSize` of
@@ -40,11 +43,8 @@ pub fn address_space() -> Option<u64> {
 
 /// A field `name value kB` of `/proc` text, in bytes.
 fn kib_field(text: &str, name: &str) -> Option<u64> {
-    let line = text.lines().find_map(|l| l.strip_prefix(name))?;
-    let mut words = line.split_whitespace();
-    let value: u64 = words.next()?.parse().ok()?;
-    match words.next() {
-        Some("kB") => value.checked_mul(1024),
+    match proc_field(text, name)? {
+        (value, Some("kB")) => value.checked_mul(1024),
         _ => None,
     }
 }

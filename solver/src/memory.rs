@@ -72,7 +72,7 @@
 //! back ([`crate::linear::fallback`], "The LU's memory"). Measured on the
 //! 3D Hertz scene on non-matching hexahedra at h = 0.07 (147228 equations,
 //! segmented integration, dual multipliers): the LDLᵀ alone held about
-//! 8 GiB; before the limit, the first iterate's fallback took the process
+//! 8 GiB; before the limit, the second solve's fallback took the process
 //! past 22 GiB, where the system killed it.
 
 use crate::element::ElementKind;
