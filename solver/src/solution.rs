@@ -278,6 +278,10 @@ where
     /// check it failed and what the LU did (see
     /// [`crate::linear::LinearSolver::fallback_log`]); empty with LU.
     pub linear_fallback_log: Vec<crate::linear::Fallback>,
+    /// Every linear solve whose stiffness was indefinite where the active
+    /// constraints leave it free (see
+    /// [`crate::linear::LinearSolver::indefinite_log`]); empty with LU.
+    pub linear_indefinite_log: Vec<crate::linear::IndefiniteSolve>,
     /// Nonzeros of the factor of the last sparsity pattern (the fill; see
     /// [`crate::linear::LinearSolver::factor_nonzeros`]): the lower triangle
     /// of `L`, diagonal included, with LDL^T; `None` with LU, whose factors

@@ -753,6 +753,27 @@ fn print_fallbacks(log: &[solver::linear::Fallback]) {
     }
 }
 
+/// The solves whose stiffness was indefinite where the active constraints
+/// leave it free (the first [`FALLBACKS_LISTED`], then how many more).
+fn print_indefinite(log: &[solver::linear::IndefiniteSolve]) {
+    if log.is_empty() {
+        return;
+    }
+    println!(
+        "indefinite      {} solves: the stiffness has negative eigenvalues the active constraints do not hold",
+        log.len()
+    );
+    for solve in log.iter().take(FALLBACKS_LISTED) {
+        println!("                {solve}");
+    }
+    if log.len() > FALLBACKS_LISTED {
+        println!(
+            "                ... and {} more",
+            log.len() - FALLBACKS_LISTED
+        );
+    }
+}
+
 /// The summary's cost lines: time, factorisation, fill, the linear
 /// solver's fallbacks, kernel calls.
 fn print_costs<const D: usize>(sol: &solver::Solution<D>, options: &SolveOptions)
@@ -810,6 +831,7 @@ where
             options.linear, sol.symbolic_factorisations, sol.linear_fallbacks
         );
         print_fallbacks(&sol.linear_fallback_log);
+        print_indefinite(&sol.linear_indefinite_log);
     }
     println!(
         "kernel calls    {} evaluations, {} projections",

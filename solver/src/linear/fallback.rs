@@ -37,17 +37,6 @@ pub enum FallbackReason {
     /// faer's numeric factorisation stopped, or a pivot is zero or not
     /// finite.
     Pivot,
-    /// The pivots' inertia: `positive` positive pivots where the matrix has
-    /// `expected` rows with a positive assembled diagonal (fewer: the
-    /// stiffness indefinite where the constraints do not hold it; more: a
-    /// displacement row whose diagonal is not positive, `ldlt.rs`'s module
-    /// docs).
-    Inertia {
-        /// Positive pivots.
-        positive: usize,
-        /// Rows with a positive assembled diagonal.
-        expected: usize,
-    },
     /// The refined solution is not finite.
     NonFinite,
     /// The normwise backward error after the last refinement step.
@@ -63,10 +52,6 @@ impl fmt::Display for FallbackReason {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             FallbackReason::Pivot => write!(f, "a zero or non-finite pivot"),
-            FallbackReason::Inertia { positive, expected } => write!(
-                f,
-                "inertia: {positive} positive pivots, {expected} rows with a positive diagonal"
-            ),
             FallbackReason::NonFinite => write!(f, "a non-finite solution"),
             FallbackReason::BackwardError {
                 backward_error,
@@ -138,9 +123,9 @@ mod tests {
     fn a_fallback_says_why_and_what_the_lu_did() {
         let f = Fallback {
             solve: 3,
-            reason: FallbackReason::Inertia {
-                positive: 10,
-                expected: 12,
+            reason: FallbackReason::BackwardError {
+                backward_error: 3e-9,
+                refinements: 3,
             },
             lu: LuOutcome::OutOfMemory {
                 available: Some(2 << 30),
@@ -149,7 +134,7 @@ mod tests {
         };
         assert_eq!(
             f.to_string(),
-            "solve 3: inertia: 10 positive pivots, 12 rows with a positive diagonal; \
+            "solve 3: backward error 3.0e-9 after 3 refinement steps; \
              the LU did not fit in the 2048 MiB available (numeric LU: Generic(OutOfMemory))"
         );
     }

@@ -35,32 +35,31 @@
 //! - the pivots have the wrong inertia. By Sylvester's law the pivots have
 //!   as many positive signs as the matrix has positive eigenvalues, and a
 //!   saddle-point matrix whose `K` is positive definite on the null space of
-//!   the active constraints' `G` has one positive eigenvalue per row whose
-//!   assembled diagonal is positive (the `K` rows, inactive multipliers) and
-//!   one negative per other row (active multipliers, ties). The check counts
-//!   positive pivots against those rows, not the sign of each pivot: where
-//!   `K` itself is singular or slightly indefinite along a mode that only
-//!   contact holds (a body held only by contact, e.g. the Hertz cylinder
-//!   under finite strain), the last displacement pivot of that mode is
-//!   negative and the multiplier ordered after it positive, a pair of the
-//!   right inertia that refinement solves to a backward error of about
-//!   1e-18. `K` indefinite on that null space (buckling) shows up as a
-//!   wrong count; a numerically singular matrix as a zero pivot, a wrong
-//!   count, or in the next check (and [`check_solution`]). *More* positive
-//!   pivots than those rows happen when a displacement row's assembled
-//!   diagonal is not positive: it is then counted with the constraint rows
-//!   although, where the constraints hold the stiffness, it has a positive
-//!   eigenvalue of its own (the contact's geometric stiffness
-//!   `lambda g''` of a large multiplier can make a diagonal negative). On
-//!   the 3D Hertz scene on tetrahedra with dual multipliers, after a first
+//!   the active constraints' `G` (of full row rank) has one positive
+//!   eigenvalue per free-dof row and per inactive multiplier (its unit
+//!   diagonal) and one negative per active multiplier and tie. The check
+//!   counts rows by kind, every free-dof row (before
+//!   [`LinearSolver::set_constraints_from`]'s first constraint row) positive
+//!   and each constraint row by the sign of its assembled diagonal
+//!   ([`expected_positive_pivots`]), and compares the number of positive
+//!   pivots, not the sign of each pivot: where `K` itself is singular or
+//!   indefinite along a mode that only contact holds, the displacement
+//!   pivot of that mode is negative and the multiplier ordered after it
+//!   positive, a pair of the right inertia that refinement solves to a
+//!   backward error of about 1e-18. Two cases of this kind are known: a
+//!   body held only by contact (the Hertz cylinder under finite strain),
+//!   and a displacement row whose assembled diagonal the contact's
+//!   geometric stiffness `lambda g''` of a large multiplier made negative
+//!   (the 3D Hertz scene on tetrahedra with dual multipliers: after a first
 //!   solve in which only the indenter's tip was in contact, free equation
-//!   11 had diagonal -0.41 and sat in the tip's constraint row, whose
-//!   pivot came out +9.4e-7 (docs/benchmarks.md). Such solves still fall
-//!   back. Counting rows by kind (every displacement row positive) would
-//!   accept them; that is not done yet. Accepting every such solve on the
-//!   backward error alone was tried: on the 3D Hertz scene on non-matching
-//!   hexahedra at h = 0.07 (segmented, dual), the accepted step inverted an
-//!   element and the attempt was cut back;
+//!   11 had diagonal -0.41 and sat in the tip's constraint row, whose pivot
+//!   came out +9.4e-7; docs/benchmarks.md). `K` indefinite on that null
+//!   space (buckling) shows up as a wrong count; a numerically singular
+//!   matrix as a zero pivot, a wrong count, or in the next check (and
+//!   [`check_solution`]). Without the layout hint every row is counted by
+//!   the sign of its diagonal, which also expects a negative eigenvalue
+//!   from a displacement row with a negative diagonal and so falls back in
+//!   the second case;
 //! - the solution is not finite, or its normwise backward error
 //!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
 //!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.
@@ -98,6 +97,7 @@ use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat, SymbolicSparseCo
 use faer::{Conj, Side};
 
 use super::fallback::{Fallback, FallbackReason, LuOutcome};
+use super::inertia::{self, IndefiniteSolve, Inertia};
 use super::{LinearError, LinearSolver, SparseLu, check_solution};
 use crate::meminfo::AddressSpaceLimit;
 
@@ -164,6 +164,8 @@ pub struct SparseLdlt {
     solves: usize,
     /// Every solve that fell back, with its reason.
     log: Vec<Fallback>,
+    /// Every solve whose pivots did not have the expected inertia.
+    indefinite: Vec<IndefiniteSolve>,
     /// The memory an LU fallback may take (`MemAvailable`; a test's own).
     available: fn() -> Option<u64>,
 }
@@ -182,6 +184,7 @@ impl Default for SparseLdlt {
             spare: Vec::new(),
             solves: 0,
             log: Vec::new(),
+            indefinite: Vec::new(),
             available: crate::meminfo::available,
         }
     }
@@ -281,7 +284,7 @@ impl SparseLdlt {
                 diagonal[p.rows[k] as usize] += vals[k];
             }
         }
-        let expected_positive = diagonal.iter().filter(|&&d| d > 0.0).count();
+        let expected_positive = inertia::expected_positive_pivots(&diagonal, self.constraints_from);
         drop(diagonal);
         let a = SparseColMatRef::new(p.symbolic.as_ref(), &lower_vals);
         let mut l_values = std::mem::take(&mut self.spare);
@@ -303,10 +306,16 @@ impl SparseLdlt {
             )
             .map(|_| ())
             .map_err(|_| FallbackReason::Pivot);
-        let safe = factored
-            .and_then(|()| pivots_have_expected_inertia(&p.cholesky, &l_values, expected_positive));
+        let safe =
+            factored.and_then(|()| pivot_inertia(&p.cholesky, &l_values, expected_positive));
         match safe {
-            Ok(()) => {
+            Ok(inertia) => {
+                if !inertia.is_expected() {
+                    self.indefinite.push(IndefiniteSolve {
+                        solve: self.solves,
+                        inertia,
+                    });
+                }
                 self.numeric = Some(Factor::Ldlt {
                     l_values,
                     vals: None,
@@ -524,14 +533,14 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
 }
 
-/// Whether every pivot of the factorisation `l_values` is non-zero and
-/// finite, and `expected` of them are positive (the inertia of the module
-/// docs); otherwise which of the two failed.
-fn pivots_have_expected_inertia(
+/// The inertia of the factorisation `l_values` against `expected`
+/// positive pivots ([`super::inertia`]), or [`FallbackReason::Pivot`] when
+/// a pivot is zero or not finite.
+fn pivot_inertia(
     cholesky: &SymbolicCholesky<usize>,
     l_values: &[f64],
     expected: usize,
-) -> Result<(), FallbackReason> {
+) -> Result<Inertia, FallbackReason> {
     let mut positive = 0;
     let mut ok = |d: f64| {
         positive += usize::from(d > 0.0);
@@ -552,12 +561,10 @@ fn pivots_have_expected_inertia(
             })
         }
     };
-    if !each {
-        Err(FallbackReason::Pivot)
-    } else if positive != expected {
-        Err(FallbackReason::Inertia { positive, expected })
+    if each {
+        Ok(Inertia { positive, expected })
     } else {
-        Ok(())
+        Err(FallbackReason::Pivot)
     }
 }
 
@@ -695,6 +702,10 @@ impl LinearSolver for SparseLdlt {
 
     fn fallback_log(&self) -> &[Fallback] {
         &self.log
+    }
+
+    fn indefinite_log(&self) -> &[IndefiniteSolve] {
+        &self.indefinite
     }
 
     /// Computed on each call (`O(nnz(L))`, no numeric work; see

@@ -74,27 +74,44 @@ fn inactive_multiplier_is_refined_to_the_assembled_system() {
     assert!(s.refinements() >= 1);
 }
 
-/// An indefinite `K` (a wrong-signed pivot) falls back to LU and still
-/// solves; the fallback is counted.
+/// An indefinite `K` (pivots 1 and -3 where both rows count positive) is
+/// kept: the refined solve is LU's, and the solve is recorded with its
+/// inertia rather than handed to the LU.
 #[test]
-fn indefinite_stiffness_falls_back_to_lu() {
+fn indefinite_stiffness_is_kept_and_recorded() {
     let t = [(0, 0, 1.0), (1, 1, 1.0), (0, 1, 2.0), (1, 0, 2.0)];
     let (x, y, s) = both(2, &t, &[1.0, 0.0]);
     assert_close(&x, &y);
-    assert_eq!(s.fallbacks(), 1);
-    // the pivots 1 and -3: one positive where both diagonals are
+    assert_eq!(s.fallbacks(), 0);
+    assert_eq!(
+        s.indefinite_log(),
+        [IndefiniteSolve {
+            solve: 1,
+            inertia: Inertia {
+                positive: 1,
+                expected: 2
+            },
+        }]
+    );
+}
+
+/// A zero pivot falls back to LU, which solves: `[0 1; 1 0]` has one in
+/// any order.
+#[test]
+fn a_zero_pivot_falls_back_to_lu() {
+    let t = [(0, 1, 1.0), (1, 0, 1.0)];
+    let (x, y, s) = both(2, &t, &[1.0, 0.0]);
+    assert_close(&x, &y);
+    assert_close(&x, &[0.0, 1.0]);
     assert_eq!(
         s.fallback_log(),
         [Fallback {
             solve: 1,
-            reason: FallbackReason::Inertia {
-                positive: 1,
-                expected: 2
-            },
+            reason: FallbackReason::Pivot,
             lu: LuOutcome::Solved,
         }]
     );
-    // a zero pivot (the multiplier eliminated before its dofs) too
+    // the multiplier eliminated before its dofs: a zero pivot too
     let t = [(0, 0, 2.0), (0, 1, 1.0), (1, 0, 1.0), (1, 1, 0.0)];
     let (x, y, _) = both(2, &t, &[1.0, 1.0]);
     assert_close(&x, &y);
@@ -105,7 +122,7 @@ fn indefinite_stiffness_falls_back_to_lu() {
 /// process: the limit holds for every thread).
 #[test]
 fn an_lu_fallback_without_a_known_memory_runs() {
-    let t = [(0u32, 0u32, 1.0), (1, 1, 1.0), (0, 1, 2.0), (1, 0, 2.0)];
+    let t = [(0u32, 1u32, 1.0), (1, 0, 1.0)];
     let rows: Vec<u32> = t.iter().map(|e| e.0).collect();
     let cols: Vec<u32> = t.iter().map(|e| e.1).collect();
     let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
@@ -113,7 +130,7 @@ fn an_lu_fallback_without_a_known_memory_runs() {
     let x = s.solve_system(2, &rows, &cols, &vals, &[1.0, 0.0]).unwrap();
     assert_eq!(s.fallbacks(), 1);
     assert_eq!(s.fallback_log()[0].lu, LuOutcome::Solved);
-    assert_close(&x, &[-1.0 / 3.0, 2.0 / 3.0]);
+    assert_close(&x, &[0.0, 1.0]);
 }
 
 /// `K` slightly indefinite along a mode that only the constraint holds
@@ -152,8 +169,8 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
     assert_eq!(fwd[2], 2);
     // K indefinite on the constraint's null space (buckling: the
     // constraint on dof 2, the indefinite block on dofs 0 and 1, every
-    // diagonal positive): two positive pivots for three positive rows,
-    // and the solve falls back
+    // diagonal positive): two positive pivots for three expected, kept
+    // and recorded
     let t = [
         (0, 0, 1.0),
         (0, 1, 2.0),
@@ -174,7 +191,67 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
         .solve_system(4, &rows, &cols, &vals, &b)
         .unwrap();
     assert_close(&x, &y);
-    assert_eq!(s.fallbacks(), 1);
+    assert_eq!(s.fallbacks(), 0);
+    assert_eq!(
+        s.indefinite_log(),
+        [IndefiniteSolve {
+            solve: 2,
+            inertia: Inertia {
+                positive: 2,
+                expected: 3
+            },
+        }]
+    );
+}
+
+/// A displacement row whose assembled diagonal is negative (the
+/// geometric stiffness of a large multiplier) inside its own constraint's
+/// row: `K = [-0.41 0.1; 0.1 1]`, the multiplier on dof 0. `K` is
+/// positive definite on the constraint's null space (dof 1), so the
+/// matrix has two positive eigenvalues and one negative: the rows counted
+/// by kind (both displacement rows positive) find the expected inertia.
+/// Counted by diagonal, without the layout hint, the same matrix looks
+/// indefinite. With the constraint on dof 1 instead, `K` is negative on
+/// the null space (dof 0): one positive pivot for two displacement rows.
+/// Every one of them is solved by the LDL^T, as the LU solves it.
+#[test]
+fn a_negative_diagonal_held_by_its_constraint_has_the_expected_inertia() {
+    let system = |constrained: usize| {
+        let t = [
+            (0, 0, -0.41),
+            (0, 1, 0.1),
+            (1, 0, 0.1),
+            (1, 1, 1.0),
+            (constrained, 2, 1.0),
+            (2, constrained, 1.0),
+            (2, 2, -1e-8),
+        ];
+        let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
+        let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
+        let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
+        (rows, cols, vals)
+    };
+    let b = [1.0, 0.5, -0.25];
+    let solve = |constrained: usize, hint: bool| {
+        let (rows, cols, vals) = system(constrained);
+        let mut s = SparseLdlt::new();
+        if hint {
+            s.set_constraints_from(2);
+        }
+        let x = s.solve_system(3, &rows, &cols, &vals, &b).unwrap();
+        let y = SparseLu::new()
+            .solve_system(3, &rows, &cols, &vals, &b)
+            .unwrap();
+        assert_close(&x, &y);
+        assert_eq!(s.fallbacks(), 0);
+        s.indefinite_log()
+            .iter()
+            .map(|i| (i.inertia.positive, i.inertia.expected))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(solve(0, true), []);
+    assert_eq!(solve(0, false), [(2, 1)]);
+    assert_eq!(solve(1, true), [(1, 2)]);
 }
 
 /// The fill: a tridiagonal matrix factorises without fill (`2n - 1`

@@ -35,6 +35,7 @@
 
 mod block;
 pub mod fallback;
+pub mod inertia;
 pub mod ldlt;
 pub mod lu;
 #[cfg(feature = "petsc")]
@@ -46,6 +47,7 @@ use std::time::Duration;
 
 pub use block::{Block, BlockPattern};
 pub use fallback::{Fallback, FallbackReason, LuOutcome};
+pub use inertia::{IndefiniteSolve, Inertia};
 pub use ldlt::SparseLdlt;
 pub use lu::SparseLu;
 
@@ -174,6 +176,13 @@ pub trait LinearSolver: Send {
     /// check it failed and what the fallback did (empty for a solver
     /// without a fallback).
     fn fallback_log(&self) -> &[Fallback] {
+        &[]
+    }
+
+    /// Every solve so far whose factorisation showed a stiffness indefinite
+    /// where the active constraints leave it free ([`inertia`]; empty for a
+    /// solver that does not count its pivots).
+    fn indefinite_log(&self) -> &[IndefiniteSolve] {
         &[]
     }
 

@@ -164,10 +164,14 @@ fn unsupported_model_is_singular_with_ldlt() {
 /// a positive multiplier pivot after it). The factorisation has the right
 /// inertia, so the LDL^T solves every iteration without falling back to LU
 /// (a per-row sign check fell back on 11 of the 19 and 7 of the 18), with
-/// LU's iterations and energy.
+/// LU's iterations and energy. One solve is recorded as indefinite: the
+/// finite-strain scene's second, in the attempt that inverts an element
+/// and is cut back, where the stiffness has a negative eigenvalue that the
+/// active constraints do not hold (one positive pivot fewer than the free
+/// dofs and inactive multipliers); the LDL^T solves it too.
 #[test]
 fn hertz_cylinder_held_by_contact_without_fallback() {
-    for file in ["hertz.toml", "hertz-small-strain.toml"] {
+    for (file, indefinite) in [("hertz.toml", 1), ("hertz-small-strain.toml", 0)] {
         let path = format!("{}/../scenes/{file}", env!("CARGO_MANIFEST_DIR"));
         let scene = Scene::from_file(&path).unwrap();
         let options = SolveOptions::from_scene(&scene);
@@ -180,5 +184,11 @@ fn hertz_cylinder_held_by_contact_without_fallback() {
         );
         assert_same_solve(&lu, &ldlt, 0, file);
         assert_eq!(ldlt.linear_fallbacks, 0, "{file}");
+        assert_eq!(ldlt.linear_indefinite_log.len(), indefinite, "{file}");
+        for i in &ldlt.linear_indefinite_log {
+            assert_eq!(i.solve, 2, "{file}: {i}");
+            assert_eq!(i.inertia.positive + 1, i.inertia.expected, "{file}: {i}");
+        }
+        assert_eq!(ldlt.cutbacks.len(), indefinite, "{file}");
     }
 }

@@ -582,6 +582,7 @@ where
             symbolic_factorisations: self.setup.linear.symbolic_factorisations(),
             linear_fallbacks: self.setup.linear.fallbacks(),
             linear_fallback_log: self.setup.linear.fallback_log().to_vec(),
+            linear_indefinite_log: self.setup.linear.indefinite_log().to_vec(),
             factor_nonzeros: self.setup.linear.factor_nonzeros(),
             krylov: self.setup.linear.krylov(),
             equations: self.setup.dofs.n_eq(),
