@@ -32,37 +32,34 @@
 //! [`LinearSolver::fallback_log`], [`super::fallback`]):
 //!
 //! - the numeric factorisation reports a zero or non-finite pivot;
-//! - the pivots have the wrong inertia. By Sylvester's law the pivots have
-//!   as many positive signs as the matrix has positive eigenvalues, and a
-//!   saddle-point matrix whose `K` is positive definite on the null space of
-//!   the active constraints' `G` (of full row rank) has one positive
-//!   eigenvalue per free-dof row and per inactive multiplier (its unit
-//!   diagonal) and one negative per active multiplier and tie. The check
-//!   counts rows by kind, every free-dof row (before
-//!   [`LinearSolver::set_constraints_from`]'s first constraint row) positive
-//!   and each constraint row by the sign of its assembled diagonal
-//!   ([`expected_positive_pivots`]), and compares the number of positive
-//!   pivots, not the sign of each pivot: where `K` itself is singular or
-//!   indefinite along a mode that only contact holds, the displacement
-//!   pivot of that mode is negative and the multiplier ordered after it
-//!   positive, a pair of the right inertia that refinement solves to a
-//!   backward error of about 1e-18. Two cases of this kind are known: a
-//!   body held only by contact (the Hertz cylinder under finite strain),
-//!   and a displacement row whose assembled diagonal the contact's
-//!   geometric stiffness `lambda g''` of a large multiplier made negative
-//!   (the 3D Hertz scene on tetrahedra with dual multipliers: after a first
-//!   solve in which only the indenter's tip was in contact, free equation
-//!   11 had diagonal -0.41 and sat in the tip's constraint row, whose pivot
-//!   came out +9.4e-7; docs/benchmarks.md). `K` indefinite on that null
-//!   space (buckling) shows up as a wrong count; a numerically singular
-//!   matrix as a zero pivot, a wrong count, or in the next check (and
-//!   [`check_solution`]). Without the layout hint every row is counted by
-//!   the sign of its diagonal, which also expects a negative eigenvalue
-//!   from a displacement row with a negative diagonal and so falls back in
-//!   the second case;
 //! - the solution is not finite, or its normwise backward error
 //!   `|b - A x|_inf / (|A|_inf |x|_inf + |b|_inf)` still exceeds
 //!   [`ACCEPT_BACKWARD_ERROR`] after [`MAX_REFINEMENTS`] refinement steps.
+//!
+//! The pivots' inertia is counted against the rows by kind
+//! ([`super::inertia`]: every free-dof row positive, each constraint row by
+//! the sign of its assembled diagonal, i.e. `K` positive definite on the
+//! active constraints' null space), and a solve whose count differs is
+//! recorded ([`LinearSolver::indefinite_log`]) but not handed to the LU: an
+//! accepted backward error makes it the solution of the same system the LU
+//! would solve, for the same Newton step, while the LU of a 3D model needs
+//! several times the memory. A wrong-signed displacement pivot paired with
+//! a wrong-signed multiplier pivot has the expected count: where `K` is
+//! singular or indefinite along a mode that only contact holds (a body
+//! held only by contact, the Hertz cylinder under finite strain; or a
+//! displacement row whose assembled diagonal the geometric stiffness
+//! `lambda g''` of a large multiplier made negative, the 3D Hertz scene on
+//! tetrahedra with dual multipliers: free equation 11 with diagonal -0.41
+//! in the indenter tip's constraint row, whose pivot came out +9.4e-7,
+//! docs/benchmarks.md), refinement solves such a pair to a backward error
+//! of about 1e-18. Fewer positive pivots than expected are `K` indefinite
+//! where the constraints leave it free (buckling, or an iterate about to
+//! invert elements); a numerically singular matrix shows up as a zero
+//! pivot or in the backward error (and [`check_solution`]). When a wrong
+//! count still fell back to the LU, two such solves on the 3D Hertz scene
+//! on non-matching hexahedra at h = 0.07 (segmented, dual) took the
+//! process to 23.4 GiB; kept, the run reaches the same energy in the same
+//! iterations at 5.2 GiB (docs/benchmarks.md).
 //!
 //! The LU allocates within `MemAvailable`: one that does not fit is
 //! [`LinearError::OutOfMemory`] ([`super::fallback`], "The LU's memory").
@@ -306,8 +303,7 @@ impl SparseLdlt {
             )
             .map(|_| ())
             .map_err(|_| FallbackReason::Pivot);
-        let safe =
-            factored.and_then(|()| pivot_inertia(&p.cholesky, &l_values, expected_positive));
+        let safe = factored.and_then(|()| pivot_inertia(&p.cholesky, &l_values, expected_positive));
         match safe {
             Ok(inertia) => {
                 if !inertia.is_expected() {
