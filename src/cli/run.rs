@@ -760,7 +760,7 @@ fn print_indefinite(log: &[solver::linear::IndefiniteSolve]) {
         return;
     }
     println!(
-        "indefinite      {} solves: the stiffness has negative eigenvalues the active constraints do not hold",
+        "indefinite      {} solves without the expected inertia (the stiffness not positive definite where the active constraints leave it free)",
         log.len()
     );
     for solve in log.iter().take(FALLBACKS_LISTED) {
