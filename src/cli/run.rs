@@ -735,26 +735,26 @@ where
     }
 }
 
-/// The most fallbacks the summary lists one by one.
-const FALLBACKS_LISTED: usize = 5;
+/// The most solves the summary lists one by one under a line.
+const SOLVES_LISTED: usize = 5;
 
-/// The summary's lines under the linear solver's: each solve the LDLᵀ gave
-/// up, why, and what the LU did (the first [`FALLBACKS_LISTED`], then how
-/// many more).
-fn print_fallbacks(log: &[solver::linear::Fallback]) {
-    for fallback in log.iter().take(FALLBACKS_LISTED) {
-        println!("                {fallback}");
+/// The first [`SOLVES_LISTED`] of `items`, one per line under the
+/// summary's line above, then how many more: each solve the LDLᵀ gave up
+/// (why, and what the LU did), or each solve without the expected inertia.
+fn print_listed<T: std::fmt::Display>(items: &[T]) {
+    for item in items.iter().take(SOLVES_LISTED) {
+        println!("                {item}");
     }
-    if log.len() > FALLBACKS_LISTED {
+    if items.len() > SOLVES_LISTED {
         println!(
             "                ... and {} more",
-            log.len() - FALLBACKS_LISTED
+            items.len() - SOLVES_LISTED
         );
     }
 }
 
 /// The solves whose stiffness was indefinite where the active constraints
-/// leave it free (the first [`FALLBACKS_LISTED`], then how many more).
+/// leave it free, after a line that says so.
 fn print_indefinite(log: &[solver::linear::IndefiniteSolve]) {
     if log.is_empty() {
         return;
@@ -763,15 +763,7 @@ fn print_indefinite(log: &[solver::linear::IndefiniteSolve]) {
         "indefinite      {} solves without the expected inertia (the stiffness not positive definite where the active constraints leave it free)",
         log.len()
     );
-    for solve in log.iter().take(FALLBACKS_LISTED) {
-        println!("                {solve}");
-    }
-    if log.len() > FALLBACKS_LISTED {
-        println!(
-            "                ... and {} more",
-            log.len() - FALLBACKS_LISTED
-        );
-    }
+    print_listed(log);
 }
 
 /// The summary's cost lines: time, factorisation, fill, the linear
@@ -830,7 +822,7 @@ where
             "linear solver   {} ({} symbolic analyses, {} solves fell back to LU)",
             options.linear, sol.symbolic_factorisations, sol.linear_fallbacks
         );
-        print_fallbacks(&sol.linear_fallback_log);
+        print_listed(&sol.linear_fallback_log);
         print_indefinite(&sol.linear_indefinite_log);
     }
     println!(

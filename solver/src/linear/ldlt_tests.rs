@@ -8,17 +8,36 @@
 use super::*;
 use faer::sparse::linalg::SupernodalThreshold;
 
-/// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
-/// the LDL^T solver.
-fn both(n: usize, t: &[(usize, usize, f64)], b: &[f64]) -> (Vec<f64>, Vec<f64>, SparseLdlt) {
-    let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
-    let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
-    let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
-    let mut ldlt = SparseLdlt::new();
+/// The triplets `(row, col, value)` as the index and value lists.
+fn triplets(t: &[(usize, usize, f64)]) -> (Vec<u32>, Vec<u32>, Vec<f64>) {
+    (
+        t.iter().map(|e| e.0 as u32).collect(),
+        t.iter().map(|e| e.1 as u32).collect(),
+        t.iter().map(|e| e.2).collect(),
+    )
+}
+
+/// Solves with the LDL^T `ldlt` (as it is set up) and a fresh LU; returns
+/// both solutions.
+fn solve_both(
+    ldlt: &mut SparseLdlt,
+    n: usize,
+    t: &[(usize, usize, f64)],
+    b: &[f64],
+) -> (Vec<f64>, Vec<f64>) {
+    let (rows, cols, vals) = triplets(t);
     let x = ldlt.solve_system(n, &rows, &cols, &vals, b).unwrap();
     let y = SparseLu::new()
         .solve_system(n, &rows, &cols, &vals, b)
         .unwrap();
+    (x, y)
+}
+
+/// Solves with a fresh LDL^T and a fresh LU; returns both solutions and
+/// the LDL^T solver.
+fn both(n: usize, t: &[(usize, usize, f64)], b: &[f64]) -> (Vec<f64>, Vec<f64>, SparseLdlt) {
+    let mut ldlt = SparseLdlt::new();
+    let (x, y) = solve_both(&mut ldlt, n, t, b);
     (x, y, ldlt)
 }
 
@@ -122,10 +141,7 @@ fn a_zero_pivot_falls_back_to_lu() {
 /// process: the limit holds for every thread).
 #[test]
 fn an_lu_fallback_without_a_known_memory_runs() {
-    let t = [(0u32, 1u32, 1.0), (1, 0, 1.0)];
-    let rows: Vec<u32> = t.iter().map(|e| e.0).collect();
-    let cols: Vec<u32> = t.iter().map(|e| e.1).collect();
-    let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
+    let (rows, cols, vals) = triplets(&[(0, 1, 1.0), (1, 0, 1.0)]);
     let mut s = SparseLdlt::with_available_memory(|| None);
     let x = s.solve_system(2, &rows, &cols, &vals, &[1.0, 0.0]).unwrap();
     assert_eq!(s.fallbacks(), 1);
@@ -151,16 +167,9 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
         (2, 1, 1.0),
         (2, 2, -1e-8),
     ];
-    let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
-    let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
-    let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
-    let b = [1.0, 0.5, -0.25];
     let mut s = SparseLdlt::new();
     s.set_constraints_from(2);
-    let x = s.solve_system(3, &rows, &cols, &vals, &b).unwrap();
-    let y = SparseLu::new()
-        .solve_system(3, &rows, &cols, &vals, &b)
-        .unwrap();
+    let (x, y) = solve_both(&mut s, 3, &t, &[1.0, 0.5, -0.25]);
     assert_close(&x, &y);
     assert_eq!(s.fallbacks(), 0);
     // the multiplier after both displacement dofs: the wrong-signed pair
@@ -181,15 +190,8 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
         (3, 2, 1.0),
         (3, 3, -1e-8),
     ];
-    let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
-    let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
-    let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
-    let b = [1.0, 0.5, -0.25, 0.125];
     s.set_constraints_from(3);
-    let x = s.solve_system(4, &rows, &cols, &vals, &b).unwrap();
-    let y = SparseLu::new()
-        .solve_system(4, &rows, &cols, &vals, &b)
-        .unwrap();
+    let (x, y) = solve_both(&mut s, 4, &t, &[1.0, 0.5, -0.25, 0.125]);
     assert_close(&x, &y);
     assert_eq!(s.fallbacks(), 0);
     assert_eq!(
@@ -216,7 +218,7 @@ fn mode_held_only_by_the_constraint_keeps_the_ldlt() {
 /// Every one of them is solved by the LDL^T, as the LU solves it.
 #[test]
 fn a_negative_diagonal_held_by_its_constraint_has_the_expected_inertia() {
-    let system = |constrained: usize| {
+    let solve = |constrained: usize, hint: bool| {
         let t = [
             (0, 0, -0.41),
             (0, 1, 0.1),
@@ -226,22 +228,11 @@ fn a_negative_diagonal_held_by_its_constraint_has_the_expected_inertia() {
             (2, constrained, 1.0),
             (2, 2, -1e-8),
         ];
-        let rows: Vec<u32> = t.iter().map(|e| e.0 as u32).collect();
-        let cols: Vec<u32> = t.iter().map(|e| e.1 as u32).collect();
-        let vals: Vec<f64> = t.iter().map(|e| e.2).collect();
-        (rows, cols, vals)
-    };
-    let b = [1.0, 0.5, -0.25];
-    let solve = |constrained: usize, hint: bool| {
-        let (rows, cols, vals) = system(constrained);
         let mut s = SparseLdlt::new();
         if hint {
             s.set_constraints_from(2);
         }
-        let x = s.solve_system(3, &rows, &cols, &vals, &b).unwrap();
-        let y = SparseLu::new()
-            .solve_system(3, &rows, &cols, &vals, &b)
-            .unwrap();
+        let (x, y) = solve_both(&mut s, 3, &t, &[1.0, 0.5, -0.25]);
         assert_close(&x, &y);
         assert_eq!(s.fallbacks(), 0);
         s.indefinite_log()
