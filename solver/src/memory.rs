@@ -71,9 +71,11 @@
 //! available, and one that does not fit fails the solve, which Newton cuts
 //! back ([`crate::linear::fallback`], "The LU's memory"). Measured on the
 //! 3D Hertz scene on non-matching hexahedra at h = 0.07 (147228 equations,
-//! segmented integration, dual multipliers): the LDLᵀ alone held about
-//! 8 GiB; before the limit, the second solve's fallback took the process
-//! past 22 GiB, where the system killed it.
+//! segmented integration, dual multipliers): before the limit, the second
+//! solve's fallback took the process past 22 GiB, where the system killed
+//! it; now that a solve without the expected inertia is kept rather than
+//! handed to the LU ([`crate::linear::inertia`]), the run needs no LU and
+//! peaks at 5.2 GiB (docs/benchmarks.md).
 
 use crate::element::ElementKind;
 use crate::linear::LinearSolverKind;
