@@ -92,7 +92,9 @@ pub enum SolverError {
     #[error(transparent)]
     Memory(#[from] MemoryError),
     /// The linear solver cannot run in this process (the `petsc` solver
-    /// launched across several MPI ranks, [`crate::linear::check_launch`]).
+    /// launched across several MPI ranks, [`crate::linear::check_launch`]),
+    /// or refuses its options whatever the step
+    /// ([`crate::linear::LinearError::Refused`]: Newton stops at once).
     #[error("linear solver: {0}")]
     Linear(#[from] crate::linear::LinearError),
     /// The [`crate::monitor::Monitor`] asked the solve to stop (Ctrl-C in

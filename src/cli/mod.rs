@@ -77,7 +77,11 @@ impl Cli {
                 let mut msg = format!("gapsim: error: {e}");
                 let mut source = e.source();
                 while let Some(s) = source {
-                    msg.push_str(&format!("\n  caused by: {s}"));
+                    // a cause the message above already quotes is not repeated
+                    let cause = s.to_string();
+                    if !msg.contains(&cause) {
+                        msg.push_str(&format!("\n  caused by: {cause}"));
+                    }
                     source = s.source();
                 }
                 eprintln!("{msg}");

@@ -70,10 +70,26 @@ pub enum LinearError {
     /// A call into PETSc failed (PETSc's message).
     #[error("{0}")]
     Petsc(String),
+    /// PETSc refused the solver as configured: an unknown or unsupported
+    /// option value, solver type or combination (PETSc's message). No
+    /// shorter load step changes that, so Newton stops with it instead of
+    /// cutting back ([`LinearError::cured_by_shorter_step`]).
+    #[error("PETSc refused the solver's options: {0}")]
+    Refused(String),
     /// A factorisation could not allocate its factor (for the LDLᵀ's LU
     /// fallback, within the memory available: [`fallback`]).
     #[error("out of memory: {0}")]
     OutOfMemory(String),
+}
+
+impl LinearError {
+    /// Whether a shorter load step may solve where this failure happened: a
+    /// singular or ill-conditioned system, a Krylov solve that did not
+    /// converge, a failed PETSc call, a factor that did not fit may be the
+    /// step's; a [`LinearError::Refused`] configuration is every step's.
+    pub fn cured_by_shorter_step(&self) -> bool {
+        !matches!(self, LinearError::Refused(_))
+    }
 }
 
 /// What Newton's equations are, for a solver that needs more than the

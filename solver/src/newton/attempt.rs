@@ -261,6 +261,8 @@ where
             self.setup.recycle(sys);
             let dx = match solved {
                 Ok(dx) => dx,
+                // refused by the solver whatever the step: no cut-back
+                Err(e) if !e.cured_by_shorter_step() => return Err(SolverError::Linear(e)),
                 Err(e) => {
                     return Ok(AttemptOutcome::cut_back(
                         CutbackReason::Singular {

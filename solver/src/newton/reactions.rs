@@ -22,7 +22,8 @@
 //!
 //! The residual is assembled with [`DofMap::all_free`] by the same
 //! assembly functions as the Newton system (so every element kind and the
-//! contact contributions are included as the solve sees them), once per
+//! contact contributions are included as the solve sees them), into a
+//! [`System::forces_only`] that keeps no tangent entry, once per
 //! converged state of a model with support groups. Of the solid elements
 //! only those with a prescribed dof are assembled, and only their forces
 //! are scattered (their tangents are computed by the element but not
@@ -66,7 +67,7 @@ where
             return Vec::new();
         }
         let all = DofMap::all_free(u.len(), self.dofs.n_mult);
-        let mut sys = System::new(all.n_eq() + ties.len());
+        let mut sys = System::forces_only(all.n_eq() + ties.len());
         self.layout.assemble(evals, lambda, active, &all, &mut sys);
         S::assemble_ties(ties, evals, others, &all, &mut sys);
         add_supported_element_forces(model, &all, u, &mut sys.residual);

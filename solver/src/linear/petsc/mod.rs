@@ -205,10 +205,35 @@ fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> Linea
     ))
 }
 
+/// PETSc's error codes of a configuration it refuses, whatever the matrix:
+/// no support for the operation (`PETSC_ERR_SUP`), a wrong, out-of-range or
+/// incompatible argument (`PETSC_ERR_ARG_WRONG`, `_OUTOFRANGE`,
+/// `_INCOMP`), an unknown option value (`PETSC_ERR_USER`, as
+/// `PetscOptionsGetEList` reports it) or type name
+/// (`PETSC_ERR_ARG_UNKNOWN_TYPE`), no factorisation package
+/// (`PETSC_ERR_MISSING_FACTOR`), options that may not change
+/// (`PETSC_ERR_OPT_OVERWRITE`), a solver that does not run on this many
+/// ranks (`PETSC_ERR_WRONG_MPI_SIZE`), incorrect user input
+/// (`PETSC_ERR_USER_INPUT`): petscerror.h of PETSc 3.18.
+const REFUSED_CODES: [i32; 10] = [56, 62, 63, 75, 83, 86, 92, 93, 94, 95];
+
 impl From<PetscError> for LinearError {
     fn from(e: PetscError) -> LinearError {
-        LinearError::Petsc(e.to_string())
+        if REFUSED_CODES.contains(&e.code) {
+            LinearError::Refused(e.to_string())
+        } else {
+            LinearError::Petsc(e.to_string())
+        }
     }
+}
+
+/// Whether `e` came from a failed PETSc call. PETSc's error unwinds past
+/// its own clean-up and may leave the Krylov solver mid-solve: the next
+/// solve then fails with "Cannot embed PCPreSolve() more than twice"
+/// whatever the matrix. The objects are therefore dropped after such a
+/// failure, and the next analysis builds them afresh.
+fn poisoned(e: &LinearError) -> bool {
+    matches!(e, LinearError::Petsc(_) | LinearError::Refused(_))
 }
 
 /// Where each of Newton's equations sits in PETSc's numbering.
@@ -591,8 +616,49 @@ impl PetscKrylov {
         Ok(())
     }
 
-    /// [`LinearSolver::factor_with_block`] with the block optional.
+    /// [`LinearSolver::solve`] with the cached objects.
+    fn solve_cached(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
+        if !std::mem::take(&mut self.factored) {
+            return Err(LinearError::Singular("no factorisation".into()));
+        }
+        let s = serial()?;
+        let rtol = self.rtol;
+        let options = self.pattern_options();
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        if rhs.len() != p.numbering.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "right-hand side of {} for {} equations",
+                rhs.len(),
+                p.numbering.rows.len()
+            )));
+        }
+        let mut b = vec![0.0; p.numbering.n];
+        for (i, &v) in rhs.iter().enumerate() {
+            b[p.numbering.rows[i]] = v;
+        }
+        let constrained = p.numbering.n > p.numbering.n_u;
+        let retry = retry_options(&self.options, constrained, &self.counts);
+        let o = &mut p.objects;
+        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
+        let x = o.x.get(&s)?;
+        Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
+    }
+
+    /// [`LinearSolver::factor_with_block`] with the block optional; a
+    /// failed PETSc call drops the objects ([`poisoned`]).
     fn factor_parts(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
+        let done = self.fill_and_set_up(block, vals);
+        if done.as_ref().is_err_and(poisoned) {
+            self.pattern_reset();
+        }
+        done
+    }
+
+    /// Fills the cached pattern's matrix and sets its solver up.
+    fn fill_and_set_up(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
         self.factored = false;
         let s = serial()?;
         let options = self.pattern_options();
@@ -626,33 +692,11 @@ impl LinearSolver for PetscKrylov {
     through_parts!();
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
-        if !std::mem::take(&mut self.factored) {
-            return Err(LinearError::Singular("no factorisation".into()));
+        let x = self.solve_cached(rhs);
+        if x.as_ref().is_err_and(poisoned) {
+            self.pattern_reset();
         }
-        let s = serial()?;
-        let rtol = self.rtol;
-        let options = self.pattern_options();
-        let p = self
-            .pattern
-            .as_mut()
-            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        if rhs.len() != p.numbering.rows.len() {
-            return Err(LinearError::Singular(format!(
-                "right-hand side of {} for {} equations",
-                rhs.len(),
-                p.numbering.rows.len()
-            )));
-        }
-        let mut b = vec![0.0; p.numbering.n];
-        for (i, &v) in rhs.iter().enumerate() {
-            b[p.numbering.rows[i]] = v;
-        }
-        let constrained = p.numbering.n > p.numbering.n_u;
-        let retry = retry_options(&self.options, constrained, &self.counts);
-        let o = &mut p.objects;
-        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
-        let x = o.x.get(&s)?;
-        Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
+        x
     }
 
     fn symbolic_factorisations(&self) -> usize {

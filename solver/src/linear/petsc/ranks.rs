@@ -48,8 +48,8 @@ use std::time::{Duration, Instant};
 use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
 use super::{
-    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, retry_options,
-    through_parts,
+    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, poisoned,
+    retry_options, through_parts,
 };
 use crate::linear::{
     Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout,
@@ -347,8 +347,54 @@ impl PetscRanks {
         Ok(())
     }
 
-    /// [`LinearSolver::factor_with_block`] with the block optional.
+    /// [`LinearSolver::solve`] with the cached objects.
+    fn solve_cached(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
+        if !std::mem::take(&mut self.factored) {
+            return Err(LinearError::Singular("no factorisation".into()));
+        }
+        let s = serial()?;
+        let rtol = self.rtol;
+        let options = self.pattern_options();
+        let p = self
+            .pattern
+            .as_mut()
+            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
+        let nb = &p.numbering;
+        if rhs.len() != nb.numbering.rows.len() {
+            return Err(LinearError::Singular(format!(
+                "right-hand side of {} for {} equations",
+                rhs.len(),
+                nb.numbering.rows.len()
+            )));
+        }
+        let mut b = vec![0.0; nb.n_local];
+        let owned = nb.first..nb.first + nb.n_local;
+        for (i, &v) in rhs.iter().enumerate() {
+            let r = nb.numbering.rows[i];
+            if owned.contains(&r) {
+                b[r - nb.first] = v;
+            }
+        }
+        let constrained = nb.numbering.n > nb.numbering.n_u;
+        let retry = retry_options(&self.options, constrained, &self.counts);
+        let o = &mut p.objects;
+        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
+        let x = o.x.gather_all(&s, nb.numbering.n)?;
+        Ok(nb.numbering.rows.iter().map(|&r| x[r]).collect())
+    }
+
+    /// [`LinearSolver::factor_with_block`] with the block optional; a
+    /// failed PETSc call drops the objects ([`poisoned`]).
     fn factor_parts(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
+        let done = self.fill_and_set_up(block, vals);
+        if done.as_ref().is_err_and(poisoned) {
+            self.pattern_reset();
+        }
+        done
+    }
+
+    /// Fills the cached pattern's matrix and sets its solver up.
+    fn fill_and_set_up(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
         self.factored = false;
         let s = serial()?;
         let options = self.pattern_options();
@@ -385,38 +431,11 @@ impl LinearSolver for PetscRanks {
     through_parts!();
 
     fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
-        if !std::mem::take(&mut self.factored) {
-            return Err(LinearError::Singular("no factorisation".into()));
+        let x = self.solve_cached(rhs);
+        if x.as_ref().is_err_and(poisoned) {
+            self.pattern_reset();
         }
-        let s = serial()?;
-        let rtol = self.rtol;
-        let options = self.pattern_options();
-        let p = self
-            .pattern
-            .as_mut()
-            .ok_or_else(|| LinearError::Singular("no pattern".into()))?;
-        let nb = &p.numbering;
-        if rhs.len() != nb.numbering.rows.len() {
-            return Err(LinearError::Singular(format!(
-                "right-hand side of {} for {} equations",
-                rhs.len(),
-                nb.numbering.rows.len()
-            )));
-        }
-        let mut b = vec![0.0; nb.n_local];
-        let owned = nb.first..nb.first + nb.n_local;
-        for (i, &v) in rhs.iter().enumerate() {
-            let r = nb.numbering.rows[i];
-            if owned.contains(&r) {
-                b[r - nb.first] = v;
-            }
-        }
-        let constrained = nb.numbering.n > nb.numbering.n_u;
-        let retry = retry_options(&self.options, constrained, &self.counts);
-        let o = &mut p.objects;
-        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
-        let x = o.x.gather_all(&s, nb.numbering.n)?;
-        Ok(nb.numbering.rows.iter().map(|&r| x[r]).collect())
+        x
     }
 
     fn symbolic_factorisations(&self) -> usize {
