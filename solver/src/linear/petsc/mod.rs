@@ -154,16 +154,22 @@ fn retry_options(options: &str, constrained: bool, counts: &KrylovCounts) -> Opt
 }
 
 /// The [`LinearSolver`] methods that take the matrix, for a solver with
-/// `analyse_parts` and `factor_parts` (the block optional): the block
-/// taken, the triplets alone as no block.
+/// `analyse_parts` and `factor_parts` (the block optional) and
+/// `solve_cached`: the block taken, the triplets alone as no block; after
+/// a failed PETSc call in a factorisation or a solve the objects are
+/// dropped (`pattern_reset`, [`reset_if_poisoned`]).
 macro_rules! through_parts {
     () => {
+        fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
+            reset_if_poisoned(self.solve_cached(rhs), || self.pattern_reset())
+        }
+
         fn analyse(&mut self, n: usize, rows: &[u32], cols: &[u32]) -> Result<(), LinearError> {
             self.analyse_parts(n, None, rows, cols)
         }
 
         fn factor(&mut self, vals: &[f64]) -> Result<(), LinearError> {
-            self.factor_parts(None, vals)
+            reset_if_poisoned(self.factor_parts(None, vals), || self.pattern_reset())
         }
 
         fn takes_block(&self) -> bool {
@@ -181,7 +187,9 @@ macro_rules! through_parts {
         }
 
         fn factor_with_block(&mut self, block: &Block, vals: &[f64]) -> Result<(), LinearError> {
-            self.factor_parts(Some(block), vals)
+            reset_if_poisoned(self.factor_parts(Some(block), vals), || {
+                self.pattern_reset()
+            })
         }
     };
 }
@@ -234,6 +242,18 @@ impl From<PetscError> for LinearError {
 /// failure, and the next analysis builds them afresh.
 fn poisoned(e: &LinearError) -> bool {
     matches!(e, LinearError::Petsc(_) | LinearError::Refused(_))
+}
+
+/// `out`, after `reset` (dropping the objects) when it is a failed PETSc
+/// call ([`poisoned`]).
+fn reset_if_poisoned<T>(
+    out: Result<T, LinearError>,
+    reset: impl FnOnce(),
+) -> Result<T, LinearError> {
+    if out.as_ref().is_err_and(poisoned) {
+        reset();
+    }
+    out
 }
 
 /// Where each of Newton's equations sits in PETSc's numbering.
@@ -647,18 +667,8 @@ impl PetscKrylov {
         Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
     }
 
-    /// [`LinearSolver::factor_with_block`] with the block optional; a
-    /// failed PETSc call drops the objects ([`poisoned`]).
+    /// [`LinearSolver::factor_with_block`] with the block optional.
     fn factor_parts(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
-        let done = self.fill_and_set_up(block, vals);
-        if done.as_ref().is_err_and(poisoned) {
-            self.pattern_reset();
-        }
-        done
-    }
-
-    /// Fills the cached pattern's matrix and sets its solver up.
-    fn fill_and_set_up(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
         self.factored = false;
         let s = serial()?;
         let options = self.pattern_options();
@@ -690,14 +700,6 @@ impl PetscKrylov {
 
 impl LinearSolver for PetscKrylov {
     through_parts!();
-
-    fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
-        let x = self.solve_cached(rhs);
-        if x.as_ref().is_err_and(poisoned) {
-            self.pattern_reset();
-        }
-        x
-    }
 
     fn symbolic_factorisations(&self) -> usize {
         self.symbolic_factorisations

@@ -48,7 +48,7 @@ use std::time::{Duration, Instant};
 use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
 use super::{
-    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, poisoned,
+    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, reset_if_poisoned,
     retry_options, through_parts,
 };
 use crate::linear::{
@@ -383,18 +383,8 @@ impl PetscRanks {
         Ok(nb.numbering.rows.iter().map(|&r| x[r]).collect())
     }
 
-    /// [`LinearSolver::factor_with_block`] with the block optional; a
-    /// failed PETSc call drops the objects ([`poisoned`]).
+    /// [`LinearSolver::factor_with_block`] with the block optional.
     fn factor_parts(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
-        let done = self.fill_and_set_up(block, vals);
-        if done.as_ref().is_err_and(poisoned) {
-            self.pattern_reset();
-        }
-        done
-    }
-
-    /// Fills the cached pattern's matrix and sets its solver up.
-    fn fill_and_set_up(&mut self, block: Option<&Block>, vals: &[f64]) -> Result<(), LinearError> {
         self.factored = false;
         let s = serial()?;
         let options = self.pattern_options();
@@ -429,14 +419,6 @@ impl PetscRanks {
 
 impl LinearSolver for PetscRanks {
     through_parts!();
-
-    fn solve(&mut self, rhs: &[f64]) -> Result<Vec<f64>, LinearError> {
-        let x = self.solve_cached(rhs);
-        if x.as_ref().is_err_and(poisoned) {
-            self.pattern_reset();
-        }
-        x
-    }
 
     fn symbolic_factorisations(&self) -> usize {
         self.symbolic_factorisations
