@@ -15,6 +15,7 @@
 //! every rank computes the same partition (the partitioner's answer is
 //! gathered on every rank).
 
+use crate::contact::{ContactShare, MultiplierDof};
 use crate::ids::ElementId;
 use crate::linear::{LinearError, LinearSolver, Ranks};
 use crate::model::Model;
@@ -131,11 +132,25 @@ impl Partition {
         self.elements.as_deref()
     }
 
-    /// Whether this rank assembles the contact element, the ties, the
-    /// external force and the regularisation (rank 0; the surfaces are small
-    /// against the volume).
-    pub fn assembles_contact(&self) -> bool {
+    /// Whether this rank assembles the terms that are not split across the
+    /// ranks: the node ties, the friction, the external force and the
+    /// regularisation (rank 0; they are small against the volume).
+    pub fn assembles_root_terms(&self) -> bool {
         self.ranks.is_root()
+    }
+
+    /// This rank's share of the contact element, `multipliers` its normal
+    /// multiplier dofs: the multipliers whose slave node this rank owns
+    /// and their points ([`ContactShare`]); `None` on one rank (the whole
+    /// element).
+    pub fn contact_share(&self, multipliers: &[MultiplierDof]) -> Option<ContactShare> {
+        (self.ranks.size > 1).then(|| ContactShare {
+            multipliers: multipliers
+                .iter()
+                .map(|m| self.node_rank[m.node.index()] == self.ranks.rank)
+                .collect(),
+            root: self.ranks.is_root(),
+        })
     }
 }
 
@@ -234,7 +249,7 @@ mod tests {
         let mut owner = vec![None; n_el];
         for (rank, p) in parts.iter().enumerate() {
             assert_eq!(p.ranks, Ranks { rank, size: 2 });
-            assert_eq!(p.assembles_contact(), rank == 0);
+            assert_eq!(p.assembles_root_terms(), rank == 0);
             for e in p.elements().unwrap() {
                 assert!(
                     owner[e.index()].replace(rank).is_none(),

@@ -1,11 +1,53 @@
 //! The contact element's part of the Newton system ([`crate::system`]):
 //! the terms of every evaluated integration point and its multipliers, in
-//! both dimensions (the node ties are `ties.rs`).
+//! both dimensions (the node ties are `ties.rs`), whole or one MPI rank's
+//! share of them ([`ContactShare`]).
 
 use crate::ids::{EquationIndex, MultiplierIndex};
 use crate::system::{DofMap, System};
 
+use super::term::MultiplierShape;
 use super::{GapTerm, WeightedPoint};
+
+/// The part of the contact element one MPI rank assembles
+/// (`crate::partition`): the normal multipliers whose slave node the rank
+/// owns, their rows' diagonals and inactive residuals, and the points whose
+/// first multiplier is one of them (a point's terms all go to one rank). A
+/// point without multipliers (its terms are zeros) and the terms that are
+/// summed over nodes before they are assembled (friction with its
+/// tangential multipliers' rows, node ties) go to the `root` rank.
+///
+/// Invariant: over the ranks' shares every multiplier and every point is
+/// assembled exactly once, so the ranks' systems sum to the whole one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactShare {
+    /// Whether this rank assembles each normal multiplier (in multiplier
+    /// order; the tangential ones after them are `root`'s).
+    pub multipliers: Vec<bool>,
+    /// Whether this rank is the one that assembles the rest (rank 0).
+    pub root: bool,
+}
+
+impl ContactShare {
+    /// Whether this rank assembles the point of multiplier shape `shape`.
+    fn point(&self, shape: &MultiplierShape) -> bool {
+        shape
+            .iter()
+            .next()
+            .map_or(self.root, |(m, _)| self.multiplier(m.index()))
+    }
+
+    /// Whether this rank assembles multiplier `m`.
+    pub fn multiplier(&self, m: usize) -> bool {
+        self.multipliers.get(m).copied().unwrap_or(self.root)
+    }
+}
+
+/// Whether `share` (`None`: the whole element, one rank) assembles the
+/// terms that go to the root rank ([`ContactShare`]).
+pub fn assembles_root_terms(share: Option<&ContactShare>) -> bool {
+    share.is_none_or(|s| s.root)
+}
 
 /// Adds the contact contributions of the evaluated integration points
 /// (`evals[i]`, `None` = inactive) with multipliers `lambda` and the
@@ -36,9 +78,27 @@ pub fn assemble_contact<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
     dofs: &DofMap,
     sys: &mut System,
 ) {
+    assemble_contact_of(points, evals, lambda, active, dofs, None, sys);
+}
+
+/// [`assemble_contact`], only the points and multipliers of `share` (one
+/// MPI rank's, [`ContactShare`], in their order; `None`: every one, bit for
+/// bit [`assemble_contact`]).
+pub fn assemble_contact_of<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
+    points: &[P],
+    evals: &[Option<E>],
+    lambda: &[f64],
+    active: &[bool],
+    dofs: &DofMap,
+    share: Option<&ContactShare>,
+    sys: &mut System,
+) {
     for (pt, ev) in points.iter().zip(evals) {
         let Some(ev) = ev else { continue };
         let shape = pt.multiplier_shape();
+        if share.is_some_and(|s| !s.point(&shape)) {
+            continue;
+        }
         let w = pt.weight_ref();
         let lam = shape.lambda(lambda);
         let eqs: [Option<EquationIndex>; N] =
@@ -75,6 +135,9 @@ pub fn assemble_contact<P: WeightedPoint, E: GapTerm<N>, const N: usize>(
         }
     }
     for (m, &on) in active.iter().enumerate() {
+        if share.is_some_and(|s| !s.multiplier(m)) {
+            continue;
+        }
         let row = dofs.mult_eq(MultiplierIndex::new(m));
         if on {
             sys.push(row, row, 0.0);

@@ -280,7 +280,7 @@ use contact_kernels::{KernelError, Segment};
 use crate::ids::{ContactPointIndex, MasterSegmentIndex, NodeId, PairId};
 
 pub use active_set::ActiveSetView;
-pub use assemble::assemble_contact;
+pub use assemble::{ContactShare, assemble_contact, assemble_contact_of, assembles_root_terms};
 pub use face::{
     FACE_COORDS, FaceEval, FaceFound, FaceLayout, FaceNodalError, FaceNodalRow, FacePoint,
     MasterFaces, face_formulation,

@@ -43,6 +43,7 @@ use crate::model::{Dim, SurfaceDim};
 use crate::par;
 use crate::system::{DofMap, System};
 
+use super::assemble::ContactShare;
 use super::friction::{FrictionState, NodalFriction};
 use super::layout_error::FaceLayoutError;
 use super::report::{ContactPointId, ContactPointReport, MultiplierDofInfo};
@@ -332,13 +333,15 @@ pub trait ContactSpace<const D: usize>: Sized + Sync + 'static {
         length_scale: f64,
         first: bool,
     ) -> Vec<bool>;
-    /// Adds the contact element at `evals` to `sys`.
+    /// Adds the contact element at `evals` to `sys`: the whole element, or
+    /// with a `share` one MPI rank's part of it ([`ContactShare`]).
     fn assemble(
         &self,
         evals: &[Option<Self::Eval>],
         lambda: &[f64],
         active: &[bool],
         dofs: &DofMap,
+        share: Option<&ContactShare>,
         sys: &mut System,
     );
     // Node ties: an optional capability (module docs). The defaults are an

@@ -113,7 +113,7 @@ pub struct SystemLayout {
 /// PETSc's and the launch had several.
 ///
 /// Across ranks every rank holds the whole model and state; each assembles
-/// its own elements (and rank 0 the contact), the residual and the energy
+/// its own elements and slave nodes' contact, the residual and the energy
 /// are summed over the ranks ([`LinearSolver::sum_over_ranks`]) and the
 /// linear solve runs on all of them, each owning a contiguous range of the
 /// equations; every rank gets the whole correction, so every decision of
@@ -130,8 +130,8 @@ impl Ranks {
     /// One rank.
     pub const ONE: Ranks = Ranks { rank: 0, size: 1 };
 
-    /// Whether this is rank 0 (which assembles the contact and writes the
-    /// output).
+    /// Whether this is rank 0 (which assembles the terms not split across
+    /// the ranks and writes the output).
     pub fn is_root(&self) -> bool {
         self.rank == 0
     }

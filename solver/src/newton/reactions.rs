@@ -68,7 +68,8 @@ where
         }
         let all = DofMap::all_free(u.len(), self.dofs.n_mult);
         let mut sys = System::forces_only(all.n_eq() + ties.len());
-        self.layout.assemble(evals, lambda, active, &all, &mut sys);
+        self.layout
+            .assemble(evals, lambda, active, &all, None, &mut sys);
         S::assemble_ties(ties, evals, others, &all, &mut sys);
         add_supported_element_forces(model, &all, u, &mut sys.residual);
         add_external(model, &all, to, &mut sys);

@@ -16,8 +16,10 @@
 //! 3. the solid elements and the external force ([`Setup::add_solid`]);
 //! 4. the regularised linear solve ([`Setup::solve`]).
 //!
-//! Across MPI ranks (`crate::partition`) each rank adds its own elements in
-//! phase 3, rank 0 alone the contact, the ties, the external force and the
+//! Across MPI ranks (`crate::partition`) each rank adds its share of the
+//! contact element in phase 2 (the points and multipliers of the slave
+//! nodes it owns, [`ContactShare`]) and its own elements in phase 3, rank 0
+//! alone the friction, the ties, the external force and the
 //! regularisation; [`Setup::sum_over_ranks`] then sums the residual and the
 //! energy, so that every rank tests convergence on the whole residual, and
 //! the linear solver sums the ranks' triplets. On one rank nothing changes.
@@ -32,7 +34,7 @@ use std::cell::Cell;
 use std::sync::Arc;
 
 use crate::assembly::{add_external, assemble_solid_of, external_force_norm, solid_pattern};
-use crate::contact::ContactSpace;
+use crate::contact::{ContactShare, ContactSpace};
 use crate::contact::{KernelCounts, NodeTie, PointFailure};
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
@@ -64,6 +66,9 @@ where
     pub(super) length_scale: f64,
     /// This MPI rank's elements (every element on one rank).
     pub(super) partition: Partition,
+    /// This rank's share of the contact element (`None`: one rank, the
+    /// whole element).
+    contact_share: Option<ContactShare>,
     /// The pattern of this rank's solid elements' entries, when the linear
     /// solver takes the solid block ([`LinearSolver::takes_block`]): every
     /// system gets a block over it.
@@ -104,8 +109,10 @@ where
         } else {
             None
         };
+        let contact_share = partition.contact_share(layout.multipliers());
         Ok(Setup {
             model,
+            contact_share,
             layout,
             dofs,
             linear,
@@ -220,9 +227,15 @@ where
                 None => System::new(n_sys),
             },
         };
-        if self.partition.assembles_contact() {
-            self.layout
-                .assemble(evals, lambda, &active, &self.dofs, &mut sys);
+        self.layout.assemble(
+            evals,
+            lambda,
+            &active,
+            &self.dofs,
+            self.contact_share.as_ref(),
+            &mut sys,
+        );
+        if self.partition.assembles_root_terms() {
             S::assemble_ties(ties, evals, others, &self.dofs, &mut sys);
         }
         (sys, active)
@@ -243,7 +256,7 @@ where
     ) -> f64 {
         let elements = self.partition.elements();
         assemble_solid_of(self.model, &self.dofs, u, lift, elements, sys);
-        if self.partition.assembles_contact() {
+        if self.partition.assembles_root_terms() {
             add_external(self.model, &self.dofs, to, sys)
         } else {
             external_force_norm(self.model, to)
@@ -286,7 +299,7 @@ where
             active,
             delta,
             |m| self.linear.max_over_ranks(m),
-            self.partition.assembles_contact(),
+            self.partition.assembles_root_terms(),
         )?;
         self.linear.set_forcing(forcing(norm, first, tol_abs));
         self.linear.solve_system_with(

@@ -20,7 +20,7 @@ use super::pairing::MasterFaces;
 use super::slip::FaceSlipBuffers;
 use super::slip_term::FaceAnchor;
 use crate::contact::MultiplierDof;
-use crate::contact::assemble::assemble_contact;
+use crate::contact::assemble::{ContactShare, assemble_contact_of, assembles_root_terms};
 use crate::contact::friction::{FrictionState, NodalFriction};
 use crate::contact::report::ContactPointId;
 use crate::contact::space::ContactSpace;
@@ -404,11 +404,14 @@ impl ContactSpace<3> for FaceLayout {
         lambda: &[f64],
         active: &[bool],
         dofs: &DofMap,
+        share: Option<&ContactShare>,
         sys: &mut System,
     ) {
-        assemble_contact(&self.points, evals, lambda, active, dofs, sys);
-        self.friction_view()
-            .assemble(evals, lambda, active, dofs, sys);
+        assemble_contact_of(&self.points, evals, lambda, active, dofs, share, sys);
+        if assembles_root_terms(share) {
+            self.friction_view()
+                .assemble(evals, lambda, active, dofs, sys);
+        }
     }
 
     fn expand_at(e: FaceEval, u: &[f64]) -> FaceTaylor {

@@ -6,7 +6,7 @@
 use contact_kernels::{ApproxType, Formulation};
 use nalgebra::{DMatrix, DVector};
 
-use crate::contact::{ContactSpace, assemble_contact};
+use crate::contact::{ContactShare, ContactSpace, assemble_contact};
 use crate::element::material::{Kinematics, Material, PlaneModel};
 use crate::ids::{ContactPointIndex, MasterFaceIndex, NodeId};
 use crate::mesh::Mesh;
@@ -514,6 +514,24 @@ fn friction_system(
     lambda: &[f64],
     active: &[bool],
 ) -> (DVector<f64>, DMatrix<f64>) {
+    let (r, k, _) = friction_system_of(mesh, layout, (pairing, anchors), u, lambda, active, None);
+    (r, k)
+}
+
+/// [`friction_system`], only `share`'s part of the element, and the
+/// number of triplets it pushed.
+fn friction_system_of(
+    mesh: &Mesh<3>,
+    layout: &FaceLayout,
+    (pairing, anchors): (
+        &[Option<MasterFaceIndex>],
+        &[Option<crate::contact::face::FaceAnchor>],
+    ),
+    u: &[f64],
+    lambda: &[f64],
+    active: &[bool],
+    share: Option<&ContactShare>,
+) -> (DVector<f64>, DMatrix<f64>, usize) {
     let (mut evals, mut counts) = layout
         .evaluate_paired(mesh, u, pairing, ApproxType::Type6)
         .unwrap();
@@ -523,16 +541,28 @@ fn friction_system(
     let n = u.len() + lambda.len();
     let dofs = DofMap::all_free(u.len(), lambda.len());
     let mut sys = System::new(n);
-    layout.assemble(&evals, lambda, active, &dofs, &mut sys);
+    layout.assemble(&evals, lambda, active, &dofs, share, &mut sys);
     let mut k = DMatrix::zeros(n, n);
     for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
         k[(r as usize, c as usize)] += v;
     }
-    (DVector::from_vec(sys.residual.clone()), k)
+    (DVector::from_vec(sys.residual.clone()), k, sys.vals.len())
 }
 
-#[test]
-fn the_friction_tangent_is_the_jacobian_of_its_residual_in_stick_and_in_slip() {
+/// Sixteen quad4 faces with friction 0.4 pressed and shifted over their
+/// base: the mesh, the layout, the pairing, the anchors, `u`, the
+/// multipliers (every other node sticking, the rest slipping) and the
+/// active set (every multiplier).
+#[allow(clippy::type_complexity)] // one test state
+fn sliding_with_friction() -> (
+    Mesh<3>,
+    FaceLayout,
+    Vec<Option<MasterFaceIndex>>,
+    Vec<Option<crate::contact::face::FaceAnchor>>,
+    Vec<f64>,
+    Vec<f64>,
+    Vec<bool>,
+) {
     let (mesh, mut pair) = stacked(0.02, false, Formulation::SlaveNormal);
     pair.friction = 0.4;
     let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
@@ -585,6 +615,12 @@ fn the_friction_tangent_is_the_jacobian_of_its_residual_in_stick_and_in_slip() {
         .filter(|s| **s == crate::contact::friction::FrictionState::Stick)
         .count();
     assert_eq!(sticking, 8, "{states:?}");
+    (mesh, layout, pairing, anchors, u, lambda, active)
+}
+
+#[test]
+fn the_friction_tangent_is_the_jacobian_of_its_residual_in_stick_and_in_slip() {
+    let (mesh, layout, pairing, anchors, u, lambda, active) = sliding_with_friction();
     let (_, k) = friction_system(&mesh, &layout, &pairing, &anchors, &u, &lambda, &active);
     let nu = u.len();
     let h = 1e-7;
@@ -676,4 +712,53 @@ fn the_batched_slip_pass_gives_each_point_the_bits_of_its_own_evaluation() {
             assert!(moved > 0, "some points crossed a master edge");
         }
     }
+}
+
+/// The shares of three MPI ranks (`ContactShare`: the multipliers by
+/// their node's rank, here the node index modulo 3, rank 0 also the
+/// friction) sum to the whole contact element, every entry pushed exactly
+/// once: residual and tangent with friction, stick and slip.
+#[test]
+fn the_ranks_contact_shares_sum_to_the_whole_element() {
+    let (mesh, layout, pairing, anchors, u, lambda, active) = sliding_with_friction();
+    let (r, k, pushed) = friction_system_of(
+        &mesh,
+        &layout,
+        (&pairing, &anchors),
+        &u,
+        &lambda,
+        &active,
+        None,
+    );
+    let (mut r_sum, mut k_sum, mut pushed_sum) = (r.clone() * 0.0, k.clone() * 0.0, 0);
+    let mut owned = vec![0; lambda.len()];
+    for rank in 0..3 {
+        let share = ContactShare {
+            multipliers: layout
+                .multipliers()
+                .iter()
+                .map(|m| m.node.index() % 3 == rank)
+                .collect(),
+            root: rank == 0,
+        };
+        for (m, o) in owned.iter_mut().enumerate() {
+            *o += usize::from(share.multiplier(m));
+        }
+        let (r, k, pushed) = friction_system_of(
+            &mesh,
+            &layout,
+            (&pairing, &anchors),
+            &u,
+            &lambda,
+            &active,
+            Some(&share),
+        );
+        r_sum += r;
+        k_sum += k;
+        pushed_sum += pushed;
+    }
+    assert!(owned.iter().all(|&o| o == 1), "{owned:?}");
+    assert_eq!(pushed_sum, pushed);
+    assert!((r_sum - &r).amax() <= 1e-14 * r.amax(), "residual");
+    assert!((k_sum - &k).amax() <= 1e-14 * k.amax(), "tangent");
 }

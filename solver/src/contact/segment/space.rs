@@ -19,7 +19,7 @@ use crate::system::{DofMap, System};
 use super::SegmentTaylor;
 use super::slip::SlipBuffers;
 use crate::contact::MultiplierDof;
-use crate::contact::assemble::assemble_contact;
+use crate::contact::assemble::{ContactShare, assemble_contact_of, assembles_root_terms};
 use crate::contact::friction::{Anchor, FrictionState, NodalFriction};
 use crate::contact::report::{ContactPointId, ContactPointReport};
 use crate::contact::space::{ContactSpace, Update};
@@ -405,11 +405,14 @@ impl ContactSpace<2> for ContactLayout {
         lambda: &[f64],
         active: &[bool],
         dofs: &DofMap,
+        share: Option<&ContactShare>,
         sys: &mut System,
     ) {
-        assemble_contact(&self.points, evals, lambda, active, dofs, sys);
-        self.friction_view()
-            .assemble(evals, lambda, active, dofs, sys);
+        assemble_contact_of(&self.points, evals, lambda, active, dofs, share, sys);
+        if assembles_root_terms(share) {
+            self.friction_view()
+                .assemble(evals, lambda, active, dofs, sys);
+        }
     }
 
     fn assemble_ties(

@@ -24,8 +24,9 @@
 //!
 //! # Assembly
 //!
-//! Each rank hands this solver its own triplets (its elements', and on rank
-//! 0 the contact's and the regularisation's) in Newton's numbering. They are
+//! Each rank hands this solver its own triplets (its elements' and its slave
+//! nodes' contact's, and on rank 0 the regularisation's) in Newton's
+//! numbering. They are
 //! compressed into rows once per pattern (the one-rank path's `compress`);
 //! each row's owner preallocates the sum of the ranks' entry counts in that
 //! row (an upper bound: two ranks adding to one entry count it twice, and
