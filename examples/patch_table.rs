@@ -41,14 +41,14 @@ struct Errors {
     points: usize,
 }
 
-fn errors(sol: &Solution) -> Errors {
+fn errors(sol: &Solution) -> Result<Errors, String> {
     let pressure = sol
         .final_state
         .multipliers
         .iter()
         .map(|&lambda| (-lambda - PRESSURE).abs() / PRESSURE)
         .fold(0.0, f64::max);
-    let points = sol.point_stresses();
+    let points = sol.point_stresses().map_err(|e| e.to_string())?;
     let n = points.len() as f64;
     let mut stress: f64 = 0.0;
     let measures: [fn(&Stress) -> [f64; 3]; 2] = [|s| s.pk2, |s| s.cauchy];
@@ -64,11 +64,11 @@ fn errors(sol: &Solution) -> Errors {
             .max(mean[0].abs() / PRESSURE)
             .max(mean[2].abs() / PRESSURE);
     }
-    Errors {
+    Ok(Errors {
         pressure,
         stress,
         points: sol.contact_points.len(),
-    }
+    })
 }
 
 /// Solves the scene with the pair set to `formulation`, `integration` and
@@ -91,7 +91,7 @@ fn run(
         ..SolveOptions::from_scene(&s)
     };
     let sol = solve(&s, &options).map_err(|e| e.to_string())?;
-    Ok(errors(&sol))
+    errors(&sol)
 }
 
 fn cell(r: &Result<Errors, String>, pick: fn(&Errors) -> f64) -> String {

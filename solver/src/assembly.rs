@@ -19,6 +19,7 @@
 use crate::element::ElementResponse;
 use crate::ids::{DofId, ElementId, NodeId};
 use crate::linear::{BlockPattern, LinearError};
+use crate::mesh::{Geometries, MeshError};
 use crate::model::Model;
 use crate::model::{Dim, SurfaceDim};
 use crate::par;
@@ -35,12 +36,19 @@ const ASSEMBLY_CHUNK: usize = 4096;
 /// displacements `u`, element after element, each through the element seam
 /// ([`crate::element::ElementGeometry::response`]): for an element of `n`
 /// nodes in `D` dimensions, its `D n` rows in dof order, each row's `D n`
-/// columns in order.
-pub fn assemble_solid<const D: usize>(model: &Model<D>, dofs: &DofMap, u: &[f64], sys: &mut System)
+/// columns in order. Computes every element's geometry first (a solve
+/// keeps them, [`assemble_solid_of`]); fails only when a node was moved
+/// since its body was added ([`crate::mesh::Mesh::geometry`]).
+pub fn assemble_solid<const D: usize>(
+    model: &Model<D>,
+    dofs: &DofMap,
+    u: &[f64],
+    sys: &mut System,
+) -> Result<(), MeshError>
 where
     Dim<D>: SurfaceDim<D>,
 {
-    assemble_solid_lifted(model, dofs, u, None, sys);
+    assemble_solid_lifted(model, dofs, u, None, sys)
 }
 
 /// [`assemble_solid`], and with `lift` (a displacement increment on the
@@ -56,28 +64,32 @@ pub fn assemble_solid_lifted<const D: usize>(
     u: &[f64],
     lift: Option<&[f64]>,
     sys: &mut System,
-) where
+) -> Result<(), MeshError>
+where
     Dim<D>: SurfaceDim<D>,
 {
-    assemble_solid_of(model, dofs, u, lift, None, sys);
+    let geometries = Geometries::of(&model.mesh, None)?;
+    assemble_solid_of(model, &geometries, dofs, u, lift, sys);
+    Ok(())
 }
 
-/// [`assemble_solid_lifted`] over the elements `elements` only (in their
-/// order; `None`: every element, bit for bit [`assemble_solid_lifted`]):
-/// one MPI rank's part of the solid elements (`crate::partition`).
+/// [`assemble_solid_lifted`] over the elements of `geometries` only (in
+/// their order, with their geometry; every element's: bit for bit
+/// [`assemble_solid_lifted`]): one MPI rank's part of the solid elements
+/// (`crate::partition`).
 pub fn assemble_solid_of<const D: usize>(
     model: &Model<D>,
+    geometries: &Geometries,
     dofs: &DofMap,
     u: &[f64],
     lift: Option<&[f64]>,
-    elements: Option<&[ElementId]>,
     sys: &mut System,
 ) where
     Dim<D>: SurfaceDim<D>,
 {
     let mesh = &model.mesh;
-    let count = elements.map_or(mesh.element_count(), <[ElementId]>::len);
-    let element = |k: usize| elements.map_or(ElementId::new(k), |list| list[k]);
+    let count = geometries.len();
+    let element = |k: usize| geometries.at(k).0;
     // exactly the triplets this assembly adds, so that a first assembly
     // never holds an old and a doubled buffer at once (none into a block,
     // which holds these elements' entries)
@@ -97,9 +109,9 @@ pub fn assemble_solid_of<const D: usize>(
     for start in (0..count).step_by(ASSEMBLY_CHUNK) {
         let len = ASSEMBLY_CHUNK.min(count - start);
         let responses: Vec<ElementResponse> = par::map(len, PAR_MIN_LEN, |k| {
-            let e = element(start + k);
+            let (e, geometry) = geometries.at(start + k);
             let material = &mesh.bodies[mesh.element_body[e.index()]].material;
-            mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material)
+            geometry.response(&mesh.element_displacements(e, u), material)
         });
         for (k, resp) in responses.iter().enumerate() {
             let el = &mesh.elements[element(start + k).index()];

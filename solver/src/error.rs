@@ -25,6 +25,10 @@ pub enum SolverError {
     /// The model built from the scene is inconsistent.
     #[error("invalid model: {0}")]
     Model(#[from] ModelError),
+    /// An element's reference geometry cannot be computed (its nodes were
+    /// moved after its body was added, [`crate::mesh::Mesh::geometry`]).
+    #[error("invalid mesh: {0}")]
+    Mesh(#[from] crate::mesh::MeshError),
     /// Invalid [`crate::SolveOptions`].
     #[error("invalid solve options: {0}")]
     Options(String),

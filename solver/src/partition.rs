@@ -161,6 +161,7 @@ mod tests {
 
     use super::*;
     use crate::assembly::{assemble_solid_lifted, assemble_solid_of};
+    use crate::mesh::Geometries;
     use crate::system::{DofMap, System};
 
     /// A graph as `LinearSolver::partition` receives it: the vertex count,
@@ -279,12 +280,13 @@ mod tests {
             .map(|i| 1e-3 * ((i * 7) % 11) as f64)
             .collect();
         let mut whole = System::new(dofs.n_eq());
-        assemble_solid_lifted(&model, &dofs, &u, None, &mut whole);
+        assemble_solid_lifted(&model, &dofs, &u, None, &mut whole).unwrap();
         let mut sum = System::new(dofs.n_eq());
         let mut triplets = 0;
         for p in &parts {
             let mut part = System::new(dofs.n_eq());
-            assemble_solid_of(&model, &dofs, &u, None, p.elements(), &mut part);
+            let geometries = Geometries::of(&model.mesh, p.elements()).unwrap();
+            assemble_solid_of(&model, &geometries, &dofs, &u, None, &mut part);
             for (s, v) in sum.residual.iter_mut().zip(&part.residual) {
                 *s += v;
             }
@@ -308,7 +310,8 @@ mod tests {
         .unwrap();
         assert_eq!(one, Partition::one());
         let mut again = System::new(dofs.n_eq());
-        assemble_solid_of(&model, &dofs, &u, None, one.elements(), &mut again);
+        let geometries = Geometries::of(&model.mesh, one.elements()).unwrap();
+        assemble_solid_of(&model, &geometries, &dofs, &u, None, &mut again);
         assert_eq!(again.residual, whole.residual);
         assert_eq!(again.vals, whole.vals);
     }

@@ -19,7 +19,7 @@ use crate::contact::friction::NodalFriction;
 use crate::element::{ElementStress, Stress};
 use crate::ids::NodeId;
 use crate::linear::KrylovCounts;
-use crate::mesh::{InvertedElement, Mesh};
+use crate::mesh::{Geometries, InvertedElement, Mesh, MeshError};
 use crate::model::{ContactPair, Dim, SurfaceDim};
 use crate::options::Method;
 
@@ -294,6 +294,10 @@ where
     pub equations: usize,
     /// The mesh (reference coordinates, connectivity, bodies, materials).
     pub mesh: Mesh<D>,
+    /// The reference geometry of the elements the solve assembled (every
+    /// element's on one rank, the rank's own across MPI ranks); the
+    /// stresses compute any other element's ([`Geometries::or_compute`]).
+    pub geometries: Geometries,
     /// The multiplier dofs.
     pub multiplier_dofs: Vec<MultiplierDofInfo>,
     /// The final state.
@@ -321,21 +325,23 @@ impl Solution<2> {
     /// The stresses at every integration point of every element of the
     /// final state, element after element (four per quadrilateral, one per
     /// triangle).
-    pub fn point_stresses(&self) -> Vec<Stress> {
+    pub fn point_stresses(&self) -> Result<Vec<Stress>, MeshError> {
         // a 2D mesh holds 2D elements only (Mesh::add_body), so every
         // stress is a plane one
-        self.element_point_stresses()
+        Ok(self
+            .element_point_stresses()?
             .into_iter()
             .filter_map(ElementStress::plane)
-            .collect()
+            .collect())
     }
 
     /// Element stresses (averaged over the Gauss points) in `state`.
-    pub fn element_stresses(&self, state: &State) -> Vec<Stress> {
-        self.element_mean_stresses(state)
+    pub fn element_stresses(&self, state: &State) -> Result<Vec<Stress>, MeshError> {
+        Ok(self
+            .element_mean_stresses(state)?
             .into_iter()
             .filter_map(ElementStress::plane)
-            .collect()
+            .collect())
     }
 }
 
@@ -343,20 +349,22 @@ impl Solution<3> {
     /// The stresses at every integration point of every element of the
     /// final state, element after element (eight per hexahedron, one per
     /// tetrahedron).
-    pub fn point_stresses(&self) -> Vec<Stress<6>> {
+    pub fn point_stresses(&self) -> Result<Vec<Stress<6>>, MeshError> {
         // a 3D mesh holds 3D elements only (Mesh::add_body)
-        self.element_point_stresses()
+        Ok(self
+            .element_point_stresses()?
             .into_iter()
             .filter_map(ElementStress::solid)
-            .collect()
+            .collect())
     }
 
     /// Element stresses (averaged over the Gauss points) in `state`.
-    pub fn element_stresses(&self, state: &State<3>) -> Vec<Stress<6>> {
-        self.element_mean_stresses(state)
+    pub fn element_stresses(&self, state: &State<3>) -> Result<Vec<Stress<6>>, MeshError> {
+        Ok(self
+            .element_mean_stresses(state)?
             .into_iter()
             .filter_map(ElementStress::solid)
-            .collect()
+            .collect())
     }
 }
 
@@ -366,8 +374,9 @@ where
 {
     /// The stresses at every integration point of every element of the
     /// final state, element after element, each in its element's
-    /// dimension.
-    pub fn element_point_stresses(&self) -> Vec<ElementStress> {
+    /// dimension (an error only when an element's geometry cannot be
+    /// computed, [`crate::mesh::Mesh::geometry`]).
+    pub fn element_point_stresses(&self) -> Result<Vec<ElementStress>, MeshError> {
         let u: Vec<f64> = self
             .final_state
             .displacements
@@ -379,23 +388,27 @@ where
         for e in self.mesh.element_ids() {
             let material = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
             points.extend(
-                self.mesh.geometry[e.index()]
+                self.geometries
+                    .or_compute(&self.mesh, e)?
                     .point_stresses(&self.mesh.element_displacements(e, &u), material),
             );
         }
-        points
+        Ok(points)
     }
 
     /// Element stresses (averaged over the Gauss points) in `state`, each
-    /// in its element's dimension.
-    pub fn element_mean_stresses(&self, state: &State<D>) -> Vec<ElementStress> {
+    /// in its element's dimension (an error as in
+    /// [`Solution::element_point_stresses`]).
+    pub fn element_mean_stresses(&self, state: &State<D>) -> Result<Vec<ElementStress>, MeshError> {
         let u: Vec<f64> = state.displacements.iter().flatten().copied().collect();
         self.mesh
             .element_ids()
             .map(|e| {
                 let mat = &self.mesh.bodies[self.mesh.element_body[e.index()]].material;
-                self.mesh.geometry[e.index()]
-                    .mean_stress(&self.mesh.element_displacements(e, &u), mat)
+                Ok(self
+                    .geometries
+                    .or_compute(&self.mesh, e)?
+                    .mean_stress(&self.mesh.element_displacements(e, &u), mat))
             })
             .collect()
     }

@@ -75,7 +75,7 @@ fn errors(sol: &Solution) -> Errors {
         .map(|&lambda| (-lambda - PRESSURE).abs() / PRESSURE)
         .fold(0.0, f64::max);
     assert_eq!(sol.final_state.multipliers.len(), sol.multiplier_dofs.len());
-    let points = sol.point_stresses();
+    let points = sol.point_stresses().unwrap();
     let n = points.len() as f64;
     let mut stress: f64 = 0.0;
     let measures: [fn(&Stress) -> [f64; 3]; 2] = [|s| s.pk2, |s| s.cauchy];

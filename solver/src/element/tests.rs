@@ -158,12 +158,18 @@ pub(super) mod mixed {
         let mesh = mixed_mesh(MAT);
         assert_eq!(mesh.element_count(), 8);
         let kinds: Vec<ElementKind> = mesh.elements.iter().map(|e| e.kind()).collect();
-        let geometry: Vec<ElementKind> = mesh.geometry.iter().map(|g| g.kind()).collect();
+        let geometry: Vec<ElementKind> = mesh
+            .element_ids()
+            .map(|e| mesh.geometry(e).unwrap().kind())
+            .collect();
         assert_eq!(kinds, geometry);
         assert_eq!(kinds[1], ElementKind::Tri3);
         assert_eq!(mesh.elements[2].map_nodes(NodeId::index).nodes(), [1, 6, 5]);
         // the elements tile the patch
-        let area: f64 = mesh.geometry.iter().map(|g| g.area_ref()).sum();
+        let area: f64 = mesh
+            .element_ids()
+            .map(|e| mesh.geometry(e).unwrap().area_ref())
+            .sum();
         assert!((area - 0.24 * 0.12).abs() < 1e-15, "{area}");
         // a triangle's buffer holds its 6 dofs, then zeros
         let u: Vec<f64> = (0..16).map(|k| k as f64 + 1.0).collect();
@@ -224,7 +230,7 @@ pub(super) mod mixed {
     /// Residual (free dofs) and dense tangent of the solid alone.
     fn solid_system(model: &Model, dofs: &DofMap, u: &[f64]) -> (Vec<f64>, Vec<Vec<f64>>) {
         let mut sys = System::new(dofs.n_eq());
-        assemble_solid(model, dofs, u, &mut sys);
+        assemble_solid(model, dofs, u, &mut sys).unwrap();
         let mut k = vec![vec![0.0; dofs.n_eq()]; dofs.n_eq()];
         for ((&r, &c), &v) in sys.rows.iter().zip(&sys.cols).zip(&sys.vals) {
             k[r as usize][c as usize] += v;
@@ -290,7 +296,7 @@ pub(super) mod mixed {
                         let mut v = u.clone();
                         v[d] += s;
                         let mut sys = System::new(dofs.n_eq());
-                        assemble_solid(&model, &dofs, &v, &mut sys);
+                        assemble_solid(&model, &dofs, &v, &mut sys).unwrap();
                         sys
                     };
                     let (sp, sm) = (at(h), at(-h));
@@ -326,10 +332,12 @@ pub(super) mod mixed {
         let mut rng = Lcg::new(5);
         let u: Vec<f64> = (0..16).map(|_| rng.uniform(-0.01, 0.01)).collect();
         let mut sys = System::new(dofs.n_eq());
-        assemble_solid(&model, &dofs, &u, &mut sys);
+        assemble_solid(&model, &dofs, &u, &mut sys).unwrap();
         let mut old = System::new(dofs.n_eq());
         for (e, el) in quads.iter().enumerate() {
-            let Some(crate::element::ElementGeometry::Quad4(g)) = model.mesh.geometry.get(e) else {
+            let Ok(crate::element::ElementGeometry::Quad4(g)) =
+                model.mesh.geometry(crate::ids::ElementId::new(e))
+            else {
                 panic!("element {e} is not a quadrilateral");
             };
             let ue: [f64; 8] = std::array::from_fn(|k| u[2 * el[k / 2] + k % 2]);
@@ -379,7 +387,7 @@ pub(super) mod mixed {
                 assert!((got - exact(n, i)).abs() < 1e-12, "node {n}: {got}");
             }
         }
-        let s = sol.element_stresses(&sol.final_state);
+        let s = sol.element_stresses(&sol.final_state).unwrap();
         assert_eq!(s.len(), 8);
         for (e, st) in s.iter().enumerate() {
             for c in 0..3 {

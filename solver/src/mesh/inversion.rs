@@ -14,8 +14,7 @@
 //! determinants are computed by [`crate::par::map`], the worst chosen
 //! sequentially, the lowest index on a tie).
 
-use super::Mesh;
-use crate::ids::ElementId;
+use super::{Geometries, Mesh, MeshError};
 
 /// Elements per parallel chunk.
 const PAR_MIN_LEN: usize = 256;
@@ -42,29 +41,45 @@ impl std::fmt::Display for InvertedElement {
     }
 }
 
-impl<const D: usize> Mesh<D> {
-    /// The element of smallest `det F <= 0` at the displacements `u` (module
-    /// docs), or `None` when every element keeps a positive volume (or a
-    /// `det F` is NaN: a non-finite `u` is the residual's failure, not an
-    /// inversion).
-    pub fn most_inverted(&self, u: &[f64]) -> Option<InvertedElement> {
-        let dets = crate::par::map(self.element_count(), PAR_MIN_LEN, |e| {
-            let e = ElementId::new(e);
-            self.geometry[e.index()].min_det_f(&self.element_displacements(e, u))
+impl Geometries {
+    /// The element of the set of smallest `det F <= 0` at the displacements
+    /// `u` (module docs), or `None` when every element of the set keeps a
+    /// positive volume (or a `det F` is NaN: a non-finite `u` is the
+    /// residual's failure, not an inversion). Across MPI ranks each rank
+    /// checks its own elements and the ranks' worst is taken
+    /// (`crate::newton`).
+    pub fn most_inverted<const D: usize>(
+        &self,
+        mesh: &Mesh<D>,
+        u: &[f64],
+    ) -> Option<InvertedElement> {
+        let dets = crate::par::map(self.len(), PAR_MIN_LEN, |k| {
+            let (e, g) = self.at(k);
+            g.min_det_f(&mesh.element_displacements(e, u))
         });
-        let (element, det_f) = dets
+        let (k, det_f) = dets
             .into_iter()
             .enumerate()
             .filter(|(_, d)| *d <= 0.0)
-            .fold(None, |worst: Option<(usize, f64)>, (e, d)| match worst {
+            .fold(None, |worst: Option<(usize, f64)>, (k, d)| match worst {
                 Some((_, w)) if w <= d => worst,
-                _ => Some((e, d)),
+                _ => Some((k, d)),
             })?;
+        let element = self.at(k).0.index();
         Some(InvertedElement {
             element,
             det_f,
-            label: self.element_label(element),
+            label: mesh.element_label(element),
         })
+    }
+}
+
+impl<const D: usize> Mesh<D> {
+    /// The element of smallest `det F <= 0` at the displacements `u` over
+    /// the whole mesh ([`Geometries::most_inverted`] of every element's
+    /// geometry, computed here).
+    pub fn most_inverted(&self, u: &[f64]) -> Result<Option<InvertedElement>, MeshError> {
+        Ok(Geometries::of(self, None)?.most_inverted(self, u))
     }
 
     /// Element `element` as a user finds it: its global index, kind, body,
@@ -136,9 +151,9 @@ mod tests {
     #[test]
     fn the_squeezed_element_inverts_when_its_edges_cross() {
         let (mesh, u) = two_squares(0.5);
-        assert_eq!(mesh.most_inverted(&u), None);
+        assert_eq!(mesh.most_inverted(&u).unwrap(), None);
         let (mesh, u) = two_squares(1.5);
-        let inv = mesh.most_inverted(&u).unwrap();
+        let inv = mesh.most_inverted(&u).unwrap().unwrap();
         assert_eq!(inv.element, 1);
         assert!((inv.det_f + 0.5).abs() < 1e-12, "{inv:?}");
         assert_eq!(
@@ -148,10 +163,10 @@ mod tests {
         );
         // the reverse push inverts the other one
         let (mesh, u) = two_squares(-1.25);
-        assert_eq!(mesh.most_inverted(&u).unwrap().element, 0);
+        assert_eq!(mesh.most_inverted(&u).unwrap().unwrap().element, 0);
         // a non-finite field is not an inversion
         let (mesh, mut u) = two_squares(0.0);
         u[0] = f64::NAN;
-        assert_eq!(mesh.most_inverted(&u), None);
+        assert_eq!(mesh.most_inverted(&u).unwrap(), None);
     }
 }

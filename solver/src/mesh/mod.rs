@@ -55,12 +55,14 @@ pub mod block;
 pub mod coincident;
 pub mod face_shape;
 pub mod faces;
+mod geometries;
 pub mod gmsh;
 mod grid;
 pub mod inversion;
 pub mod volume;
 
 pub use block::{Block, BlockDim, BlockError, Side};
+pub use geometries::Geometries;
 pub use inversion::InvertedElement;
 
 /// The spatial dimension `D` as a type (module docs).
@@ -179,8 +181,10 @@ pub enum MeshError {
     },
 }
 
-/// Nodes, elements and bodies in `D` dimensions (2 by default), with the
-/// element geometry precomputed.
+/// Nodes, elements and bodies in `D` dimensions (2 by default). Every
+/// element's reference geometry is checked when its body is added and not
+/// kept: a solve computes the geometry of the elements it assembles
+/// ([`Geometries`]), any other is [`Mesh::geometry`].
 #[derive(Debug, Clone)]
 pub struct Mesh<const D: usize = 2> {
     /// Reference coordinates of all nodes (indexed by [`NodeId`]).
@@ -192,8 +196,6 @@ pub struct Mesh<const D: usize = 2> {
     pub element_body: Vec<usize>,
     /// The bodies.
     pub bodies: Vec<Body<D>>,
-    /// Reference geometry of each element (indexed by [`ElementId`]).
-    pub geometry: Vec<ElementGeometry>,
 }
 
 impl<const D: usize> Default for Mesh<D> {
@@ -209,7 +211,6 @@ impl<const D: usize> Mesh<D> {
         elements: Vec::new(),
         element_body: Vec::new(),
         bodies: Vec::new(),
-        geometry: Vec::new(),
     };
 
     /// An empty mesh.
@@ -251,7 +252,6 @@ impl<const D: usize> Mesh<D> {
         let node0 = self.nodes_ref.len();
         let elem0 = self.elements.len();
         let body = self.bodies.len();
-        let mut geometry = Vec::with_capacity(elements.len());
         let mut conn = Vec::with_capacity(elements.len());
         for (e, &el) in elements.iter().enumerate() {
             let el: Element<usize> = el.into();
@@ -262,29 +262,13 @@ impl<const D: usize> Mesh<D> {
                     node,
                 });
             }
-            let x = el.map_nodes(|n| nodes_ref[n]);
-            let geom = ElementGeometry::new(&x).map_err(|err| match err {
-                ElementError::Invalid(InvalidElement { det_j0 }) => MeshError::InvalidElement {
-                    body: name.to_owned(),
-                    element: elem0 + e,
-                    kind: el.kind(),
-                    det_j0,
-                },
-                ElementError::WrongDimension { kind, dim } => MeshError::WrongDimension {
-                    body: name.to_owned(),
-                    element: e,
-                    kind,
-                    dim,
-                },
-            })?;
-            geometry.push(geom);
+            checked_geometry(name, (elem0 + e, e), &el.map_nodes(|n| nodes_ref[n]))?;
             conn.push(el.map_nodes(|n| NodeId::new(n + node0)));
         }
         self.nodes_ref.extend_from_slice(nodes_ref);
         self.elements.extend(conn);
         self.element_body
             .extend(std::iter::repeat_n(body, elements.len()));
-        self.geometry.extend(geometry);
         self.bodies.push(Body {
             name: name.to_owned(),
             material,
@@ -422,6 +406,44 @@ impl<const D: usize> Mesh<D> {
             }
         })
     }
+
+    /// The reference geometry of element `e`, computed from its nodes'
+    /// reference coordinates (the check [`Mesh::add_body`] made: it fails
+    /// only if the nodes were moved since).
+    pub fn geometry(&self, e: ElementId) -> Result<ElementGeometry, MeshError> {
+        let body = &self.bodies[self.element_body[e.index()]];
+        checked_geometry(
+            &body.name,
+            (e.index(), e.index() - body.elements.start),
+            &self.element(e).map_nodes(|n| self.nodes_ref[n.index()]),
+        )
+    }
+}
+
+/// The reference geometry of an element of body `body` with node
+/// coordinates `x` (`element`: its global index and its index within the
+/// body), every failure as the mesh's error: the one check of an element's
+/// reference geometry, when its body is added and when it is computed
+/// again ([`Mesh::geometry`]).
+fn checked_geometry<const D: usize>(
+    body: &str,
+    (element, local): (usize, usize),
+    x: &Element<[f64; D]>,
+) -> Result<ElementGeometry, MeshError> {
+    ElementGeometry::new(x).map_err(|err| match err {
+        ElementError::Invalid(InvalidElement { det_j0 }) => MeshError::InvalidElement {
+            body: body.to_owned(),
+            element,
+            kind: x.kind(),
+            det_j0,
+        },
+        ElementError::WrongDimension { kind, dim } => MeshError::WrongDimension {
+            body: body.to_owned(),
+            element: local,
+            kind,
+            dim,
+        },
+    })
 }
 
 /// The Euclidean length of `d`, by `hypot` axis after axis (in 2D the bits

@@ -147,7 +147,7 @@ where
             // an iterate that inverts an element is rejected, whatever its
             // residual would be
             let t = Instant::now();
-            let inverted = self.setup.model.mesh.most_inverted(&x.u);
+            let inverted = self.setup.most_inverted(&x.u)?;
             self.timings.solid_assembly += t.elapsed();
             if let Some(inverted) = inverted {
                 return Ok(AttemptOutcome::cut_back(
@@ -217,7 +217,7 @@ where
                 let t = Instant::now();
                 let reactions = self
                     .setup
-                    .reactions(&x.u, &x.lambda, &x.ties, &evals, &others, &active, to);
+                    .reactions(&x.u, &x.lambda, &x.ties, &evals, &others, &active, to)?;
                 self.timings.reactions += t.elapsed();
                 return Ok(AttemptOutcome::Converged(Converged {
                     state: x,

@@ -554,7 +554,7 @@ where
         }
     }
 
-    fn finish(self, start: Instant) -> Result<Solution<D>, SolverError> {
+    fn finish(mut self, start: Instant) -> Result<Solution<D>, SolverError> {
         let layout = &self.setup.layout;
         let (projections, _) = layout
             .project_all(&self.setup.model.mesh, &self.u, &self.pairing)
@@ -587,6 +587,7 @@ where
             krylov: self.setup.linear.krylov(),
             equations: self.setup.dofs.n_eq(),
             mesh: self.setup.model.mesh.clone(),
+            geometries: std::mem::take(&mut self.setup.geometries),
             multiplier_dofs: layout.multiplier_dofs(),
             final_state: self.state(),
             snapshots: self.snapshots.clone(),

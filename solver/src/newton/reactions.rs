@@ -29,12 +29,16 @@
 //! are scattered (their tangents are computed by the element but not
 //! kept): the other elements add nothing to the entries read, and
 //! the kept ones add in the same order as in the full assembly, so the
-//! reactions are the full residual's entries to the bit.
+//! reactions are the full residual's entries to the bit. Their geometry is
+//! the solve's, or across MPI ranks computed for an element another rank
+//! owns ([`Geometries::or_compute`]: the supported elements are a layer at
+//! the supports, every rank computes all of them).
 
 use crate::assembly::{PAR_MIN_LEN, add_external};
 use crate::contact::ContactSpace;
 use crate::contact::NodeTie;
 use crate::ids::ElementId;
+use crate::mesh::{Geometries, MeshError};
 use crate::model::Model;
 use crate::par;
 use crate::system::{DofMap, System};
@@ -61,19 +65,19 @@ where
         others: &[S::Eval],
         active: &[bool],
         to: f64,
-    ) -> Vec<[f64; D]> {
+    ) -> Result<Vec<[f64; D]>, MeshError> {
         let model = self.model;
         if model.supports.is_empty() {
-            return Vec::new();
+            return Ok(Vec::new());
         }
         let all = DofMap::all_free(u.len(), self.dofs.n_mult);
         let mut sys = System::forces_only(all.n_eq() + ties.len());
         self.layout
             .assemble(evals, lambda, active, &all, None, &mut sys);
         S::assemble_ties(ties, evals, others, &all, &mut sys);
-        add_supported_element_forces(model, &all, u, &mut sys.residual);
+        add_supported_element_forces(model, &self.geometries, &all, u, &mut sys.residual)?;
         add_external(model, &all, to, &mut sys);
-        model
+        Ok(model
             .supports
             .iter()
             .map(|g| {
@@ -83,7 +87,7 @@ where
                 }
                 r
             })
-            .collect()
+            .collect())
     }
 }
 
@@ -92,10 +96,12 @@ where
 /// the full solid assembly's).
 fn add_supported_element_forces<const D: usize>(
     model: &Model<D>,
+    geometries: &Geometries,
     all: &DofMap,
     u: &[f64],
     residual: &mut [f64],
-) where
+) -> Result<(), MeshError>
+where
     Dim<D>: SurfaceDim<D>,
 {
     let mesh = &model.mesh;
@@ -112,10 +118,12 @@ fn add_supported_element_forces<const D: usize>(
     let forces: Vec<Vec<f64>> = par::map(supported.len(), PAR_MIN_LEN, |i| {
         let e = ElementId::new(supported[i]);
         let material = &mesh.bodies[mesh.element_body[e.index()]].material;
-        let response =
-            mesh.geometry[e.index()].response(&mesh.element_displacements(e, u), material);
-        response.f_int().to_vec()
-    });
+        let geometry = geometries.or_compute(mesh, e)?;
+        let response = geometry.response(&mesh.element_displacements(e, u), material);
+        Ok(response.f_int().to_vec())
+    })
+    .into_iter()
+    .collect::<Result<_, MeshError>>()?;
     for (&e, f_int) in supported.iter().zip(&forces) {
         let eqs = all.element_eqs::<D>(&mesh.elements[e]);
         for (eq, f) in eqs.iter().zip(f_int) {
@@ -124,4 +132,5 @@ fn add_supported_element_forces<const D: usize>(
             }
         }
     }
+    Ok(())
 }

@@ -39,6 +39,7 @@ use crate::contact::{KernelCounts, NodeTie, PointFailure};
 use crate::error::SolverError;
 use crate::ids::ContactPointIndex;
 use crate::linear::{BlockPattern, LinearError, LinearSolver};
+use crate::mesh::{Geometries, InvertedElement};
 use crate::model::Model;
 use crate::options::SolveOptions;
 use crate::partition::Partition;
@@ -69,6 +70,9 @@ where
     /// This rank's share of the contact element (`None`: one rank, the
     /// whole element).
     contact_share: Option<ContactShare>,
+    /// The reference geometry of this rank's elements (every element's on
+    /// one rank).
+    pub(super) geometries: Geometries,
     /// The pattern of this rank's solid elements' entries, when the linear
     /// solver takes the solid block ([`LinearSolver::takes_block`]): every
     /// system gets a block over it.
@@ -110,9 +114,11 @@ where
             None
         };
         let contact_share = partition.contact_share(layout.multipliers());
+        let geometries = Geometries::of(&model.mesh, partition.elements())?;
         Ok(Setup {
             model,
             contact_share,
+            geometries,
             layout,
             dofs,
             linear,
@@ -254,8 +260,7 @@ where
         to: f64,
         sys: &mut System,
     ) -> f64 {
-        let elements = self.partition.elements();
-        assemble_solid_of(self.model, &self.dofs, u, lift, elements, sys);
+        assemble_solid_of(self.model, &self.geometries, &self.dofs, u, lift, sys);
         if self.partition.assembles_root_terms() {
             add_external(self.model, &self.dofs, to, sys)
         } else {
@@ -274,6 +279,35 @@ where
         let summed = self.linear.sum_over_ranks(&mut sys.residual);
         sys.energy = sys.residual.pop().unwrap_or(0.0);
         Ok(summed?)
+    }
+
+    /// The element of smallest `det F <= 0` at `u`
+    /// ([`Geometries::most_inverted`]), across MPI ranks the worst of every
+    /// rank's own elements (the smallest `det F`, the lowest element on a
+    /// tie, as on one rank; collective), `None` when no element inverts.
+    pub(super) fn most_inverted(&self, u: &[f64]) -> Result<Option<InvertedElement>, LinearError> {
+        let mine = self.geometries.most_inverted(&self.model.mesh, u);
+        if self.partition.ranks.size <= 1 {
+            return Ok(mine);
+        }
+        // the largest -det F, then the largest -element among the ranks
+        // that have it (-inf: none)
+        let mut worst = [mine.as_ref().map_or(f64::NEG_INFINITY, |i| -i.det_f)];
+        self.linear.max_over_ranks(&mut worst)?;
+        let mut first = [mine
+            .as_ref()
+            .filter(|i| -i.det_f == worst[0])
+            .map_or(f64::NEG_INFINITY, |i| -(i.element as f64))];
+        self.linear.max_over_ranks(&mut first)?;
+        if worst[0] == f64::NEG_INFINITY {
+            return Ok(None);
+        }
+        let element = (-first[0]) as usize;
+        Ok(Some(InvertedElement {
+            element,
+            det_f: -worst[0],
+            label: self.model.mesh.element_label(element),
+        }))
     }
 
     /// Keeps `sys`'s buffers for the next [`Setup::contact_system`].

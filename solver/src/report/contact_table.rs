@@ -65,6 +65,10 @@ pub enum ContactTableError {
     /// A slave-side kernel failure at a node of a 3D pair.
     #[error(transparent)]
     Faces(#[from] FaceNodalError),
+    /// An element's geometry for its stresses (cannot happen for a mesh
+    /// whose nodes were not moved, [`crate::mesh::Mesh::geometry`]).
+    #[error(transparent)]
+    Mesh(#[from] crate::mesh::MeshError),
 }
 
 /// A master node whose shape-function weight at the projection is at most

@@ -174,7 +174,7 @@ where
             gap[node] = Some(g);
         }
     }
-    let stresses = solution.element_mean_stresses(state);
+    let stresses = solution.element_mean_stresses(state)?;
     let voigt = if D == 2 { 3 } else { 6 };
     let mut out = String::with_capacity(200 * (n + m) + 1024);
     out.push_str("<?xml version=\"1.0\"?>\n");

@@ -453,7 +453,11 @@ steps = [2]
             .iter()
             .map(|e| format!("{:?}", e.nodes()))
             .collect();
-        let geometry: Vec<String> = m.mesh.geometry.iter().map(geometry).collect();
+        let geometry: Vec<String> = m
+            .mesh
+            .element_ids()
+            .map(|e| geometry(&m.mesh.geometry(e).unwrap()))
+            .collect();
         let mesh = format!(
             "Mesh {{ nodes_ref: {:?}, elements: [{}], element_body: {:?}, bodies: [{}], geometry: [{}] }}",
             m.mesh.nodes_ref,
