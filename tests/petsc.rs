@@ -159,6 +159,35 @@ fn two_ranks_give_the_one_rank_result() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Across two ranks each checks its own elements for inversion and the
+/// ranks take the worst: the 2D Hertz scene's first attempt inverts an
+/// element and is cut back, and two ranks name the element one rank names,
+/// then converge to its energy after as many cut-backs.
+#[cfg(feature = "petsc")]
+#[test]
+fn two_ranks_cut_back_at_the_element_one_rank_finds_inverted() {
+    let args = ["run", "scenes/hertz.toml", "--linear", "petsc"];
+    let (o1, o2) = (gapsim(&args), mpiexec(&args));
+    let (t1, t2) = (text(&o1), text(&o2));
+    assert!(o1.status.success(), "{t1}");
+    assert!(o2.status.success(), "{t2}");
+    let inverted = |t: &str| {
+        t.lines()
+            .find(|l| l.starts_with("step 1/1: cut back"))
+            .and_then(|l| l.split(" is inverted").next())
+            .map(str::to_owned)
+    };
+    assert!(
+        inverted(&t1).is_some_and(|l| l.contains("element ")),
+        "{t1}"
+    );
+    assert_eq!(inverted(&t1), inverted(&t2), "{t2}");
+    for key in ["strain energy", "cut-backs"] {
+        let line = |t: &str| t.lines().find(|l| l.starts_with(key)).map(str::to_owned);
+        assert_eq!(line(&t1), line(&t2), "{key}: {t2}");
+    }
+}
+
 /// Only the petsc solver runs across ranks: another under `mpiexec -n 2`
 /// is refused on every rank before any step.
 #[cfg(feature = "petsc")]
