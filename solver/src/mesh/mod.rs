@@ -16,8 +16,10 @@
 //! elements.
 //!
 //! The [`Mesh`] owns what every body has, however it was made: nodes,
-//! connectivity, the body ranges, the precomputed element geometry and the
-//! selection of nodes by reference coordinates. Bodies are appended one at a
+//! connectivity, the body ranges and the selection of nodes by reference
+//! coordinates; the element geometry is computed from them when it is
+//! asked for ([`Mesh::geometry`]; a solve keeps the geometry of the
+//! elements it assembles, [`Geometries`]). Bodies are appended one at a
 //! time, each with fresh nodes ([`Mesh::add_body`] checks the connectivity
 //! and that every element's reference Jacobian is positive, naming the
 //! element and its kind otherwise), so that
