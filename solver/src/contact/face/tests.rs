@@ -721,15 +721,18 @@ fn the_batched_slip_pass_gives_each_point_the_bits_of_its_own_evaluation() {
 #[test]
 fn the_ranks_contact_shares_sum_to_the_whole_element() {
     let (mesh, layout, pairing, anchors, u, lambda, active) = sliding_with_friction();
-    let (r, k, pushed) = friction_system_of(
-        &mesh,
-        &layout,
-        (&pairing, &anchors),
-        &u,
-        &lambda,
-        &active,
-        None,
-    );
+    let system = |share: Option<&ContactShare>| {
+        friction_system_of(
+            &mesh,
+            &layout,
+            (&pairing, &anchors),
+            &u,
+            &lambda,
+            &active,
+            share,
+        )
+    };
+    let (r, k, pushed) = system(None);
     let (mut r_sum, mut k_sum, mut pushed_sum) = (r.clone() * 0.0, k.clone() * 0.0, 0);
     let mut owned = vec![0; lambda.len()];
     for rank in 0..3 {
@@ -744,15 +747,7 @@ fn the_ranks_contact_shares_sum_to_the_whole_element() {
         for (m, o) in owned.iter_mut().enumerate() {
             *o += usize::from(share.multiplier(m));
         }
-        let (r, k, pushed) = friction_system_of(
-            &mesh,
-            &layout,
-            (&pairing, &anchors),
-            &u,
-            &lambda,
-            &active,
-            Some(&share),
-        );
+        let (r, k, pushed) = system(Some(&share));
         r_sum += r;
         k_sum += k;
         pushed_sum += pushed;
