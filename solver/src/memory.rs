@@ -42,10 +42,11 @@
 //!
 //! * **PETSc** (`--linear petsc`, feature `petsc`), whole runs of
 //!   `scenes/pressed-block3d.toml` refined 4, 6 and 9 times
-//!   (`scripts/petsc-scaling.sh`, docs/petsc.md): 6.4, 5.6 and 5.3 KiB
-//!   per equation at 103813, 343207 and 1142398 equations (9.1, 8.5 and
-//!   8.4 before the solid block, 13.5, 11.8 and 11.7 before the triplet
-//!   indices became 32-bit), not growing (no fill): `B` is
+//!   (`scripts/petsc-scaling.sh`, docs/petsc.md): 5.8, 5.2 and 4.9 KiB
+//!   per equation at 103813, 343207 and 1142398 equations (6.4, 5.6 and
+//!   5.3 with GAMG's smoothed aggregation, 9.1, 8.5 and 8.4 before the
+//!   solid block, 13.5, 11.8 and 11.7 before the triplet indices became
+//!   32-bit), not growing (no fill): `B` is
 //!   [`PETSC_3D_BYTES_PER_EQUATION`], 0.7 of the smallest, at every size. In 2D it takes the LDLᵀ's figure, a lower bound (a 2D
 //!   block pressed on a base peaked at 6.7 KiB per equation through PETSc).
 //!
@@ -99,8 +100,8 @@ pub const LDLT_3D_BYTES_PER_EQUATION: u64 = 9 * 1024;
 /// reference size, the smaller of the two LU runs).
 pub const LU_3D_BYTES_PER_EQUATION: u64 = 24 * 1024;
 
-/// PETSc's Krylov solve, 3D (module docs: 0.7 of the smallest measured
-/// 5.3 KiB, rounded down; multigrid's memory grows linearly, so no growth
+/// PETSc's Krylov solve, 3D (module docs: 0.7 of the smallest measured,
+/// 4.9 KiB, rounded to the half KiB; multigrid's memory grows linearly, so no growth
 /// with the size). In 2D the LDLᵀ's [`LDLT_BYTES_PER_EQUATION`], which the
 /// PETSc path's measured peaks exceed.
 pub const PETSC_3D_BYTES_PER_EQUATION: u64 = 3 * 1024 + 512;
