@@ -73,8 +73,10 @@ fn mpiexec(args: &[&str]) -> Output {
 
 /// Every number of two CSV files of the same rows and columns agrees to
 /// `1e-8` of its column's largest magnitude (a column all below `1e-6` of
-/// the file's largest number, a zero to round-off, to `1e-14` of that); the
-/// words are equal.
+/// the file's largest number, a zero to round-off, to `1e-12` of that
+/// number: the paper scene's zero reaction differs by 2e-13 between two
+/// partitions, as much as its non-zero reaction's last digits); the words
+/// are equal.
 #[cfg(feature = "petsc")]
 fn assert_same_csv(a: &str, b: &str, what: &str) {
     let table = |t: &str| -> Vec<Vec<String>> {
@@ -94,7 +96,16 @@ fn assert_same_csv(a: &str, b: &str, what: &str) {
         })
         .collect();
     let largest = scale.iter().fold(0.0_f64, |m, &v| m.max(v));
-    let scale: Vec<f64> = scale.iter().map(|&c| c.max(1e-6 * largest)).collect();
+    let scale: Vec<f64> = scale
+        .iter()
+        .map(|&c| {
+            if c < 1e-6 * largest {
+                1e-4 * largest
+            } else {
+                c
+            }
+        })
+        .collect();
     for (ra, rb) in ta.iter().zip(&tb) {
         assert_eq!(ra.len(), rb.len(), "{what}: {ra:?} against {rb:?}");
         for (c, (x, y)) in ra.iter().zip(rb).enumerate() {

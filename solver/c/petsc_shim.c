@@ -113,11 +113,12 @@ int gapsim_petsc_allreduce(double *vals, PetscInt n, int op)
 }
 
 /* ---- MatPartitioning: the graph whose rows first..first+n_local this rank
- * holds (ia, ja: compressed rows, global columns, no self-loops) cut into one
- * part per rank (PT-Scotch, else ParMETIS, unless -mat_partitioning_type says
+ * holds (ia, ja: compressed rows, global columns, no self-loops; weights, one
+ * per row, or NULL) cut into one part per rank, the parts' weights balanced
+ * (PT-Scotch, else ParMETIS, unless -mat_partitioning_type says
  * otherwise); every row's part, all n_total of them, into part on every
  * rank. ---- */
-int gapsim_petsc_partition(PetscInt n_local, PetscInt n_total, const PetscInt *ia, const PetscInt *ja, PetscInt *part)
+int gapsim_petsc_partition(PetscInt n_local, PetscInt n_total, const PetscInt *ia, const PetscInt *ja, const PetscInt *weights, PetscInt *part)
 {
   Mat adj;
   MatPartitioning mp;
@@ -142,6 +143,15 @@ int gapsim_petsc_partition(PetscInt n_local, PetscInt n_total, const PetscInt *i
   if (ierr) return ierr;
   ierr = MatPartitioningSetNParts(mp, size);
   if (ierr) return ierr;
+  if (weights) {
+    PetscInt *w;
+    ierr = PetscMalloc1(n_local > 0 ? n_local : 1, &w);
+    if (ierr) return ierr;
+    for (k = 0; k < n_local; k++) w[k] = weights[k];
+    /* the partitioning owns w from here */
+    ierr = MatPartitioningSetVertexWeights(mp, w);
+    if (ierr) return ierr;
+  }
 #if defined(PETSC_HAVE_PTSCOTCH)
   ierr = MatPartitioningSetType(mp, MATPARTITIONINGPTSCOTCH);
 #elif defined(PETSC_HAVE_PARMETIS)

@@ -7,7 +7,18 @@
 //! tetrahedra in 3D, an edge in 2D); the linear solver cuts it into one part
 //! per rank ([`LinearSolver::partition`]: PETSc's graph partitioner), each
 //! rank giving the graph's rows of one contiguous block of elements. A node
-//! belongs to the lowest rank among its elements'. On one rank nothing is
+//! belongs to the lowest rank among its elements'.
+//!
+//! The parts balance the elements' weights, each the entries of Newton's
+//! matrix its rank assembles for it: its solid entries `(n D)^2` (`n`
+//! nodes), and a share of the contact's. A rank assembles the points of
+//! the slave nodes it owns ([`ContactShare`]), each point about
+//! `(2 f D + f)^2` entries (`f = 2^(D-1)` nodes on the slave and on the
+//! master facet, and the slave's multipliers); the layout's points are
+//! spread evenly over its multipliers' nodes, and a node's share evenly
+//! over its elements. Without the contact's weight the partitioner put
+//! every slave node of the 3D scaling scene on one rank, which then held
+//! the whole contact beside half the volume (docs/petsc.md). On one rank nothing is
 //! built: every element is the rank's, in element order, so the assembly is
 //! the one-rank assembly bit for bit.
 //!
@@ -42,11 +53,15 @@ impl Partition {
         }
     }
 
-    /// The partition of `model`'s elements across `linear`'s ranks
-    /// (collective across them; [`Partition::one`] on one rank).
+    /// The partition of `model`'s elements across `linear`'s ranks, the
+    /// contact layout's `multipliers` and `points` weighing on their
+    /// elements (module docs; collective across the ranks;
+    /// [`Partition::one`] on one rank).
     pub fn of<const D: usize>(
         model: &Model<D>,
         linear: &dyn LinearSolver,
+        multipliers: &[MultiplierDof],
+        points: usize,
     ) -> Result<Partition, LinearError>
     where
         Dim<D>: SurfaceDim<D>,
@@ -79,13 +94,31 @@ impl Partition {
             }
         }
         drop(next);
+        // the contact's entries at each slave node (module docs)
+        let mut at_node = vec![0.0f64; n_nodes];
+        if !multipliers.is_empty() {
+            let f = 1usize << (D - 1);
+            let per_point = ((2 * f * D + f) * (2 * f * D + f)) as f64;
+            let each = points as f64 * per_point / multipliers.len() as f64;
+            for m in multipliers {
+                at_node[m.node.index()] += each;
+            }
+        }
         // this rank's block of the dual graph's rows
         let first = n_el * ranks.rank / ranks.size;
         let last = n_el * (ranks.rank + 1) / ranks.size;
         let mut row_ptr = vec![0i32];
         let mut cols: Vec<i32> = Vec::new();
+        let mut weights: Vec<i32> = Vec::with_capacity(last - first);
         let mut around: Vec<u32> = Vec::new();
         for e in first..last {
+            let el = &mesh.elements[e];
+            let solid = (el.len() * D * el.len() * D) as f64;
+            let contact: f64 = el
+                .iter()
+                .map(|n| at_node[n.index()] / (start[n.index() + 1] - start[n.index()]) as f64)
+                .sum();
+            weights.push((solid + contact).round().clamp(1.0, i32::MAX as f64) as i32);
             around.clear();
             for n in mesh.elements[e].iter() {
                 around.extend_from_slice(&of_node[start[n.index()]..start[n.index() + 1]]);
@@ -98,7 +131,7 @@ impl Partition {
             }
             row_ptr.push(i32::try_from(cols.len()).map_err(|_| too_big())?);
         }
-        let part = linear.partition(n_el, &row_ptr, &cols)?;
+        let part = linear.partition(n_el, &row_ptr, &cols, &weights)?;
         if part.len() != n_el || part.iter().any(|&r| r >= ranks.size) {
             return Err(LinearError::Petsc(format!(
                 "the partitioner gave {} parts in 0..{} for {n_el} elements",
@@ -161,12 +194,13 @@ mod tests {
 
     use super::*;
     use crate::assembly::{assemble_solid_lifted, assemble_solid_of};
+    use crate::contact::{ContactLayout, ContactSpace};
     use crate::mesh::Geometries;
     use crate::system::{DofMap, System};
 
     /// A graph as `LinearSolver::partition` receives it: the vertex count,
-    /// this rank's row pointers and columns.
-    type Graph = (usize, Vec<i32>, Vec<i32>);
+    /// this rank's row pointers, columns and weights.
+    type Graph = (usize, Vec<i32>, Vec<i32>, Vec<i32>);
 
     /// A solver that only plays rank `rank` of `size`: its partition puts
     /// element `e` on rank `e % size` and keeps the graph it was given.
@@ -199,8 +233,10 @@ mod tests {
             n_total: usize,
             row_ptr: &[i32],
             cols: &[i32],
+            weights: &[i32],
         ) -> Result<Vec<usize>, LinearError> {
-            *self.graph.borrow_mut() = Some((n_total, row_ptr.to_vec(), cols.to_vec()));
+            *self.graph.borrow_mut() =
+                Some((n_total, row_ptr.to_vec(), cols.to_vec(), weights.to_vec()));
             Ok((0..n_total).map(|e| e % self.ranks.size).collect())
         }
     }
@@ -223,15 +259,24 @@ mod tests {
                 .filter(|n| mesh.elements[b].contains(n))
                 .count()
         };
+        let layout = <ContactLayout as ContactSpace<2>>::build(&model, None).unwrap();
+        assert!(layout.point_count() > 0);
+        let mut weight = 0.0;
         let parts: Vec<Partition> = (0..2)
             .map(|rank| {
                 let solver = Playing {
                     ranks: Ranks { rank, size: 2 },
                     graph: RefCell::new(None),
                 };
-                let p = Partition::of(&model, &solver).unwrap();
-                let (total, row_ptr, cols) = solver.graph.into_inner().unwrap();
+                let p = Partition::of(&model, &solver, layout.multipliers(), layout.point_count())
+                    .unwrap();
+                let (total, row_ptr, cols, weights) = solver.graph.into_inner().unwrap();
                 assert_eq!(total, n_el);
+                // each element weighs its solid entries (4 nodes, 2 dofs
+                // each) and its share of the contact's
+                assert_eq!(weights.len(), row_ptr.len() - 1);
+                assert!(weights.iter().all(|&w| w >= 64), "{weights:?}");
+                weight += weights.iter().map(|&w| f64::from(w)).sum::<f64>();
                 let first = n_el * rank / 2;
                 assert_eq!(row_ptr.len(), n_el * (rank + 1) / 2 - first + 1);
                 for (k, w) in row_ptr.windows(2).enumerate() {
@@ -247,6 +292,14 @@ mod tests {
                 p
             })
             .collect();
+        // the ranks' weights sum to every element's solid entries and every
+        // point's contact entries (2 + 2 nodes of 2 dofs and 2 multipliers),
+        // up to the rounding of each element's
+        let expected = (64 * n_el + 100 * layout.point_count()) as f64;
+        assert!(
+            (weight - expected).abs() <= 0.5 * n_el as f64,
+            "{weight} against {expected}"
+        );
         let mut owner = vec![None; n_el];
         for (rank, p) in parts.iter().enumerate() {
             assert_eq!(p.ranks, Ranks { rank, size: 2 });
@@ -306,6 +359,8 @@ mod tests {
                 ranks: Ranks::ONE,
                 graph: RefCell::new(None),
             },
+            layout.multipliers(),
+            layout.point_count(),
         )
         .unwrap();
         assert_eq!(one, Partition::one());

@@ -260,16 +260,18 @@ pub trait LinearSolver: Send {
     /// The rank of each vertex of a graph of `n_total` vertices (the
     /// elements, adjacent when they share a facet), of which this rank
     /// gives the rows `first..first + row_ptr.len() - 1` (compressed rows,
-    /// global columns; the ranks' rows in rank order): a graph partition
-    /// across the ranks, cutting few edges. Collective; every vertex on
-    /// rank 0 on one rank.
+    /// global columns; the ranks' rows in rank order; `weights`, each
+    /// row's positive weight): a graph partition across the ranks, cutting
+    /// few edges, the ranks' sums of weights balanced. Collective; every
+    /// vertex on rank 0 on one rank.
     fn partition(
         &self,
         n_total: usize,
         row_ptr: &[i32],
         cols: &[i32],
+        weights: &[i32],
     ) -> Result<Vec<usize>, LinearError> {
-        let _ = (row_ptr, cols);
+        let _ = (row_ptr, cols, weights);
         Ok(vec![0; n_total])
     }
 

@@ -104,7 +104,12 @@ where
             return Err(SolverError::TooManyEquations { equations });
         }
         let mut linear = options.linear.build(&options.petsc_options);
-        let partition = Partition::of(model, linear.as_ref())?;
+        let partition = Partition::of(
+            model,
+            linear.as_ref(),
+            layout.multipliers(),
+            layout.point_count(),
+        )?;
         let mut system_layout = dofs.layout(model);
         system_layout.node_rank = partition.node_rank.clone();
         linear.set_layout(&system_layout);

@@ -29,6 +29,7 @@ unsafe extern "C" {
         n_total: PetscInt,
         ia: *const PetscInt,
         ja: *const PetscInt,
+        weights: *const PetscInt,
         part: *mut PetscInt,
     ) -> PetscErrorCode;
     pub fn gapsim_petsc_options_replace(text: *const c_char) -> PetscErrorCode;

@@ -31,9 +31,9 @@
 //!
 //! with `K^-1` one V-cycle of aggregation multigrid (GAMG, given the
 //! rigid-body near-null space; plain aggregation, its tentative
-//! prolongator unsmoothed, over the graph of couplings at least 0.01 of
-//! their diagonals: on the 3D scaling scene this takes less time and less
-//! memory than smoothed aggregation, most across ranks, docs/petsc.md) and
+//! prolongator unsmoothed: on the 3D scaling scene this takes less memory
+//! than smoothed aggregation in about the same time, most across ranks,
+//! docs/petsc.md) and
 //! `Sp^-1` block Jacobi with ILU(0) (one block per rank). A system
 //! without constraint rows (no contact) is solved by FGMRES with GAMG on the
 //! displacements. Why this route (and not the condensation of the
@@ -84,7 +84,7 @@ pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 30 -ksp_m
      -pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type upper \
      -pc_fieldsplit_schur_precondition selfp \
      -fieldsplit_u_ksp_type preonly -fieldsplit_u_pc_type gamg \
-     -fieldsplit_u_pc_gamg_agg_nsmooths 0 -fieldsplit_u_pc_gamg_threshold 0.01 \
+     -fieldsplit_u_pc_gamg_agg_nsmooths 0 \
      -fieldsplit_lambda_ksp_type preonly -fieldsplit_lambda_pc_type bjacobi";
 
 /// The defaults of a system without constraint rows.

@@ -154,14 +154,17 @@ impl Serial {
     /// The part (one per rank) of every vertex of a graph of `n_total`
     /// vertices, of which this rank passes the rows `first..first +
     /// row_ptr.len() - 1` (the ranks' rows in rank order, together every
-    /// vertex once; compressed rows `row_ptr`, global `cols`, no self-loop):
-    /// PETSc's `MatPartitioning` (PT-Scotch, else ParMETIS; the option
-    /// `-mat_partitioning_type` picks another). Collective.
+    /// vertex once; compressed rows `row_ptr`, global `cols`, no self-loop;
+    /// `weights`, one positive weight per row the rank passes, the parts
+    /// balanced by their sums): PETSc's `MatPartitioning` (PT-Scotch, else
+    /// ParMETIS; the option `-mat_partitioning_type` picks another).
+    /// Collective.
     pub fn partition(
         &self,
         n_total: usize,
         row_ptr: &[PetscInt],
         cols: &[PetscInt],
+        weights: &[PetscInt],
     ) -> Result<Vec<usize>, PetscError> {
         let call = "partition";
         let n_local = row_ptr.len().saturating_sub(1);
@@ -169,12 +172,15 @@ impl Serial {
             && row_ptr[0] == 0
             && row_ptr.windows(2).all(|w| w[0] <= w[1])
             && row_ptr[n_local] as usize == cols.len()
-            && cols.iter().all(|&c| c >= 0 && (c as usize) < n_total);
+            && cols.iter().all(|&c| c >= 0 && (c as usize) < n_total)
+            && weights.len() == n_local
+            && weights.iter().all(|&w| w > 0);
         if !sound {
             return Err(PetscError {
                 call,
                 code: -1,
-                message: "the graph is not compressed rows of vertices in range".into(),
+                message: "the graph is not compressed rows of vertices in range with a positive weight each"
+                    .into(),
             });
         }
         let mut part = vec![0 as PetscInt; n_total];
@@ -185,6 +191,7 @@ impl Serial {
                 index(call, n_total)?,
                 row_ptr.as_ptr(),
                 cols.as_ptr(),
+                weights.as_ptr(),
                 part.as_mut_ptr(),
             )
         })?;

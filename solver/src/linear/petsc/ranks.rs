@@ -459,11 +459,12 @@ impl LinearSolver for PetscRanks {
         n_total: usize,
         row_ptr: &[i32],
         cols: &[i32],
+        weights: &[i32],
     ) -> Result<Vec<usize>, LinearError> {
         let s = serial()?;
         // the partitioner reads the options too (`-mat_partitioning_type`)
         s.replace_options(&options_for(&self.options, true, false))?;
-        Ok(s.partition(n_total, row_ptr, cols)?)
+        Ok(s.partition(n_total, row_ptr, cols, weights)?)
     }
 }
 
