@@ -18,9 +18,10 @@
 //! spread evenly over its multipliers' nodes, and a node's share evenly
 //! over its elements. Without the contact's weight the partitioner put
 //! every slave node of the 3D scaling scene on one rank, which then held
-//! the whole contact beside half the volume (docs/petsc.md). On one rank nothing is
-//! built: every element is the rank's, in element order, so the assembly is
-//! the one-rank assembly bit for bit.
+//! the whole contact beside half the volume (docs/petsc.md).
+//!
+//! On one rank nothing is built: every element is the rank's, in element
+//! order, so the assembly is the one-rank assembly bit for bit.
 //!
 //! Invariant: the ranks' element sets are disjoint and cover the mesh, and
 //! every rank computes the same partition (the partitioner's answer is
