@@ -121,7 +121,7 @@ impl Partition {
                 .sum();
             weights.push((solid + contact).round().clamp(1.0, i32::MAX as f64) as i32);
             around.clear();
-            for n in mesh.elements[e].iter() {
+            for n in el.iter() {
                 around.extend_from_slice(&of_node[start[n.index()]..start[n.index() + 1]]);
             }
             around.sort_unstable();

@@ -33,16 +33,15 @@
 //! rigid-body near-null space; plain aggregation, its tentative
 //! prolongator unsmoothed: on the 3D scaling scene this takes less memory
 //! than smoothed aggregation in about the same time, most across ranks,
-//! docs/petsc.md) and
-//! `Sp^-1` block Jacobi with ILU(0) (one block per rank). A system
-//! without constraint rows (no contact) is solved by FGMRES with GAMG on the
-//! displacements. Why this route (and not the condensation of the
+//! docs/petsc.md) and `Sp^-1` block Jacobi with ILU(0) (one block per
+//! rank). A system without constraint rows (no contact) is solved by FGMRES
+//! with GAMG on the displacements. Why this route (and not the condensation of the
 //! multipliers) is in docs/petsc.md, with the measurements.
 //!
 //! # When the multigrid stalls
 //!
-//! GAMG's aggregation (smoothed or plain) does not converge on every mesh (the graded
-//! hexahedral 3D Hertz mesh stalls it, docs/petsc.md). A solve the default
+//! GAMG's aggregation (smoothed or plain) does not converge on every mesh
+//! (the graded hexahedral 3D Hertz mesh stalls it, docs/petsc.md). A solve the default
 //! does not converge is therefore retried once, from a solver rebuilt with
 //! [`FALLBACK_OPTIONS`] after the defaults (BoomerAMG, hypre's classical
 //! algebraic multigrid, on the displacements), and the run keeps the
