@@ -11,7 +11,9 @@
 //! - a box `Q`: `min_f[k] <= Q.max[k]` and `Q.min[k] <= max_f[k]` on every
 //!   axis `k` (closed boxes: touching counts), or
 //! - a ball of centre `p` and radius `r`: `dist(p, B_f) <= r`, with
-//!   `dist(p, B)^2 = sum_k max(min[k] - p[k], 0, p[k] - max[k])^2`.
+//!   `dist(p, B)^2 = sum_k max(min[k] - p[k], 0, p[k] - max[k])^2`, or
+//! - a line `p + t d` (every real `t`): the line meets `B_f` inflated by `r`
+//!   on every side (the slab test, [`Aabb::meets_line`]).
 //!
 //! The answer is the list of face indices in **ascending** order, whatever
 //! the tree's shape, so a caller that tries candidates in order picks the
@@ -144,6 +146,30 @@ impl<const D: usize> Aabb<D> {
     /// Whether the two closed boxes share a point.
     pub fn meets(&self, other: &Aabb<D>) -> bool {
         (0..D).all(|k| self.min[k] <= other.max[k] && other.min[k] <= self.max[k])
+    }
+
+    /// Whether the box, inflated by `r` on every side, meets the line
+    /// `p + t d` (`t` any real): the slab test, the parameters `t` inside
+    /// every axis' slab overlapping (closed: touching counts). An axis
+    /// along which the line does not move needs `p` inside its slab.
+    pub fn meets_line(&self, p: &[f64; D], d: &[f64; D], r: f64) -> bool {
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for k in 0..D {
+            let (a, b) = (self.min[k] - r, self.max[k] + r);
+            if d[k] == 0.0 {
+                if p[k] < a || p[k] > b {
+                    return false;
+                }
+                continue;
+            }
+            let (t0, t1) = ((a - p[k]) / d[k], (b - p[k]) / d[k]);
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+            if lo > hi {
+                return false;
+            }
+        }
+        true
     }
 
     /// The squared Euclidean distance from `p` to the box (0 inside).
@@ -377,6 +403,41 @@ impl<const D: usize> FaceIndex<D> {
         Ok(self.collect(|b| b.distance_squared(point) <= r2, stats))
     }
 
+    /// The faces whose box, inflated by `radius` on every side, meets the
+    /// line `point + t direction` (`t` any real), ascending. A zero
+    /// `direction` is an error (it names no line).
+    pub fn query_line(
+        &self,
+        point: &[f64; D],
+        direction: &[f64; D],
+        radius: f64,
+    ) -> Result<Vec<usize>, IndexError> {
+        self.query_line_counted(point, direction, radius, &mut QueryStats::default())
+    }
+
+    /// As [`Self::query_line`], adding the work done to `stats`.
+    pub fn query_line_counted(
+        &self,
+        point: &[f64; D],
+        direction: &[f64; D],
+        radius: f64,
+        stats: &mut QueryStats,
+    ) -> Result<Vec<usize>, IndexError> {
+        check_distance("radius", radius)?;
+        for (k, &value) in point.iter().chain(direction).enumerate() {
+            if !value.is_finite() {
+                return Err(IndexError::NonFiniteQuery { axis: k % D, value });
+            }
+        }
+        if direction.iter().all(|&d| d == 0.0) {
+            return Err(IndexError::BadDistance {
+                what: "direction (its length)",
+                value: 0.0,
+            });
+        }
+        Ok(self.collect(|b| b.meets_line(point, direction, radius), stats))
+    }
+
     fn collect(&self, hit: impl Fn(&Aabb<D>) -> bool, stats: &mut QueryStats) -> Vec<usize> {
         let mut found = Vec::new();
         if self.nodes.is_empty() {
@@ -447,6 +508,47 @@ mod tests {
             .collect()
     }
 
+    /// Whether the line `p + t d` meets box `b` inflated by `r`, from the
+    /// other side than the slab test: the distance from `p + t d` to the
+    /// box is convex in `t`, so a golden-section search finds its minimum.
+    fn line_meets_by_distance<const D: usize>(
+        b: &Aabb<D>,
+        p: &[f64; D],
+        d: &[f64; D],
+        r: f64,
+    ) -> bool {
+        let inflated: Aabb<D> = Aabb {
+            min: std::array::from_fn(|k| b.min[k] - r),
+            max: std::array::from_fn(|k| b.max[k] + r),
+        };
+        let at = |t: f64| -> f64 {
+            inflated.distance_squared(&std::array::from_fn(|k| p[k] + t * d[k]))
+        };
+        // golden-section search of the convex distance over a wide range
+        let (mut lo, mut hi) = (-1e3, 1e3);
+        let g = (5f64.sqrt() - 1.0) / 2.0;
+        for _ in 0..200 {
+            let (a, c) = (hi - g * (hi - lo), lo + g * (hi - lo));
+            if at(a) <= at(c) {
+                hi = c;
+            } else {
+                lo = a;
+            }
+        }
+        at(0.5 * (lo + hi)) <= 1e-18
+    }
+
+    fn brute_line<const D: usize>(
+        boxes: &[Aabb<D>],
+        p: &[f64; D],
+        d: &[f64; D],
+        r: f64,
+    ) -> Vec<usize> {
+        (0..boxes.len())
+            .filter(|&f| line_meets_by_distance(&boxes[f], p, d, r))
+            .collect()
+    }
+
     fn check_random<const D: usize>(seed: u64) {
         let mut rng = Lcg::new(seed);
         let mut nonempty = 0;
@@ -469,7 +571,25 @@ mod tests {
                 };
                 let got_p = index.query_point(&p, r).unwrap();
                 assert_eq!(got_p, brute_point(&boxes, &p, r), "n = {n}, {p:?}, r = {r}");
-                nonempty += usize::from(!got.is_empty()) + usize::from(!got_p.is_empty());
+                // a line through p, one direction component zero at times
+                let mut d = [0.0; D];
+                for x in &mut d {
+                    *x = if rng.uniform(0.0, 1.0) < 0.2 {
+                        0.0
+                    } else {
+                        rng.uniform(-1.0, 1.0)
+                    };
+                }
+                d[0] += 0.1;
+                let got_l = index.query_line(&p, &d, r).unwrap();
+                assert_eq!(
+                    got_l,
+                    brute_line(&boxes, &p, &d, r),
+                    "n = {n}, {p:?} + t {d:?}"
+                );
+                nonempty += usize::from(!got.is_empty())
+                    + usize::from(!got_p.is_empty())
+                    + usize::from(!got_l.is_empty() && got_l.len() < n);
             }
         }
         // The comparison means something only if queries find faces.

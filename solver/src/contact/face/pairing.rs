@@ -24,8 +24,17 @@
 //! Starting from `r = h`: if the best candidate has `|g| <= r` it is the
 //! best of all faces; if it has a larger `|g|`, the query is repeated with
 //! `r = |g|`, after which the answer is exact; if there is none, `r` grows
-//! fourfold until the query holds every face. So the index chooses what
-//! trying every face in order chooses (tested against that scan).
+//! fourfold until the query holds every face. Under slave-normal a point
+//! found on no face within `h` is asked once more, along its line instead:
+//! `x_m = x_s + g n_s` lies on the line through `x_s` along the slave
+//! normal, so the faces whose box (inflated against the inside tolerance,
+//! `LINE_MARGIN`) the line meets include every face it projects into,
+//! whatever `|g|`. That query answers at once where the growing ball would
+//! test every face of the pair (a point that projects into none, past the
+//! master's edge: every Newton iteration of the complete formulation). With
+//! no face on the line the first face is tried, so a slave-side failure is
+//! the scan's. So the index chooses what trying every face in order
+//! chooses (tested against that scan).
 //!
 //! Invariants: evaluations are in point order; a point is paired only with
 //! a face it projects into and faces; slave-side kernel failures
@@ -148,12 +157,34 @@ pub struct Probe {
 /// A kernel failure on a master face (`None`: before any face was tried).
 pub(super) type Failure = (Option<MasterFaceIndex>, KernelError);
 
+/// A face's points at `xi` up to [`XI_INSIDE_TOL`] outside it lie within
+/// `2 tol` (quad4) or `4 tol` (tri3) times its box's diagonal of the box
+/// (the negative shape-function weights there sum to at most `tol`, `2 tol`):
+/// the line query's margin, in units of `tol` times the largest diagonal,
+/// with a factor two to spare.
+const LINE_MARGIN: f64 = 8.0;
+
+/// The diagonal of the box of `points`.
+fn box_extent(points: &[[f64; 3]]) -> f64 {
+    let mut d2 = 0.0;
+    for k in 0..3 {
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p[k]), hi.max(p[k]))
+            });
+        d2 += (hi - lo) * (hi - lo);
+    }
+    d2.sqrt()
+}
+
 /// The master faces' index of one pair at one configuration, with the
-/// mean face size `h`.
+/// mean face size `h` and the largest extent of a face's box.
 #[derive(Debug)]
 pub struct MasterFaces {
     index: FaceIndex<3>,
     size: f64,
+    extent: f64,
 }
 
 impl FaceLayout {
@@ -309,9 +340,14 @@ impl FaceLayout {
                 let nodes: Vec<&[[f64; 3]]> = coords.iter().map(|f| f.nodes()).collect();
                 let size =
                     coords.iter().map(|f| f.size()).sum::<f64>() / coords.len().max(1) as f64;
+                let extent = nodes.iter().map(|n| box_extent(n)).fold(0.0, f64::max);
                 FaceIndex::from_faces(&nodes, 0.0)
                     .ok()
-                    .map(|index| MasterFaces { index, size })
+                    .map(|index| MasterFaces {
+                        index,
+                        size,
+                        extent,
+                    })
             })
             .collect()
     }
@@ -362,9 +398,45 @@ impl FaceLayout {
                 Some(b) if b.1.abs() <= r => return Ok(found(Some(b))),
                 Some(b) => r = b.1.abs(),
                 None if cands.len() == n_faces => return Ok(None),
-                None => r *= 4.0,
+                None => {
+                    if let Some(line) = self.slave_normal_line(mesh, u, pt, faces) {
+                        // every face the point can project into (module docs)
+                        let radius = slack + LINE_MARGIN * XI_INSIDE_TOL * faces.extent;
+                        let cands = faces.index.query_line(&x_s, &line, radius).ok();
+                        if let Some(mut cands) = cands {
+                            if cands.is_empty() {
+                                // the scan's first face: its slave-side
+                                // failure, if any, is the scan's
+                                cands.push(0);
+                            }
+                            return Ok(found(best_of(&cands, counts)?));
+                        }
+                    }
+                    r *= 4.0
+                }
             }
         }
+    }
+
+    /// The direction of the line a slave-normal point projects along (its
+    /// slave face's normal at `xi_s`, module docs), `None` for the other
+    /// reading, a pair of faces with no formulation or a normal that is not
+    /// a finite non-zero vector (then the search grows its ball instead).
+    fn slave_normal_line(
+        &self,
+        mesh: &Mesh<3>,
+        u: &[f64],
+        pt: &Probe,
+        faces: &MasterFaces,
+    ) -> Option<[f64; 3]> {
+        if self.readings[pt.pair.index()] != contact_kernels::Formulation::SlaveNormal
+            || !faces.extent.is_finite()
+        {
+            return None;
+        }
+        let n = Self::current_face(mesh, u, &pt.slave).normal_at(pt.xi_s);
+        let len = dot(n, n).sqrt();
+        (len.is_finite() && len > 0.0).then(|| n.map(|c| c / len))
     }
 
     /// [`Self::initial_pairing`] trying every master face in order (no

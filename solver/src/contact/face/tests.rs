@@ -30,11 +30,21 @@ const MATERIAL: Material = Material {
 /// bottom faces (split into triangles when `tri_slave`) are the slave
 /// faces, the base's top faces the master faces.
 fn stacked(gap: f64, tri_slave: bool, reading: Formulation) -> (Mesh<3>, ContactPair<3>) {
+    stacked_on(2, gap, tri_slave, reading)
+}
+
+/// [`stacked`] on a base of `n x n x 1` hexahedra.
+fn stacked_on(
+    n: usize,
+    gap: f64,
+    tri_slave: bool,
+    reading: Formulation,
+) -> (Mesh<3>, ContactPair<3>) {
     let mut mesh = Mesh::<3>::new();
     let base = Block {
         origin: [0.0, 0.0, 0.0],
         size: [2.0, 2.0, 1.0],
-        cells: [2, 2, 1],
+        cells: [n, n, 1],
     };
     let cap = Block {
         origin: [0.3, 0.3, 1.0 + gap],
@@ -154,6 +164,39 @@ fn the_index_pairs_as_the_scan_of_every_master_face() {
     assert_eq!(by_index, by_scan);
     let paired = by_index.iter().filter(|p| p.is_some()).count();
     assert!(paired > 0 && paired < by_index.len(), "{paired}");
+}
+
+/// A point past the master's edge projects into no face. The growing ball
+/// would try every master face for it; under slave-normal the query along
+/// its line (pairing.rs, module docs) tries a few, and the pairing is the
+/// scan's either way.
+#[test]
+fn a_point_past_the_edge_tries_a_few_faces_under_slave_normal() {
+    for tri in [false, true] {
+        for reading in [Formulation::SlaveNormal, Formulation::ClosestPoint] {
+            let (mesh, pair) = stacked_on(24, 0.02, tri, reading);
+            let n_faces = pair.master.len();
+            let layout = FaceLayout::new(&mesh, std::slice::from_ref(&pair), None).unwrap();
+            // the cap slid past the base's edge x = 2 by half its width,
+            // and tilted a little
+            let mut u = warp(&mesh, 1.0);
+            for n in mesh.node_ids().filter(|&n| mesh.node_ref(n)[2] > 1.0) {
+                u[3 * n.index()] += 1.0;
+            }
+            let (by_index, counts) = layout.initial_pairing(&mesh, &u).unwrap();
+            let (by_scan, scan) = layout.pairing_by_scan(&mesh, &u).unwrap();
+            assert_eq!(by_index, by_scan, "tri {tri}, {reading}");
+            let unpaired = by_index.iter().filter(|p| p.is_none()).count();
+            assert!(unpaired > 0 && unpaired < by_index.len(), "{unpaired}");
+            assert_eq!(scan.project as usize, by_index.len() * n_faces);
+            // a third of the points are unpaired: the ball's growth to the
+            // whole pair would cost them n_faces = 576 projections each
+            let per_point = counts.project as f64 / by_index.len() as f64;
+            if reading == Formulation::SlaveNormal {
+                assert!(per_point < 20.0, "tri {tri}: {per_point} per point");
+            }
+        }
+    }
 }
 
 /// The potential `Pi_c = sum w J0 lambda g` of `layout`'s points on the

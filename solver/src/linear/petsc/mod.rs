@@ -198,6 +198,16 @@ macro_rules! through_parts {
 }
 use through_parts;
 
+/// What a solve's error says without the variant's own words, for an
+/// error that wraps it (`NotConverged`'s message in another
+/// `NotConverged` says "did not converge" once).
+fn detail(e: &LinearError) -> String {
+    match e {
+        LinearError::NotConverged(m) => m.clone(),
+        other => other.to_string(),
+    }
+}
+
 /// The error of a Krylov solve that ended without converging.
 fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> LinearError {
     let what = if out.stalled {
@@ -344,8 +354,9 @@ impl Objects {
         let Some(retry) = retry else {
             return Err(match counts.switched_at {
                 Some(n) => LinearError::NotConverged(format!(
-                    "{failed} (with BoomerAMG on the displacements, the default's since GAMG \
-                     did not converge solve {n})"
+                    "{} (with BoomerAMG on the displacements, the default's since GAMG \
+                     did not converge solve {n})",
+                    detail(&failed)
                 )),
                 None => failed,
             });
@@ -361,7 +372,9 @@ impl Objects {
         match self.run(s, rtol, &retry, counts)? {
             None => Ok(()),
             Some(e) => Err(LinearError::NotConverged(format!(
-                "{failed}; retried with BoomerAMG on the displacements: {e}"
+                "{}; retried with BoomerAMG on the displacements: {}",
+                detail(&failed),
+                detail(&e)
             ))),
         }
     }
