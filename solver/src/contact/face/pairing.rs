@@ -157,11 +157,12 @@ pub struct Probe {
 /// A kernel failure on a master face (`None`: before any face was tried).
 pub(super) type Failure = (Option<MasterFaceIndex>, KernelError);
 
-/// A face's points at `xi` up to [`XI_INSIDE_TOL`] outside it lie within
-/// `2 tol` (quad4) or `4 tol` (tri3) times its box's diagonal of the box
-/// (the negative shape-function weights there sum to at most `tol`, `2 tol`):
-/// the line query's margin, in units of `tol` times the largest diagonal,
-/// with a factor two to spare.
+/// The line query's margin, in units of [`XI_INSIDE_TOL`] times the largest
+/// diagonal of a master face's box. A face's points at `xi` up to `tol`
+/// outside it lie within `tol` (quad4) or `2 tol` (tri3) times that
+/// diagonal of its box: there the negative shape-function weights sum to at
+/// most `tol` (about) or `2 tol`, and `x = A + M (A - B)` with `A`, `B` in
+/// the nodes' hull and `M` that sum. 8 leaves a wide berth.
 const LINE_MARGIN: f64 = 8.0;
 
 /// The diagonal of the box of `points`.
@@ -420,8 +421,8 @@ impl FaceLayout {
 
     /// The direction of the line a slave-normal point projects along (its
     /// slave face's normal at `xi_s`, module docs), `None` for the other
-    /// reading, a pair of faces with no formulation or a normal that is not
-    /// a finite non-zero vector (then the search grows its ball instead).
+    /// reading, master faces of no finite size or a normal that is not a
+    /// finite non-zero vector (then the search grows its ball instead).
     fn slave_normal_line(
         &self,
         mesh: &Mesh<3>,
