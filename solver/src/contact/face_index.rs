@@ -148,6 +148,14 @@ impl<const D: usize> Aabb<D> {
         (0..D).all(|k| self.min[k] <= other.max[k] && other.min[k] <= self.max[k])
     }
 
+    /// The length of the box's diagonal.
+    pub fn diagonal(&self) -> f64 {
+        (0..D)
+            .map(|k| (self.max[k] - self.min[k]).powi(2))
+            .sum::<f64>()
+            .sqrt()
+    }
+
     /// Whether the box, inflated by `r` on every side, meets the line
     /// `p + t d` (`t` any real): the slab test, the parameters `t` inside
     /// every axis' slab overlapping (closed: touching counts). An axis

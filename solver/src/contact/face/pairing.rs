@@ -53,7 +53,7 @@ use crate::par;
 
 use super::layout::{FaceLayout, face_formulation};
 use super::slip_term::FaceSlip;
-use crate::contact::face_index::FaceIndex;
+use crate::contact::face_index::{Aabb, FaceIndex};
 use crate::contact::term::GapTerm;
 use crate::contact::{KernelCounts, PAR_MIN_LEN, PointFailure, XI_INSIDE_TOL, slave_side};
 
@@ -164,20 +164,6 @@ pub(super) type Failure = (Option<MasterFaceIndex>, KernelError);
 /// most `tol` (about) or `2 tol`, and `x = A + M (A - B)` with `A`, `B` in
 /// the nodes' hull and `M` that sum. 8 leaves a wide berth.
 const LINE_MARGIN: f64 = 8.0;
-
-/// The diagonal of the box of `points`.
-fn box_extent(points: &[[f64; 3]]) -> f64 {
-    let mut d2 = 0.0;
-    for k in 0..3 {
-        let (lo, hi) = points
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
-                (lo.min(p[k]), hi.max(p[k]))
-            });
-        d2 += (hi - lo) * (hi - lo);
-    }
-    d2.sqrt()
-}
 
 /// The master faces' index of one pair at one configuration, with the
 /// mean face size `h` and the largest extent of a face's box.
@@ -341,7 +327,10 @@ impl FaceLayout {
                 let nodes: Vec<&[[f64; 3]]> = coords.iter().map(|f| f.nodes()).collect();
                 let size =
                     coords.iter().map(|f| f.size()).sum::<f64>() / coords.len().max(1) as f64;
-                let extent = nodes.iter().map(|n| box_extent(n)).fold(0.0, f64::max);
+                let extent = (nodes.iter().enumerate())
+                    .filter_map(|(f, n)| Aabb::around(f, n, 0.0).ok())
+                    .map(|b| b.diagonal())
+                    .fold(0.0, f64::max);
                 FaceIndex::from_faces(&nodes, 0.0)
                     .ok()
                     .map(|index| MasterFaces {
@@ -387,7 +376,8 @@ impl FaceLayout {
             let all: Vec<usize> = (0..n_faces).collect();
             return Ok(found(best_of(&all, counts)?));
         };
-        let x_s = Self::current_face(mesh, u, &pt.slave).point_and_tangents(pt.xi_s)[0];
+        let slave = Self::current_face(mesh, u, &pt.slave);
+        let x_s = slave.point_and_tangents(pt.xi_s)[0];
         let mut r = faces.size.max(f64::MIN_POSITIVE);
         loop {
             let slack = 1e-6 * (r + faces.size);
@@ -400,7 +390,7 @@ impl FaceLayout {
                 Some(b) => r = b.1.abs(),
                 None if cands.len() == n_faces => return Ok(None),
                 None => {
-                    if let Some(line) = self.slave_normal_line(mesh, u, pt, faces) {
+                    if let Some(line) = self.slave_normal_line(&slave, pt, faces) {
                         // every face the point can project into (module docs)
                         let radius = slack + LINE_MARGIN * XI_INSIDE_TOL * faces.extent;
                         let cands = faces.index.query_line(&x_s, &line, radius).ok();
@@ -425,8 +415,7 @@ impl FaceLayout {
     /// finite non-zero vector (then the search grows its ball instead).
     fn slave_normal_line(
         &self,
-        mesh: &Mesh<3>,
-        u: &[f64],
+        slave: &Face<[f64; 3]>,
         pt: &Probe,
         faces: &MasterFaces,
     ) -> Option<[f64; 3]> {
@@ -435,7 +424,7 @@ impl FaceLayout {
         {
             return None;
         }
-        let n = Self::current_face(mesh, u, &pt.slave).normal_at(pt.xi_s);
+        let n = slave.normal_at(pt.xi_s);
         let len = dot(n, n).sqrt();
         (len.is_finite() && len > 0.0).then(|| n.map(|c| c / len))
     }
