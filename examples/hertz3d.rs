@@ -50,7 +50,7 @@ fn run(out: &Path) -> Result<(), String> {
         ("hexahedra", "hertz3d-hex.msh"),
         ("tetrahedra", "hertz3d-tet.msh"),
     ] {
-        let solved = solve_3d(&base, file, RADIUS)?;
+        let solved = solve_3d(&base, file, RADIUS, solver::LinearSolverKind::Ldlt)?;
         let m = &solved.measured;
         table.push_str(&format!(
             "| {name} (`{file}`) | {} | {} | {:.1} | {:.5} | {:.5} | {:.5} | {:+.2} % | {:.4} | {:.4} | {:+.2} h | {} of {} |\n",

@@ -6,6 +6,7 @@
 //! ```text
 //! cargo run --release --example hertz3d_refinement -- MESH_DIR [--out docs/hertz3d] [--max-equations N]
 //!     [--kind hex|tet|hexnm|hexnm073] [--segmented] [--gauss-points N] [--dual]
+//!     [--linear ldlt|petsc]
 //! ```
 //!
 //! `MESH_DIR` holds `hex-{h}.msh`, `tet-{h}.msh`, `hexnm-{h}.msh` and
@@ -24,15 +25,19 @@
 //! `--kind tet --segmented --dual` writes
 //! `hertz3d-refinement-tet-segmented-dual.{md,csv}`, `--kind hexnm`
 //! `hertz3d-refinement-hexnm.{md,csv}`, no option
-//! `hertz3d-refinement.{md,csv}`.
+//! `hertz3d-refinement.{md,csv}`. `--linear petsc` (built with `--features
+//! petsc`) solves with PETSc's default Krylov solve instead of the LDLᵀ,
+//! for meshes whose LDLᵀ does not fit (then raise `--max-equations`), and
+//! adds `-petsc` to the names: `--kind hex --linear petsc` writes
+//! `hertz3d-refinement-hex-petsc.{md,csv}`.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use gapsim::hertz::sphere::{Solved3d, solve_3d};
-use solver::Scene;
 use solver::model::{Integration, Multipliers};
+use solver::{LinearSolverKind, Scene};
 
 /// The indenter's radius.
 const RADIUS: f64 = 10.0;
@@ -62,9 +67,10 @@ struct Args {
     segmented: bool,
     gauss_points: Option<usize>,
     dual: bool,
+    linear: LinearSolverKind,
 }
 
-const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet|hexnm|hexnm073] [--segmented] [--gauss-points N] [--dual]";
+const USAGE: &str = "usage: hertz3d_refinement MESH_DIR [--out DIR] [--max-equations N] [--kind hex|tet|hexnm|hexnm073] [--segmented] [--gauss-points N] [--dual] [--linear ldlt|petsc]";
 
 fn parse(args: &[String]) -> Result<Args, String> {
     let mut meshes = None;
@@ -76,6 +82,7 @@ fn parse(args: &[String]) -> Result<Args, String> {
         segmented: false,
         gauss_points: None,
         dual: false,
+        linear: LinearSolverKind::Ldlt,
     };
     let mut it = args.iter();
     while let Some(a) = it.next() {
@@ -98,6 +105,10 @@ fn parse(args: &[String]) -> Result<Args, String> {
             }
             "--segmented" => parsed.segmented = true,
             "--dual" => parsed.dual = true,
+            "--linear" => {
+                let v = value()?;
+                parsed.linear = v.parse().map_err(|e| format!("--linear {v}: {e}"))?;
+            }
             "--gauss-points" => {
                 let v = value()?;
                 parsed.gauss_points = Some(
@@ -164,6 +175,9 @@ fn run(args: &Args) -> Result<(), String> {
     if args.dual {
         variant.push_str("-dual");
     }
+    if args.linear != LinearSolverKind::Ldlt {
+        variant.push_str(&format!("-{}", args.linear));
+    }
     let mut rows = Vec::new();
     for (prefix, kind, sizes) in MESHES {
         // the non-matching hexahedra only on request: their tables are apart
@@ -195,7 +209,7 @@ fn run(args: &Args) -> Result<(), String> {
             let file = path
                 .canonicalize()
                 .map_err(|e| format!("{}: {e}", path.display()))?;
-            let solved = solve_3d(&base, &file.to_string_lossy(), RADIUS)?;
+            let solved = solve_3d(&base, &file.to_string_lossy(), RADIUS, args.linear)?;
             let m = &solved.measured;
             eprintln!(
                 "{kind} h = {size}: {} equations, {} iterations, {:.1} s, peak {:+.2} %",

@@ -10,7 +10,7 @@
 #
 # The pages and their markers: docs/kernels.md (stability, stability-faces,
 # bench, bench-faces), docs/solver.md (scaling, scaling3d),
-# docs/benchmarks.md (hertz, patch, calculix, safety-map,
+# docs/petsc.md (petsc-plates), docs/benchmarks.md (hertz, patch, calculix, safety-map,
 # hertz3d-refinement, calculix3d), docs/study.md (study, which
 # `gapsim study --readme docs/study.md` splices itself).
 #

@@ -805,6 +805,8 @@ where
             k.max_iterations,
             k.switched_at.map_or(String::new(), |n| format!(
                 "; solve {n} did not converge with GAMG, retried and continued with BoomerAMG"
+            )) + &k.direct_at.map_or(String::new(), |n| format!(
+                "; solve {n} did not converge with BoomerAMG, retried and continued with MUMPS's LU"
             ))
         ),
         (None, Some(nnz)) => println!(

@@ -204,8 +204,15 @@ pub struct Solved3d {
 /// Solves `scene` (the 3D Hertz scene, `scenes/hertz3d.toml` or a copy of
 /// it) with its `mesh.file` replaced by `file` (relative to the scene's
 /// folder, or absolute): the complete formulation as the scene says, the
-/// LDLᵀ, then [`measure_3d`] with the sphere's radius `sphere_radius`.
-pub fn solve_3d(scene: &solver::Scene, file: &str, sphere_radius: f64) -> Result<Solved3d, String> {
+/// linear solver `linear` (the tables' LDLᵀ, or PETSc's Krylov solve for a
+/// mesh whose LDLᵀ does not fit), then [`measure_3d`] with the sphere's
+/// radius `sphere_radius`.
+pub fn solve_3d(
+    scene: &solver::Scene,
+    file: &str,
+    sphere_radius: f64,
+    linear: solver::LinearSolverKind,
+) -> Result<Solved3d, String> {
     let mut scene = scene.clone();
     scene.mesh = Some(solver::scene::MeshSpec {
         file: file.to_string(),
@@ -213,7 +220,7 @@ pub fn solve_3d(scene: &solver::Scene, file: &str, sphere_radius: f64) -> Result
     let model = scene.build_model::<3>().map_err(|e| e.to_string())?;
     let material = model.mesh.bodies[0].material;
     let options = solver::SolveOptions {
-        linear: solver::LinearSolverKind::Ldlt,
+        linear,
         ..solver::SolveOptions::from_scene(&scene)
     };
     let start = std::time::Instant::now();

@@ -152,8 +152,13 @@ pub struct KrylovCounts {
     pub ranks: usize,
     /// The solve (counted from 1) after which the default's multigrid on
     /// the displacements gave way to the fallback's (the PETSc solver's
-    /// module docs, "When the multigrid stalls"); `None` while it has not.
+    /// module docs, "When the default does not converge"); `None` while it
+    /// has not.
     pub switched_at: Option<usize>,
+    /// The solve (counted from 1) after which the default's last fallback,
+    /// a direct factorisation (MUMPS's LU of the whole system), took over
+    /// (the same docs); `None` while it has not.
+    pub direct_at: Option<usize>,
 }
 
 /// A sparse direct solver for the Newton system, with the symbolic analysis

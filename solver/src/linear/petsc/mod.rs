@@ -38,21 +38,33 @@
 //! with GAMG on the displacements. Why this route (and not the condensation of the
 //! multipliers) is in docs/petsc.md, with the measurements.
 //!
-//! # When the multigrid stalls
+//! # When the default does not converge
 //!
 //! GAMG's aggregation (smoothed or plain) does not converge on every mesh
-//! (the graded hexahedral 3D Hertz mesh stalls it, docs/petsc.md). A solve the default
-//! does not converge is therefore retried once, from a solver rebuilt with
-//! [`FALLBACK_OPTIONS`] after the defaults (BoomerAMG, hypre's classical
-//! algebraic multigrid, on the displacements), and the run keeps the
-//! fallback from then on ([`KrylovCounts::switched_at`], printed by
-//! `gapsim run`). A solve that has this fallback also ends early when it
-//! stalls ([`STALL_WINDOW`]: its residual has not fallen by 10 % over 100
-//! iterations), instead of running to `-ksp_max_it` before the retry. A
-//! user who names a `pc_type` (in the solver's options or `PETSC_OPTIONS`)
-//! chose the preconditioner: nothing is retried and no stall test is
-//! installed. A solve that does not converge after the switch is the
-//! error, saying so.
+//! (the graded hexahedral 3D Hertz mesh stalls it), and no multigrid
+//! V-cycle here converges on slender plates in persistent contact bending
+//! along their length (the paper scenes, docs/petsc.md). The default
+//! therefore climbs a ladder ([`Stage`]): a solve it does not converge is
+//! retried from a solver rebuilt with the next stage's options after the
+//! defaults, and the run keeps that stage from then on:
+//!
+//! 1. [`FALLBACK_OPTIONS`]: BoomerAMG (hypre's classical algebraic
+//!    multigrid) on the displacements ([`KrylovCounts::switched_at`]);
+//! 2. [`DIRECT_OPTIONS`]: MUMPS's LU of the whole system, FGMRES then
+//!    taking one iteration ([`KrylovCounts::direct_at`]), its working
+//!    memory per process bounded by `-mat_mumps_icntl_23` at 90 % of
+//!    `MemAvailable` shared by this machine's ranks ([`direct_options`]):
+//!    a factorisation that would need more fails at its start, as a solve
+//!    that did not converge, instead of the system killing the process.
+//!
+//! `gapsim run` prints where each switch happened. A solve that has a
+//! next stage also ends early when it stalls ([`STALL_WINDOW`]: its
+//! residual has not fallen by 10 % over 100 iterations), instead of running
+//! to `-ksp_max_it` before the retry. A user who names a `pc_type` (in the
+//! solver's options or `PETSC_OPTIONS`) chose the preconditioner: nothing
+//! is retried and no stall test is installed. A solve that does not
+//! converge on the last stage is the error, saying which stages it went
+//! through.
 //!
 //! # Options and tolerance
 //!
@@ -90,18 +102,106 @@ pub const DEFAULT_OPTIONS: &str = "-ksp_type fgmres -ksp_gmres_restart 30 -ksp_m
 pub const DEFAULT_OPTIONS_UNCONSTRAINED: &str =
     "-ksp_type fgmres -ksp_gmres_restart 100 -ksp_max_it 1000 -pc_type gamg";
 
-/// What the defaults become after a solve they did not converge (module
-/// docs, "When the multigrid stalls"): BoomerAMG (hypre's classical
-/// algebraic multigrid) on the displacements instead of GAMG. Not the
-/// default: on the 3D scaling scene it takes more memory than GAMG
-/// (docs/petsc.md).
+/// The first stage after the defaults (module docs, "When the default
+/// does not converge"): BoomerAMG (hypre's classical algebraic multigrid)
+/// on the displacements instead of GAMG. Not the default: on the 3D scaling
+/// scene it takes more memory than GAMG (docs/petsc.md).
 pub const FALLBACK_OPTIONS: &str = "-fieldsplit_u_pc_type hypre";
 
 /// [`FALLBACK_OPTIONS`] of a system without constraint rows.
 pub const FALLBACK_OPTIONS_UNCONSTRAINED: &str = "-pc_type hypre";
 
-/// The stall test of a solve that has a fallback (module docs, "When the
-/// multigrid stalls"): it ends when its residual norm has not fallen below
+/// The last stage (module docs): MUMPS's LU of the whole system, with or
+/// without constraint rows; [`direct_options`] adds its memory bound.
+pub const DIRECT_OPTIONS: &str = "-pc_type lu -pc_factor_mat_solver_type mumps";
+
+/// The share of `MemAvailable` MUMPS's working memory may take on this
+/// machine (module docs), split among its ranks.
+pub const DIRECT_MEMORY_SHARE: f64 = 0.9;
+
+/// The default's stages (module docs, "When the default does not
+/// converge"), in the order a run climbs them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Stage {
+    /// [`DEFAULT_OPTIONS`] (GAMG on the displacements).
+    Gamg,
+    /// [`FALLBACK_OPTIONS`] (BoomerAMG on the displacements).
+    BoomerAmg,
+    /// [`DIRECT_OPTIONS`] (MUMPS's LU).
+    Direct,
+}
+
+impl Stage {
+    /// The stage a run is on after the switches in `counts`.
+    fn of(counts: &KrylovCounts) -> Stage {
+        match (counts.switched_at, counts.direct_at) {
+            (_, Some(_)) => Stage::Direct,
+            (Some(_), None) => Stage::BoomerAmg,
+            (None, None) => Stage::Gamg,
+        }
+    }
+
+    /// The stage after this one.
+    fn next(self) -> Option<Stage> {
+        match self {
+            Stage::Gamg => Some(Stage::BoomerAmg),
+            Stage::BoomerAmg => Some(Stage::Direct),
+            Stage::Direct => None,
+        }
+    }
+
+    /// What the stage adds after the defaults of a system with or without
+    /// constraint rows, on a machine shared by `ranks` processes.
+    fn options(self, constrained: bool, ranks: usize) -> String {
+        match (self, constrained) {
+            (Stage::Gamg, _) => String::new(),
+            (Stage::BoomerAmg, true) => FALLBACK_OPTIONS.into(),
+            (Stage::BoomerAmg, false) => FALLBACK_OPTIONS_UNCONSTRAINED.into(),
+            (Stage::Direct, _) => direct_options(crate::meminfo::available(), ranks),
+        }
+    }
+
+    /// Records in `counts` that the run switched to this stage after solve
+    /// `counts.solves`.
+    fn record(self, counts: &mut KrylovCounts) {
+        match self {
+            Stage::Gamg => {}
+            Stage::BoomerAmg => counts.switched_at = Some(counts.solves),
+            Stage::Direct => counts.direct_at = Some(counts.solves),
+        }
+    }
+
+    /// The stage's preconditioner, as an error names it.
+    fn name(self) -> &'static str {
+        match self {
+            Stage::Gamg => "GAMG on the displacements",
+            Stage::BoomerAmg => "BoomerAMG on the displacements",
+            Stage::Direct => "MUMPS's LU",
+        }
+    }
+}
+
+/// [`DIRECT_OPTIONS`] with MUMPS's working memory per process
+/// (`-mat_mumps_icntl_23`) bounded by [`direct_bound`]; unbounded (MUMPS's
+/// own estimate) where `available` is unknown.
+fn direct_options(available: Option<u64>, ranks: usize) -> String {
+    match direct_bound(available, ranks) {
+        Some(mib) => format!("{DIRECT_OPTIONS} -mat_mumps_icntl_23 {mib}"),
+        None => DIRECT_OPTIONS.into(),
+    }
+}
+
+/// MUMPS's working memory per process, MiB: [`DIRECT_MEMORY_SHARE`] of
+/// `available` bytes split among `ranks` processes (at least 1 MiB).
+fn direct_bound(available: Option<u64>, ranks: usize) -> Option<u64> {
+    available.map(|bytes| {
+        let share = DIRECT_MEMORY_SHARE * bytes as f64 / ranks.max(1) as f64;
+        ((share / (1024.0 * 1024.0)) as u64).max(1)
+    })
+}
+
+/// The stall test of a solve that has a next stage (module docs, "When
+/// the default does not converge"): it ends when its residual norm has not fallen below
 /// [`STALL_FACTOR`] times its value [`STALL_WINDOW`] iterations earlier.
 pub const STALL_WINDOW: usize = 100;
 /// See [`STALL_WINDOW`].
@@ -131,29 +231,32 @@ pub fn build(options: &str) -> Box<dyn LinearSolver> {
 
 /// The options string installed for a system with or without constraint
 /// rows, with the solver's own `options` (module docs, "Options and
-/// tolerance"); with `switched`, the defaults followed by the fallback's.
-fn options_for(options: &str, constrained: bool, switched: bool) -> String {
-    let (defaults, fallback) = if constrained {
-        (DEFAULT_OPTIONS, FALLBACK_OPTIONS)
+/// tolerance"), on the default's `stage` (its options after the defaults)
+/// across `ranks` processes.
+fn options_for(options: &str, constrained: bool, stage: Stage, ranks: usize) -> String {
+    let defaults = if constrained {
+        DEFAULT_OPTIONS
     } else {
-        (
-            DEFAULT_OPTIONS_UNCONSTRAINED,
-            FALLBACK_OPTIONS_UNCONSTRAINED,
-        )
+        DEFAULT_OPTIONS_UNCONSTRAINED
     };
-    let fallback = if switched { fallback } else { "" };
+    let stage = stage.options(constrained, ranks);
     let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
-    format!("{defaults} {fallback} {env} {options}")
+    format!("{defaults} {stage} {env} {options}")
 }
 
-/// The options a solve that did not converge is retried with: the
-/// fallback's, when the preconditioner is the default's (neither the
-/// solver's `options` nor `PETSC_OPTIONS` name a `pc_type`) and the switch
-/// has not happened yet; `None` otherwise.
-fn retry_options(options: &str, constrained: bool, counts: &KrylovCounts) -> Option<String> {
+/// Whether the preconditioner is the default's: neither the solver's
+/// `options` nor `PETSC_OPTIONS` name a `pc_type`.
+fn default_preconditioner(options: &str) -> bool {
     let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
-    let chosen = options.contains("pc_type") || env.contains("pc_type");
-    (counts.switched_at.is_none() && !chosen).then(|| options_for(options, constrained, true))
+    !(options.contains("pc_type") || env.contains("pc_type"))
+}
+
+/// The stage a solve that did not converge is retried on: the next one,
+/// when the preconditioner is the default's; `None` otherwise.
+fn retry_stage(options: &str, counts: &KrylovCounts) -> Option<Stage> {
+    Stage::of(counts)
+        .next()
+        .filter(|_| default_preconditioner(options))
 }
 
 /// The [`LinearSolver`] methods that take the matrix, for a solver with
@@ -198,18 +301,8 @@ macro_rules! through_parts {
 }
 use through_parts;
 
-/// What a solve's error says without the variant's own words, for an
-/// error that wraps it (`NotConverged`'s message in another
-/// `NotConverged` says "did not converge" once).
-fn detail(e: &LinearError) -> String {
-    match e {
-        LinearError::NotConverged(m) => m.clone(),
-        other => other.to_string(),
-    }
-}
-
-/// The error of a Krylov solve that ended without converging.
-fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> LinearError {
+/// What PETSc said of a Krylov solve that ended without converging.
+fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> String {
     let what = if out.stalled {
         format!(
             "stalled (its residual fell by less than {:.0} % over {STALL_WINDOW} iterations)",
@@ -218,13 +311,15 @@ fn not_converged(method: &str, out: &objects::KrylovOutcome, rtol: f64) -> Linea
     } else {
         format!("reported {}", out.reason)
     };
-    LinearError::NotConverged(format!(
-        "PETSc's {method} {what} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e}); \
-         other PETSc options (--petsc-options, docs/petsc.md), a direct solve through PETSc \
-         (\"-pc_type lu -pc_factor_mat_solver_type mumps\") or --linear ldlt may solve it",
+    format!(
+        "PETSc's {method} {what} after {} iterations (residual {:.3e}, relative tolerance {rtol:.1e})",
         out.iterations, out.residual
-    ))
+    )
 }
+
+/// What the error of a solve that converged on no stage suggests.
+const NOT_CONVERGED_HINT: &str = "other PETSc options (--petsc-options, docs/petsc.md) \
+     or --linear ldlt may solve it";
 
 /// PETSc's error codes of a configuration it refuses, whatever the matrix:
 /// no support for the operation (`PETSC_ERR_SUP`), a wrong, out-of-range or
@@ -332,62 +427,113 @@ struct Objects {
 }
 
 impl Objects {
+    /// The processes this solver's objects span.
+    fn ranks(&self, s: &Serial) -> Result<usize, LinearError> {
+        Ok(match self.comm {
+            Comm::One => 1,
+            Comm::World => s.world_size()?,
+        })
+    }
+
+    /// The options installed for a system with or without constraint rows
+    /// (`constrained`) under the solver's `options`, on the stage `counts`
+    /// has reached (module docs).
+    fn options(
+        &self,
+        s: &Serial,
+        options: &str,
+        constrained: bool,
+        counts: &KrylovCounts,
+    ) -> Result<String, LinearError> {
+        Ok(options_for(
+            options,
+            constrained,
+            Stage::of(counts),
+            self.ranks(s)?,
+        ))
+    }
+
     /// Solves with right-hand side `b` (this rank's part) to the relative
-    /// residual `rtol` under `options`, counting into `counts`; the solution
-    /// is left in `x`. A solve that does not converge is retried once with
-    /// the solver rebuilt from `retry` (the fallback's options, module
-    /// docs), which it keeps; a solve that still does not converge, or had
-    /// no retry, is the error naming PETSc's reason.
+    /// residual `rtol` under the solver's `options`, counting into `counts`;
+    /// the solution is left in `x`. A solve that does not converge is
+    /// retried on the default's next stage, from a solver rebuilt with its
+    /// options, which the run keeps (module docs, "When the default does not
+    /// converge"); a solve that converges on no stage left, or that has no
+    /// retry (a preconditioner of the user's), is the error naming PETSc's
+    /// reason on each stage it tried.
     fn solve(
         &mut self,
         s: &Serial,
         b: &[f64],
         rtol: f64,
-        (options, retry): (&str, Option<String>),
+        (options, constrained): (&str, bool),
         counts: &mut KrylovCounts,
     ) -> Result<(), LinearError> {
         self.b.set(s, b)?;
-        let failed = match self.run(s, rtol, options, counts)? {
-            None => return Ok(()),
-            Some(e) => e,
+        let installed = self.options(s, options, constrained, counts)?;
+        let Some(mut failed) = self.run(s, rtol, &installed, counts)? else {
+            return Ok(());
         };
-        let Some(retry) = retry else {
-            return Err(match counts.switched_at {
-                Some(n) => LinearError::NotConverged(format!(
-                    "{} (with BoomerAMG on the displacements, the default's since GAMG \
-                     did not converge solve {n})",
-                    detail(&failed)
-                )),
-                None => failed,
-            });
-        };
-        s.replace_options(&retry)?;
-        self.ksp = Ksp::new(s, self.comm, &self.a)?;
-        if let [u, lambda] = &self.splits[..] {
-            self.ksp.add_split(s, "u", u)?;
-            self.ksp.add_split(s, "lambda", lambda)?;
+        let mut tried = vec![];
+        while let Some(stage) = retry_stage(options, counts) {
+            tried.push(format!("{failed} with {}", Stage::of(counts).name()));
+            stage.record(counts);
+            let installed = self.options(s, options, constrained, counts)?;
+            s.replace_options(&installed)?;
+            self.ksp = Ksp::new(s, self.comm, &self.a)?;
+            if retry_stage(options, counts).is_some() {
+                self.ksp.watch_stall(s, STALL_WINDOW, STALL_FACTOR)?;
+            }
+            if let [u, lambda] = &self.splits[..]
+                && self.ksp.is_fieldsplit(s)?
+            {
+                self.ksp.add_split(s, "u", u)?;
+                self.ksp.add_split(s, "lambda", lambda)?;
+            }
+            self.ksp.set_up(s)?;
+            match self.run(s, rtol, &installed, counts)? {
+                None => return Ok(()),
+                Some(e) => failed = e,
+            }
         }
-        self.ksp.set_up(s)?;
-        counts.switched_at = Some(counts.solves);
-        match self.run(s, rtol, &retry, counts)? {
-            None => Ok(()),
-            Some(e) => Err(LinearError::NotConverged(format!(
-                "{}; retried with BoomerAMG on the displacements: {}",
-                detail(&failed),
-                detail(&e)
-            ))),
+        let stage = Stage::of(counts);
+        if default_preconditioner(options) {
+            let since = match (tried.is_empty(), stage) {
+                (false, _) | (true, Stage::Gamg) => String::new(),
+                (true, Stage::BoomerAmg | Stage::Direct) => format!(
+                    ", the default's since solve {}",
+                    counts.direct_at.or(counts.switched_at).unwrap_or(0)
+                ),
+            };
+            let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
+            let own_bound = options.contains("icntl_23") || env.contains("icntl_23");
+            let available = crate::meminfo::available();
+            let bound = match (stage, direct_bound(available, self.ranks(s)?)) {
+                (Stage::Direct, Some(mib)) if !own_bound => format!(
+                    ", its working memory bounded at {mib} MiB per process \
+                     (-mat_mumps_icntl_23)"
+                ),
+                _ => String::new(),
+            };
+            tried.push(format!("{failed} with {}{since}{bound}", stage.name()));
+        } else {
+            tried.push(failed);
         }
+        Err(LinearError::NotConverged(format!(
+            "{}; {NOT_CONVERGED_HINT}",
+            tried.join("; retried: ")
+        )))
     }
 
-    /// One Krylov solve of `b` into `x` under `options`, counted; the
-    /// error it ended with when it did not converge.
+    /// One Krylov solve of `b` into `x` under `options`, counted; what
+    /// PETSc said when it did not converge.
     fn run(
         &mut self,
         s: &Serial,
         rtol: f64,
         options: &str,
         counts: &mut KrylovCounts,
-    ) -> Result<Option<LinearError>, LinearError> {
+    ) -> Result<Option<String>, LinearError> {
         self.ksp.set_rtol(s, rtol)?;
         s.replace_options(options)?;
         let out = self.ksp.solve(s, &self.b, &mut self.x)?;
@@ -542,11 +688,7 @@ impl PetscKrylov {
     /// The options string installed for a system with or without constraint
     /// rows (module docs, "Options and tolerance").
     fn options_for(&self, constrained: bool) -> String {
-        options_for(
-            &self.options,
-            constrained,
-            self.counts.switched_at.is_some(),
-        )
+        options_for(&self.options, constrained, Stage::of(&self.counts), 1)
     }
 
     /// The options of the cached pattern's system.
@@ -583,7 +725,7 @@ impl PetscKrylov {
         let a = Matrix::new(s, Comm::One, numbering.n, numbering.n, (&counts, &zeros))?;
         drop((counts, zeros));
         let mut ksp = Ksp::new(s, Comm::One, &a)?;
-        if retry_options(&self.options, constrained, &self.counts).is_some() {
+        if retry_stage(&self.options, &self.counts).is_some() {
             ksp.watch_stall(s, STALL_WINDOW, STALL_FACTOR)?;
         }
         let mut splits = vec![];
@@ -659,7 +801,6 @@ impl PetscKrylov {
         }
         let s = serial()?;
         let rtol = self.rtol;
-        let options = self.pattern_options();
         let p = self
             .pattern
             .as_mut()
@@ -676,9 +817,8 @@ impl PetscKrylov {
             b[p.numbering.rows[i]] = v;
         }
         let constrained = p.numbering.n > p.numbering.n_u;
-        let retry = retry_options(&self.options, constrained, &self.counts);
         let o = &mut p.objects;
-        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
+        o.solve(&s, &b, rtol, (&self.options, constrained), &mut self.counts)?;
         let x = o.x.get(&s)?;
         Ok(p.numbering.rows.iter().map(|&r| x[r]).collect())
     }

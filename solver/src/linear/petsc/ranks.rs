@@ -49,8 +49,8 @@ use std::time::{Duration, Instant};
 use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
 use super::{
-    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, reset_if_poisoned,
-    retry_options, through_parts,
+    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, Stage, options_for, petsc_rows,
+    reset_if_poisoned, retry_stage, through_parts,
 };
 use crate::linear::{
     Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout,
@@ -236,7 +236,8 @@ impl PetscRanks {
         options_for(
             &self.options,
             constrained,
-            self.counts.switched_at.is_some(),
+            Stage::of(&self.counts),
+            self.ranks.size,
         )
     }
 
@@ -257,13 +258,14 @@ impl PetscRanks {
         s.replace_options(&options_for(
             &self.options,
             constrained,
-            self.counts.switched_at.is_some(),
+            Stage::of(&self.counts),
+            self.ranks.size,
         ))?;
         let (d_nnz, o_nnz) = numbering.row_counts(s, &fill, block)?;
         let a = Matrix::new(s, Comm::World, numbering.n_local, nb.n, (&d_nnz, &o_nnz))?;
         drop((d_nnz, o_nnz));
         let mut ksp = Ksp::new(s, Comm::World, &a)?;
-        if retry_options(&self.options, constrained, &self.counts).is_some() {
+        if retry_stage(&self.options, &self.counts).is_some() {
             ksp.watch_stall(s, STALL_WINDOW, STALL_FACTOR)?;
         }
         let mut splits = vec![];
@@ -355,7 +357,6 @@ impl PetscRanks {
         }
         let s = serial()?;
         let rtol = self.rtol;
-        let options = self.pattern_options();
         let p = self
             .pattern
             .as_mut()
@@ -377,9 +378,8 @@ impl PetscRanks {
             }
         }
         let constrained = nb.numbering.n > nb.numbering.n_u;
-        let retry = retry_options(&self.options, constrained, &self.counts);
         let o = &mut p.objects;
-        o.solve(&s, &b, rtol, (&options, retry), &mut self.counts)?;
+        o.solve(&s, &b, rtol, (&self.options, constrained), &mut self.counts)?;
         let x = o.x.gather_all(&s, nb.numbering.n)?;
         Ok(nb.numbering.rows.iter().map(|&r| x[r]).collect())
     }
@@ -463,7 +463,12 @@ impl LinearSolver for PetscRanks {
     ) -> Result<Vec<usize>, LinearError> {
         let s = serial()?;
         // the partitioner reads the options too (`-mat_partitioning_type`)
-        s.replace_options(&options_for(&self.options, true, false))?;
+        s.replace_options(&options_for(
+            &self.options,
+            true,
+            Stage::Gamg,
+            self.ranks.size,
+        ))?;
         Ok(s.partition(n_total, row_ptr, cols, weights)?)
     }
 }

@@ -250,31 +250,101 @@ fn a_failed_petsc_call_does_not_poison_the_next_solve() {
 /// Chebyshev bounds far below the displacement block's spectrum, which
 /// only GAMG's smoothers read) is retried with BoomerAMG on the
 /// displacements, which the run keeps: the default's energy and Newton
-/// path, the switch reported at solve 1. A solve that fails after the retry
-/// too is the error saying so, and so is a later one.
+/// path, the switch reported at solve 1. A solve BoomerAMG does not
+/// converge either (one iteration allowed) is retried with MUMPS's LU,
+/// again the default's energy and Newton path. A solve that fails on every
+/// stage (no iteration allowed) is the error naming each.
 #[test]
-fn a_stalled_multigrid_is_retried_with_boomeramg() {
+fn a_solve_the_default_does_not_converge_climbs_its_ladder() {
     let scene =
         Scene::from_toml_str(crate::scenes::STACKED_CANTILEVER, "stacked-cantilever.toml").unwrap();
     let default = run::<2>(&scene, LinearSolverKind::Petsc, "").unwrap();
-    assert_eq!(default.krylov.as_ref().unwrap().switched_at, None);
+    let counts = default.krylov.clone().unwrap();
+    assert_eq!((counts.switched_at, counts.direct_at), (None, None));
+    let same_as_default = |sol: &Solution<2>| {
+        let rel = (sol.strain_energy / default.strain_energy - 1.0).abs();
+        assert!(rel <= 1e-8, "energy differs by {rel:e}");
+        assert_eq!(sol.newton_iterations, default.newton_iterations);
+    };
     let stalled = run::<2>(
         &scene,
         LinearSolverKind::Petsc,
         "-ksp_max_it 60 -fieldsplit_u_mg_levels_ksp_chebyshev_esteig 0,0.0001,0,0.0002",
     )
     .unwrap();
-    let rel = (stalled.strain_energy / default.strain_energy - 1.0).abs();
-    assert!(rel <= 1e-8, "energy differs by {rel:e}");
-    assert_eq!(stalled.newton_iterations, default.newton_iterations);
-    let k = stalled.krylov.unwrap();
-    assert_eq!(k.switched_at, Some(1), "{k:?}");
-    assert_eq!(k.solves, default.krylov.unwrap().solves + 1, "{k:?}");
-    let err = run::<2>(&scene, LinearSolverKind::Petsc, "-ksp_max_it 1")
-        .expect_err("one iteration cannot solve the saddle point");
+    same_as_default(&stalled);
+    let k = stalled.krylov.clone().unwrap();
+    assert_eq!((k.switched_at, k.direct_at), (Some(1), None), "{k:?}");
+    assert_eq!(k.solves, counts.solves + 1, "{k:?}");
+    let direct = run::<2>(&scene, LinearSolverKind::Petsc, "-ksp_max_it 1").unwrap();
+    same_as_default(&direct);
+    let k = direct.krylov.clone().unwrap();
+    assert_eq!((k.switched_at, k.direct_at), (Some(1), Some(2)), "{k:?}");
+    assert_eq!(k.solves, counts.solves + 2, "{k:?}");
+    // the run's error is its last attempt's, on the stage it reached
+    let err = run::<2>(&scene, LinearSolverKind::Petsc, "-ksp_max_it 0")
+        .expect_err("no iteration cannot solve the saddle point");
     let text = err.to_string();
     assert!(
-        text.contains("DIVERGED_ITS") && text.contains("BoomerAMG"),
+        text.contains("DIVERGED_ITS")
+            && text.contains("with MUMPS's LU, the default's since solve 2"),
         "{text}"
     );
+    // a first solve that fails on every stage names each
+    let mut s = PetscKrylov::new("-ksp_max_it 0");
+    let rows: Vec<u32> = (0..6).collect();
+    let err = s
+        .solve_system(6, &rows, &rows, &[1.0, 2.0, 3.0, 4.0, 5.0, 6.0], &[1.0; 6])
+        .expect_err("no iteration solves nothing");
+    let text = err.to_string();
+    for said in [
+        "DIVERGED_ITS after 0 iterations",
+        "with GAMG on the displacements; retried: PETSc's",
+        "with BoomerAMG on the displacements; retried: PETSc's fgmres/lu",
+        "with MUMPS's LU",
+    ] {
+        assert!(text.contains(said), "{said}: {text}");
+    }
+    let k = s.krylov().unwrap();
+    assert_eq!(
+        (k.switched_at, k.direct_at, k.solves),
+        (Some(1), Some(2), 3),
+        "{k:?}"
+    );
+}
+
+/// MUMPS's working memory bound: 90 % of what is available, split among
+/// the ranks, in MiB; none where the available memory is unknown.
+#[test]
+fn the_direct_stage_bounds_mumps_by_the_available_memory() {
+    let gib = 1024 * 1024 * 1024;
+    assert_eq!(direct_bound(Some(10 * gib), 1), Some(9216));
+    assert_eq!(direct_bound(Some(10 * gib), 2), Some(4608));
+    assert_eq!(direct_bound(Some(1), 4), Some(1));
+    assert_eq!(direct_bound(None, 2), None);
+    assert_eq!(
+        direct_options(Some(10 * gib), 2),
+        format!("{DIRECT_OPTIONS} -mat_mumps_icntl_23 4608")
+    );
+    assert_eq!(direct_options(None, 1), DIRECT_OPTIONS);
+}
+
+/// The 3D paper scene (slender plates in persistent contact, bending along
+/// their length), where no multigrid V-cycle of the default converges
+/// (docs/petsc.md, "Where the multigrid does not converge"): the default
+/// climbs to MUMPS's LU and gives the LDLᵀ's energy and Newton path.
+#[test]
+fn the_3d_paper_scene_solves_with_the_default_through_its_last_stage() {
+    let scene = Scene::from_toml_str(
+        include_str!("../../../../scenes/stacked-plates.toml"),
+        "stacked-plates.toml",
+    )
+    .unwrap();
+    let ldlt = run::<3>(&scene, LinearSolverKind::Ldlt, "").unwrap();
+    let petsc = run::<3>(&scene, LinearSolverKind::Petsc, "").unwrap();
+    let rel = (petsc.strain_energy / ldlt.strain_energy - 1.0).abs();
+    assert!(rel <= 1e-8, "energy differs by {rel:e}");
+    assert_eq!(petsc.newton_iterations, ldlt.newton_iterations);
+    let k = petsc.krylov.unwrap();
+    assert!(k.switched_at.is_some() && k.direct_at.is_some(), "{k:?}");
 }
