@@ -9,6 +9,9 @@
 #   scripts/hertz3d-refinement.sh --kind tet --segmented    # a variant: its own files
 #   scripts/hertz3d-refinement.sh --kind hexnm --dual        # non-matching hexahedra, dual
 #   scripts/hertz3d-refinement.sh --kind hexnm073            # the block finer than the indenter
+#   scripts/hertz3d-refinement.sh --kind hex --linear petsc --max-equations 2000000
+#                                  # hexahedra to h = 0.05 with PETSc's default (the LDLᵀ
+#                                  # of h = 0.05 does not fit); built with --features petsc
 #
 # Options go to examples/hertz3d_refinement.rs; without any, the table is
 # also spliced into docs/benchmarks.md.
@@ -31,7 +34,9 @@ for h in 0.4 0.2 0.1 0.07 0.05; do
 done
 cmp -s "$dir/hex-0.1.msh" scenes/hertz3d-hex.msh || echo "hertz3d-refinement: hex-0.1.msh differs from scenes/hertz3d-hex.msh" >&2
 cmp -s "$dir/tet-0.1.msh" scenes/hertz3d-tet.msh || echo "hertz3d-refinement: tet-0.1.msh differs from scenes/hertz3d-tet.msh (another gmsh version?)" >&2
-cargo build -q --release --example hertz3d_refinement
+features=()
+case " $* " in *" petsc "*) features=(--features petsc) ;; esac
+cargo build -q --release "${features[@]}" --example hertz3d_refinement
 RAYON_NUM_THREADS=2 target/release/examples/hertz3d_refinement "$dir" --out docs/hertz3d "$@"
 if [ $# -eq 0 ]; then
   scripts/splice-docs.sh hertz3d-refinement docs/hertz3d/hertz3d-refinement.md docs/benchmarks.md
