@@ -159,6 +159,13 @@ pub struct KrylovCounts {
     /// a direct factorisation (MUMPS's LU of the whole system), took over
     /// (the same docs); `None` while it has not.
     pub direct_at: Option<usize>,
+    /// MUMPS's working memory per process (MiB, `-mat_mumps_icntl_23`)
+    /// the direct stage was given when the run reached it: read once then,
+    /// since what its own factorisations hold afterwards is no longer
+    /// available memory, and a bound read again would refuse the next
+    /// factorisation of the same size; `None` before, or where the available
+    /// memory is unknown (MUMPS's own estimate then).
+    pub direct_memory_mib: Option<u64>,
 }
 
 /// A sparse direct solver for the Newton system, with the symbolic analysis

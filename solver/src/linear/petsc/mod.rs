@@ -53,8 +53,11 @@
 //! 2. [`DIRECT_OPTIONS`]: MUMPS's LU of the whole system, FGMRES then
 //!    taking one iteration ([`KrylovCounts::direct_at`]), its working
 //!    memory per process bounded by `-mat_mumps_icntl_23` at 90 % of
-//!    `MemAvailable` shared by this machine's ranks ([`direct_options`]):
-//!    a factorisation that would need more fails at its start, as a solve
+//!    `MemAvailable` shared by this machine's ranks ([`direct_options`]),
+//!    read once, when the run reaches the stage
+//!    ([`KrylovCounts::direct_memory_mib`]; read at every solve, the memory
+//!    the first factorisation holds would refuse the second): a
+//!    factorisation that would need more fails at its start, as a solve
 //!    that did not converge, instead of the system killing the process.
 //!
 //! `gapsim run` prints where each switch happened. A solve that has a
@@ -151,23 +154,28 @@ impl Stage {
     }
 
     /// What the stage adds after the defaults of a system with or without
-    /// constraint rows, on a machine shared by `ranks` processes.
-    fn options(self, constrained: bool, ranks: usize) -> String {
+    /// constraint rows, the direct stage's memory bound from `counts`.
+    fn options(self, constrained: bool, counts: &KrylovCounts) -> String {
         match (self, constrained) {
             (Stage::Gamg, _) => String::new(),
             (Stage::BoomerAmg, true) => FALLBACK_OPTIONS.into(),
             (Stage::BoomerAmg, false) => FALLBACK_OPTIONS_UNCONSTRAINED.into(),
-            (Stage::Direct, _) => direct_options(crate::meminfo::available(), ranks),
+            (Stage::Direct, _) => direct_options(counts.direct_memory_mib),
         }
     }
 
     /// Records in `counts` that the run switched to this stage after solve
-    /// `counts.solves`.
-    fn record(self, counts: &mut KrylovCounts) {
+    /// `counts.solves`; the direct stage's memory bound is read here, once,
+    /// for a machine shared by `ranks` processes
+    /// ([`KrylovCounts::direct_memory_mib`]).
+    fn record(self, counts: &mut KrylovCounts, ranks: usize) {
         match self {
             Stage::Gamg => {}
             Stage::BoomerAmg => counts.switched_at = Some(counts.solves),
-            Stage::Direct => counts.direct_at = Some(counts.solves),
+            Stage::Direct => {
+                counts.direct_at = Some(counts.solves);
+                counts.direct_memory_mib = direct_bound(crate::meminfo::available(), ranks);
+            }
         }
     }
 
@@ -182,10 +190,10 @@ impl Stage {
 }
 
 /// [`DIRECT_OPTIONS`] with MUMPS's working memory per process
-/// (`-mat_mumps_icntl_23`) bounded by [`direct_bound`]; unbounded (MUMPS's
-/// own estimate) where `available` is unknown.
-fn direct_options(available: Option<u64>, ranks: usize) -> String {
-    match direct_bound(available, ranks) {
+/// (`-mat_mumps_icntl_23`) bounded at `bound` MiB ([`direct_bound`]);
+/// unbounded (MUMPS's own estimate) without one.
+fn direct_options(bound: Option<u64>) -> String {
+    match bound {
         Some(mib) => format!("{DIRECT_OPTIONS} -mat_mumps_icntl_23 {mib}"),
         None => DIRECT_OPTIONS.into(),
     }
@@ -231,15 +239,15 @@ pub fn build(options: &str) -> Box<dyn LinearSolver> {
 
 /// The options string installed for a system with or without constraint
 /// rows, with the solver's own `options` (module docs, "Options and
-/// tolerance"), on the default's `stage` (its options after the defaults)
-/// across `ranks` processes.
-fn options_for(options: &str, constrained: bool, stage: Stage, ranks: usize) -> String {
+/// tolerance"), on the default's stage `counts` has reached (its options
+/// after the defaults).
+fn options_for(options: &str, constrained: bool, counts: &KrylovCounts) -> String {
     let defaults = if constrained {
         DEFAULT_OPTIONS
     } else {
         DEFAULT_OPTIONS_UNCONSTRAINED
     };
-    let stage = stage.options(constrained, ranks);
+    let stage = Stage::of(counts).options(constrained, counts);
     let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
     format!("{defaults} {stage} {env} {options}")
 }
@@ -435,24 +443,6 @@ impl Objects {
         })
     }
 
-    /// The options installed for a system with or without constraint rows
-    /// (`constrained`) under the solver's `options`, on the stage `counts`
-    /// has reached (module docs).
-    fn options(
-        &self,
-        s: &Serial,
-        options: &str,
-        constrained: bool,
-        counts: &KrylovCounts,
-    ) -> Result<String, LinearError> {
-        Ok(options_for(
-            options,
-            constrained,
-            Stage::of(counts),
-            self.ranks(s)?,
-        ))
-    }
-
     /// Solves with right-hand side `b` (this rank's part) to the relative
     /// residual `rtol` under the solver's `options`, counting into `counts`;
     /// the solution is left in `x`. A solve that does not converge is
@@ -470,15 +460,15 @@ impl Objects {
         counts: &mut KrylovCounts,
     ) -> Result<(), LinearError> {
         self.b.set(s, b)?;
-        let installed = self.options(s, options, constrained, counts)?;
+        let installed = options_for(options, constrained, counts);
         let Some(mut failed) = self.run(s, rtol, &installed, counts)? else {
             return Ok(());
         };
         let mut tried = vec![];
         while let Some(stage) = retry_stage(options, counts) {
             tried.push(format!("{failed} with {}", Stage::of(counts).name()));
-            stage.record(counts);
-            let installed = self.options(s, options, constrained, counts)?;
+            stage.record(counts, self.ranks(s)?);
+            let installed = options_for(options, constrained, counts);
             s.replace_options(&installed)?;
             self.ksp = Ksp::new(s, self.comm, &self.a)?;
             if retry_stage(options, counts).is_some() {
@@ -507,8 +497,7 @@ impl Objects {
             };
             let env = std::env::var("PETSC_OPTIONS").unwrap_or_default();
             let own_bound = options.contains("icntl_23") || env.contains("icntl_23");
-            let available = crate::meminfo::available();
-            let bound = match (stage, direct_bound(available, self.ranks(s)?)) {
+            let bound = match (stage, counts.direct_memory_mib) {
                 (Stage::Direct, Some(mib)) if !own_bound => format!(
                     ", its working memory bounded at {mib} MiB per process \
                      (-mat_mumps_icntl_23)"
@@ -688,7 +677,7 @@ impl PetscKrylov {
     /// The options string installed for a system with or without constraint
     /// rows (module docs, "Options and tolerance").
     fn options_for(&self, constrained: bool) -> String {
-        options_for(&self.options, constrained, Stage::of(&self.counts), 1)
+        options_for(&self.options, constrained, &self.counts)
     }
 
     /// The options of the cached pattern's system.

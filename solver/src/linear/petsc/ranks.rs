@@ -49,8 +49,8 @@ use std::time::{Duration, Instant};
 use super::fill::Fill;
 use super::objects::{Comm, IndexSet, Ksp, Matrix, NearNullSpace, Serial, Vector, serial};
 use super::{
-    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, Stage, options_for, petsc_rows,
-    reset_if_poisoned, retry_stage, through_parts,
+    Numbering, Objects, STALL_FACTOR, STALL_WINDOW, options_for, petsc_rows, reset_if_poisoned,
+    retry_stage, through_parts,
 };
 use crate::linear::{
     Block, BlockPattern, KrylovCounts, LinearError, LinearSolver, Ranks, SystemLayout,
@@ -233,12 +233,7 @@ impl PetscRanks {
             .pattern
             .as_ref()
             .is_some_and(|p| p.numbering.numbering.n > p.numbering.numbering.n_u);
-        options_for(
-            &self.options,
-            constrained,
-            Stage::of(&self.counts),
-            self.ranks.size,
-        )
+        options_for(&self.options, constrained, &self.counts)
     }
 
     fn build(
@@ -255,12 +250,7 @@ impl PetscRanks {
         let nb = &numbering.numbering;
         let fill = Fill::new(nb, numbering.n_free, block, rows, cols)?;
         let constrained = nb.n > nb.n_u;
-        s.replace_options(&options_for(
-            &self.options,
-            constrained,
-            Stage::of(&self.counts),
-            self.ranks.size,
-        ))?;
+        s.replace_options(&options_for(&self.options, constrained, &self.counts))?;
         let (d_nnz, o_nnz) = numbering.row_counts(s, &fill, block)?;
         let a = Matrix::new(s, Comm::World, numbering.n_local, nb.n, (&d_nnz, &o_nnz))?;
         drop((d_nnz, o_nnz));
@@ -463,12 +453,7 @@ impl LinearSolver for PetscRanks {
     ) -> Result<Vec<usize>, LinearError> {
         let s = serial()?;
         // the partitioner reads the options too (`-mat_partitioning_type`)
-        s.replace_options(&options_for(
-            &self.options,
-            true,
-            Stage::Gamg,
-            self.ranks.size,
-        ))?;
+        s.replace_options(&options_for(&self.options, true, &KrylovCounts::default()))?;
         Ok(s.partition(n_total, row_ptr, cols, weights)?)
     }
 }

@@ -323,10 +323,37 @@ fn the_direct_stage_bounds_mumps_by_the_available_memory() {
     assert_eq!(direct_bound(Some(1), 4), Some(1));
     assert_eq!(direct_bound(None, 2), None);
     assert_eq!(
-        direct_options(Some(10 * gib), 2),
+        direct_options(direct_bound(Some(10 * gib), 2)),
         format!("{DIRECT_OPTIONS} -mat_mumps_icntl_23 4608")
     );
-    assert_eq!(direct_options(None, 1), DIRECT_OPTIONS);
+    assert_eq!(direct_options(None), DIRECT_OPTIONS);
+}
+
+/// The direct stage's bound is the one read when the run reached it, kept
+/// in the counts: a later solve, whose own factorisation holds memory that
+/// is no longer available, installs the same bound.
+#[test]
+fn the_direct_stage_keeps_the_bound_it_was_given() {
+    let mut counts = KrylovCounts::default();
+    Stage::BoomerAmg.record(&mut counts, 1);
+    Stage::Direct.record(&mut counts, 1);
+    assert_eq!(Stage::of(&counts), Stage::Direct);
+    assert_eq!(counts.direct_at, Some(0));
+    assert_eq!(
+        counts.direct_memory_mib.is_some(),
+        crate::meminfo::available().is_some(),
+        "{counts:?}"
+    );
+    counts.direct_memory_mib = Some(1234);
+    for constrained in [true, false] {
+        let installed = options_for("", constrained, &counts);
+        assert!(
+            installed.contains(&format!("{DIRECT_OPTIONS} -mat_mumps_icntl_23 1234")),
+            "{installed}"
+        );
+    }
+    counts.direct_memory_mib = None;
+    assert!(!options_for("", true, &counts).contains("icntl_23"));
 }
 
 /// The 3D paper scene (slender plates in persistent contact, bending along
